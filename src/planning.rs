@@ -1,1 +1,196 @@
-//! placeholder
+//! One planning run, as the CLI and the experiments ask for it: a problem in a mode, a planner,
+//! optionally model-free, and a report in the problem's own state numbering.
+//!
+//! Modes (SPEC §7): `exact` is the paper's text — exact costs (unit or `800/19` per grid move),
+//! exact values, Dijkstra backwards from the goal set. `reference` reproduces the paper's code —
+//! `f64` Euclidean costs on its coordinates, its action orders, Dijkstra forwards from `x1`
+//! stopping at the goal, value iteration capped at 1000 sweeps. Every report names its mode.
+
+use serde::Serialize;
+
+use crate::model::{Decision, ExactGraph, Graph, Problem};
+use crate::solvers::exploration::explore;
+use crate::solvers::value_iteration::{value_iteration, Schedule};
+use crate::solvers::{dijkstra, follow_policy};
+use crate::value::CostValue;
+
+/// Which model produced the numbers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Mode {
+    /// The paper's text, in exact arithmetic (default).
+    #[default]
+    Exact,
+    /// The paper's reference code (f64 geometry and costs, its orders and counting rules).
+    Reference,
+}
+
+/// A planner of SPEC §2.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Algorithm {
+    /// Dijkstra's algorithm.
+    Dijkstra,
+    /// Synchronous value iteration.
+    Vi,
+    /// Asynchronous (Gauss–Seidel) value iteration.
+    AsyncVi,
+}
+
+impl Algorithm {
+    /// The name used on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Algorithm::Dijkstra => "dijkstra",
+            Algorithm::Vi => "vi",
+            Algorithm::AsyncVi => "async-vi",
+        }
+    }
+}
+
+/// The cap on value-iteration sweeps in the reference mode (the paper's code).
+pub const REFERENCE_MAX_SWEEPS: u64 = 1000;
+
+/// The result of one planning run, in the problem's state numbering.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PlanReport {
+    /// The mode.
+    pub mode: Mode,
+    /// The planner.
+    pub algorithm: Algorithm,
+    /// Whether the planner ran on the graph discovered by exploration.
+    pub model_free: bool,
+    /// The value type the planner computed with: `units` (exact `u64` multiples of
+    /// `unit`), `big-rational` (exact), or `f64` (reference mode only).
+    pub value_type: &'static str,
+    /// The exact value of one unit, for `units` (e.g. `"1"`, `"800/19"`).
+    pub unit: String,
+    /// How Dijkstra searched (`backward-from-goals` or `forward-from-initial`), if it ran.
+    pub dijkstra_direction: Option<&'static str>,
+    /// Whether a goal is reachable from `x1`.
+    pub reachable: bool,
+    /// `G*(x1)` as text: exact (`"63"`, `"50400/19"`, `"inf"`) or, in reference mode, the f64.
+    pub cost_to_go_initial: String,
+    /// The path from `x1` to a goal (state ids), empty if unreachable.
+    pub path: Vec<usize>,
+    /// Sweeps (VI) or heap pops (Dijkstra).
+    pub iterations: u64,
+    /// Actions counted by the exploration (0 unless model-free).
+    pub exploration_actions: u64,
+    /// Actions counted by the planner: backups (VI) or relaxations (Dijkstra).
+    pub planner_actions: u64,
+    /// `exploration_actions + planner_actions`.
+    pub actions: u64,
+    /// `G*` per state as text; `None` for states the planner never saw (model-free runs see
+    /// only what exploration from `x1` discovered).
+    pub cost_to_go: Vec<Option<String>>,
+    /// The policy as the successor chosen per state (a goal names itself: termination);
+    /// `None` where no goal is reachable or the state was not seen.
+    pub policy: Vec<Option<usize>>,
+}
+
+/// Plans on an exact problem, in the narrowest exact representation ([`ExactGraph`]).
+///
+/// ```
+/// use truecost::planning::{plan_exact, Algorithm};
+/// use truecost::problems::{GridLayout, StepCost};
+/// let problem = GridLayout::exact(0).unwrap().to_problem(StepCost::Unit);
+/// let r = plan_exact(&problem, Algorithm::Dijkstra, false);
+/// assert_eq!(r.cost_to_go_initial, "17");
+/// assert_eq!(r.path.len(), 18);
+/// ```
+pub fn plan_exact(problem: &Problem, algorithm: Algorithm, model_free: bool) -> PlanReport {
+    let graph = ExactGraph::new(problem);
+    let value_type = graph.representation();
+    let states = problem.states();
+    match &graph {
+        ExactGraph::Units(g) => plan_on(g, algorithm, model_free, Mode::Exact, states, value_type),
+        ExactGraph::Big(g) => plan_on(g, algorithm, model_free, Mode::Exact, states, value_type),
+    }
+}
+
+/// Plans in the reference mode on an `f64` graph (SPEC §7).
+pub fn plan_reference(graph: &Graph<f64>, algorithm: Algorithm, model_free: bool) -> PlanReport {
+    plan_on(
+        graph,
+        algorithm,
+        model_free,
+        Mode::Reference,
+        graph.nodes(),
+        "f64",
+    )
+}
+
+fn plan_on<V: CostValue>(
+    graph: &Graph<V>,
+    algorithm: Algorithm,
+    model_free: bool,
+    mode: Mode,
+    states: usize,
+    value_type: &'static str,
+) -> PlanReport {
+    let explored;
+    let (work, exploration_actions) = if model_free {
+        explored = explore(graph);
+        (&explored.graph, explored.actions)
+    } else {
+        (graph, 0)
+    };
+    let max_sweeps = (mode == Mode::Reference).then_some(REFERENCE_MAX_SWEEPS);
+    let (solution, path, iterations, planner_actions, direction) = match algorithm {
+        Algorithm::Dijkstra if mode == Mode::Reference => {
+            // Counts and path from the paper's forward search; G* for every state from the
+            // backward search (not counted: the paper's code does not compute it).
+            let forward = dijkstra::from_initial(work);
+            let all = dijkstra::to_goals(work);
+            let (p, r) = (forward.counts.pops, forward.counts.relaxations);
+            (all, forward.path, p, r, Some("forward-from-initial"))
+        }
+        Algorithm::Dijkstra => {
+            let s = dijkstra::to_goals(work);
+            let path = follow_policy(work, &s.policy, work.initial()).unwrap_or_default();
+            let (i, a) = (s.iterations, s.actions);
+            (s, path, i, a, Some("backward-from-goals"))
+        }
+        Algorithm::Vi | Algorithm::AsyncVi => {
+            let schedule = if algorithm == Algorithm::Vi {
+                Schedule::Synchronous
+            } else {
+                Schedule::Asynchronous
+            };
+            let s = value_iteration(work, schedule, max_sweeps);
+            let path = follow_policy(work, &s.policy, work.initial()).unwrap_or_default();
+            let (i, a) = (s.iterations, s.actions);
+            (s, path, i, a, None)
+        }
+    };
+    let mut cost_to_go = vec![None; states];
+    let mut policy = vec![None; states];
+    for v in 0..work.nodes() {
+        let x = work.origin(v);
+        cost_to_go[x] = Some(work.render(&solution.cost_to_go[v]));
+        policy[x] = match solution.policy[v] {
+            Some(Decision::Terminate) => Some(x),
+            Some(Decision::Move(i)) => work.edges(v).nth(i).map(|(y, _)| work.origin(y)),
+            None => None,
+        };
+    }
+    let initial = &solution.cost_to_go[work.initial()];
+    PlanReport {
+        mode,
+        algorithm,
+        model_free,
+        value_type,
+        unit: crate::value::Extended::Finite(work.unit().clone()).to_string(),
+        dijkstra_direction: direction,
+        reachable: initial.is_finite(),
+        cost_to_go_initial: work.render(initial),
+        path: path.into_iter().map(|v| work.origin(v)).collect(),
+        iterations,
+        exploration_actions,
+        planner_actions,
+        actions: exploration_actions + planner_actions,
+        cost_to_go,
+        policy,
+    }
+}

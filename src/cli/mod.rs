@@ -1,0 +1,191 @@
+//! Command-line interface (clap). Every error is one line on stderr and a non-zero exit:
+//! 2 for usage errors (clap), 1 for bad input or a failed run.
+
+mod output;
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+use truecost::model::file;
+use truecost::planning::{plan_exact, plan_reference, Algorithm, Mode};
+use truecost::problems::{GridLayout, StepCost, GRID_NODES};
+
+/// Exact planning, the paper's problems, and machine-checked claims of "Relating Reinforcement
+/// Learning to Dynamic Programming-Based Planning" (Georgiev, Timperi, Sakçak, LaValle).
+#[derive(Parser, Debug)]
+#[command(name = "truecost", version, about, long_about = None, propagate_version = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// List the paper's 19 grid problems with their facts (states, edges, x1, goal, optimum).
+    Problems(ProblemsArgs),
+    /// Solve one problem with an exact planner (or the paper's code, in reference mode).
+    Solve(SolveArgs),
+}
+
+/// Output format of a listing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ListFormat {
+    /// Aligned text.
+    Text,
+    /// A JSON array.
+    Json,
+    /// Comma-separated values with a header.
+    Csv,
+    /// A Markdown table.
+    Markdown,
+}
+
+/// Output format of a single result.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ReportFormat {
+    /// Readable text.
+    Text,
+    /// One JSON object.
+    Json,
+}
+
+#[derive(Args, Debug)]
+struct ProblemsArgs {
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ListFormat::Text)]
+    format: ListFormat,
+    /// Build the problems as the paper's reference code does (f64 geometry, its action order).
+    #[arg(long, value_enum, default_value_t = Mode::Exact)]
+    mode: Mode,
+}
+
+#[derive(Args, Debug)]
+#[command(group(clap::ArgGroup::new("source").required(true).args(["problem", "file"])))]
+struct SolveArgs {
+    /// One of the paper's problems, 0 to 18 (`truecost problems` lists them).
+    #[arg(long, value_name = "N")]
+    problem: Option<usize>,
+    /// A problem file in truecost's JSON format (see README, "Problem files").
+    #[arg(long, value_name = "FILE")]
+    file: Option<PathBuf>,
+    /// The planner.
+    #[arg(long, value_enum)]
+    algorithm: Algorithm,
+    /// Explore first (depth-first walk over edges, counting actions), then plan on the
+    /// discovered graph; reported actions = exploration + planner.
+    #[arg(long)]
+    model_free: bool,
+    /// `exact`: the paper's text in exact arithmetic. `reference`: the paper's code (f64
+    /// Euclidean costs, its orders and counting rules; paper problems only).
+    #[arg(long, value_enum, default_value_t = Mode::Exact)]
+    mode: Mode,
+    /// Stage cost of a grid move in exact mode: 1, or the exact segment length 800/19
+    /// [default: unit].
+    #[arg(long, value_enum)]
+    step_cost: Option<StepCost>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ReportFormat::Text)]
+    format: ReportFormat,
+}
+
+/// Runs the command line and maps every failure to a one-line message.
+pub fn main() -> ExitCode {
+    std::panic::set_hook(Box::new(|info| {
+        let msg = info
+            .payload()
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| info.payload().downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "unknown".into());
+        let line = msg.lines().next().unwrap_or("").to_string();
+        eprintln!("error: internal error (please report): {line}");
+    }));
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    let result = match cli.command {
+        Command::Problems(args) => problems(&args),
+        Command::Solve(args) => solve(&args),
+    };
+    match result.and_then(|text| emit(&text)) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// Writes to stdout; a closed pipe (e.g. `| head`) is not an error.
+fn emit(text: &str) -> Result<(), String> {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.to_string()),
+        _ => Ok(()),
+    }
+}
+
+fn problems(args: &ProblemsArgs) -> Result<String, String> {
+    let facts = (0..truecost::problems::paper_scenarios().len())
+        .map(|id| {
+            let layout = match args.mode {
+                Mode::Exact => GridLayout::exact(id),
+                Mode::Reference => GridLayout::reference(id),
+            };
+            layout.map(|l| l.facts()).map_err(|e| e.to_string())
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(output::problems(&facts, args.format, args.mode))
+}
+
+fn solve(args: &SolveArgs) -> Result<String, String> {
+    let (report, source) = match (&args.file, args.problem, args.mode) {
+        (Some(_), _, Mode::Reference) => {
+            return Err("--mode reference reproduces the paper's code and applies to the paper's problems (--problem N) only".into())
+        }
+        (Some(_), _, _) if args.step_cost.is_some() => {
+            return Err("--step-cost applies to the paper's grid problems (--problem N); a problem file gives its own costs".into())
+        }
+        (Some(path), _, Mode::Exact) => {
+            let problem = file::read(path).map_err(|e| e.to_string())?;
+            let report = plan_exact(&problem, args.algorithm, args.model_free);
+            (report, format!("file {}", path.display()))
+        }
+        (None, Some(id), Mode::Exact) => {
+            let step = args.step_cost.unwrap_or_default();
+            let problem = GridLayout::exact(id)
+                .map_err(|e| e.to_string())?
+                .to_problem(step);
+            let report = plan_exact(&problem, args.algorithm, args.model_free);
+            let step = match step {
+                StepCost::Unit => "unit step costs",
+                StepCost::Euclidean => "Euclidean step costs 800/19",
+            };
+            (report, format!("paper problem {id} (paper text, {step})"))
+        }
+        (None, Some(id), Mode::Reference) => {
+            if args.step_cost.is_some() {
+                return Err("--step-cost applies to --mode exact; the reference mode always uses the paper code's f64 Euclidean costs".into());
+            }
+            let graph = GridLayout::reference(id)
+                .map_err(|e| e.to_string())?
+                .to_reference_graph();
+            debug_assert_eq!(graph.nodes(), GRID_NODES);
+            let report = plan_reference(&graph, args.algorithm, args.model_free);
+            (report, format!("paper problem {id} (reference code: f64 Euclidean costs)"))
+        }
+        (None, None, _) => return Err("give --problem N or --file FILE".into()),
+    };
+    Ok(match args.format {
+        ReportFormat::Text => output::report_text(&report, &source),
+        ReportFormat::Json => output::report_json(&report, &source),
+    })
+}

@@ -5,9 +5,11 @@
 //! Sakçak, LaValle), with a reference mode that reproduces the paper's published counts.
 //!
 //! Architecture (each layer imports only the ones before it):
-//! [`value`] → [`model`] → [`problems`] → [`solvers`] → [`planning`] → `cli` (the binary).
+//! [`value`] → [`model`] → [`problems`] → [`solvers`] → [`learning`] → [`planning`] → `cli`
+//! (the binary).
 #![warn(missing_docs)]
 
+pub mod learning;
 pub mod model;
 pub mod planning;
 pub mod problems;

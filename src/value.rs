@@ -96,7 +96,9 @@ impl CostValue for Units {
         })
     }
     fn render(&self, unit: &Rational) -> String {
-        self.to_extended(unit).map(|e| e.to_string()).unwrap_or_default()
+        self.to_extended(unit)
+            .map(|e| e.to_string())
+            .unwrap_or_default()
     }
 }
 
@@ -183,7 +185,9 @@ impl CostValue for Extended {
         })
     }
     fn render(&self, unit: &Rational) -> String {
-        self.to_extended(unit).map(|e| e.to_string()).unwrap_or_default()
+        self.to_extended(unit)
+            .map(|e| e.to_string())
+            .unwrap_or_default()
     }
 }
 
@@ -303,7 +307,8 @@ fn parse_decimal(t: &str) -> Option<Rational> {
     if int_part.is_empty() && frac_part.is_empty() {
         return None;
     }
-    if !int_part.bytes().all(|b| b.is_ascii_digit()) || !frac_part.bytes().all(|b| b.is_ascii_digit())
+    if !int_part.bytes().all(|b| b.is_ascii_digit())
+        || !frac_part.bytes().all(|b| b.is_ascii_digit())
     {
         return None;
     }

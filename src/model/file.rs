@@ -139,7 +139,8 @@ pub fn from_json(text: &str) -> Result<Problem, FileError> {
         moves.push(row);
     }
     let problem = Problem::new(moves, file.initial, file.goals)?;
-    if let Some(x) = (0..problem.states()).find(|&x| problem.moves(x).is_empty() && !problem.is_goal(x))
+    if let Some(x) =
+        (0..problem.states()).find(|&x| problem.moves(x).is_empty() && !problem.is_goal(x))
     {
         return Err(FileError::EmptyActions(x));
     }

@@ -50,14 +50,15 @@ pub struct Solution<V> {
 pub fn greedy_policy<V: CostValue>(graph: &Graph<V>, cost_to_go: &[V]) -> Vec<Option<Decision>> {
     let n = graph.nodes();
     let tight = |x: usize, y: usize, c: &V| {
-        cost_to_go[x].is_finite() && c.plus(&cost_to_go[y]).compare(&cost_to_go[x]) == Ordering::Equal
+        cost_to_go[x].is_finite()
+            && c.plus(&cost_to_go[y]).compare(&cost_to_go[x]) == Ordering::Equal
     };
     // h: shortest number of optimal moves to a goal (backward BFS over tight edges).
     let mut h = vec![u32::MAX; n];
     let mut queue = VecDeque::new();
-    for v in 0..n {
+    for (v, hv) in h.iter_mut().enumerate() {
         if graph.is_goal(v) {
-            h[v] = 0;
+            *hv = 0;
             queue.push_back(v);
         }
     }

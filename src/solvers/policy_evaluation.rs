@@ -65,5 +65,8 @@ pub fn evaluate_policy<V: CostValue>(graph: &Graph<V>, policy: &[Option<Decision
             state[y] = DONE;
         }
     }
-    value.into_iter().map(|v| v.expect("every node resolved")).collect()
+    value
+        .into_iter()
+        .map(|v| v.expect("every node resolved"))
+        .collect()
 }

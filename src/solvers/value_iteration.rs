@@ -73,10 +73,10 @@ pub fn value_iteration<V: CostValue>(
             }
             Schedule::Synchronous => {
                 previous.clone_from(&g);
-                for x in 0..n {
+                for (x, value) in g.iter_mut().enumerate() {
                     if let Some(best) = best_backup(graph, x, &previous) {
-                        if best.compare(&g[x]) == Ordering::Less {
-                            g[x] = best;
+                        if best.compare(value) == Ordering::Less {
+                            *value = best;
                             changed = true;
                         }
                     }

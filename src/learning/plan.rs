@@ -1,0 +1,374 @@
+//! Exploration plans (SPEC §2) and the probabilities of ε-greedy exploration.
+//!
+//! An exploration plan says which action to apply when ε-greedy explores:
+//!
+//! * the **random plan** — a uniformly random action of `U(x)`, drawn from a seeded portable
+//!   generator ([`ChaCha8Rng`], see [`sample_rng`]);
+//! * the **π universal plan** — reads the [`PiStream`]: the digit stream `3, 0, 2, 1, 0, 0, 3, …`
+//!   (the integer part of π followed by its base-4 fractional digits). Digit `d` applies the
+//!   action at position `d` of the state's ordered action list `U(x)` (0-based); a digit
+//!   `≥ |U(x)|` is skipped and the next digit is read. The plan therefore only ever applies the
+//!   first four actions of a state, which covers every state of the paper's 4-neighbour grids.
+//!
+//! Coins (whether ε-greedy explores at a step) are exact: ε is a rational `p/q`
+//! ([`Probability`]) and a coin is `uniform{0, …, q−1} < p`, drawn from the same generator as
+//! the random plan. `ε = 0` and `ε = 1` draw no coin at all (the paper's "greedy" and "random"
+//! policies).
+
+use std::sync::{Arc, Mutex};
+
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_traits::{One, Signed, ToPrimitive};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use crate::value::Rational;
+
+/// Why a probability or a schedule of probabilities is not valid.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ProbabilityError {
+    /// Outside `[0, 1]`.
+    #[error("{name} = {value} is outside [0, 1]")]
+    OutOfRange {
+        /// The parameter's name (`ε`, …).
+        name: &'static str,
+        /// The value as text.
+        value: String,
+    },
+    /// The exact value needs a denominator beyond 2^63.
+    #[error("{name} = {value} has a denominator too large for exact coins (at most 2^63)")]
+    TooFine {
+        /// The parameter's name.
+        name: &'static str,
+        /// The value as text.
+        value: String,
+    },
+}
+
+/// An exact probability `numerator / denominator ∈ [0, 1]` (reduced, denominator ≤ 2^63).
+///
+/// ```
+/// use truecost::learning::plan::Probability;
+/// use truecost::value::parse_rational;
+/// let p = Probability::new("ε", &parse_rational("0.25").unwrap()).unwrap();
+/// assert_eq!((p.numerator(), p.denominator()), (1, 4));
+/// assert!(Probability::new("ε", &parse_rational("1.5").unwrap()).is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Probability {
+    numerator: u64,
+    denominator: u64,
+}
+
+/// The largest denominator a [`Probability`] may have.
+const MAX_DENOMINATOR: u64 = 1 << 63;
+
+impl Probability {
+    /// Never.
+    pub const ZERO: Probability = Probability {
+        numerator: 0,
+        denominator: 1,
+    };
+    /// Always.
+    pub const ONE: Probability = Probability {
+        numerator: 1,
+        denominator: 1,
+    };
+
+    /// The probability `value`, checked to lie in `[0, 1]`; `name` is used in errors.
+    pub fn new(name: &'static str, value: &Rational) -> Result<Self, ProbabilityError> {
+        let text = || crate::value::Extended::Finite(value.clone()).to_string();
+        if value.is_negative() || value > &Rational::one() {
+            return Err(ProbabilityError::OutOfRange {
+                name,
+                value: text(),
+            });
+        }
+        let (n, d) = (value.numer().to_u64(), value.denom().to_u64());
+        match (n, d) {
+            (Some(numerator), Some(denominator)) if denominator <= MAX_DENOMINATOR => {
+                Ok(Probability {
+                    numerator,
+                    denominator,
+                })
+            }
+            _ => Err(ProbabilityError::TooFine {
+                name,
+                value: text(),
+            }),
+        }
+    }
+
+    /// `p` in lowest terms.
+    pub fn numerator(&self) -> u64 {
+        self.numerator
+    }
+
+    /// `q` in lowest terms.
+    pub fn denominator(&self) -> u64 {
+        self.denominator
+    }
+
+    /// The exact value.
+    pub fn to_rational(self) -> Rational {
+        Rational::new(BigInt::from(self.numerator), BigInt::from(self.denominator))
+    }
+
+    /// The nearest `f64` (for display only).
+    pub fn to_f64(self) -> f64 {
+        self.numerator as f64 / self.denominator as f64
+    }
+
+    /// An exact coin: true with probability `p/q`. Draws nothing when `p ∈ {0, q}`.
+    #[inline]
+    pub fn flip(self, rng: &mut ChaCha8Rng) -> bool {
+        if self.numerator == 0 {
+            false
+        } else if self.numerator == self.denominator {
+            true
+        } else {
+            rng.random_range(0..self.denominator) < self.numerator
+        }
+    }
+}
+
+/// How ε varies over the episodes of a run (SPEC §2, "optional ε-decay").
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum EpsilonSchedule {
+    /// The same ε in every episode.
+    Constant(Probability),
+    /// Linear decay: `ε_k = start + (end − start)·k/(E − 1)` in episode `k = 0, …, E − 1` of
+    /// `E` episodes, exactly (so `ε_0 = start`, `ε_{E−1} = end`; `E = 1` uses `start`).
+    Linear {
+        /// ε in the first episode.
+        start: Probability,
+        /// ε in the last episode (the paper's ε-decay row ends at 0.1).
+        end: Probability,
+    },
+}
+
+impl EpsilonSchedule {
+    /// The paper's ε-decay row: from `start` down to 0.1 at the last episode.
+    pub fn decay_to_one_tenth(start: Probability) -> Self {
+        EpsilonSchedule::Linear {
+            start,
+            end: Probability {
+                numerator: 1,
+                denominator: 10,
+            },
+        }
+    }
+
+    /// ε in episode `k` of `episodes`, exactly.
+    ///
+    /// ```
+    /// use truecost::learning::plan::{EpsilonSchedule, Probability};
+    /// let s = EpsilonSchedule::decay_to_one_tenth(Probability::ONE);
+    /// assert_eq!(s.at(0, 10).unwrap(), Probability::ONE);
+    /// let last = s.at(9, 10).unwrap();
+    /// assert_eq!((last.numerator(), last.denominator()), (1, 10));
+    /// let mid = s.at(3, 10).unwrap(); // 1 − 0.9·3/9 = 7/10
+    /// assert_eq!((mid.numerator(), mid.denominator()), (7, 10));
+    /// ```
+    pub fn at(&self, k: u32, episodes: u32) -> Result<Probability, ProbabilityError> {
+        match self {
+            EpsilonSchedule::Constant(p) => Ok(*p),
+            EpsilonSchedule::Linear { start, end } => {
+                if episodes <= 1 {
+                    return Ok(*start);
+                }
+                let (s, e) = (start.to_rational(), end.to_rational());
+                let t = Rational::new(BigInt::from(k), BigInt::from(episodes - 1));
+                Probability::new("ε", &(&s + (e - &s) * t))
+            }
+        }
+    }
+
+    /// Checks that every episode's ε is representable (called once before a run).
+    pub fn validate(&self, episodes: u32) -> Result<(), ProbabilityError> {
+        if let EpsilonSchedule::Linear { start, end } = self {
+            // Every ε_k has a denominator dividing lcm(q_s, q_e)·(E − 1).
+            let d = BigInt::from(start.denominator).lcm(&BigInt::from(end.denominator))
+                * BigInt::from(episodes.max(2) - 1);
+            if d > BigInt::from(MAX_DENOMINATOR) {
+                return Err(ProbabilityError::TooFine {
+                    name: "ε (decay schedule)",
+                    value: format!(
+                        "{} → {} over {episodes} episodes",
+                        start.to_f64(),
+                        end.to_f64()
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The starting ε.
+    pub fn start(&self) -> Probability {
+        match self {
+            EpsilonSchedule::Constant(p) => *p,
+            EpsilonSchedule::Linear { start, .. } => *start,
+        }
+    }
+}
+
+/// The portable generator of one sample: [`ChaCha8Rng::seed_from_u64`]`(seed)` on stream
+/// `stream` (a pure function of the experiment's seed and the sample's coordinates, so results
+/// do not depend on scheduling or thread count).
+///
+/// ```
+/// use rand::RngExt;
+/// let mut a = truecost::learning::plan::sample_rng(7, 3);
+/// let mut b = truecost::learning::plan::sample_rng(7, 3);
+/// assert_eq!(a.random::<u64>(), b.random::<u64>());
+/// ```
+pub fn sample_rng(seed: u64, stream: u64) -> ChaCha8Rng {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(stream);
+    rng
+}
+
+/// The period of the reference digit stream: the paper's code read the first 10^7 characters of
+/// its digit file — "3" and 9 999 999 fractional base-4 digits — and wrapped around to the start
+/// (SPEC §7). Both modes use this stream, so a π run is defined for any number of actions.
+pub const PI_STREAM_PERIOD: u64 = 10_000_000;
+
+/// Digits requested from [`crate::learning::pi`] at least this many at a time.
+const MIN_CHUNK: usize = 1 << 16;
+
+/// The longest prefix of π's fractional base-4 digits computed so far in this process.
+static PI_DIGITS: Mutex<Option<Arc<[u8]>>> = Mutex::new(None);
+
+/// At least the first `count` fractional base-4 digits of π (capped at the stream's
+/// `PI_STREAM_PERIOD − 1`), from an in-process cache that grows by doubling: asking for more
+/// digits than cached computes a prefix at least twice as long, so the total work is within a
+/// constant factor of computing the longest prefix once.
+///
+/// ```
+/// let d = truecost::learning::plan::pi_digits(8);
+/// assert_eq!(&d[..8], &[0, 2, 1, 0, 0, 3, 3, 3]); // π = 3.0210 0333… (base 4)
+/// ```
+pub fn pi_digits(count: usize) -> Arc<[u8]> {
+    let cap = (PI_STREAM_PERIOD - 1) as usize;
+    let count = count.min(cap);
+    let mut cache = PI_DIGITS.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(d) = cache.as_ref() {
+        if d.len() >= count {
+            return Arc::clone(d);
+        }
+    }
+    let have = cache.as_ref().map_or(0, |d| d.len());
+    let target = count.max(2 * have).max(MIN_CHUNK).min(cap);
+    let digits: Arc<[u8]> = crate::learning::pi::fractional_base4_digits(target).into();
+    *cache = Some(Arc::clone(&digits));
+    digits
+}
+
+/// The π universal plan's position in the digit stream `3, d1, d2, …, d_{P−1}, 3, d1, …`
+/// (`P` = [`PI_STREAM_PERIOD`]). One stream is shared by every π run of an experiment, in a
+/// defined order (SPEC §7: "one stream position is shared by all runs of a process").
+#[derive(Clone, Debug)]
+pub struct PiStream {
+    position: u64,
+    digits: Arc<[u8]>,
+}
+
+impl Default for PiStream {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl PiStream {
+    /// A stream at its start (the digit 3).
+    pub fn new() -> Self {
+        PiStream {
+            position: 0,
+            digits: Arc::from(Vec::new()),
+        }
+    }
+
+    /// The position of the next digit to be read (`0 ≤ position < P`).
+    pub fn position(&self) -> u64 {
+        self.position
+    }
+
+    /// The digit at `position`.
+    #[inline]
+    fn digit(&mut self, position: u64) -> u8 {
+        if position == 0 {
+            return 3;
+        }
+        let index = (position - 1) as usize;
+        if index >= self.digits.len() {
+            self.digits = pi_digits(index + 1);
+        }
+        self.digits[index]
+    }
+
+    /// Reads the next digit (advancing the stream).
+    ///
+    /// ```
+    /// let mut s = truecost::learning::plan::PiStream::new();
+    /// let first: Vec<u8> = (0..6).map(|_| s.next_digit()).collect();
+    /// assert_eq!(first, vec![3, 0, 2, 1, 0, 0]);
+    /// ```
+    #[inline]
+    pub fn next_digit(&mut self) -> u8 {
+        let d = self.digit(self.position);
+        self.position += 1;
+        if self.position == PI_STREAM_PERIOD {
+            self.position = 0;
+        }
+        d
+    }
+
+    /// The plan's action at a state with `actions ≥ 1` actions: digits `≥ actions` are skipped.
+    ///
+    /// ```
+    /// let mut s = truecost::learning::plan::PiStream::new();
+    /// // Stream 3, 0, 2, 1, …: with three actions the 3 is skipped.
+    /// assert_eq!(s.next_action(3), 0);
+    /// assert_eq!(s.next_action(2), 1); // 2 skipped, then 1
+    /// ```
+    #[inline]
+    pub fn next_action(&mut self, actions: usize) -> usize {
+        debug_assert!(actions >= 1);
+        loop {
+            let d = self.next_digit() as usize;
+            if d < actions {
+                return d;
+            }
+        }
+    }
+}
+
+/// Where ε-greedy takes its exploring actions from.
+#[derive(Debug)]
+pub enum Plan<'a> {
+    /// Uniformly random actions from the run's generator.
+    Random,
+    /// The π universal plan, reading a shared stream.
+    Pi(&'a mut PiStream),
+}
+
+impl Plan<'_> {
+    /// The plan's name in reports (`random` or `pi`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Plan::Random => "random",
+            Plan::Pi(_) => "pi",
+        }
+    }
+}
+
+/// The exploring action of `plan` at a state with `actions ≥ 1` actions.
+#[inline]
+pub(crate) fn explore(plan: &mut Plan<'_>, rng: &mut ChaCha8Rng, actions: usize) -> usize {
+    match plan {
+        Plan::Random => rng.random_range(0..actions as u32) as usize,
+        Plan::Pi(stream) => stream.next_action(actions),
+    }
+}

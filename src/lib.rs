@@ -9,6 +9,7 @@
 //! (the binary).
 #![warn(missing_docs)]
 
+pub mod figures;
 pub mod learning;
 pub mod model;
 pub mod planning;

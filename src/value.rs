@@ -6,9 +6,10 @@
 //!
 //! * [`Units`] — a `u64` count of a problem-wide cost unit `1/D`. Every deterministic cost-to-go
 //!   is a sum of stage costs, so when all stage costs are multiples of `1/D` every value is too.
-//!   [`crate::model::Graph::exact`] chooses it only when `states × max stage cost` fits, which
-//!   bounds every value a planner can form (it never builds a sum longer than `states` stage
-//!   costs), so an addition can never wrap. This is the fast exact representation.
+//!   [`crate::model::ExactGraph::new`] chooses it only when `(states + 1) × max stage cost`
+//!   is below `u64::MAX`, which bounds every value a planner can form (it never builds a sum of
+//!   more than `states + 1` stage costs), so an addition can never wrap. This is the fast exact
+//!   representation.
 //! * [`Extended`] — a big rational or `+∞`; the fallback when `Units` is not provably safe.
 //! * `f64` — only for the reference mode of SPEC §7, which reproduces the paper's float code.
 
@@ -317,7 +318,7 @@ fn parse_decimal(t: &str) -> Option<Rational> {
     let mut scale: i64 = -(frac_part.len() as i64);
     if let Some(e) = exponent {
         let e: i64 = e.parse().ok()?;
-        if e.abs() > 10_000 {
+        if e.unsigned_abs() > 10_000 {
             return None;
         }
         scale += e;

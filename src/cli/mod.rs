@@ -2,6 +2,7 @@
 //! 2 for usage errors (clap), 1 for bad input or a failed run.
 
 mod output;
+mod render;
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -28,6 +29,8 @@ enum Command {
     Problems(ProblemsArgs),
     /// Solve one problem with an exact planner (or the paper's code, in reference mode).
     Solve(SolveArgs),
+    /// Draw a problem (obstacles, moves, start, goal) with an optional overlay, as SVG or PNG.
+    Render(render::RenderArgs),
 }
 
 /// Output format of a listing.
@@ -114,6 +117,7 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Problems(args) => problems(&args),
         Command::Solve(args) => solve(&args),
+        Command::Render(args) => render::run(&args),
     };
     match result.and_then(|text| emit(&text)) {
         Ok(()) => ExitCode::SUCCESS,

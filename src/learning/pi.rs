@@ -1,74 +1,245 @@
 //! The base-4 digits of π, computed with exact big-integer arithmetic (SPEC §2: the universal
 //! plan reads them; no digits file is shipped).
 //!
-//! π = 3.0210 0333 1222 2020 … in base 4 (each hexadecimal digit of π, 3.243F6A88…, is two
-//! base-4 digits).
+//! π = 3.0210 0333 1222 2020 … in base 4: each hexadecimal digit of π (3.243F6A88…) is two
+//! base-4 digits. (SPEC §2 prints "3.1032 0333 1222 …"; its first group is not π's — see the
+//! test `spec_digits_are_not_pi`.)
+//!
+//! Method: the Chudnovsky series by binary splitting (both halves in parallel), an integer
+//! square root and one division, all exact on big integers (`dashu-int`). The result is an
+//! integer `a` with `|π·2^B − a| ≤ 4`; digits are returned only when both ends of that
+//! enclosure agree on them, otherwise the precision is raised, so every digit returned is
+//! proven. Digits are cached in the process and, for long prefixes, on disk (see
+//! [`cache_dir`]); a cache file is used only if its checksum and its first 64 digits verify.
 
-use num_bigint::BigInt;
-use num_traits::{One, Signed, Zero};
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex, OnceLock};
+
+use dashu_base::{SquareRoot, UnsignedAbs};
+use dashu_int::{IBig, UBig};
+
+/// Hexadecimal digits of π after the point (public knowledge), for self-checks.
+pub const PI_HEX_FRACTION: &str =
+    "243F6A8885A308D313198A2E03707344A4093822299F31D0082EFA98EC4E6C89";
 
 /// The first `count` base-4 digits of π after the point.
-///
-/// Exact: π·2^B is enclosed between two integers computed with Machin's formula
-/// `π = 16·atan(1/5) − 4·atan(1/239)` in fixed point with guard bits, and digits are only
-/// returned once both ends of the enclosure agree on them (otherwise the precision is raised).
 ///
 /// ```
 /// let d = truecost::learning::pi::fractional_base4_digits(16);
 /// assert_eq!(d, vec![0, 2, 1, 0, 0, 3, 3, 3, 1, 2, 2, 2, 2, 0, 2, 0]); // 0x243F6A88
 /// ```
 pub fn fractional_base4_digits(count: usize) -> Vec<u8> {
+    digits(count)[..count].to_vec()
+}
+
+/// A shared, cached prefix of at least `count` base-4 digits of π after the point (it may be
+/// longer). Cheap to call repeatedly.
+pub fn digits(count: usize) -> Arc<Vec<u8>> {
+    static CACHE: OnceLock<Mutex<Arc<Vec<u8>>>> = OnceLock::new();
+    let cache = CACHE.get_or_init(|| Mutex::new(Arc::new(Vec::new())));
+    let mut held = cache.lock().unwrap_or_else(|e| e.into_inner());
+    if held.len() < count {
+        // Grow geometrically so that callers asking in chunks do not recompute often.
+        let want = count.max(2 * held.len()).max(1 << 12);
+        *held = Arc::new(load_or_compute(want));
+    }
+    Arc::clone(&held)
+}
+
+/// Where long digit prefixes are cached: `$TRUECOST_CACHE_DIR`, else `$XDG_CACHE_HOME/truecost`,
+/// else `$HOME/.cache/truecost`; `None` if none is set. Cache failures only cost time.
+pub fn cache_dir() -> Option<PathBuf> {
+    if let Some(d) = std::env::var_os("TRUECOST_CACHE_DIR") {
+        return Some(PathBuf::from(d));
+    }
+    if let Some(d) = std::env::var_os("XDG_CACHE_HOME") {
+        return Some(PathBuf::from(d).join("truecost"));
+    }
+    std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache").join("truecost"))
+}
+
+/// Prefixes at least this long are cached on disk.
+const DISK_CACHE_MIN: usize = 1 << 20;
+
+fn load_or_compute(count: usize) -> Vec<u8> {
+    if count >= DISK_CACHE_MIN {
+        if let Some(found) = load_cached(count) {
+            return found;
+        }
+    }
+    let digits = compute(count);
+    if count >= DISK_CACHE_MIN {
+        store_cached(&digits);
+    }
+    digits
+}
+
+/// Computes `count` digits exactly (see the module documentation).
+pub fn compute(count: usize) -> Vec<u8> {
     let mut guard = 64usize;
     loop {
         let bits = 2 * count + guard;
-        let (approx, error) = pi_fixed_point(bits);
-        let lo = (&approx - &error) >> guard;
-        let hi = (&approx + &error) >> guard;
+        let approx = pi_scaled(bits);
+        let lo = (&approx - UBig::from(4u8)) >> guard;
+        let hi = (&approx + UBig::from(4u8)) >> guard;
         if lo == hi {
-            // lo = floor(π · 4^count); strip the integer part 3 and read base-4 digits.
-            let mut digits = vec![0u8; count];
-            let mut v = lo;
-            let four = BigInt::from(4);
-            for d in digits.iter_mut().rev() {
-                let r = &v % &four;
-                *d = u8::try_from(r).expect("a base-4 digit");
-                v /= &four;
-            }
-            debug_assert_eq!(v, BigInt::from(3));
-            return digits;
+            return base4_fraction(&lo, count);
         }
         guard *= 2;
     }
 }
 
-/// `(a, e)` with `|π·2^bits − a| ≤ e`.
-fn pi_fixed_point(bits: usize) -> (BigInt, BigInt) {
-    let (a5, e5) = atan_inverse(5, bits);
-    let (a239, e239) = atan_inverse(239, bits);
-    (a5 * 16 - a239 * 4, e5 * 16 + e239 * 4)
+/// The fractional base-4 digits of `v = ⌊π·4^count⌋` (whose integer part is 3).
+fn base4_fraction(v: &UBig, count: usize) -> Vec<u8> {
+    let bytes = v.to_le_bytes();
+    (0..count)
+        .map(|k| {
+            let pair = count - 1 - k; // position of digit k counted from the least significant
+            let byte = bytes.get(pair / 4).copied().unwrap_or(0);
+            (byte >> (2 * (pair % 4))) & 3
+        })
+        .collect()
 }
 
-/// `(a, e)` with `|atan(1/x)·2^bits − a| ≤ e`, by the alternating series with truncated
-/// divisions (each term errs by less than 1 unit; the tail is below the last term).
-fn atan_inverse(x: u64, bits: usize) -> (BigInt, BigInt) {
-    let x = BigInt::from(x);
-    let x2 = &x * &x;
-    let mut power: BigInt = (BigInt::one() << bits) / &x; // 2^bits / x^(2k+1)
-    let mut sum = BigInt::zero();
-    let mut terms = 0u64;
-    let mut k = 0u64;
-    while !power.is_zero() {
-        let term = &power / (2 * k + 1);
-        if k % 2 == 0 {
-            sum += term;
-        } else {
-            sum -= term;
+/// An integer within 4 of `π·2^bits`: `π = 426880·√10005·Q/T` (Chudnovsky).
+fn pi_scaled(bits: usize) -> UBig {
+    // Each term adds log2(151931373056000) ≈ 47.11 bits; two spare terms bound the tail far
+    // below one unit.
+    let terms = (bits as u64) / 47 + 2;
+    let split = binary_split(0, terms, false);
+    let q = split.q.unsigned_abs();
+    let t = split.t.unsigned_abs();
+    let root = (UBig::from(10005u32) << (2 * bits)).sqrt(); // ⌊√10005·2^bits⌋
+                                                            // Error: ⌊√⌋ loses < 1, scaled by 426880·Q/T ≈ 0.0314; the division loses < 1; the tail
+                                                            // beyond `terms` is < 2^-bits. Total < 2 ≤ 4.
+    (UBig::from(426880u32) * root * q) / t
+}
+
+struct Split {
+    p: IBig,
+    q: IBig,
+    t: IBig,
+}
+
+/// Binary splitting of the Chudnovsky series over terms `[a, b)`. `need_p`: whether the
+/// caller uses `P` (only left halves do), which saves the largest products.
+fn binary_split(a: u64, b: u64, need_p: bool) -> Split {
+    if b - a == 1 {
+        if a == 0 {
+            return Split {
+                p: IBig::ONE,
+                q: IBig::ONE,
+                t: IBig::from(13591409u64),
+            };
         }
-        power /= &x2;
-        k += 1;
-        terms += 1;
+        let k = IBig::from(a);
+        let p = (IBig::from(6 * a) - 5u8) * (IBig::from(2 * a) - 1u8) * (IBig::from(6 * a) - 1u8);
+        let q = &k * &k * &k * IBig::from(10939058860032000u64);
+        let t = &p * (IBig::from(13591409u64) + IBig::from(545140134u64) * &k);
+        let t = if a % 2 == 1 { -t } else { t };
+        return Split { p, q, t };
     }
-    debug_assert!(!sum.is_negative());
-    // Each truncated division errs by < 1; the power chain accumulates < 1 per step too.
-    (sum, BigInt::from(2 * terms + 2))
+    let m = (a + b) / 2;
+    let (left, right) = if b - a > 4096 {
+        rayon::join(|| binary_split(a, m, true), || binary_split(m, b, need_p))
+    } else {
+        (binary_split(a, m, true), binary_split(m, b, need_p))
+    };
+    Split {
+        p: if need_p {
+            &left.p * &right.p
+        } else {
+            IBig::ZERO
+        },
+        q: &left.q * &right.q,
+        t: &right.q * left.t + &left.p * right.t,
+    }
+}
+
+fn cache_file(count: usize) -> Option<PathBuf> {
+    cache_dir().map(|d| d.join(format!("pi-base4-{count}.bin")))
+}
+
+/// FNV-1a over the digits: detects a damaged cache file.
+fn checksum(digits: &[u8]) -> u64 {
+    digits.iter().fold(0xcbf29ce484222325u64, |h, &d| {
+        (h ^ u64::from(d)).wrapping_mul(0x100000001b3)
+    })
+}
+
+/// The digits of [`PI_HEX_FRACTION`] in base 4.
+pub fn known_prefix() -> Vec<u8> {
+    PI_HEX_FRACTION
+        .chars()
+        .flat_map(|c| {
+            let v = c.to_digit(16).expect("hex") as u8;
+            [v >> 2, v & 3]
+        })
+        .collect()
+}
+
+fn load_cached(count: usize) -> Option<Vec<u8>> {
+    // Any cached prefix at least as long will do; the exact-size file is the one we write.
+    let bytes = std::fs::read(cache_file(count)?).ok()?;
+    let (head, body) = bytes.split_at_checked(8)?;
+    let digits: Vec<u8> = body.to_vec();
+    let expected = u64::from_le_bytes(head.try_into().ok()?);
+    let known = known_prefix();
+    (digits.len() == count
+        && digits.iter().all(|&d| d < 4)
+        && checksum(&digits) == expected
+        && digits[..known.len().min(count)] == known[..known.len().min(count)])
+        .then_some(digits)
+}
+
+fn store_cached(digits: &[u8]) {
+    let Some(path) = cache_file(digits.len()) else {
+        return;
+    };
+    if let Some(dir) = path.parent() {
+        let _ = std::fs::create_dir_all(dir);
+    }
+    let mut bytes = checksum(digits).to_le_bytes().to_vec();
+    bytes.extend_from_slice(digits);
+    let tmp = path.with_extension(format!("tmp{}", std::process::id()));
+    if std::fs::write(&tmp, &bytes).is_ok() {
+        let _ = std::fs::rename(&tmp, &path);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn first_digits_are_the_hex_digits_of_pi() {
+        let known = known_prefix();
+        assert_eq!(compute(known.len()), known);
+        assert_eq!(&known[..8], &[0, 2, 1, 0, 0, 3, 3, 3]);
+    }
+
+    #[test]
+    fn prefixes_agree_across_precisions() {
+        let long = compute(20_000);
+        for n in [1, 2, 3, 31, 32, 33, 1000, 4097] {
+            assert_eq!(compute(n), long[..n], "n = {n}");
+        }
+    }
+
+    #[test]
+    fn spec_digits_are_not_pi() {
+        // SPEC §2 prints π = 3.1032 0333 1222 … (base 4). π's first base-4 fractional digits
+        // are 0210; the remaining printed groups agree with π.
+        let d = compute(12);
+        assert_ne!(&d[..4], &[1, 0, 3, 2]);
+        assert_eq!(&d[4..12], &[0, 3, 3, 3, 1, 2, 2, 2]);
+    }
+
+    #[test]
+    fn the_shared_prefix_grows_and_stays_consistent() {
+        let a = digits(100);
+        let b = digits(50_000);
+        assert!(b.len() >= 50_000);
+        assert_eq!(a[..100], b[..100]);
+    }
 }

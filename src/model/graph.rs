@@ -1,7 +1,7 @@
 //! The compiled form of a problem that the planners run on: compressed sparse rows of moves
 //! (forward and reverse), costs in a chosen [`CostValue`] type.
 //!
-//! [`Graph::exact`] picks the narrowest exact representation that is provably safe
+//! [`ExactGraph::new`] picks the narrowest exact representation that is provably safe
 //! (issue "exact must not mean slow"): all stage costs are scaled to integer multiples of
 //! `1/D` (`D` = lcm of the cost denominators) and stored as [`Units`] when
 //! `(states + 1) × max scaled cost < u64::MAX`; otherwise costs stay big rationals
@@ -17,7 +17,7 @@ use crate::value::{CostValue, Extended, Rational, Units};
 /// A planning graph in compressed sparse row form, generic over the value type.
 ///
 /// Node `v` of the graph is state `origin[v]` of the problem it was built from (the identity for
-/// [`Graph::exact`]; the first-appearance order for a graph discovered by exploration).
+/// [`ExactGraph::new`]; the first-appearance order for a graph discovered by exploration).
 #[derive(Clone, Debug)]
 pub struct Graph<V> {
     first: Vec<u32>,
@@ -34,7 +34,7 @@ pub struct Graph<V> {
     unit: Rational,
 }
 
-/// A problem compiled exactly, in the representation [`Graph::exact`] chose.
+/// A problem compiled exactly, in the representation [`ExactGraph::new`] chose.
 #[derive(Clone, Debug)]
 pub enum ExactGraph {
     /// Integer multiples of a common unit `1/D` in `u64`.

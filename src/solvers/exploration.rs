@@ -56,28 +56,36 @@ pub fn explore<V: CostValue>(graph: &Graph<V>) -> Exploration<V> {
     order.push(start);
     discovered.push(Vec::new());
     let mut stack = vec![start];
-    // Per node: the offset of its first edge in the flat edge numbering, and the scan resumes
-    // from the first move every time the robot stands on the node.
+    // Per node: the offset of its first edge in the flat edge numbering.
     let mut offset = Vec::with_capacity(n + 1);
     offset.push(0usize);
     for v in 0..n {
         offset.push(offset[v] + graph.degree(v));
     }
     let partner = reverse_partners(graph, &offset);
+    // The moves before `cursor[x]` are all tried (tried marks are never removed), so resuming
+    // the scan there and counting `k + 1` inspections for the move at position `k` counts
+    // exactly what a scan from the first move would.
+    let mut cursor = vec![0usize; n];
     while let Some(&x) = stack.last() {
-        let mut taken = None;
-        for (k, (y, c)) in graph.edges(x).enumerate() {
-            actions += 1;
-            let e = offset[x] + k;
-            if !tried[e] {
-                tried[e] = true;
-                if let Some(r) = partner[e] {
-                    tried[r] = true;
-                }
-                taken = Some((y, c.clone(), partner[e]));
-                break;
-            }
+        let (succ, cost) = graph.edge_slices(x);
+        let mut k = cursor[x];
+        while k < succ.len() && tried[offset[x] + k] {
+            k += 1;
         }
+        cursor[x] = k;
+        let taken = if k < succ.len() {
+            actions += k as u64 + 1;
+            let e = offset[x] + k;
+            tried[e] = true;
+            if let Some(r) = partner[e] {
+                tried[r] = true;
+            }
+            Some((succ[k] as usize, cost[k].clone(), partner[e]))
+        } else {
+            actions += succ.len() as u64;
+            None
+        };
         match taken {
             Some((y, c, reverse)) => {
                 let iy = *index[y].get_or_insert_with(|| {
@@ -116,33 +124,25 @@ pub fn explore<V: CostValue>(graph: &Graph<V>) -> Exploration<V> {
 /// `y → x` among `y`'s moves to `x`.
 fn reverse_partners<V: CostValue>(graph: &Graph<V>, offset: &[usize]) -> Vec<Option<usize>> {
     let mut partner = vec![None; graph.edge_count()];
-    let (mut succ_x, mut succ_y) = (Vec::new(), Vec::new());
     for x in 0..graph.nodes() {
-        succ_x.clear();
-        succ_x.extend(graph.edges(x).map(|(y, _)| y));
+        let (succ_x, _) = graph.edge_slices(x);
         for (k, &y) in succ_x.iter().enumerate() {
-            if y == x {
+            if y as usize == x {
                 continue;
             }
             let rank = succ_x[..k].iter().filter(|&&z| z == y).count();
-            succ_y.clear();
-            succ_y.extend(graph.edges(y).map(|(z, _)| z));
+            let (succ_y, _) = graph.edge_slices(y as usize);
             partner[offset[x] + k] = succ_y
                 .iter()
                 .enumerate()
-                .filter(|(_, &z)| z == x)
+                .filter(|(_, &z)| z as usize == x)
                 .nth(rank)
-                .map(|(j, _)| offset[y] + j);
+                .map(|(j, _)| offset[y as usize] + j);
         }
     }
     partner
 }
 
 fn cost_of<V: CostValue>(graph: &Graph<V>, offset: &[usize], y: usize, e: usize) -> V {
-    graph
-        .edges(y)
-        .nth(e - offset[y])
-        .expect("partner edge belongs to y")
-        .1
-        .clone()
+    graph.edge_slices(y).1[e - offset[y]].clone()
 }

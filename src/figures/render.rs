@@ -1,0 +1,329 @@
+//! The paper's problem figure: obstacle discs, allowed moves, start and goal, with an optional
+//! overlay (optimal path, cost-to-go heat map with colour bar, policy arrows, visit counts).
+
+use super::canvas::{viridis, Canvas, FigureError, Rgb, Shape};
+use crate::problems::geometry::Disc;
+
+/// What a problem figure shows, in world coordinates (y grows upwards, as in the paper's plots).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// First caption line (problem and mode).
+    pub title: String,
+    /// Second caption line (model, planner, seed: where the numbers come from).
+    pub caption: String,
+    /// World position of every state.
+    pub positions: Vec<(f64, f64)>,
+    /// The world's extent: `[0, w] × [0, h]`.
+    pub extent: (f64, f64),
+    /// Disc obstacles.
+    pub obstacles: Vec<Disc>,
+    /// Allowed moves, each unordered pair once.
+    pub moves: Vec<(usize, usize)>,
+    /// `x1`.
+    pub initial: usize,
+    /// Goals.
+    pub goals: Vec<usize>,
+}
+
+/// An overlay and its data.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Overlay {
+    /// The bare problem.
+    None,
+    /// A path from `x1` (state ids).
+    Path(Vec<usize>),
+    /// A value per state (`None`: unknown or `+∞`), with a label for the colour bar and the
+    /// exact extreme values as text.
+    Values {
+        /// Values to colour by.
+        values: Vec<Option<f64>>,
+        /// What they are (e.g. "G* (exact)").
+        label: String,
+    },
+    /// The successor chosen at every state (`None`: no action; a goal names itself).
+    Policy(Vec<Option<usize>>),
+    /// Visit counts per unordered move.
+    Visits(Vec<((usize, usize), u64)>),
+}
+
+const LEFT: f64 = 30.0;
+const RIGHT: f64 = 110.0;
+const TOP: f64 = 50.0;
+const BOTTOM: f64 = 60.0;
+const GREY: Rgb = (170, 170, 170);
+const DARK: Rgb = (40, 40, 40);
+
+/// Lays out the figure on a `width × height` canvas.
+///
+/// ```
+/// use truecost::figures::render::{draw, Overlay, Scene};
+/// let scene = Scene { title: "t".into(), caption: "c".into(),
+///     positions: vec![(0.0, 0.0), (1.0, 0.0)], extent: (1.0, 1.0), obstacles: vec![],
+///     moves: vec![(0, 1)], initial: 0, goals: vec![1] };
+/// let canvas = draw(&scene, &Overlay::Path(vec![0, 1]), 400, 400).unwrap();
+/// assert_eq!(canvas.of_class("move").count(), 1);
+/// assert_eq!(canvas.of_class("path").count(), 1);
+/// ```
+pub fn draw(
+    scene: &Scene,
+    overlay: &Overlay,
+    width: u32,
+    height: u32,
+) -> Result<Canvas, FigureError> {
+    let mut canvas = Canvas::new(width, height)?;
+    let (w, h) = (f64::from(width), f64::from(height));
+    let scale = ((w - LEFT - RIGHT) / scene.extent.0).min((h - TOP - BOTTOM) / scene.extent.1);
+    let to_px = |(x, y): (f64, f64)| (LEFT + x * scale, TOP + (scene.extent.1 - y) * scale);
+    let node = |v: usize| to_px(scene.positions[v]);
+    let shapes = &mut canvas.shapes;
+
+    shapes.push(Shape::Rect {
+        class: "world",
+        a: to_px((0.0, scene.extent.1)),
+        b: to_px((scene.extent.0, 0.0)),
+        fill: (250, 250, 250),
+    });
+    if let Overlay::Values { values, label } = overlay {
+        value_cells(shapes, scene, values, label, &to_px, scale, w);
+    }
+    for d in &scene.obstacles {
+        shapes.push(Shape::Circle {
+            class: "obstacle",
+            c: to_px((d.cx as f64, d.cy as f64)),
+            r: d.r as f64 * scale,
+            fill: Some(((120, 120, 120), 0.35)),
+            stroke: Some(((80, 80, 80), 1.0)),
+        });
+    }
+    let visits = match overlay {
+        Overlay::Visits(v) => Some(v),
+        _ => None,
+    };
+    for &(a, b) in &scene.moves {
+        shapes.push(Shape::Line {
+            class: "move",
+            a: node(a),
+            b: node(b),
+            color: if visits.is_some() {
+                (225, 225, 225)
+            } else {
+                GREY
+            },
+            width: 1.0,
+        });
+    }
+    if let Some(visits) = visits {
+        let max = visits.iter().map(|&(_, c)| c).max().unwrap_or(0).max(1) as f64;
+        for &((a, b), count) in visits.iter().filter(|&&(_, c)| c > 0) {
+            let t = (count as f64).ln_1p() / max.ln_1p();
+            shapes.push(Shape::Line {
+                class: "visits",
+                a: node(a),
+                b: node(b),
+                color: viridis(t),
+                width: 1.0 + 4.0 * t,
+            });
+        }
+        colour_bar(
+            shapes,
+            w,
+            "visits (log scale)",
+            "0",
+            &format!("{}", max as u64),
+        );
+    }
+    for v in 0..scene.positions.len() {
+        shapes.push(Shape::Circle {
+            class: "node",
+            c: node(v),
+            r: 1.5,
+            fill: Some((DARK, 0.6)),
+            stroke: None,
+        });
+    }
+    match overlay {
+        Overlay::Path(path) if !path.is_empty() => shapes.push(Shape::Polyline {
+            class: "path",
+            points: path.iter().map(|&v| node(v)).collect(),
+            color: (215, 48, 39),
+            width: 3.0,
+        }),
+        Overlay::Policy(policy) => {
+            for (x, next) in policy.iter().enumerate() {
+                if let Some(y) = next.filter(|&y| y != x) {
+                    arrow(shapes, node(x), node(y));
+                }
+            }
+        }
+        _ => {}
+    }
+    for (v, class, color, label) in std::iter::once((scene.initial, "start", (26, 152, 80), "x1"))
+        .chain(
+            scene
+                .goals
+                .iter()
+                .map(|&g| (g, "goal", (215, 48, 39), "goal")),
+        )
+    {
+        let c = node(v);
+        shapes.push(Shape::Circle {
+            class,
+            c,
+            r: 6.0,
+            fill: Some((color, 1.0)),
+            stroke: Some(((255, 255, 255), 1.5)),
+        });
+        shapes.push(Shape::Text {
+            class: "label",
+            at: (c.0 + 8.0, c.1 - 6.0),
+            text: label.to_string(),
+            size: 13.0,
+            centre: false,
+        });
+    }
+    shapes.push(Shape::Text {
+        class: "title",
+        at: (LEFT, 30.0),
+        text: scene.title.clone(),
+        size: 18.0,
+        centre: false,
+    });
+    shapes.push(Shape::Text {
+        class: "caption",
+        at: (LEFT, h - 22.0),
+        text: scene.caption.clone(),
+        size: 12.0,
+        centre: false,
+    });
+    Ok(canvas)
+}
+
+fn arrow(shapes: &mut Vec<Shape>, a: (f64, f64), b: (f64, f64)) {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let len = (dx * dx + dy * dy).sqrt().max(1e-9);
+    let (ux, uy) = (dx / len, dy / len);
+    let tip = (a.0 + dx * 0.55, a.1 + dy * 0.55);
+    let head = (len * 0.18).clamp(3.0, 8.0);
+    shapes.push(Shape::Line {
+        class: "policy",
+        a,
+        b: tip,
+        color: (33, 102, 172),
+        width: 1.5,
+    });
+    shapes.push(Shape::Polygon {
+        class: "arrowhead",
+        points: vec![
+            (tip.0 + ux * head, tip.1 + uy * head),
+            (tip.0 - uy * head * 0.6, tip.1 + ux * head * 0.6),
+            (tip.0 + uy * head * 0.6, tip.1 - ux * head * 0.6),
+        ],
+        fill: (33, 102, 172),
+    });
+}
+
+fn value_cells(
+    shapes: &mut Vec<Shape>,
+    scene: &Scene,
+    values: &[Option<f64>],
+    label: &str,
+    to_px: &dyn Fn((f64, f64)) -> (f64, f64),
+    scale: f64,
+    w: f64,
+) {
+    let finite: Vec<f64> = values
+        .iter()
+        .flatten()
+        .copied()
+        .filter(|v| v.is_finite())
+        .collect();
+    let lo = finite.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = finite.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    // Cell size: the smallest distance between two states (a grid step), at most 40 px.
+    let half = (min_spacing(&scene.positions) * scale / 2.0).clamp(2.0, 20.0);
+    for (v, value) in values.iter().enumerate() {
+        let c = to_px(scene.positions[v]);
+        let fill = match value {
+            Some(x) if x.is_finite() => {
+                let t = if hi > lo { (x - lo) / (hi - lo) } else { 0.0 };
+                viridis(t)
+            }
+            _ => (235, 235, 235),
+        };
+        let class = if value.is_some_and(|x| x.is_finite()) {
+            "value"
+        } else {
+            "value-none"
+        };
+        shapes.push(Shape::Rect {
+            class,
+            a: (c.0 - half, c.1 - half),
+            b: (c.0 + half, c.1 + half),
+            fill,
+        });
+    }
+    let (lo_text, hi_text) = if finite.is_empty() {
+        ("none".to_string(), "none".to_string())
+    } else {
+        (short(lo), short(hi))
+    };
+    colour_bar(shapes, w, label, &lo_text, &hi_text);
+}
+
+fn colour_bar(shapes: &mut Vec<Shape>, w: f64, label: &str, lo: &str, hi: &str) {
+    let (x, top, bottom) = (w - RIGHT + 30.0, TOP + 30.0, TOP + 330.0);
+    let steps = 64;
+    for i in 0..steps {
+        let t = i as f64 / (steps - 1) as f64;
+        let y1 = bottom - (bottom - top) * (i as f64 + 1.0) / steps as f64;
+        let y0 = bottom - (bottom - top) * i as f64 / steps as f64;
+        shapes.push(Shape::Rect {
+            class: "colorbar",
+            a: (x, y1),
+            b: (x + 18.0, y0),
+            fill: viridis(t),
+        });
+    }
+    for (text, y) in [(hi, top + 4.0), (lo, bottom + 4.0)] {
+        shapes.push(Shape::Text {
+            class: "colorbar-label",
+            at: (x + 22.0, y),
+            text: text.to_string(),
+            size: 11.0,
+            centre: false,
+        });
+    }
+    shapes.push(Shape::Text {
+        class: "colorbar-label",
+        at: (x - 6.0, top - 12.0),
+        text: label.to_string(),
+        size: 11.0,
+        centre: false,
+    });
+}
+
+fn min_spacing(points: &[(f64, f64)]) -> f64 {
+    let mut best = f64::INFINITY;
+    // Grids are small (≤ a few hundred states): the quadratic scan is fine for a drawing.
+    for (i, a) in points.iter().enumerate() {
+        for b in &points[i + 1..] {
+            let d = ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt();
+            if d > 0.0 && d < best {
+                best = d;
+            }
+        }
+    }
+    if best.is_finite() {
+        best
+    } else {
+        1.0
+    }
+}
+
+fn short(x: f64) -> String {
+    if x.fract() == 0.0 && x.abs() < 1e15 {
+        format!("{x:.0}")
+    } else {
+        format!("{x:.4}")
+    }
+}

@@ -1,0 +1,204 @@
+//! `truecost render`: structure, not pixels. Expected counts come from the paper's data and the
+//! published facts (Problem 0: 760 moves; Problem 10: 63 optimal moves; Problem 2: 5 discs).
+
+use assert_cmd::Command;
+
+fn render(args: &[&str], out: &std::path::Path) -> String {
+    let mut cmd = Command::cargo_bin("truecost").unwrap();
+    cmd.arg("render").args(args).arg("--out").arg(out);
+    cmd.assert().success();
+    std::fs::read_to_string(out).unwrap_or_default()
+}
+
+fn count(svg: &str, class: &str) -> usize {
+    svg.matches(&format!("class=\"{class}\"")).count()
+}
+
+#[test]
+fn one_disc_per_obstacle_and_one_segment_per_move() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = render(&["--problem", "2"], &dir.path().join("p2.svg"));
+    assert_eq!(count(&svg, "obstacle"), 5);
+    let svg = render(&["--problem", "0"], &dir.path().join("p0.svg"));
+    assert_eq!(count(&svg, "obstacle"), 0);
+    assert_eq!(count(&svg, "move"), 760);
+    assert_eq!(count(&svg, "node"), 400);
+    assert_eq!(count(&svg, "start"), 1);
+    assert_eq!(count(&svg, "goal"), 1);
+    assert!(svg.contains("exact model"));
+}
+
+#[test]
+fn path_polyline_has_the_optimal_number_of_moves() {
+    let dir = tempfile::tempdir().unwrap();
+    for mode in ["exact", "reference"] {
+        let svg = render(
+            &["--problem", "10", "--overlay", "path", "--mode", mode],
+            &dir.path().join(format!("p10-{mode}.svg")),
+        );
+        assert_eq!(count(&svg, "path"), 1);
+        let line = svg.lines().find(|l| l.contains("class=\"path\"")).unwrap();
+        let points = line
+            .split("points=\"")
+            .nth(1)
+            .unwrap()
+            .split('"')
+            .next()
+            .unwrap();
+        assert_eq!(points.split(' ').count(), 64, "{mode}: 63 moves");
+        assert!(svg.contains(&format!("{mode} model")));
+    }
+}
+
+#[test]
+fn values_and_policy_overlays_are_present() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = render(
+        &["--problem", "0", "--overlay", "values"],
+        &dir.path().join("v.svg"),
+    );
+    assert_eq!(count(&svg, "value") + count(&svg, "value-none"), 400);
+    assert_eq!(
+        count(&svg, "value-none"),
+        0,
+        "every state of Problem 0 reaches the goal"
+    );
+    assert!(count(&svg, "colorbar") > 0);
+    assert!(svg.contains(">G*<"));
+    let svg = render(
+        &["--problem", "10", "--overlay", "values"],
+        &dir.path().join("v10.svg"),
+    );
+    assert_eq!(count(&svg, "value"), 339, "x1's component");
+    let svg = render(
+        &["--problem", "0", "--overlay", "policy"],
+        &dir.path().join("p.svg"),
+    );
+    assert_eq!(count(&svg, "arrowhead"), 399, "every state but the goal");
+    assert_eq!(count(&svg, "policy"), 399);
+}
+
+#[test]
+fn png_decodes_with_the_requested_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("p.png");
+    render(
+        &[
+            "--problem",
+            "1",
+            "--overlay",
+            "path",
+            "--width",
+            "640",
+            "--height",
+            "480",
+        ],
+        &out,
+    );
+    let decoder = png::Decoder::new(std::fs::File::open(&out).unwrap());
+    let reader = decoder.read_info().unwrap();
+    let info = reader.info();
+    assert_eq!((info.width, info.height), (640, 480));
+}
+
+#[test]
+fn files_render_too() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/problems/line.json");
+    let svg = render(
+        &["--file", file, "--overlay", "path"],
+        &dir.path().join("f.svg"),
+    );
+    assert_eq!(count(&svg, "node"), 4);
+    assert_eq!(count(&svg, "move"), 4); // {0,1}, {0,3}, {1,2}, {2,3}
+    let line = svg.lines().find(|l| l.contains("class=\"path\"")).unwrap();
+    assert_eq!(
+        line.split("points=\"")
+            .nth(1)
+            .unwrap()
+            .split('"')
+            .next()
+            .unwrap()
+            .split(' ')
+            .count(),
+        4
+    );
+}
+
+#[test]
+fn bad_outputs_and_sizes_are_clear_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (
+            vec![
+                "--problem".into(),
+                "0".into(),
+                "--out".into(),
+                dir.path().join("x.jpg").display().to_string(),
+            ],
+            ".svg or .png",
+        ),
+        (
+            vec![
+                "--problem".into(),
+                "0".into(),
+                "--out".into(),
+                "/nonexistent-dir/x.png".into(),
+            ],
+            "cannot write",
+        ),
+        (
+            vec![
+                "--problem".into(),
+                "0".into(),
+                "--out".into(),
+                "/nonexistent-dir/x.svg".into(),
+            ],
+            "cannot write",
+        ),
+        (
+            vec![
+                "--problem".into(),
+                "0".into(),
+                "--width".into(),
+                "10".into(),
+                "--out".into(),
+                dir.path().join("s.svg").display().to_string(),
+            ],
+            "out of range",
+        ),
+        (
+            vec![
+                "--problem".into(),
+                "6".into(),
+                "--overlay".into(),
+                "path".into(),
+                "--out".into(),
+                dir.path().join("u.svg").display().to_string(),
+            ],
+            "no goal is reachable",
+        ),
+        (
+            vec![
+                "--problem".into(),
+                "25".into(),
+                "--out".into(),
+                dir.path().join("u.svg").display().to_string(),
+            ],
+            "unknown problem",
+        ),
+    ];
+    for (args, expect) in cases {
+        let out = Command::cargo_bin("truecost")
+            .unwrap()
+            .arg("render")
+            .args(&args)
+            .assert()
+            .code(1)
+            .get_output()
+            .clone();
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(expect), "{args:?}: {err}");
+    }
+}

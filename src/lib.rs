@@ -5,10 +5,11 @@
 //! Sakçak, LaValle), with a reference mode that reproduces the paper's published counts.
 //!
 //! Architecture (each layer imports only the ones before it):
-//! [`value`] → [`model`] → [`problems`] → [`solvers`] → [`learning`] → [`planning`] → `cli`
+//! [`value`] → [`model`] → [`problems`] → [`solvers`] → [`learning`] → [`planning`] → [`experiments`] → `cli`
 //! (the binary).
 #![warn(missing_docs)]
 
+pub mod experiments;
 pub mod figures;
 pub mod learning;
 pub mod model;

@@ -3,6 +3,7 @@
 
 mod output;
 mod render;
+mod reproduce;
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -31,6 +32,8 @@ enum Command {
     Solve(SolveArgs),
     /// Draw a problem (obstacles, moves, start, goal) with an optional overlay, as SVG or PNG.
     Render(render::RenderArgs),
+    /// Reproduce one of the paper's experiments over seeded samples.
+    Reproduce(reproduce::ReproduceArgs),
 }
 
 /// Output format of a listing.
@@ -118,6 +121,7 @@ pub fn main() -> ExitCode {
         Command::Problems(args) => problems(&args),
         Command::Solve(args) => solve(&args),
         Command::Render(args) => render::run(&args),
+        Command::Reproduce(args) => reproduce::run(&args),
     };
     match result.and_then(|text| emit(&text)) {
         Ok(()) => ExitCode::SUCCESS,

@@ -15,7 +15,7 @@
 //! the random plan. `ε = 0` and `ε = 1` draw no coin at all (the paper's "greedy" and "random"
 //! policies).
 
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
 use num_bigint::BigInt;
 use num_integer::Integer;
@@ -235,35 +235,17 @@ pub fn sample_rng(seed: u64, stream: u64) -> ChaCha8Rng {
 /// (SPEC §7). Both modes use this stream, so a π run is defined for any number of actions.
 pub const PI_STREAM_PERIOD: u64 = 10_000_000;
 
-/// Digits requested from [`crate::learning::pi`] at least this many at a time.
-const MIN_CHUNK: usize = 1 << 16;
-
-/// The longest prefix of π's fractional base-4 digits computed so far in this process.
-static PI_DIGITS: Mutex<Option<Arc<[u8]>>> = Mutex::new(None);
-
 /// At least the first `count` fractional base-4 digits of π (capped at the stream's
-/// `PI_STREAM_PERIOD − 1`), from an in-process cache that grows by doubling: asking for more
-/// digits than cached computes a prefix at least twice as long, so the total work is within a
-/// constant factor of computing the longest prefix once.
+/// `PI_STREAM_PERIOD − 1`), from the process-wide cache of [`crate::learning::pi::digits`],
+/// which grows geometrically: asking for more digits than cached computes a prefix at least
+/// twice as long, so reading a stream costs about as much as computing its longest prefix once.
 ///
 /// ```
 /// let d = truecost::learning::plan::pi_digits(8);
 /// assert_eq!(&d[..8], &[0, 2, 1, 0, 0, 3, 3, 3]); // π = 3.0210 0333… (base 4)
 /// ```
-pub fn pi_digits(count: usize) -> Arc<[u8]> {
-    let cap = (PI_STREAM_PERIOD - 1) as usize;
-    let count = count.min(cap);
-    let mut cache = PI_DIGITS.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(d) = cache.as_ref() {
-        if d.len() >= count {
-            return Arc::clone(d);
-        }
-    }
-    let have = cache.as_ref().map_or(0, |d| d.len());
-    let target = count.max(2 * have).max(MIN_CHUNK).min(cap);
-    let digits: Arc<[u8]> = crate::learning::pi::fractional_base4_digits(target).into();
-    *cache = Some(Arc::clone(&digits));
-    digits
+pub fn pi_digits(count: usize) -> Arc<Vec<u8>> {
+    crate::learning::pi::digits(count.min((PI_STREAM_PERIOD - 1) as usize))
 }
 
 /// The π universal plan's position in the digit stream `3, d1, d2, …, d_{P−1}, 3, d1, …`
@@ -272,7 +254,7 @@ pub fn pi_digits(count: usize) -> Arc<[u8]> {
 #[derive(Clone, Debug)]
 pub struct PiStream {
     position: u64,
-    digits: Arc<[u8]>,
+    digits: Arc<Vec<u8>>,
 }
 
 impl Default for PiStream {
@@ -286,13 +268,31 @@ impl PiStream {
     pub fn new() -> Self {
         PiStream {
             position: 0,
-            digits: Arc::from(Vec::new()),
+            digits: Arc::new(Vec::new()),
         }
     }
 
     /// The position of the next digit to be read (`0 ≤ position < P`).
     pub fn position(&self) -> u64 {
         self.position
+    }
+
+    /// Makes sure the next `count` digits are computed (so that reading them later does no
+    /// arithmetic; runners call this before starting a clock).
+    ///
+    /// Requests beyond 2^20 digits fetch the whole period at once, so that one cached prefix
+    /// (in memory, and on disk, see [`crate::learning::pi::cache_dir`]) serves every later
+    /// request of this and later processes.
+    pub fn prefetch(&mut self, count: u64) {
+        let want = self.position.saturating_add(count);
+        let end = if want > 1 << 20 {
+            PI_STREAM_PERIOD - 1
+        } else {
+            want.min(PI_STREAM_PERIOD - 1)
+        } as usize;
+        if end > self.digits.len() {
+            self.digits = pi_digits(end);
+        }
     }
 
     /// The digit at `position`.

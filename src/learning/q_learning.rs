@@ -560,93 +560,134 @@ impl<'a, V: LearningValue> QLearner<'a, V> {
         }
     }
 
-    /// Steps of the current episode until it ends or a milestone is pending.
+    /// Steps of the current episode until it ends or a milestone is pending. The tables are
+    /// borrowed into locals so that the loop keeps its counters in registers.
     #[inline]
     fn run_steps<O: Observer<V>>(&mut self, observer: &mut O) {
         let reference = self.rules == Rules::Reference;
         let epsilon = self.epsilon;
         let x1 = self.initial;
+        let max_steps = self.max_steps;
+        let rate = self.rate;
+        let tracked_total = self.tracked_total;
+        let QLearner {
+            first,
+            successor,
+            cost,
+            is_goal,
+            q,
+            v,
+            optimum,
+            tracked,
+            rng,
+            plan,
+            ..
+        } = self;
+        let (first, successor, cost, is_goal) =
+            (&first[..], &successor[..], &cost[..], &is_goal[..]);
+        let (optimum, tracked) = (&optimum[..], &tracked[..]);
+        let (q, v) = (&mut q[..], &mut v[..]);
         let mut s = self.state;
+        let mut step = self.step;
+        let mut actions = self.actions;
+        let mut optimal_count = self.optimal_count;
+        let mut converged_at = self.converged_at;
+        let mut initial_optimal_at = self.initial_optimal_at;
+        let mut goal_discovered_at = self.goal_discovered_at;
+        let mut pending = self.pending;
         let mut ended = false;
-        while self.step < self.max_steps {
-            let lo = self.first[s] as usize;
-            let hi = self.first[s + 1] as usize;
+        while step < max_steps {
+            let lo = first[s] as usize;
+            let hi = first[s + 1] as usize;
             if lo == hi {
                 ended = true; // no action: the episode ends (the paper's "No neighbors found")
                 break;
             }
-            let a = if epsilon.flip(&mut self.rng) {
-                explore(&mut self.plan, &mut self.rng, hi - lo)
+            let here = &q[lo..hi];
+            let a = if epsilon.flip(rng) {
+                explore(plan, rng, hi - lo)
             } else {
-                first_minimiser(&self.q[lo..hi])
+                first_minimiser(here)
             };
             let e = lo + a;
-            let y = self.successor[e] as usize;
-            let target = self.cost[e].plus(&self.v[y]);
-            let new = match self.rate {
+            let y = successor[e] as usize;
+            let target = cost[e].plus(&v[y]);
+            let new = match rate {
                 None => target,
-                Some(rate) => V::blend(&self.q[e], target, rate),
+                Some(rate) => V::blend(&q[e], target, rate),
             };
-            let old = std::mem::replace(&mut self.q[e], new);
-            // Refresh V(s): only s's minimum can have changed.
-            let was_optimal = self.v[s] == self.optimum[s];
-            let new_ref = &self.q[e];
-            if *new_ref < self.v[s] {
-                self.v[s] = new_ref.clone();
-            } else if old == self.v[s] && *new_ref != old {
-                self.v[s] = minimum(&self.q[lo..hi]);
-            }
-            if self.tracked[s] {
-                let is_optimal = self.v[s] == self.optimum[s];
-                if is_optimal != was_optimal {
-                    if is_optimal {
-                        self.optimal_count += 1;
-                    } else {
-                        self.optimal_count -= 1;
-                    }
-                }
-            }
-            self.actions += 1;
-            self.step += 1;
-            observer.update(s, a, &old, &self.q[e], &self.v);
-            if reference {
-                if self.actions % REFERENCE_CHECK_INTERVAL == 0 {
-                    if self.optimal_count == self.tracked_total {
-                        if self.converged_at.is_none() {
-                            self.pending |= PENDING_CONVERGED;
-                        }
-                        self.converged_at = Some(self.actions);
-                    }
-                    if self.initial_optimal_at.is_none() && self.v[x1] == self.optimum[x1] {
-                        self.initial_optimal_at = Some(self.actions);
-                        self.pending |= PENDING_INITIAL;
-                    }
-                }
+            let old = std::mem::replace(&mut q[e], new);
+            // Refresh V(s): only s's minimum can have changed, and only if the new value is
+            // below it or the old value was it.
+            let new = &q[e];
+            let refreshed = if *new < v[s] {
+                Some(new.clone())
+            } else if old == v[s] && *new != old {
+                Some(minimum(&q[lo..hi]))
             } else {
-                if self.converged_at.is_none() && self.optimal_count == self.tracked_total {
-                    self.converged_at = Some(self.actions);
-                    self.pending |= PENDING_CONVERGED;
+                None
+            };
+            let changed = refreshed.is_some();
+            if let Some(value) = refreshed {
+                let was_optimal = v[s] == optimum[s];
+                v[s] = value;
+                if tracked[s] {
+                    let is_optimal = v[s] == optimum[s];
+                    if is_optimal && !was_optimal {
+                        optimal_count += 1;
+                    } else if was_optimal && !is_optimal {
+                        optimal_count -= 1;
+                    }
                 }
-                if s == x1 && self.initial_optimal_at.is_none() && self.v[x1] == self.optimum[x1] {
-                    self.initial_optimal_at = Some(self.actions);
-                    self.pending |= PENDING_INITIAL;
+            }
+            actions += 1;
+            step += 1;
+            observer.update(s, a, &old, &q[e], v);
+            if reference {
+                if actions % REFERENCE_CHECK_INTERVAL == 0 {
+                    if optimal_count == tracked_total {
+                        if converged_at.is_none() {
+                            pending |= PENDING_CONVERGED;
+                        }
+                        converged_at = Some(actions);
+                    }
+                    if initial_optimal_at.is_none() && v[x1] == optimum[x1] {
+                        initial_optimal_at = Some(actions);
+                        pending |= PENDING_INITIAL;
+                    }
+                }
+            } else if changed {
+                if converged_at.is_none() && optimal_count == tracked_total {
+                    converged_at = Some(actions);
+                    pending |= PENDING_CONVERGED;
+                }
+                if s == x1 && initial_optimal_at.is_none() && v[x1] == optimum[x1] {
+                    initial_optimal_at = Some(actions);
+                    pending |= PENDING_INITIAL;
                 }
             }
             s = y;
-            if self.is_goal[y] {
-                if self.goal_discovered_at.is_none() {
-                    self.goal_discovered_at = Some(self.actions);
-                    self.pending |= PENDING_GOAL;
+            if is_goal[y] {
+                if goal_discovered_at.is_none() {
+                    goal_discovered_at = Some(actions);
+                    pending |= PENDING_GOAL;
                 }
                 ended = true;
                 break;
             }
-            if self.pending != 0 {
+            if pending != 0 {
                 break;
             }
         }
         self.state = s;
-        if ended || self.step >= self.max_steps {
+        self.step = step;
+        self.actions = actions;
+        self.optimal_count = optimal_count;
+        self.converged_at = converged_at;
+        self.initial_optimal_at = initial_optimal_at;
+        self.goal_discovered_at = goal_discovered_at;
+        self.pending = pending;
+        if ended || step >= max_steps {
             self.end_episode();
         }
     }

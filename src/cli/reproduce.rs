@@ -1,0 +1,385 @@
+//! `truecost reproduce …`: the paper's experiments, with a progress bar and files.
+
+use std::fmt::Write as _;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+
+use clap::{Args, Subcommand};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use super::ListFormat;
+use truecost::experiments::deterministic::{self, Report, RowSummary, Settings};
+use truecost::planning::Mode;
+use truecost::problems::{StepCost, PAPER_PROBLEMS};
+
+/// Which experiment to reproduce.
+#[derive(Args, Debug)]
+pub struct ReproduceArgs {
+    #[command(subcommand)]
+    experiment: Experiment,
+}
+
+#[derive(Subcommand, Debug)]
+enum Experiment {
+    /// The deterministic comparison: Q-learning (ε = 0, 0.25, 0.5, 0.75, 0.9, 1), the π plan,
+    /// ε-decay, and model-free Dijkstra / asynchronous VI / synchronous VI, over seeded samples.
+    Deterministic(DeterministicArgs),
+}
+
+#[derive(Args, Debug)]
+struct DeterministicArgs {
+    /// Problems, comma-separated, in the order the π rows run [default: the paper's 16
+    /// problems 0-5,7-16].
+    #[arg(long, value_delimiter = ',', value_name = "LIST")]
+    problems: Option<Vec<usize>>,
+    /// Samples per row.
+    #[arg(long, default_value_t = 100, value_name = "N")]
+    samples: u32,
+    /// Master seed: every random choice derives from it and the sample's coordinates.
+    #[arg(long, default_value_t = 0, value_name = "S")]
+    seed: u64,
+    /// `exact`: the paper's text (exact values, unit step costs, metrics after every action).
+    /// `reference`: the paper's code (f64, its orders and counting rules; reproduces the
+    /// published counts).
+    #[arg(long, value_enum, default_value_t = Mode::Exact)]
+    mode: Mode,
+    /// Grid step cost in exact mode [default: unit].
+    #[arg(long, value_enum)]
+    step_cost: Option<StepCost>,
+    /// Episodes per learning run.
+    #[arg(long, default_value_t = 1000, value_name = "E")]
+    episodes: u32,
+    /// Steps per episode.
+    #[arg(long, default_value_t = 3000, value_name = "M")]
+    max_steps: u32,
+    /// Worker threads [default: all cores, or RAYON_NUM_THREADS].
+    #[arg(long, value_name = "T")]
+    threads: Option<usize>,
+    /// Also write deterministic.md, deterministic.csv and deterministic.json into DIR.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Output format on stdout.
+    #[arg(long, value_enum, default_value_t = ListFormat::Text)]
+    format: ListFormat,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+/// Runs a `reproduce` command; returns what to print.
+pub fn run(args: &ReproduceArgs) -> Result<String, String> {
+    match &args.experiment {
+        Experiment::Deterministic(a) => deterministic_command(a),
+    }
+}
+
+fn deterministic_command(args: &DeterministicArgs) -> Result<String, String> {
+    if args.mode == Mode::Reference && args.step_cost.is_some() {
+        return Err("--step-cost applies to --mode exact; the reference mode always uses the paper code's f64 Euclidean costs".into());
+    }
+    let settings = Settings {
+        problems: args
+            .problems
+            .clone()
+            .unwrap_or_else(|| PAPER_PROBLEMS.to_vec()),
+        samples: args.samples,
+        seed: args.seed,
+        mode: args.mode,
+        step_cost: args.step_cost.unwrap_or_default(),
+        episodes: args.episodes,
+        max_steps: args.max_steps,
+        threads: args.threads,
+    };
+    settings.validate().map_err(|e| e.to_string())?;
+    if let Some(dir) = &args.out {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create output directory {}: {e}", dir.display()))?;
+    }
+    let bar = if args.quiet || !std::io::stderr().is_terminal() {
+        ProgressBar::hidden()
+    } else {
+        let bar = ProgressBar::with_draw_target(
+            Some(deterministic::total_runs(&settings)),
+            ProgressDrawTarget::stderr(),
+        );
+        bar.set_style(
+            ProgressStyle::with_template(
+                "{elapsed_precise} [{bar:40}] {pos}/{len} sample runs ({eta} left)",
+            )
+            .expect("a valid template")
+            .progress_chars("=> "),
+        );
+        bar
+    };
+    let report = deterministic::run(&settings, &|k| bar.inc(k)).map_err(|e| e.to_string())?;
+    bar.finish_and_clear();
+    if let Some(dir) = &args.out {
+        for (name, format) in [
+            ("deterministic.md", ListFormat::Markdown),
+            ("deterministic.csv", ListFormat::Csv),
+            ("deterministic.json", ListFormat::Json),
+        ] {
+            write_file(&dir.join(name), &render(&report, format))?;
+        }
+    }
+    Ok(render(&report, args.format))
+}
+
+fn write_file(path: &Path, text: &str) -> Result<(), String> {
+    std::fs::write(path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
+/// Renders a report in a format.
+pub fn render(report: &Report, format: ListFormat) -> String {
+    match format {
+        ListFormat::Json => {
+            let mut s = serde_json::to_string_pretty(&report.rows).expect("serialisable");
+            s.push('\n');
+            s
+        }
+        ListFormat::Csv => csv(report),
+        ListFormat::Markdown => markdown(report),
+        ListFormat::Text => text(report),
+    }
+}
+
+/// The columns of the CSV file, in order.
+const CSV_COLUMNS: [&str; 32] = [
+    "problem",
+    "algorithm",
+    "epsilon",
+    "epsilon_final",
+    "plan",
+    "samples",
+    "mean_time_s",
+    "std_time_s",
+    "convergence_rate",
+    "mean_actions_converged",
+    "mean_actions",
+    "std_actions",
+    "mean_iterations",
+    "std_iterations",
+    "shortest_path",
+    "longest_path",
+    "goal_reached_rate",
+    "optimal_path_rate",
+    "loops",
+    "initial_optimal_rate",
+    "mean_actions_initial_optimal",
+    "mean_time_initial_optimal_s",
+    "goal_discovery_rate",
+    "mean_actions_goal_discovered",
+    "mean_time_goal_discovered_s",
+    "mode",
+    "seed",
+    "value_type",
+    "episodes",
+    "max_steps",
+    "model",
+    "note",
+];
+
+fn csv(report: &Report) -> String {
+    let mut s = CSV_COLUMNS.join(",") + "\n";
+    for row in &report.rows {
+        let value = serde_json::to_value(row).expect("serialisable");
+        let cells: Vec<String> = CSV_COLUMNS
+            .iter()
+            .map(|&c| match c {
+                "episodes" => report.episodes.to_string(),
+                "max_steps" => report.max_steps.to_string(),
+                "model" => quote(&report.model),
+                _ => match &value[c] {
+                    serde_json::Value::Null => String::new(),
+                    serde_json::Value::String(t) => quote(t),
+                    other => other.to_string(),
+                },
+            })
+            .collect();
+        s += &(cells.join(",") + "\n");
+    }
+    s
+}
+
+/// A CSV cell: quoted when it contains a separator or a quote.
+fn quote(t: &str) -> String {
+    if t.contains([',', '"', '\n']) {
+        format!("\"{}\"", t.replace('"', "\"\""))
+    } else {
+        t.to_string()
+    }
+}
+
+/// `mean ± std` with a sensible number of digits.
+fn pm(mean: Option<f64>, std: Option<f64>, digits: usize) -> String {
+    match (mean, std) {
+        (Some(m), Some(s)) => format!("{m:.digits$} ± {s:.digits$}"),
+        _ => "–".into(),
+    }
+}
+
+fn opt(x: Option<f64>, digits: usize) -> String {
+    x.map_or("–".into(), |v| format!("{v:.digits$}"))
+}
+
+fn label(row: &RowSummary) -> String {
+    let eps = |e: f64| {
+        let t = format!("{e}");
+        t
+    };
+    match row.algorithm {
+        "q-learning" => format!("Q-learning (ε={})", eps(row.epsilon.unwrap_or(0.0))),
+        "q-learning-pi" => format!("Q-learning, π plan (ε={})", eps(row.epsilon.unwrap_or(1.0))),
+        "q-learning-epsilon-decay" => format!(
+            "Q-learning (ε-decay {}→{})",
+            eps(row.epsilon.unwrap_or(1.0)),
+            eps(row.epsilon_final.unwrap_or(0.1))
+        ),
+        "model-free-dijkstra" => "Model-free Dijkstra".into(),
+        "model-free-async-vi" => "Model-free asynchronous VI".into(),
+        "model-free-vi" => "Model-free synchronous VI".into(),
+        other => other.into(),
+    }
+}
+
+/// The table cells of a row (shared by text and Markdown).
+fn cells(row: &RowSummary) -> Vec<String> {
+    if let Some(note) = &row.note {
+        let mut c = vec![label(row), note.clone()];
+        c.resize(9, String::new());
+        return c;
+    }
+    let paths = match (row.shortest_path, row.longest_path) {
+        (Some(a), Some(b)) if a == b => a.to_string(),
+        (Some(a), Some(b)) => format!("{a}–{b}"),
+        _ => "–".into(),
+    };
+    vec![
+        label(row),
+        pm(row.mean_time_s, row.std_time_s, 5),
+        pm(row.mean_actions, row.std_actions, 1),
+        pm(row.mean_iterations, row.std_iterations, 2),
+        row.convergence_rate
+            .map_or("–".into(), |r| format!("{:.1} %", 100.0 * r)),
+        format!(
+            "{} / {}",
+            opt(row.mean_actions_goal_discovered, 1),
+            opt(row.mean_time_goal_discovered_s, 5)
+        ),
+        format!(
+            "{} / {}",
+            opt(row.mean_actions_initial_optimal, 1),
+            opt(row.mean_time_initial_optimal_s, 5)
+        ),
+        paths,
+        format!(
+            "{}{}",
+            row.optimal_path_rate
+                .map_or("–".into(), |r| format!("{:.0} %", 100.0 * r)),
+            if row.loops > 0 {
+                format!(", {} loops", row.loops)
+            } else {
+                String::new()
+            }
+        ),
+    ]
+}
+
+const HEADER: [&str; 9] = [
+    "algorithm",
+    "run time s (mean ± std)",
+    "actions (mean ± std)",
+    "iterations (mean ± std)",
+    "converged",
+    "goal discovered: actions / s",
+    "V(x1) optimal: actions / s",
+    "path states",
+    "optimal paths",
+];
+
+fn preamble(report: &Report) -> Vec<String> {
+    vec![
+        format!(
+            "truecost reproduce deterministic — mode {}; seed {}; {} samples per row; {} episodes × {} steps; problems {}",
+            match report.mode {
+                Mode::Exact => "exact",
+                Mode::Reference => "reference",
+            },
+            report.seed,
+            report.samples,
+            report.episodes,
+            report.max_steps,
+            report
+                .problems
+                .iter()
+                .map(|p| p.to_string())
+                .collect::<Vec<_>>()
+                .join(",")
+        ),
+        format!("model: {}", report.model),
+        "Q-learning: ρ = 1, Q₀ = 0, greedy = first minimiser in action order; means of actions \
+         and times to an event are over the samples that reached it; path states count x1 and \
+         the goal; π rows share one digit stream, problems in the order listed."
+            .into(),
+    ]
+}
+
+fn markdown(report: &Report) -> String {
+    let mut s = String::new();
+    let pre = preamble(report);
+    let _ = writeln!(s, "# {}\n", pre[0]);
+    for line in &pre[1..] {
+        let _ = writeln!(s, "{line}\n");
+    }
+    for p in &report.problems {
+        let _ = writeln!(s, "## Problem {p}\n");
+        let _ = writeln!(s, "| {} |", HEADER.join(" | "));
+        let _ = writeln!(s, "|{}", "---|".repeat(HEADER.len()));
+        for row in report.rows.iter().filter(|r| r.problem == *p) {
+            let _ = writeln!(s, "| {} |", cells(row).join(" | "));
+        }
+        s.push('\n');
+    }
+    s
+}
+
+fn text(report: &Report) -> String {
+    let mut s = String::new();
+    for line in preamble(report) {
+        let _ = writeln!(s, "{line}");
+    }
+    for p in &report.problems {
+        let rows: Vec<Vec<String>> = report
+            .rows
+            .iter()
+            .filter(|r| r.problem == *p)
+            .map(cells)
+            .collect();
+        let widths: Vec<usize> = (0..HEADER.len())
+            .map(|c| {
+                rows.iter()
+                    .map(|r| r[c].chars().count())
+                    .chain([HEADER[c].chars().count()])
+                    .max()
+                    .unwrap_or(0)
+            })
+            .collect();
+        let line = |cells: &[String]| {
+            cells
+                .iter()
+                .zip(&widths)
+                .map(|(c, &w)| format!("{c}{}", " ".repeat(w - c.chars().count())))
+                .collect::<Vec<_>>()
+                .join("  ")
+                .trim_end()
+                .to_string()
+        };
+        let _ = writeln!(s, "\nProblem {p}");
+        let header: Vec<String> = HEADER.iter().map(|h| h.to_string()).collect();
+        let _ = writeln!(s, "{}", line(&header));
+        for r in &rows {
+            let _ = writeln!(s, "{}", line(r));
+        }
+    }
+    s
+}

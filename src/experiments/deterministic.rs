@@ -1,0 +1,843 @@
+//! The paper's deterministic comparison (`truecost reproduce deterministic`): Q-learning with
+//! several ε, the π universal plan and ε-decay against model-free Dijkstra and value iteration,
+//! on the paper's grid problems, over seeded samples (SPEC §2, §4, §7).
+//!
+//! # Rows ([`PAPER_ROWS`], configuration as data)
+//!
+//! Q-learning (`ρ = 1`, `Q₀ = 0`, [`Settings::episodes`] × [`Settings::max_steps`], default the
+//! paper's 1000 × 3000) with ε ∈ {0, 0.25, 0.5, 0.75, 0.9, 1} over the random plan; the π plan
+//! with ε = 1; ε-decay (linear from 1 in the first episode to 0.1 in the last, over the random
+//! plan); model-free Dijkstra, asynchronous and synchronous value iteration (explore first, then
+//! plan; SPEC §2).
+//!
+//! # Modes
+//!
+//! * [`Mode::Exact`] — the paper's text: exact stage costs and values (the problem compiled to
+//!   [`ExactGraph`]), metrics tracked after every action ([`Rules::Exact`]); `iterations` of a
+//!   learning row is the number of episodes run.
+//! * [`Mode::Reference`] — the paper's code (SPEC §7): `f64` graph, checks every 1000 actions,
+//!   `iterations` is the 0-based index of the last episode (999 = never converged). With the
+//!   default settings this reproduces the published deterministic counts: the DP rows, the
+//!   greedy ε = 0 rows and the π rows.
+//!
+//! # Samples and reproducibility
+//!
+//! Sample `k` of row `r` on problem `p` draws from [`sample_rng`]`(seed, p·2^32 + r·2^24 + k)`,
+//! so every number but the times is a pure function of the settings, whatever the number of
+//! threads. The π rows share **one** digit stream ([`PiStream`], fresh for each experiment):
+//! they run one after another, problems in the order given, samples in order `0, 1, …`, while
+//! everything else runs in parallel. The learning rows are not run where the goal is
+//! unreachable from `x1` (as in the paper's code, which skips such problems; so they consume no
+//! π digits).
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use super::clock::Stopwatch;
+use super::stats::{mean_of_present, mean_std};
+use crate::learning::plan::{sample_rng, EpsilonSchedule, PiStream, Plan, Probability};
+use crate::learning::q_learning::{
+    Event, LearningError, LearningValue, Milestone, QLearner, QLearningConfig, Rules,
+};
+use crate::model::{ExactGraph, Graph, Problem};
+use crate::planning::{plan_exact, plan_reference, Algorithm, Mode};
+use crate::problems::{GridLayout, ProblemError, StepCost, PAPER_PROBLEMS};
+use crate::solvers::dijkstra;
+use crate::solvers::value_iteration::{value_iteration, Schedule};
+use crate::value::{CostValue, Rational};
+
+/// Which exploration plan a learning row uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PlanKind {
+    /// Uniformly random actions.
+    Random,
+    /// The π universal plan.
+    Pi,
+}
+
+/// One row of the experiment.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Row {
+    /// Q-learning with constant `ε = numerator/denominator`.
+    QLearning {
+        /// ε as an exact fraction `(numerator, denominator)`.
+        epsilon: (u64, u64),
+        /// Where exploring actions come from.
+        plan: PlanKind,
+    },
+    /// Q-learning with ε decaying linearly from `start` to 0.1 at the last episode.
+    EpsilonDecay {
+        /// ε in the first episode, `(numerator, denominator)`.
+        start: (u64, u64),
+    },
+    /// A model-free planner: exploration, then the planner on the discovered graph.
+    ModelFree(Algorithm),
+}
+
+/// The paper's rows, in the paper's order.
+pub const PAPER_ROWS: [Row; 11] = [
+    Row::QLearning {
+        epsilon: (0, 1),
+        plan: PlanKind::Random,
+    },
+    Row::QLearning {
+        epsilon: (1, 4),
+        plan: PlanKind::Random,
+    },
+    Row::QLearning {
+        epsilon: (1, 2),
+        plan: PlanKind::Random,
+    },
+    Row::QLearning {
+        epsilon: (3, 4),
+        plan: PlanKind::Random,
+    },
+    Row::QLearning {
+        epsilon: (9, 10),
+        plan: PlanKind::Random,
+    },
+    Row::QLearning {
+        epsilon: (1, 1),
+        plan: PlanKind::Random,
+    },
+    Row::QLearning {
+        epsilon: (1, 1),
+        plan: PlanKind::Pi,
+    },
+    Row::EpsilonDecay { start: (1, 1) },
+    Row::ModelFree(Algorithm::Dijkstra),
+    Row::ModelFree(Algorithm::AsyncVi),
+    Row::ModelFree(Algorithm::Vi),
+];
+
+impl Row {
+    /// The row's algorithm name in reports.
+    pub fn algorithm(&self) -> &'static str {
+        match self {
+            Row::QLearning {
+                plan: PlanKind::Random,
+                ..
+            } => "q-learning",
+            Row::QLearning {
+                plan: PlanKind::Pi, ..
+            } => "q-learning-pi",
+            Row::EpsilonDecay { .. } => "q-learning-epsilon-decay",
+            Row::ModelFree(Algorithm::Dijkstra) => "model-free-dijkstra",
+            Row::ModelFree(Algorithm::AsyncVi) => "model-free-async-vi",
+            Row::ModelFree(Algorithm::Vi) => "model-free-vi",
+        }
+    }
+
+    /// ε (the first episode's, for ε-decay); `None` for planners.
+    pub fn epsilon(&self) -> Option<(u64, u64)> {
+        match *self {
+            Row::QLearning { epsilon, .. } => Some(epsilon),
+            Row::EpsilonDecay { start } => Some(start),
+            Row::ModelFree(_) => None,
+        }
+    }
+
+    fn is_pi(&self) -> bool {
+        matches!(
+            self,
+            Row::QLearning {
+                plan: PlanKind::Pi,
+                ..
+            }
+        )
+    }
+
+    fn learning_config(
+        &self,
+        settings: &Settings,
+        rules: Rules,
+    ) -> Result<Option<QLearningConfig>, ExperimentError> {
+        let probability = |(n, d): (u64, u64)| {
+            Probability::new(
+                "ε",
+                &Rational::new(num_bigint::BigInt::from(n), num_bigint::BigInt::from(d)),
+            )
+            .map_err(LearningError::from)
+        };
+        let epsilon = match *self {
+            Row::QLearning { epsilon, .. } => EpsilonSchedule::Constant(probability(epsilon)?),
+            Row::EpsilonDecay { start } => EpsilonSchedule::decay_to_one_tenth(probability(start)?),
+            Row::ModelFree(_) => return Ok(None),
+        };
+        Ok(Some(QLearningConfig {
+            episodes: settings.episodes,
+            max_steps: settings.max_steps,
+            rules,
+            ..QLearningConfig::paper(epsilon)
+        }))
+    }
+}
+
+/// What to run.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Settings {
+    /// Problem ids, in the order the π rows run.
+    pub problems: Vec<usize>,
+    /// Samples per row.
+    pub samples: u32,
+    /// The master seed.
+    pub seed: u64,
+    /// Paper text (exact) or paper code (reference).
+    pub mode: Mode,
+    /// Grid step cost in exact mode.
+    pub step_cost: StepCost,
+    /// Episodes of a learning run.
+    pub episodes: u32,
+    /// Steps per episode.
+    pub max_steps: u32,
+    /// Worker threads (`None`: rayon's default).
+    pub threads: Option<usize>,
+}
+
+/// The most samples per row.
+pub const MAX_SAMPLES: u32 = 1 << 20;
+/// The most actions one learning run may take (`episodes × max_steps`).
+pub const MAX_ACTIONS_PER_RUN: u64 = 1 << 32;
+
+impl Default for Settings {
+    /// The paper's experiment: its 16 problems, 100 samples, seed 0, exact mode.
+    fn default() -> Self {
+        Settings {
+            problems: PAPER_PROBLEMS.to_vec(),
+            samples: 100,
+            seed: 0,
+            mode: Mode::Exact,
+            step_cost: StepCost::Unit,
+            episodes: 1000,
+            max_steps: 3000,
+            threads: None,
+        }
+    }
+}
+
+/// Why an experiment cannot run.
+#[derive(Debug, thiserror::Error)]
+pub enum ExperimentError {
+    /// A bad problem id.
+    #[error(transparent)]
+    Problem(#[from] ProblemError),
+    /// A problem listed twice.
+    #[error("problem {0} is listed twice")]
+    DuplicateProblem(usize),
+    /// No problem.
+    #[error("no problem given")]
+    NoProblems,
+    /// Samples out of range.
+    #[error("the number of samples must be between 1 and {MAX_SAMPLES}, not {0}")]
+    Samples(u32),
+    /// A run would be too long.
+    #[error(
+        "episodes × max steps = {0} exceeds the limit of {MAX_ACTIONS_PER_RUN} actions per run"
+    )]
+    TooLong(u64),
+    /// A bad learning parameter.
+    #[error(transparent)]
+    Learning(#[from] LearningError),
+    /// The thread pool could not be built.
+    #[error("cannot start {threads} worker threads: {message}")]
+    Threads {
+        /// Threads asked for.
+        threads: usize,
+        /// Why not.
+        message: String,
+    },
+}
+
+impl Settings {
+    /// Checks every parameter (one clear error for the first bad one).
+    pub fn validate(&self) -> Result<(), ExperimentError> {
+        if self.problems.is_empty() {
+            return Err(ExperimentError::NoProblems);
+        }
+        let count = crate::problems::paper_scenarios().len();
+        for (i, &p) in self.problems.iter().enumerate() {
+            if p >= count {
+                return Err(ProblemError::Unknown {
+                    id: p,
+                    last: count - 1,
+                }
+                .into());
+            }
+            if self.problems[..i].contains(&p) {
+                return Err(ExperimentError::DuplicateProblem(p));
+            }
+        }
+        if self.samples == 0 || self.samples > MAX_SAMPLES {
+            return Err(ExperimentError::Samples(self.samples));
+        }
+        if self.episodes == 0 {
+            return Err(LearningError::NoEpisodes.into());
+        }
+        if self.max_steps == 0 {
+            return Err(LearningError::NoSteps.into());
+        }
+        let total = u64::from(self.episodes) * u64::from(self.max_steps);
+        if total > MAX_ACTIONS_PER_RUN {
+            return Err(ExperimentError::TooLong(total));
+        }
+        if self.threads == Some(0) {
+            return Err(ExperimentError::Threads {
+                threads: 0,
+                message: "at least one thread is needed".into(),
+            });
+        }
+        Ok(())
+    }
+
+    /// The model in words, for every output.
+    pub fn model(&self) -> String {
+        match self.mode {
+            Mode::Exact => format!(
+                "exact (paper text): {} step costs, exact values; metrics tracked after every \
+                 action; iterations = episodes run",
+                match self.step_cost {
+                    StepCost::Unit => "unit",
+                    StepCost::Euclidean => "Euclidean (800/19)",
+                }
+            ),
+            Mode::Reference => "reference (paper code, SPEC §7): f64 Euclidean step costs on the \
+                                reference grid; checks every 1000 actions; iterations = 0-based \
+                                last episode index"
+                .to_string(),
+        }
+    }
+}
+
+/// The measurements of one sample run.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Sample {
+    /// Wall time of the run in seconds (the only non-reproducible number).
+    pub time_s: f64,
+    /// Actions applied (learning) or exploration + planner actions (DP).
+    pub actions: u64,
+    /// Episodes (see the mode) or sweeps / heap pops.
+    pub iterations: u64,
+    /// Whether `Q̂` reached `Q*` on every tracked state (DP: the planner solved it).
+    pub converged: bool,
+    /// The convergence action, if converged (learning rows).
+    pub converged_at: Option<u64>,
+    /// The action after which `V(x1) = G*(x1)` first held.
+    pub initial_optimal_at: Option<u64>,
+    /// Seconds until then.
+    pub initial_optimal_time_s: Option<f64>,
+    /// The action that first entered the goal.
+    pub goal_discovered_at: Option<u64>,
+    /// Seconds until then.
+    pub goal_discovered_time_s: Option<f64>,
+    /// States on the extracted path (`x1` and the goal included, as the paper counts).
+    pub path_states: usize,
+    /// Whether the path reaches the goal.
+    pub reached_goal: bool,
+    /// Whether the path extraction ran into a loop.
+    pub looped: bool,
+    /// Whether the path reaches the goal at cost `G*(x1)`.
+    pub path_optimal: bool,
+}
+
+/// One row of the result: a summary over the samples.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RowSummary {
+    /// Problem id.
+    pub problem: usize,
+    /// `q-learning`, `q-learning-pi`, `q-learning-epsilon-decay`, `model-free-dijkstra`,
+    /// `model-free-async-vi`, `model-free-vi`.
+    pub algorithm: &'static str,
+    /// ε (the first episode's for ε-decay); `null` for planners.
+    pub epsilon: Option<f64>,
+    /// ε in the last episode (ε-decay only).
+    pub epsilon_final: Option<f64>,
+    /// `random` or `pi` (learning rows).
+    pub plan: Option<&'static str>,
+    /// Samples summarised (0 when the row was not run).
+    pub samples: u32,
+    /// Mean run time (s).
+    pub mean_time_s: Option<f64>,
+    /// Standard deviation of the run time (s).
+    pub std_time_s: Option<f64>,
+    /// Fraction of samples that converged.
+    pub convergence_rate: Option<f64>,
+    /// Mean convergence action over converged samples.
+    pub mean_actions_converged: Option<f64>,
+    /// Mean actions.
+    pub mean_actions: Option<f64>,
+    /// Standard deviation of the actions.
+    pub std_actions: Option<f64>,
+    /// Mean iterations (episodes / sweeps / pops; see the mode).
+    pub mean_iterations: Option<f64>,
+    /// Standard deviation of the iterations.
+    pub std_iterations: Option<f64>,
+    /// Fewest states on an extracted path.
+    pub shortest_path: Option<usize>,
+    /// Most states on an extracted path.
+    pub longest_path: Option<usize>,
+    /// Fraction of samples whose path reaches the goal.
+    pub goal_reached_rate: Option<f64>,
+    /// Fraction of samples whose path reaches the goal at optimal cost.
+    pub optimal_path_rate: Option<f64>,
+    /// Samples whose path extraction looped.
+    pub loops: u32,
+    /// Fraction of samples in which `V(x1)` became optimal.
+    pub initial_optimal_rate: Option<f64>,
+    /// Mean action at which `V(x1)` became optimal (over those samples).
+    pub mean_actions_initial_optimal: Option<f64>,
+    /// Mean seconds until `V(x1)` became optimal (over those samples).
+    pub mean_time_initial_optimal_s: Option<f64>,
+    /// Fraction of samples that entered the goal.
+    pub goal_discovery_rate: Option<f64>,
+    /// Mean action that first entered the goal (over those samples).
+    pub mean_actions_goal_discovered: Option<f64>,
+    /// Mean seconds until the goal was first entered (over those samples).
+    pub mean_time_goal_discovered_s: Option<f64>,
+    /// `exact` or `reference`.
+    pub mode: Mode,
+    /// The master seed.
+    pub seed: u64,
+    /// The value type the run computed with (`units`, `big-rational`, `f64`).
+    pub value_type: &'static str,
+    /// Why a row was not run, if it was not.
+    pub note: Option<String>,
+}
+
+/// The whole result.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Report {
+    /// The settings.
+    pub mode: Mode,
+    /// The model in words.
+    pub model: String,
+    /// The master seed.
+    pub seed: u64,
+    /// Samples per row.
+    pub samples: u32,
+    /// Episodes per learning run.
+    pub episodes: u32,
+    /// Steps per episode.
+    pub max_steps: u32,
+    /// Problems in the order run.
+    pub problems: Vec<usize>,
+    /// One summary per (problem, row), problems in the given order, rows as [`PAPER_ROWS`].
+    pub rows: Vec<RowSummary>,
+}
+
+/// A problem compiled for one mode, with the oracle values of the convergence checks.
+enum Prepared {
+    Exact {
+        problem: Problem,
+        graph: ExactGraph,
+    },
+    Reference {
+        graph: Graph<f64>,
+        optimum: Vec<f64>,
+    },
+}
+
+/// Exact optimum of a compiled exact graph (Dijkstra backwards from the goals).
+struct ExactOracle {
+    units: Option<Vec<crate::value::Units>>,
+    big: Option<Vec<crate::value::Extended>>,
+}
+
+struct ProblemRun {
+    id: usize,
+    prepared: Prepared,
+    oracle: Option<ExactOracle>,
+    reachable: bool,
+    value_type: &'static str,
+}
+
+fn prepare(id: usize, settings: &Settings) -> Result<ProblemRun, ExperimentError> {
+    match settings.mode {
+        Mode::Exact => {
+            let problem = GridLayout::exact(id)?.to_problem(settings.step_cost);
+            let graph = ExactGraph::new(&problem);
+            let (oracle, reachable) = match &graph {
+                ExactGraph::Units(g) => {
+                    let opt = dijkstra::to_goals(g).cost_to_go;
+                    let r = opt[g.initial()].is_finite();
+                    (
+                        ExactOracle {
+                            units: Some(opt),
+                            big: None,
+                        },
+                        r,
+                    )
+                }
+                ExactGraph::Big(g) => {
+                    let opt = dijkstra::to_goals(g).cost_to_go;
+                    let r = opt[g.initial()].is_finite();
+                    (
+                        ExactOracle {
+                            units: None,
+                            big: Some(opt),
+                        },
+                        r,
+                    )
+                }
+            };
+            let value_type = graph.representation();
+            Ok(ProblemRun {
+                id,
+                prepared: Prepared::Exact { problem, graph },
+                oracle: Some(oracle),
+                reachable,
+                value_type,
+            })
+        }
+        Mode::Reference => {
+            let graph = GridLayout::reference(id)?.to_reference_graph();
+            // The reference code's oracle: its value iteration (in place, 1000 sweeps at most).
+            let optimum = value_iteration(&graph, Schedule::Asynchronous, Some(1000)).cost_to_go;
+            let reachable = optimum[graph.initial()].is_finite();
+            Ok(ProblemRun {
+                id,
+                prepared: Prepared::Reference { graph, optimum },
+                oracle: None,
+                reachable,
+                value_type: "f64",
+            })
+        }
+    }
+}
+
+/// One learning sample on a graph: the clock wraps the learner; milestones are timed between
+/// calls to [`QLearner::advance`].
+fn learn_sample<V: LearningValue>(
+    graph: &Graph<V>,
+    optimum: &[V],
+    config: &QLearningConfig,
+    rng: rand_chacha::ChaCha8Rng,
+    plan: Plan<'_>,
+    mode: Mode,
+) -> Result<Sample, LearningError> {
+    let watch = Stopwatch::start();
+    let mut learner = QLearner::new(graph, optimum, V::zero(), config, rng, plan)?;
+    let (mut goal_time, mut initial_time) = (None, None);
+    loop {
+        match learner.advance() {
+            Event::Milestone(Milestone::GoalDiscovered) => goal_time = Some(watch.seconds()),
+            Event::Milestone(Milestone::InitialOptimal) => initial_time = Some(watch.seconds()),
+            Event::Milestone(Milestone::Converged) => {}
+            Event::Finished => break,
+        }
+    }
+    let time_s = watch.seconds();
+    let outcome = learner.outcome();
+    let path = learner.greedy_path();
+    let iterations = match mode {
+        Mode::Exact => u64::from(outcome.episodes_run),
+        Mode::Reference => u64::from(outcome.last_episode_index().unwrap_or(0)),
+    };
+    Ok(Sample {
+        time_s,
+        actions: outcome.actions,
+        iterations,
+        converged: outcome.converged,
+        converged_at: outcome.converged_at,
+        initial_optimal_at: outcome.initial_optimal_at,
+        initial_optimal_time_s: initial_time,
+        goal_discovered_at: outcome.goal_discovered_at,
+        goal_discovered_time_s: goal_time,
+        path_states: path.states.len(),
+        reached_goal: path.reached_goal,
+        looped: path.looped,
+        path_optimal: path.reached_goal && path.cost == optimum[graph.initial()],
+    })
+}
+
+/// The generator stream of sample `k` of row `r` on problem `p`.
+fn stream(problem: usize, row: usize, sample: u32) -> u64 {
+    ((problem as u64) << 32) | ((row as u64) << 24) | u64::from(sample)
+}
+
+/// Runs one sample of a row on a prepared problem.
+fn run_sample(
+    run: &ProblemRun,
+    row_index: usize,
+    row: &Row,
+    sample: u32,
+    settings: &Settings,
+    pi: Option<&mut PiStream>,
+) -> Result<Sample, ExperimentError> {
+    let rng = sample_rng(settings.seed, stream(run.id, row_index, sample));
+    let plan = match pi {
+        Some(s) => Plan::Pi(s),
+        None => Plan::Random,
+    };
+    let rules = match settings.mode {
+        Mode::Exact => Rules::Exact,
+        Mode::Reference => Rules::Reference,
+    };
+    if let Some(config) = row.learning_config(settings, rules)? {
+        let sample = match (&run.prepared, &run.oracle) {
+            (Prepared::Exact { graph, .. }, Some(oracle)) => match graph {
+                ExactGraph::Units(g) => learn_sample(
+                    g,
+                    oracle.units.as_ref().expect("units oracle"),
+                    &config,
+                    rng,
+                    plan,
+                    settings.mode,
+                )?,
+                ExactGraph::Big(g) => learn_sample(
+                    g,
+                    oracle.big.as_ref().expect("big oracle"),
+                    &config,
+                    rng,
+                    plan,
+                    settings.mode,
+                )?,
+            },
+            (Prepared::Reference { graph, optimum }, _) => {
+                learn_sample(graph, optimum, &config, rng, plan, settings.mode)?
+            }
+            (Prepared::Exact { .. }, None) => unreachable!("exact problems carry an oracle"),
+        };
+        return Ok(sample);
+    }
+    let Row::ModelFree(algorithm) = *row else {
+        unreachable!("learning rows handled above")
+    };
+    let watch = Stopwatch::start();
+    let report = match &run.prepared {
+        Prepared::Exact { problem, .. } => plan_exact(problem, algorithm, true),
+        Prepared::Reference { graph, .. } => plan_reference(graph, algorithm, true),
+    };
+    let time_s = watch.seconds();
+    Ok(Sample {
+        time_s,
+        actions: report.actions,
+        iterations: report.iterations,
+        converged: report.reachable,
+        converged_at: None,
+        initial_optimal_at: None,
+        initial_optimal_time_s: None,
+        goal_discovered_at: None,
+        goal_discovered_time_s: None,
+        path_states: report.path.len(),
+        reached_goal: report.reachable,
+        looped: false,
+        path_optimal: report.reachable,
+    })
+}
+
+/// Summarises the samples of one row.
+fn summarise(
+    run: &ProblemRun,
+    row: &Row,
+    samples: &[Sample],
+    settings: &Settings,
+    note: Option<String>,
+) -> RowSummary {
+    let n = samples.len() as f64;
+    let f = |get: &dyn Fn(&Sample) -> f64| -> Vec<f64> { samples.iter().map(get).collect() };
+    let rate = |pred: &dyn Fn(&Sample) -> bool| {
+        (!samples.is_empty()).then(|| samples.iter().filter(|s| pred(s)).count() as f64 / n)
+    };
+    let (mean_time, std_time) = unzip(mean_std(&f(&|s| s.time_s)));
+    let (mean_actions, std_actions) = unzip(mean_std(&f(&|s| s.actions as f64)));
+    let (mean_iterations, std_iterations) = unzip(mean_std(&f(&|s| s.iterations as f64)));
+    let opt = |get: &dyn Fn(&Sample) -> Option<f64>| -> Vec<Option<f64>> {
+        samples.iter().map(get).collect()
+    };
+    let learning = !matches!(row, Row::ModelFree(_));
+    let when = |x: Option<f64>| if learning { x } else { None };
+    let to_f64 = |(a, b): (u64, u64)| a as f64 / b as f64;
+    RowSummary {
+        problem: run.id,
+        algorithm: row.algorithm(),
+        epsilon: row.epsilon().map(to_f64),
+        epsilon_final: matches!(row, Row::EpsilonDecay { .. }).then_some(0.1),
+        plan: match row {
+            Row::QLearning {
+                plan: PlanKind::Pi, ..
+            } => Some("pi"),
+            Row::ModelFree(_) => None,
+            _ => Some("random"),
+        },
+        samples: samples.len() as u32,
+        mean_time_s: mean_time,
+        std_time_s: std_time,
+        convergence_rate: rate(&|s| s.converged),
+        mean_actions_converged: when(mean_of_present(&opt(&|s| s.converged_at.map(|a| a as f64)))),
+        mean_actions,
+        std_actions,
+        mean_iterations,
+        std_iterations,
+        shortest_path: samples.iter().map(|s| s.path_states).min(),
+        longest_path: samples.iter().map(|s| s.path_states).max(),
+        goal_reached_rate: rate(&|s| s.reached_goal),
+        optimal_path_rate: rate(&|s| s.path_optimal),
+        loops: samples.iter().filter(|s| s.looped).count() as u32,
+        initial_optimal_rate: when(rate(&|s| s.initial_optimal_at.is_some())),
+        mean_actions_initial_optimal: when(mean_of_present(&opt(&|s| {
+            s.initial_optimal_at.map(|a| a as f64)
+        }))),
+        mean_time_initial_optimal_s: when(mean_of_present(&opt(&|s| s.initial_optimal_time_s))),
+        goal_discovery_rate: when(rate(&|s| s.goal_discovered_at.is_some())),
+        mean_actions_goal_discovered: when(mean_of_present(&opt(&|s| {
+            s.goal_discovered_at.map(|a| a as f64)
+        }))),
+        mean_time_goal_discovered_s: when(mean_of_present(&opt(&|s| s.goal_discovered_time_s))),
+        mode: settings.mode,
+        seed: settings.seed,
+        value_type: run.value_type,
+        note,
+    }
+}
+
+fn unzip(x: Option<(f64, f64)>) -> (Option<f64>, Option<f64>) {
+    match x {
+        Some((a, b)) => (Some(a), Some(b)),
+        None => (None, None),
+    }
+}
+
+/// The number of sample runs an experiment performs (for a progress bar).
+pub fn total_runs(settings: &Settings) -> u64 {
+    settings.problems.len() as u64 * PAPER_ROWS.len() as u64 * u64::from(settings.samples)
+}
+
+/// Runs the experiment. `progress(k)` is called (from any thread) each time `k` more sample
+/// runs have finished.
+///
+/// ```
+/// use truecost::experiments::deterministic::{run, Settings};
+/// use truecost::planning::Mode;
+/// let settings = Settings { problems: vec![16], samples: 2, mode: Mode::Reference, ..Settings::default() };
+/// let report = run(&settings, &|_| {}).unwrap();
+/// assert_eq!(report.rows.len(), 11);
+/// let greedy = &report.rows[0];
+/// // Problem 16 in the paper's code: greedy Q-learning converges in episode 244 after 1000 actions.
+/// assert_eq!((greedy.mean_iterations, greedy.mean_actions), (Some(244.0), Some(1000.0)));
+/// ```
+pub fn run(
+    settings: &Settings,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Report, ExperimentError> {
+    settings.validate()?;
+    let work = || run_validated(settings, progress);
+    match settings.threads {
+        None => work(),
+        Some(threads) => rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| ExperimentError::Threads {
+                threads,
+                message: e.to_string(),
+            })?
+            .install(work),
+    }
+}
+
+fn run_validated(
+    settings: &Settings,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Report, ExperimentError> {
+    let runs: Vec<ProblemRun> = settings
+        .problems
+        .par_iter()
+        .map(|&id| prepare(id, settings))
+        .collect::<Result<_, _>>()?;
+    // Every (problem, row, sample) except the π rows, in parallel.
+    let tasks: Vec<(usize, usize, u32)> = (0..runs.len())
+        .flat_map(|p| {
+            PAPER_ROWS
+                .iter()
+                .enumerate()
+                .filter(|(_, row)| !row.is_pi())
+                .flat_map(move |(r, _)| (0..settings.samples).map(move |k| (p, r, k)))
+        })
+        .collect();
+    let skip = |run: &ProblemRun, row: &Row| !run.reachable && !matches!(row, Row::ModelFree(_));
+    let (pi_results, results) = rayon::join(
+        || -> Result<Vec<Vec<Sample>>, ExperimentError> {
+            // The π rows: one shared digit stream, problems in the given order.
+            let mut stream = PiStream::new();
+            // Compute the digits the π runs can accept before any clock starts (a run of A
+            // actions accepts A digits; skipped digits beyond this are computed on demand).
+            let reachable = runs.iter().filter(|r| r.reachable).count() as u64;
+            stream.prefetch(
+                reachable
+                    .saturating_mul(u64::from(settings.samples))
+                    .saturating_mul(u64::from(settings.episodes))
+                    .saturating_mul(u64::from(settings.max_steps)),
+            );
+            let pi_row = PAPER_ROWS
+                .iter()
+                .position(Row::is_pi)
+                .expect("a π row exists");
+            runs.iter()
+                .map(|run| {
+                    if skip(run, &PAPER_ROWS[pi_row]) {
+                        progress(u64::from(settings.samples));
+                        return Ok(Vec::new());
+                    }
+                    (0..settings.samples)
+                        .map(|k| {
+                            let s = run_sample(
+                                run,
+                                pi_row,
+                                &PAPER_ROWS[pi_row],
+                                k,
+                                settings,
+                                Some(&mut stream),
+                            );
+                            progress(1);
+                            s
+                        })
+                        .collect()
+                })
+                .collect()
+        },
+        || -> Result<Vec<Option<Sample>>, ExperimentError> {
+            tasks
+                .par_iter()
+                .map(|&(p, r, k)| {
+                    let run = &runs[p];
+                    let row = &PAPER_ROWS[r];
+                    let s = if skip(run, row) {
+                        None
+                    } else {
+                        Some(run_sample(run, r, row, k, settings, None)?)
+                    };
+                    progress(1);
+                    Ok(s)
+                })
+                .collect()
+        },
+    );
+    let pi_results = pi_results?;
+    let results = results?;
+    let mut rows = Vec::new();
+    let mut next = results.into_iter();
+    for (p, run) in runs.iter().enumerate() {
+        for row in PAPER_ROWS.iter() {
+            let samples: Vec<Sample> = if row.is_pi() {
+                pi_results[p].clone()
+            } else {
+                (0..settings.samples)
+                    .filter_map(|_| next.next().expect("one result per task"))
+                    .collect()
+            };
+            let note = skip(run, row).then(|| {
+                "not run: the goal is unreachable from x1 (as in the paper's code)".into()
+            });
+            rows.push(summarise(run, row, &samples, settings, note));
+        }
+    }
+    Ok(Report {
+        mode: settings.mode,
+        model: settings.model(),
+        seed: settings.seed,
+        samples: settings.samples,
+        episodes: settings.episodes,
+        max_steps: settings.max_steps,
+        problems: settings.problems.clone(),
+        rows,
+    })
+}

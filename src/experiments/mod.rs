@@ -1,0 +1,8 @@
+//! Experiments: configurations as data, runners that wrap the clock around the algorithms, and
+//! summaries over seeded samples (SPEC §4).
+//!
+//! The algorithms never read a clock; only [`clock::Stopwatch`], used by the runners here, does.
+
+pub mod clock;
+pub mod deterministic;
+pub mod stats;

@@ -249,6 +249,31 @@ fn reference_rules_check_only_every_thousand_actions() {
     assert_eq!(r.initial_optimal_at, Some(1000));
 }
 
+#[test]
+fn fractional_learning_rates_run_on_f64_and_approach_the_optimum() {
+    // Line 0 – 1 (goal), cost 1, ρ = 1/2, greedy: Q(0,→) after k visits is 1 − 2^−k (V(1) = 0).
+    let g = Graph::<f64>::from_adjacency(
+        vec![vec![(1, 1.0)], vec![(0, 1.0)]],
+        0,
+        &[1],
+        vec![0, 1],
+        num_rational::BigRational::from_integer(1.into()),
+    );
+    let optimum = vec![1.0, 0.0];
+    let config = QLearningConfig {
+        episodes: 3,
+        max_steps: 10,
+        learning_rate: parse_rational("1/2").unwrap(),
+        ..QLearningConfig::paper(EpsilonSchedule::Constant(Probability::ZERO))
+    };
+    let mut l = QLearner::new(&g, &optimum, 0.0, &config, sample_rng(0, 0), Plan::Random).unwrap();
+    let o = l.run();
+    assert_eq!(o.actions, 3);
+    assert_eq!(l.q_values()[0], 0.875);
+    assert!(!o.converged);
+    assert_eq!(o.converged_at, None);
+}
+
 /// Runs Q-learning (ρ = 1, Q₀ = 0, the given ε over the random plan) on an exact problem and
 /// checks every update against the oracle.
 fn check_invariants(p: &Problem, epsilon: &str, seed: u64) -> Result<(), TestCaseError> {

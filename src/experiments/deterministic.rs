@@ -708,11 +708,13 @@ pub fn total_runs(settings: &Settings) -> u64 {
 /// ```
 /// use truecost::experiments::deterministic::{run, Settings};
 /// use truecost::planning::Mode;
-/// let settings = Settings { problems: vec![16], samples: 2, mode: Mode::Reference, ..Settings::default() };
+/// // Problem 16 is tiny: its greedy episodes are short, 100 steps per episode suffice.
+/// let settings = Settings { problems: vec![16], samples: 2, mode: Mode::Reference,
+///     max_steps: 100, ..Settings::default() };
 /// let report = run(&settings, &|_| {}).unwrap();
 /// assert_eq!(report.rows.len(), 11);
 /// let greedy = &report.rows[0];
-/// // Problem 16 in the paper's code: greedy Q-learning converges in episode 244 after 1000 actions.
+/// // The paper's code: greedy Q-learning converges in episode 244 after 1000 actions.
 /// assert_eq!((greedy.mean_iterations, greedy.mean_actions), (Some(244.0), Some(1000.0)));
 /// ```
 pub fn run(

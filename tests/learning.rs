@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{bellman_ford, exact, small_problem, Ext, Q};
+use common::{bellman_ford, exact, huge_problem, small_problem, Ext, Q};
 use num_traits::Zero;
 use proptest::prelude::*;
 use rand::RngExt;
@@ -418,6 +418,21 @@ proptest! {
         eps in prop::sample::select(vec!["0", "1/4", "1/2", "9/10", "1"]),
         seed in 0u64..1000,
     ) {
+        check_invariants(&p, eps, seed)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(40))]
+
+    /// The same invariants on problems whose costs force big-rational values.
+    #[test]
+    fn derandomized_q_learning_invariants_on_big_rationals(
+        p in huge_problem(),
+        eps in prop::sample::select(vec!["0", "1/2", "1"]),
+        seed in 0u64..1000,
+    ) {
+        prop_assert!(matches!(ExactGraph::new(&p), ExactGraph::Big(_)));
         check_invariants(&p, eps, seed)?;
     }
 }

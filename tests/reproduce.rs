@@ -200,6 +200,39 @@ fn text_csv_markdown_and_out_files() {
     assert_eq!(csv.lines().count(), 34);
 }
 
+#[test]
+fn learning_rows_are_not_run_where_the_goal_is_unreachable() {
+    let out = truecost()
+        .args([
+            "reproduce",
+            "deterministic",
+            "--problems",
+            "6",
+            "--samples",
+            "2",
+            "--format",
+            "json",
+        ])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let rows: Value = serde_json::from_slice(&out).unwrap();
+    for row in rows.as_array().unwrap() {
+        let learning = row["algorithm"].as_str().unwrap().starts_with("q-learning");
+        if learning {
+            assert_eq!(row["samples"], 0);
+            assert!(row["note"].as_str().unwrap().contains("unreachable"));
+            assert_eq!(row["mean_actions"], Value::Null);
+        } else {
+            assert_eq!(row["samples"], 2);
+            assert_eq!(row["convergence_rate"], 0.0);
+            assert_eq!(row["goal_reached_rate"], 0.0);
+        }
+    }
+}
+
 /// Runs a command that must fail with exactly one line on stderr.
 fn fails_one_line(args: &[&str]) -> String {
     let out = truecost().args(args).assert().code(1).get_output().clone();

@@ -349,15 +349,18 @@ fn text(report: &Report) -> String {
         let _ = writeln!(s, "{line}");
     }
     for p in &report.problems {
-        let rows: Vec<Vec<String>> = report
-            .rows
-            .iter()
-            .filter(|r| r.problem == *p)
-            .map(cells)
-            .collect();
+        let summaries: Vec<&RowSummary> = report.rows.iter().filter(|r| r.problem == *p).collect();
+        let rows: Vec<Vec<String>> = summaries.iter().map(|r| cells(r)).collect();
+        // Rows that were not run carry a note; it does not widen the columns.
+        let measured = || {
+            rows.iter()
+                .zip(&summaries)
+                .filter(|(_, s)| s.note.is_none())
+                .map(|(r, _)| r)
+        };
         let widths: Vec<usize> = (0..HEADER.len())
             .map(|c| {
-                rows.iter()
+                measured()
                     .map(|r| r[c].chars().count())
                     .chain([HEADER[c].chars().count()])
                     .max()
@@ -377,8 +380,16 @@ fn text(report: &Report) -> String {
         let _ = writeln!(s, "\nProblem {p}");
         let header: Vec<String> = HEADER.iter().map(|h| h.to_string()).collect();
         let _ = writeln!(s, "{}", line(&header));
-        for r in &rows {
-            let _ = writeln!(s, "{}", line(r));
+        for (r, summary) in rows.iter().zip(&summaries) {
+            match &summary.note {
+                None => {
+                    let _ = writeln!(s, "{}", line(r));
+                }
+                Some(note) => {
+                    let pad = widths[0].saturating_sub(r[0].chars().count());
+                    let _ = writeln!(s, "{}{}  {note}", r[0], " ".repeat(pad));
+                }
+            }
         }
     }
     s

@@ -40,6 +40,13 @@
 //! *last* successful check of the converging episode, and equality is exact `f64` equality
 //! against the given values.
 //!
+//! Which states are tracked matters for the reference mode: the paper's code compares `V` with
+//! its value iteration on "every state with an action", and its published convergence rates of
+//! 1.0 on problems 13 and 14 (whose grids have edges outside x1's component, where `Q̂` stays
+//! at `Q₀ = 0` while `G* = ∞`) are only possible if the comparison is restricted to x1's
+//! component; with that restriction the published π rows of all 16 problems, whose counts
+//! depend on when convergence is detected, are reproduced exactly.
+//!
 //! The learner never reads a clock: [`QLearner::advance`] returns at each milestone so that a
 //! runner can time the milestones from outside.
 

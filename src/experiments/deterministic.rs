@@ -424,28 +424,29 @@ pub struct Report {
     pub rows: Vec<RowSummary>,
 }
 
-/// A problem compiled for one mode, with the oracle values of the convergence checks.
+/// A problem compiled for one mode, with the oracle values `G*` of the convergence checks.
 enum Prepared {
+    /// The paper's text: the exact problem (for the planners) and its compiled graph.
     Exact {
         problem: Problem,
-        graph: ExactGraph,
+        graph: ExactOptimum,
     },
+    /// The paper's code: the `f64` graph and its value iteration's values.
     Reference {
         graph: Graph<f64>,
         optimum: Vec<f64>,
     },
 }
 
-/// Exact optimum of a compiled exact graph (Dijkstra backwards from the goals).
-struct ExactOracle {
-    units: Option<Vec<crate::value::Units>>,
-    big: Option<Vec<crate::value::Extended>>,
+/// An exact graph with its exact optimum (Dijkstra backwards from the goals).
+enum ExactOptimum {
+    Units(Graph<crate::value::Units>, Vec<crate::value::Units>),
+    Big(Graph<crate::value::Extended>, Vec<crate::value::Extended>),
 }
 
 struct ProblemRun {
     id: usize,
     prepared: Prepared,
-    oracle: Option<ExactOracle>,
     reachable: bool,
     value_type: &'static str,
 }
@@ -454,36 +455,23 @@ fn prepare(id: usize, settings: &Settings) -> Result<ProblemRun, ExperimentError
     match settings.mode {
         Mode::Exact => {
             let problem = GridLayout::exact(id)?.to_problem(settings.step_cost);
-            let graph = ExactGraph::new(&problem);
-            let (oracle, reachable) = match &graph {
+            let compiled = ExactGraph::new(&problem);
+            let value_type = compiled.representation();
+            let (graph, reachable) = match compiled {
                 ExactGraph::Units(g) => {
-                    let opt = dijkstra::to_goals(g).cost_to_go;
+                    let opt = dijkstra::to_goals(&g).cost_to_go;
                     let r = opt[g.initial()].is_finite();
-                    (
-                        ExactOracle {
-                            units: Some(opt),
-                            big: None,
-                        },
-                        r,
-                    )
+                    (ExactOptimum::Units(g, opt), r)
                 }
                 ExactGraph::Big(g) => {
-                    let opt = dijkstra::to_goals(g).cost_to_go;
+                    let opt = dijkstra::to_goals(&g).cost_to_go;
                     let r = opt[g.initial()].is_finite();
-                    (
-                        ExactOracle {
-                            units: None,
-                            big: Some(opt),
-                        },
-                        r,
-                    )
+                    (ExactOptimum::Big(g, opt), r)
                 }
             };
-            let value_type = graph.representation();
             Ok(ProblemRun {
                 id,
                 prepared: Prepared::Exact { problem, graph },
-                oracle: Some(oracle),
                 reachable,
                 value_type,
             })
@@ -496,7 +484,6 @@ fn prepare(id: usize, settings: &Settings) -> Result<ProblemRun, ExperimentError
             Ok(ProblemRun {
                 id,
                 prepared: Prepared::Reference { graph, optimum },
-                oracle: None,
                 reachable,
                 value_type: "f64",
             })
@@ -573,29 +560,18 @@ fn run_sample(
         Mode::Reference => Rules::Reference,
     };
     if let Some(config) = row.learning_config(settings, rules)? {
-        let sample = match (&run.prepared, &run.oracle) {
-            (Prepared::Exact { graph, .. }, Some(oracle)) => match graph {
-                ExactGraph::Units(g) => learn_sample(
-                    g,
-                    oracle.units.as_ref().expect("units oracle"),
-                    &config,
-                    rng,
-                    plan,
-                    settings.mode,
-                )?,
-                ExactGraph::Big(g) => learn_sample(
-                    g,
-                    oracle.big.as_ref().expect("big oracle"),
-                    &config,
-                    rng,
-                    plan,
-                    settings.mode,
-                )?,
-            },
-            (Prepared::Reference { graph, optimum }, _) => {
+        let sample = match &run.prepared {
+            Prepared::Exact {
+                graph: ExactOptimum::Units(g, optimum),
+                ..
+            } => learn_sample(g, optimum, &config, rng, plan, settings.mode)?,
+            Prepared::Exact {
+                graph: ExactOptimum::Big(g, optimum),
+                ..
+            } => learn_sample(g, optimum, &config, rng, plan, settings.mode)?,
+            Prepared::Reference { graph, optimum } => {
                 learn_sample(graph, optimum, &config, rng, plan, settings.mode)?
             }
-            (Prepared::Exact { .. }, None) => unreachable!("exact problems carry an oracle"),
         };
         return Ok(sample);
     }

@@ -1,0 +1,93 @@
+//! The stochastic model of SPEC §3: a predictability factor `γ ∈ (0, 1]`, two named noise models
+//! that turn a deterministic problem into a stochastic one, the exact optimum (policy iteration
+//! with exact rational linear solves), and stochastic value iteration (exact and `f64`).
+//!
+//! * [`noise`] — `γ` ([`Predictability`], parsed exactly from its decimal text) and the two
+//!   noise models ([`NoiseModel::Paper`], the default, and [`NoiseModel::Reference`]).
+//! * [`problem`] — [`StochasticProblem`]: per state an ordered action list, each action a stage
+//!   cost and a list of outcomes with exact probabilities (and `f64` cumulative thresholds for
+//!   samplers such as a Q-learner).
+//! * [`file`] — stochastic extensions of the JSON problem file.
+//! * [`properness`] — which states can reach a goal with probability 1 (finite `G*`), which
+//!   actions are safe, proper policies.
+//! * [`linear`] — the exact sparse linear solver (Dixon p-adic lifting, rational reconstruction,
+//!   exact verification) and its `f64` twin.
+//! * [`policy_iteration`] — the exact optimum `G*`, `Q*` and an optimal policy.
+//! * [`value_iteration`] — stochastic VI and asynchronous VI, exact and `f64`, with an explicit
+//!   stopping rule and the reference code's counting rule (SPEC §7).
+//!
+//! Conventions (documented once here, used everywhere):
+//! * The stage cost of an action is the cost of the **commanded** move, whatever nature does.
+//! * A goal's termination action is deterministic and free: `G*(goal) = 0`.
+//! * A trajectory that does not reach a goal has true cost `+∞` (as in the deterministic
+//!   model), so a policy that fails to reach a goal with probability 1 from `x` has expected cost
+//!   `+∞` at `x` — even around a zero-cost cycle. `G*(x)` is the least expected cost over the
+//!   policies that reach a goal with probability 1 from `x` (*proper* at `x`), `+∞` if none.
+
+pub mod file;
+pub mod linear;
+pub mod noise;
+pub mod policy_iteration;
+pub mod problem;
+pub mod properness;
+pub mod value_iteration;
+
+pub use noise::{NoiseModel, Predictability};
+pub use problem::{Outcome, OutcomeKind, Provenance, StochasticAction, StochasticProblem};
+
+/// Why a stochastic computation or input was refused. Every message fits on one line.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum StochasticError {
+    /// `γ` is not an exact number.
+    #[error("predictability (gamma) {0}")]
+    GammaText(#[from] crate::value::ParseRationalError),
+    /// `γ ∉ (0, 1]`.
+    #[error("predictability (gamma) must be in (0, 1], got {0}")]
+    GammaRange(String),
+    /// A probability outside `(0, 1]`.
+    #[error("state {state}, action {action}: probability {probability} is not in (0, 1]")]
+    ProbabilityRange {
+        /// The state.
+        state: usize,
+        /// The action index.
+        action: usize,
+        /// The probability as text.
+        probability: String,
+    },
+    /// An action whose outcome probabilities do not sum to exactly 1.
+    #[error("state {state}, action {action}: outcome probabilities sum to {sum}, not 1")]
+    ProbabilitySum {
+        /// The state.
+        state: usize,
+        /// The action index.
+        action: usize,
+        /// The exact sum as text.
+        sum: String,
+    },
+    /// An action without outcomes.
+    #[error("state {state}, action {action}: no outcomes")]
+    NoOutcomes {
+        /// The state.
+        state: usize,
+        /// The action index.
+        action: usize,
+    },
+    /// The common denominator of a state's probabilities is too large for the exact solver.
+    #[error("state {state}: the probabilities' common denominator exceeds 2^62 (the exact solver's limit)")]
+    DenominatorTooLarge {
+        /// The state.
+        state: usize,
+    },
+    /// A stage cost too large for the exact solver.
+    #[error("state {state}: stage costs times the probabilities' denominators exceed 2^100 (the exact solver's limit)")]
+    CostTooLarge {
+        /// The state.
+        state: usize,
+    },
+    /// A tolerance that is negative or not a number.
+    #[error("tolerance must be a number >= 0, got {0}")]
+    Tolerance(String),
+    /// The deterministic problem is ill formed.
+    #[error("{0}")]
+    Model(#[from] crate::model::ModelError),
+}

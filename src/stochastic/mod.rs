@@ -8,6 +8,7 @@
 //!   cost and a list of outcomes with exact probabilities (and `f64` cumulative thresholds for
 //!   samplers such as a Q-learner).
 //! * [`file`] — stochastic extensions of the JSON problem file.
+//! * [`grid`] — the paper's grid problems in the stochastic model, exact and as its code runs them.
 //! * [`properness`] — which states can reach a goal with probability 1 (finite `G*`), which
 //!   actions are safe, proper policies.
 //! * [`linear`] — the exact sparse linear solver (Dixon p-adic lifting, rational reconstruction,
@@ -25,6 +26,7 @@
 //!   policies that reach a goal with probability 1 from `x` (*proper* at `x`), `+∞` if none.
 
 pub mod file;
+pub mod grid;
 pub mod linear;
 pub mod noise;
 pub mod policy_iteration;
@@ -90,4 +92,88 @@ pub enum StochasticError {
     /// The deterministic problem is ill formed.
     #[error("{0}")]
     Model(#[from] crate::model::ModelError),
+}
+
+/// The decimal expansion of an exact value rounded (half away from zero) to `significant`
+/// significant digits: plain notation for magnitudes in `[1e-4, 1e{significant})`, otherwise
+/// scientific (`1.25e-7`); `"0"` and `"inf"` as such.
+///
+/// ```
+/// use truecost::stochastic::decimal;
+/// use truecost::value::Extended;
+/// let v: Extended = "10/9".parse().unwrap();
+/// assert_eq!(decimal(&v, 5), "1.1111");
+/// assert_eq!(decimal(&"-1/80000000".parse().unwrap(), 3), "-1.25e-8");
+/// assert_eq!(decimal(&"2/3".parse().unwrap(), 3), "0.667");
+/// assert_eq!(decimal(&"99.96".parse().unwrap(), 3), "100");
+/// ```
+pub fn decimal(value: &crate::value::Extended, significant: usize) -> String {
+    use num_bigint::BigInt;
+    use num_integer::Integer;
+    use num_traits::{Signed, Zero};
+    let significant = significant.max(1);
+    let r = match value {
+        crate::value::Extended::Infinite => return "inf".into(),
+        crate::value::Extended::Finite(r) => r,
+    };
+    if r.is_zero() {
+        return "0".into();
+    }
+    let sign = if r.is_negative() { "-" } else { "" };
+    let (n, d) = (r.numer().abs(), r.denom().clone());
+    let ten = BigInt::from(10);
+    // k = floor(log10(n/d)).
+    let mut k = n.to_string().len() as i64 - d.to_string().len() as i64;
+    let at_least = |k: i64| -> bool {
+        // n/d ≥ 10^k ?
+        if k >= 0 {
+            n >= &d * num_traits::pow(ten.clone(), k as usize)
+        } else {
+            &n * num_traits::pow(ten.clone(), (-k) as usize) >= d
+        }
+    };
+    while !at_least(k) {
+        k -= 1;
+    }
+    while at_least(k + 1) {
+        k += 1;
+    }
+    let digits = |k: i64| -> BigInt {
+        // round(n/d · 10^(significant−1−k)), half away from zero.
+        let shift = significant as i64 - 1 - k;
+        let (num, den) = if shift >= 0 {
+            (&n * num_traits::pow(ten.clone(), shift as usize), d.clone())
+        } else {
+            (
+                n.clone(),
+                &d * num_traits::pow(ten.clone(), (-shift) as usize),
+            )
+        };
+        (num * BigInt::from(2) + &den).div_floor(&(den * BigInt::from(2)))
+    };
+    let mut s = digits(k);
+    if s.to_string().len() > significant {
+        k += 1;
+        s = digits(k);
+    }
+    let s = s.to_string();
+    if k < -4 || k >= significant as i64 {
+        let (head, tail) = s.split_at(1);
+        let tail = tail.trim_end_matches('0');
+        let mantissa = if tail.is_empty() {
+            head.to_string()
+        } else {
+            format!("{head}.{tail}")
+        };
+        format!("{sign}{mantissa}e{k}")
+    } else if k >= 0 {
+        let (int, frac) = s.split_at(k as usize + 1);
+        if frac.is_empty() {
+            format!("{sign}{int}")
+        } else {
+            format!("{sign}{int}.{frac}")
+        }
+    } else {
+        format!("{sign}0.{}{s}", "0".repeat((-k - 1) as usize))
+    }
 }

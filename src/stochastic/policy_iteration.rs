@@ -42,7 +42,12 @@ use crate::value::{Extended, Rational};
 #[derive(Clone, Debug, PartialEq)]
 pub struct Optimum {
     numerators: Vec<Option<BigInt>>,
+    /// `d·C`: the solver's common denominator times the costs' lcm denominator.
     denominator: BigInt,
+    /// The solver's common denominator `d`.
+    solution_denominator: BigInt,
+    /// The reduced values, computed on first use.
+    reduced: std::sync::OnceLock<Vec<Extended>>,
     /// An optimal proper policy: the action (global id) at every finite non-goal state.
     policy: Vec<Option<usize>>,
     is_goal: Vec<bool>,
@@ -89,17 +94,40 @@ impl Optimum {
         self.numerators[x].as_ref().map(|n| (n, &self.denominator))
     }
 
-    /// `Q*(x, u) = l(x, u) + Σ_o p_o G*(o)` for an action (global id); `+∞` if an outcome has
-    /// `G* = +∞`.
-    pub fn q_value(&self, problem: &StochasticProblem, action: usize) -> Extended {
-        let mut sum = problem.cost(action).clone();
-        for o in problem.outcomes(action) {
-            match self.cost_to_go(o.successor) {
-                Extended::Finite(g) => sum += &o.probability * g,
-                Extended::Infinite => return Extended::Infinite,
-            }
+    /// `Q*(x, u)·s_x·d·C` as an integer (`s_x` the state's probability denominator), `None` if
+    /// an outcome has `G* = +∞`.
+    fn scaled_q(&self, problem: &StochasticProblem, action: usize) -> Option<BigInt> {
+        let x = problem.state_of(action);
+        let c = Rational::from_integer(problem.cost_denominator().clone());
+        let cost = (problem.cost(action) * c).to_integer();
+        let mut k = cost * BigInt::from(problem.denominator(x)) * &self.solution_denominator;
+        for (o, &w) in problem.outcomes(action).iter().zip(problem.weights(action)) {
+            k += self.numerators[o.successor].as_ref()? * BigInt::from(w);
         }
-        Extended::Finite(sum)
+        Some(k)
+    }
+
+    /// `Q*(x, u) = l(x, u) + Σ_o p_o G*(o)` for an action (global id) of the problem this
+    /// optimum was computed for; `+∞` if an outcome has `G* = +∞`.
+    pub fn q_value(&self, problem: &StochasticProblem, action: usize) -> Extended {
+        let x = problem.state_of(action);
+        match self.scaled_q(problem, action) {
+            Some(k) => Extended::Finite(Rational::new(
+                k,
+                &self.denominator * BigInt::from(problem.denominator(x)),
+            )),
+            None => Extended::Infinite,
+        }
+    }
+
+    /// Whether `Q*(x, u) = G*(x)` for an action of a state with finite `G*` (exact integer
+    /// comparison, no rational arithmetic).
+    pub fn is_optimal_action(&self, problem: &StochasticProblem, action: usize) -> bool {
+        let x = problem.state_of(action);
+        match (&self.numerators[x], self.scaled_q(problem, action)) {
+            (Some(n), Some(k)) => k == n * BigInt::from(problem.denominator(x)),
+            _ => false,
+        }
     }
 
     /// The reported optimal policy: [`Decision::Terminate`] at goals, the index of the action
@@ -119,6 +147,95 @@ impl Optimum {
     /// The reported optimal policy as global action ids (`None` at goals and infinite states).
     pub fn policy_actions(&self) -> &[Option<usize>] {
         &self.policy
+    }
+}
+
+/// How far a value function is from `G*`, exactly (over the states with finite `G*`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Distance {
+    /// `V(x1) − G*(x1)` (signed), `None` if `G*(x1) = +∞` or `V(x1)` is not finite.
+    pub initial: Option<Rational>,
+    /// `max_x |V(x) − G*(x)|` over the compared states (0 if none).
+    pub max_abs: Rational,
+    /// A state attaining `max_abs` (the lowest index).
+    pub worst_state: Option<usize>,
+    /// States compared (finite `G*` and finite `V`).
+    pub compared: usize,
+    /// States with finite `G*` where `V` is not finite.
+    pub not_finite: usize,
+}
+
+impl Optimum {
+    /// The exact distance of a value function from `G*`; `value(x)` is `V(x)` exactly (`None`
+    /// if not finite). For `f64` values use `Rational::from_float`, which is exact.
+    ///
+    /// ```
+    /// use truecost::model::{Move, Problem};
+    /// use truecost::stochastic::{policy_iteration::optimum, NoiseModel, Predictability, StochasticProblem};
+    /// use truecost::value::{parse_rational, Rational};
+    /// let p = Problem::new(vec![vec![Move { successor: 1, cost: parse_rational("1").unwrap() }], vec![]], 0, vec![1]).unwrap();
+    /// let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::parse("0.5").unwrap()).unwrap();
+    /// let o = optimum(&s).unwrap(); // G*(0) = 2
+    /// let d = o.distance(0, |x| Some(if x == 0 { parse_rational("1.75").unwrap() } else { Rational::from_integer(0.into()) }));
+    /// assert_eq!(d.initial.unwrap().to_string(), "-1/4");
+    /// assert_eq!((d.worst_state, d.compared), (Some(0), 2));
+    /// ```
+    pub fn distance(&self, initial: usize, value: impl Fn(usize) -> Option<Rational>) -> Distance {
+        // Differences are kept as unreduced fractions and compared by cross-multiplication:
+        // big-rational subtraction would reduce by a gcd of thousands of digits each time.
+        let mut worst: Option<(BigInt, BigInt, usize)> = None;
+        let mut at_initial = None;
+        let (mut compared, mut not_finite) = (0, 0);
+        for x in 0..self.numerators.len() {
+            let Some(n) = &self.numerators[x] else {
+                continue;
+            };
+            let Some(v) = value(x) else {
+                not_finite += 1;
+                continue;
+            };
+            // V − G* = (v_n·Den − n·v_d) / (v_d·Den)
+            let num = v.numer() * &self.denominator - n * v.denom();
+            let den = v.denom() * &self.denominator;
+            let larger = match &worst {
+                None => true,
+                Some((wn, wd, _)) => {
+                    num.magnitude() * wd.magnitude() > wn.magnitude() * den.magnitude()
+                }
+            };
+            if x == initial {
+                at_initial = Some((num.clone(), den.clone()));
+            }
+            if larger {
+                worst = Some((num, den, x));
+            }
+            compared += 1;
+        }
+        let abs = |(n, d): (BigInt, BigInt)| Rational::new(num_traits::Signed::abs(&n), d);
+        Distance {
+            initial: at_initial.map(|(n, d)| Rational::new(n, d)),
+            worst_state: worst.as_ref().map(|w| w.2),
+            max_abs: worst.map_or_else(Rational::zero, |(n, d, _)| abs((n, d))),
+            compared,
+            not_finite,
+        }
+    }
+
+    /// The states where the action `policy[x]` (global id, `None` = no action) is not optimal:
+    /// `Q*(x, u) > G*(x)` (or no action where `G*` is finite). Goals are not counted.
+    pub fn suboptimal_states(
+        &self,
+        problem: &StochasticProblem,
+        policy: &[Option<usize>],
+    ) -> Vec<usize> {
+        (0..self.numerators.len())
+            .filter(|&x| !self.is_goal[x])
+            .filter(|&x| match (&self.numerators[x], policy[x]) {
+                (None, _) => false,
+                (_, None) => true,
+                (Some(_), Some(a)) => !self.is_optimal_action(problem, a),
+            })
+            .collect()
     }
 }
 
@@ -261,6 +378,8 @@ fn finish(
     Optimum {
         numerators,
         denominator,
+        solution_denominator: z.denominator,
+        reduced: std::sync::OnceLock::new(),
         policy,
         is_goal: (0..n).map(|x| problem.is_goal(x)).collect(),
         action_first: (0..n).map(|x| problem.actions(x).start).collect(),

@@ -40,7 +40,7 @@ use super::properness::{analyse, Properness};
 use super::{OutcomeKind, StochasticError, StochasticProblem};
 use crate::model::Decision;
 pub use crate::solvers::value_iteration::Schedule;
-use crate::value::{CostValue, Extended, Rational};
+use crate::value::{Extended, Rational};
 
 /// Where non-goal swept states start.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -226,12 +226,12 @@ impl<'a> ExactVi<'a> {
         }
     }
 
-    fn power(&mut self, e: usize) -> BigInt {
+    /// Makes `D^0 ..= D^e` available.
+    fn ensure(&mut self, e: usize) {
         while self.powers.len() <= e {
             let next = self.powers.last().expect("non-empty") * &self.d;
             self.powers.push(next);
         }
-        self.powers[e].clone()
     }
 
     fn swept(&self, x: usize) -> bool {
@@ -245,8 +245,9 @@ impl<'a> ExactVi<'a> {
         self.options.sweep == SweepSet::All || self.properness.safe[a]
     }
 
-    /// The best backup at `x` from `values`: `(K, E + 1)` meaning `K / (C·D^{E+1})`.
-    fn backup(&mut self, x: usize, values: &[Scaled]) -> Option<(BigInt, usize)> {
+    /// The best backup at `x` from `values`: `(K, E + 1, i)` meaning `K / (C·D^{E+1})`,
+    /// attained first by the `i`-th action of `x`.
+    fn backup(&mut self, x: usize, values: &[Scaled]) -> Option<(BigInt, usize, usize)> {
         let problem = self.problem;
         let actions: Vec<usize> = problem.actions(x).filter(|&a| self.usable(a)).collect();
         let mut e_max = 0;
@@ -258,29 +259,35 @@ impl<'a> ExactVi<'a> {
                 }
             }
         }
-        let top = self.power(e_max + 1);
-        let mut best: Option<BigInt> = None;
+        self.ensure(e_max + 1);
+        let top = &self.powers[e_max + 1];
+        let mut best: Option<(BigInt, usize)> = None;
         for &a in &actions {
-            let mut k = &self.cost[a] * &top;
+            let mut k = &self.cost[a] * top;
             for (i, o) in problem.outcome_range(a).zip(problem.outcomes(a)) {
                 if let Scaled::Finite { n, e } = &values[o.successor] {
                     if !n.is_zero() {
-                        let align = self.power(e_max - e);
-                        k += &self.multiplier[i] * n * align;
+                        let term = &self.multiplier[i] * n;
+                        if *e == e_max {
+                            k += term;
+                        } else {
+                            k += term * &self.powers[e_max - e];
+                        }
                     }
                 }
             }
-            if best.as_ref().map_or(true, |b| &k < b) {
-                best = Some(k);
+            if best.as_ref().map_or(true, |(b, _)| &k < b) {
+                best = Some((k, a - problem.actions(x).start));
             }
         }
-        best.map(|k| (k, e_max + 1))
+        best.map(|(k, i)| (k, e_max + 1, i))
     }
 
     fn exact_value(&mut self, v: &Scaled) -> Extended {
         match v {
             Scaled::Finite { n, e } => {
-                let den = self.power(*e) * &self.c;
+                self.ensure(*e);
+                let den = &self.powers[*e] * &self.c;
                 Extended::Finite(Rational::new(n.clone(), den))
             }
             Scaled::Infinite => Extended::Infinite,
@@ -346,15 +353,16 @@ impl<'a> ExactVi<'a> {
                 } else {
                     &values
                 };
-                let Some((k, e_new)) = self.backup(x, source) else {
+                let Some((k, e_new, _)) = self.backup(x, source) else {
                     continue;
                 };
                 let Scaled::Finite { n: old, e: e_old } = &values[x] else {
                     continue;
                 };
                 // Compare k/(C D^e_new) with old/(C D^e_old) on the common exponent e_new + e_old.
-                let lhs = &k * self.power(*e_old);
-                let rhs = old * self.power(e_new);
+                self.ensure(e_new + e_old);
+                let lhs = &k * &self.powers[*e_old];
+                let rhs = old * &self.powers[e_new];
                 let replace = match self.options.rule {
                     UpdateRule::Assign => true,
                     UpdateRule::Decrease => lhs < rhs,
@@ -365,13 +373,14 @@ impl<'a> ExactVi<'a> {
                 let delta = (&lhs - &rhs).abs();
                 let e_delta = e_new + e_old;
                 // delta/(C D^e_delta) > largest.0/(C D^largest.1) ?
-                if &delta * self.power(largest.1) > &largest.0 * self.power(e_delta) {
+                if &delta * &self.powers[largest.1] > &largest.0 * &self.powers[e_delta] {
                     largest = (delta, e_delta);
                 }
                 values[x] = Scaled::Finite { n: k, e: e_new };
             }
             // |Δ| ≤ tol  ⇔  num·tol_d ≤ tol_n·C·D^e.
-            let within = &largest.0 * &tol_d <= &tol_n * &self.c * self.power(largest.1);
+            self.ensure(largest.1);
+            let within = &largest.0 * &tol_d <= &tol_n * &self.c * &self.powers[largest.1];
             if within || sweeps >= self.options.max_sweeps {
                 let change = Scaled::Finite {
                     n: largest.0,
@@ -380,24 +389,18 @@ impl<'a> ExactVi<'a> {
                 break (self.exact_value(&change), within);
             }
         };
-        let cost_to_go: Vec<Extended> = values.iter().map(|v| self.exact_value(v)).collect();
-        let policy = greedy(
-            problem,
-            |a| self.usable(a),
-            |a| {
-                let mut q = Extended::Finite(problem.cost(a).clone());
-                for o in problem.outcomes(a) {
-                    q = match (&q, &cost_to_go[o.successor]) {
-                        (Extended::Finite(s), Extended::Finite(g)) => {
-                            Extended::Finite(s + &o.probability * g)
-                        }
-                        _ => Extended::Infinite,
-                    };
+        let policy: Vec<Option<Decision>> = (0..n)
+            .map(|x| {
+                if problem.is_goal(x) {
+                    Some(Decision::Terminate)
+                } else if matches!(values[x], Scaled::Infinite) {
+                    None
+                } else {
+                    self.backup(x, &values).map(|(_, _, i)| Decision::Move(i))
                 }
-                q
-            },
-            |x| cost_to_go[x].is_finite(),
-        );
+            })
+            .collect();
+        let cost_to_go: Vec<Extended> = values.iter().map(|v| self.exact_value(v)).collect();
         ViRun {
             cost_to_go,
             sweeps,

@@ -232,7 +232,8 @@ pub fn lists_outcomes(text: &str) -> bool {
 }
 
 /// Writes a stochastic problem in the file format (every action with its outcomes, exact
-/// strings); [`from_json`] reads it back to the same transitions.
+/// strings); [`from_json`] reads it back to the same transitions (provided every non-goal
+/// state has an action: files refuse empty non-goal action lists, as deterministic files do).
 ///
 /// ```
 /// use truecost::model::{Move, Problem};

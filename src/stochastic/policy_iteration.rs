@@ -82,11 +82,13 @@ impl Optimum {
         }
     }
 
-    /// `G*` for every state.
-    pub fn cost_to_go_all(&self) -> Vec<Extended> {
-        (0..self.numerators.len())
-            .map(|x| self.cost_to_go(x))
-            .collect()
+    /// `G*` for every state (reduced once, then cached).
+    pub fn cost_to_go_all(&self) -> &[Extended] {
+        self.reduced.get_or_init(|| {
+            (0..self.numerators.len())
+                .map(|x| self.cost_to_go(x))
+                .collect()
+        })
     }
 
     /// `G*(x)` as the pair (numerator, common denominator) without reduction, `None` if `+∞`.
@@ -341,6 +343,97 @@ pub fn optimum(problem: &StochasticProblem) -> Result<Optimum, StochasticError> 
             return Ok(finish(problem, &properness, &index, z, chosen, stats));
         }
     }
+}
+
+/// The exact expected cost `G_μ(x)` of a stationary policy from every state: `policy[x]` is an
+/// action id of `x` (`None`: no action). `+∞` at the states from which `μ` does not reach a
+/// goal with probability 1 (some state reachable from them under `μ` cannot reach a goal, or
+/// has no valid action). Goals are 0 (termination). Useful to judge a learned greedy policy.
+///
+/// ```
+/// use truecost::model::{Move, Problem};
+/// use truecost::stochastic::{policy_iteration::evaluate, NoiseModel, Predictability, StochasticProblem};
+/// use truecost::value::parse_rational;
+/// let one = parse_rational("1").unwrap();
+/// // 0 <-> 1 -> 2 (goal)
+/// let p = Problem::new(vec![
+///     vec![Move { successor: 1, cost: one.clone() }],
+///     vec![Move { successor: 0, cost: one.clone() }, Move { successor: 2, cost: one.clone() }],
+///     vec![],
+/// ], 0, vec![2]).unwrap();
+/// let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::parse("0.5").unwrap()).unwrap();
+/// let g = evaluate(&s, &[Some(0), Some(2), None]).unwrap();
+/// assert_eq!(g.iter().map(|v| v.to_string()).collect::<Vec<_>>(), ["5", "3", "0"]);
+/// let back_and_forth = evaluate(&s, &[Some(0), Some(1), None]).unwrap();
+/// assert!(back_and_forth.iter().take(2).all(|v| v.to_string() == "inf"));
+/// ```
+pub fn evaluate(
+    problem: &StochasticProblem,
+    policy: &[Option<usize>],
+) -> Result<Vec<Extended>, StochasticError> {
+    let n = problem.states();
+    let action = |x: usize| -> Option<usize> {
+        policy
+            .get(x)
+            .copied()
+            .flatten()
+            .filter(|a| problem.actions(x).contains(a))
+    };
+    // Backward reachability of the goals, and of the "stuck" states, over the policy's edges.
+    let mut into: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for x in 0..n {
+        if problem.is_goal(x) {
+            continue;
+        }
+        if let Some(a) = action(x) {
+            for o in problem.outcomes(a) {
+                into[o.successor].push(x);
+            }
+        }
+    }
+    let backward = |seeds: Vec<usize>| {
+        let mut seen = vec![false; n];
+        let mut stack = seeds;
+        for &s in &stack {
+            seen[s] = true;
+        }
+        while let Some(y) = stack.pop() {
+            for &x in &into[y] {
+                if !seen[x] && !problem.is_goal(x) {
+                    seen[x] = true;
+                    stack.push(x);
+                }
+            }
+        }
+        seen
+    };
+    let reaches_goal = backward(problem.goals().to_vec());
+    let stuck: Vec<usize> = (0..n).filter(|&x| !reaches_goal[x]).collect();
+    let improper = backward(stuck);
+    let mut finite = vec![false; n];
+    for x in 0..n {
+        finite[x] = problem.is_goal(x) || !improper[x];
+    }
+    let index = Unknowns::new(problem, &finite);
+    let costs = scaled_costs(problem)?;
+    let full: Vec<Option<usize>> = (0..n).map(action).collect();
+    let system = build_system(problem, &index, &full, &costs)?;
+    let z = solve_exact(&system).map_err(linear_error)?;
+    let den = &z.denominator * problem.cost_denominator();
+    Ok((0..n)
+        .map(|x| {
+            if problem.is_goal(x) {
+                Extended::Finite(Rational::zero())
+            } else {
+                match index.of[x] {
+                    Some(i) => {
+                        Extended::Finite(Rational::new(z.numerators[i].clone(), den.clone()))
+                    }
+                    None => Extended::Infinite,
+                }
+            }
+        })
+        .collect())
 }
 
 fn linear_error(e: LinearError) -> StochasticError {

@@ -93,14 +93,14 @@ struct SolveArgs {
     format: ReportFormat,
     /// Predictability gamma in (0, 1] (exact decimal text, e.g. 0.999): the stochastic model
     /// (SPEC §3); 1 is deterministic.
-    #[arg(long, value_name = "G")]
+    #[arg(long, value_name = "G", allow_hyphen_values = true)]
     gamma: Option<String>,
     /// How the probability 1 - gamma is spread: `paper` (the text) or `reference` (the
     /// paper's code) [default: paper].
     #[arg(long, value_enum)]
     noise: Option<truecost::stochastic::NoiseModel>,
     /// Stochastic VI: stop after a sweep whose largest change is at most this [default: 0.1].
-    #[arg(long, value_name = "T")]
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
     tolerance: Option<String>,
     /// Stochastic VI: stop after this many sweeps at the latest [default: 1000].
     #[arg(long, value_name = "N")]

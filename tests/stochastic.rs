@@ -314,9 +314,9 @@ fn solve_dense(mut a: Vec<Vec<Rational>>, mut b: Vec<Rational>) -> Vec<Rational>
         for i in 0..n {
             if i != k && !a[i][k].is_zero() {
                 let f = &a[i][k] / &a[k][k];
-                for j in k..n {
-                    let t = &f * &a[k][j];
-                    a[i][j] -= t;
+                let pivot_row = a[k].clone();
+                for (aij, akj) in a[i].iter_mut().zip(&pivot_row).skip(k) {
+                    *aij -= &f * akj;
                 }
                 let t = &f * &b[k];
                 b[i] -= t;
@@ -556,9 +556,9 @@ fn exact_value_iteration_from_below_is_a_lower_bound_that_converges() {
             assert!(run.converged);
             assert!(run.sweeps >= previous_sweeps);
             previous_sweeps = run.sweeps;
-            for x in 0..s.states() {
+            for (x, bound) in star.iter().enumerate() {
                 assert!(
-                    run.cost_to_go[x] <= star[x],
+                    &run.cost_to_go[x] <= bound,
                     "{schedule:?} tol {tol} state {x}"
                 );
             }

@@ -67,6 +67,24 @@ fn exact_optimum_of_a_file_problem_is_an_exact_string() {
 }
 
 #[test]
+fn the_readme_example_file_by_hand() {
+    // G(0) = 1 + 0.9 G(1) + 0.1 G(0) ⇒ G(0) = 10/9 + G(1); at 1 the slippery move to the goal:
+    // G(1) = 1 + G(0)/4 ⇒ G(1) = 46/27, G(0) = 76/27 (stepping back, 1/2 + G(0), is worse).
+    let dir = env!("CARGO_MANIFEST_DIR");
+    let v = json(&[
+        "solve",
+        "--file",
+        &format!("{dir}/problems/slippery.json"),
+        "--algorithm",
+        "exact",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(v["cost_to_go"], serde_json::json!(["76/27", "46/27", "0"]));
+    assert_eq!(v["policy_action"], serde_json::json!([0, 0, null]));
+}
+
+#[test]
 fn hand_derived_star_through_a_stochastic_file() {
     // The star of tests/stochastic.rs written with explicit outcomes (paper model, γ = 1/2):
     // G*(0) = 10/3.

@@ -364,8 +364,13 @@ pub fn optimum(problem: &StochasticProblem) -> Result<Optimum, StochasticError> 
 /// let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::parse("0.5").unwrap()).unwrap();
 /// let g = evaluate(&s, &[Some(0), Some(2), None]).unwrap();
 /// assert_eq!(g.iter().map(|v| v.to_string()).collect::<Vec<_>>(), ["5", "3", "0"]);
+/// // Commanding "back" at 1 still reaches the goal through noise: G(1) = 1 + G(0)/2 + G(1)/4.
 /// let back_and_forth = evaluate(&s, &[Some(0), Some(1), None]).unwrap();
-/// assert!(back_and_forth.iter().take(2).all(|v| v.to_string() == "inf"));
+/// assert_eq!(back_and_forth.iter().map(|v| v.to_string()).collect::<Vec<_>>(), ["10", "8", "0"]);
+/// // Without noise it never does: +∞.
+/// let d = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::one()).unwrap();
+/// let g = evaluate(&d, &[Some(0), Some(1), None]).unwrap();
+/// assert_eq!(g.iter().map(|v| v.to_string()).collect::<Vec<_>>(), ["inf", "inf", "0"]);
 /// ```
 pub fn evaluate(
     problem: &StochasticProblem,

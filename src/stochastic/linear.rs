@@ -41,6 +41,26 @@ pub enum LinearError {
     /// An entry or right-hand side beyond the solver's word-size limits.
     #[error("a coefficient of the linear system is too large for the exact solver")]
     TooLarge,
+    /// The band of the reordered matrix would not fit in memory.
+    #[error("the linear system ({states} unknowns, band width {width} after reordering) is too large for the exact solver's band storage (at most 2^28 entries)")]
+    TooWide {
+        /// Unknowns.
+        states: usize,
+        /// Band width `lower + upper + 1`.
+        width: usize,
+    },
+}
+
+/// The most band entries the solvers allocate (2 GiB of `u64`).
+const MAX_BAND_ENTRIES: usize = 1 << 28;
+
+fn check_band(n: usize, ordering: &BandOrdering) -> Result<(), LinearError> {
+    let width = ordering.lower + ordering.upper + 1;
+    if n.saturating_mul(width) > MAX_BAND_ENTRIES {
+        Err(LinearError::TooWide { states: n, width })
+    } else {
+        Ok(())
+    }
 }
 
 impl SparseSystem {
@@ -428,23 +448,22 @@ fn reconstruct_vector(x: &[BigInt], m: &BigInt) -> Option<(Vec<BigInt>, BigInt)>
     Some((out, d))
 }
 
-/// Bits of the Hadamard-type bound on `|det A|·max|z_i|·2`, after which the reconstruction of
-/// the exact solution is guaranteed.
+/// Bits after which the reconstruction of the exact solution is guaranteed: with `H` the
+/// Hadamard bound on `|det A|` (rows of integer norm ≥ 1, so every minor is ≤ `H` too), Cramer's
+/// rule gives a common denominator `D ≤ H` and numerators `|N_i| ≤ n·max|r|·H`; the vector
+/// reconstruction needs `p^K > 2·max(N, D)²`.
 fn hadamard_bits(system: &SparseSystem) -> u64 {
     let mut bits = 0.0f64;
-    let mut max_row = 1.0f64;
     for i in 0..system.len() {
         let norm2: f64 = system.row(i).map(|(_, v)| (v as f64) * (v as f64)).sum();
         bits += 0.5 * norm2.max(1.0).log2();
-        max_row = max_row.max(norm2.sqrt());
     }
     let rhs = system
         .rhs
         .iter()
         .map(|r| r.unsigned_abs() as f64)
         .fold(1.0, f64::max);
-    // |numerator| ≤ H·|r|·√n / min row norm, |denominator| ≤ H (Cramer, Hadamard); need 2ND < p^K.
-    (2.0 * bits + rhs.log2() + (system.len() as f64 + 1.0).log2() + 8.0).ceil() as u64
+    (2.0 * (bits + rhs.log2() + (system.len() as f64 + 1.0).log2()) + 8.0).ceil() as u64
 }
 
 /// Solves `A·z = r` exactly (module docs). The result satisfies `A·N = d·r` exactly.
@@ -470,6 +489,7 @@ pub fn solve_exact(system: &SparseSystem) -> Result<ExactSolution, LinearError> 
         });
     }
     let ordering = BandOrdering::new(system);
+    check_band(n, &ordering)?;
     let max_bits = hadamard_bits(system);
     for p in primes().take(8) {
         let Some(lu) = ModularLu::factor(system, &ordering, p) else {
@@ -558,13 +578,14 @@ fn lift(
 
 /// Solves `A·z = r` in `f64` by banded LU without pivoting, in the same ordering (for warm
 /// starts only; never reported as a value).
-pub fn solve_f64(system: &SparseSystem) -> Vec<f64> {
+pub fn solve_f64(system: &SparseSystem) -> Result<Vec<f64>, LinearError> {
     let ordering = BandOrdering::new(system);
-    solve_f64_ordered(system, &ordering)
+    check_band(system.len(), &ordering)?;
+    Ok(solve_f64_ordered(system, &ordering))
 }
 
 /// [`solve_f64`] with a precomputed ordering.
-pub fn solve_f64_ordered(system: &SparseSystem, ordering: &BandOrdering) -> Vec<f64> {
+fn solve_f64_ordered(system: &SparseSystem, ordering: &BandOrdering) -> Vec<f64> {
     let mut band = Band::new(system, ordering, |v| v as f64, |a, b| a + b);
     let n = band.n;
     for k in 0..n {

@@ -86,6 +86,9 @@ pub enum StochasticError {
         /// The state.
         state: usize,
     },
+    /// A problem too large for the exact solver.
+    #[error("{0}")]
+    TooLarge(String),
     /// A tolerance that is negative or not a number.
     #[error("tolerance must be a number >= 0, got {0}")]
     Tolerance(String),

@@ -269,7 +269,7 @@ pub fn optimum(problem: &StochasticProblem) -> Result<Optimum, StochasticError> 
     // 2. f64 warm start.
     for _ in 0..100 {
         let system = build_system(problem, &index, &policy, &scaled_costs)?;
-        let z = solve_f64(&system);
+        let z = solve_f64(&system).map_err(linear_error)?;
         let value = |y: usize| index.of[y].map_or(0.0, |i| z[i]);
         let mut next = policy.clone();
         let mut changed = false;
@@ -444,6 +444,7 @@ pub fn evaluate(
 fn linear_error(e: LinearError) -> StochasticError {
     match e {
         LinearError::TooLarge => StochasticError::CostTooLarge { state: 0 },
+        e @ LinearError::TooWide { .. } => StochasticError::TooLarge(e.to_string()),
         LinearError::Singular => {
             unreachable!("policy evaluation of a proper policy is never singular (a truecost bug)")
         }

@@ -734,3 +734,22 @@ fn huge_probability_denominators_are_refused_not_wrapped() {
     let e = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &g).unwrap_err();
     assert!(e.to_string().contains("exceeds 2^62"), "{e}");
 }
+
+#[test]
+fn costs_beyond_the_exact_solvers_limits_are_refused_clearly() {
+    let text = r#"{"initial":0,"goals":[1],"actions":[[{"cost":"1e40","outcomes":[{"to":1,"p":"1/2"},{"to":0,"p":"1/2"}]}],[]]}"#;
+    let ProblemFile::Stochastic(s) = file::from_json(text).unwrap() else {
+        panic!("a stochastic file")
+    };
+    let e = optimum(&s).unwrap_err().to_string();
+    assert!(e.contains("exceed 2^100"), "{e}");
+    // Just inside the limit the optimum is exact: G = c + G/2 ⇒ G = 2c.
+    let text = text.replace("1e40", "1e25");
+    let ProblemFile::Stochastic(s) = file::from_json(&text).unwrap() else {
+        panic!("a stochastic file")
+    };
+    assert_eq!(
+        optimum(&s).unwrap().cost_to_go(0).to_string(),
+        format!("2{}", "0".repeat(25))
+    );
+}

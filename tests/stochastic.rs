@@ -115,6 +115,25 @@ fn star_distinguishes_the_noise_models() {
     assert_eq!(listed, ["1/2", "1/8", "1/8", "1/4"]);
 }
 
+/// Paper problem 16 is a corridor 226 – 227 – … – 231 (goal), x1 = 227. With γ = 1/2 both
+/// models agree (every state has k ≤ 2 moves). Commanding "right": an interior state gives
+/// ¾·G(i) = 1 + ½·G(i+1) + ¼·G(i−1), the end 226 gives G(226) = 2 + G(227). Solving by hand
+/// from the goal: G = 129/8, 113/8, 89/8, 61/8, 31/8, 0.
+#[test]
+fn paper_problem_16_corridor_by_hand() {
+    for model in [NoiseModel::Paper, NoiseModel::Reference] {
+        let s = exact_grid(16, StepCost::Unit, model, &gamma("0.5")).unwrap();
+        let o = optimum(&s).unwrap();
+        let g: Vec<String> = (226..=231).map(|x| o.cost_to_go(x).to_string()).collect();
+        assert_eq!(
+            g,
+            ["129/8", "113/8", "89/8", "61/8", "31/8", "0"],
+            "{model:?}"
+        );
+        assert_eq!(s.initial(), 227);
+    }
+}
+
 /// A trap: from 0 the goal 1 is one move away but noise may push into the absorbing state 2.
 /// With γ < 1 no policy reaches the goal with probability 1 from 0: G*(0) = +∞. With γ = 1
 /// it is 1. A state without any action is a dead end (+∞).

@@ -627,8 +627,3 @@ fn solve_f64_ordered(system: &SparseSystem, ordering: &BandOrdering) -> Vec<f64>
     }
     (0..n).map(|old| y[ordering.position[old]]).collect()
 }
-
-/// The exact rational `numerator/denominator` as a reduced `BigRational`.
-pub fn to_rational(numerator: &BigInt, denominator: &BigInt) -> crate::value::Rational {
-    crate::value::Rational::new(numerator.clone(), denominator.clone())
-}

@@ -334,6 +334,8 @@ pub fn optimum(problem: &StochasticProblem) -> Result<Optimum, StochasticError> 
                 changed = true;
             }
         }
+        // Strict improvement from a proper policy with costs ≥ 0 stays proper (module docs).
+        debug_assert!(is_proper(problem, &properness.finite, &policy));
         if !changed {
             let chosen = if is_proper(problem, &properness.finite, &canonical) {
                 canonical

@@ -16,4 +16,5 @@ pub mod model;
 pub mod planning;
 pub mod problems;
 pub mod solvers;
+pub mod stochastic;
 pub mod value;

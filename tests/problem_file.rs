@@ -283,14 +283,21 @@ fn states_must_match_and_format_must_be_known() {
 #[test]
 fn example_problem_files_parse() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("problems");
-    let Ok(entries) = std::fs::read_dir(&dir) else {
-        return; // no example directory yet
-    };
+    let entries = std::fs::read_dir(&dir).expect("the problems/ directory ships with the repo");
+    let mut deterministic = 0;
     for entry in entries {
         let path = entry.unwrap().path();
         if path.extension().and_then(|e| e.to_str()) != Some("json") {
             continue;
         }
+        let text = std::fs::read_to_string(&path).unwrap();
+        if truecost::stochastic::file::lists_outcomes(&text) {
+            // Stochastic files have their own reader (tests/stochastic*.rs).
+            truecost::stochastic::file::from_json(&text)
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            continue;
+        }
+        deterministic += 1;
         let p = read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         // And it round-trips through the writer.
         assert_eq!(
@@ -300,6 +307,7 @@ fn example_problem_files_parse() {
             path.display()
         );
     }
+    assert!(deterministic >= 4, "the four deterministic examples");
 }
 
 proptest! {

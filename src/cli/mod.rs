@@ -4,6 +4,7 @@
 mod output;
 mod render;
 mod reproduce;
+mod stochastic;
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -12,7 +13,7 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use truecost::model::file;
-use truecost::planning::{plan_exact, plan_reference, Algorithm, Mode};
+use truecost::planning::{plan_exact, plan_reference, Mode};
 use truecost::problems::{GridLayout, StepCost, GRID_NODES};
 
 /// Exact planning, the paper's problems, and machine-checked claims of "Relating Reinforcement
@@ -77,9 +78,10 @@ struct SolveArgs {
     /// A problem file in truecost's JSON format (see README, "Problem files").
     #[arg(long, value_name = "FILE")]
     file: Option<PathBuf>,
-    /// The planner.
+    /// The planner (`exact`: the exact optimum of the stochastic model, by policy iteration
+    /// with exact rational linear solves).
     #[arg(long, value_enum)]
-    algorithm: Algorithm,
+    algorithm: stochastic::SolveAlgorithm,
     /// Explore first (depth-first walk over edges, counting actions), then plan on the
     /// discovered graph; reported actions = exploration + planner.
     #[arg(long)]
@@ -95,6 +97,23 @@ struct SolveArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = ReportFormat::Text)]
     format: ReportFormat,
+    /// Predictability gamma in (0, 1] (exact decimal text, e.g. 0.999): the stochastic model
+    /// (SPEC §3); 1 is deterministic.
+    #[arg(long, value_name = "G", allow_hyphen_values = true)]
+    gamma: Option<String>,
+    /// How the probability 1 - gamma is spread: `paper` (the text) or `reference` (the
+    /// paper's code) [default: paper].
+    #[arg(long, value_enum)]
+    noise: Option<truecost::stochastic::NoiseModel>,
+    /// Stochastic VI: stop after a sweep whose largest change is at most this [default: 0.1].
+    #[arg(long, value_name = "T", allow_hyphen_values = true)]
+    tolerance: Option<String>,
+    /// Stochastic VI: stop after this many sweeps at the latest [default: 1000].
+    #[arg(long, value_name = "N")]
+    max_sweeps: Option<u64>,
+    /// Stochastic VI in exact mode: exact rationals or f64 [default: exact].
+    #[arg(long, value_enum)]
+    arithmetic: Option<stochastic::Arithmetic>,
 }
 
 /// Runs the command line and maps every failure to a one-line message.
@@ -155,6 +174,9 @@ fn problems(args: &ProblemsArgs) -> Result<String, String> {
 }
 
 fn solve(args: &SolveArgs) -> Result<String, String> {
+    let Some(algorithm) = stochastic::deterministic_algorithm(args) else {
+        return stochastic::solve(args);
+    };
     let (report, source) = match (&args.file, args.problem, args.mode) {
         (Some(_), _, Mode::Reference) => {
             return Err("--mode reference reproduces the paper's code and applies to the paper's problems (--problem N) only".into())
@@ -164,7 +186,7 @@ fn solve(args: &SolveArgs) -> Result<String, String> {
         }
         (Some(path), _, Mode::Exact) => {
             let problem = file::read(path).map_err(|e| e.to_string())?;
-            let report = plan_exact(&problem, args.algorithm, args.model_free);
+            let report = plan_exact(&problem, algorithm, args.model_free);
             (report, format!("file {}", path.display()))
         }
         (None, Some(id), Mode::Exact) => {
@@ -172,7 +194,7 @@ fn solve(args: &SolveArgs) -> Result<String, String> {
             let problem = GridLayout::exact(id)
                 .map_err(|e| e.to_string())?
                 .to_problem(step);
-            let report = plan_exact(&problem, args.algorithm, args.model_free);
+            let report = plan_exact(&problem, algorithm, args.model_free);
             let step = match step {
                 StepCost::Unit => "unit step costs",
                 StepCost::Euclidean => "Euclidean step costs 800/19",
@@ -187,7 +209,7 @@ fn solve(args: &SolveArgs) -> Result<String, String> {
                 .map_err(|e| e.to_string())?
                 .to_reference_graph();
             debug_assert_eq!(graph.nodes(), GRID_NODES);
-            let report = plan_reference(&graph, args.algorithm, args.model_free);
+            let report = plan_reference(&graph, algorithm, args.model_free);
             (report, format!("paper problem {id} (reference code: f64 Euclidean costs)"))
         }
         (None, None, _) => return Err("give --problem N or --file FILE".into()),

@@ -3,6 +3,7 @@
 //! (`assets/`, Bitstream Vera licence).
 
 pub mod canvas;
+pub mod chart;
 pub mod render;
 
 use crate::model::Problem;

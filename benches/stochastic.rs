@@ -1,0 +1,98 @@
+//! Benchmarks of the stochastic solvers (issue 4, items 2 and 3).
+//!
+//! * `exact_optimum/p10/<noise>/<γ>` — the exact optimum of Problem 10 (unit step costs) by
+//!   policy iteration with exact rational solves. Target: ≤ 5 s at γ = 0.999.
+//! * `exact_optimum_table/<noise>` — all 16 paper problems × γ ∈ {0.999, 0.99, 0.9, 0.7, 0.5}
+//!   for one noise model. Target: both noise models together ≤ 5 minutes.
+//! * `stochastic_vi/reference/<schedule>/<γ>` — the reference code's stochastic VI on Problem 10
+//!   (reference noise, `f64`, full graph, to the 0.1 tolerance).
+//! * `stochastic_vi/exact/<schedule>/<γ>` — exact stochastic VI from below on Problem 10 (paper
+//!   noise, unit costs, tolerance 0.1).
+//!
+//! Problems are built outside the timed loop. Run with `cargo bench --bench stochastic`.
+
+use std::time::Duration;
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use truecost::problems::{StepCost, PAPER_PROBLEMS};
+use truecost::stochastic::grid::{exact_grid, reference_grid};
+use truecost::stochastic::policy_iteration::optimum;
+use truecost::stochastic::value_iteration::{
+    value_iteration_exact, value_iteration_f64, Schedule, ViOptions,
+};
+use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
+use truecost::value::parse_rational;
+
+const GAMMAS: [&str; 5] = ["0.999", "0.99", "0.9", "0.7", "0.5"];
+
+fn gamma(text: &str) -> Predictability {
+    Predictability::parse(text).expect("a valid gamma")
+}
+
+fn exact_optimum(c: &mut Criterion) {
+    let mut group = c.benchmark_group("exact_optimum");
+    group.sample_size(10);
+    for noise in [NoiseModel::Paper, NoiseModel::Reference] {
+        for g in ["0.999", "0.9", "0.5"] {
+            let problem = exact_grid(10, StepCost::Unit, noise, &gamma(g)).expect("problem 10");
+            group.bench_function(format!("p10/{}/{g}", noise.name()), |b| {
+                b.iter(|| optimum(black_box(&problem)).expect("solvable"))
+            });
+        }
+    }
+    group.finish();
+}
+
+fn exact_optimum_table(c: &mut Criterion) {
+    let mut group = c.benchmark_group("exact_optimum_table");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(30));
+    for noise in [NoiseModel::Paper, NoiseModel::Reference] {
+        let problems: Vec<StochasticProblem> = PAPER_PROBLEMS
+            .iter()
+            .flat_map(|&id| {
+                GAMMAS.iter().map(move |g| {
+                    exact_grid(id, StepCost::Unit, noise, &gamma(g)).expect("paper problem")
+                })
+            })
+            .collect();
+        group.bench_function(noise.name(), |b| {
+            b.iter(|| {
+                for p in &problems {
+                    black_box(optimum(p).expect("solvable"));
+                }
+            })
+        });
+    }
+    group.finish();
+}
+
+fn stochastic_vi(c: &mut Criterion) {
+    let mut group = c.benchmark_group("stochastic_vi");
+    group.sample_size(10);
+    for g in ["0.999", "0.99"] {
+        let grid = reference_grid(10, NoiseModel::Reference, &gamma(g)).expect("problem 10");
+        let exact =
+            exact_grid(10, StepCost::Unit, NoiseModel::Paper, &gamma(g)).expect("problem 10");
+        for (name, schedule) in [
+            ("async", Schedule::Asynchronous),
+            ("sync", Schedule::Synchronous),
+        ] {
+            let reference = ViOptions::reference(schedule);
+            group.bench_function(format!("reference/{name}/{g}"), |b| {
+                b.iter(|| value_iteration_f64(black_box(&grid.problem), &grid.float, &reference))
+            });
+            let below = ViOptions::from_below(schedule, parse_rational("0.1").expect("0.1"), 1000)
+                .expect("valid options");
+            group.bench_function(format!("exact/{name}/{g}"), |b| {
+                b.iter(|| value_iteration_exact(black_box(&exact), &below))
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, exact_optimum, exact_optimum_table, stochastic_vi);
+criterion_main!(benches);

@@ -1,0 +1,699 @@
+//! `truecost solve` in the stochastic model (SPEC §3, §7): `--gamma`, `--noise`,
+//! `--algorithm exact`, and stochastic `vi` / `async-vi`. Every output names the noise model.
+
+use std::fmt::Write;
+
+use clap::ValueEnum;
+use serde::Serialize;
+use serde_json::{json, Value};
+
+use super::{ReportFormat, SolveArgs};
+use truecost::model::Decision;
+use truecost::planning::{Algorithm, Mode};
+use truecost::problems::StepCost;
+use truecost::stochastic::file::{self, ProblemFile};
+use truecost::stochastic::grid::{exact_grid, exact_twin, reference_grid};
+use truecost::stochastic::policy_iteration::{optimum, Distance, Optimum};
+use truecost::stochastic::problem::Provenance;
+use truecost::stochastic::value_iteration::{
+    value_iteration_exact, value_iteration_f64, FloatModel, Schedule, ViOptions, ViRun,
+};
+use truecost::stochastic::{decimal, NoiseModel, Predictability, StochasticProblem};
+use truecost::value::{parse_rational, CostValue, Extended, Rational};
+
+/// The planners `solve` accepts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SolveAlgorithm {
+    /// Dijkstra's algorithm (deterministic model).
+    Dijkstra,
+    /// Synchronous value iteration (stochastic VI under --gamma).
+    Vi,
+    /// Asynchronous (Gauss–Seidel) value iteration (stochastic under --gamma).
+    AsyncVi,
+    /// The exact optimum of the stochastic model: policy iteration with exact rational linear
+    /// solves (gamma = 1 unless --gamma is given).
+    Exact,
+}
+
+/// The arithmetic of stochastic value iteration in exact mode.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Arithmetic {
+    /// Exact rationals.
+    Exact,
+    /// `f64` (the exact problem's numbers rounded).
+    F64,
+}
+
+/// Digits of the decimal expansions printed next to exact values.
+const DIGITS: usize = 30;
+/// Exact values longer than this are printed by digit counts in text output.
+const SHORT: usize = 60;
+
+/// The deterministic planner to run, or `None` when the stochastic model is asked for (any of
+/// `--gamma`, `--noise`, `--tolerance`, `--max-sweeps`, `--arithmetic`, `--algorithm exact`, or
+/// a problem file that lists outcomes).
+pub fn deterministic_algorithm(args: &SolveArgs) -> Option<Algorithm> {
+    if args.gamma.is_some()
+        || args.noise.is_some()
+        || args.tolerance.is_some()
+        || args.max_sweeps.is_some()
+        || args.arithmetic.is_some()
+    {
+        return None;
+    }
+    if let Some(path) = &args.file {
+        if std::fs::read_to_string(path).is_ok_and(|text| file::lists_outcomes(&text)) {
+            return None;
+        }
+    }
+    match args.algorithm {
+        SolveAlgorithm::Dijkstra => Some(Algorithm::Dijkstra),
+        SolveAlgorithm::Vi => Some(Algorithm::Vi),
+        SolveAlgorithm::AsyncVi => Some(Algorithm::AsyncVi),
+        SolveAlgorithm::Exact => None,
+    }
+}
+
+/// A problem ready to solve, with what to say about it.
+struct Prepared {
+    problem: StochasticProblem,
+    source: String,
+    /// `Some` in reference mode: the reference code's `f64` numbers.
+    float: Option<FloatModel>,
+    /// The problem whose exact optimum the run is measured against (itself, or the exact twin
+    /// of a reference grid; `None` if there is none).
+    twin: Option<StochasticProblem>,
+}
+
+/// Runs `solve` in the stochastic model.
+pub fn solve(args: &SolveArgs) -> Result<String, String> {
+    if args.model_free {
+        return Err("--model-free applies to the deterministic model; the stochastic solvers run on the whole problem, as the paper's code does".into());
+    }
+    if args.noise.is_some() && args.gamma.is_none() {
+        return Err(
+            "--noise chooses how the probability 1 - gamma is spread: give --gamma too".into(),
+        );
+    }
+    let gamma = match &args.gamma {
+        Some(text) => Predictability::parse(text).map_err(|e| e.to_string())?,
+        None => Predictability::one(),
+    };
+    let noise = args.noise.unwrap_or_default();
+    let schedule = match args.algorithm {
+        SolveAlgorithm::Dijkstra => {
+            return Err("dijkstra solves the deterministic model; in the stochastic model use --algorithm exact, vi or async-vi".into())
+        }
+        SolveAlgorithm::Exact => None,
+        SolveAlgorithm::Vi => Some(Schedule::Synchronous),
+        SolveAlgorithm::AsyncVi => Some(Schedule::Asynchronous),
+    };
+    if schedule.is_none()
+        && (args.tolerance.is_some() || args.max_sweeps.is_some() || args.arithmetic.is_some())
+    {
+        return Err(
+            "--tolerance, --max-sweeps and --arithmetic apply to --algorithm vi and async-vi"
+                .into(),
+        );
+    }
+    let tolerance = match &args.tolerance {
+        None => None,
+        Some(t) => {
+            let r = parse_rational(t).map_err(|e| format!("tolerance: {e}"))?;
+            if r < Rational::from_integer(0.into()) {
+                return Err(format!("tolerance must be >= 0, got {t}"));
+            }
+            Some(r)
+        }
+    };
+    if args.max_sweeps == Some(0) {
+        return Err("--max-sweeps must be at least 1".into());
+    }
+    let prepared = prepare(args, noise, &gamma)?;
+    let opt = match &prepared.twin {
+        Some(t) => Some(optimum(t).map_err(|e| e.to_string())?),
+        None => None,
+    };
+    let report = match schedule {
+        None => exact_report(
+            &prepared,
+            opt.as_ref().expect("exact mode has itself as twin"),
+        ),
+        Some(schedule) => vi_report(args, &prepared, opt.as_ref(), schedule, tolerance)?,
+    };
+    Ok(match args.format {
+        ReportFormat::Json => {
+            let mut s = serde_json::to_string_pretty(&report).expect("serialisable");
+            s.push('\n');
+            s
+        }
+        ReportFormat::Text => text(&report),
+    })
+}
+
+fn prepare(
+    args: &SolveArgs,
+    noise: NoiseModel,
+    gamma: &Predictability,
+) -> Result<Prepared, String> {
+    let noisy = |p: &truecost::model::Problem| {
+        StochasticProblem::from_deterministic(p, noise, gamma).map_err(|e| e.to_string())
+    };
+    match (&args.file, args.problem, args.mode) {
+        (Some(_), _, Mode::Reference) => Err("--mode reference reproduces the paper's code and applies to the paper's problems (--problem N) only".into()),
+        (Some(_), _, _) if args.step_cost.is_some() => Err("--step-cost applies to the paper's grid problems (--problem N); a problem file gives its own costs".into()),
+        (Some(path), _, Mode::Exact) => {
+            let problem = match file::read(path).map_err(|e| e.to_string())? {
+                ProblemFile::Deterministic(p) => noisy(&p)?,
+                ProblemFile::Stochastic(s) => {
+                    if args.gamma.is_some() {
+                        return Err("this problem file lists its own outcome probabilities; --gamma and --noise apply to deterministic problems".into());
+                    }
+                    *s
+                }
+            };
+            Ok(Prepared {
+                twin: Some(problem.clone()),
+                problem,
+                source: format!("file {}", path.display()),
+                float: None,
+            })
+        }
+        (None, Some(id), Mode::Exact) => {
+            let step = args.step_cost.unwrap_or_default();
+            let problem = exact_grid(id, step, noise, gamma).map_err(|e| e.to_string())?;
+            let step = match step {
+                StepCost::Unit => "unit step costs",
+                StepCost::Euclidean => "Euclidean step costs 800/19",
+            };
+            Ok(Prepared {
+                twin: Some(problem.clone()),
+                problem,
+                source: format!("paper problem {id} (paper text, {step})"),
+                float: None,
+            })
+        }
+        (None, Some(id), Mode::Reference) => {
+            if args.step_cost.is_some() {
+                return Err("--step-cost applies to --mode exact; the reference mode always uses the paper code's f64 Euclidean costs".into());
+            }
+            if args.algorithm == SolveAlgorithm::Exact {
+                return Err("--algorithm exact computes the exact optimum of the paper's text; for the exact counterpart of the paper's code use --mode exact --step-cost euclidean --noise reference".into());
+            }
+            if args.arithmetic == Some(Arithmetic::Exact) {
+                return Err("--mode reference runs the paper's code in f64; --arithmetic exact applies to --mode exact".into());
+            }
+            let grid = reference_grid(id, noise, gamma).map_err(|e| e.to_string())?;
+            let twin = exact_twin(id, noise, gamma).map_err(|e| e.to_string())?;
+            Ok(Prepared {
+                problem: grid.problem,
+                source: format!("paper problem {id} (reference code: f64 Euclidean costs)"),
+                float: Some(grid.float),
+                twin,
+            })
+        }
+        (None, None, _) => Err("give --problem N or --file FILE".into()),
+    }
+}
+
+/// Everything `solve` reports in the stochastic model.
+#[derive(Serialize)]
+struct Report {
+    problem: String,
+    model: String,
+    mode: Mode,
+    noise: &'static str,
+    noise_description: &'static str,
+    gamma: Option<String>,
+    algorithm: &'static str,
+    value_type: &'static str,
+    reachable: bool,
+    cost_to_go_initial: Value,
+    cost_to_go_initial_decimal: String,
+    optimum: Option<OptimumSummary>,
+    value_iteration: Option<ViSummary>,
+    iterations: u64,
+    cost_to_go: Vec<String>,
+    policy: Vec<Option<usize>>,
+    policy_action: Vec<Option<usize>>,
+}
+
+#[derive(Serialize)]
+struct OptimumSummary {
+    cost_to_go_initial: String,
+    decimal: String,
+    numerator_digits: usize,
+    denominator_digits: usize,
+    measured_on: &'static str,
+    initial_policy: &'static str,
+    float_iterations: usize,
+    exact_iterations: usize,
+    lifting_steps: usize,
+    unknowns: usize,
+    finite_states: usize,
+}
+
+#[derive(Serialize)]
+struct ViSummary {
+    schedule: &'static str,
+    arithmetic: &'static str,
+    initial_values: &'static str,
+    update_rule: &'static str,
+    swept_states: &'static str,
+    tolerance: String,
+    max_sweeps: u64,
+    sweeps: u64,
+    converged: bool,
+    last_change: String,
+    backups: u64,
+    outcome_terms: u64,
+    counted_actions: u64,
+    error_initial: Option<String>,
+    max_error: Option<String>,
+    worst_state: Option<usize>,
+    suboptimal_policy_states: Option<usize>,
+}
+
+fn noise_fields(problem: &StochasticProblem) -> (&'static str, &'static str, Option<String>) {
+    match problem.provenance() {
+        Provenance::Noise { model, gamma } => {
+            (model.name(), model.describe(), Some(gamma.to_string()))
+        }
+        Provenance::Explicit => (
+            "explicit",
+            "explicit (outcome probabilities given by the problem file)",
+            None,
+        ),
+    }
+}
+
+fn digits(r: &Extended) -> (usize, usize) {
+    match r {
+        Extended::Finite(r) => (
+            r.numer().magnitude().to_string().len(),
+            r.denom().to_string().len(),
+        ),
+        Extended::Infinite => (0, 0),
+    }
+}
+
+fn optimum_summary(
+    problem: &StochasticProblem,
+    opt: &Optimum,
+    measured_on: &'static str,
+) -> OptimumSummary {
+    let g = opt.cost_to_go(problem.initial());
+    let (nd, dd) = digits(&g);
+    OptimumSummary {
+        cost_to_go_initial: g.to_string(),
+        decimal: decimal(&g, DIGITS),
+        numerator_digits: nd,
+        denominator_digits: dd,
+        measured_on,
+        initial_policy: opt.stats.initial_policy,
+        float_iterations: opt.stats.float_iterations,
+        exact_iterations: opt.stats.exact_iterations,
+        lifting_steps: opt.stats.lifting_steps,
+        unknowns: opt.stats.unknowns,
+        finite_states: opt.stats.finite_states,
+    }
+}
+
+/// The policy as commanded successors (a goal names itself) and as action indices.
+fn policy_columns(
+    problem: &StochasticProblem,
+    policy: &[Option<Decision>],
+) -> (Vec<Option<usize>>, Vec<Option<usize>>) {
+    policy
+        .iter()
+        .enumerate()
+        .map(|(x, d)| match d {
+            Some(Decision::Terminate) => (Some(x), None),
+            Some(Decision::Move(i)) => (problem.commanded(problem.actions(x).start + i), Some(*i)),
+            None => (None, None),
+        })
+        .unzip()
+}
+
+fn exact_report(prepared: &Prepared, opt: &Optimum) -> Report {
+    let problem = &prepared.problem;
+    let (noise, noise_description, gamma) = noise_fields(problem);
+    let g = opt.cost_to_go(problem.initial());
+    let (policy, policy_action) = policy_columns(problem, &opt.policy());
+    Report {
+        problem: prepared.source.clone(),
+        model: "stochastic, exact (paper text)".into(),
+        mode: Mode::Exact,
+        noise,
+        noise_description,
+        gamma,
+        algorithm: "exact",
+        value_type: "big-rational",
+        reachable: g.is_finite(),
+        cost_to_go_initial: json!(g.to_string()),
+        cost_to_go_initial_decimal: decimal(&g, DIGITS),
+        optimum: Some(optimum_summary(problem, opt, "this problem")),
+        value_iteration: None,
+        iterations: opt.stats.exact_iterations as u64,
+        cost_to_go: opt.cost_to_go_all().iter().map(|v| v.to_string()).collect(),
+        policy,
+        policy_action,
+    }
+}
+
+fn vi_report(
+    args: &SolveArgs,
+    prepared: &Prepared,
+    opt: Option<&Optimum>,
+    schedule: Schedule,
+    tolerance: Option<Rational>,
+) -> Result<Report, String> {
+    let problem = &prepared.problem;
+    let (noise, noise_description, gamma) = noise_fields(problem);
+    let reference = prepared.float.is_some();
+    let mut options = if reference {
+        ViOptions::reference(schedule)
+    } else {
+        ViOptions::from_below(schedule, Rational::new(1.into(), 10.into()), 1000)
+            .map_err(|e| e.to_string())?
+    };
+    if let Some(t) = tolerance {
+        options.tolerance = t;
+    }
+    if let Some(m) = args.max_sweeps {
+        options.max_sweeps = m;
+    }
+    let arithmetic = if reference {
+        Arithmetic::F64
+    } else {
+        args.arithmetic.unwrap_or(Arithmetic::Exact)
+    };
+    // Values as exact rationals (f64 converted exactly) for the comparison with G*.
+    let (values_text, initial_value, initial_decimal, exact_values, run_meta, policy) =
+        match arithmetic {
+            Arithmetic::Exact => {
+                let run = value_iteration_exact(problem, &options);
+                let g = run.cost_to_go[problem.initial()].clone();
+                let exact: Vec<Option<Rational>> =
+                    run.cost_to_go.iter().map(|v| v.finite().cloned()).collect();
+                let meta = meta(&run, decimal(&run.last_change, 6));
+                (
+                    run.cost_to_go
+                        .iter()
+                        .map(|v| v.to_string())
+                        .collect::<Vec<_>>(),
+                    json!(g.to_string()),
+                    decimal(&g, DIGITS),
+                    exact,
+                    meta,
+                    run.policy,
+                )
+            }
+            Arithmetic::F64 => {
+                let float = prepared
+                    .float
+                    .clone()
+                    .unwrap_or_else(|| FloatModel::nearest(problem));
+                let run = value_iteration_f64(problem, &float, &options);
+                let g = run.cost_to_go[problem.initial()];
+                let exact: Vec<Option<Rational>> = run
+                    .cost_to_go
+                    .iter()
+                    .map(|&v| {
+                        if v.is_finite() {
+                            Rational::from_float(v)
+                        } else {
+                            None
+                        }
+                    })
+                    .collect();
+                let meta = meta(&run, format!("{:?}", run.last_change));
+                (
+                    run.cost_to_go
+                        .iter()
+                        .map(|v| render_f64(*v))
+                        .collect::<Vec<_>>(),
+                    if g.is_finite() {
+                        json!(g)
+                    } else {
+                        json!("inf")
+                    },
+                    render_f64(g),
+                    exact,
+                    meta,
+                    run.policy,
+                )
+            }
+        };
+    let (distance, suboptimal) = match (opt, &prepared.twin) {
+        (Some(opt), Some(twin)) => {
+            let d: Distance = opt.distance(problem.initial(), |x| exact_values[x].clone());
+            // Map the greedy policy to the twin's actions by commanded successor (the action
+            // orders differ between the reference and exact layouts on the pruned problems).
+            let mapped: Vec<Option<usize>> = policy
+                .iter()
+                .enumerate()
+                .map(|(x, d)| match d {
+                    Some(Decision::Move(i)) => {
+                        let a = problem.actions(x).start + i;
+                        match problem.commanded(a) {
+                            Some(y) => twin.actions(x).find(|&b| twin.commanded(b) == Some(y)),
+                            None => Some(twin.actions(x).start + i),
+                        }
+                    }
+                    _ => None,
+                })
+                .collect();
+            (Some(d), Some(opt.suboptimal_states(twin, &mapped).len()))
+        }
+        _ => (None, None),
+    };
+    let reachable = match opt {
+        Some(o) => o.cost_to_go(problem.initial()).is_finite(),
+        None => exact_values[problem.initial()].is_some(),
+    };
+    let (policy_succ, policy_action) = policy_columns(problem, &policy);
+    let (sweeps, converged, last_change, backups, terms, counted) = run_meta;
+    let summary = ViSummary {
+        schedule: if schedule == Schedule::Synchronous {
+            "synchronous"
+        } else {
+            "asynchronous"
+        },
+        arithmetic: if arithmetic == Arithmetic::Exact {
+            "exact"
+        } else {
+            "f64"
+        },
+        initial_values: if reference { "1e30 (goals 0)" } else { "0" },
+        update_rule: if reference {
+            "replace only if strictly smaller"
+        } else {
+            "assign"
+        },
+        swept_states: if reference {
+            "every state with a move, goals included (the full graph)"
+        } else {
+            "states with finite G* (others are inf)"
+        },
+        tolerance: Extended::Finite(options.tolerance.clone()).to_string(),
+        max_sweeps: options.max_sweeps,
+        sweeps,
+        converged,
+        last_change,
+        backups,
+        outcome_terms: terms,
+        counted_actions: counted,
+        error_initial: distance
+            .as_ref()
+            .and_then(|d| d.initial.clone())
+            .map(|e| decimal(&Extended::Finite(e), 6)),
+        max_error: distance
+            .as_ref()
+            .map(|d| decimal(&Extended::Finite(d.max_abs.clone()), 6)),
+        worst_state: distance.as_ref().and_then(|d| d.worst_state),
+        suboptimal_policy_states: suboptimal,
+    };
+    let measured_on = if reference {
+        "exact twin: exact geometry, step cost 800/19, same noise model and gamma"
+    } else {
+        "this problem"
+    };
+    Ok(Report {
+        problem: prepared.source.clone(),
+        model: if reference {
+            "stochastic, reference (paper code, f64)".into()
+        } else {
+            "stochastic, exact (paper text)".into()
+        },
+        mode: if reference {
+            Mode::Reference
+        } else {
+            Mode::Exact
+        },
+        noise,
+        noise_description,
+        gamma,
+        algorithm: if schedule == Schedule::Synchronous {
+            "vi"
+        } else {
+            "async-vi"
+        },
+        value_type: if arithmetic == Arithmetic::Exact {
+            "big-rational"
+        } else {
+            "f64"
+        },
+        reachable,
+        cost_to_go_initial: initial_value,
+        cost_to_go_initial_decimal: initial_decimal,
+        optimum: match (opt, &prepared.twin) {
+            (Some(o), Some(t)) => Some(optimum_summary(t, o, measured_on)),
+            _ => None,
+        },
+        value_iteration: Some(summary),
+        iterations: sweeps,
+        cost_to_go: values_text,
+        policy: policy_succ,
+        policy_action,
+    })
+}
+
+type Meta = (u64, bool, String, u64, u64, u64);
+
+fn meta<V>(run: &ViRun<V>, last_change: String) -> Meta {
+    (
+        run.sweeps,
+        run.converged,
+        last_change,
+        run.backups,
+        run.outcome_terms,
+        run.reference_counted,
+    )
+}
+
+fn render_f64(v: f64) -> String {
+    if v.is_finite() {
+        format!("{v:?}")
+    } else {
+        "inf".into()
+    }
+}
+
+fn text(r: &Report) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "problem      {}", r.problem);
+    let gamma = r
+        .gamma
+        .as_ref()
+        .map(|g| format!(", gamma {g}"))
+        .unwrap_or_default();
+    let _ = writeln!(
+        s,
+        "model        {}; noise {}{gamma}",
+        r.model, r.noise_description
+    );
+    match &r.value_iteration {
+        None => {
+            let _ = writeln!(
+                s,
+                "planner      exact optimum: policy iteration with exact rational linear solves"
+            );
+        }
+        Some(v) => {
+            let _ = writeln!(
+                s,
+                "planner      {} stochastic value iteration ({}), {} arithmetic",
+                r.algorithm, v.schedule, v.arithmetic
+            );
+            let _ = writeln!(
+                s,
+                "start        {}; update: {}; swept: {}",
+                v.initial_values, v.update_rule, v.swept_states
+            );
+            let stop = if v.converged {
+                "tolerance met"
+            } else {
+                "sweep limit reached"
+            };
+            let _ = writeln!(s, "stopping     largest change <= {} or {} sweeps: stopped after {} sweeps ({stop}; last change {})", v.tolerance, v.max_sweeps, v.sweeps, v.last_change);
+        }
+    }
+    let value_type = match r.value_type {
+        "big-rational" => "exact (big rationals)",
+        _ => "f64 (not exact)",
+    };
+    let _ = writeln!(s, "values       {value_type}");
+    let label = if r.value_iteration.is_some() {
+        "G(x1)   "
+    } else {
+        "G*(x1)  "
+    };
+    if !r.reachable && r.value_iteration.is_none() {
+        let _ = writeln!(
+            s,
+            "{label}     inf: no policy reaches a goal with probability 1 from the initial state"
+        );
+    } else {
+        let exact = r
+            .cost_to_go_initial
+            .as_str()
+            .map(str::to_string)
+            .unwrap_or_else(|| r.cost_to_go_initial.to_string());
+        if r.value_type == "big-rational" && exact.len() > SHORT {
+            let (n, d) = exact
+                .split_once('/')
+                .map_or((exact.len(), 1), |(n, d)| (n.len(), d.len()));
+            let _ = writeln!(s, "{label}     {} (30 significant digits; exact value: a {n}-digit numerator over a {d}-digit denominator, printed by --format json)", r.cost_to_go_initial_decimal);
+        } else if r.value_type == "big-rational" && exact.contains('/') {
+            let _ = writeln!(s, "{label}     {exact} = {}", r.cost_to_go_initial_decimal);
+        } else {
+            let _ = writeln!(s, "{label}     {exact}");
+        }
+    }
+    if let Some(o) = &r.optimum {
+        if r.value_iteration.is_some() {
+            let _ = writeln!(
+                s,
+                "G*(x1)       {} (exact optimum of {})",
+                o.decimal, o.measured_on
+            );
+        }
+        if r.value_iteration.is_none() {
+            let _ = writeln!(
+                s,
+                "policy iter  initial policy: {}; {} f64 warm-start rounds, {} exact evaluations ({} Dixon lifting steps, {} unknowns)",
+                o.initial_policy, o.float_iterations, o.exact_iterations, o.lifting_steps, o.unknowns
+            );
+        }
+    }
+    if let Some(v) = &r.value_iteration {
+        if let (Some(e), Some(m)) = (&v.error_initial, &v.max_error) {
+            let worst = v
+                .worst_state
+                .map(|w| format!(" (state {w})"))
+                .unwrap_or_default();
+            let _ = writeln!(
+                s,
+                "error        G(x1) - G*(x1) = {e}; max |G - G*| = {m}{worst}"
+            );
+        }
+        if let Some(k) = v.suboptimal_policy_states {
+            let verdict = if k == 0 {
+                "optimal at every state".to_string()
+            } else {
+                format!("suboptimal at {k} states")
+            };
+            let _ = writeln!(
+                s,
+                "policy       greedy policy of the stopped values: {verdict}"
+            );
+        }
+        let _ = writeln!(
+            s,
+            "actions      {} counted (reference rule: sum of deg*(deg-1) per sweep); {} backups; {} outcome terms",
+            v.counted_actions, v.backups, v.outcome_terms
+        );
+    }
+    s
+}

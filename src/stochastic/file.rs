@@ -1,0 +1,278 @@
+//! Stochastic extensions of the JSON problem file ([`crate::model::file`]).
+//!
+//! An action may list its outcomes instead of a single successor:
+//!
+//! ```json
+//! {
+//!   "format": "truecost-stochastic/1",
+//!   "name": "a slippery corridor",
+//!   "initial": 0,
+//!   "goals": [2],
+//!   "actions": [
+//!     [ { "cost": "1", "outcomes": [ { "to": 1, "p": "0.9" }, { "to": 0, "p": "0.1" } ] } ],
+//!     [ { "cost": "1", "outcomes": [ { "to": 2, "p": "3/4" }, { "to": 0, "p": "1/4" } ] },
+//!       { "to": 0, "cost": "1/2" } ],
+//!     []
+//!   ]
+//! }
+//! ```
+//!
+//! * An action is either deterministic, `{ "to": y, "cost": c }` (outcome `y` with probability
+//!   1), or stochastic, `{ "cost": c, "outcomes": [ { "to": y, "p": q }, ... ] }`; not both.
+//! * Probabilities are **strings** holding exact numbers in `(0, 1]` (`"0.9"`, `"1/3"`); the
+//!   probabilities of an action must sum to exactly 1. JSON numbers are refused (they would pass
+//!   through `f64`). Outcomes are kept in the order given (a sampler draws them in that order).
+//! * The cost is paid whatever the outcome. Costs, goals, `initial`, `states`, `name` and the
+//!   "only goals may have an empty action list" rule are as in the deterministic format.
+//! * `format` is optional; if given it is `truecost-stochastic/1` or `truecost-problem/1`.
+//!
+//! A file without any `outcomes` is a deterministic problem ([`ProblemFile::Deterministic`]), to
+//! which a noise model and `γ` may be applied; a file with outcomes is a stochastic problem as
+//! it stands ([`ProblemFile::Stochastic`]).
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use super::problem::{StochasticAction, StochasticProblem};
+use super::{Outcome, OutcomeKind, StochasticError};
+use crate::model::file::{self as det_file, FileError};
+use crate::model::Problem;
+use crate::value::{parse_rational, Extended, ParseRationalError};
+
+/// The format tag written by [`to_json`].
+pub const FORMAT: &str = "truecost-stochastic/1";
+
+/// A problem file: deterministic (noise may be applied) or stochastic as given.
+#[derive(Clone, Debug)]
+pub enum ProblemFile {
+    /// No action lists outcomes.
+    Deterministic(Problem),
+    /// Some action lists outcomes.
+    Stochastic(Box<StochasticProblem>),
+}
+
+/// Why a stochastic problem file was refused. Every message fits on one line.
+#[derive(Debug, thiserror::Error)]
+pub enum StochasticFileError {
+    /// As for deterministic files (I/O, JSON, costs, indices, empty action sets...).
+    #[error("{0}")]
+    File(#[from] FileError),
+    /// An outcome probability that is not an exact number.
+    #[error("state {state}, action {action}, outcome {outcome}: probability {source}")]
+    Probability {
+        /// The state.
+        state: usize,
+        /// The action index.
+        action: usize,
+        /// The outcome index.
+        outcome: usize,
+        /// The cause.
+        source: ParseRationalError,
+    },
+    /// An action with both or neither of `to` and `outcomes`.
+    #[error("state {state}, action {action}: give either \"to\" (a deterministic move) or \"outcomes\" (a stochastic action), exactly one of them")]
+    Shape {
+        /// The state.
+        state: usize,
+        /// The action index.
+        action: usize,
+    },
+    /// Probabilities out of range or not summing to 1, and similar.
+    #[error("{0}")]
+    Stochastic(#[from] StochasticError),
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileProblem {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    format: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    name: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    states: Option<usize>,
+    initial: usize,
+    goals: Vec<usize>,
+    actions: Vec<Vec<FileAction>>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileAction {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    to: Option<usize>,
+    cost: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    outcomes: Option<Vec<FileOutcome>>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileOutcome {
+    to: usize,
+    p: String,
+}
+
+fn one_line(s: &str) -> String {
+    s.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// Parses a problem file's text (either format).
+///
+/// ```
+/// use truecost::stochastic::file::{from_json, ProblemFile};
+/// let text = r#"{"initial": 0, "goals": [1], "actions": [
+///     [{"cost": "1", "outcomes": [{"to": 1, "p": "0.9"}, {"to": 0, "p": "0.1"}]}], []]}"#;
+/// let ProblemFile::Stochastic(p) = from_json(text).unwrap() else { panic!() };
+/// assert_eq!(p.outcomes(0).len(), 2);
+/// let bad = text.replace("0.1", "0.2");
+/// assert!(from_json(&bad).unwrap_err().to_string().contains("sum to 11/10, not 1"));
+/// let det = r#"{"initial": 0, "goals": [1], "actions": [[{"to": 1, "cost": "1"}], []]}"#;
+/// assert!(matches!(from_json(det).unwrap(), ProblemFile::Deterministic(_)));
+/// ```
+pub fn from_json(text: &str) -> Result<ProblemFile, StochasticFileError> {
+    let file: FileProblem =
+        serde_json::from_str(text).map_err(|e| FileError::Json(one_line(&e.to_string())))?;
+    if let Some(f) = &file.format {
+        if f != FORMAT && f != det_file::FORMAT {
+            return Err(FileError::Json(format!(
+                "unsupported format '{f}' (this truecost reads '{FORMAT}' and '{}')",
+                det_file::FORMAT
+            ))
+            .into());
+        }
+    }
+    let stochastic = file.actions.iter().flatten().any(|a| a.outcomes.is_some());
+    if !stochastic {
+        // The deterministic reader validates everything else (and refuses a stochastic tag
+        // only through this path, so accept it by stripping it).
+        let mut plain = file;
+        plain.format = None;
+        let text = serde_json::to_string(&plain).expect("serialisable");
+        return Ok(ProblemFile::Deterministic(det_file::from_json(&text)?));
+    }
+    if let Some(states) = file.states {
+        if states != file.actions.len() {
+            return Err(FileError::StatesMismatch {
+                states,
+                lists: file.actions.len(),
+            }
+            .into());
+        }
+    }
+    let mut actions = Vec::with_capacity(file.actions.len());
+    for (x, list) in file.actions.iter().enumerate() {
+        let mut row = Vec::with_capacity(list.len());
+        for (a, action) in list.iter().enumerate() {
+            let cost = parse_rational(&action.cost).map_err(|source| FileError::Cost {
+                state: x,
+                action: a,
+                source,
+            })?;
+            let outcomes = match (&action.to, &action.outcomes) {
+                (Some(to), None) => vec![Outcome {
+                    successor: *to,
+                    probability: crate::value::Rational::from_integer(1.into()),
+                    kind: OutcomeKind::Listed,
+                }],
+                (None, Some(list)) => list
+                    .iter()
+                    .enumerate()
+                    .map(|(i, o)| {
+                        parse_rational(&o.p)
+                            .map(|probability| Outcome {
+                                successor: o.to,
+                                probability,
+                                kind: OutcomeKind::Listed,
+                            })
+                            .map_err(|source| StochasticFileError::Probability {
+                                state: x,
+                                action: a,
+                                outcome: i,
+                                source,
+                            })
+                    })
+                    .collect::<Result<_, _>>()?,
+                _ => {
+                    return Err(StochasticFileError::Shape {
+                        state: x,
+                        action: a,
+                    })
+                }
+            };
+            row.push(StochasticAction { cost, outcomes });
+        }
+        actions.push(row);
+    }
+    let problem = StochasticProblem::new(actions, file.initial, file.goals)?;
+    if let Some(x) =
+        (0..problem.states()).find(|&x| problem.actions(x).is_empty() && !problem.is_goal(x))
+    {
+        return Err(FileError::EmptyActions(x).into());
+    }
+    Ok(ProblemFile::Stochastic(Box::new(problem)))
+}
+
+/// Reads and parses a problem file (either format).
+pub fn read(path: &Path) -> Result<ProblemFile, StochasticFileError> {
+    let text = std::fs::read_to_string(path).map_err(|source| FileError::Io {
+        path: path.display().to_string(),
+        source,
+    })?;
+    from_json(&text)
+}
+
+/// Whether a file's text lists outcomes anywhere (it needs the stochastic solvers), without
+/// validating the rest. Unreadable or malformed text gives `false`.
+pub fn lists_outcomes(text: &str) -> bool {
+    serde_json::from_str::<FileProblem>(text)
+        .map(|f| f.actions.iter().flatten().any(|a| a.outcomes.is_some()))
+        .unwrap_or(false)
+}
+
+/// Writes a stochastic problem in the file format (every action with its outcomes, exact
+/// strings); [`from_json`] reads it back to the same transitions (provided every non-goal
+/// state has an action: files refuse empty non-goal action lists, as deterministic files do).
+///
+/// ```
+/// use truecost::model::{Move, Problem};
+/// use truecost::stochastic::{file, NoiseModel, Predictability, StochasticProblem};
+/// let p = Problem::new(vec![vec![Move { successor: 1, cost: truecost::value::parse_rational("1").unwrap() }], vec![]], 0, vec![1]).unwrap();
+/// let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::parse("0.75").unwrap()).unwrap();
+/// let text = file::to_json(&s, Some("one step"));
+/// assert!(text.contains("\"3/4\""));
+/// let file::ProblemFile::Stochastic(back) = file::from_json(&text).unwrap() else { panic!() };
+/// assert_eq!(back.outcomes(0)[1].probability.to_string(), "1/4");
+/// ```
+pub fn to_json(problem: &StochasticProblem, name: Option<&str>) -> String {
+    let file = FileProblem {
+        format: Some(FORMAT.to_string()),
+        name: name.map(str::to_string),
+        states: Some(problem.states()),
+        initial: problem.initial(),
+        goals: problem.goals().to_vec(),
+        actions: (0..problem.states())
+            .map(|x| {
+                problem
+                    .actions(x)
+                    .map(|a| FileAction {
+                        to: None,
+                        cost: Extended::Finite(problem.cost(a).clone()).to_string(),
+                        outcomes: Some(
+                            problem
+                                .outcomes(a)
+                                .iter()
+                                .map(|o| FileOutcome {
+                                    to: o.successor,
+                                    p: Extended::Finite(o.probability.clone()).to_string(),
+                                })
+                                .collect(),
+                        ),
+                    })
+                    .collect()
+            })
+            .collect(),
+    };
+    serde_json::to_string_pretty(&file).expect("serialisable")
+}

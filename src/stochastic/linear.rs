@@ -1,0 +1,629 @@
+//! Exact solution of the sparse linear systems of policy evaluation (SPEC §3: "exact rational
+//! linear solves"), and an `f64` twin for warm starts.
+//!
+//! A system `A·z = r` has small integer entries (`|A_ij| < 2⁶²`, `|r_i| < 2¹⁰⁰`) and a
+//! non-singular `A` whose symmetric permutations all have non-zero leading principal minors
+//! (true for `I − P` with `P` the transition matrix of a proper policy restricted to its
+//! transient states: every principal submatrix is again `I − P'` with `P'` transient). The
+//! exact solver is **Dixon's p-adic lifting**:
+//!
+//! 1. order the unknowns by reverse Cuthill–McKee (a 20×20 grid becomes a band of width ≈ 20);
+//! 2. factor `A = LU` modulo a prime `p < 2³¹` inside that band (no pivoting needed; a zero
+//!    pivot modulo `p` — probability about `n/p` — just moves on to the next prime);
+//! 3. lift: `z_k = A⁻¹ r_k mod p`, `r_{k+1} = (r_k − A z_k)/p` (exact, and `|r_k|` stays below
+//!    `Σ|A_ij| + |r_0|/p^k`, so every step is word arithmetic); `Σ z_k p^k ≡ z (mod p^K)`;
+//! 4. rational reconstruction of the vector `z` with one common denominator, tried as `K`
+//!    doubles;
+//! 5. **verification**: the candidate `z = N/d` is accepted only if `A·N = d·r` holds exactly
+//!    in big integers. The answer is therefore exact whatever happened before; lifting goes on
+//!    (up to the Hadamard bound, after which reconstruction is guaranteed) until it holds.
+
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_traits::{One, Signed, Zero};
+
+/// A square sparse integer system `A·z = r`.
+#[derive(Clone, Debug, Default)]
+pub struct SparseSystem {
+    row_first: Vec<usize>,
+    col: Vec<u32>,
+    val: Vec<i64>,
+    rhs: Vec<i128>,
+}
+
+/// Why a system could not be solved.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum LinearError {
+    /// The matrix is singular (or has a singular leading principal minor in every ordering
+    /// tried), which policy evaluation of a proper policy never produces.
+    #[error("the linear system is singular")]
+    Singular,
+    /// An entry or right-hand side beyond the solver's word-size limits.
+    #[error("a coefficient of the linear system is too large for the exact solver")]
+    TooLarge,
+    /// The band of the reordered matrix would not fit in memory.
+    #[error("the linear system ({states} unknowns, band width {width} after reordering) is too large for the exact solver's band storage (at most 2^28 entries)")]
+    TooWide {
+        /// Unknowns.
+        states: usize,
+        /// Band width `lower + upper + 1`.
+        width: usize,
+    },
+}
+
+/// The most band entries the solvers allocate (2 GiB of `u64`).
+const MAX_BAND_ENTRIES: usize = 1 << 28;
+
+fn check_band(n: usize, ordering: &BandOrdering) -> Result<(), LinearError> {
+    let width = ordering.lower + ordering.upper + 1;
+    if n.saturating_mul(width) > MAX_BAND_ENTRIES {
+        Err(LinearError::TooWide { states: n, width })
+    } else {
+        Ok(())
+    }
+}
+
+impl SparseSystem {
+    /// An empty system (no rows yet).
+    pub fn new() -> Self {
+        SparseSystem {
+            row_first: vec![0],
+            ..Default::default()
+        }
+    }
+
+    /// Appends a row: its entries `(column, value)` (duplicates are added) and right-hand side.
+    pub fn push_row(&mut self, entries: &[(usize, i64)], rhs: i128) -> Result<(), LinearError> {
+        let start = self.col.len();
+        for &(c, v) in entries {
+            if let Some(i) = self.col[start..].iter().position(|&k| k as usize == c) {
+                self.val[start + i] = self.val[start + i]
+                    .checked_add(v)
+                    .filter(|s| s.unsigned_abs() < 1 << 62)
+                    .ok_or(LinearError::TooLarge)?;
+            } else {
+                if v.unsigned_abs() >= 1 << 62 {
+                    return Err(LinearError::TooLarge);
+                }
+                self.col
+                    .push(u32::try_from(c).map_err(|_| LinearError::TooLarge)?);
+                self.val.push(v);
+            }
+        }
+        if rhs.unsigned_abs() >= 1 << 100 {
+            return Err(LinearError::TooLarge);
+        }
+        self.rhs.push(rhs);
+        self.row_first.push(self.col.len());
+        Ok(())
+    }
+
+    /// The number of rows (= unknowns).
+    pub fn len(&self) -> usize {
+        self.rhs.len()
+    }
+
+    /// Whether the system has no rows.
+    pub fn is_empty(&self) -> bool {
+        self.rhs.is_empty()
+    }
+
+    fn row(&self, i: usize) -> impl Iterator<Item = (usize, i64)> + '_ {
+        let r = self.row_first[i]..self.row_first[i + 1];
+        self.col[r.clone()]
+            .iter()
+            .zip(&self.val[r])
+            .map(|(&c, &v)| (c as usize, v))
+    }
+
+    /// Whether `A·N = d·r` holds exactly.
+    pub fn satisfied_by(&self, numerators: &[BigInt], denominator: &BigInt) -> bool {
+        (0..self.len()).all(|i| {
+            let mut lhs = BigInt::zero();
+            for (c, v) in self.row(i) {
+                lhs += &numerators[c] * v;
+            }
+            lhs == denominator * BigInt::from(self.rhs[i])
+        })
+    }
+}
+
+/// An exact solution `z_i = numerators[i] / denominator` (`denominator > 0`, a common
+/// denominator, not necessarily the least).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ExactSolution {
+    /// The numerators.
+    pub numerators: Vec<BigInt>,
+    /// The common denominator.
+    pub denominator: BigInt,
+    /// Lifting steps performed (each one solve modulo `p`).
+    pub lifting_steps: usize,
+}
+
+/// The symmetric-pattern band ordering shared by the exact and `f64` solvers.
+#[derive(Clone, Debug)]
+pub struct BandOrdering {
+    /// `order[new] = old`.
+    order: Vec<usize>,
+    /// `position[old] = new`.
+    position: Vec<usize>,
+    lower: usize,
+    upper: usize,
+}
+
+impl BandOrdering {
+    /// Reverse Cuthill–McKee on the pattern of `A + Aᵀ`, each connected part started from a
+    /// pseudo-peripheral node (lowest index among equals, so the ordering is deterministic).
+    pub fn new(system: &SparseSystem) -> Self {
+        let n = system.len();
+        let mut adjacency = vec![Vec::new(); n];
+        for i in 0..n {
+            for (j, _) in system.row(i) {
+                if i != j {
+                    adjacency[i].push(j);
+                    adjacency[j].push(i);
+                }
+            }
+        }
+        for list in &mut adjacency {
+            list.sort_unstable();
+            list.dedup();
+        }
+        let degree: Vec<usize> = adjacency.iter().map(Vec::len).collect();
+        let mut placed = vec![false; n];
+        let mut order = Vec::with_capacity(n);
+        let bfs = |start: usize, placed: &[bool]| -> (Vec<usize>, Vec<usize>) {
+            // Returns the BFS order and levels restricted to unplaced nodes.
+            let mut level = vec![usize::MAX; n];
+            let mut seq = vec![start];
+            level[start] = 0;
+            let mut head = 0;
+            while head < seq.len() {
+                let v = seq[head];
+                head += 1;
+                let mut next: Vec<usize> = adjacency[v]
+                    .iter()
+                    .copied()
+                    .filter(|&w| !placed[w] && level[w] == usize::MAX)
+                    .collect();
+                next.sort_by_key(|&w| (degree[w], w));
+                for w in next {
+                    level[w] = level[v] + 1;
+                    seq.push(w);
+                }
+            }
+            (seq, level)
+        };
+        for seed in 0..n {
+            if placed[seed] {
+                continue;
+            }
+            // Pseudo-peripheral start: the least-degree node of this part, then repeatedly the
+            // least-degree node of the last BFS level.
+            let (part, _) = bfs(seed, &placed);
+            let mut start = part
+                .iter()
+                .copied()
+                .min_by_key(|&v| (degree[v], v))
+                .unwrap_or(seed);
+            let mut depth = 0;
+            for _ in 0..4 {
+                let (seq, level) = bfs(start, &placed);
+                let far = level[*seq.last().expect("non-empty")];
+                if far <= depth {
+                    break;
+                }
+                depth = far;
+                start = seq
+                    .iter()
+                    .copied()
+                    .filter(|&v| level[v] == far)
+                    .min_by_key(|&v| (degree[v], v))
+                    .expect("non-empty level");
+            }
+            let (seq, _) = bfs(start, &placed);
+            for &v in &seq {
+                placed[v] = true;
+            }
+            order.extend(seq);
+        }
+        order.reverse();
+        let mut position = vec![0; n];
+        for (new, &old) in order.iter().enumerate() {
+            position[old] = new;
+        }
+        let (mut lower, mut upper) = (0, 0);
+        for i in 0..n {
+            for (j, _) in system.row(i) {
+                let (a, b) = (position[i], position[j]);
+                if a > b {
+                    lower = lower.max(a - b);
+                } else {
+                    upper = upper.max(b - a);
+                }
+            }
+        }
+        BandOrdering {
+            order,
+            position,
+            lower,
+            upper,
+        }
+    }
+
+    /// `(lower, upper)` bandwidths after reordering.
+    pub fn bandwidths(&self) -> (usize, usize) {
+        (self.lower, self.upper)
+    }
+}
+
+/// A banded matrix in reordered coordinates: row `i` holds columns `i−lower ..= i+upper`.
+struct Band<T> {
+    n: usize,
+    lower: usize,
+    upper: usize,
+    data: Vec<T>,
+}
+
+impl<T: Copy + Default> Band<T> {
+    fn new(
+        system: &SparseSystem,
+        ordering: &BandOrdering,
+        convert: impl Fn(i64) -> T,
+        add: impl Fn(T, T) -> T,
+    ) -> Self {
+        let n = system.len();
+        let width = ordering.lower + ordering.upper + 1;
+        let mut band = Band {
+            n,
+            lower: ordering.lower,
+            upper: ordering.upper,
+            data: vec![T::default(); n * width],
+        };
+        for i in 0..n {
+            for (j, v) in system.row(i) {
+                let (a, b) = (ordering.position[i], ordering.position[j]);
+                let k = band.index(a, b);
+                band.data[k] = add(band.data[k], convert(v));
+            }
+        }
+        band
+    }
+
+    #[inline]
+    fn index(&self, i: usize, j: usize) -> usize {
+        i * (self.lower + self.upper + 1) + (j + self.lower - i)
+    }
+}
+
+/// `LU` of a band modulo a prime `p < 2³¹` (unit lower `L` stored below the diagonal, pivots'
+/// inverses kept separately).
+struct ModularLu {
+    band: Band<u64>,
+    inverse_pivot: Vec<u64>,
+    p: u64,
+}
+
+fn pow_mod(mut b: u64, mut e: u64, p: u64) -> u64 {
+    let mut r = 1;
+    b %= p;
+    while e > 0 {
+        if e & 1 == 1 {
+            r = r * b % p;
+        }
+        b = b * b % p;
+        e >>= 1;
+    }
+    r
+}
+
+impl ModularLu {
+    fn factor(system: &SparseSystem, ordering: &BandOrdering, p: u64) -> Option<Self> {
+        let pi = p as i64;
+        let mut band = Band::new(
+            system,
+            ordering,
+            |v| v.rem_euclid(pi) as u64,
+            |a, b| (a + b) % p,
+        );
+        let n = band.n;
+        let mut inverse_pivot = vec![0; n];
+        #[allow(clippy::needless_range_loop)] // k indexes the band and the pivots alike
+        for k in 0..n {
+            let pivot = band.data[band.index(k, k)];
+            if pivot == 0 {
+                return None;
+            }
+            let inv = pow_mod(pivot, p - 2, p);
+            inverse_pivot[k] = inv;
+            let last_row = (k + band.lower).min(n - 1);
+            let last_col = (k + band.upper).min(n - 1);
+            for i in k + 1..=last_row {
+                let ik = band.index(i, k);
+                let a = band.data[ik];
+                if a == 0 {
+                    continue;
+                }
+                let l = a * inv % p;
+                band.data[ik] = l;
+                let ml = p - l;
+                let kk = band.index(k, k);
+                let ii = band.index(i, k);
+                for off in 1..=last_col - k {
+                    let u = band.data[kk + off];
+                    if u != 0 {
+                        let t = ii + off;
+                        band.data[t] = (band.data[t] + ml * u) % p;
+                    }
+                }
+            }
+        }
+        Some(ModularLu {
+            band,
+            inverse_pivot,
+            p,
+        })
+    }
+
+    /// Solves `LU·y = b` in place (reordered coordinates).
+    fn solve(&self, y: &mut [u64]) {
+        let (n, p, lower, upper) = (self.band.n, self.p, self.band.lower, self.band.upper);
+        for i in 0..n {
+            let first = i.saturating_sub(lower);
+            let base = self.band.index(i, first);
+            let mut acc: u128 = y[i] as u128;
+            for (off, j) in (first..i).enumerate() {
+                acc += (p - self.band.data[base + off]) as u128 * y[j] as u128;
+            }
+            y[i] = (acc % p as u128) as u64;
+        }
+        for i in (0..n).rev() {
+            let last = (i + upper).min(n - 1);
+            let base = self.band.index(i, i);
+            let mut acc: u128 = y[i] as u128;
+            for (off, j) in (i + 1..=last).enumerate() {
+                acc += (p - self.band.data[base + 1 + off]) as u128 * y[j] as u128;
+            }
+            y[i] = ((acc % p as u128) as u64) * self.inverse_pivot[i] % p;
+        }
+    }
+}
+
+/// Primes just below 2³¹, in decreasing order (trial division; only a few are ever needed).
+fn primes() -> impl Iterator<Item = u64> {
+    (1u64 << 20..(1u64 << 31) - 1).rev().filter(|&c| {
+        c % 2 == 1
+            && (3..)
+                .step_by(2)
+                .take_while(|d| d * d <= c)
+                .all(|d| c % d != 0)
+    })
+}
+
+/// Rational reconstruction: `a/b ≡ t (mod m)` with `|a| ≤ bound`, `0 < b ≤ bound`, if any.
+fn reconstruct(t: &BigInt, m: &BigInt, bound: &BigInt) -> Option<(BigInt, BigInt)> {
+    let (mut r0, mut r1) = (m.clone(), t.mod_floor(m));
+    let (mut s0, mut s1) = (BigInt::zero(), BigInt::one());
+    while &r1 > bound {
+        let (q, r) = r0.div_rem(&r1);
+        r0 = std::mem::replace(&mut r1, r);
+        let s = &s0 - &q * &s1;
+        s0 = std::mem::replace(&mut s1, s);
+    }
+    if s1.is_zero() {
+        return None;
+    }
+    if s1.is_negative() {
+        s1 = -s1;
+        r1 = -r1;
+    }
+    (&s1 <= bound && r1.gcd(&s1).is_one()).then_some((r1, s1))
+}
+
+/// Vector reconstruction with a common denominator (`x_i mod m`, symmetric residues).
+fn reconstruct_vector(x: &[BigInt], m: &BigInt) -> Option<(Vec<BigInt>, BigInt)> {
+    let bound = (m >> 1u32).sqrt();
+    let half = m >> 1u32;
+    let mut d = BigInt::one();
+    let mut out: Vec<BigInt> = Vec::with_capacity(x.len());
+    for xi in x {
+        let mut t = (&d * xi).mod_floor(m);
+        if t > half {
+            t -= m;
+        }
+        if t.abs() <= bound {
+            out.push(t);
+            continue;
+        }
+        let (a, b) = reconstruct(&t, m, &bound)?;
+        d *= &b;
+        if d > bound {
+            return None;
+        }
+        for o in &mut out {
+            *o *= &b;
+        }
+        out.push(a);
+    }
+    Some((out, d))
+}
+
+/// Bits after which the reconstruction of the exact solution is guaranteed: with `H` the
+/// Hadamard bound on `|det A|` (rows of integer norm ≥ 1, so every minor is ≤ `H` too), Cramer's
+/// rule gives a common denominator `D ≤ H` and numerators `|N_i| ≤ n·max|r|·H`; the vector
+/// reconstruction needs `p^K > 2·max(N, D)²`.
+fn hadamard_bits(system: &SparseSystem) -> u64 {
+    let mut bits = 0.0f64;
+    for i in 0..system.len() {
+        let norm2: f64 = system.row(i).map(|(_, v)| (v as f64) * (v as f64)).sum();
+        bits += 0.5 * norm2.max(1.0).log2();
+    }
+    let rhs = system
+        .rhs
+        .iter()
+        .map(|r| r.unsigned_abs() as f64)
+        .fold(1.0, f64::max);
+    (2.0 * (bits + rhs.log2() + (system.len() as f64 + 1.0).log2()) + 8.0).ceil() as u64
+}
+
+/// Solves `A·z = r` exactly (module docs). The result satisfies `A·N = d·r` exactly.
+///
+/// ```
+/// use truecost::stochastic::linear::{solve_exact, SparseSystem};
+/// use num_bigint::BigInt;
+/// // 3x - y = 1, -x + 3y = 2  →  x = 5/8, y = 7/8
+/// let mut s = SparseSystem::new();
+/// s.push_row(&[(0, 3), (1, -1)], 1).unwrap();
+/// s.push_row(&[(0, -1), (1, 3)], 2).unwrap();
+/// let z = solve_exact(&s).unwrap();
+/// assert_eq!(&z.numerators[0] * BigInt::from(8), &z.denominator * BigInt::from(5));
+/// assert_eq!(&z.numerators[1] * BigInt::from(8), &z.denominator * BigInt::from(7));
+/// ```
+pub fn solve_exact(system: &SparseSystem) -> Result<ExactSolution, LinearError> {
+    let n = system.len();
+    if n == 0 {
+        return Ok(ExactSolution {
+            numerators: Vec::new(),
+            denominator: BigInt::one(),
+            lifting_steps: 0,
+        });
+    }
+    let ordering = BandOrdering::new(system);
+    check_band(n, &ordering)?;
+    let max_bits = hadamard_bits(system);
+    for p in primes().take(8) {
+        let Some(lu) = ModularLu::factor(system, &ordering, p) else {
+            continue;
+        };
+        if let Some(solution) = lift(system, &ordering, &lu, max_bits)? {
+            return Ok(solution);
+        }
+    }
+    Err(LinearError::Singular)
+}
+
+/// Dixon lifting with one prime; `None` if the bound was reached without a verified solution
+/// (only possible if `A` is singular).
+fn lift(
+    system: &SparseSystem,
+    ordering: &BandOrdering,
+    lu: &ModularLu,
+    max_bits: u64,
+) -> Result<Option<ExactSolution>, LinearError> {
+    let n = system.len();
+    let p = lu.p;
+    let pi = p as i128;
+    let bits_per_step = (p as f64).log2();
+    let max_steps = (max_bits as f64 / bits_per_step).ceil() as usize + 2;
+    let mut residual: Vec<i128> = system.rhs.clone();
+    // Digits in original coordinates, two steps packed per u64 (base p²).
+    let mut digits: Vec<Vec<u64>> = Vec::new();
+    let mut y = vec![0u64; n];
+    let mut next_try = 4usize;
+    let mut steps = 0usize;
+    while steps < max_steps {
+        for new in 0..n {
+            y[new] = residual[ordering.order[new]].rem_euclid(pi) as u64;
+        }
+        lu.solve(&mut y);
+        // r ← (r − A·z)/p, exact by construction.
+        for (i, r) in residual.iter_mut().enumerate() {
+            let mut s = *r;
+            for (j, v) in system.row(i) {
+                let z = y[ordering.position[j]] as i128;
+                s = s.checked_sub(v as i128 * z).ok_or(LinearError::TooLarge)?;
+            }
+            debug_assert_eq!(s.rem_euclid(pi), 0);
+            *r = s.div_euclid(pi);
+        }
+        if steps % 2 == 0 {
+            digits.push((0..n).map(|j| y[ordering.position[j]]).collect());
+        } else {
+            let last = digits.last_mut().expect("pushed at the even step");
+            for (j, d) in last.iter_mut().enumerate() {
+                *d += y[ordering.position[j]] * p;
+            }
+        }
+        steps += 1;
+        if steps == next_try || steps == max_steps {
+            next_try = (next_try * 3).div_ceil(2).max(next_try + 2);
+            // x = Σ digit_k (p²)^k by Horner, m = p^steps.
+            let base = BigInt::from(p) * BigInt::from(p);
+            let mut m = BigInt::one();
+            for _ in 0..steps {
+                m *= p;
+            }
+            let x: Vec<BigInt> = (0..n)
+                .map(|j| {
+                    let mut acc = BigInt::zero();
+                    for digit in digits.iter().rev() {
+                        acc = acc * &base + BigInt::from(digit[j]);
+                    }
+                    acc
+                })
+                .collect();
+            if let Some((numerators, denominator)) = reconstruct_vector(&x, &m) {
+                if system.satisfied_by(&numerators, &denominator) {
+                    return Ok(Some(ExactSolution {
+                        numerators,
+                        denominator,
+                        lifting_steps: steps,
+                    }));
+                }
+            }
+        }
+    }
+    Ok(None)
+}
+
+/// Solves `A·z = r` in `f64` by banded LU without pivoting, in the same ordering (for warm
+/// starts only; never reported as a value).
+pub fn solve_f64(system: &SparseSystem) -> Result<Vec<f64>, LinearError> {
+    let ordering = BandOrdering::new(system);
+    check_band(system.len(), &ordering)?;
+    Ok(solve_f64_ordered(system, &ordering))
+}
+
+/// [`solve_f64`] with a precomputed ordering.
+fn solve_f64_ordered(system: &SparseSystem, ordering: &BandOrdering) -> Vec<f64> {
+    let mut band = Band::new(system, ordering, |v| v as f64, |a, b| a + b);
+    let n = band.n;
+    for k in 0..n {
+        let pivot = band.data[band.index(k, k)];
+        let last_row = (k + band.lower).min(n.saturating_sub(1));
+        let last_col = (k + band.upper).min(n.saturating_sub(1));
+        for i in k + 1..=last_row {
+            let ik = band.index(i, k);
+            let l = band.data[ik] / pivot;
+            band.data[ik] = l;
+            if l == 0.0 {
+                continue;
+            }
+            let kk = band.index(k, k);
+            for off in 1..=last_col - k {
+                let t = ik + off;
+                band.data[t] -= l * band.data[kk + off];
+            }
+        }
+    }
+    let mut y: Vec<f64> = (0..n)
+        .map(|new| system.rhs[ordering.order[new]] as f64)
+        .collect();
+    for i in 0..n {
+        let first = i.saturating_sub(band.lower);
+        let mut acc = y[i];
+        for (j, yj) in y.iter().enumerate().take(i).skip(first) {
+            acc -= band.data[band.index(i, j)] * yj;
+        }
+        y[i] = acc;
+    }
+    for i in (0..n).rev() {
+        let last = (i + band.upper).min(n - 1);
+        let mut acc = y[i];
+        for (j, yj) in y.iter().enumerate().take(last + 1).skip(i + 1) {
+            acc -= band.data[band.index(i, j)] * yj;
+        }
+        y[i] = acc / band.data[band.index(i, i)];
+    }
+    (0..n).map(|old| y[ordering.position[old]]).collect()
+}

@@ -1,0 +1,615 @@
+//! The exact optimum of a stochastic problem (SPEC §3): `G*`, `Q*` and an optimal policy by
+//! policy iteration with exact rational linear solves.
+//!
+//! Problem class and assumptions (checked, not assumed): costs `l ≥ 0`; `G*(x)` is the least
+//! expected cost over policies proper at `x` (module [`super::properness`]), `+∞` where there is
+//! none. Unsafe actions (an outcome with `G* = +∞`) are never chosen.
+//!
+//! Algorithm:
+//! 1. **Initial proper policy**: the deterministic optimum of the commanded moves (first
+//!    optimal move making progress, as in [`crate::solvers::greedy_policy`]), where its action
+//!    is safe; if that policy is not proper on the finite states, the attractor policy (always
+//!    proper).
+//! 2. **Warm start in `f64`**: policy iteration with `f64` evaluations, switching an action only
+//!    when it is better by a relative margin of 10⁻⁹, and only while the policy stays proper.
+//!    This only proposes a policy; nothing of it is reported.
+//! 3. **Exact policy iteration**: evaluate the policy `μ` exactly by solving
+//!    `(I − P_μ)·G = l_μ` over the finite non-goal states ([`super::linear::solve_exact`]),
+//!    then improve: at every state switch to the first action whose exact `Q` is *strictly*
+//!    smaller than `G_μ(x)`. Stop when no state switches.
+//!
+//! Why this is exact and terminates: with `l ≥ 0`, strict improvement from a proper policy gives
+//! a proper policy (a closed class avoiding the goals would have zero cost and no strict
+//! switch inside it, so it would be closed under the old policy too); `G_μ` decreases, so no
+//! policy repeats; at the end `G_μ` solves the Bellman equation `G = min_safe u (l + P_u G)`
+//! exactly, and for any proper `ν`, `G_ν = lim T_ν^k G_μ ≥ G_μ`. So `G_μ = G*`.
+//!
+//! The policy reported is canonical: at each state the first action (in `U(x)` order) whose
+//! exact `Q*` equals `G*`; if that policy is improper (possible only with zero-cost cycles),
+//! the policy found by policy iteration is reported instead.
+
+use num_bigint::BigInt;
+use num_traits::{ToPrimitive, Zero};
+
+use super::linear::{solve_exact, solve_f64, LinearError, SparseSystem};
+use super::properness::{analyse, is_proper, Properness};
+use super::{StochasticError, StochasticProblem};
+use crate::model::{Decision, ExactGraph, Move, Problem};
+use crate::solvers::{dijkstra, greedy_policy};
+use crate::value::{Extended, Rational};
+
+/// The exact optimum: `G*(x) = numerator[x] / denominator` where finite.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Optimum {
+    numerators: Vec<Option<BigInt>>,
+    /// `d·C`: the solver's common denominator times the costs' lcm denominator.
+    denominator: BigInt,
+    /// The solver's common denominator `d`.
+    solution_denominator: BigInt,
+    /// The reduced values, computed on first use.
+    reduced: std::sync::OnceLock<Vec<Extended>>,
+    /// An optimal proper policy: the action (global id) at every finite non-goal state.
+    policy: Vec<Option<usize>>,
+    is_goal: Vec<bool>,
+    action_first: Vec<usize>,
+    /// How the optimum was found.
+    pub stats: PolicyIterationStats,
+}
+
+/// What policy iteration did.
+#[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct PolicyIterationStats {
+    /// Where the initial proper policy came from: `deterministic-optimum` or `attractor`.
+    pub initial_policy: &'static str,
+    /// Improvement rounds of the `f64` warm start.
+    pub float_iterations: usize,
+    /// Exact evaluations (the last one confirms optimality).
+    pub exact_iterations: usize,
+    /// Dixon lifting steps over all exact evaluations.
+    pub lifting_steps: usize,
+    /// Unknowns of the linear systems (finite non-goal states).
+    pub unknowns: usize,
+    /// States with finite `G*` (goals included).
+    pub finite_states: usize,
+}
+
+impl Optimum {
+    /// `G*(x)`, exact (`+∞` where no policy reaches a goal with probability 1).
+    pub fn cost_to_go(&self, x: usize) -> Extended {
+        match &self.numerators[x] {
+            Some(n) => Extended::Finite(Rational::new(n.clone(), self.denominator.clone())),
+            None => Extended::Infinite,
+        }
+    }
+
+    /// `G*` for every state (reduced once, then cached).
+    pub fn cost_to_go_all(&self) -> &[Extended] {
+        self.reduced.get_or_init(|| {
+            (0..self.numerators.len())
+                .map(|x| self.cost_to_go(x))
+                .collect()
+        })
+    }
+
+    /// `G*(x)` as the pair (numerator, common denominator) without reduction, `None` if `+∞`.
+    pub fn unreduced(&self, x: usize) -> Option<(&BigInt, &BigInt)> {
+        self.numerators[x].as_ref().map(|n| (n, &self.denominator))
+    }
+
+    /// `Q*(x, u)·s_x·d·C` as an integer (`s_x` the state's probability denominator), `None` if
+    /// an outcome has `G* = +∞`.
+    fn scaled_q(&self, problem: &StochasticProblem, action: usize) -> Option<BigInt> {
+        let x = problem.state_of(action);
+        let c = Rational::from_integer(problem.cost_denominator().clone());
+        let cost = (problem.cost(action) * c).to_integer();
+        let mut k = cost * BigInt::from(problem.denominator(x)) * &self.solution_denominator;
+        for (o, &w) in problem.outcomes(action).iter().zip(problem.weights(action)) {
+            k += self.numerators[o.successor].as_ref()? * BigInt::from(w);
+        }
+        Some(k)
+    }
+
+    /// `Q*(x, u) = l(x, u) + Σ_o p_o G*(o)` for an action (global id) of the problem this
+    /// optimum was computed for; `+∞` if an outcome has `G* = +∞`.
+    pub fn q_value(&self, problem: &StochasticProblem, action: usize) -> Extended {
+        let x = problem.state_of(action);
+        match self.scaled_q(problem, action) {
+            Some(k) => Extended::Finite(Rational::new(
+                k,
+                &self.denominator * BigInt::from(problem.denominator(x)),
+            )),
+            None => Extended::Infinite,
+        }
+    }
+
+    /// Whether `Q*(x, u) = G*(x)` for an action of a state with finite `G*` (exact integer
+    /// comparison, no rational arithmetic).
+    pub fn is_optimal_action(&self, problem: &StochasticProblem, action: usize) -> bool {
+        let x = problem.state_of(action);
+        match (&self.numerators[x], self.scaled_q(problem, action)) {
+            (Some(n), Some(k)) => k == n * BigInt::from(problem.denominator(x)),
+            _ => false,
+        }
+    }
+
+    /// The reported optimal policy: [`Decision::Terminate`] at goals, the index of the action
+    /// in `U(x)` elsewhere, `None` where `G* = +∞`.
+    pub fn policy(&self) -> Vec<Option<Decision>> {
+        (0..self.numerators.len())
+            .map(|x| {
+                if self.is_goal[x] {
+                    Some(Decision::Terminate)
+                } else {
+                    self.policy[x].map(|a| Decision::Move(a - self.action_first[x]))
+                }
+            })
+            .collect()
+    }
+
+    /// The reported optimal policy as global action ids (`None` at goals and infinite states).
+    pub fn policy_actions(&self) -> &[Option<usize>] {
+        &self.policy
+    }
+}
+
+/// How far a value function is from `G*`, exactly (over the states with finite `G*`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Distance {
+    /// `V(x1) − G*(x1)` (signed), `None` if `G*(x1) = +∞` or `V(x1)` is not finite.
+    pub initial: Option<Rational>,
+    /// `max_x |V(x) − G*(x)|` over the compared states (0 if none).
+    pub max_abs: Rational,
+    /// A state attaining `max_abs` (the lowest index).
+    pub worst_state: Option<usize>,
+    /// States compared (finite `G*` and finite `V`).
+    pub compared: usize,
+    /// States with finite `G*` where `V` is not finite.
+    pub not_finite: usize,
+}
+
+impl Optimum {
+    /// The exact distance of a value function from `G*`; `value(x)` is `V(x)` exactly (`None`
+    /// if not finite). For `f64` values use `Rational::from_float`, which is exact.
+    ///
+    /// ```
+    /// use truecost::model::{Move, Problem};
+    /// use truecost::stochastic::{policy_iteration::optimum, NoiseModel, Predictability, StochasticProblem};
+    /// use truecost::value::{parse_rational, Rational};
+    /// let p = Problem::new(vec![vec![Move { successor: 1, cost: parse_rational("1").unwrap() }], vec![]], 0, vec![1]).unwrap();
+    /// let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::parse("0.5").unwrap()).unwrap();
+    /// let o = optimum(&s).unwrap(); // G*(0) = 2
+    /// let d = o.distance(0, |x| Some(if x == 0 { parse_rational("1.75").unwrap() } else { Rational::from_integer(0.into()) }));
+    /// assert_eq!(d.initial.unwrap().to_string(), "-1/4");
+    /// assert_eq!((d.worst_state, d.compared), (Some(0), 2));
+    /// ```
+    pub fn distance(&self, initial: usize, value: impl Fn(usize) -> Option<Rational>) -> Distance {
+        // Differences are kept as unreduced fractions and compared by cross-multiplication:
+        // big-rational subtraction would reduce by a gcd of thousands of digits each time.
+        let mut worst: Option<(BigInt, BigInt, usize)> = None;
+        let mut at_initial = None;
+        let (mut compared, mut not_finite) = (0, 0);
+        for x in 0..self.numerators.len() {
+            let Some(n) = &self.numerators[x] else {
+                continue;
+            };
+            let Some(v) = value(x) else {
+                not_finite += 1;
+                continue;
+            };
+            // V − G* = (v_n·Den − n·v_d) / (v_d·Den)
+            let num = v.numer() * &self.denominator - n * v.denom();
+            let den = v.denom() * &self.denominator;
+            let larger = match &worst {
+                None => true,
+                Some((wn, wd, _)) => {
+                    num.magnitude() * wd.magnitude() > wn.magnitude() * den.magnitude()
+                }
+            };
+            if x == initial {
+                at_initial = Some((num.clone(), den.clone()));
+            }
+            if larger {
+                worst = Some((num, den, x));
+            }
+            compared += 1;
+        }
+        let abs = |(n, d): (BigInt, BigInt)| Rational::new(num_traits::Signed::abs(&n), d);
+        Distance {
+            initial: at_initial.map(|(n, d)| Rational::new(n, d)),
+            worst_state: worst.as_ref().map(|w| w.2),
+            max_abs: worst.map_or_else(Rational::zero, |(n, d, _)| abs((n, d))),
+            compared,
+            not_finite,
+        }
+    }
+
+    /// The states where the action `policy[x]` (global id, `None` = no action) is not optimal:
+    /// `Q*(x, u) > G*(x)` (or no action where `G*` is finite). Goals are not counted.
+    pub fn suboptimal_states(
+        &self,
+        problem: &StochasticProblem,
+        policy: &[Option<usize>],
+    ) -> Vec<usize> {
+        (0..self.numerators.len())
+            .filter(|&x| !self.is_goal[x])
+            .filter(|&x| match (&self.numerators[x], policy[x]) {
+                (None, _) => false,
+                (_, None) => true,
+                (Some(_), Some(a)) => !self.is_optimal_action(problem, a),
+            })
+            .collect()
+    }
+}
+
+/// Computes the exact optimum (module docs).
+///
+/// ```
+/// use truecost::model::{Move, Problem};
+/// use truecost::stochastic::{policy_iteration::optimum, NoiseModel, Predictability, StochasticProblem};
+/// use truecost::value::parse_rational;
+/// let one = parse_rational("1").unwrap();
+/// // 0 -> 1 (goal); paper noise with one move: stay with probability 1 - γ.
+/// let p = Problem::new(vec![vec![Move { successor: 1, cost: one }], vec![]], 0, vec![1]).unwrap();
+/// let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::parse("0.9").unwrap()).unwrap();
+/// let o = optimum(&s).unwrap();
+/// assert_eq!(o.cost_to_go(0).to_string(), "10/9"); // G = 1 + 0.1 G
+/// ```
+pub fn optimum(problem: &StochasticProblem) -> Result<Optimum, StochasticError> {
+    let properness = analyse(problem);
+    let (mut policy, initial_policy) = initial_policy(problem, &properness);
+    let index = Unknowns::new(problem, &properness.finite);
+    let mut stats = PolicyIterationStats {
+        initial_policy,
+        unknowns: index.states.len(),
+        finite_states: properness.finite.iter().filter(|&&f| f).count(),
+        ..Default::default()
+    };
+    let scaled_costs = scaled_costs(problem)?;
+
+    // 2. f64 warm start.
+    for _ in 0..100 {
+        let system = build_system(problem, &index, &policy, &scaled_costs)?;
+        let z = solve_f64(&system).map_err(linear_error)?;
+        let value = |y: usize| index.of[y].map_or(0.0, |i| z[i]);
+        let mut next = policy.clone();
+        let mut changed = false;
+        for (i, &x) in index.states.iter().enumerate() {
+            let current = z[i];
+            let margin = 1e-9 * current.abs().max(1.0);
+            let mut best = (current - margin, None);
+            for a in problem.actions(x).filter(|&a| properness.safe[a]) {
+                let q = scaled_costs.float[a]
+                    + problem
+                        .outcomes(a)
+                        .iter()
+                        .zip(problem.probabilities_f64(a))
+                        .map(|(o, p)| p * value(o.successor))
+                        .sum::<f64>();
+                if q < best.0 {
+                    best = (q, Some(a));
+                }
+            }
+            if let (_, Some(a)) = best {
+                if policy[x] != Some(a) {
+                    next[x] = Some(a);
+                    changed = true;
+                }
+            }
+        }
+        if !changed || !is_proper(problem, &properness.finite, &next) {
+            break;
+        }
+        policy = next;
+        stats.float_iterations += 1;
+    }
+
+    // 3. Exact policy iteration.
+    loop {
+        let system = build_system(problem, &index, &policy, &scaled_costs)?;
+        let z = solve_exact(&system).map_err(linear_error)?;
+        stats.exact_iterations += 1;
+        stats.lifting_steps += z.lifting_steps;
+        let numerator = |y: usize| index.of[y].map(|i| &z.numerators[i]);
+        let mut changed = false;
+        let mut canonical = policy.clone();
+        for (i, &x) in index.states.iter().enumerate() {
+            let s = problem.denominator(x);
+            let current = &z.numerators[i] * BigInt::from(s);
+            let mut best: Option<(BigInt, usize)> = None;
+            for a in problem.actions(x).filter(|&a| properness.safe[a]) {
+                let mut k = &scaled_costs.exact[a] * BigInt::from(s) * &z.denominator;
+                for (o, &w) in problem.outcomes(a).iter().zip(problem.weights(a)) {
+                    if let Some(nv) = numerator(o.successor) {
+                        k += nv * BigInt::from(w);
+                    }
+                }
+                if best.as_ref().map_or(true, |(b, _)| &k < b) {
+                    best = Some((k, a));
+                }
+            }
+            let (k, a) = best.expect("a finite non-goal state has a safe action");
+            canonical[x] = Some(a);
+            if k < current {
+                policy[x] = Some(a);
+                changed = true;
+            }
+        }
+        // Strict improvement from a proper policy with costs ≥ 0 stays proper (module docs).
+        debug_assert!(is_proper(problem, &properness.finite, &policy));
+        if !changed {
+            let chosen = if is_proper(problem, &properness.finite, &canonical) {
+                canonical
+            } else {
+                policy
+            };
+            return Ok(finish(problem, &properness, &index, z, chosen, stats));
+        }
+    }
+}
+
+/// The exact expected cost `G_μ(x)` of a stationary policy from every state: `policy[x]` is an
+/// action id of `x` (`None`: no action). `+∞` at the states from which `μ` does not reach a
+/// goal with probability 1 (some state reachable from them under `μ` cannot reach a goal, or
+/// has no valid action). Goals are 0 (termination). Useful to judge a learned greedy policy.
+///
+/// ```
+/// use truecost::model::{Move, Problem};
+/// use truecost::stochastic::{policy_iteration::evaluate, NoiseModel, Predictability, StochasticProblem};
+/// use truecost::value::parse_rational;
+/// let one = parse_rational("1").unwrap();
+/// // 0 <-> 1 -> 2 (goal)
+/// let p = Problem::new(vec![
+///     vec![Move { successor: 1, cost: one.clone() }],
+///     vec![Move { successor: 0, cost: one.clone() }, Move { successor: 2, cost: one.clone() }],
+///     vec![],
+/// ], 0, vec![2]).unwrap();
+/// let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::parse("0.5").unwrap()).unwrap();
+/// let g = evaluate(&s, &[Some(0), Some(2), None]).unwrap();
+/// assert_eq!(g.iter().map(|v| v.to_string()).collect::<Vec<_>>(), ["5", "3", "0"]);
+/// // Commanding "back" at 1 still reaches the goal through noise: G(1) = 1 + G(0)/2 + G(1)/4.
+/// let back_and_forth = evaluate(&s, &[Some(0), Some(1), None]).unwrap();
+/// assert_eq!(back_and_forth.iter().map(|v| v.to_string()).collect::<Vec<_>>(), ["10", "8", "0"]);
+/// // Without noise it never does: +∞.
+/// let d = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::one()).unwrap();
+/// let g = evaluate(&d, &[Some(0), Some(1), None]).unwrap();
+/// assert_eq!(g.iter().map(|v| v.to_string()).collect::<Vec<_>>(), ["inf", "inf", "0"]);
+/// ```
+pub fn evaluate(
+    problem: &StochasticProblem,
+    policy: &[Option<usize>],
+) -> Result<Vec<Extended>, StochasticError> {
+    let n = problem.states();
+    let action = |x: usize| -> Option<usize> {
+        policy
+            .get(x)
+            .copied()
+            .flatten()
+            .filter(|a| problem.actions(x).contains(a))
+    };
+    // Backward reachability of the goals, and of the "stuck" states, over the policy's edges.
+    let mut into: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for x in 0..n {
+        if problem.is_goal(x) {
+            continue;
+        }
+        if let Some(a) = action(x) {
+            for o in problem.outcomes(a) {
+                into[o.successor].push(x);
+            }
+        }
+    }
+    let backward = |seeds: Vec<usize>| {
+        let mut seen = vec![false; n];
+        let mut stack = seeds;
+        for &s in &stack {
+            seen[s] = true;
+        }
+        while let Some(y) = stack.pop() {
+            for &x in &into[y] {
+                if !seen[x] && !problem.is_goal(x) {
+                    seen[x] = true;
+                    stack.push(x);
+                }
+            }
+        }
+        seen
+    };
+    let reaches_goal = backward(problem.goals().to_vec());
+    let stuck: Vec<usize> = (0..n).filter(|&x| !reaches_goal[x]).collect();
+    let improper = backward(stuck);
+    let mut finite = vec![false; n];
+    for x in 0..n {
+        finite[x] = problem.is_goal(x) || !improper[x];
+    }
+    let index = Unknowns::new(problem, &finite);
+    let costs = scaled_costs(problem)?;
+    let full: Vec<Option<usize>> = (0..n).map(action).collect();
+    let system = build_system(problem, &index, &full, &costs)?;
+    let z = solve_exact(&system).map_err(linear_error)?;
+    let den = &z.denominator * problem.cost_denominator();
+    Ok((0..n)
+        .map(|x| {
+            if problem.is_goal(x) {
+                Extended::Finite(Rational::zero())
+            } else {
+                match index.of[x] {
+                    Some(i) => {
+                        Extended::Finite(Rational::new(z.numerators[i].clone(), den.clone()))
+                    }
+                    None => Extended::Infinite,
+                }
+            }
+        })
+        .collect())
+}
+
+fn linear_error(e: LinearError) -> StochasticError {
+    match e {
+        LinearError::TooLarge => StochasticError::CostTooLarge { state: 0 },
+        e @ LinearError::TooWide { .. } => StochasticError::TooLarge(e.to_string()),
+        LinearError::Singular => {
+            unreachable!("policy evaluation of a proper policy is never singular (a truecost bug)")
+        }
+    }
+}
+
+fn finish(
+    problem: &StochasticProblem,
+    properness: &Properness,
+    index: &Unknowns,
+    z: super::linear::ExactSolution,
+    policy: Vec<Option<usize>>,
+    stats: PolicyIterationStats,
+) -> Optimum {
+    let n = problem.states();
+    let denominator = &z.denominator * problem.cost_denominator();
+    let numerators: Vec<Option<BigInt>> = (0..n)
+        .map(|x| {
+            if problem.is_goal(x) {
+                Some(BigInt::zero())
+            } else {
+                index.of[x].map(|i| z.numerators[i].clone())
+            }
+        })
+        .collect();
+    debug_assert!(numerators
+        .iter()
+        .zip(&properness.finite)
+        .all(|(v, &f)| v.is_some() == f));
+    Optimum {
+        numerators,
+        denominator,
+        solution_denominator: z.denominator,
+        reduced: std::sync::OnceLock::new(),
+        policy,
+        is_goal: (0..n).map(|x| problem.is_goal(x)).collect(),
+        action_first: (0..n).map(|x| problem.actions(x).start).collect(),
+        stats,
+    }
+}
+
+/// The unknowns: finite non-goal states, compactly numbered.
+struct Unknowns {
+    states: Vec<usize>,
+    of: Vec<Option<usize>>,
+}
+
+impl Unknowns {
+    fn new(problem: &StochasticProblem, finite: &[bool]) -> Self {
+        let mut states = Vec::new();
+        let mut of = vec![None; problem.states()];
+        for x in 0..problem.states() {
+            if finite[x] && !problem.is_goal(x) {
+                of[x] = Some(states.len());
+                states.push(x);
+            }
+        }
+        Unknowns { states, of }
+    }
+}
+
+/// Stage costs times the lcm `C` of their denominators (integers), and as `f64`.
+struct ScaledCosts {
+    exact: Vec<BigInt>,
+    float: Vec<f64>,
+}
+
+fn scaled_costs(problem: &StochasticProblem) -> Result<ScaledCosts, StochasticError> {
+    let c = Rational::from_integer(problem.cost_denominator().clone());
+    let mut exact = Vec::with_capacity(problem.action_total());
+    let mut float = Vec::with_capacity(problem.action_total());
+    for a in 0..problem.action_total() {
+        let scaled = problem.cost(a) * &c;
+        debug_assert!(scaled.is_integer());
+        exact.push(scaled.to_integer());
+        float.push(scaled.to_f64().unwrap_or(f64::MAX));
+    }
+    Ok(ScaledCosts { exact, float })
+}
+
+/// The system `s_x·G(x) − Σ_o w_o·G(o) = s_x·C·l(x, μ(x))` over the unknowns (its solution is
+/// `C·G_μ`).
+fn build_system(
+    problem: &StochasticProblem,
+    index: &Unknowns,
+    policy: &[Option<usize>],
+    costs: &ScaledCosts,
+) -> Result<SparseSystem, StochasticError> {
+    let mut system = SparseSystem::new();
+    let mut entries = Vec::new();
+    for (i, &x) in index.states.iter().enumerate() {
+        let a = policy[x].expect("a proper policy acts at every finite state");
+        let s = problem.denominator(x);
+        entries.clear();
+        entries.push((i, s as i64));
+        for (o, &w) in problem.outcomes(a).iter().zip(problem.weights(a)) {
+            if let Some(j) = index.of[o.successor] {
+                entries.push((j, -(w as i64)));
+            }
+        }
+        let rhs = (&costs.exact[a] * BigInt::from(s))
+            .to_i128()
+            .ok_or(StochasticError::CostTooLarge { state: x })?;
+        system
+            .push_row(&entries, rhs)
+            .map_err(|_| StochasticError::CostTooLarge { state: x })?;
+    }
+    Ok(system)
+}
+
+/// Step 1 of the module docs.
+fn initial_policy(
+    problem: &StochasticProblem,
+    properness: &Properness,
+) -> (Vec<Option<usize>>, &'static str) {
+    if let Some(policy) = deterministic_policy(problem, properness) {
+        if is_proper(problem, &properness.finite, &policy) {
+            return (policy, "deterministic-optimum");
+        }
+    }
+    (properness.attractor.clone(), "attractor")
+}
+
+/// The deterministic optimum over commanded moves, where safe (attractor action elsewhere).
+fn deterministic_policy(
+    problem: &StochasticProblem,
+    properness: &Properness,
+) -> Option<Vec<Option<usize>>> {
+    let n = problem.states();
+    let mut moves = Vec::with_capacity(n);
+    for x in 0..n {
+        let mut list = Vec::new();
+        for a in problem.actions(x) {
+            list.push(Move {
+                successor: problem.commanded(a)?,
+                cost: problem.cost(a).clone(),
+            });
+        }
+        moves.push(list);
+    }
+    let deterministic = Problem::new(moves, problem.initial(), problem.goals().to_vec()).ok()?;
+    let decisions = match ExactGraph::new(&deterministic) {
+        ExactGraph::Units(g) => greedy_policy(&g, &dijkstra::to_goals(&g).cost_to_go),
+        ExactGraph::Big(g) => greedy_policy(&g, &dijkstra::to_goals(&g).cost_to_go),
+    };
+    Some(
+        (0..n)
+            .map(|x| {
+                if !properness.finite[x] || problem.is_goal(x) {
+                    return None;
+                }
+                match decisions[x] {
+                    Some(Decision::Move(i)) => {
+                        let a = problem.actions(x).start + i;
+                        if properness.safe[a] {
+                            Some(a)
+                        } else {
+                            properness.attractor[x]
+                        }
+                    }
+                    _ => properness.attractor[x],
+                }
+            })
+            .collect(),
+    )
+}

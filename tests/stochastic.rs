@@ -1,0 +1,774 @@
+//! The stochastic model (SPEC §3, §7): hand-derived optima, the exact Bellman equation, γ = 1
+//! against Dijkstra, exact scaling with the step cost, optimality against an exhaustive
+//! brute-force oracle and random perturbations (proptest), the published reference counts, and
+//! bad input. Expected values come from hand derivations, independent oracles or the published
+//! table (`shared/reference/problem10.md`), never from the code under test.
+
+use num_bigint::BigInt;
+use num_traits::{One, Zero};
+use proptest::prelude::*;
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use truecost::model::{ExactGraph, Move, Problem};
+use truecost::problems::{GridLayout, StepCost};
+use truecost::solvers::dijkstra;
+use truecost::stochastic::file::{self, ProblemFile};
+use truecost::stochastic::grid::{exact_grid, exact_twin, reference_grid};
+use truecost::stochastic::policy_iteration::{evaluate, optimum};
+use truecost::stochastic::value_iteration::{
+    value_iteration_exact, value_iteration_f64, FloatModel, Schedule, ViOptions,
+};
+use truecost::stochastic::{
+    NoiseModel, Outcome, OutcomeKind, Predictability, StochasticAction, StochasticError,
+    StochasticProblem,
+};
+use truecost::value::{parse_rational, CostValue, Extended, Rational};
+
+fn q(text: &str) -> Rational {
+    parse_rational(text).unwrap()
+}
+
+fn gamma(text: &str) -> Predictability {
+    Predictability::parse(text).unwrap()
+}
+
+fn moves(list: &[&[usize]]) -> Vec<Vec<Move>> {
+    list.iter()
+        .map(|succ| {
+            succ.iter()
+                .map(|&y| Move {
+                    successor: y,
+                    cost: q("1"),
+                })
+                .collect()
+        })
+        .collect()
+}
+
+fn strings(values: &[Extended]) -> Vec<String> {
+    values.iter().map(|v| v.to_string()).collect()
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hand-derived optima.
+
+/// Line 0 – 1 – 2 (goal), unit costs. Both models coincide here (k ≤ 2). With γ:
+/// G(0) = 1 + γ G(1) + (1−γ) G(0) ⇒ G(0) = 1/γ + G(1);
+/// G(1) = 1 + (1−γ)/2 G(0) + (1−γ)/2 G(1) ⇒ G(1) = (1+γ)/(2γ²).
+/// γ = 1/2: G = (5, 3, 0). γ = 9/10: G(1) = (19/10)/(162/100) = 95/81, G(0) = 10/9 + 95/81 = 185/81.
+#[test]
+fn line_of_three_by_hand() {
+    let p = Problem::new(moves(&[&[1], &[0, 2], &[]]), 0, vec![2]).unwrap();
+    for model in [NoiseModel::Paper, NoiseModel::Reference] {
+        for (g, expected) in [("0.5", ["5", "3", "0"]), ("0.9", ["185/81", "95/81", "0"])] {
+            let s = StochasticProblem::from_deterministic(&p, model, &gamma(g)).unwrap();
+            let o = optimum(&s).unwrap();
+            assert_eq!(strings(o.cost_to_go_all()), expected, "{model:?} γ = {g}");
+            // The optimal action at 1 is the move to the goal (index 1).
+            assert_eq!(o.policy()[1], Some(truecost::model::Decision::Move(1)));
+        }
+    }
+}
+
+/// A star: centre 0 with moves to 1 (goal), 2, 3; states 2 and 3 only move back to 0.
+/// G(2) = G(3) = 1/γ + G(0) in both models. At 0, commanding the goal:
+/// paper: G(0) = 1 + (1−γ)/3 (2 G(2) + G(0)) ⇒ G(0) = (γ+2)/(3γ²);
+/// reference: stay (1−γ)/2, others (1−γ)/4 ⇒ G(0) = (1+γ)/(2γ²).
+/// γ = 1/2: paper (10/3, 0, 16/3, 16/3); reference (3, 0, 5, 5).
+#[test]
+fn star_distinguishes_the_noise_models() {
+    let p = Problem::new(moves(&[&[1, 2, 3], &[], &[0], &[0]]), 0, vec![1]).unwrap();
+    let paper =
+        StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &gamma("1/2")).unwrap();
+    assert_eq!(
+        strings(optimum(&paper).unwrap().cost_to_go_all()),
+        ["10/3", "0", "16/3", "16/3"]
+    );
+    let reference =
+        StochasticProblem::from_deterministic(&p, NoiseModel::Reference, &gamma("1/2")).unwrap();
+    assert_eq!(
+        strings(optimum(&reference).unwrap().cost_to_go_all()),
+        ["3", "0", "5", "5"]
+    );
+    // The outcome lists (commanded, other moves in order, stay) with exact probabilities.
+    let a = paper.actions(0).start; // command the goal
+    let listed: Vec<(usize, String, OutcomeKind)> = paper
+        .outcomes(a)
+        .iter()
+        .map(|o| (o.successor, o.probability.to_string(), o.kind))
+        .collect();
+    assert_eq!(
+        listed,
+        vec![
+            (1, "1/2".into(), OutcomeKind::Commanded),
+            (2, "1/6".into(), OutcomeKind::Other(1)),
+            (3, "1/6".into(), OutcomeKind::Other(2)),
+            (0, "1/6".into(), OutcomeKind::Stay),
+        ]
+    );
+    let listed: Vec<String> = reference
+        .outcomes(a)
+        .iter()
+        .map(|o| o.probability.to_string())
+        .collect();
+    assert_eq!(listed, ["1/2", "1/8", "1/8", "1/4"]);
+}
+
+/// Paper problem 16 is a corridor 226 – 227 – … – 231 (goal), x1 = 227. With γ = 1/2 both
+/// models agree (every state has k ≤ 2 moves). Commanding "right": an interior state gives
+/// ¾·G(i) = 1 + ½·G(i+1) + ¼·G(i−1), the end 226 gives G(226) = 2 + G(227). Solving by hand
+/// from the goal: G = 129/8, 113/8, 89/8, 61/8, 31/8, 0.
+#[test]
+fn paper_problem_16_corridor_by_hand() {
+    for model in [NoiseModel::Paper, NoiseModel::Reference] {
+        let s = exact_grid(16, StepCost::Unit, model, &gamma("0.5")).unwrap();
+        let o = optimum(&s).unwrap();
+        let g: Vec<String> = (226..=231).map(|x| o.cost_to_go(x).to_string()).collect();
+        assert_eq!(
+            g,
+            ["129/8", "113/8", "89/8", "61/8", "31/8", "0"],
+            "{model:?}"
+        );
+        assert_eq!(s.initial(), 227);
+    }
+}
+
+/// A trap: from 0 the goal 1 is one move away but noise may push into the absorbing state 2.
+/// With γ < 1 no policy reaches the goal with probability 1 from 0: G*(0) = +∞. With γ = 1
+/// it is 1. A state without any action is a dead end (+∞).
+#[test]
+fn traps_and_dead_ends_are_infinite() {
+    let p = Problem::new(moves(&[&[1, 2], &[], &[2], &[]]), 0, vec![1]).unwrap();
+    let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &gamma("0.999")).unwrap();
+    assert_eq!(
+        strings(optimum(&s).unwrap().cost_to_go_all()),
+        ["inf", "0", "inf", "inf"]
+    );
+    let d = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::one())
+        .unwrap();
+    assert_eq!(
+        strings(optimum(&d).unwrap().cost_to_go_all()),
+        ["1", "0", "inf", "inf"]
+    );
+}
+
+/// Zero-cost cycle: 0 ⇄ 1 at cost 0, 1 → 2 (goal) at cost 0, 0 → 2 at cost 5. The policy
+/// that circles forever costs 0 per step but never reaches the goal: it is not proper, its true
+/// cost is +∞. G*(0) = G*(1) = 0 via the free move to the goal, reached with probability 1.
+#[test]
+fn zero_cost_cycles_do_not_fool_policy_iteration() {
+    let actions = vec![
+        vec![
+            StochasticAction {
+                cost: q("0"),
+                outcomes: vec![out(1, "1")],
+            },
+            StochasticAction {
+                cost: q("5"),
+                outcomes: vec![out(2, "1")],
+            },
+        ],
+        vec![
+            StochasticAction {
+                cost: q("0"),
+                outcomes: vec![out(0, "1")],
+            },
+            StochasticAction {
+                cost: q("0"),
+                outcomes: vec![out(2, "1/2"), out(1, "1/2")],
+            },
+        ],
+        vec![],
+    ];
+    let s = StochasticProblem::new(actions, 0, vec![2]).unwrap();
+    let o = optimum(&s).unwrap();
+    assert_eq!(strings(o.cost_to_go_all()), ["0", "0", "0"]);
+    // The reported policy is proper: its exact evaluation is finite everywhere.
+    let g = evaluate(&s, o.policy_actions()).unwrap();
+    assert_eq!(strings(&g), ["0", "0", "0"]);
+    // Circling 0 → 1 → 0 is improper: +∞.
+    let circling = evaluate(&s, &[Some(0), Some(2), None]).unwrap();
+    assert_eq!(strings(&circling), ["inf", "inf", "0"]);
+}
+
+fn out(to: usize, p: &str) -> Outcome {
+    Outcome {
+        successor: to,
+        probability: q(p),
+        kind: OutcomeKind::Listed,
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The exact Bellman equation, checked with plain big-rational arithmetic (an oracle that shares
+// nothing with the solver but the problem).
+
+fn assert_bellman(s: &StochasticProblem, g: &[Extended], label: &str) {
+    for x in 0..s.states() {
+        if s.is_goal(x) {
+            assert_eq!(
+                g[x],
+                Extended::Finite(Rational::zero()),
+                "{label}: goal {x}"
+            );
+            continue;
+        }
+        let best = s
+            .actions(x)
+            .map(|a| {
+                let mut sum = Extended::Finite(s.cost(a).clone());
+                for o in s.outcomes(a) {
+                    sum = match (&sum, &g[o.successor]) {
+                        (Extended::Finite(t), Extended::Finite(v)) => {
+                            Extended::Finite(t + &o.probability * v)
+                        }
+                        _ => Extended::Infinite,
+                    };
+                }
+                sum
+            })
+            .min()
+            .unwrap_or(Extended::Infinite);
+        match &g[x] {
+            Extended::Finite(_) => assert_eq!(best, g[x], "{label}: state {x}"),
+            // +∞ states: every action may reach a +∞ state (checked), and by the properness
+            // analysis no policy reaches a goal surely (checked in the brute-force proptest).
+            Extended::Infinite => assert_eq!(best, Extended::Infinite, "{label}: state {x}"),
+        }
+    }
+}
+
+#[test]
+fn exact_optimum_satisfies_the_bellman_equation_exactly_on_paper_problems() {
+    // Sized for the test profile: values with a few hundred digits.
+    for (id, g) in [
+        (10, "0.5"),
+        (10, "0.7"),
+        (3, "0.9"),
+        (8, "0.99"),
+        (16, "0.999"),
+        (6, "0.9"),
+    ] {
+        for model in [NoiseModel::Paper, NoiseModel::Reference] {
+            let s = exact_grid(id, StepCost::Unit, model, &gamma(g)).unwrap();
+            let o = optimum(&s).unwrap();
+            assert_bellman(
+                &s,
+                o.cost_to_go_all(),
+                &format!("problem {id}, {model:?}, γ = {g}"),
+            );
+            // The reported policy attains G*: its own exact evaluation equals G*.
+            assert_eq!(
+                evaluate(&s, o.policy_actions()).unwrap(),
+                o.cost_to_go_all()
+            );
+        }
+    }
+}
+
+#[test]
+fn gamma_one_equals_the_deterministic_optimum_of_dijkstra() {
+    for id in 0..19 {
+        for step in [StepCost::Unit, StepCost::Euclidean] {
+            let problem = GridLayout::exact(id).unwrap().to_problem(step);
+            let ExactGraph::Units(graph) = ExactGraph::new(&problem) else {
+                panic!("grids fit in units")
+            };
+            let d = dijkstra::to_goals(&graph);
+            let expected: Vec<Extended> = d
+                .cost_to_go
+                .iter()
+                .map(|v| v.to_extended(graph.unit()).unwrap())
+                .collect();
+            for model in [NoiseModel::Paper, NoiseModel::Reference] {
+                let s =
+                    StochasticProblem::from_deterministic(&problem, model, &Predictability::one())
+                        .unwrap();
+                let o = optimum(&s).unwrap();
+                assert_eq!(
+                    o.cost_to_go_all(),
+                    expected.as_slice(),
+                    "problem {id} {step:?}"
+                );
+            }
+        }
+    }
+}
+
+/// G* is linear in the stage costs: Euclidean (800/19 per move) = 800/19 × unit, exactly, at
+/// every state. Compared on the unreduced fractions by cross-multiplication.
+#[test]
+fn values_scale_exactly_with_the_step_cost() {
+    for (id, g) in [(10, "0.9"), (0, "0.99"), (3, "0.5"), (13, "0.7")] {
+        for model in [NoiseModel::Paper, NoiseModel::Reference] {
+            let unit = optimum(&exact_grid(id, StepCost::Unit, model, &gamma(g)).unwrap()).unwrap();
+            let euclid =
+                optimum(&exact_grid(id, StepCost::Euclidean, model, &gamma(g)).unwrap()).unwrap();
+            for x in 0..400 {
+                match (unit.unreduced(x), euclid.unreduced(x)) {
+                    (Some((nu, du)), Some((ne, de))) => assert_eq!(
+                        ne * du * BigInt::from(19),
+                        nu * de * BigInt::from(800),
+                        "problem {id}, state {x}"
+                    ),
+                    (None, None) => {}
+                    _ => panic!("problem {id}, state {x}: finite in one, infinite in the other"),
+                }
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Optimality: exhaustive brute force on small random problems, perturbations on grids.
+
+/// A dense exact Gaussian elimination (the oracle's own solver).
+fn solve_dense(mut a: Vec<Vec<Rational>>, mut b: Vec<Rational>) -> Vec<Rational> {
+    let n = b.len();
+    for k in 0..n {
+        let pivot = (k..n).find(|&i| !a[i][k].is_zero()).expect("non-singular");
+        a.swap(k, pivot);
+        b.swap(k, pivot);
+        for i in 0..n {
+            if i != k && !a[i][k].is_zero() {
+                let f = &a[i][k] / &a[k][k];
+                let pivot_row = a[k].clone();
+                for (aij, akj) in a[i].iter_mut().zip(&pivot_row).skip(k) {
+                    *aij -= &f * akj;
+                }
+                let t = &f * &b[k];
+                b[i] -= t;
+            }
+        }
+    }
+    (0..n).map(|i| &b[i] / &a[i][i]).collect()
+}
+
+/// The exact cost of a stationary policy by the oracle: a state is proper if every state it
+/// can reach under the policy can reach a goal; proper states solve `G = l + P G` densely.
+fn oracle_evaluate(s: &StochasticProblem, policy: &[Option<usize>]) -> Vec<Extended> {
+    let n = s.states();
+    let succ = |x: usize| -> Vec<usize> {
+        if s.is_goal(x) {
+            return vec![];
+        }
+        policy[x].map_or(vec![], |a| {
+            s.outcomes(a).iter().map(|o| o.successor).collect()
+        })
+    };
+    let reach = |x: usize| {
+        let mut seen = vec![false; n];
+        let mut stack = vec![x];
+        seen[x] = true;
+        while let Some(v) = stack.pop() {
+            for w in succ(v) {
+                if !seen[w] {
+                    seen[w] = true;
+                    stack.push(w);
+                }
+            }
+        }
+        seen
+    };
+    let reaches_goal: Vec<bool> = (0..n)
+        .map(|x| reach(x).iter().enumerate().any(|(v, &r)| r && s.is_goal(v)))
+        .collect();
+    let proper: Vec<bool> = (0..n)
+        .map(|x| {
+            s.is_goal(x)
+                || (policy[x].is_some()
+                    && reach(x)
+                        .iter()
+                        .enumerate()
+                        .all(|(v, &r)| !r || reaches_goal[v]))
+        })
+        .collect();
+    let unknowns: Vec<usize> = (0..n).filter(|&x| proper[x] && !s.is_goal(x)).collect();
+    let pos = |x: usize| unknowns.iter().position(|&u| u == x);
+    let m = unknowns.len();
+    let mut a = vec![vec![Rational::zero(); m]; m];
+    let mut b = vec![Rational::zero(); m];
+    for (i, &x) in unknowns.iter().enumerate() {
+        let act = policy[x].unwrap();
+        a[i][i] += Rational::one();
+        b[i] = s.cost(act).clone();
+        for o in s.outcomes(act) {
+            if let Some(j) = pos(o.successor) {
+                a[i][j] -= &o.probability;
+            }
+        }
+    }
+    let z = solve_dense(a, b);
+    (0..n)
+        .map(|x| {
+            if s.is_goal(x) {
+                Extended::Finite(Rational::zero())
+            } else {
+                pos(x).map_or(Extended::Infinite, |i| Extended::Finite(z[i].clone()))
+            }
+        })
+        .collect()
+}
+
+/// All stationary deterministic policies (each non-goal state picks one of its actions).
+fn all_policies(s: &StochasticProblem) -> Vec<Vec<Option<usize>>> {
+    let mut out = vec![vec![None; s.states()]];
+    for x in 0..s.states() {
+        if s.is_goal(x) || s.actions(x).is_empty() {
+            continue;
+        }
+        out = out
+            .into_iter()
+            .flat_map(|p| {
+                s.actions(x).map(move |a| {
+                    let mut q = p.clone();
+                    q[x] = Some(a);
+                    q
+                })
+            })
+            .collect();
+    }
+    out
+}
+
+/// Random small stochastic problems: costs in {0, 1/2, 1, 2} (zero-cost cycles included),
+/// 1–3 outcomes with random weights, dead ends and traps allowed.
+fn small_problem() -> impl Strategy<Value = StochasticProblem> {
+    (2usize..=5).prop_flat_map(|n| {
+        let action = (
+            0usize..4,
+            proptest::collection::vec((0..n, 1u32..=4), 1..=3),
+        );
+        let state = proptest::collection::vec(action, 0..=3);
+        (Just(n), proptest::collection::vec(state, n), 0..n, 0..n).prop_map(
+            |(n, states, initial, goal)| {
+                let costs = ["0", "1/2", "1", "2"];
+                let actions = states
+                    .into_iter()
+                    .map(|list| {
+                        list.into_iter()
+                            .map(|(c, outs)| {
+                                let total: u32 = outs.iter().map(|o| o.1).sum();
+                                StochasticAction {
+                                    cost: q(costs[c]),
+                                    outcomes: outs
+                                        .iter()
+                                        .map(|&(to, w)| out(to, &format!("{w}/{total}")))
+                                        .collect(),
+                                }
+                            })
+                            .collect()
+                    })
+                    .collect();
+                let _ = n;
+                StochasticProblem::new(actions, initial, vec![goal]).unwrap()
+            },
+        )
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    /// G*(x) = min over every stationary policy proper at x of its exact cost (exhaustive), and
+    /// the reported policy attains it at every state.
+    #[test]
+    fn optimum_equals_exhaustive_brute_force(s in small_problem()) {
+        let o = optimum(&s).unwrap();
+        let mut best = vec![Extended::Infinite; s.states()];
+        for p in all_policies(&s) {
+            for (x, v) in oracle_evaluate(&s, &p).into_iter().enumerate() {
+                if v < best[x] {
+                    best[x] = v;
+                }
+            }
+        }
+        prop_assert_eq!(o.cost_to_go_all(), best.as_slice());
+        prop_assert_eq!(oracle_evaluate(&s, o.policy_actions()), best);
+        assert_bellman(&s, o.cost_to_go_all(), "random problem");
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
+
+    /// Randomly perturbing the optimal policy of a paper problem never lowers any state's
+    /// exact expected cost (evaluations by the library, each re-verified by the oracle's
+    /// plug-in check of the policy equation).
+    #[test]
+    fn perturbing_the_optimal_policy_never_helps(
+        seed in any::<u64>(),
+        id in prop::sample::select(vec![3usize, 8, 16]),
+        model in prop::sample::select(vec![NoiseModel::Paper, NoiseModel::Reference]),
+        g in prop::sample::select(vec!["0.5", "0.9"]),
+    ) {
+        let s = exact_grid(id, StepCost::Unit, model, &gamma(g)).unwrap();
+        let o = optimum(&s).unwrap();
+        let star = o.cost_to_go_all();
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let mut policy = o.policy_actions().to_vec();
+        let candidates: Vec<usize> = (0..s.states()).filter(|&x| policy[x].is_some()).collect();
+        for _ in 0..1 + rng.random_range(0..5usize) {
+            let x = candidates[rng.random_range(0..candidates.len())];
+            let r = s.actions(x);
+            policy[x] = Some(r.start + rng.random_range(0..r.len()));
+        }
+        let g = evaluate(&s, &policy).unwrap();
+        for x in 0..s.states() {
+            prop_assert!(g[x] >= star[x], "state {}: {} < {}", x, g[x], star[x]);
+            // Oracle check of the policy equation where finite.
+            if let (Extended::Finite(v), Some(a)) = (&g[x], policy[x]) {
+                let mut sum = s.cost(a).clone();
+                for o in s.outcomes(a) {
+                    let Extended::Finite(w) = &g[o.successor] else { panic!("finite state reaches +inf") };
+                    sum += &o.probability * w;
+                }
+                prop_assert_eq!(&sum, v);
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Value iteration.
+
+/// The published counts (`shared/reference/problem10.md`): reference noise, reference mode.
+#[test]
+fn problem_10_reference_stochastic_vi_counts_match_the_published_table() {
+    let published = [
+        ("0.999", Schedule::Asynchronous, 58, 178292),
+        ("0.999", Schedule::Synchronous, 94, 288956),
+        ("0.99", Schedule::Asynchronous, 69, 212106),
+        ("0.99", Schedule::Synchronous, 112, 344288),
+    ];
+    for (g, schedule, sweeps, counted) in published {
+        let grid = reference_grid(10, NoiseModel::Reference, &gamma(g)).unwrap();
+        let run = value_iteration_f64(&grid.problem, &grid.float, &ViOptions::reference(schedule));
+        assert_eq!(
+            (run.sweeps, run.reference_counted),
+            (sweeps, counted),
+            "γ = {g} {schedule:?}"
+        );
+        assert!(run.converged);
+        // The stopped values are close to the exact optimum of the exact twin, not equal.
+        let twin = exact_twin(10, NoiseModel::Reference, &gamma(g))
+            .unwrap()
+            .unwrap();
+        let o = optimum(&twin).unwrap();
+        let d = o.distance(twin.initial(), |x| Rational::from_float(run.cost_to_go[x]));
+        assert!(d.max_abs < q("0.01"), "γ = {g}: {}", d.max_abs);
+        assert!(!d.max_abs.is_zero());
+    }
+}
+
+#[test]
+fn exact_value_iteration_from_below_is_a_lower_bound_that_converges() {
+    let s = exact_grid(3, StepCost::Unit, NoiseModel::Paper, &gamma("0.9")).unwrap();
+    let o = optimum(&s).unwrap();
+    let star = o.cost_to_go_all();
+    for schedule in [Schedule::Synchronous, Schedule::Asynchronous] {
+        let mut previous_sweeps = 0;
+        for tol in ["1", "0.1", "0.001"] {
+            let opts = ViOptions::from_below(schedule, q(tol), 10_000).unwrap();
+            let run = value_iteration_exact(&s, &opts);
+            assert!(run.converged);
+            assert!(run.sweeps >= previous_sweeps);
+            previous_sweeps = run.sweeps;
+            for (x, bound) in star.iter().enumerate() {
+                assert!(
+                    &run.cost_to_go[x] <= bound,
+                    "{schedule:?} tol {tol} state {x}"
+                );
+            }
+            // f64 value iteration takes the same number of sweeps here.
+            let f = value_iteration_f64(&s, &FloatModel::nearest(&s), &opts);
+            assert_eq!(f.sweeps, run.sweeps);
+        }
+    }
+}
+
+#[test]
+fn exact_reference_rules_give_the_published_sweeps_too() {
+    // The exact counterpart (exact geometry, 800/19, exact γ and 10^30) of the reference VI.
+    let twin = exact_twin(10, NoiseModel::Reference, &gamma("0.999"))
+        .unwrap()
+        .unwrap();
+    let run = value_iteration_exact(&twin, &ViOptions::reference(Schedule::Asynchronous));
+    assert_eq!((run.sweeps, run.reference_counted), (58, 178292));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sampling interface for learners.
+
+#[test]
+fn sampling_follows_the_exact_probabilities() {
+    let s = exact_grid(10, StepCost::Unit, NoiseModel::Reference, &gamma("0.7")).unwrap();
+    let x = 41;
+    let a = s.actions(x).start;
+    let probs: Vec<f64> = s.outcomes(a).iter().map(|o| o.probability_f64()).collect();
+    assert_eq!(*s.cumulative(a).last().unwrap(), 1.0);
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let draws = 200_000;
+    let mut counts = vec![0usize; s.outcomes(a).len()];
+    for _ in 0..draws {
+        let u: f64 = rng.random();
+        let y = s.sample(a, u);
+        let i = s.outcomes(a).iter().position(|o| o.successor == y).unwrap();
+        counts[i] += 1;
+    }
+    for (c, p) in counts.iter().zip(&probs) {
+        let f = *c as f64 / draws as f64;
+        assert!((f - p).abs() < 0.005, "frequency {f} vs probability {p}");
+    }
+}
+
+trait ProbabilityF64 {
+    fn probability_f64(&self) -> f64;
+}
+impl ProbabilityF64 for Outcome {
+    fn probability_f64(&self) -> f64 {
+        num_traits::ToPrimitive::to_f64(&self.probability).unwrap()
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Files and bad input.
+
+#[test]
+fn stochastic_files_round_trip_and_keep_their_optimum() {
+    // A grid has isolated non-goal nodes (no action), which files refuse; give them a self-loop.
+    let mut p = GridLayout::exact(16).unwrap();
+    for (v, list) in p.neighbours.iter_mut().enumerate() {
+        if list.is_empty() && v != p.goal {
+            list.push(v);
+        }
+    }
+    let det = p.to_problem(StepCost::Euclidean);
+    let s = StochasticProblem::from_deterministic(&det, NoiseModel::Paper, &gamma("0.8")).unwrap();
+    let text = file::to_json(&s, Some("problem 16"));
+    let ProblemFile::Stochastic(back) = file::from_json(&text).unwrap() else {
+        panic!("a stochastic file")
+    };
+    for a in 0..s.action_total() {
+        let o1: Vec<_> = s
+            .outcomes(a)
+            .iter()
+            .map(|o| (o.successor, o.probability.clone()))
+            .collect();
+        let o2: Vec<_> = back
+            .outcomes(a)
+            .iter()
+            .map(|o| (o.successor, o.probability.clone()))
+            .collect();
+        assert_eq!(o1, o2);
+        assert_eq!(s.cost(a), back.cost(a));
+    }
+    assert_eq!(
+        optimum(&s).unwrap().cost_to_go_all(),
+        optimum(&back).unwrap().cost_to_go_all()
+    );
+}
+
+#[test]
+fn bad_gamma_is_rejected_clearly() {
+    for text in ["0", "-0.1", "1.0001", "2", "abc", "", "0.5.1", "1/0"] {
+        let e = Predictability::parse(text).unwrap_err();
+        let msg = e.to_string();
+        assert!(msg.contains("gamma"), "{text}: {msg}");
+        assert_eq!(msg.lines().count(), 1);
+    }
+    assert!(matches!(
+        Predictability::parse("1.5"),
+        Err(StochasticError::GammaRange(_))
+    ));
+    assert!(Predictability::parse("1").unwrap().is_deterministic());
+    assert!(Predictability::parse("1e-3").is_ok());
+}
+
+#[test]
+fn bad_stochastic_files_are_rejected_clearly() {
+    let cases = [
+        (
+            r#"[{"to":1,"p":"0.5"},{"to":0,"p":"0.4"}]"#,
+            "sum to 9/10, not 1",
+        ),
+        (
+            r#"[{"to":1,"p":"0.5"},{"to":0,"p":"0.6"}]"#,
+            "sum to 11/10, not 1",
+        ),
+        (r#"[{"to":1,"p":"1"},{"to":0,"p":"0"}]"#, "not in (0, 1]"),
+        (
+            r#"[{"to":1,"p":"1.5"},{"to":0,"p":"-0.5"}]"#,
+            "not in (0, 1]",
+        ),
+        (r#"[{"to":1,"p":0.5},{"to":0,"p":"0.5"}]"#, "not valid"),
+        (r#"[{"to":1,"p":"half"}]"#, "not an exact number"),
+        (r#"[{"to":9,"p":"1"}]"#, "does not exist"),
+        (r#"[]"#, "no outcomes"),
+    ];
+    for (outcomes, expect) in cases {
+        let text = format!(
+            r#"{{"initial":0,"goals":[1],"actions":[[{{"cost":"1","outcomes":{outcomes}}}],[]]}}"#
+        );
+        let msg = file::from_json(&text).unwrap_err().to_string();
+        assert!(msg.contains(expect), "{outcomes}: {msg}");
+        assert_eq!(msg.lines().count(), 1);
+    }
+    let both = r#"{"initial":0,"goals":[1],"actions":[[{"to":1,"cost":"1","outcomes":[{"to":1,"p":"1"}]}],[]]}"#;
+    assert!(file::from_json(both)
+        .unwrap_err()
+        .to_string()
+        .contains("exactly one of them"));
+    let negative =
+        r#"{"initial":0,"goals":[1],"actions":[[{"cost":"-1","outcomes":[{"to":1,"p":"1"}]}],[]]}"#;
+    assert!(file::from_json(negative)
+        .unwrap_err()
+        .to_string()
+        .contains("negative"));
+    let empty = r#"{"initial":0,"goals":[2],"actions":[[{"cost":"1","outcomes":[{"to":2,"p":"1"}]}],[],[]]}"#;
+    assert!(file::from_json(empty)
+        .unwrap_err()
+        .to_string()
+        .contains("empty action set"));
+    let tag = r#"{"format":"x/9","initial":0,"goals":[1],"actions":[[{"cost":"1","outcomes":[{"to":1,"p":"1"}]}],[]]}"#;
+    assert!(file::from_json(tag)
+        .unwrap_err()
+        .to_string()
+        .contains("unsupported format"));
+}
+
+#[test]
+fn bad_tolerance_is_rejected() {
+    assert!(matches!(
+        ViOptions::from_below(Schedule::Synchronous, q("-1"), 10),
+        Err(StochasticError::Tolerance(_))
+    ));
+}
+
+#[test]
+fn huge_probability_denominators_are_refused_not_wrapped() {
+    let p = Problem::new(moves(&[&[1], &[]]), 0, vec![1]).unwrap();
+    let g = gamma("0.99999999999999999999"); // 20 decimals: denominator 10^20 > 2^62
+    let e = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &g).unwrap_err();
+    assert!(e.to_string().contains("exceeds 2^62"), "{e}");
+}
+
+#[test]
+fn costs_beyond_the_exact_solvers_limits_are_refused_clearly() {
+    let text = r#"{"initial":0,"goals":[1],"actions":[[{"cost":"1e40","outcomes":[{"to":1,"p":"1/2"},{"to":0,"p":"1/2"}]}],[]]}"#;
+    let ProblemFile::Stochastic(s) = file::from_json(text).unwrap() else {
+        panic!("a stochastic file")
+    };
+    let e = optimum(&s).unwrap_err().to_string();
+    assert!(e.contains("exceed 2^100"), "{e}");
+    // Just inside the limit the optimum is exact: G = c + G/2 ⇒ G = 2c.
+    let text = text.replace("1e40", "1e25");
+    let ProblemFile::Stochastic(s) = file::from_json(&text).unwrap() else {
+        panic!("a stochastic file")
+    };
+    assert_eq!(
+        optimum(&s).unwrap().cost_to_go(0).to_string(),
+        format!("2{}", "0".repeat(25))
+    );
+}

@@ -202,3 +202,86 @@ fn bad_outputs_and_sizes_are_clear_errors() {
         assert!(err.contains(expect), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn visits_overlay_counts_moves_of_a_seeded_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("v.svg");
+    let args = [
+        "--problem",
+        "0",
+        "--overlay",
+        "visits",
+        "--seed",
+        "3",
+        "--epsilon",
+        "1",
+    ];
+    let svg = render(&args, &out);
+    let visited = count(&svg, "visits");
+    // ε = 1 explores until every state is optimal, so it applies moves all over the grid:
+    // Problem 0 has 760 moves and a run that converged must have tried many of them.
+    assert!(visited > 100 && visited <= 760, "{visited}");
+    assert!(svg.contains("seed 3"));
+    assert!(count(&svg, "colorbar") > 0);
+    // Same seed, same figure; another seed, another figure.
+    let again = render(&args, &dir.path().join("v2.svg"));
+    assert_eq!(svg, again);
+    let other = render(
+        &[
+            "--problem",
+            "0",
+            "--overlay",
+            "visits",
+            "--seed",
+            "4",
+            "--epsilon",
+            "1",
+        ],
+        &dir.path().join("v3.svg"),
+    );
+    assert_ne!(svg, other);
+}
+
+#[test]
+fn reproduce_writes_the_plots() {
+    let dir = tempfile::tempdir().unwrap();
+    let plots = dir.path().join("plots");
+    Command::cargo_bin("truecost")
+        .unwrap()
+        .args([
+            "reproduce",
+            "deterministic",
+            "--problems",
+            "0,3",
+            "--samples",
+            "1",
+            "--episodes",
+            "30",
+            "--max-steps",
+            "300",
+            "--quiet",
+            "--seed",
+            "5",
+            "--format",
+            "json",
+            "--plots",
+        ])
+        .arg(&plots)
+        .assert()
+        .success();
+    for stem in ["goal_discovery_vs_epsilon", "convergence_rate_vs_epsilon"] {
+        let svg = std::fs::read_to_string(plots.join(format!("{stem}.svg"))).unwrap();
+        // Problem 0 (17 moves) is easy and Problem 3 (90 moves) hard: one series each.
+        assert_eq!(count(&svg, "series"), 2, "{stem}");
+        assert!(
+            svg.contains("easy (0)") && svg.contains("hard (3)"),
+            "{stem}"
+        );
+        assert!(svg.contains("seed 5"), "{stem}");
+        assert!(svg.contains("exact"), "{stem}: names the model");
+        let png =
+            png::Decoder::new(std::fs::File::open(plots.join(format!("{stem}.png"))).unwrap());
+        assert_eq!(png.read_info().unwrap().info().width, 1000);
+    }
+}

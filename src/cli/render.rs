@@ -4,12 +4,16 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 
+use truecost::experiments::visits::visit_counts;
 use truecost::figures::render::{draw, Overlay};
 use truecost::figures::{file_scene, grid_scene};
+use truecost::learning::q_learning::LearningValue;
 use truecost::model::file;
+use truecost::model::{ExactGraph, Graph};
 use truecost::planning::{plan_exact, plan_reference, Algorithm, Mode, PlanReport};
 use truecost::problems::{GridLayout, StepCost};
-use truecost::value::Extended;
+use truecost::solvers::dijkstra;
+use truecost::value::{parse_rational, CostValue, Extended};
 
 /// What to draw over the problem.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -22,6 +26,9 @@ pub enum OverlayKind {
     Values,
     /// Policy arrows.
     Policy,
+    /// How often each move was applied in a seeded derandomized Q-learning run (ρ = 1,
+    /// Q₀ = 0, random exploration with --epsilon).
+    Visits,
 }
 
 #[derive(Args, Debug)]
@@ -48,6 +55,18 @@ pub struct RenderArgs {
     /// Height in pixels.
     #[arg(long, default_value_t = 900)]
     height: u32,
+    /// Visits overlay: exploration probability ε of the Q-learning run (exact decimal).
+    #[arg(long, default_value = "0.9", value_name = "E")]
+    epsilon: String,
+    /// Visits overlay: seed of the Q-learning run.
+    #[arg(long, default_value_t = 0, value_name = "S")]
+    seed: u64,
+    /// Visits overlay: episodes of the Q-learning run.
+    #[arg(long, default_value_t = 1000, value_name = "N")]
+    episodes: u32,
+    /// Visits overlay: steps per episode.
+    #[arg(long, default_value_t = 3000, value_name = "N")]
+    max_steps: u32,
     /// Output file; the format follows its extension (.svg or .png).
     #[arg(long, value_name = "FILE.svg|FILE.png")]
     out: PathBuf,
@@ -55,6 +74,7 @@ pub struct RenderArgs {
 
 /// Runs the command; returns the message printed on success.
 pub fn run(args: &RenderArgs) -> Result<String, String> {
+    let mut visits: Option<PairCounts> = None;
     let (mut scene, report, what) = match (&args.file, args.problem) {
         (Some(path), _) => {
             if args.mode == Mode::Reference {
@@ -79,7 +99,9 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
             Mode::Exact => {
                 let layout = GridLayout::exact(id).map_err(|e| e.to_string())?;
                 let step = args.step_cost.unwrap_or_default();
-                let report = plan_exact(&layout.to_problem(step), Algorithm::Dijkstra, false);
+                let problem = layout.to_problem(step);
+                let report = plan_exact(&problem, Algorithm::Dijkstra, false);
+                visits = exact_visits(&problem, args)?;
                 let step = match step {
                     StepCost::Unit => "unit step costs",
                     StepCost::Euclidean => "step cost 800/19",
@@ -108,6 +130,12 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
     };
     scene.title = what;
     scene.caption = caption(&report, args.overlay);
+    if args.overlay == OverlayKind::Visits {
+        scene.caption = format!(
+            "{} (ε = {}, seed {}, ρ = 1, Q0 = 0, up to {} episodes x {} steps, stops at convergence)",
+            scene.caption, args.epsilon, args.seed, args.episodes, args.max_steps
+        );
+    }
     let overlay = match args.overlay {
         OverlayKind::None => Overlay::None,
         OverlayKind::Path => {
@@ -127,6 +155,7 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
             label: "G*".into(),
         },
         OverlayKind::Policy => Overlay::Policy(report.policy.clone()),
+        OverlayKind::Visits => Overlay::Visits(visits.unwrap_or_default()),
     };
     let canvas = draw(&scene, &overlay, args.width, args.height).map_err(|e| e.to_string())?;
     canvas.save(&args.out).map_err(|e| e.to_string())?;
@@ -146,6 +175,57 @@ fn value_for_colour(text: &str) -> Option<f64> {
     }
 }
 
+/// Visit counts per unordered move `{a, b}`.
+type PairCounts = Vec<((usize, usize), u64)>;
+
+/// Visit counts on the exact model (the narrowest exact representation), if asked for.
+fn exact_visits(
+    problem: &truecost::model::Problem,
+    args: &RenderArgs,
+) -> Result<Option<PairCounts>, String> {
+    if args.overlay != OverlayKind::Visits {
+        return Ok(None);
+    }
+    Ok(Some(match ExactGraph::new(problem) {
+        ExactGraph::Units(g) => pair_counts(&g, learn_visits(&g, args)?),
+        ExactGraph::Big(g) => pair_counts(&g, learn_visits(&g, args)?),
+    }))
+}
+
+fn learn_visits<V: LearningValue>(
+    graph: &Graph<V>,
+    args: &RenderArgs,
+) -> Result<Vec<Vec<u64>>, String> {
+    let epsilon = parse_rational(&args.epsilon).map_err(|e| format!("--epsilon: {e}"))?;
+    let optimum = dijkstra::to_goals(graph).cost_to_go;
+    visit_counts(
+        graph,
+        &optimum,
+        &epsilon,
+        args.seed,
+        args.episodes,
+        args.max_steps,
+    )
+    .map_err(|e| e.to_string())
+}
+
+/// Per-move counts summed over both directions of each unordered pair.
+fn pair_counts<V: CostValue>(graph: &Graph<V>, counts: Vec<Vec<u64>>) -> PairCounts {
+    let mut pairs: std::collections::BTreeMap<(usize, usize), u64> = Default::default();
+    for (v, row) in counts.iter().enumerate() {
+        for ((y, _), &c) in graph.edges(v).zip(row) {
+            if y != v {
+                let key = (
+                    graph.origin(v).min(graph.origin(y)),
+                    graph.origin(v).max(graph.origin(y)),
+                );
+                *pairs.entry(key).or_default() += c;
+            }
+        }
+    }
+    pairs.into_iter().collect()
+}
+
 fn caption(report: &PlanReport, overlay: OverlayKind) -> String {
     let g = if report.reachable {
         format!("G*(x1) = {}", report.cost_to_go_initial)
@@ -161,6 +241,7 @@ fn caption(report: &PlanReport, overlay: OverlayKind) -> String {
         OverlayKind::Path => "; overlay: the optimal path",
         OverlayKind::Values => "; overlay: optimal cost-to-go G*",
         OverlayKind::Policy => "; overlay: the optimal policy",
+        OverlayKind::Visits => "; overlay: move visits of one seeded Q-learning run",
     };
     format!(
         "{g} ({}, {values}){overlay}; grey segments: allowed moves",

@@ -58,6 +58,10 @@ struct DeterministicArgs {
     /// Also write deterministic.md, deterministic.csv and deterministic.json into DIR.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// Also write the paper's plots (goal discovery and convergence rate against ε) into DIR,
+    /// as SVG and PNG.
+    #[arg(long, value_name = "DIR")]
+    plots: Option<PathBuf>,
     /// Output format on stdout.
     #[arg(long, value_enum, default_value_t = ListFormat::Text)]
     format: ListFormat,
@@ -122,7 +126,28 @@ fn deterministic_command(args: &DeterministicArgs) -> Result<String, String> {
             write_file(&dir.join(name), &render(&report, format))?;
         }
     }
+    if let Some(dir) = &args.plots {
+        write_plots(dir, truecost::figures::plots::deterministic(&report))?;
+    }
     Ok(render(&report, args.format))
+}
+
+/// Writes each chart as `DIR/stem.svg` and `DIR/stem.png`.
+fn write_plots(
+    dir: &Path,
+    charts: Vec<(String, truecost::figures::chart::LineChart)>,
+) -> Result<(), String> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| format!("cannot create plot directory {}: {e}", dir.display()))?;
+    for (stem, chart) in charts {
+        let canvas = chart.draw(1000, 650).map_err(|e| e.to_string())?;
+        for ext in ["svg", "png"] {
+            canvas
+                .save(&dir.join(format!("{stem}.{ext}")))
+                .map_err(|e| e.to_string())?;
+        }
+    }
+    Ok(())
 }
 
 fn write_file(path: &Path, text: &str) -> Result<(), String> {

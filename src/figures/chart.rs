@@ -43,8 +43,8 @@ const PALETTE: [Rgb; 10] = [
 
 const LEFT: f64 = 80.0;
 const RIGHT: f64 = 190.0;
-const TOP: f64 = 50.0;
-const BOTTOM: f64 = 90.0;
+const TOP: f64 = 65.0;
+const BOTTOM: f64 = 105.0;
 
 impl LineChart {
     /// Lays the chart out on a `width × height` canvas. Each series becomes one polyline of
@@ -126,7 +126,7 @@ impl LineChart {
         });
         shapes.push(Shape::Text {
             class: "y-label",
-            at: (10.0, TOP - 12.0),
+            at: (10.0, TOP - 14.0),
             text: self.y_label.clone(),
             size: 13.0,
             centre: false,
@@ -178,15 +178,34 @@ impl LineChart {
             size: 16.0,
             centre: false,
         });
-        shapes.push(Shape::Text {
-            class: "caption",
-            at: (10.0, h - 15.0),
-            text: self.caption.clone(),
-            size: 11.0,
-            centre: false,
-        });
+        // The caption is wrapped at '; ' boundaries into lines of about 130 characters.
+        let lines = wrap(&self.caption, 130);
+        for (k, line) in lines.iter().enumerate() {
+            shapes.push(Shape::Text {
+                class: "caption",
+                at: (10.0, h - 12.0 - 15.0 * (lines.len() - 1 - k) as f64),
+                text: line.clone(),
+                size: 11.0,
+                centre: false,
+            });
+        }
         Ok(canvas)
     }
+}
+
+/// Splits text at "; " into lines of at most about `width` characters.
+fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for part in text.split("; ") {
+        match lines.last_mut() {
+            Some(line) if line.chars().count() + part.chars().count() + 2 <= width => {
+                line.push_str("; ");
+                line.push_str(part);
+            }
+            _ => lines.push(part.to_string()),
+        }
+    }
+    lines
 }
 
 /// The range of the values, widened when empty or degenerate.
@@ -264,5 +283,6 @@ mod tests {
         assert_eq!(c.of_class("legend-label").count(), 3);
         assert_eq!(c.of_class("marker").count(), 6);
         assert!(c.to_svg().contains("seed 1"));
+        assert_eq!(wrap("aa; bb; cc", 6), vec!["aa; bb", "cc"]);
     }
 }

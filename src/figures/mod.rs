@@ -4,6 +4,7 @@
 
 pub mod canvas;
 pub mod chart;
+pub mod plots;
 pub mod render;
 
 use crate::model::Problem;

@@ -9,6 +9,7 @@
 //! (the binary).
 #![warn(missing_docs)]
 
+pub mod claims;
 pub mod learning;
 pub mod model;
 pub mod planning;

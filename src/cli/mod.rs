@@ -1,7 +1,9 @@
 //! Command-line interface (clap). Every error is one line on stderr and a non-zero exit:
 //! 2 for usage errors (clap), 1 for bad input or a failed run.
 
+mod discount;
 mod output;
+mod verify;
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -28,6 +30,10 @@ enum Command {
     Problems(ProblemsArgs),
     /// Solve one problem with an exact planner (or the paper's code, in reference mode).
     Solve(SolveArgs),
+    /// Check the paper's claims C1-C4 by machine (exit 0 even when a claim is refuted).
+    Verify(verify::VerifyArgs),
+    /// The exact set of discount factors for which a discount-optimal policy misses the goal.
+    Discount(discount::DiscountArgs),
 }
 
 /// Output format of a listing.
@@ -114,6 +120,8 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Command::Problems(args) => problems(&args),
         Command::Solve(args) => solve(&args),
+        Command::Verify(args) => verify::verify(&args),
+        Command::Discount(args) => discount::discount(&args),
     };
     match result.and_then(|text| emit(&text)) {
         Ok(()) => ExitCode::SUCCESS,

@@ -117,7 +117,7 @@ pub fn c3_example_sides_of_alpha_star() {
     let p_negative = 5 * a.pow(4) - a.pow(3) * b - a * a * b * b - a * b.pow(3) - b.pow(4) < 0;
     kani::assert(printed == p_negative, "printed inequality iff P(alpha) < 0");
     kani::assert(
-        printed == !optimal_reaches,
+        printed != optimal_reaches,
         "the optimum avoids the goal iff the inequality holds",
     );
 }

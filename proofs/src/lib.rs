@@ -10,6 +10,9 @@
 //! are small enums deriving `kani::Arbitrary`, so the stand-in's enumeration is exact and
 //! small.
 
+// Harnesses index small fixed arrays in bounded loops, as Kani prefers.
+#![allow(clippy::needless_range_loop)]
+
 pub mod c1;
 pub mod c2;
 pub mod c3;
@@ -130,9 +133,7 @@ mod registry {
             let s = kani::__run(name, should_panic, body);
             assert_eq!(s.mode, kani::Mode::Exhaustive, "{name}");
             assert_eq!(s.executions, h.standin_executions, "{name}: {s}");
-            if should_panic {
-                assert!(s.failures > 0, "{name}");
-            }
+            assert_eq!(s.failures, h.failing_executions, "{name}: {s}");
         }
     }
 

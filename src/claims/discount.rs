@@ -255,6 +255,11 @@ the cost of any lasso",
         for (np, dp) in &t.paths {
             let f = nl.mul(dp).sub(&np.mul(dl));
             if !f.is_zero() {
+                // Roots at 0 never lie in (0,1): divide out the factors of x.
+                let mut f = f;
+                while f.coefficients().first().is_some_and(|c| c.is_zero()) {
+                    f = f.div_rem(&Poly::monomial(1)).0;
+                }
                 let sf = f.squarefree();
                 if !polys.contains(&sf) {
                     polys.push(sf);
@@ -278,7 +283,7 @@ the cost of any lasso",
     for r in &roots {
         let mut r2 = r.clone();
         // A rational strictly inside the gap (lo, r).
-        while r2.lo <= lo {
+        while r2.lo <= lo || r2.hi >= Rational::one() {
             let w = &r2.hi - &r2.lo;
             r2.refine_to(&(w / Rational::from_integer(2.into())));
         }
@@ -365,14 +370,7 @@ pub fn point_text(p: &Point) -> String {
     match p {
         Point::Zero => "0".into(),
         Point::One => "1".into(),
-        Point::Root(a) if a.is_rational() => {
-            let h = &a.hi;
-            if h.is_integer() {
-                h.numer().to_string()
-            } else {
-                format!("{}/{}", h.numer(), h.denom())
-            }
-        }
+        Point::Root(a) if a.as_rational().is_some() => rat(&a.as_rational().expect("rational")),
         Point::Root(a) => {
             let mut b = a.clone();
             b.refine_to(&Rational::new(
@@ -382,7 +380,7 @@ pub fn point_text(p: &Point) -> String {
             format!(
                 "{} (the root of {} in ({}, {}])",
                 b.decimal(30),
-                b.poly,
+                b.poly.primitive(),
                 rat(&b.lo),
                 rat(&b.hi)
             )

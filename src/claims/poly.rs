@@ -277,6 +277,15 @@ impl Algebraic {
         self.poly.eval(&self.hi).is_zero()
     }
 
+    /// The number as a rational, when its polynomial is linear or it is the bracket's end.
+    pub fn as_rational(&self) -> Option<Rational> {
+        if self.poly.degree() == Some(1) {
+            let c = self.poly.coefficients();
+            return Some(-&c[0] / &c[1]);
+        }
+        self.is_rational().then(|| self.hi.clone())
+    }
+
     /// Compares with a rational.
     pub fn cmp_rational(&self, x: &Rational) -> Ordering {
         if x > &self.hi {

@@ -51,3 +51,50 @@ fn c4_corrected_holds() {
     let r = sampled::c4(false, CASES, Some("tests/regressions/c4-corrected.txt"));
     assert!(r.counterexample.is_none(), "{:?}", r.counterexample);
 }
+
+mod discount_cross_check {
+    use num_bigint::BigInt;
+    use proptest::prelude::*;
+    use truecost::claims::alpha::optimal_policies_from_initial;
+    use truecost::claims::discount::{discount_set, Point};
+    use truecost::claims::sampled::tiny_strategy;
+    use truecost::value::Rational;
+
+    fn inside(set: &truecost::claims::discount::DiscountSet, a: &Rational) -> bool {
+        let cmp = |p: &Point| match p {
+            Point::Zero => std::cmp::Ordering::Less,
+            Point::One => std::cmp::Ordering::Greater,
+            Point::Root(r) => r.cmp_rational(a).reverse(),
+        };
+        set.pieces.iter().any(|piece| {
+            let lo = cmp(&piece.lo);
+            let hi = cmp(&piece.hi);
+            (lo == std::cmp::Ordering::Less || (lo == std::cmp::Ordering::Equal && piece.lo_closed))
+                && (hi == std::cmp::Ordering::Greater
+                    || (hi == std::cmp::Ordering::Equal && piece.hi_closed))
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 64, failure_persistence: None, ..ProptestConfig::default() })]
+        /// `truecost discount` agrees with the exact solve (every stationary policy) at rational
+        /// discount factors `k/40`: a discount-optimal policy from x1 avoids the goal iff `α` is
+        /// in the computed set (ties at rational breakpoints count as "a policy avoids").
+        #[test]
+        fn discount_set_agrees_with_exact_solves(t in tiny_strategy(4, 2, 0, 4)) {
+            let problem = t.to_problem();
+            let set = discount_set(&problem, 10_000).unwrap();
+            for k in 1..40 {
+                let a = Rational::new(BigInt::from(k), BigInt::from(40));
+                let (all_avoid, all_reach) = optimal_policies_from_initial(&t, &a);
+                let member = inside(&set, &a);
+                if all_avoid && t.states() > 1 {
+                    prop_assert!(member, "alpha = {k}/40: {}", t.describe());
+                }
+                if all_reach {
+                    prop_assert!(!member, "alpha = {k}/40: {}", t.describe());
+                }
+            }
+        }
+    }
+}

@@ -199,3 +199,25 @@ fn discount_command() {
     ]);
     truecost().args(["discount"]).assert().code(2);
 }
+
+#[test]
+fn verify_does_not_depend_on_the_number_of_threads() {
+    let run = |threads: &str| {
+        let out = truecost()
+            .env("RAYON_NUM_THREADS", threads)
+            .args([
+                "verify",
+                "--scope",
+                "smoke",
+                "--format",
+                "json",
+                "--no-times",
+            ])
+            .assert()
+            .success()
+            .get_output()
+            .clone();
+        out.stdout
+    };
+    assert_eq!(run("1"), run("3"));
+}

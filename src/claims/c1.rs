@@ -94,8 +94,16 @@ fn merge(a: Acc, b: Acc) -> Acc {
     }
 }
 
-/// The initial values checked.
+/// The initial values checked for C1 as printed (and the every-order exploration).
 fn initial_values(scope: Scope) -> &'static [i64] {
+    match scope {
+        Scope::Smoke | Scope::Quick => &[0, 1, 3],
+        Scope::Full => &[-1, 0, 1, 3],
+    }
+}
+
+/// The initial values checked for C1-corrected (simulated orders).
+fn corrected_values(scope: Scope) -> &'static [i64] {
     match scope {
         Scope::Smoke => &[0, 1, 3],
         Scope::Quick => &[0, 1, 2, 4],
@@ -241,7 +249,7 @@ fn optimum_text(q: &QProblem) -> String {
     s
 }
 
-fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64]) {
+fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], corrected_domain: &[i64]) {
     let printed = QProblem::new(t, Terminal::Updated);
     let held = QProblem::new(t, Terminal::HeldAtZero);
     let terminal_pair = (0..printed.len())
@@ -302,9 +310,24 @@ fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64]) {
                     what,
                 });
             }
-            if terminal_q0 != 0 {
-                continue;
-            }
+        }
+    }
+    for (vi, q0) in initial_vectors(&held, corrected_domain).iter().enumerate() {
+        let q0 = *q0;
+        let seed = index.wrapping_mul(1_000_003).wrapping_add(vi as u64);
+        let terminal_q0 = 0;
+        let key: Key = {
+            let (a, b, c, _, _) = minimality_key(t, 0, 0);
+            (
+                a,
+                b,
+                c,
+                q0.iter().map(|x| x.unsigned_abs()).sum(),
+                index,
+                vi as u64,
+            )
+        };
+        {
             // Corrected: terminal held at 0.
             let h1 = held.all_finite();
             let above = (0..held.len())
@@ -443,6 +466,7 @@ fn counterexample(f: &Finding, terminal: Terminal, file: &str) -> Counterexample
 /// Checks C1 as printed and C1-corrected in `scope`. Returns `(C1, C1-corrected)`.
 pub fn check(scope: Scope) -> (ClaimResult, ClaimResult) {
     let domain = initial_values(scope);
+    let corrected = corrected_values(scope);
     let started = std::time::Instant::now();
     let mut acc = Acc::default();
     let mut structures = 0;
@@ -451,7 +475,7 @@ pub fn check(scope: Scope) -> (ClaimResult, ClaimResult) {
         let (a, distinct) = enumerate(
             &spec,
             Acc::default,
-            |acc, t, i| check_structure(acc, t, i, domain),
+            |acc, t, i| check_structure(acc, t, i, domain, corrected),
             merge,
         );
         acc = merge(acc, a);
@@ -566,7 +590,13 @@ exactly by the far-from-goal-first order in {} instances and by the worst fair o
             Verdict::Verified
         },
         engine: "exhaustive enumeration".into(),
-        scope: format!("{scope_line}; instances satisfying H0-H2 only"),
+        scope: format!(
+            "{structures} problems up to relabelling ({}; one goal); initial values in {{{}}} on every move pair, \
+termination pair held at 0; instances satisfying H0-H2 only; fair orders: cyclic, reverse, far-from-goal-first \
+(adversarial), seeded random",
+            scope_text.join(" | "),
+            corrected.iter().map(|d| d.to_string()).collect::<Vec<_>>().join(",")
+        ),
         cases: acc.corrected_cases,
         counterexample: corrected_min
             .as_ref()

@@ -56,11 +56,16 @@ pub fn check_problem(t: &Tiny, fs: &[Functional], starts: usize) -> (Option<Stri
     let ps = policies(t, true);
     assert!(ps.len() <= 128);
     let mut comparisons = 0;
+    let mut costs = [FracExt::NegInf; 128];
+    let mut rewards = [FracExt::NegInf; 128];
     for start in 0..starts.min(t.states()) {
         let trs: Vec<_> = ps.iter().map(|p| trajectory(t, p, start)).collect();
         for &f in fs {
-            let costs: Vec<FracExt> = trs.iter().map(|tr| evaluate_fast(tr, f, 1)).collect();
-            let rewards: Vec<FracExt> = trs.iter().map(|tr| evaluate_fast(tr, f, -1)).collect();
+            for (i, tr) in trs.iter().enumerate() {
+                costs[i] = evaluate_fast(tr, f, 1);
+                rewards[i] = evaluate_fast(tr, f, -1);
+            }
+            let (costs, rewards) = (&costs[..trs.len()], &rewards[..trs.len()]);
             let min = *costs.iter().min().expect("a policy");
             let max = *rewards.iter().max().expect("a policy");
             let argmin: u128 = costs

@@ -245,14 +245,23 @@ pub fn evaluate_fast(tr: &Trajectory, functional: Functional, sign: i64) -> Frac
         Functional::Discounted(alpha) => {
             let (a, b) = (alpha.numer(), alpha.denom());
             let (p, c) = (tr.prefix_len, tr.cycle_len);
-            let prefix: i128 = (0..p).map(|k| s(k) * ipow(a, k) * ipow(b, p - k)).sum();
-            let cycle: i128 = (0..c)
-                .map(|j| (sign * tr.cycle[j]) as i128 * ipow(a, j) * ipow(b, c - j))
-                .sum();
-            let gap = ipow(b, c) - ipow(a, c);
+            // Q_{j+1} = b·Q_j + s_j·a^j·b gives Σ_{k<j} s_k a^k b^(j−k); likewise the cycle.
+            let (mut prefix, mut ap, mut bp) = (0i128, 1i128, 1i128);
+            for k in 0..p {
+                prefix = b * prefix + s(k) * ap * b;
+                ap *= a;
+                bp *= b;
+            }
+            let (mut cycle, mut ac, mut bc) = (0i128, 1i128, 1i128);
+            for j in 0..c {
+                cycle = b * cycle + (sign * tr.cycle[j]) as i128 * ac * b;
+                ac *= a;
+                bc *= b;
+            }
+            let gap = bc - ac;
             FracExt::Fin(Frac {
-                n: prefix * gap + ipow(a, p) * cycle,
-                d: ipow(b, p) * gap,
+                n: prefix * gap + ap * cycle,
+                d: bp * gap,
             })
         }
         Functional::Average => FracExt::Fin(Frac {

@@ -50,7 +50,7 @@ pub fn c3_certificate_makes_the_discount_optimal_policy_avoid_the_goal() {
 /// every stationary policy of states 0..4, exact integer arithmetic) avoids the goal iff the
 /// printed inequality `1/(1-α) < Σ_{i=1..5} i α^{i-1}` holds iff `5α⁴ − α³ − α² − α − 1 < 0`.
 #[kani::proof]
-#[kani::unwind(8)]
+#[kani::unwind(34)]
 pub fn c3_example_sides_of_alpha_star() {
     let k: u8 = kani::any();
     kani::assume((1..=63).contains(&k));

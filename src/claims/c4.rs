@@ -483,6 +483,7 @@ struct Acc {
     printed_failures: u64,
     corrected_failures: u64,
     printed_min: Option<(Key, Finding)>,
+    printed_min_positive: Option<(Key, Finding)>,
     corrected_min: Option<(Key, Finding)>,
     karp_checks: u64,
     internal: Option<String>,
@@ -497,6 +498,7 @@ fn merge(a: Acc, b: Acc) -> Acc {
         printed_failures: a.printed_failures + b.printed_failures,
         corrected_failures: a.corrected_failures + b.corrected_failures,
         printed_min: min_of(a.printed_min, b.printed_min),
+        printed_min_positive: min_of(a.printed_min_positive, b.printed_min_positive),
         corrected_min: min_of(a.corrected_min, b.corrected_min),
         karp_checks: a.karp_checks + b.karp_checks,
         internal: a.internal.or(b.internal),
@@ -520,9 +522,11 @@ fn specs(scope: Scope) -> Vec<FamilySpec> {
             spec(4, (1, 2), &[0, 1, 2, 3]),
         ],
         Scope::Full => vec![
-            spec(3, (1, 3), &[0, 1, 2, 3]),
-            spec(4, (1, 3), &[0, 1, 2, 3]),
-            spec(5, (1, 2), &[0, 1, 2]),
+            spec(2, (1, 2), &[0, 1, 2, 3]),
+            spec(3, (1, 2), &[0, 1, 2, 3]),
+            spec(4, (1, 2), &[0, 1, 2, 3]),
+            spec(4, (1, 3), &[0, 1]),
+            spec(5, (1, 2), &[0, 1]),
         ],
     }
 }
@@ -599,6 +603,15 @@ pub fn check(scope: Scope) -> (ClaimResult, ClaimResult) {
                                     sets: s.clone(),
                                     m,
                                 });
+                                let positive = (0..t.states())
+                                    .all(|x| t.moves(x).iter().all(|mv| mv.cost > 0));
+                                if positive {
+                                    keep_min(&mut acc.printed_min_positive, key, || Finding {
+                                        t: *t,
+                                        sets: s.clone(),
+                                        m,
+                                    });
+                                }
                             }
                         }
                     }
@@ -656,7 +669,20 @@ undefined (division by L(u) = 0) in {} more",
             "A(u) is dimensionless while M is a cost: multiplying every stage cost by 2 doubles the true thresholds but \
 leaves a and b unchanged"
                 .into(),
-        ],
+        ]
+        .into_iter()
+        .chain(acc.printed_min_positive.as_ref().map(|(_, f)| {
+            format!(
+                "smallest counterexample with every cost > 0: {}; S* = {}, L* = {}, M = {}: exact set {}, printed {}",
+                f.t.describe(),
+                f.sets.optimal_states,
+                f.sets.optimal_cost,
+                f.m,
+                f.sets.exact,
+                f.sets.printed.map_or("undefined".into(), |i| i.to_string())
+            )
+        }))
+        .collect(),
     };
     let corrected = ClaimResult {
         id: "C4-corrected".into(),

@@ -97,7 +97,7 @@ pub const HARNESSES: &[Harness] = &[
         claim: "C3-example",
         file: "c3.rs",
         proves: "for alpha = k/64 (k: any u8, assumed 1..=63: 256 executions, 193 pruned): over all 32 policies of the worked example (exact integers) the discount-optimal policy from 0 avoids the goal iff the printed inequality holds iff 5a^4 - a^3 - a^2 - a - 1 < 0",
-        unwind: 8,
+        unwind: 34,
         should_panic: false,
         standin_executions: 256,
         failing_executions: 0,

@@ -202,3 +202,74 @@ fn selecting_a_claim_and_unknown_ids() {
     assert!(run(Scope::Smoke, Some("C9")).is_err());
     assert!(run(Scope::Smoke, Some("C")).is_err());
 }
+
+/// `discount` against the exact solve on every 3-state problem (x1 = 0, goal 2, one or two
+/// moves per state, costs in {0,1,2,4}) at α = k/16: where every discount-optimal policy
+/// avoids the goal, α is in the set; where every one reaches it, α is not.
+#[test]
+fn discount_set_agrees_with_exact_solves_on_every_3_state_problem() {
+    use truecost::claims::tiny::{Family, FamilySpec};
+    let spec = FamilySpec {
+        states: 3,
+        initial_fixed: true,
+        degree: (1, 2),
+        goal_degree: (0, 0),
+        costs: vec![0, 1, 2, 4],
+        distinct_successors: false,
+    };
+    let family = Family::new(&spec);
+    let mut nontrivial = 0;
+    for i in 0..family.labelled_count() {
+        let t = family.problem(i);
+        if !family.is_canonical(&t) {
+            continue;
+        }
+        let set = discount_set(&t.to_problem(), 10_000).unwrap();
+        if !set.pieces.is_empty()
+            && set.pieces
+                != [truecost::claims::discount::Piece {
+                    lo: Point::Zero,
+                    lo_closed: false,
+                    hi: Point::One,
+                    hi_closed: false,
+                }]
+        {
+            nontrivial += 1;
+        }
+        for k in 1..16 {
+            let a = Rational::new(BigInt::from(k), BigInt::from(16));
+            let member = set.pieces.iter().any(|p| {
+                let above_lo = match &p.lo {
+                    Point::Zero => true,
+                    Point::One => false,
+                    Point::Root(r) => match r.cmp_rational(&a) {
+                        std::cmp::Ordering::Less => true,
+                        std::cmp::Ordering::Equal => p.lo_closed,
+                        std::cmp::Ordering::Greater => false,
+                    },
+                };
+                let below_hi = match &p.hi {
+                    Point::Zero => false,
+                    Point::One => true,
+                    Point::Root(r) => match r.cmp_rational(&a) {
+                        std::cmp::Ordering::Greater => true,
+                        std::cmp::Ordering::Equal => p.hi_closed,
+                        std::cmp::Ordering::Less => false,
+                    },
+                };
+                above_lo && below_hi
+            });
+            let (all_avoid, all_reach) = optimal_policies_from_initial(&t, &a);
+            if all_avoid {
+                assert!(member, "{}: alpha = {k}/16", t.describe());
+            }
+            if all_reach {
+                assert!(!member, "{}: alpha = {k}/16", t.describe());
+            }
+        }
+    }
+    assert!(
+        nontrivial > 100,
+        "{nontrivial} problems with a proper breakpoint"
+    );
+}

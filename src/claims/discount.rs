@@ -276,27 +276,33 @@ the cost of any lasso",
         }
     }
     roots.sort_by(|a, b| a.compare(b));
-    // Membership on the gaps and at the roots.
-    let mut points: Vec<(Point, bool)> = Vec::new(); // each root and whether it is in the set
-    let mut gaps: Vec<bool> = Vec::new();
-    let mut lo = Rational::zero();
-    for r in &roots {
-        let mut r2 = r.clone();
-        // A rational strictly inside the gap (lo, r).
-        while r2.lo <= lo || r2.hi >= Rational::one() {
-            let w = &r2.hi - &r2.lo;
-            r2.refine_to(&(w / Rational::from_integer(2.into())));
+    // Make the brackets disjoint, inside (0,1), and in increasing order.
+    let half = |r: &mut Algebraic| {
+        let w = &r.hi - &r.lo;
+        r.refine_to(&(w / Rational::from_integer(2.into())));
+    };
+    for i in 0..roots.len() {
+        while roots[i].lo.is_zero() || roots[i].hi >= Rational::one() {
+            half(&mut roots[i]);
         }
-        let mid = (&lo + &r2.lo) / Rational::from_integer(2.into());
-        gaps.push(member_rational(&t, &mid));
-        points.push((Point::Root(r.clone()), member_algebraic(&t, r)));
-        lo = r2.hi.clone();
-        if r.is_rational() {
-            lo = r.hi.clone();
+        if i > 0 {
+            while roots[i - 1].hi >= roots[i].lo {
+                half(&mut roots[i - 1]);
+                half(&mut roots[i]);
+            }
         }
     }
-    let last_mid = (&lo + Rational::one()) / Rational::from_integer(2.into());
-    gaps.push(member_rational(&t, &last_mid));
+    // Membership on the gaps (at a rational strictly inside) and at the roots.
+    let mut points: Vec<(Point, bool)> = Vec::new(); // each root and whether it is in the set
+    let mut gaps: Vec<bool> = Vec::new();
+    let two = Rational::from_integer(2.into());
+    let mut lo = Rational::zero();
+    for r in &roots {
+        gaps.push(member_rational(&t, &((&lo + &r.lo) / &two)));
+        points.push((Point::Root(r.clone()), member_algebraic(&t, r)));
+        lo = r.hi.clone();
+    }
+    gaps.push(member_rational(&t, &((&lo + Rational::one()) / &two)));
     // Atoms in increasing order: gap 0, root 0, gap 1, ..., gap k; merge runs of members.
     let mut atoms: Vec<(bool, Option<usize>, bool)> = Vec::new(); // (is_root, root index, member)
     for i in 0..gaps.len() {

@@ -532,11 +532,15 @@ termination pair 0 or 1; fair orders: cyclic, reverse, far-from-goal-first (adve
             failures: acc.printed_failures,
             seconds: seconds1 / 2.0,
         }],
-        notes: vec![format!(
-            "{} of {} instances fail (definitive certificates only: a pair with Q* = inf, or repeating round-end \
+        notes: vec![
+            format!(
+                "{} of {} instances fail (definitive certificates only: a pair with Q* = inf, or repeating round-end \
 values under a periodic order)",
-            acc.printed_failures, acc.printed_cases
-        )],
+                acc.printed_failures, acc.printed_cases
+            ),
+            "C1 and C1-corrected share one enumeration pass; its time is split evenly between them in cases per second"
+                .into(),
+        ],
     };
     let mut notes = vec![
         format!(

@@ -447,7 +447,11 @@ fn counterexample(f: &Finding, terminal: Terminal, file: &str) -> Counterexample
             0
         };
     }
-    let summary = format!("C1 counterexample: {}", f.what);
+    let summary = format!(
+        "C1 counterexample with initial values {}: {}",
+        values_text(&q, &q0),
+        f.what
+    );
     Counterexample::new(
         &f.t,
         summary,

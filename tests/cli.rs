@@ -8,23 +8,13 @@ fn truecost() -> Command {
 }
 
 fn json(args: &[&str]) -> Value {
-    let out = truecost()
-        .args(args)
-        .assert()
-        .success()
-        .get_output()
-        .clone();
+    let out = truecost().args(args).assert().success().get_output().clone();
     serde_json::from_slice(&out.stdout).unwrap()
 }
 
 /// Runs a command that must fail cleanly; returns its stderr.
 fn fails(args: &[&str], code: i32) -> String {
-    let out = truecost()
-        .args(args)
-        .assert()
-        .code(code)
-        .get_output()
-        .clone();
+    let out = truecost().args(args).assert().code(code).get_output().clone();
     let err = String::from_utf8(out.stderr).unwrap();
     assert!(!err.contains("panicked"), "{args:?}: {err}");
     assert!(!err.to_lowercase().contains("backtrace"), "{args:?}: {err}");
@@ -60,18 +50,12 @@ fn problems_json_lists_all_19_with_the_required_fields() {
 
 #[test]
 fn problems_other_formats() {
-    let csv = truecost()
-        .args(["problems", "--format", "csv"])
-        .assert()
-        .success();
+    let csv = truecost().args(["problems", "--format", "csv"]).assert().success();
     let text = String::from_utf8(csv.get_output().stdout.clone()).unwrap();
     assert_eq!(text.lines().count(), 20);
     assert!(text.starts_with("id,grid_nodes,states,edges,initial,goal,optimal_moves"));
     assert!(text.contains("\n10,400,339,592,41,206,63,true\n"));
-    let md = truecost()
-        .args(["problems", "--format", "markdown"])
-        .assert()
-        .success();
+    let md = truecost().args(["problems", "--format", "markdown"]).assert().success();
     let text = String::from_utf8(md.get_output().stdout.clone()).unwrap();
     assert!(text.contains("| 3 | 400 | 135 | 167 | 38 | 398 | 90 | true |"));
     let plain = truecost().arg("problems").assert().success();
@@ -82,15 +66,7 @@ fn problems_other_formats() {
 
 #[test]
 fn solve_json_exact_and_reference() {
-    let v = json(&[
-        "solve",
-        "--problem",
-        "10",
-        "--algorithm",
-        "dijkstra",
-        "--format",
-        "json",
-    ]);
+    let v = json(&["solve", "--problem", "10", "--algorithm", "dijkstra", "--format", "json"]);
     assert_eq!(v["reachable"], true);
     assert_eq!(v["cost_to_go_initial"], "63");
     assert_eq!(v["path"].as_array().unwrap().len(), 64);
@@ -99,29 +75,14 @@ fn solve_json_exact_and_reference() {
     assert_eq!(v["mode"], "exact");
 
     let v = json(&[
-        "solve",
-        "--problem",
-        "10",
-        "--algorithm",
-        "vi",
-        "--step-cost",
-        "euclidean",
-        "--format",
+        "solve", "--problem", "10", "--algorithm", "vi", "--step-cost", "euclidean", "--format",
         "json",
     ]);
     assert_eq!(v["cost_to_go_initial"], "50400/19");
 
     let v = json(&[
-        "solve",
-        "--problem",
-        "10",
-        "--algorithm",
-        "async-vi",
-        "--model-free",
-        "--mode",
-        "reference",
-        "--format",
-        "json",
+        "solve", "--problem", "10", "--algorithm", "async-vi", "--model-free", "--mode",
+        "reference", "--format", "json",
     ]);
     assert_eq!(v["mode"], "reference");
     assert_eq!(v["iterations"], 56);
@@ -132,15 +93,7 @@ fn solve_json_exact_and_reference() {
 
 #[test]
 fn solve_unreachable_is_a_normal_answer() {
-    let v = json(&[
-        "solve",
-        "--problem",
-        "6",
-        "--algorithm",
-        "dijkstra",
-        "--format",
-        "json",
-    ]);
+    let v = json(&["solve", "--problem", "6", "--algorithm", "dijkstra", "--format", "json"]);
     assert_eq!(v["reachable"], false);
     assert_eq!(v["cost_to_go_initial"], "inf");
     assert_eq!(v["path"], Value::Array(vec![]));
@@ -156,36 +109,20 @@ fn solve_unreachable_is_a_normal_answer() {
 fn solve_files_from_the_examples() {
     let dir = env!("CARGO_MANIFEST_DIR");
     let v = json(&[
-        "solve",
-        "--file",
-        &format!("{dir}/problems/line.json"),
-        "--algorithm",
-        "async-vi",
-        "--format",
-        "json",
+        "solve", "--file", &format!("{dir}/problems/line.json"), "--algorithm", "async-vi",
+        "--format", "json",
     ]);
     assert_eq!(v["cost_to_go_initial"], "5/2");
     assert_eq!(v["path"], serde_json::json!([0, 1, 2, 3]));
     let v = json(&[
-        "solve",
-        "--file",
-        &format!("{dir}/problems/zero-cost-cycle.json"),
-        "--algorithm",
-        "vi",
-        "--model-free",
-        "--format",
-        "json",
+        "solve", "--file", &format!("{dir}/problems/zero-cost-cycle.json"), "--algorithm", "vi",
+        "--model-free", "--format", "json",
     ]);
     assert_eq!(v["cost_to_go_initial"], "0");
     assert_eq!(v["path"], serde_json::json!([0, 1, 2]));
     let v = json(&[
-        "solve",
-        "--file",
-        &format!("{dir}/problems/trap.json"),
-        "--algorithm",
-        "dijkstra",
-        "--format",
-        "json",
+        "solve", "--file", &format!("{dir}/problems/trap.json"), "--algorithm", "dijkstra",
+        "--format", "json",
     ]);
     assert_eq!(v["reachable"], false);
 }
@@ -194,46 +131,14 @@ fn solve_files_from_the_examples() {
 fn usage_errors_exit_2() {
     for args in [
         vec!["solve", "--algorithm", "dijkstra"],
-        vec![
-            "solve",
-            "--problem",
-            "1",
-            "--file",
-            "x.json",
-            "--algorithm",
-            "vi",
-        ],
+        vec!["solve", "--problem", "1", "--file", "x.json", "--algorithm", "vi"],
         vec!["solve", "--problem", "-1", "--algorithm", "vi"],
         vec!["solve", "--problem", "ten", "--algorithm", "vi"],
         vec!["solve", "--problem", "1", "--algorithm", "bfs"],
         vec!["solve", "--problem", "1"],
-        vec![
-            "solve",
-            "--problem",
-            "1",
-            "--algorithm",
-            "vi",
-            "--mode",
-            "python",
-        ],
-        vec![
-            "solve",
-            "--problem",
-            "1",
-            "--algorithm",
-            "vi",
-            "--step-cost",
-            "manhattan",
-        ],
-        vec![
-            "solve",
-            "--problem",
-            "1",
-            "--algorithm",
-            "vi",
-            "--format",
-            "xml",
-        ],
+        vec!["solve", "--problem", "1", "--algorithm", "vi", "--mode", "python"],
+        vec!["solve", "--problem", "1", "--algorithm", "vi", "--step-cost", "manhattan"],
+        vec!["solve", "--problem", "1", "--algorithm", "vi", "--format", "xml"],
         vec!["problems", "--format", "yaml"],
         vec!["frobnicate"],
     ] {
@@ -297,39 +202,13 @@ fn bad_input_errors_exit_1_with_one_line() {
         let err = fails_one_line(&["solve", "--file", &path, "--algorithm", "dijkstra"]);
         assert!(err.contains(expect), "{name}: {err}");
     }
-    let ok = write(
-        "ok.json",
-        r#"{"initial":0,"goals":[1],"actions":[[{"to":1,"cost":"1"}],[]]}"#,
-    );
-    let err = fails_one_line(&[
-        "solve",
-        "--file",
-        &ok,
-        "--algorithm",
-        "vi",
-        "--mode",
-        "reference",
-    ]);
+    let ok = write("ok.json", r#"{"initial":0,"goals":[1],"actions":[[{"to":1,"cost":"1"}],[]]}"#);
+    let err = fails_one_line(&["solve", "--file", &ok, "--algorithm", "vi", "--mode", "reference"]);
     assert!(err.contains("paper's problems"), "{err}");
-    let err = fails_one_line(&[
-        "solve",
-        "--file",
-        &ok,
-        "--algorithm",
-        "vi",
-        "--step-cost",
-        "unit",
-    ]);
+    let err = fails_one_line(&["solve", "--file", &ok, "--algorithm", "vi", "--step-cost", "unit"]);
     assert!(err.contains("--step-cost"), "{err}");
     let err = fails_one_line(&[
-        "solve",
-        "--problem",
-        "1",
-        "--algorithm",
-        "vi",
-        "--mode",
-        "reference",
-        "--step-cost",
+        "solve", "--problem", "1", "--algorithm", "vi", "--mode", "reference", "--step-cost",
         "euclidean",
     ]);
     assert!(err.contains("--step-cost"), "{err}");
@@ -337,11 +216,7 @@ fn bad_input_errors_exit_1_with_one_line() {
 
 #[test]
 fn help_is_available_everywhere() {
-    for args in [
-        vec!["--help"],
-        vec!["solve", "--help"],
-        vec!["problems", "--help"],
-    ] {
+    for args in [vec!["--help"], vec!["solve", "--help"], vec!["problems", "--help"]] {
         let out = truecost().args(&args).assert().success();
         let text = String::from_utf8(out.get_output().stdout.clone()).unwrap();
         assert!(text.contains("Usage"), "{args:?}");

@@ -25,14 +25,7 @@ fn facts_of_problems_0_to_5_match_the_published_table() {
     for (id, states, edges, initial, goal, moves) in FACTS {
         let f = GridLayout::exact(id).unwrap().facts();
         assert_eq!(
-            (
-                f.grid_nodes,
-                f.states,
-                f.edges,
-                f.initial,
-                f.goal,
-                f.optimal_moves
-            ),
+            (f.grid_nodes, f.states, f.edges, f.initial, f.goal, f.optimal_moves),
             (400, states, edges, initial, goal, Some(moves)),
             "problem {id}"
         );
@@ -45,11 +38,7 @@ fn problem_10_facts_and_exact_optimum() {
     let f = layout.facts();
     assert_eq!((f.states, f.edges, f.initial, f.goal), (339, 592, 41, 206));
     assert_eq!(f.optimal_moves, Some(63));
-    let unit = plan_exact(
-        &layout.to_problem(StepCost::Unit),
-        Algorithm::Dijkstra,
-        false,
-    );
+    let unit = plan_exact(&layout.to_problem(StepCost::Unit), Algorithm::Dijkstra, false);
     assert_eq!(unit.cost_to_go_initial, "63");
     assert_eq!(unit.path.len(), 64);
     let euclid = plan_exact(
@@ -104,10 +93,7 @@ fn reference_optimum_is_the_exact_euclidean_optimum_up_to_rounding() {
         if exact.reachable {
             let e: Extended = exact.cost_to_go_initial.parse().unwrap();
             let r: f64 = reference.cost_to_go_initial.parse().unwrap();
-            assert!(
-                (e.to_f64() - r).abs() < 1e-9 * r,
-                "problem {id}: {e} vs {r}"
-            );
+            assert!((e.to_f64() - r).abs() < 1e-9 * r, "problem {id}: {e} vs {r}");
         }
     }
 }

@@ -21,10 +21,7 @@ fn facts_of_all_19_problems_in_both_modes() {
         .map(|id| GridLayout::reference(id).unwrap().facts())
         .collect();
     settings().bind(|| {
-        insta::assert_json_snapshot!(
-            "problem_facts",
-            json!({"exact": exact, "reference": reference})
-        );
+        insta::assert_json_snapshot!("problem_facts", json!({"exact": exact, "reference": reference}));
     });
 }
 
@@ -64,11 +61,7 @@ fn exact_optima_for_all_problems() {
     let rows: Vec<_> = (0..19)
         .map(|id| {
             let layout = GridLayout::exact(id).unwrap();
-            let unit = plan_exact(
-                &layout.to_problem(StepCost::Unit),
-                Algorithm::Dijkstra,
-                true,
-            );
+            let unit = plan_exact(&layout.to_problem(StepCost::Unit), Algorithm::Dijkstra, true);
             let euclid = plan_exact(
                 &layout.to_problem(StepCost::Euclidean),
                 Algorithm::Dijkstra,

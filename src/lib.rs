@@ -9,6 +9,7 @@
 //! (the binary).
 #![warn(missing_docs)]
 
+pub mod claims;
 pub mod experiments;
 pub mod figures;
 pub mod learning;

@@ -1,10 +1,12 @@
 //! Command-line interface (clap). Every error is one line on stderr and a non-zero exit:
 //! 2 for usage errors (clap), 1 for bad input or a failed run.
 
+mod discount;
 mod output;
 mod render;
 mod reproduce;
 mod stochastic;
+mod verify;
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -27,6 +29,10 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Check the paper's claims C1-C4 by machine (exit 0 even when a claim is refuted).
+    Verify(verify::VerifyArgs),
+    /// The exact set of discount factors for which a discount-optimal policy misses the goal.
+    Discount(discount::DiscountArgs),
     /// List the paper's 19 grid problems with their facts (states, edges, x1, goal, optimum).
     Problems(ProblemsArgs),
     /// Solve one problem with an exact planner (or the paper's code, in reference mode).
@@ -141,6 +147,8 @@ pub fn main() -> ExitCode {
         Command::Solve(args) => solve(&args),
         Command::Render(args) => render::run(&args),
         Command::Reproduce(args) => reproduce::run(&args),
+        Command::Verify(args) => verify::verify(&args),
+        Command::Discount(args) => discount::discount(&args),
     };
     match result.and_then(|text| emit(&text)) {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,106 @@
+//! Macros of the `kani` stand-in: `#[kani::proof]` keeps the harness function (so the same
+//! source compiles under real Kani) and adds a `#[test]` that runs it through the stand-in's
+//! explicit-state enumerator; `#[kani::unwind]`, `#[kani::solver]` and `#[kani::should_panic]`
+//! are read by `proof` (put `#[kani::proof]` first); `#[derive(kani::Arbitrary)]` makes every
+//! value of a type a choice.
+
+use proc_macro::TokenStream;
+use quote::{format_ident, quote};
+use syn::{parse_macro_input, Data, DeriveInput, Fields, ItemFn};
+
+fn is_kani_attr(attr: &syn::Attribute, name: &str) -> bool {
+    let segs: Vec<String> = attr
+        .path()
+        .segments
+        .iter()
+        .map(|s| s.ident.to_string())
+        .collect();
+    segs.last().is_some_and(|l| l == name) && (segs.len() == 1 || segs[0] == "kani")
+}
+
+/// Marks a harness: the function stays as written; under `cargo test` a test runs it for every
+/// choice of its `kani::any()` values (or a seeded sample when a domain is too wide).
+#[proc_macro_attribute]
+pub fn proof(_attr: TokenStream, item: TokenStream) -> TokenStream {
+    let mut f = parse_macro_input!(item as ItemFn);
+    let should_panic = f.attrs.iter().any(|a| is_kani_attr(a, "should_panic"));
+    f.attrs.retain(|a| {
+        !["should_panic", "unwind", "solver", "stub"]
+            .iter()
+            .any(|n| is_kani_attr(a, n))
+    });
+    let name = &f.sig.ident;
+    let test = format_ident!("{}_standin", name);
+    quote! {
+        #f
+        #[cfg(test)]
+        #[test]
+        fn #test() {
+            let summary = ::kani::__run(stringify!(#name), #should_panic, #name);
+            ::std::eprintln!("{}", summary);
+        }
+    }
+    .into()
+}
+
+fn misplaced(name: &str) -> TokenStream {
+    let msg = format!("kani stand-in: put #[kani::proof] before #[kani::{name}]");
+    quote!(compile_error!(#msg);).into()
+}
+
+/// Loop bound for Kani (read by `#[kani::proof]`).
+#[proc_macro_attribute]
+pub fn unwind(_attr: TokenStream, _item: TokenStream) -> TokenStream {
+    misplaced("unwind")
+}
+
+/// SAT solver for Kani (read by `#[kani::proof]`).
+#[proc_macro_attribute]
+pub fn solver(_attr: TokenStream, _item: TokenStream) -> TokenStream {
+    misplaced("solver")
+}
+
+/// The harness must fail (read by `#[kani::proof]`).
+#[proc_macro_attribute]
+pub fn should_panic(_attr: TokenStream, _item: TokenStream) -> TokenStream {
+    misplaced("should_panic")
+}
+
+/// `#[derive(kani::Arbitrary)]`: structs take every field from `kani::any()`; enums choose a
+/// variant (one choice point with as many values as variants).
+#[proc_macro_derive(Arbitrary)]
+pub fn derive_arbitrary(input: TokenStream) -> TokenStream {
+    let input = parse_macro_input!(input as DeriveInput);
+    let name = &input.ident;
+    let build = |fields: &Fields, path: proc_macro2::TokenStream| match fields {
+        Fields::Named(n) => {
+            let f = n.named.iter().map(|f| f.ident.clone());
+            quote!(#path { #(#f: ::kani::any()),* })
+        }
+        Fields::Unnamed(u) => {
+            let f = u.unnamed.iter().map(|_| quote!(::kani::any()));
+            quote!(#path ( #(#f),* ))
+        }
+        Fields::Unit => quote!(#path),
+    };
+    let body = match &input.data {
+        Data::Struct(s) => build(&s.fields, quote!(#name)),
+        Data::Enum(e) => {
+            let n = e.variants.len() as u64;
+            let arms = e.variants.iter().enumerate().map(|(i, v)| {
+                let i = i as u64;
+                let ident = &v.ident;
+                let value = build(&v.fields, quote!(#name::#ident));
+                quote!(#i => #value,)
+            });
+            quote!(match ::kani::__choose(#n) { #(#arms)* _ => unreachable!() })
+        }
+        Data::Union(_) => quote!(compile_error!("kani stand-in: unions are not Arbitrary")),
+    };
+    quote! {
+        impl ::kani::Arbitrary for #name {
+            fn any() -> Self { #body }
+        }
+    }
+    .into()
+}

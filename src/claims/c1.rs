@@ -1,0 +1,638 @@
+//! Claim C1 (SPEC §6): finite-time convergence of derandomized Q-learning (`ρ = 1`).
+//!
+//! **As printed**: costs `l ≥ 0`, *any* initial values; if every state–action pair is
+//! updated infinitely often by `Q̂(x,u) ← l(x,u) + min_{u'} Q̂(f(x,u),u')`, then `Q̂ = Q*`
+//! after finitely many steps. Refuted (three independent reasons, each a minimal
+//! counterexample of the enumeration): the goal's termination pair is a zero-cost self-loop,
+//! so any constant is a fixed point there; a state that cannot reach the goal has
+//! `Q* = +∞`, never attained; a zero-cost cycle started below `Q*` is a fixed point below `Q*`.
+//!
+//! **C1-corrected** (proved below, then verified): assume (H0) `Q̂(xg, uT)` is held at 0,
+//! (H1) every state can reach the goal, (H2) `Q̂₀ ≥ Q*` on every pair, or every move has cost
+//! `≥ c > 0`. Cut any fair update sequence into *rounds* (consecutive segments in which every
+//! pair is updated at least once). Then `Q̂ = Q*` from the end of round `R` on, with
+//! `R₁ = 1 + max_{moves (x,u)} h(f(x,u))` (`h(y)` = fewest moves of an optimal path from `y`)
+//! when `Q̂₀ ≥ Q*`, and `R = max(R₁, ⌈(max Q* − min(0, min Q̂₀)) / c⌉)` otherwise.
+//!
+//! Proof. The update is monotone and `Q*` is its fixed point (under H0, H1), so a run from
+//! `Q̂₀` stays between the runs from `min(Q̂₀, Q*)` and `max(Q̂₀, Q*)` under the same order.
+//! From above: values stay `≥ Q*`; by induction on `r`, after round `r` every pair with
+//! `h(f(x,u)) ≤ r − 1` is exact (its successor's optimal move is exact from round `r − 1` on,
+//! and every other value is `≥ Q*`), so all pairs are exact after `R₁` rounds. From below with
+//! costs `≥ c`: after round `r` every value is `≥ min(Q*, m + r·c)` (`m` = the least initial
+//! value, at most 0) and `≤ Q*`, so all are exact once `m + r·c ≥ max Q*`. ∎
+
+use super::exact::Q;
+use super::qlearning::{all_orders, run, AllOrders, Order, QProblem, Run, Terminal, Values};
+use super::tiny::{minimality_key, FamilySpec, Tiny};
+use super::{enumerate, keep_min, min_of, ClaimResult, Counterexample, EngineRun, Scope, Verdict};
+
+/// The statement of C1 as printed.
+pub const STATEMENT: &str = "C1 (as printed): with stage costs l >= 0 and ANY initial values Q0, if every state-action \
+pair (the goal's termination action uT included: f(xg,uT) = xg, l = 0) is updated infinitely often by the rho = 1 rule \
+Q(x,u) <- l(x,u) + min_u' Q(f(x,u),u'), then Q = Q* after finitely many steps.";
+
+/// The corrected statement.
+pub const CORRECTED: &str = "C1-corrected: assume (H0) the goal's termination value is held at Q(xg,uT) = 0, \
+(H1) every state can reach the goal (Q* finite), (H2) Q0 >= Q* on every pair, or every move costs l(x,u) >= c > 0 \
+(Q0 then arbitrary). Cut any fair update sequence into rounds (consecutive segments updating every pair at least \
+once). Then Q = Q* from the end of round R on, where R1 = 1 + max over moves (x,u) of h(f(x,u)) (h = fewest moves \
+of an optimal path to the goal), R = R1 if Q0 >= Q*, else R = max(R1, ceil((max Q* - min(0, min Q0)) / c)).";
+
+type Key = (usize, usize, u64, u64, u64, u64);
+
+#[derive(Clone, Debug)]
+struct Finding {
+    t: Tiny,
+    q0: Values,
+    terminal_q0: i64,
+    what: String,
+}
+
+#[derive(Default)]
+struct Acc {
+    printed_cases: u64,
+    printed_failures: u64,
+    printed_undecided: u64,
+    printed_min: Option<(Key, Finding)>,
+    corrected_cases: u64,
+    corrected_failures: u64,
+    corrected_min: Option<(Key, Finding)>,
+    max_rounds: u64,
+    bound_attained: u64,
+    runs: u64,
+    drop_h1: Option<(Key, Finding)>,
+    drop_h2: Option<(Key, Finding)>,
+    exhaustive_cases: u64,
+    exhaustive_failures: u64,
+    exhaustive_too_large: u64,
+    exhaustive_max_rounds: u64,
+    exhaustive_attained: u64,
+    exhaustive_min: Option<(Key, Finding)>,
+}
+
+fn merge(a: Acc, b: Acc) -> Acc {
+    Acc {
+        printed_cases: a.printed_cases + b.printed_cases,
+        printed_failures: a.printed_failures + b.printed_failures,
+        printed_undecided: a.printed_undecided + b.printed_undecided,
+        printed_min: min_of(a.printed_min, b.printed_min),
+        corrected_cases: a.corrected_cases + b.corrected_cases,
+        corrected_failures: a.corrected_failures + b.corrected_failures,
+        corrected_min: min_of(a.corrected_min, b.corrected_min),
+        max_rounds: a.max_rounds.max(b.max_rounds),
+        bound_attained: a.bound_attained + b.bound_attained,
+        runs: a.runs + b.runs,
+        drop_h1: min_of(a.drop_h1, b.drop_h1),
+        drop_h2: min_of(a.drop_h2, b.drop_h2),
+        exhaustive_cases: a.exhaustive_cases + b.exhaustive_cases,
+        exhaustive_failures: a.exhaustive_failures + b.exhaustive_failures,
+        exhaustive_too_large: a.exhaustive_too_large + b.exhaustive_too_large,
+        exhaustive_max_rounds: a.exhaustive_max_rounds.max(b.exhaustive_max_rounds),
+        exhaustive_attained: a.exhaustive_attained + b.exhaustive_attained,
+        exhaustive_min: min_of(a.exhaustive_min, b.exhaustive_min),
+    }
+}
+
+/// The initial values checked for C1 as printed (and the every-order exploration).
+fn initial_values(scope: Scope) -> &'static [i64] {
+    match scope {
+        Scope::Smoke | Scope::Quick => &[0, 1, 3],
+        Scope::Full => &[-1, 0, 1, 3],
+    }
+}
+
+/// The initial values checked for C1-corrected (simulated orders).
+fn corrected_values(scope: Scope) -> &'static [i64] {
+    match scope {
+        Scope::Smoke => &[0, 1, 3],
+        Scope::Quick => &[0, 1, 2, 4],
+        Scope::Full => &[-1, 0, 1, 2, 4],
+    }
+}
+
+fn specs(scope: Scope) -> Vec<FamilySpec> {
+    let spec = |states, degree, goal_degree, costs: &[u8]| FamilySpec {
+        states,
+        initial_fixed: false,
+        degree,
+        goal_degree,
+        costs: costs.to_vec(),
+        distinct_successors: false,
+    };
+    match scope {
+        Scope::Smoke => vec![
+            spec(1, (1, 1), (0, 1), &[0, 1, 2]),
+            spec(2, (1, 2), (0, 1), &[0, 1, 2]),
+            spec(3, (1, 1), (0, 0), &[0, 1, 2]),
+        ],
+        Scope::Quick => (1..=3)
+            .map(|n| spec(n, (1, 2), (0, 1), &[0, 1, 2]))
+            .collect(),
+        Scope::Full => {
+            let mut v: Vec<FamilySpec> = (1..=3)
+                .map(|n| spec(n, (1, 2), (0, 1), &[0, 1, 2]))
+                .collect();
+            v.push(spec(4, (1, 1), (0, 1), &[0, 1, 2]));
+            v
+        }
+    }
+}
+
+fn exhaustive_specs(scope: Scope) -> Vec<FamilySpec> {
+    let spec = |states, degree| FamilySpec {
+        states,
+        initial_fixed: false,
+        degree,
+        goal_degree: (0, 0),
+        costs: vec![0, 1, 2],
+        distinct_successors: false,
+    };
+    match scope {
+        Scope::Smoke => vec![spec(2, (1, 2)), spec(3, (1, 1))],
+        Scope::Quick | Scope::Full => vec![spec(2, (1, 2)), spec(3, (1, 2))],
+    }
+}
+
+/// Every initial-value vector on the move pairs over `domain`; identical moves of one state
+/// get non-decreasing values (they are interchangeable).
+fn initial_vectors(q: &QProblem, domain: &[i64]) -> Vec<Values> {
+    let moves: Vec<usize> = (0..q.len()).filter(|&p| !q.pairs[p].terminal).collect();
+    let mut out = Vec::new();
+    let mut idx = vec![0usize; moves.len()];
+    loop {
+        let mut v = [0i64; super::qlearning::MAX_PAIRS];
+        let mut ok = true;
+        for (k, &p) in moves.iter().enumerate() {
+            v[p] = domain[idx[k]];
+            if k > 0 && moves[k - 1] + 1 == p && q.pairs[p - 1] == q.pairs[p] && idx[k] < idx[k - 1]
+            {
+                ok = false;
+            }
+        }
+        if ok {
+            out.push(v);
+        }
+        let mut k = 0;
+        loop {
+            if k == moves.len() {
+                return out;
+            }
+            idx[k] += 1;
+            if idx[k] < domain.len() {
+                break;
+            }
+            idx[k] = 0;
+            k += 1;
+        }
+    }
+}
+
+const ORDERS: usize = 4;
+const MAX_ROUNDS: u64 = 64;
+
+fn orders(seed: u64) -> [Order; ORDERS] {
+    [
+        Order::Cyclic,
+        Order::Reverse,
+        Order::FarFirst,
+        Order::Random(seed),
+    ]
+}
+
+fn order_name(o: Order) -> String {
+    match o {
+        Order::Cyclic => "cyclic order".into(),
+        Order::Reverse => "reverse cyclic order".into(),
+        Order::FarFirst => "far-from-goal-first order".into(),
+        Order::Random(s) => format!("random order (seed {s})"),
+    }
+}
+
+fn describe_run(r: Run) -> String {
+    match r {
+        Run::Converged(k) => format!("Q = Q* after {k} rounds"),
+        Run::Cycles(k, p) => format!(
+            "round-end values repeat (from round {k}, period {p}) without reaching Q*: never converges"
+        ),
+        Run::NotWithin(k) => format!("Q != Q* after {k} rounds"),
+    }
+}
+
+fn values_text(q: &QProblem, v: &Values) -> String {
+    (0..q.len())
+        .map(|p| {
+            let pair = q.pairs[p];
+            if pair.terminal {
+                format!("Q({},uT)={}", pair.state, v[p])
+            } else {
+                format!("Q({}->{})={}", pair.state, pair.to, v[p])
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn optimum_text(q: &QProblem) -> String {
+    let mut v = [0i64; super::qlearning::MAX_PAIRS];
+    let mut inf = Vec::new();
+    for p in 0..q.len() {
+        match q.optimum[p] {
+            Some(x) => v[p] = x,
+            None => inf.push(p),
+        }
+    }
+    let mut s = values_text(q, &v);
+    for p in inf {
+        let pair = q.pairs[p];
+        s = s.replace(
+            &format!("Q({}->{})=0", pair.state, pair.to),
+            &format!("Q({}->{})=inf", pair.state, pair.to),
+        );
+    }
+    s
+}
+
+fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], corrected_domain: &[i64]) {
+    let printed = QProblem::new(t, Terminal::Updated);
+    let held = QProblem::new(t, Terminal::HeldAtZero);
+    let terminal_pair = (0..printed.len())
+        .find(|&p| printed.pairs[p].terminal)
+        .expect("goal");
+    let vectors = initial_vectors(&printed, domain);
+    let positive = t
+        .moves
+        .iter()
+        .take(t.states())
+        .enumerate()
+        .all(|(x, ms)| ms[..t.deg[x] as usize].iter().all(|m| m.cost > 0));
+    for (vi, base) in vectors.iter().enumerate() {
+        let q0sum: i64 = base.iter().map(|x| x.abs()).sum();
+        for terminal_q0 in [0i64, 1] {
+            let mut q0 = *base;
+            q0[terminal_pair] = terminal_q0;
+            let key: Key = {
+                let (a, b, c, _, _) = minimality_key(t, 0, 0);
+                (
+                    a,
+                    b,
+                    c,
+                    (q0sum + terminal_q0) as u64,
+                    index,
+                    vi as u64 * 2 + terminal_q0 as u64,
+                )
+            };
+            let seed = index.wrapping_mul(1_000_003).wrapping_add(vi as u64);
+            // As printed.
+            acc.printed_cases += 1;
+            let verdict = if !printed.all_finite() {
+                Some("some pair has Q* = inf (its state cannot reach the goal) while Q stays finite forever".to_string())
+            } else {
+                let mut bad = None;
+                for o in orders(seed) {
+                    acc.runs += 1;
+                    let r = run(&printed, &q0, o, MAX_ROUNDS);
+                    match r {
+                        Run::Converged(_) => {}
+                        Run::Cycles(..) => {
+                            bad = Some(format!("under the {}: {}", order_name(o), describe_run(r)));
+                            break;
+                        }
+                        Run::NotWithin(_) => {
+                            acc.printed_undecided += 1;
+                        }
+                    }
+                }
+                bad
+            };
+            if let Some(what) = verdict {
+                acc.printed_failures += 1;
+                keep_min(&mut acc.printed_min, key, || Finding {
+                    t: *t,
+                    q0,
+                    terminal_q0,
+                    what,
+                });
+            }
+        }
+    }
+    for (vi, q0) in initial_vectors(&held, corrected_domain).iter().enumerate() {
+        let q0 = *q0;
+        let seed = index.wrapping_mul(1_000_003).wrapping_add(vi as u64);
+        let terminal_q0 = 0;
+        let key: Key = {
+            let (a, b, c, _, _) = minimality_key(t, 0, 0);
+            (
+                a,
+                b,
+                c,
+                q0.iter().map(|x| x.unsigned_abs()).sum(),
+                index,
+                vi as u64,
+            )
+        };
+        {
+            // Corrected: terminal held at 0.
+            let h1 = held.all_finite();
+            let above = (0..held.len())
+                .filter(|&p| !held.pairs[p].terminal)
+                .all(|p| held.optimum[p].is_some_and(|q| q0[p] >= q));
+            let h2 = above || positive;
+            if h1 && h2 {
+                acc.corrected_cases += 1;
+                let bound = held.round_bound(&q0).expect("hypotheses hold");
+                for o in orders(seed) {
+                    acc.runs += 1;
+                    let r = run(&held, &q0, o, MAX_ROUNDS);
+                    match r {
+                        Run::Converged(k) if k <= bound => {
+                            acc.max_rounds = acc.max_rounds.max(k);
+                            if k == bound && o == Order::FarFirst {
+                                acc.bound_attained += 1;
+                            }
+                        }
+                        _ => {
+                            acc.corrected_failures += 1;
+                            keep_min(&mut acc.corrected_min, key, || Finding {
+                                t: *t,
+                                q0,
+                                terminal_q0,
+                                what: format!(
+                                    "under the {}: {} (bound R = {bound})",
+                                    order_name(o),
+                                    describe_run(r)
+                                ),
+                            });
+                        }
+                    }
+                }
+            } else if h1 && !h2 {
+                let r = run(&held, &q0, Order::Cyclic, MAX_ROUNDS);
+                if let Run::Cycles(..) = r {
+                    keep_min(&mut acc.drop_h2, key, || Finding {
+                        t: *t,
+                        q0,
+                        terminal_q0,
+                        what: format!("under the cyclic order: {}", describe_run(r)),
+                    });
+                }
+            } else if !h1 && positive {
+                keep_min(&mut acc.drop_h1, key, || Finding {
+                    t: *t,
+                    q0,
+                    terminal_q0,
+                    what: "a state cannot reach the goal: Q* = inf there, Q stays finite".into(),
+                });
+            }
+        }
+    }
+}
+
+fn check_all_orders(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64]) {
+    let held = QProblem::new(t, Terminal::HeldAtZero);
+    if !held.all_finite() {
+        return;
+    }
+    let positive = (0..held.len())
+        .filter(|&p| !held.pairs[p].terminal)
+        .all(|p| held.pairs[p].cost > 0);
+    for (vi, q0) in initial_vectors(&held, domain).iter().enumerate() {
+        let above = (0..held.len())
+            .filter(|&p| !held.pairs[p].terminal)
+            .all(|p| held.optimum[p].is_some_and(|q| q0[p] >= q));
+        if !(above || positive) {
+            continue;
+        }
+        acc.exhaustive_cases += 1;
+        let bound = held.round_bound(q0).expect("hypotheses hold");
+        let key: Key = {
+            let (a, b, c, _, _) = minimality_key(t, 0, 0);
+            (
+                a,
+                b,
+                c,
+                q0.iter().map(|x| x.unsigned_abs()).sum(),
+                index,
+                vi as u64,
+            )
+        };
+        match all_orders(&held, q0, 200_000) {
+            AllOrders::Converges(k) if k <= bound => {
+                acc.exhaustive_max_rounds = acc.exhaustive_max_rounds.max(k);
+                if k == bound {
+                    acc.exhaustive_attained += 1;
+                }
+            }
+            AllOrders::TooLarge => acc.exhaustive_too_large += 1,
+            other => {
+                acc.exhaustive_failures += 1;
+                keep_min(&mut acc.exhaustive_min, key, || Finding {
+                    t: *t,
+                    q0: *q0,
+                    terminal_q0: 0,
+                    what: format!("every-order exploration: {other:?} (bound R = {bound})"),
+                });
+            }
+        }
+    }
+}
+
+fn counterexample(f: &Finding, terminal: Terminal, file: &str) -> Counterexample {
+    let q = QProblem::new(&f.t, terminal);
+    let mut q0 = f.q0;
+    if let Some(p) = (0..q.len()).find(|&p| q.pairs[p].terminal) {
+        q0[p] = if terminal == Terminal::Updated {
+            f.terminal_q0
+        } else {
+            0
+        };
+    }
+    let summary = format!(
+        "C1 counterexample with initial values {}: {}",
+        values_text(&q, &q0),
+        f.what
+    );
+    Counterexample::new(
+        &f.t,
+        summary,
+        vec![
+            ("initial values Q0".into(), values_text(&q, &q0)),
+            ("optimal Q*".into(), optimum_text(&q)),
+            (
+                "termination pair".into(),
+                match terminal {
+                    Terminal::Updated => "updated by the rho = 1 rule (as printed)".into(),
+                    Terminal::HeldAtZero => "held at 0 (H0)".into(),
+                },
+            ),
+            ("what happens".into(), f.what.clone()),
+        ],
+        file,
+    )
+}
+
+/// Checks C1 as printed and C1-corrected in `scope`. Returns `(C1, C1-corrected)`.
+pub fn check(scope: Scope) -> (ClaimResult, ClaimResult) {
+    let domain = initial_values(scope);
+    let corrected = corrected_values(scope);
+    let started = std::time::Instant::now();
+    let mut acc = Acc::default();
+    let mut structures = 0;
+    let mut scope_text = Vec::new();
+    for spec in specs(scope) {
+        let (a, distinct) = enumerate(
+            &spec,
+            Acc::default,
+            |acc, t, i| check_structure(acc, t, i, domain, corrected),
+            merge,
+        );
+        acc = merge(acc, a);
+        structures += distinct;
+        scope_text.push(spec.describe());
+    }
+    let seconds1 = started.elapsed().as_secs_f64();
+    let started = std::time::Instant::now();
+    let mut ex_scope = Vec::new();
+    for spec in exhaustive_specs(scope) {
+        let (a, _) = enumerate(
+            &spec,
+            Acc::default,
+            |acc, t, i| check_all_orders(acc, t, i, domain),
+            merge,
+        );
+        acc = merge(acc, a);
+        ex_scope.push(spec.describe());
+    }
+    let seconds2 = started.elapsed().as_secs_f64();
+    let dom: Vec<String> = domain.iter().map(|d| d.to_string()).collect();
+    let scope_line = format!(
+        "{structures} problems up to relabelling ({}; one goal); initial values in {{{}}} on every move pair, \
+termination pair 0 or 1; fair orders: cyclic, reverse, far-from-goal-first (adversarial), seeded random",
+        scope_text.join(" | "),
+        dom.join(",")
+    );
+    let printed = ClaimResult {
+        id: "C1".into(),
+        statement: STATEMENT.into(),
+        verdict: if acc.printed_min.is_some() {
+            Verdict::Refuted
+        } else if acc.printed_undecided > 0 {
+            Verdict::Inconclusive
+        } else {
+            Verdict::Verified
+        },
+        engine: "exhaustive enumeration".into(),
+        scope: scope_line.clone(),
+        cases: acc.printed_cases,
+        counterexample: acc
+            .printed_min
+            .as_ref()
+            .map(|(_, f)| counterexample(f, Terminal::Updated, "c1-as-printed")),
+        engines: vec![EngineRun {
+            engine: "exhaustive enumeration".into(),
+            mode: "exhaustive".into(),
+            scope: scope_line.clone(),
+            cases: acc.printed_cases,
+            failures: acc.printed_failures,
+            seconds: seconds1 / 2.0,
+        }],
+        notes: vec![
+            format!(
+                "{} of {} instances fail (definitive certificates only: a pair with Q* = inf, or repeating round-end \
+values under a periodic order)",
+                acc.printed_failures, acc.printed_cases
+            ),
+            "C1 and C1-corrected share one enumeration pass; its time is split evenly between them in cases per second"
+                .into(),
+        ],
+    };
+    let mut notes = vec![
+        format!(
+            "worst observed number of rounds: {} (simulated orders), {} (every fair order); the bound R is attained \
+exactly by the far-from-goal-first order in {} instances and by the worst fair order in {}",
+            acc.max_rounds, acc.exhaustive_max_rounds, acc.bound_attained, acc.exhaustive_attained
+        ),
+        format!(
+            "every-order exploration (all fair update sequences, round by round): {} instances, {} failures, \
+{} too large to explore; scope: {}",
+            acc.exhaustive_cases,
+            acc.exhaustive_failures,
+            acc.exhaustive_too_large,
+            ex_scope.join(" | ")
+        ),
+    ];
+    if let Some((_, f)) = &acc.printed_min {
+        notes.push(format!(
+            "H0 is necessary: {} ({}; initial values {})",
+            f.what,
+            f.t.describe(),
+            values_text(&QProblem::new(&f.t, Terminal::Updated), &{
+                let mut v = f.q0;
+                v[QProblem::new(&f.t, Terminal::Updated)
+                    .pairs
+                    .iter()
+                    .position(|p| p.terminal)
+                    .expect("goal")] = f.terminal_q0;
+                v
+            })
+        ));
+    }
+    for (name, slot) in [("H1", &acc.drop_h1), ("H2", &acc.drop_h2)] {
+        if let Some((_, f)) = slot {
+            let q = QProblem::new(&f.t, Terminal::HeldAtZero);
+            notes.push(format!(
+                "{name} is necessary: {} ({}; initial values {}; Q* {})",
+                f.what,
+                f.t.describe(),
+                values_text(&q, &f.q0),
+                optimum_text(&q)
+            ));
+        }
+    }
+    let failures = acc.corrected_failures + acc.exhaustive_failures;
+    let corrected_min = min_of(acc.corrected_min.clone(), acc.exhaustive_min.clone());
+    let corrected = ClaimResult {
+        id: "C1-corrected".into(),
+        statement: CORRECTED.into(),
+        verdict: if failures > 0 {
+            Verdict::Refuted
+        } else if acc.exhaustive_too_large > 0 {
+            Verdict::Inconclusive
+        } else {
+            Verdict::Verified
+        },
+        engine: "exhaustive enumeration".into(),
+        scope: format!(
+            "{structures} problems up to relabelling ({}; one goal); initial values in {{{}}} on every move pair, \
+termination pair held at 0; instances satisfying H0-H2 only; fair orders: cyclic, reverse, far-from-goal-first \
+(adversarial), seeded random",
+            scope_text.join(" | "),
+            corrected.iter().map(|d| d.to_string()).collect::<Vec<_>>().join(",")
+        ),
+        cases: acc.corrected_cases,
+        counterexample: corrected_min
+            .as_ref()
+            .map(|(_, f)| counterexample(f, Terminal::HeldAtZero, "c1-corrected")),
+        engines: vec![
+            EngineRun {
+                engine: "exhaustive enumeration".into(),
+                mode: "exhaustive".into(),
+                scope: "instances satisfying H0-H2, four fair orders each".into(),
+                cases: acc.corrected_cases,
+                failures: acc.corrected_failures,
+                seconds: seconds1 / 2.0,
+            },
+            EngineRun {
+                engine: "exhaustive enumeration (every fair order)".into(),
+                mode: "exhaustive".into(),
+                scope: ex_scope.join(" | "),
+                cases: acc.exhaustive_cases,
+                failures: acc.exhaustive_failures,
+                seconds: seconds2,
+            },
+        ],
+        notes,
+    };
+    let _ = Q::ZERO;
+    (printed, corrected)
+}

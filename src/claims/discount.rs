@@ -1,0 +1,428 @@
+//! `truecost discount` (issue 5, item 6, beyond the paper): the exact set of discount factors
+//! `α ∈ (0, 1)` for which a discount-optimal policy fails to reach the goal from `x1`.
+//!
+//! A stationary policy's trajectory from `x1` is a simple path to a goal (it then terminates at
+//! cost 0) or a *lasso* (a simple path into a cycle) avoiding the goals. Its discounted cost is
+//! a rational function of `α`. A discount-optimal policy fails to reach the goal at `α` iff the
+//! least lasso value is `≤` the least goal-path value (ties count: "a" discount-optimal policy).
+//! The set changes only at roots in `(0,1)` of the differences of a lasso's and a path's value;
+//! those roots are isolated exactly (Sturm sequences) and compared as algebraic numbers, and
+//! membership is decided exactly at each root and at a rational point between consecutive ones.
+//!
+//! Lemmas used before enumerating (each proved in its doc line): no goal reachable → `(0,1)`;
+//! no goal-avoiding cycle reachable → `∅`; all reachable move costs equal `c > 0` → `∅`
+//! (a path of `d` moves costs `c(1−α^d)/(1−α) < c/(1−α)` ≤ any lasso).
+
+use std::cmp::Ordering;
+
+use num_traits::{One, Signed, Zero};
+
+use super::poly::{count_roots, isolate_roots, Algebraic, Poly};
+use crate::model::Problem;
+use crate::value::Rational;
+
+/// An end of a piece of the set.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Point {
+    /// 0.
+    Zero,
+    /// 1.
+    One,
+    /// An algebraic number in `(0,1)`.
+    Root(Algebraic),
+}
+
+/// A maximal interval of the set (possibly a single point: `lo == hi`, both closed).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Piece {
+    /// Lower end.
+    pub lo: Point,
+    /// Whether `lo` belongs to the set.
+    pub lo_closed: bool,
+    /// Upper end.
+    pub hi: Point,
+    /// Whether `hi` belongs to the set.
+    pub hi_closed: bool,
+}
+
+/// The answer of the analysis.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DiscountSet {
+    /// The maximal pieces, in increasing order.
+    pub pieces: Vec<Piece>,
+    /// How the set was obtained.
+    pub method: String,
+}
+
+/// Why the analysis cannot run.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum DiscountError {
+    /// Too many trajectories for the exact enumeration.
+    #[error("the problem has more than {0} goal paths or goal-avoiding lassos from x1: too large for the exact parametric analysis")]
+    TooLarge(usize),
+}
+
+/// Discounted value of a stage sequence `prefix` then `cycle` forever, as `(N, D)`.
+fn value(prefix: &[Rational], cycle: &[Rational]) -> (Poly, Poly) {
+    let p = Poly::new(prefix.to_vec());
+    if cycle.is_empty() {
+        return (p, Poly::from_i64(&[1]));
+    }
+    let k = cycle.len();
+    let d = Poly::from_i64(&[1]).sub(&Poly::monomial(k));
+    let c = Poly::new(cycle.to_vec());
+    (p.mul(&d).add(&Poly::monomial(prefix.len()).mul(&c)), d)
+}
+
+struct Trajectories {
+    paths: Vec<(Poly, Poly)>,
+    lassos: Vec<(Poly, Poly)>,
+}
+
+fn trajectories(problem: &Problem, limit: usize) -> Result<Trajectories, DiscountError> {
+    let n = problem.states();
+    let mut out = Trajectories {
+        paths: Vec::new(),
+        lassos: Vec::new(),
+    };
+    let mut pos = vec![usize::MAX; n];
+    let mut costs: Vec<Rational> = Vec::new();
+    fn dfs(
+        problem: &Problem,
+        x: usize,
+        pos: &mut Vec<usize>,
+        costs: &mut Vec<Rational>,
+        out: &mut Trajectories,
+        limit: usize,
+    ) -> Result<(), DiscountError> {
+        if problem.is_goal(x) {
+            out.paths.push(value(costs, &[]));
+        } else {
+            pos[x] = costs.len();
+            for m in problem.moves(x) {
+                let y = m.successor;
+                costs.push(m.cost.clone());
+                if pos[y] != usize::MAX {
+                    let s = pos[y];
+                    out.lassos.push(value(&costs[..s], &costs[s..]));
+                } else {
+                    dfs(problem, y, pos, costs, out, limit)?;
+                }
+                costs.pop();
+            }
+            pos[x] = usize::MAX;
+        }
+        if out.paths.len() > limit || out.lassos.len() > limit {
+            return Err(DiscountError::TooLarge(limit));
+        }
+        Ok(())
+    }
+    dfs(
+        problem,
+        problem.initial(),
+        &mut pos,
+        &mut costs,
+        &mut out,
+        limit,
+    )?;
+    Ok(out)
+}
+
+fn min_value(list: &[(Poly, Poly)], a: &Rational) -> Option<Rational> {
+    list.iter().map(|(n, d)| n.eval(a) / d.eval(a)).min()
+}
+
+fn member_rational(t: &Trajectories, a: &Rational) -> bool {
+    match (min_value(&t.lassos, a), min_value(&t.paths, a)) {
+        (None, _) => false,
+        (Some(_), None) => true,
+        (Some(l), Some(p)) => l <= p,
+    }
+}
+
+/// Sign of `f` at the algebraic number `b`.
+fn sign_at(f: &Poly, b: &Algebraic) -> Ordering {
+    if f.is_zero() {
+        return Ordering::Equal;
+    }
+    let g = f.gcd(&b.poly);
+    if g.degree().unwrap_or(0) > 0 && count_roots(&g.sturm(), &b.lo, &b.hi) >= 1 {
+        return Ordering::Equal;
+    }
+    let seq = f.squarefree().sturm();
+    let mut c = b.clone();
+    while count_roots(&seq, &c.lo, &c.hi) > 0 || f.eval(&c.hi).is_zero() {
+        let w = &c.hi - &c.lo;
+        c.refine_to(&(w / Rational::from_integer(2.into())));
+    }
+    f.sign_at(&c.hi)
+}
+
+fn member_algebraic(t: &Trajectories, b: &Algebraic) -> bool {
+    if t.lassos.is_empty() {
+        return false;
+    }
+    t.lassos.iter().any(|(nl, dl)| {
+        t.paths.iter().all(|(np, dp)| {
+            // sign(V_l − V_p) = sign(N_l D_p − N_p D_l) since D > 0 on (0,1).
+            sign_at(&nl.mul(dp).sub(&np.mul(dl)), b) != Ordering::Greater
+        })
+    })
+}
+
+/// The exact set of `α ∈ (0,1)` for which a discount-optimal policy fails to reach a goal from
+/// `x1`. `limit` bounds the number of paths and lassos enumerated.
+///
+/// ```
+/// use truecost::claims::discount::discount_set;
+/// let p = truecost::model::file::from_json(r#"{"initial":0,"goals":[1],
+///   "actions":[[{"to":0,"cost":"1"},{"to":1,"cost":"3"}],[]]}"#).unwrap();
+/// // stay: 1/(1-a); go: 3. Staying is optimal iff a <= 2/3.
+/// let s = discount_set(&p, 1000).unwrap();
+/// assert_eq!(s.pieces.len(), 1);
+/// assert!(s.pieces[0].hi_closed);
+/// ```
+pub fn discount_set(problem: &Problem, limit: usize) -> Result<DiscountSet, DiscountError> {
+    let whole = |method: &str| DiscountSet {
+        pieces: vec![Piece {
+            lo: Point::Zero,
+            lo_closed: false,
+            hi: Point::One,
+            hi_closed: false,
+        }],
+        method: method.into(),
+    };
+    let empty = |method: &str| DiscountSet {
+        pieces: Vec::new(),
+        method: method.into(),
+    };
+    if problem.is_goal(problem.initial()) {
+        return Ok(empty("x1 is a goal: every policy has reached it"));
+    }
+    // Reachability without passing a goal.
+    let n = problem.states();
+    let mut seen = vec![false; n];
+    seen[problem.initial()] = true;
+    let mut stack = vec![problem.initial()];
+    let mut goal_reachable = false;
+    let mut costs: Vec<Rational> = Vec::new();
+    while let Some(x) = stack.pop() {
+        for m in problem.moves(x) {
+            costs.push(m.cost.clone());
+            if problem.is_goal(m.successor) {
+                goal_reachable = true;
+            } else if !seen[m.successor] {
+                seen[m.successor] = true;
+                stack.push(m.successor);
+            }
+        }
+    }
+    if !goal_reachable {
+        return Ok(whole(
+            "lemma: no goal is reachable from x1, so every policy fails to reach it",
+        ));
+    }
+    // A goal-avoiding cycle exists iff the non-goal part reachable from x1 has a cycle; every
+    // non-goal state there has a move (problem files require it), so test via the core.
+    let mut core: Vec<bool> = seen.clone();
+    loop {
+        let mut changed = false;
+        for x in 0..n {
+            if core[x] && !problem.moves(x).iter().any(|m| core[m.successor]) {
+                core[x] = false;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    if !core.iter().any(|&c| c) {
+        return Ok(empty(
+            "lemma: no goal-avoiding cycle is reachable from x1, so every policy reaches a goal",
+        ));
+    }
+    if costs.iter().all(|c| c == &costs[0]) && costs[0].is_positive() {
+        return Ok(empty(
+            "lemma: every reachable move costs the same c > 0; a goal path of d moves costs c(1-a^d)/(1-a) < c/(1-a), \
+the cost of any lasso",
+        ));
+    }
+    let t = trajectories(problem, limit)?;
+    // Candidate breakpoints.
+    let mut polys: Vec<Poly> = Vec::new();
+    for (nl, dl) in &t.lassos {
+        for (np, dp) in &t.paths {
+            let f = nl.mul(dp).sub(&np.mul(dl));
+            if !f.is_zero() {
+                // Roots at 0 never lie in (0,1): divide out the factors of x.
+                let mut f = f;
+                while f.coefficients().first().is_some_and(|c| c.is_zero()) {
+                    f = f.div_rem(&Poly::monomial(1)).0;
+                }
+                let sf = f.squarefree();
+                if !polys.contains(&sf) {
+                    polys.push(sf);
+                }
+            }
+        }
+    }
+    let mut roots: Vec<Algebraic> = Vec::new();
+    for p in &polys {
+        for r in isolate_roots(p, &Rational::zero(), &Rational::one()) {
+            if !roots.iter().any(|q| q.compare(&r) == Ordering::Equal) {
+                roots.push(r);
+            }
+        }
+    }
+    roots.sort_by(|a, b| a.compare(b));
+    // Make the brackets disjoint, inside (0,1), and in increasing order.
+    let half = |r: &mut Algebraic| {
+        let w = &r.hi - &r.lo;
+        r.refine_to(&(w / Rational::from_integer(2.into())));
+    };
+    for i in 0..roots.len() {
+        while roots[i].lo.is_zero() || roots[i].hi >= Rational::one() {
+            half(&mut roots[i]);
+        }
+        if i > 0 {
+            while roots[i - 1].hi >= roots[i].lo {
+                half(&mut roots[i - 1]);
+                half(&mut roots[i]);
+            }
+        }
+    }
+    // Membership on the gaps (at a rational strictly inside) and at the roots.
+    let mut points: Vec<(Point, bool)> = Vec::new(); // each root and whether it is in the set
+    let mut gaps: Vec<bool> = Vec::new();
+    let two = Rational::from_integer(2.into());
+    let mut lo = Rational::zero();
+    for r in &roots {
+        gaps.push(member_rational(&t, &((&lo + &r.lo) / &two)));
+        points.push((Point::Root(r.clone()), member_algebraic(&t, r)));
+        lo = r.hi.clone();
+    }
+    gaps.push(member_rational(&t, &((&lo + Rational::one()) / &two)));
+    // Atoms in increasing order: gap 0, root 0, gap 1, ..., gap k; merge runs of members.
+    let mut atoms: Vec<(bool, Option<usize>, bool)> = Vec::new(); // (is_root, root index, member)
+    for i in 0..gaps.len() {
+        atoms.push((false, None, gaps[i]));
+        if i < points.len() {
+            atoms.push((true, Some(i), points[i].1));
+        }
+    }
+    let root_point = |i: usize| points[i].0.clone();
+    let mut pieces: Vec<Piece> = Vec::new();
+    let mut k = 0;
+    while k < atoms.len() {
+        if !atoms[k].2 {
+            k += 1;
+            continue;
+        }
+        let start = k;
+        while k + 1 < atoms.len() && atoms[k + 1].2 {
+            k += 1;
+        }
+        let (lo, lo_closed) = match atoms[start] {
+            (true, Some(i), _) => (root_point(i), true),
+            _ => {
+                // A gap: its left end is the root before it, or 0.
+                let gap = start / 2;
+                (
+                    if gap == 0 {
+                        Point::Zero
+                    } else {
+                        root_point(gap - 1)
+                    },
+                    false,
+                )
+            }
+        };
+        let (hi, hi_closed) = match atoms[k] {
+            (true, Some(i), _) => (root_point(i), true),
+            _ => {
+                let gap = k / 2;
+                (
+                    if gap < points.len() {
+                        root_point(gap)
+                    } else {
+                        Point::One
+                    },
+                    false,
+                )
+            }
+        };
+        pieces.push(Piece {
+            lo,
+            lo_closed,
+            hi,
+            hi_closed,
+        });
+        k += 1;
+    }
+    Ok(DiscountSet {
+        pieces,
+        method: format!(
+            "exact parametric analysis: {} goal paths and {} goal-avoiding lassos from x1, {} breakpoint candidates in (0,1)",
+            t.paths.len(),
+            t.lassos.len(),
+            roots.len()
+        ),
+    })
+}
+
+/// `a` as text: `0`, `1`, or `root of P in (lo, hi] ≈ decimal`.
+pub fn point_text(p: &Point) -> String {
+    match p {
+        Point::Zero => "0".into(),
+        Point::One => "1".into(),
+        Point::Root(a) if a.as_rational().is_some() => rat(&a.as_rational().expect("rational")),
+        Point::Root(a) => {
+            let mut b = a.clone();
+            b.refine_to(&Rational::new(
+                One::one(),
+                num_bigint::BigInt::one() << 100usize,
+            ));
+            format!(
+                "{} (the root of {} in ({}, {}])",
+                b.decimal(30),
+                b.poly.primitive(),
+                rat(&b.lo),
+                rat(&b.hi)
+            )
+        }
+    }
+}
+
+/// `p/q` text of a rational.
+pub fn rat(x: &Rational) -> String {
+    if x.is_integer() {
+        x.numer().to_string()
+    } else {
+        format!("{}/{}", x.numer(), x.denom())
+    }
+}
+
+/// The set in interval notation.
+pub fn set_text(s: &DiscountSet) -> String {
+    if s.pieces.is_empty() {
+        return "empty".into();
+    }
+    s.pieces
+        .iter()
+        .map(|p| {
+            if p.lo == p.hi {
+                format!("{{{}}}", point_text(&p.lo))
+            } else {
+                format!(
+                    "{}{}, {}{}",
+                    if p.lo_closed { "[" } else { "(" },
+                    point_text(&p.lo),
+                    point_text(&p.hi),
+                    if p.hi_closed { "]" } else { ")" }
+                )
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(" U ")
+}

@@ -1,0 +1,210 @@
+//! The claims engine (SPEC §6, issue 5): the paper's four propositions C1–C4 *exactly as
+//! printed*, corrected statements where a printed one is refuted, and the engines that check
+//! them against independent oracles.
+//!
+//! * Engine 1 — exhaustive small-scope enumeration ([`tiny`], parallel with rayon, symmetry
+//!   reduced): every problem of a stated scope, checked against brute-force oracles
+//!   ([`oracle`], [`qlearning`]).
+//! * Engine 2 — proptest properties on larger random problems with shrinking ([`sampled`]).
+//! * Engine 3 — Kani harnesses in `proofs/` (one source: symbolic under `cargo kani`, run by
+//!   explicit-state enumeration through a stand-in crate under `cargo test`); the registry
+//!   lists them ([`registry`]).
+//!
+//! A claim is `verified` only for the scope an engine checked, `refuted` with a minimal
+//! counterexample, or `inconclusive`. Nothing here reads a clock except [`run`], which wraps
+//! each engine to report cases per second.
+
+// Index loops over tiny fixed arrays read better than iterator chains in these oracles.
+#![allow(clippy::needless_range_loop)]
+
+pub mod alpha;
+pub mod c1;
+pub mod c2;
+pub mod c3;
+pub mod c4;
+pub mod discount;
+pub mod exact;
+pub mod oracle;
+pub mod poly;
+pub mod qlearning;
+pub mod registry;
+pub mod report;
+pub mod sampled;
+pub mod tiny;
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::model::Problem;
+use tiny::{Family, FamilySpec, Tiny};
+
+/// How much each engine checks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum Scope {
+    /// A small scope for the test suite (debug builds).
+    Smoke,
+    /// The CI scope: at least 10^6 distinct cases per claim, about a minute on 2 cores.
+    Quick,
+    /// Larger problems and more samples.
+    Full,
+}
+
+impl Scope {
+    /// The name used on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Scope::Smoke => "smoke",
+            Scope::Quick => "quick",
+            Scope::Full => "full",
+        }
+    }
+}
+
+/// The verdict on a claim (issue 5, item 1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Verdict {
+    /// Holds on every case of the stated scope (not a proof beyond it).
+    Verified,
+    /// A counterexample was found (the smallest in the scope's order is reported).
+    Refuted,
+    /// Neither.
+    Inconclusive,
+}
+
+impl Verdict {
+    /// `verified`, `refuted` or `inconclusive`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Verdict::Verified => "verified",
+            Verdict::Refuted => "refuted",
+            Verdict::Inconclusive => "inconclusive",
+        }
+    }
+}
+
+/// What one engine did for a claim.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct EngineRun {
+    /// `exhaustive enumeration`, `proptest` or `kani harness`.
+    pub engine: String,
+    /// `exhaustive`, `sampled`, or `not run by verify` (Kani harnesses: see `proofs/`).
+    pub mode: String,
+    /// What was checked.
+    pub scope: String,
+    /// Number of cases checked.
+    pub cases: u64,
+    /// Number of cases where the claim failed.
+    pub failures: u64,
+    /// Wall-clock seconds (never part of a pinned snapshot).
+    #[serde(skip)]
+    pub seconds: f64,
+}
+
+/// A counterexample: a small problem (replayable with `truecost solve --file`) and what fails.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Counterexample {
+    /// One-line summary.
+    pub summary: String,
+    /// The problem (`x1 = 0`, goal = last state) as a one-line description.
+    pub problem: String,
+    /// Further exact data (initial values, bonus, intervals, ...).
+    pub details: Vec<(String, String)>,
+    /// The suggested file name under `problems/counterexamples/`.
+    pub file: String,
+    /// The problem file's text.
+    #[serde(skip)]
+    pub problem_file: String,
+}
+
+impl Counterexample {
+    /// Builds a counterexample for a tiny problem.
+    pub fn new(t: &Tiny, summary: String, details: Vec<(String, String)>, file: &str) -> Self {
+        let problem: Problem = t.to_problem();
+        Counterexample {
+            summary: summary.clone(),
+            problem: t.describe(),
+            details,
+            file: format!("problems/counterexamples/{file}.json"),
+            problem_file: crate::model::file::to_json(&problem, Some(&summary)) + "\n",
+        }
+    }
+}
+
+/// The result for one claim.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ClaimResult {
+    /// `C1`, `C1-corrected`, ...
+    pub id: String,
+    /// The statement checked, with its hypotheses.
+    pub statement: String,
+    /// The verdict.
+    pub verdict: Verdict,
+    /// The engine that decided the verdict.
+    pub engine: String,
+    /// The scope that engine checked.
+    pub scope: String,
+    /// Number of cases that engine checked.
+    pub cases: u64,
+    /// The minimal counterexample, if refuted.
+    pub counterexample: Option<Counterexample>,
+    /// Every engine's run.
+    pub engines: Vec<EngineRun>,
+    /// Further findings (necessity of hypotheses, tightness of bounds, cross-checks).
+    pub notes: Vec<String>,
+}
+
+/// Runs `visit` on every canonical problem of `spec`, in parallel, and merges the
+/// accumulators. Deterministic whatever the number of threads: `merge` must be associative and
+/// commutative (sums, minima). Returns the merged accumulator and the number of distinct
+/// problems.
+pub fn enumerate<A, I, V, M>(spec: &FamilySpec, init: I, visit: V, merge: M) -> (A, u64)
+where
+    A: Send,
+    I: Fn() -> A + Sync + Send,
+    V: Fn(&mut A, &Tiny, u64) + Sync + Send,
+    M: Fn(A, A) -> A + Sync + Send,
+{
+    let family = Family::new(spec);
+    let count = family.labelled_count();
+    let count = usize::try_from(count).expect("scope fits in memory indices");
+    let (acc, distinct) = (0..count)
+        .into_par_iter()
+        .with_min_len(256)
+        .fold(
+            || (init(), 0u64),
+            |(mut acc, mut distinct), i| {
+                let i = i as u64;
+                let t = family.problem(i);
+                if family.is_canonical(&t) {
+                    distinct += 1;
+                    visit(&mut acc, &t, i);
+                }
+                (acc, distinct)
+            },
+        )
+        .reduce(|| (init(), 0u64), |(a, da), (b, db)| (merge(a, b), da + db));
+    (acc, distinct)
+}
+
+/// Keeps the minimal `(key, value)`.
+pub fn keep_min<K: Ord, T>(slot: &mut Option<(K, T)>, key: K, value: impl FnOnce() -> T) {
+    if slot.as_ref().map_or(true, |(k, _)| key < *k) {
+        *slot = Some((key, value()));
+    }
+}
+
+/// Merges two optional minima.
+pub fn min_of<K: Ord, T>(a: Option<(K, T)>, b: Option<(K, T)>) -> Option<(K, T)> {
+    match (a, b) {
+        (Some(x), Some(y)) => Some(if y.0 < x.0 { y } else { x }),
+        (x, None) => x,
+        (None, y) => y,
+    }
+}
+
+/// Runs the claims selected by `only` (all when `None`) in `scope`.
+pub fn run(scope: Scope, only: Option<&str>) -> Result<report::Report, String> {
+    registry::run(scope, only)
+}

@@ -1,0 +1,441 @@
+//! Exact univariate polynomials with rational coefficients, Sturm sequences, real-root
+//! isolation and algebraic numbers given by an isolating interval (issue 5, item 6).
+
+use std::cmp::Ordering;
+use std::fmt;
+
+use num_bigint::BigInt;
+use num_traits::{One, Signed, Zero};
+
+use crate::value::Rational;
+
+/// A polynomial `Σ c_i x^i` (coefficients from the constant up; no trailing zeros).
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+pub struct Poly {
+    c: Vec<Rational>,
+}
+
+fn r(n: i64) -> Rational {
+    Rational::from_integer(BigInt::from(n))
+}
+
+impl Poly {
+    /// From coefficients, constant first.
+    ///
+    /// ```
+    /// use truecost::claims::poly::Poly;
+    /// let p = Poly::from_i64(&[-2, 0, 1]); // x^2 - 2
+    /// assert_eq!(p.degree(), Some(2));
+    /// assert_eq!(p.to_string(), "x^2 - 2");
+    /// ```
+    pub fn from_i64(c: &[i64]) -> Poly {
+        Poly::new(c.iter().map(|&x| r(x)).collect())
+    }
+
+    /// From rational coefficients, constant first.
+    pub fn new(mut c: Vec<Rational>) -> Poly {
+        while c.last().is_some_and(Zero::is_zero) {
+            c.pop();
+        }
+        Poly { c }
+    }
+
+    /// The zero polynomial.
+    pub fn zero() -> Poly {
+        Poly { c: Vec::new() }
+    }
+
+    /// `x^k`.
+    pub fn monomial(k: usize) -> Poly {
+        let mut c = vec![Rational::zero(); k + 1];
+        c[k] = Rational::one();
+        Poly { c }
+    }
+
+    /// The degree (`None` for zero).
+    pub fn degree(&self) -> Option<usize> {
+        self.c.len().checked_sub(1)
+    }
+
+    /// Whether this is the zero polynomial.
+    pub fn is_zero(&self) -> bool {
+        self.c.is_empty()
+    }
+
+    /// Coefficients, constant first.
+    pub fn coefficients(&self) -> &[Rational] {
+        &self.c
+    }
+
+    /// The value at `x`.
+    pub fn eval(&self, x: &Rational) -> Rational {
+        let mut acc = Rational::zero();
+        for c in self.c.iter().rev() {
+            acc = acc * x + c;
+        }
+        acc
+    }
+
+    /// The sign of the value at `x`.
+    pub fn sign_at(&self, x: &Rational) -> Ordering {
+        self.eval(x).cmp(&Rational::zero())
+    }
+
+    /// The derivative.
+    pub fn derivative(&self) -> Poly {
+        Poly::new(
+            self.c
+                .iter()
+                .enumerate()
+                .skip(1)
+                .map(|(i, c)| c * r(i as i64))
+                .collect(),
+        )
+    }
+
+    /// `self + o`.
+    pub fn add(&self, o: &Poly) -> Poly {
+        let n = self.c.len().max(o.c.len());
+        Poly::new(
+            (0..n)
+                .map(|i| {
+                    self.c.get(i).cloned().unwrap_or_else(Rational::zero)
+                        + o.c.get(i).cloned().unwrap_or_else(Rational::zero)
+                })
+                .collect(),
+        )
+    }
+
+    /// `self - o`.
+    pub fn sub(&self, o: &Poly) -> Poly {
+        self.add(&o.scale(&r(-1)))
+    }
+
+    /// `k · self`.
+    pub fn scale(&self, k: &Rational) -> Poly {
+        Poly::new(self.c.iter().map(|c| c * k).collect())
+    }
+
+    /// `self · o`.
+    pub fn mul(&self, o: &Poly) -> Poly {
+        if self.is_zero() || o.is_zero() {
+            return Poly::zero();
+        }
+        let mut c = vec![Rational::zero(); self.c.len() + o.c.len() - 1];
+        for (i, a) in self.c.iter().enumerate() {
+            for (j, b) in o.c.iter().enumerate() {
+                c[i + j] += a * b;
+            }
+        }
+        Poly::new(c)
+    }
+
+    /// Quotient and remainder of the division by `d` (non-zero).
+    pub fn div_rem(&self, d: &Poly) -> (Poly, Poly) {
+        let dd = d.degree().expect("division by the zero polynomial");
+        let lead = d.c[dd].clone();
+        let mut rem = self.c.clone();
+        let mut quo = vec![Rational::zero(); self.c.len().saturating_sub(dd).max(1)];
+        while rem.len() > dd && !rem.is_empty() {
+            let k = rem.len() - 1 - dd;
+            let f = &rem[rem.len() - 1] / &lead;
+            for (i, c) in d.c.iter().enumerate() {
+                rem[k + i] -= &f * c;
+            }
+            quo[k] = f;
+            rem.pop();
+            while rem.last().is_some_and(Zero::is_zero) {
+                rem.pop();
+            }
+        }
+        (Poly::new(quo), Poly::new(rem))
+    }
+
+    /// The monic greatest common divisor.
+    pub fn gcd(&self, o: &Poly) -> Poly {
+        let (mut a, mut b) = (self.clone(), o.clone());
+        while !b.is_zero() {
+            let (_, rem) = a.div_rem(&b);
+            a = b;
+            b = rem;
+        }
+        a.monic()
+    }
+
+    /// Divided by the leading coefficient.
+    pub fn monic(&self) -> Poly {
+        match self.c.last() {
+            None => Poly::zero(),
+            Some(l) => {
+                let l = l.clone();
+                self.scale(&(Rational::one() / l))
+            }
+        }
+    }
+
+    /// The primitive integer multiple with a positive leading coefficient (for display).
+    pub fn primitive(&self) -> Poly {
+        use num_integer::Integer;
+        let mut l = BigInt::one();
+        for c in &self.c {
+            l = l.lcm(c.denom());
+        }
+        let scaled: Vec<BigInt> = self
+            .c
+            .iter()
+            .map(|c| (c * Rational::from_integer(l.clone())).to_integer())
+            .collect();
+        let mut g = BigInt::zero();
+        for c in &scaled {
+            g = g.gcd(c);
+        }
+        if g.is_zero() {
+            return Poly::zero();
+        }
+        if scaled.last().is_some_and(|c| c.is_negative()) {
+            g = -g;
+        }
+        Poly::new(
+            scaled
+                .into_iter()
+                .map(|c| Rational::from_integer(c / &g))
+                .collect(),
+        )
+    }
+
+    /// The square-free part `p / gcd(p, p')` (monic).
+    pub fn squarefree(&self) -> Poly {
+        let g = self.gcd(&self.derivative());
+        if g.degree() == Some(0) {
+            return self.monic();
+        }
+        self.div_rem(&g).0.monic()
+    }
+
+    /// The Sturm sequence `p, p', -rem(p, p'), ...`.
+    pub fn sturm(&self) -> Vec<Poly> {
+        let mut seq = vec![self.clone(), self.derivative()];
+        while !seq[seq.len() - 1].is_zero() {
+            let n = seq.len();
+            let (_, rem) = seq[n - 2].div_rem(&seq[n - 1]);
+            seq.push(rem.scale(&r(-1)));
+        }
+        seq.pop();
+        seq
+    }
+}
+
+fn variations(seq: &[Poly], x: &Rational) -> usize {
+    let mut last = Ordering::Equal;
+    let mut v = 0;
+    for p in seq {
+        let s = p.sign_at(x);
+        if s == Ordering::Equal {
+            continue;
+        }
+        if last != Ordering::Equal && s != last {
+            v += 1;
+        }
+        last = s;
+    }
+    v
+}
+
+/// Number of distinct real roots of `seq[0]` in `(lo, hi]` (Sturm's theorem).
+pub fn count_roots(seq: &[Poly], lo: &Rational, hi: &Rational) -> usize {
+    variations(seq, lo) - variations(seq, hi)
+}
+
+/// A real algebraic number: the unique root of `poly` in `(lo, hi]`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Algebraic {
+    /// A square-free polynomial vanishing at the number.
+    pub poly: Poly,
+    /// Lower end (exclusive).
+    pub lo: Rational,
+    /// Upper end (inclusive).
+    pub hi: Rational,
+}
+
+impl Algebraic {
+    /// Halves the bracket until its width is at most `width`.
+    pub fn refine_to(&mut self, width: &Rational) {
+        let seq = self.poly.sturm();
+        let two = r(2);
+        while &(&self.hi - &self.lo) > width {
+            let mid = (&self.lo + &self.hi) / &two;
+            if count_roots(&seq, &self.lo, &mid) == 1 {
+                self.hi = mid;
+            } else {
+                self.lo = mid;
+            }
+        }
+    }
+
+    /// Whether the number is exactly the rational `hi` (the bracket's closed end).
+    pub fn is_rational(&self) -> bool {
+        self.poly.eval(&self.hi).is_zero()
+    }
+
+    /// The number as a rational, when its polynomial is linear or it is the bracket's end.
+    pub fn as_rational(&self) -> Option<Rational> {
+        if self.poly.degree() == Some(1) {
+            let c = self.poly.coefficients();
+            return Some(-&c[0] / &c[1]);
+        }
+        self.is_rational().then(|| self.hi.clone())
+    }
+
+    /// Compares with a rational.
+    pub fn cmp_rational(&self, x: &Rational) -> Ordering {
+        if x > &self.hi {
+            return Ordering::Less;
+        }
+        if x <= &self.lo {
+            return Ordering::Greater;
+        }
+        // lo < x <= hi: is the root in (lo, x]?
+        let seq = self.poly.sturm();
+        if self.poly.eval(x).is_zero() {
+            return Ordering::Equal;
+        }
+        if count_roots(&seq, &self.lo, x) == 1 {
+            Ordering::Less
+        } else {
+            Ordering::Greater
+        }
+    }
+
+    /// Exact comparison of two algebraic numbers.
+    pub fn compare(&self, o: &Algebraic) -> Ordering {
+        let g = self.poly.gcd(&o.poly);
+        let lo = if self.lo > o.lo { &self.lo } else { &o.lo };
+        let hi = if self.hi < o.hi { &self.hi } else { &o.hi };
+        if g.degree().unwrap_or(0) > 0 && lo < hi && count_roots(&g.sturm(), lo, hi) >= 1 {
+            // A common root in the overlap: both brackets hold exactly one root each, so it
+            // is the same number.
+            return Ordering::Equal;
+        }
+        let (mut a, mut b) = (self.clone(), o.clone());
+        loop {
+            if a.hi <= b.lo {
+                return Ordering::Less;
+            }
+            if b.hi <= a.lo {
+                return Ordering::Greater;
+            }
+            let wa = &a.hi - &a.lo;
+            let wb = &b.hi - &b.lo;
+            a.refine_to(&(wa / r(2)));
+            b.refine_to(&(wb / r(2)));
+        }
+    }
+
+    /// A decimal approximation with `digits` digits after the point (truncated from the
+    /// bracket's midpoint; for display only).
+    pub fn decimal(&self, digits: usize) -> String {
+        let mut a = self.clone();
+        let width = Rational::new(BigInt::one(), num_traits::pow(BigInt::from(10), digits + 2));
+        a.refine_to(&width);
+        decimal(&a.hi, digits)
+    }
+}
+
+/// `x` in decimal, truncated to `digits` digits after the point.
+pub fn decimal(x: &Rational, digits: usize) -> String {
+    let scale = num_traits::pow(BigInt::from(10), digits);
+    let scaled = (x * Rational::from_integer(scale.clone()))
+        .floor()
+        .to_integer();
+    let neg = scaled.is_negative();
+    let a = scaled.abs();
+    let int = &a / &scale;
+    let frac = &a % &scale;
+    format!(
+        "{}{}.{:0>width$}",
+        if neg { "-" } else { "" },
+        int,
+        frac.to_string(),
+        width = digits
+    )
+}
+
+/// Every real root of `p` (non-zero) in the open interval `(lo, hi)`, in increasing order,
+/// each with a bracket not wider than `hi - lo` and containing no other root.
+///
+/// ```
+/// use truecost::claims::poly::{isolate_roots, Poly};
+/// use truecost::value::parse_rational;
+/// let p = Poly::from_i64(&[-2, 0, 1]); // roots ±√2
+/// let roots = isolate_roots(&p, &parse_rational("0").unwrap(), &parse_rational("2").unwrap());
+/// assert_eq!(roots.len(), 1);
+/// assert!(roots[0].lo < parse_rational("1.4143").unwrap() && roots[0].hi > parse_rational("1.4142").unwrap());
+/// ```
+pub fn isolate_roots(p: &Poly, lo: &Rational, hi: &Rational) -> Vec<Algebraic> {
+    let sf = p.squarefree();
+    if sf.degree().unwrap_or(0) == 0 {
+        return Vec::new();
+    }
+    let seq = sf.sturm();
+    let mut out = Vec::new();
+    // Work on (lo, hi): exclude a root at hi itself.
+    let mut stack = vec![(lo.clone(), hi.clone())];
+    let two = r(2);
+    while let Some((a, b)) = stack.pop() {
+        let total = count_roots(&seq, &a, &b);
+        let at_end = &b == hi && sf.eval(&b).is_zero();
+        let inner = total - usize::from(at_end);
+        if inner == 0 {
+            continue;
+        }
+        if total == 1 {
+            out.push(Algebraic {
+                poly: sf.clone(),
+                lo: a,
+                hi: b,
+            });
+            continue;
+        }
+        let mid = (&a + &b) / &two;
+        stack.push((a, mid.clone()));
+        stack.push((mid, b));
+    }
+    out.sort_by(|x, y| x.lo.cmp(&y.lo));
+    out
+}
+
+impl fmt::Display for Poly {
+    /// `5x^4 - x^3 - x^2 - x - 1`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.c.is_empty() {
+            return write!(f, "0");
+        }
+        let mut first = true;
+        for (i, c) in self.c.iter().enumerate().rev() {
+            if c.is_zero() {
+                continue;
+            }
+            let neg = c.is_negative();
+            let a = c.abs();
+            let coef = if a.is_one() && i > 0 {
+                String::new()
+            } else if a.is_integer() {
+                a.numer().to_string()
+            } else {
+                format!("({}/{})", a.numer(), a.denom())
+            };
+            let var = match i {
+                0 => String::new(),
+                1 => "x".into(),
+                _ => format!("x^{i}"),
+            };
+            if first {
+                write!(f, "{}{coef}{var}", if neg { "-" } else { "" })?;
+            } else {
+                write!(f, " {} {coef}{var}", if neg { "-" } else { "+" })?;
+            }
+            first = false;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,206 @@
+//! `truecost verify`: the claims of SPEC §6 checked by machine (issue 5, item 8), and, with
+//! `--claim C4 --file F | --problem N`, the exact set of bonuses `M` for one problem (item 7).
+
+use std::fmt::Write;
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_traits::{One, ToPrimitive};
+use serde_json::json;
+
+use truecost::claims::c4::{bonus_sets, End, Instance, Interval};
+use truecost::claims::exact::Q;
+use truecost::claims::{report, Scope};
+use truecost::model::{file, Problem};
+use truecost::problems::{GridLayout, StepCost};
+
+/// Output format of the claims report.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum VerifyFormat {
+    /// Readable text.
+    Text,
+    /// One JSON object.
+    Json,
+    /// Markdown.
+    Markdown,
+    /// A LaTeX table (with the tool version and git commit).
+    Latex,
+}
+
+/// Arguments of `verify`.
+#[derive(Args, Debug)]
+pub struct VerifyArgs {
+    /// Check one claim only (C1, C1-corrected, C2, C3, C3-example, C4, C4-corrected; C1 also
+    /// selects C1-corrected, and so on).
+    #[arg(long, value_name = "ID")]
+    claim: Option<String>,
+    /// How much to check: quick (CI, about a minute), full (larger problems); smoke is the
+    /// test suite's small scope.
+    #[arg(long, value_enum, default_value_t = Scope::Quick)]
+    scope: Scope,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = VerifyFormat::Text)]
+    format: VerifyFormat,
+    /// Leave out times and cases per second (reproducible output).
+    #[arg(long)]
+    no_times: bool,
+    /// Write each counterexample's problem file into this directory.
+    #[arg(long, value_name = "DIR")]
+    counterexamples: Option<PathBuf>,
+    /// With --claim C4: the exact bonus set of this problem file instead of the report.
+    #[arg(long, value_name = "FILE", conflicts_with = "problem")]
+    file: Option<PathBuf>,
+    /// With --claim C4: the exact bonus set of this paper problem.
+    #[arg(long, value_name = "N")]
+    problem: Option<usize>,
+}
+
+/// Runs `verify`.
+pub fn verify(args: &VerifyArgs) -> Result<String, String> {
+    if args.file.is_some() || args.problem.is_some() {
+        if args.claim.as_deref() != Some("C4") {
+            return Err(
+                "--file/--problem go with --claim C4 (the exact bonus set of one problem)".into(),
+            );
+        }
+        let problem = match (&args.file, args.problem) {
+            (Some(path), _) => file::read(path).map_err(|e| e.to_string())?,
+            (None, Some(id)) => GridLayout::exact(id)
+                .map_err(|e| e.to_string())?
+                .to_problem(StepCost::Unit),
+            _ => unreachable!(),
+        };
+        return bonus(&problem, args.format);
+    }
+    let with_times = !args.no_times;
+    let r = truecost::claims::run(args.scope, args.claim.as_deref())?;
+    if let Some(dir) = &args.counterexamples {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+        for c in &r.claims {
+            if let Some(ce) = &c.counterexample {
+                let name = std::path::Path::new(&ce.file)
+                    .file_name()
+                    .expect("a file name")
+                    .to_owned();
+                let path = dir.join(name);
+                std::fs::write(&path, &ce.problem_file)
+                    .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            }
+        }
+    }
+    Ok(match args.format {
+        VerifyFormat::Text => report::text(&r, with_times),
+        VerifyFormat::Json => report::json(&r, with_times),
+        VerifyFormat::Markdown => report::markdown(&r, with_times),
+        VerifyFormat::Latex => report::latex(&r),
+    })
+}
+
+/// The problem with integer costs: every cost times `D` (the lcm of the denominators).
+fn integer_instance(problem: &Problem) -> Result<(Instance, BigInt), String> {
+    let mut d = BigInt::one();
+    for x in 0..problem.states() {
+        for m in problem.moves(x) {
+            d = d.lcm(m.cost.denom());
+        }
+    }
+    let scale = truecost::value::Rational::from_integer(d.clone());
+    let mut moves = Vec::new();
+    for x in 0..problem.states() {
+        let mut list = Vec::new();
+        for m in problem.moves(x) {
+            let c = (&m.cost * &scale).to_integer().to_i64().filter(|c| *c < 1 << 40).ok_or(
+                "costs too large for the exact bonus analysis (scaled costs must stay below 2^40)",
+            )?;
+            list.push((m.successor, c));
+        }
+        moves.push(list);
+    }
+    Ok((
+        Instance {
+            initial: problem.initial(),
+            is_goal: (0..problem.states()).map(|x| problem.is_goal(x)).collect(),
+            moves,
+        },
+        d,
+    ))
+}
+
+fn unscale(q: Q, d: &BigInt) -> String {
+    let r = q.to_rational() / truecost::value::Rational::from_integer(d.clone());
+    truecost::claims::discount::rat(&r)
+}
+
+fn interval_text(i: &Interval, d: &BigInt) -> String {
+    if i.empty {
+        return "empty".into();
+    }
+    let lo = match i.lo {
+        End::Unbounded => "(-inf".to_string(),
+        End::Closed(a) => format!("[{}", unscale(a, d)),
+        End::Open(a) => format!("({}", unscale(a, d)),
+    };
+    let hi = match i.hi {
+        End::Unbounded => "+inf)".to_string(),
+        End::Closed(b) => format!("{}]", unscale(b, d)),
+        End::Open(b) => format!("{})", unscale(b, d)),
+    };
+    format!("{lo}, {hi}")
+}
+
+fn bonus(problem: &Problem, format: VerifyFormat) -> Result<String, String> {
+    let (inst, d) = integer_instance(problem)?;
+    let sets = bonus_sets(&inst, 1 << 22)?.ok_or(
+        "no goal is reachable from x1, or more than 2^22 stationary policies (too large for the enumeration oracle)",
+    )?;
+    let rows: Vec<_> = sets
+        .iter()
+        .map(|s| {
+            json!({
+                "optimal_cost": unscale(Q::int(s.optimal_cost as i128), &d),
+                "optimal_states": s.optimal_states,
+                "least_mean_cycle": s.least_mean_cycle.map(|q| unscale(q, &d)),
+                "exact": interval_text(&s.exact, &d),
+                "printed": s.printed.map(|p| interval_text(&p, &d)),
+                "corrected": interval_text(&s.corrected, &d),
+                "printed_agrees": s.printed.map(|p| p.same_set(&s.exact)),
+                "corrected_agrees": s.corrected.same_set(&s.exact),
+            })
+        })
+        .collect();
+    Ok(match format {
+        VerifyFormat::Json => {
+            let mut s =
+                serde_json::to_string_pretty(&json!({"bonus_sets": rows})).expect("serialisable");
+            s.push('\n');
+            s
+        }
+        _ => {
+            let mut s = String::from(
+                "Exact set of bonuses M < 0 for which pi* is average-cost optimal (C4), per optimal path length S*\n",
+            );
+            for r in &rows {
+                let _ = writeln!(
+                    s,
+                    "L* = {}, S* = {}, Lav(C^) = {}\n  exact (oracle):    {}\n  printed formula:   {}{}\n  corrected formula: {}{}",
+                    r["optimal_cost"].as_str().unwrap_or(""),
+                    r["optimal_states"],
+                    r["least_mean_cycle"].as_str().unwrap_or("none (+inf)"),
+                    r["exact"].as_str().unwrap_or(""),
+                    r["printed"].as_str().unwrap_or("undefined (division by L(u) = 0)"),
+                    match r["printed_agrees"].as_bool() {
+                        Some(true) => "  (agrees)",
+                        Some(false) => "  (DISAGREES)",
+                        None => "",
+                    },
+                    r["corrected"].as_str().unwrap_or(""),
+                    if r["corrected_agrees"].as_bool() == Some(true) { "  (agrees)" } else { "  (DISAGREES)" },
+                );
+            }
+            s
+        }
+    })
+}

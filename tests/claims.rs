@@ -1,0 +1,275 @@
+//! The claims engine: hand-derived facts, independent cross-checks, and the pinned smoke-scope
+//! report (verdicts, scopes, counterexamples; no times).
+
+use num_bigint::BigInt;
+use num_traits::{One, Zero};
+use truecost::claims::alpha::{alpha_star, optimal_policies_from_initial, worked_example};
+use truecost::claims::c4::{bonus_sets, Instance};
+use truecost::claims::discount::{discount_set, Point};
+use truecost::claims::exact::Q;
+use truecost::claims::oracle::{karp_minimum_mean_cycle, simple_cycles};
+use truecost::claims::tiny::Tiny;
+use truecost::claims::{report, run, Scope, Verdict};
+use truecost::value::{parse_rational, Rational};
+
+fn settings() -> insta::Settings {
+    let mut s = insta::Settings::clone_current();
+    s.set_snapshot_path("../snapshots");
+    s.set_prepend_module_to_snapshot(false);
+    s
+}
+
+/// 5a^4 - a^3 - a^2 - a - 1, typed from the paper's inequality by hand:
+/// 1/(1-a) < 1 + 2a + 3a^2 + 4a^3 + 5a^4 ⇔ 1 < (1-a)(1 + 2a + 3a^2 + 4a^3 + 5a^4)
+/// = 1 + a + a^2 + a^3 + a^4 - 5a^5 ⇔ 5a^4 - a^3 - a^2 - a - 1 < 0 (a > 0).
+fn p(a: &Rational) -> Rational {
+    let five = Rational::from_integer(BigInt::from(5));
+    let a2 = a * a;
+    let a3 = &a2 * a;
+    let a4 = &a3 * a;
+    five * a4 - a3 - a2 - a - Rational::one()
+}
+
+#[test]
+fn alpha_star_is_bracketed_to_1e_30_and_separates_the_two_behaviours() {
+    let a = alpha_star().unwrap();
+    let width = &a.hi - &a.lo;
+    assert!(width > Rational::zero());
+    assert!(width <= parse_rational("1e-30").unwrap());
+    // The hand-derived polynomial changes sign across the bracket.
+    assert!(p(&a.lo) < Rational::zero());
+    assert!(p(&a.hi) > Rational::zero());
+    // Exact discounted solves (all policies) on both sides.
+    let t = worked_example();
+    assert_eq!(optimal_policies_from_initial(&t, &a.lo), (true, false));
+    assert_eq!(optimal_policies_from_initial(&t, &a.hi), (false, true));
+    // Far from the threshold, by hand: at a = 1/2 staying costs 2, going costs
+    // 1 + 1 + 3/4 + 1/2 + 5/16 = 57/16 > 2: avoid. At a = 99/100 staying costs 100, going < 15.
+    assert_eq!(
+        optimal_policies_from_initial(&t, &parse_rational("1/2").unwrap()),
+        (true, false)
+    );
+    assert_eq!(
+        optimal_policies_from_initial(&t, &parse_rational("0.99").unwrap()),
+        (false, true)
+    );
+}
+
+#[test]
+fn discount_set_of_the_worked_example_is_zero_to_alpha_star() {
+    let problem =
+        truecost::model::file::read(std::path::Path::new("problems/discount-example.json"))
+            .unwrap();
+    let set = discount_set(&problem, 10_000).unwrap();
+    assert_eq!(set.pieces.len(), 1, "{set:?}");
+    let piece = &set.pieces[0];
+    assert_eq!(piece.lo, Point::Zero);
+    assert!(!piece.lo_closed);
+    assert!(piece.hi_closed, "at alpha* both policies are optimal");
+    let Point::Root(root) = &piece.hi else {
+        panic!("an algebraic end")
+    };
+    // The same number as alpha* from the printed polynomial (independent routes).
+    assert_eq!(
+        root.compare(&alpha_star().unwrap()),
+        std::cmp::Ordering::Equal
+    );
+    // Membership agrees with the exact solve on a grid.
+    let t = worked_example();
+    for k in 1..100 {
+        let a = Rational::new(BigInt::from(k), BigInt::from(100));
+        let inside = root.cmp_rational(&a) != std::cmp::Ordering::Less;
+        assert_eq!(
+            inside,
+            optimal_policies_from_initial(&t, &a).0,
+            "alpha = {k}/100"
+        );
+    }
+}
+
+#[test]
+fn discount_lemmas() {
+    // Unit costs: never (a d-move path costs (1-a^d)/(1-a) < 1/(1-a)).
+    let grid = truecost::problems::GridLayout::exact(10)
+        .unwrap()
+        .to_problem(truecost::problems::StepCost::Unit);
+    assert!(discount_set(&grid, 10).unwrap().pieces.is_empty());
+    // Problem 6 has no path at all: every alpha.
+    let six = truecost::problems::GridLayout::exact(6)
+        .unwrap()
+        .to_problem(truecost::problems::StepCost::Unit);
+    let s = discount_set(&six, 10).unwrap();
+    assert_eq!(s.pieces.len(), 1);
+    assert_eq!(
+        (s.pieces[0].lo.clone(), s.pieces[0].hi.clone()),
+        (Point::Zero, Point::One)
+    );
+}
+
+#[test]
+fn c4_counterexample_by_hand() {
+    // x1 -> 1 (0), x1 -> goal (1), 1 -> goal (0). pi* = via 1: L* = 0, S* = 3. Other path:
+    // L = 1, S = 2. (0 + M)/3 <= (1 + M)/2 ⇔ M >= -3; no cycle. Exact: [-3, 0).
+    // Printed: A = (1 - 2/3)(2·0/(3·1) - 1) = -1/3: [-1/3, 0).
+    let t = Tiny::from_lists(&[vec![(1, 0), (2, 1)], vec![(2, 0)], vec![]]);
+    let sets = bonus_sets(&Instance::from_tiny(&t), 1000).unwrap().unwrap();
+    assert_eq!(sets.len(), 1);
+    assert_eq!(sets[0].exact.to_string(), "[-3, 0)");
+    assert_eq!(sets[0].printed.unwrap().to_string(), "[-1/3, 0)");
+    assert_eq!(sets[0].corrected.to_string(), "[-3, 0)");
+}
+
+#[test]
+fn c4_cycle_bound_by_hand() {
+    // x1 -> goal (4); x1 -> 1 (1), 1 -> x1 (1): cycle of mean 1. pi* direct: L* = 4, S* = 2.
+    // (4 + M)/2 <= 1 ⇔ M <= -2. The other goal path goes 0 -> 1 -> 0? no: simple paths only.
+    let t = Tiny::from_lists(&[vec![(2, 4), (1, 1)], vec![(0, 1)], vec![]]);
+    let sets = bonus_sets(&Instance::from_tiny(&t), 1000).unwrap().unwrap();
+    assert_eq!(sets[0].least_mean_cycle, Some(Q::int(1)));
+    assert_eq!(sets[0].exact.to_string(), "(-inf, -2]");
+    assert_eq!(sets[0].corrected.to_string(), "(-inf, -2]");
+}
+
+#[test]
+fn karp_matches_cycle_enumeration_on_every_small_digraph() {
+    // Every digraph on 3 nodes with arcs weighted 0..=2 among a fixed arc list subset.
+    let all = [(0, 1), (1, 0), (1, 2), (2, 0), (0, 0), (2, 2)];
+    for mask in 0u32..(1 << all.len()) {
+        for w in 0u32..3u32.pow(3) {
+            let arcs: Vec<(usize, usize, i64)> = all
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| mask >> i & 1 == 1)
+                .map(|(i, &(a, b))| (a, b, ((w / 3u32.pow(i as u32 % 3)) % 3) as i64))
+                .collect();
+            let brute = simple_cycles(3, &arcs)
+                .into_iter()
+                .map(|(c, l)| Q::new(c as i128, l as i128))
+                .min();
+            assert_eq!(karp_minimum_mean_cycle(3, &arcs), brute, "{arcs:?}");
+        }
+    }
+}
+
+#[test]
+fn smoke_report_verdicts_and_minimal_counterexamples() {
+    let r = run(Scope::Smoke, None).unwrap();
+    let verdict = |id: &str| r.claims.iter().find(|c| c.id == id).unwrap().verdict;
+    assert_eq!(verdict("C1"), Verdict::Refuted);
+    assert_eq!(verdict("C1-corrected"), Verdict::Verified);
+    assert_eq!(verdict("C2"), Verdict::Verified);
+    assert_eq!(verdict("C3"), Verdict::Verified);
+    assert_eq!(verdict("C3-example"), Verdict::Verified);
+    assert_eq!(verdict("C4"), Verdict::Refuted);
+    assert_eq!(verdict("C4-corrected"), Verdict::Verified);
+    // C1: the smallest counterexample is a lone goal whose termination value starts at 1: the
+    // rho = 1 rule maps Q(g,uT) to min over the goal's pairs = itself.
+    let c1 = r.claims.iter().find(|c| c.id == "C1").unwrap();
+    let ce = c1.counterexample.as_ref().unwrap();
+    assert_eq!(ce.problem, "0 (goal)");
+    assert!(ce
+        .details
+        .iter()
+        .any(|(k, v)| k == "initial values Q0" && v == "Q(0,uT)=1"));
+    // Each counterexample's file replays with `solve --file` (it parses as a problem).
+    for c in &r.claims {
+        if let Some(ce) = &c.counterexample {
+            truecost::model::file::from_json(&ce.problem_file).unwrap();
+        }
+    }
+    // Engine 3 is listed for every claim, with at least 8 harnesses overall.
+    assert!(truecost::claims::registry::HARNESSES.len() >= 8);
+    for c in &r.claims {
+        assert!(
+            c.engines
+                .iter()
+                .any(|e| e.engine.starts_with("kani harness")),
+            "{}",
+            c.id
+        );
+    }
+    settings().bind(|| {
+        insta::assert_snapshot!("verify_smoke_json", report::json(&r, false));
+        insta::assert_snapshot!("verify_smoke_text", report::text(&r, false));
+    });
+}
+
+#[test]
+fn selecting_a_claim_and_unknown_ids() {
+    let r = run(Scope::Smoke, Some("C4")).unwrap();
+    let ids: Vec<&str> = r.claims.iter().map(|c| c.id.as_str()).collect();
+    assert_eq!(ids, ["C4", "C4-corrected"]);
+    assert!(run(Scope::Smoke, Some("C9")).is_err());
+    assert!(run(Scope::Smoke, Some("C")).is_err());
+}
+
+/// `discount` against the exact solve on every 3-state problem (x1 = 0, goal 2, one or two
+/// moves per state, costs in {0,1,2,4}) at α = k/16: where every discount-optimal policy
+/// avoids the goal, α is in the set; where every one reaches it, α is not.
+#[test]
+fn discount_set_agrees_with_exact_solves_on_every_3_state_problem() {
+    use truecost::claims::tiny::{Family, FamilySpec};
+    let spec = FamilySpec {
+        states: 3,
+        initial_fixed: true,
+        degree: (1, 2),
+        goal_degree: (0, 0),
+        costs: vec![0, 1, 2, 4],
+        distinct_successors: false,
+    };
+    let family = Family::new(&spec);
+    let mut nontrivial = 0;
+    for i in 0..family.labelled_count() {
+        let t = family.problem(i);
+        if !family.is_canonical(&t) {
+            continue;
+        }
+        let set = discount_set(&t.to_problem(), 10_000).unwrap();
+        if !set.pieces.is_empty()
+            && set.pieces
+                != [truecost::claims::discount::Piece {
+                    lo: Point::Zero,
+                    lo_closed: false,
+                    hi: Point::One,
+                    hi_closed: false,
+                }]
+        {
+            nontrivial += 1;
+        }
+        for k in 1..16 {
+            let a = Rational::new(BigInt::from(k), BigInt::from(16));
+            let member = set.pieces.iter().any(|p| {
+                let above_lo = match &p.lo {
+                    Point::Zero => true,
+                    Point::One => false,
+                    Point::Root(r) => match r.cmp_rational(&a) {
+                        std::cmp::Ordering::Less => true,
+                        std::cmp::Ordering::Equal => p.lo_closed,
+                        std::cmp::Ordering::Greater => false,
+                    },
+                };
+                let below_hi = match &p.hi {
+                    Point::Zero => false,
+                    Point::One => true,
+                    Point::Root(r) => match r.cmp_rational(&a) {
+                        std::cmp::Ordering::Greater => true,
+                        std::cmp::Ordering::Equal => p.hi_closed,
+                        std::cmp::Ordering::Less => false,
+                    },
+                };
+                above_lo && below_hi
+            });
+            let (all_avoid, all_reach) = optimal_policies_from_initial(&t, &a);
+            if all_avoid {
+                assert!(member, "{}: alpha = {k}/16", t.describe());
+            }
+            if all_reach {
+                assert!(!member, "{}: alpha = {k}/16", t.describe());
+            }
+        }
+    }
+    assert!(
+        nontrivial > 100,
+        "{nontrivial} problems with a proper breakpoint"
+    );
+}

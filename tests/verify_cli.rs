@@ -1,0 +1,223 @@
+//! `truecost verify` and `truecost discount` on the command line.
+
+use assert_cmd::Command;
+use serde_json::Value;
+
+fn truecost() -> Command {
+    Command::cargo_bin("truecost").unwrap()
+}
+
+fn stdout(args: &[&str]) -> String {
+    let out = truecost()
+        .args(args)
+        .assert()
+        .success()
+        .get_output()
+        .clone();
+    String::from_utf8(out.stdout).unwrap()
+}
+
+fn fails_one_line(args: &[&str]) -> String {
+    let out = truecost().args(args).assert().code(1).get_output().clone();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+    assert!(err.starts_with("error: "), "{err}");
+    assert!(!err.contains("panicked"));
+    err
+}
+
+#[test]
+fn verify_json_has_the_required_shape_and_exits_0_with_refuted_claims() {
+    let text = stdout(&[
+        "verify",
+        "--scope",
+        "smoke",
+        "--format",
+        "json",
+        "--no-times",
+    ]);
+    let v: Value = serde_json::from_str(&text).unwrap();
+    let claims = v["claims"].as_array().unwrap();
+    assert_eq!(claims.len(), 7);
+    for c in claims {
+        for key in [
+            "id",
+            "statement",
+            "verdict",
+            "engine",
+            "scope",
+            "cases",
+            "counterexample",
+        ] {
+            assert!(c.get(key).is_some(), "{key} in {c}");
+        }
+        assert!(["verified", "refuted", "inconclusive"].contains(&c["verdict"].as_str().unwrap()));
+    }
+    assert!(claims.iter().any(|c| c["verdict"] == "refuted"));
+    let lo = v["alpha_star"]["lo"].as_str().unwrap();
+    let hi = v["alpha_star"]["hi"].as_str().unwrap();
+    assert!(lo.contains('/') && hi.contains('/'));
+    assert!(
+        !text.contains("cases_per_second"),
+        "no times with --no-times"
+    );
+    // The same run twice gives the same bytes.
+    assert_eq!(
+        text,
+        stdout(&[
+            "verify",
+            "--scope",
+            "smoke",
+            "--format",
+            "json",
+            "--no-times"
+        ])
+    );
+}
+
+#[test]
+fn verify_prints_cases_per_second_unless_told_not_to() {
+    let text = stdout(&["verify", "--scope", "smoke", "--claim", "C2"]);
+    assert!(text.contains("cases/s"), "{text}");
+    assert!(text.contains("C2  VERIFIED"));
+    assert!(!text.contains("C1 "));
+}
+
+#[test]
+fn verify_latex_and_markdown() {
+    let tex = stdout(&[
+        "verify", "--scope", "smoke", "--claim", "C4", "--format", "latex",
+    ]);
+    assert!(tex.contains("\\begin{tabular}") && tex.contains("\\bottomrule"));
+    assert!(tex.contains("truecost 0.1.0") && tex.contains("commit"));
+    assert!(tex.contains("C4 & refuted"));
+    let md = stdout(&[
+        "verify", "--scope", "smoke", "--claim", "C3", "--format", "markdown",
+    ]);
+    assert!(md.contains("| claim | verdict | engine | cases | scope |"));
+}
+
+#[test]
+fn verify_writes_counterexamples_that_solve_replays() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().to_str().unwrap();
+    stdout(&[
+        "verify",
+        "--scope",
+        "smoke",
+        "--no-times",
+        "--counterexamples",
+        d,
+    ]);
+    let mut names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["c1-as-printed.json", "c4-as-printed.json"]);
+    for n in &names {
+        let path = dir.path().join(n);
+        stdout(&[
+            "solve",
+            "--file",
+            path.to_str().unwrap(),
+            "--algorithm",
+            "dijkstra",
+        ]);
+        // The committed files are the same counterexamples.
+        let committed = std::fs::read_to_string(format!("problems/counterexamples/{n}")).unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), committed, "{n}");
+    }
+}
+
+#[test]
+fn verify_c4_bonus_set_of_a_file() {
+    let text = stdout(&[
+        "verify",
+        "--claim",
+        "C4",
+        "--file",
+        "problems/counterexamples/c4-as-printed.json",
+    ]);
+    // By hand (tests/claims.rs): exact [-3, 0), printed [-1/3, 0).
+    assert!(text.contains("exact (oracle):    [-3, 0)"), "{text}");
+    assert!(
+        text.contains("printed formula:   [-1/3, 0)  (DISAGREES)"),
+        "{text}"
+    );
+    assert!(
+        text.contains("corrected formula: [-3, 0)  (agrees)"),
+        "{text}"
+    );
+    // Costs scaled by 1/2 halve the exact set (the file format takes fractions).
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("half.json");
+    std::fs::write(&path, r#"{"initial": 0, "goals": [2], "actions": [[{"to": 1, "cost": "0"}, {"to": 2, "cost": "1/2"}], [{"to": 2, "cost": "0"}], []]}"#).unwrap();
+    let text = stdout(&[
+        "verify",
+        "--claim",
+        "C4",
+        "--file",
+        path.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    let v: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(v["bonus_sets"][0]["exact"], "[-3/2, 0)");
+}
+
+#[test]
+fn verify_bad_input() {
+    let e = fails_one_line(&["verify", "--claim", "C9", "--scope", "smoke"]);
+    assert!(e.contains("unknown claim"));
+    fails_one_line(&["verify", "--claim", "C2", "--file", "problems/line.json"]);
+    fails_one_line(&["verify", "--claim", "C4", "--file", "/nonexistent.json"]);
+    truecost()
+        .args(["verify", "--scope", "huge"])
+        .assert()
+        .code(2);
+}
+
+#[test]
+fn discount_command() {
+    let text = stdout(&["discount", "--file", "problems/discount-example.json"]);
+    // (0, alpha*]: open at 0, closed at the root of the worked example's polynomial.
+    assert!(text.contains("(0, 0.9163"), "{text}");
+    assert!(text.contains("5x^4 - x^3 - x^2 - x - 1"), "{text}");
+    // Unit costs: never; no path (problem 6): always.
+    assert!(stdout(&["discount", "--problem", "10"]).contains("\n  empty\n"));
+    assert!(
+        stdout(&["discount", "--problem", "6", "--format", "json"]).contains("\"set\": \"(0, 1)\"")
+    );
+    fails_one_line(&["discount", "--problem", "99"]);
+    fails_one_line(&[
+        "discount",
+        "--file",
+        "problems/line.json",
+        "--step-cost",
+        "unit",
+    ]);
+    truecost().args(["discount"]).assert().code(2);
+}
+
+#[test]
+fn verify_does_not_depend_on_the_number_of_threads() {
+    let run = |threads: &str| {
+        let out = truecost()
+            .env("RAYON_NUM_THREADS", threads)
+            .args([
+                "verify",
+                "--scope",
+                "smoke",
+                "--format",
+                "json",
+                "--no-times",
+            ])
+            .assert()
+            .success()
+            .get_output()
+            .clone();
+        out.stdout
+    };
+    assert_eq!(run("1"), run("3"));
+}

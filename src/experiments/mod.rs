@@ -6,3 +6,4 @@
 pub mod clock;
 pub mod deterministic;
 pub mod stats;
+pub mod stochastic;

@@ -614,13 +614,7 @@ impl<'a> StochasticQLearner<'a> {
             let y = if o_hi - o_lo == 1 {
                 successor[o_lo] as usize
             } else {
-                let u: f64 = rng.random();
-                let c = &cumulative[o_lo..o_hi];
-                let mut i = 0;
-                while i + 1 < c.len() && c[i] <= u {
-                    i += 1;
-                }
-                successor[o_lo + i] as usize
+                successor[o_lo + outcome_index(&cumulative[o_lo..o_hi], rng.random())] as usize
             };
             let t = cost[e] + v[y];
             let rho = match rate {
@@ -721,10 +715,9 @@ impl<'a> StochasticQLearner<'a> {
             x = if o_hi - o_lo == 1 {
                 self.successor[o_lo] as usize
             } else {
-                let u: f64 = self.rng.random();
-                let c = &self.cumulative[o_lo..o_hi];
-                let i = c.partition_point(|&t| t <= u).min(c.len() - 1);
-                self.successor[o_lo + i] as usize
+                self.successor
+                    [o_lo + outcome_index(&self.cumulative[o_lo..o_hi], self.rng.random())]
+                    as usize
             };
             steps += 1;
         }
@@ -741,6 +734,24 @@ pub fn optimal_action_flags(problem: &StochasticProblem, optimum: &Optimum) -> V
     (0..problem.action_total())
         .map(|a| optimum.is_optimal_action(problem, a))
         .collect()
+}
+
+/// The outcome a uniform draw `u ∈ [0, 1)` selects: the first whose cumulative threshold
+/// exceeds `u` (the last if none), as [`StochasticProblem::sample`]; `cumulative` is non-empty.
+///
+/// ```
+/// use truecost::learning::stochastic_q::outcome_index;
+/// assert_eq!(outcome_index(&[0.9, 0.95, 1.0], 0.0), 0);
+/// assert_eq!(outcome_index(&[0.9, 0.95, 1.0], 0.9), 1);
+/// assert_eq!(outcome_index(&[0.9, 0.95, 1.0], 0.99), 2);
+/// ```
+#[inline]
+pub fn outcome_index(cumulative: &[f64], u: f64) -> usize {
+    let mut i = 0;
+    while i + 1 < cumulative.len() && cumulative[i] <= u {
+        i += 1;
+    }
+    i
 }
 
 /// The index of the first minimum (ties go to the earlier action). `values` is non-empty.

@@ -46,7 +46,9 @@
 //!
 //! [`StochasticQLearner::simulate_greedy`] then runs the learnt greedy policy from `x1` with
 //! sampled outcomes (capped at [`GREEDY_SIMULATION_CAP`] steps). The learner never reads a
-//! clock: [`StochasticQLearner::advance`] returns at each milestone, for a runner to time.
+//! clock: [`StochasticQLearner::advance`] returns at each milestone, for a runner to time; it
+//! reuses the deterministic engine's [`Milestone`]s, where `InitialOptimal` means "`V(x1)`
+//! within tolerance" and `Converged` "every tracked state within tolerance".
 
 use num_traits::{One, Signed, ToPrimitive};
 use rand::RngExt;

@@ -406,3 +406,40 @@ fn decaying_rate_learns_a_hand_solved_chain() {
     let sim = learner.simulate_greedy(Some(&flags));
     assert!(sim.reached_goal && sim.optimal_actions && sim.states >= 3);
 }
+
+/// Problem 6 has no path: the learning rows are not run, the VI rows say why, nothing claims
+/// convergence; the progress callback counts exactly `total_runs` runs.
+#[test]
+fn unreachable_goal_is_reported_and_progress_counts_every_run() {
+    use std::sync::atomic::{AtomicU64, Ordering};
+    let settings = Settings {
+        problems: vec![6, 16],
+        ..small(Some(2), 1)
+    };
+    let done = AtomicU64::new(0);
+    let report = stochastic::run(&settings, &|k| {
+        done.fetch_add(k, Ordering::Relaxed);
+    })
+    .unwrap();
+    assert_eq!(
+        done.load(Ordering::Relaxed),
+        stochastic::total_runs(&settings)
+    );
+    assert_eq!(stochastic::total_runs(&settings), 2 * (2 * 3 + 2));
+    for row in report.rows.iter().filter(|r| r.problem == 6) {
+        assert_eq!(row.optimum_initial, "inf");
+        assert!(
+            row.note.as_deref().unwrap().contains("unreachable"),
+            "{row:?}"
+        );
+        assert_eq!(row.convergence_rate, None);
+    }
+    // Nothing is within tolerance of an infinite G*.
+    let p = exact_grid(6, StepCost::Unit, NoiseModel::Paper, &gamma("0.9")).unwrap();
+    let t = Target::from_values(
+        &p,
+        &vec![Extended::Infinite; p.states()],
+        Tolerance::Relative,
+    );
+    assert!((0..p.states()).all(|x| !t.within(x, 0.0) && !t.within(x, f64::INFINITY)));
+}

@@ -801,6 +801,11 @@ fn vi_row(
     row.std_actions = Some(0.0);
     row.mean_iterations = Some(run.sweeps as f64);
     row.std_iterations = Some(0.0);
+    if !pr.reachable {
+        row.note =
+            Some("the goal is unreachable from x1 (G*(x1) = inf): nothing to converge to".into());
+        return Ok(row);
+    }
     row.convergence_rate = Some(if all_within { 1.0 } else { 0.0 });
     row.initial_within_rate = Some(if pr.target.within(x1, v[x1]) {
         1.0

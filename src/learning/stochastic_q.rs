@@ -187,8 +187,9 @@ impl Target {
                 }
             }
         }
-        let mut lo = vec![f64::NEG_INFINITY; n];
-        let mut hi = vec![f64::INFINITY; n];
+        // Empty intervals where G* = +∞: nothing is within tolerance there.
+        let mut lo = vec![f64::INFINITY; n];
+        let mut hi = vec![f64::NEG_INFINITY; n];
         let mut tracked = vec![false; n];
         for x in 0..n {
             if let Extended::Finite(v) = &g[x] {

@@ -9,8 +9,11 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use super::ListFormat;
 use truecost::experiments::deterministic::{self, Report, RowSummary, Settings};
+use truecost::experiments::stochastic;
+use truecost::learning::stochastic_q::Tolerance;
 use truecost::planning::Mode;
 use truecost::problems::{StepCost, PAPER_PROBLEMS};
+use truecost::stochastic::Predictability;
 
 /// Which experiment to reproduce.
 #[derive(Args, Debug)]
@@ -24,6 +27,56 @@ enum Experiment {
     /// The deterministic comparison: Q-learning (ε = 0, 0.25, 0.5, 0.75, 0.9, 1), the π plan,
     /// ε-decay, and model-free Dijkstra / asynchronous VI / synchronous VI, over seeded samples.
     Deterministic(DeterministicArgs),
+    /// The stochastic comparison: stochastic Q-learning over γ × ρ × ε, and stochastic
+    /// asynchronous / synchronous VI, judged against the exact optimum G*.
+    Stochastic(StochasticArgs),
+}
+
+#[derive(Args, Debug)]
+struct StochasticArgs {
+    /// Problems, comma-separated [default: the paper's 16 problems 0-5,7-16].
+    #[arg(long, value_delimiter = ',', value_name = "LIST")]
+    problems: Option<Vec<usize>>,
+    /// Predictability factors γ ∈ (0, 1], decimal text, comma-separated.
+    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_GAMMAS.map(String::from))]
+    gammas: Vec<String>,
+    /// Learning rates: ρ ∈ (0, 1] or the per-pair decay 1/n^ω with ω ∈ (0.5, 1].
+    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_RHOS.map(String::from))]
+    rhos: Vec<String>,
+    /// Exploration rates ε ∈ [0, 1], or `decay` (linear from 1 to 0.1 over the episodes).
+    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_EPSILONS.map(String::from))]
+    epsilons: Vec<String>,
+    /// Samples per learning row.
+    #[arg(long, default_value_t = 10, value_name = "N")]
+    samples: u32,
+    /// Noise model: `paper` (text) or `reference` (code).
+    #[arg(long, value_enum, default_value_t = truecost::stochastic::NoiseModel::Paper)]
+    noise: truecost::stochastic::NoiseModel,
+    /// Tolerance of "learnt": `relative` (within 10% of G*, unit step costs) or `reference`
+    /// (±5 cost units, Euclidean step costs 800/19).
+    #[arg(long, value_enum, default_value_t = Tolerance::Relative)]
+    tolerance: Tolerance,
+    /// Master seed: every random choice derives from it and the sample's coordinates.
+    #[arg(long, default_value_t = 0, value_name = "S")]
+    seed: u64,
+    /// Episodes per learning run (the paper's stochastic runs: 3000).
+    #[arg(long, default_value_t = 3000, value_name = "E")]
+    episodes: u32,
+    /// Steps per episode.
+    #[arg(long, default_value_t = 3000, value_name = "M")]
+    max_steps: u32,
+    /// Worker threads [default: all cores, or RAYON_NUM_THREADS].
+    #[arg(long, value_name = "T")]
+    threads: Option<usize>,
+    /// Also write stochastic.md, stochastic.csv and stochastic.json into DIR.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Output format on stdout.
+    #[arg(long, value_enum, default_value_t = ListFormat::Text)]
+    format: ListFormat,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
 }
 
 #[derive(Args, Debug)]
@@ -74,6 +127,7 @@ struct DeterministicArgs {
 pub fn run(args: &ReproduceArgs) -> Result<String, String> {
     match &args.experiment {
         Experiment::Deterministic(a) => deterministic_command(a),
+        Experiment::Stochastic(a) => stochastic_command(a),
     }
 }
 
@@ -99,22 +153,7 @@ fn deterministic_command(args: &DeterministicArgs) -> Result<String, String> {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create output directory {}: {e}", dir.display()))?;
     }
-    let bar = if args.quiet || !std::io::stderr().is_terminal() {
-        ProgressBar::hidden()
-    } else {
-        let bar = ProgressBar::with_draw_target(
-            Some(deterministic::total_runs(&settings)),
-            ProgressDrawTarget::stderr(),
-        );
-        bar.set_style(
-            ProgressStyle::with_template(
-                "{elapsed_precise} [{bar:40}] {pos}/{len} sample runs ({eta} left)",
-            )
-            .expect("a valid template")
-            .progress_chars("=> "),
-        );
-        bar
-    };
+    let bar = progress_bar(args.quiet, deterministic::total_runs(&settings));
     let report = deterministic::run(&settings, &|k| bar.inc(k)).map_err(|e| e.to_string())?;
     bar.finish_and_clear();
     if let Some(dir) = &args.out {
@@ -148,6 +187,299 @@ fn write_plots(
         }
     }
     Ok(())
+}
+
+/// A progress bar on stderr (hidden when quiet or not a terminal).
+fn progress_bar(quiet: bool, total: u64) -> ProgressBar {
+    if quiet || !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
+    bar.set_style(
+        ProgressStyle::with_template(
+            "{elapsed_precise} [{bar:40}] {pos}/{len} sample runs ({eta} left)",
+        )
+        .expect("a valid template")
+        .progress_chars("=> "),
+    );
+    bar
+}
+
+fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
+    let e = |e: stochastic::ExperimentError| e.to_string();
+    let settings = stochastic::Settings {
+        problems: args
+            .problems
+            .clone()
+            .unwrap_or_else(|| PAPER_PROBLEMS.to_vec()),
+        gammas: args
+            .gammas
+            .iter()
+            .map(|g| Predictability::parse(g.trim()).map_err(|err| err.to_string()))
+            .collect::<Result<_, _>>()?,
+        rhos: args
+            .rhos
+            .iter()
+            .map(|r| stochastic::RateSpec::parse(r))
+            .collect::<Result<_, _>>()
+            .map_err(e)?,
+        epsilons: args
+            .epsilons
+            .iter()
+            .map(|x| stochastic::EpsilonSpec::parse(x))
+            .collect::<Result<_, _>>()
+            .map_err(e)?,
+        samples: args.samples,
+        seed: args.seed,
+        noise: args.noise,
+        tolerance: args.tolerance,
+        episodes: args.episodes,
+        max_steps: args.max_steps,
+        threads: args.threads,
+    };
+    settings.validate().map_err(e)?;
+    if let Some(dir) = &args.out {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create output directory {}: {e}", dir.display()))?;
+    }
+    let bar = progress_bar(args.quiet, stochastic::total_runs(&settings));
+    let report = stochastic::run(&settings, &|k| bar.inc(k)).map_err(e)?;
+    bar.finish_and_clear();
+    if let Some(dir) = &args.out {
+        for (name, format) in [
+            ("stochastic.md", ListFormat::Markdown),
+            ("stochastic.csv", ListFormat::Csv),
+            ("stochastic.json", ListFormat::Json),
+        ] {
+            write_file(&dir.join(name), &render_stochastic(&report, format))?;
+        }
+    }
+    Ok(render_stochastic(&report, args.format))
+}
+
+/// Renders a stochastic report in a format. Every format names the noise model, tolerance and
+/// seed (JSON and CSV in every row).
+pub fn render_stochastic(report: &stochastic::Report, format: ListFormat) -> String {
+    match format {
+        ListFormat::Json => {
+            let mut s = serde_json::to_string_pretty(&report.rows).expect("serialisable");
+            s.push('\n');
+            s
+        }
+        ListFormat::Csv => {
+            let mut s = STOCHASTIC_CSV_COLUMNS.join(",") + "\n";
+            for row in &report.rows {
+                let value = serde_json::to_value(row).expect("serialisable");
+                let cells: Vec<String> = STOCHASTIC_CSV_COLUMNS
+                    .iter()
+                    .map(|&c| match c {
+                        "episodes" => report.episodes.to_string(),
+                        "max_steps" => report.max_steps.to_string(),
+                        _ => match &value[c] {
+                            serde_json::Value::Null => String::new(),
+                            serde_json::Value::String(t) => quote(t),
+                            other => other.to_string(),
+                        },
+                    })
+                    .collect();
+                s += &(cells.join(",") + "\n");
+            }
+            s
+        }
+        ListFormat::Markdown | ListFormat::Text => stochastic_table(report, format),
+    }
+}
+
+/// The columns of the stochastic CSV file, in order.
+const STOCHASTIC_CSV_COLUMNS: [&str; 34] = [
+    "problem",
+    "gamma",
+    "algorithm",
+    "rho",
+    "epsilon",
+    "samples",
+    "optimum_initial",
+    "mean_time_s",
+    "std_time_s",
+    "convergence_rate",
+    "mean_actions_converged",
+    "mean_actions",
+    "std_actions",
+    "mean_iterations",
+    "std_iterations",
+    "initial_within_rate",
+    "mean_actions_initial_within",
+    "mean_episode_initial_within",
+    "mean_time_initial_within_s",
+    "goal_discovery_rate",
+    "mean_actions_goal_discovered",
+    "mean_time_goal_discovered_s",
+    "mean_value_initial",
+    "max_error",
+    "shortest_path",
+    "longest_path",
+    "goal_reached_rate",
+    "optimal_path_rate",
+    "noise",
+    "tolerance",
+    "seed",
+    "episodes",
+    "max_steps",
+    "note",
+];
+
+const STOCHASTIC_HEADER: [&str; 10] = [
+    "algorithm",
+    "run time s (mean ± std)",
+    "actions (mean ± std)",
+    "episodes/sweeps (mean ± std)",
+    "converged",
+    "goal discovered: actions / s",
+    "V(x1) within: actions / episode / s",
+    "V(x1) mean, max |V-G*|",
+    "greedy path states",
+    "optimal paths",
+];
+
+fn stochastic_cells(row: &stochastic::RowSummary) -> Vec<String> {
+    let label = match row.algorithm {
+        "q-learning" => format!(
+            "Q-learning (ρ={}, ε={})",
+            row.rho.as_deref().unwrap_or("?"),
+            row.epsilon.as_deref().unwrap_or("?")
+        ),
+        "stochastic-async-vi" => "Stochastic asynchronous VI".into(),
+        "stochastic-vi" => "Stochastic synchronous VI".into(),
+        other => other.into(),
+    };
+    if row.samples == 0 || (row.note.is_some() && row.mean_actions.is_none()) {
+        let mut c = vec![label, row.note.clone().unwrap_or_default()];
+        c.resize(STOCHASTIC_HEADER.len(), String::new());
+        return c;
+    }
+    let learning = row.algorithm == "q-learning";
+    let paths = match (row.shortest_path, row.longest_path) {
+        (Some(a), Some(b)) if a == b => a.to_string(),
+        (Some(a), Some(b)) => format!("{a}–{b}"),
+        _ => "–".into(),
+    };
+    let pct = |x: Option<f64>| x.map_or("–".into(), |r| format!("{:.0} %", 100.0 * r));
+    vec![
+        label,
+        pm(row.mean_time_s, row.std_time_s, 5),
+        pm(row.mean_actions, row.std_actions, 1),
+        pm(row.mean_iterations, row.std_iterations, 2),
+        pct(row.convergence_rate),
+        if learning {
+            format!(
+                "{} / {}",
+                opt(row.mean_actions_goal_discovered, 1),
+                opt(row.mean_time_goal_discovered_s, 5)
+            )
+        } else {
+            "–".into()
+        },
+        if learning {
+            format!(
+                "{} / {} / {}",
+                opt(row.mean_actions_initial_within, 1),
+                opt(row.mean_episode_initial_within, 1),
+                opt(row.mean_time_initial_within_s, 5)
+            )
+        } else {
+            pct(row.initial_within_rate)
+        },
+        format!(
+            "{}, {}",
+            opt(row.mean_value_initial, 3),
+            row.max_error.as_deref().unwrap_or("–")
+        ),
+        paths,
+        pct(row.optimal_path_rate),
+    ]
+}
+
+fn stochastic_table(report: &stochastic::Report, format: ListFormat) -> String {
+    let mut s = String::new();
+    let title = format!(
+        "truecost reproduce stochastic — noise {}; tolerance {}; seed {}; {} samples per row; {} episodes × {} steps; problems {}; gammas {}",
+        report.noise.name(),
+        report.tolerance.name(),
+        report.seed,
+        report.samples,
+        report.episodes,
+        report.max_steps,
+        report.problems.iter().map(|p| p.to_string()).collect::<Vec<_>>().join(","),
+        report.gammas.join(",")
+    );
+    let notes = [
+        format!("model: {}", report.model),
+        "Learning rows: means of actions, episodes and times to an event are over the samples \
+         that reached it; greedy paths are simulated once per sample (outcomes sampled, capped at \
+         100001 steps) and count x1 and the goal. VI rows: the reference code's rules (from 1e30, \
+         decrease only, stop at change <= 0.1), actions = its counted outcome terms; 'converged' \
+         = every tracked state within tolerance."
+            .to_string(),
+    ];
+    let markdown = format == ListFormat::Markdown;
+    if markdown {
+        let _ = writeln!(s, "# {title}\n");
+        for n in &notes {
+            let _ = writeln!(s, "{n}\n");
+        }
+    } else {
+        let _ = writeln!(s, "{title}");
+        for n in &notes {
+            let _ = writeln!(s, "{n}");
+        }
+    }
+    for p in &report.problems {
+        for g in &report.gammas {
+            let rows: Vec<&stochastic::RowSummary> = report
+                .rows
+                .iter()
+                .filter(|r| r.problem == *p && &r.gamma == g)
+                .collect();
+            let optimum = rows.first().map_or("–", |r| r.optimum_initial.as_str());
+            let cells: Vec<Vec<String>> = rows.iter().map(|r| stochastic_cells(r)).collect();
+            if markdown {
+                let _ = writeln!(s, "## Problem {p}, γ = {g} (G*(x1) = {optimum})\n");
+                let _ = writeln!(s, "| {} |", STOCHASTIC_HEADER.join(" | "));
+                let _ = writeln!(s, "|{}", "---|".repeat(STOCHASTIC_HEADER.len()));
+                for c in &cells {
+                    let _ = writeln!(s, "| {} |", c.join(" | "));
+                }
+                s.push('\n');
+            } else {
+                let widths: Vec<usize> = (0..STOCHASTIC_HEADER.len())
+                    .map(|i| {
+                        cells
+                            .iter()
+                            .map(|c| c[i].chars().count())
+                            .chain([STOCHASTIC_HEADER[i].chars().count()])
+                            .max()
+                            .unwrap_or(0)
+                    })
+                    .collect();
+                let line = |c: &[String]| {
+                    c.iter()
+                        .zip(&widths)
+                        .map(|(c, &w)| format!("{c}{}", " ".repeat(w - c.chars().count())))
+                        .collect::<Vec<_>>()
+                        .join("  ")
+                        .trim_end()
+                        .to_string()
+                };
+                let _ = writeln!(s, "\nProblem {p}, γ = {g} (G*(x1) = {optimum})");
+                let header: Vec<String> = STOCHASTIC_HEADER.iter().map(|h| h.to_string()).collect();
+                let _ = writeln!(s, "{}", line(&header));
+                for c in &cells {
+                    let _ = writeln!(s, "{}", line(c));
+                }
+            }
+        }
+    }
+    s
 }
 
 fn write_file(path: &Path, text: &str) -> Result<(), String> {

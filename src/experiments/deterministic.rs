@@ -537,7 +537,7 @@ fn learn_sample<V: LearningValue>(
 }
 
 /// The generator stream of sample `k` of row `r` on problem `p`.
-fn stream(problem: usize, row: usize, sample: u32) -> u64 {
+pub(crate) fn stream(problem: usize, row: usize, sample: u32) -> u64 {
     ((problem as u64) << 32) | ((row as u64) << 24) | u64::from(sample)
 }
 

@@ -6,4 +6,5 @@
 pub mod clock;
 pub mod deterministic;
 pub mod stats;
+pub mod stochastic;
 pub mod visits;

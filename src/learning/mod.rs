@@ -4,3 +4,4 @@
 pub mod pi;
 pub mod plan;
 pub mod q_learning;
+pub mod stochastic_q;

@@ -1,0 +1,862 @@
+//! The paper's stochastic comparison (`truecost reproduce stochastic`): stochastic Q-learning
+//! over a grid of `γ × ρ × ε`, and stochastic asynchronous and synchronous value iteration, on
+//! the paper's grid problems, judged against the **exact** optimum (SPEC §3, §4, §7).
+//!
+//! # Rows
+//!
+//! Per problem and `γ` (in the order given): one Q-learning row per `(ρ, ε)`
+//! ([`crate::learning::stochastic_q`], random exploration plan, `Q₀ = 0`,
+//! [`Settings::episodes`] × [`Settings::max_steps`]), then `stochastic-async-vi` and
+//! `stochastic-vi` with the reference code's rules ([`ViOptions::reference`]: values from
+//! `10³⁰`, decrease only, stop when the largest change is ≤ 0.1 or after 1000 sweeps; counted
+//! actions `Σ k·(k−1)` per sweep).
+//!
+//! # Problems, tolerance, optimum
+//!
+//! The learners run on the exact grid ([`exact_grid`]) with the chosen noise model: unit step
+//! costs under the `relative` tolerance (scale free), Euclidean step costs 800/19 under the
+//! `reference` tolerance (its ±5 units presume them). `G*` is the exact optimum
+//! ([`optimum`]); every "within tolerance" is decided exactly against it
+//! ([`Target`]). The VI rows run on the same exact grid rounded to `f64` under `relative`, and on
+//! the reference code's grid ([`reference_grid`]: its action order, `f64` Euclidean costs and
+//! probabilities) under `reference`, so that they reproduce the published sweep counts; their
+//! values are compared with the same exact `G*` (state ids agree on every paper grid).
+//!
+//! # Samples and reproducibility
+//!
+//! Sample `k` of the `r`-th learning row of the grid (`r` counts `γ`-major, then `ρ`, then `ε`,
+//! in the order listed) on problem `p` draws from `sample_rng(seed, p·2³² + r·2²⁴ + k)`; the
+//! greedy simulation after the run continues the same generator. So every number but the times
+//! is a pure function of the settings, whatever the number of threads.
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use super::clock::Stopwatch;
+use super::deterministic::stream;
+use super::stats::{mean_of_present, mean_std};
+use crate::learning::plan::{sample_rng, EpsilonSchedule, Plan, Probability, ProbabilityError};
+use crate::learning::q_learning::{Event, LearningError, Milestone};
+use crate::learning::stochastic_q::{
+    optimal_action_flags, LearningRate, RateError, StochasticQConfig, StochasticQLearner, Target,
+    Tolerance,
+};
+use crate::problems::{ProblemError, StepCost, PAPER_PROBLEMS};
+use crate::stochastic::grid::{exact_grid, reference_grid, GridError};
+use crate::stochastic::policy_iteration::{optimum, Optimum};
+use crate::stochastic::value_iteration::{value_iteration_f64, FloatModel, Schedule, ViOptions};
+use crate::stochastic::{decimal, NoiseModel, Predictability, StochasticError, StochasticProblem};
+use crate::value::{parse_rational, Rational};
+
+/// A learning rate as listed: a constant `ρ` or the decay `1/n^ω`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RateSpec {
+    /// The text as given (`0.99`, `1/n^0.8`).
+    pub text: String,
+    /// The rate.
+    pub rate: LearningRate,
+}
+
+impl RateSpec {
+    /// Parses `ρ` (a decimal or fraction in `(0, 1]`) or `1/n^ω` (`ω ∈ (0.5, 1]`).
+    ///
+    /// ```
+    /// use truecost::experiments::stochastic::RateSpec;
+    /// use truecost::learning::stochastic_q::LearningRate;
+    /// assert_eq!(RateSpec::parse("0.99").unwrap().rate, LearningRate::Constant(0.99));
+    /// assert_eq!(RateSpec::parse("1/n^0.8").unwrap().rate, LearningRate::Decay(0.8));
+    /// assert!(RateSpec::parse("1.5").is_err());
+    /// assert!(RateSpec::parse("1/n^0.4").is_err());
+    /// ```
+    pub fn parse(text: &str) -> Result<Self, ExperimentError> {
+        let t = text.trim();
+        let rate = if let Some(w) = t.strip_prefix("1/n^") {
+            let omega = parse_rational(w).map_err(|e| ExperimentError::Parse {
+                what: "omega",
+                text: w.into(),
+                message: e.to_string(),
+            })?;
+            LearningRate::decay(&omega)?
+        } else {
+            let rho = parse_rational(t).map_err(|e| ExperimentError::Parse {
+                what: "rho",
+                text: t.into(),
+                message: e.to_string(),
+            })?;
+            LearningRate::constant(&rho)?
+        };
+        Ok(RateSpec {
+            text: t.into(),
+            rate,
+        })
+    }
+}
+
+/// An ε as listed: a constant or `decay` (linear from 1 to 0.1 over the episodes).
+#[derive(Clone, Debug, PartialEq)]
+pub struct EpsilonSpec {
+    /// The text as given.
+    pub text: String,
+    /// The schedule.
+    pub schedule: EpsilonSchedule,
+}
+
+impl EpsilonSpec {
+    /// Parses `ε ∈ [0, 1]` or `decay`.
+    ///
+    /// ```
+    /// use truecost::experiments::stochastic::EpsilonSpec;
+    /// assert!(EpsilonSpec::parse("0.9").is_ok());
+    /// assert!(EpsilonSpec::parse("decay").is_ok());
+    /// assert!(EpsilonSpec::parse("1.2").is_err());
+    /// ```
+    pub fn parse(text: &str) -> Result<Self, ExperimentError> {
+        let t = text.trim();
+        let schedule = if t == "decay" {
+            EpsilonSchedule::decay_to_one_tenth(Probability::ONE)
+        } else {
+            let e = parse_rational(t).map_err(|e| ExperimentError::Parse {
+                what: "epsilon",
+                text: t.into(),
+                message: e.to_string(),
+            })?;
+            EpsilonSchedule::Constant(Probability::new("ε", &e)?)
+        };
+        Ok(EpsilonSpec {
+            text: t.into(),
+            schedule,
+        })
+    }
+}
+
+/// What to run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Settings {
+    /// Problem ids.
+    pub problems: Vec<usize>,
+    /// `γ` values.
+    pub gammas: Vec<Predictability>,
+    /// Learning rates.
+    pub rhos: Vec<RateSpec>,
+    /// Exploration rates.
+    pub epsilons: Vec<EpsilonSpec>,
+    /// Samples per learning row.
+    pub samples: u32,
+    /// The master seed.
+    pub seed: u64,
+    /// The noise model.
+    pub noise: NoiseModel,
+    /// The tolerance of "learnt".
+    pub tolerance: Tolerance,
+    /// Episodes per run.
+    pub episodes: u32,
+    /// Steps per episode.
+    pub max_steps: u32,
+    /// Worker threads (`None`: rayon's default).
+    pub threads: Option<usize>,
+}
+
+/// The default `γ` values (README: affordable in minutes on two cores).
+pub const DEFAULT_GAMMAS: [&str; 3] = ["0.999", "0.99", "0.9"];
+/// The default learning rates.
+pub const DEFAULT_RHOS: [&str; 2] = ["0.99", "1/n^0.8"];
+/// The default exploration rates.
+pub const DEFAULT_EPSILONS: [&str; 2] = ["0.9", "decay"];
+
+impl Default for Settings {
+    /// The paper's 16 problems, [`DEFAULT_GAMMAS`] × [`DEFAULT_RHOS`] × [`DEFAULT_EPSILONS`],
+    /// 10 samples, 3000 episodes × 3000 steps, paper noise, relative tolerance, seed 0.
+    fn default() -> Self {
+        Settings {
+            problems: PAPER_PROBLEMS.to_vec(),
+            gammas: DEFAULT_GAMMAS
+                .iter()
+                .map(|g| Predictability::parse(g).expect("valid"))
+                .collect(),
+            rhos: DEFAULT_RHOS
+                .iter()
+                .map(|r| RateSpec::parse(r).expect("valid"))
+                .collect(),
+            epsilons: DEFAULT_EPSILONS
+                .iter()
+                .map(|e| EpsilonSpec::parse(e).expect("valid"))
+                .collect(),
+            samples: 10,
+            seed: 0,
+            noise: NoiseModel::Paper,
+            tolerance: Tolerance::Relative,
+            episodes: 3000,
+            max_steps: 3000,
+            threads: None,
+        }
+    }
+}
+
+/// The most learning rows per problem (`|γ|·|ρ|·|ε|`, the generator stream has 8 bits for it).
+pub const MAX_LEARNING_ROWS: usize = 256;
+
+/// Why an experiment cannot run. Every message is one line.
+#[derive(Debug, thiserror::Error)]
+pub enum ExperimentError {
+    /// A bad problem id.
+    #[error(transparent)]
+    Problem(#[from] ProblemError),
+    /// A grid could not be built.
+    #[error(transparent)]
+    Grid(#[from] GridError),
+    /// A stochastic input or computation failed.
+    #[error(transparent)]
+    Stochastic(#[from] StochasticError),
+    /// A problem listed twice.
+    #[error("problem {0} is listed twice")]
+    DuplicateProblem(usize),
+    /// An empty list.
+    #[error("no {0} given")]
+    Empty(&'static str),
+    /// Samples out of range.
+    #[error("the number of samples must be between 1 and {max}, not {0}", max = super::deterministic::MAX_SAMPLES)]
+    Samples(u32),
+    /// Too many learning rows.
+    #[error("|gammas| x |rhos| x |epsilons| = {0} exceeds {MAX_LEARNING_ROWS} learning rows per problem")]
+    TooManyRows(usize),
+    /// A run would be too long.
+    #[error("episodes x max steps = {0} exceeds the limit of {max} actions per run", max = super::deterministic::MAX_ACTIONS_PER_RUN)]
+    TooLong(u64),
+    /// Text that is not a number.
+    #[error("{what} {text:?}: {message}")]
+    Parse {
+        /// The parameter.
+        what: &'static str,
+        /// The text.
+        text: String,
+        /// Why.
+        message: String,
+    },
+    /// A bad learning rate.
+    #[error(transparent)]
+    Rate(#[from] RateError),
+    /// A bad ε.
+    #[error(transparent)]
+    Probability(#[from] ProbabilityError),
+    /// A bad learning parameter.
+    #[error(transparent)]
+    Learning(#[from] LearningError),
+    /// The thread pool could not be built.
+    #[error("cannot start {threads} worker threads: {message}")]
+    Threads {
+        /// Threads asked for.
+        threads: usize,
+        /// Why not.
+        message: String,
+    },
+}
+
+impl Settings {
+    /// Checks every parameter (one clear error for the first bad one).
+    pub fn validate(&self) -> Result<(), ExperimentError> {
+        if self.problems.is_empty() {
+            return Err(ExperimentError::Empty("problem"));
+        }
+        let count = crate::problems::paper_scenarios().len();
+        for (i, &p) in self.problems.iter().enumerate() {
+            if p >= count {
+                return Err(ProblemError::Unknown {
+                    id: p,
+                    last: count - 1,
+                }
+                .into());
+            }
+            if self.problems[..i].contains(&p) {
+                return Err(ExperimentError::DuplicateProblem(p));
+            }
+        }
+        for (list, name) in [
+            (self.gammas.len(), "gamma"),
+            (self.rhos.len(), "rho"),
+            (self.epsilons.len(), "epsilon"),
+        ] {
+            if list == 0 {
+                return Err(ExperimentError::Empty(name));
+            }
+        }
+        let rows = self.gammas.len() * self.rhos.len() * self.epsilons.len();
+        if rows > MAX_LEARNING_ROWS {
+            return Err(ExperimentError::TooManyRows(rows));
+        }
+        if self.samples == 0 || self.samples > super::deterministic::MAX_SAMPLES {
+            return Err(ExperimentError::Samples(self.samples));
+        }
+        if self.episodes == 0 {
+            return Err(LearningError::NoEpisodes.into());
+        }
+        if self.max_steps == 0 {
+            return Err(LearningError::NoSteps.into());
+        }
+        let total = u64::from(self.episodes) * u64::from(self.max_steps);
+        if total > super::deterministic::MAX_ACTIONS_PER_RUN {
+            return Err(ExperimentError::TooLong(total));
+        }
+        for e in &self.epsilons {
+            e.schedule.validate(self.episodes)?;
+        }
+        if self.threads == Some(0) {
+            return Err(ExperimentError::Threads {
+                threads: 0,
+                message: "at least one thread is needed".into(),
+            });
+        }
+        Ok(())
+    }
+
+    fn step_cost(&self) -> StepCost {
+        match self.tolerance {
+            Tolerance::Relative => StepCost::Unit,
+            Tolerance::Reference => StepCost::Euclidean,
+        }
+    }
+
+    /// The model in words, for every output.
+    pub fn model(&self) -> String {
+        format!(
+            "noise {}; tolerance {}; {} step costs; judged against the exact optimum G* (policy iteration, exact rational solves); Q-learning in f64, random exploration plan, Q0 = 0",
+            self.noise.describe(),
+            self.tolerance.describe(),
+            match self.step_cost() {
+                StepCost::Unit => "unit",
+                StepCost::Euclidean => "Euclidean (800/19)",
+            }
+        )
+    }
+}
+
+/// One row of the result: a summary over the samples (VI rows: one deterministic run).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RowSummary {
+    /// Problem id.
+    pub problem: usize,
+    /// `γ` as given.
+    pub gamma: String,
+    /// `q-learning`, `stochastic-async-vi` or `stochastic-vi`.
+    pub algorithm: &'static str,
+    /// `ρ` as given (learning rows).
+    pub rho: Option<String>,
+    /// `ε` as given (learning rows).
+    pub epsilon: Option<String>,
+    /// Samples (1 for VI).
+    pub samples: u32,
+    /// Exact `G*(x1)` to 9 significant digits.
+    pub optimum_initial: String,
+    /// Mean wall time of a run, seconds.
+    pub mean_time_s: Option<f64>,
+    /// Its population standard deviation.
+    pub std_time_s: Option<f64>,
+    /// Fraction of runs whose values came within tolerance on every tracked state.
+    pub convergence_rate: Option<f64>,
+    /// Mean action of convergence (over converged runs).
+    pub mean_actions_converged: Option<f64>,
+    /// Mean actions (VI: counted actions, SPEC §7).
+    pub mean_actions: Option<f64>,
+    /// Their standard deviation.
+    pub std_actions: Option<f64>,
+    /// Mean episodes run (VI: sweeps).
+    pub mean_iterations: Option<f64>,
+    /// Their standard deviation.
+    pub std_iterations: Option<f64>,
+    /// Fraction of runs in which `V(x1)` came within tolerance.
+    pub initial_within_rate: Option<f64>,
+    /// Mean first action with `V(x1)` within tolerance.
+    pub mean_actions_initial_within: Option<f64>,
+    /// Mean 1-based episode of it.
+    pub mean_episode_initial_within: Option<f64>,
+    /// Mean seconds until then.
+    pub mean_time_initial_within_s: Option<f64>,
+    /// Fraction of runs that entered the goal.
+    pub goal_discovery_rate: Option<f64>,
+    /// Mean 1-based action of the first goal entry.
+    pub mean_actions_goal_discovered: Option<f64>,
+    /// Mean seconds until then.
+    pub mean_time_goal_discovered_s: Option<f64>,
+    /// Mean final `V(x1)`.
+    pub mean_value_initial: Option<f64>,
+    /// Largest `|V − G*|` over tracked states, worst sample (exact, 6 significant digits).
+    pub max_error: Option<String>,
+    /// Shortest simulated greedy path (states, x1 and goal counted) over the samples.
+    pub shortest_path: Option<u64>,
+    /// Longest one (a path cut at the cap counts 100002 states).
+    pub longest_path: Option<u64>,
+    /// Fraction of simulations that reached the goal within the cap.
+    pub goal_reached_rate: Option<f64>,
+    /// Fraction of simulations that reached the goal using optimal actions only.
+    pub optimal_path_rate: Option<f64>,
+    /// The noise model.
+    pub noise: NoiseModel,
+    /// The tolerance.
+    pub tolerance: Tolerance,
+    /// The seed.
+    pub seed: u64,
+    /// Why the row was not run.
+    pub note: Option<String>,
+}
+
+/// The result of an experiment.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Report {
+    /// The noise model.
+    pub noise: NoiseModel,
+    /// The tolerance.
+    pub tolerance: Tolerance,
+    /// The model in words.
+    pub model: String,
+    /// The seed.
+    pub seed: u64,
+    /// Samples per learning row.
+    pub samples: u32,
+    /// Episodes per run.
+    pub episodes: u32,
+    /// Steps per episode.
+    pub max_steps: u32,
+    /// Problems.
+    pub problems: Vec<usize>,
+    /// `γ` values as given.
+    pub gammas: Vec<String>,
+    /// The rows: per problem, per `γ`, learning rows then the two VIs.
+    pub rows: Vec<RowSummary>,
+}
+
+/// A problem at one `γ`, with its exact optimum.
+struct Prepared {
+    id: usize,
+    gamma: usize,
+    problem: StochasticProblem,
+    cost: Vec<f64>,
+    optimum: Optimum,
+    target: Target,
+    optimal: Vec<bool>,
+    reachable: bool,
+}
+
+fn prepare(id: usize, gamma: usize, settings: &Settings) -> Result<Prepared, ExperimentError> {
+    let problem = exact_grid(
+        id,
+        settings.step_cost(),
+        settings.noise,
+        &settings.gammas[gamma],
+    )?;
+    let optimum = optimum(&problem)?;
+    let target = Target::new(&problem, &optimum, settings.tolerance);
+    let optimal = optimal_action_flags(&problem, &optimum);
+    let cost = FloatModel::nearest(&problem).cost;
+    let reachable = matches!(
+        optimum.cost_to_go(problem.initial()),
+        crate::value::Extended::Finite(_)
+    );
+    Ok(Prepared {
+        id,
+        gamma,
+        problem,
+        cost,
+        optimum,
+        target,
+        optimal,
+        reachable,
+    })
+}
+
+/// One learning sample's measurements.
+#[derive(Clone, Debug, PartialEq)]
+struct Sample {
+    time_s: f64,
+    actions: u64,
+    episodes: u32,
+    converged_at: Option<u64>,
+    initial_at: Option<u64>,
+    initial_episode: Option<u32>,
+    initial_time_s: Option<f64>,
+    goal_at: Option<u64>,
+    goal_time_s: Option<f64>,
+    value_initial: f64,
+    max_error: Rational,
+    path_states: u64,
+    reached_goal: bool,
+    path_optimal: bool,
+}
+
+fn learn_sample(
+    prepared: &Prepared,
+    config: &StochasticQConfig,
+    seed: u64,
+    row: usize,
+    k: u32,
+) -> Result<Sample, ExperimentError> {
+    let rng = sample_rng(seed, stream(prepared.id, row, k));
+    let watch = Stopwatch::start();
+    let mut learner = StochasticQLearner::new(
+        &prepared.problem,
+        &prepared.cost,
+        &prepared.target,
+        config,
+        rng,
+        Plan::Random,
+    )?;
+    let (mut goal_time, mut initial_time) = (None, None);
+    loop {
+        match learner.advance() {
+            Event::Milestone(Milestone::GoalDiscovered) => goal_time = Some(watch.seconds()),
+            Event::Milestone(Milestone::InitialOptimal) => initial_time = Some(watch.seconds()),
+            Event::Milestone(Milestone::Converged) => {}
+            Event::Finished => break,
+        }
+    }
+    let time_s = watch.seconds();
+    let outcome = learner.outcome();
+    let x1 = prepared.problem.initial();
+    let v = learner.cost_to_go().to_vec();
+    let max_error = tracked_error(prepared, &v);
+    let path = learner.simulate_greedy(Some(&prepared.optimal));
+    Ok(Sample {
+        time_s,
+        actions: outcome.actions,
+        episodes: outcome.episodes_run,
+        converged_at: outcome.converged_at,
+        initial_at: outcome.initial_within_at,
+        initial_episode: outcome.initial_within_episode,
+        initial_time_s: initial_time,
+        goal_at: outcome.goal_discovered_at,
+        goal_time_s: goal_time,
+        value_initial: v[x1],
+        max_error,
+        path_states: path.states,
+        reached_goal: path.reached_goal,
+        path_optimal: path.optimal_actions,
+    })
+}
+
+/// `max |V − G*|` over the tracked states, exactly (`f64` values are exact rationals).
+fn tracked_error(prepared: &Prepared, v: &[f64]) -> Rational {
+    let d = prepared.optimum.distance(prepared.problem.initial(), |x| {
+        if prepared.target.is_tracked(x) {
+            Rational::from_float(v[x])
+        } else {
+            None
+        }
+    });
+    d.max_abs
+}
+
+fn learning_rows(settings: &Settings) -> Vec<(usize, usize, usize)> {
+    let mut rows = Vec::new();
+    for g in 0..settings.gammas.len() {
+        for r in 0..settings.rhos.len() {
+            for e in 0..settings.epsilons.len() {
+                rows.push((g, r, e));
+            }
+        }
+    }
+    rows
+}
+
+/// The number of learning sample runs plus VI runs (for a progress bar).
+pub fn total_runs(settings: &Settings) -> u64 {
+    let per_problem = learning_rows(settings).len() as u64 * u64::from(settings.samples)
+        + 2 * settings.gammas.len() as u64;
+    settings.problems.len() as u64 * per_problem
+}
+
+/// Runs the experiment; `progress(k)` is called (from any thread) when `k` more runs finished.
+///
+/// ```
+/// use truecost::experiments::stochastic::{run, Settings, RateSpec, EpsilonSpec};
+/// use truecost::stochastic::Predictability;
+/// let settings = Settings { problems: vec![16], gammas: vec![Predictability::parse("0.9").unwrap()],
+///     rhos: vec![RateSpec::parse("0.5").unwrap()], epsilons: vec![EpsilonSpec::parse("1").unwrap()],
+///     samples: 2, episodes: 20, max_steps: 200, ..Settings::default() };
+/// let report = run(&settings, &|_| {}).unwrap();
+/// assert_eq!(report.rows.len(), 3); // one learning row, two VIs
+/// ```
+pub fn run(
+    settings: &Settings,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Report, ExperimentError> {
+    settings.validate()?;
+    let work = || run_validated(settings, progress);
+    match settings.threads {
+        None => work(),
+        Some(threads) => rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| ExperimentError::Threads {
+                threads,
+                message: e.to_string(),
+            })?
+            .install(work),
+    }
+}
+
+fn run_validated(
+    settings: &Settings,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Report, ExperimentError> {
+    let pairs: Vec<(usize, usize)> = settings
+        .problems
+        .iter()
+        .flat_map(|&p| (0..settings.gammas.len()).map(move |g| (p, g)))
+        .collect();
+    let prepared: Vec<Prepared> = pairs
+        .par_iter()
+        .map(|&(p, g)| prepare(p, g, settings))
+        .collect::<Result<_, _>>()?;
+    let rows = learning_rows(settings);
+    // Every (pair, learning row, sample) in parallel.
+    let row_list = &rows;
+    let tasks: Vec<(usize, usize, u32)> = prepared
+        .iter()
+        .enumerate()
+        .flat_map(|(i, pr)| {
+            row_list
+                .iter()
+                .enumerate()
+                .filter(move |(_, t)| t.0 == pr.gamma)
+                .flat_map(move |(row, _)| (0..settings.samples).map(move |k| (i, row, k)))
+        })
+        .collect();
+    let results: Vec<Option<Sample>> = tasks
+        .par_iter()
+        .map(|&(i, row, k)| -> Result<Option<Sample>, ExperimentError> {
+            let pr = &prepared[i];
+            let out = if pr.reachable {
+                let (_, r, e) = rows[row];
+                let config = StochasticQConfig {
+                    episodes: settings.episodes,
+                    max_steps: settings.max_steps,
+                    rate: settings.rhos[r].rate,
+                    epsilon: settings.epsilons[e].schedule.clone(),
+                    initial_value: 0.0,
+                };
+                Some(learn_sample(pr, &config, settings.seed, row, k)?)
+            } else {
+                None
+            };
+            progress(1);
+            Ok(out)
+        })
+        .collect::<Result<_, _>>()?;
+    let vi: Vec<[RowSummary; 2]> = prepared
+        .par_iter()
+        .map(|pr| -> Result<[RowSummary; 2], ExperimentError> {
+            let a = vi_row(pr, Schedule::Asynchronous, settings)?;
+            progress(1);
+            let s = vi_row(pr, Schedule::Synchronous, settings)?;
+            progress(1);
+            Ok([a, s])
+        })
+        .collect::<Result<_, _>>()?;
+    let mut out = Vec::new();
+    let mut next = results.into_iter();
+    for (i, pr) in prepared.iter().enumerate() {
+        for &(g, r, e) in rows.iter().filter(|(g, _, _)| *g == pr.gamma) {
+            debug_assert_eq!(g, pr.gamma);
+            let samples: Vec<Sample> = (0..settings.samples)
+                .filter_map(|_| next.next().expect("one result per task"))
+                .collect();
+            out.push(summarise(pr, r, e, &samples, settings));
+        }
+        out.extend(vi[i].iter().cloned());
+    }
+    Ok(Report {
+        noise: settings.noise,
+        tolerance: settings.tolerance,
+        model: settings.model(),
+        seed: settings.seed,
+        samples: settings.samples,
+        episodes: settings.episodes,
+        max_steps: settings.max_steps,
+        problems: settings.problems.clone(),
+        gammas: settings.gammas.iter().map(gamma_text).collect(),
+        rows: out,
+    })
+}
+
+fn empty_row(pr: &Prepared, algorithm: &'static str, settings: &Settings) -> RowSummary {
+    RowSummary {
+        problem: pr.id,
+        gamma: gamma_text(&settings.gammas[pr.gamma]),
+        algorithm,
+        rho: None,
+        epsilon: None,
+        samples: 0,
+        optimum_initial: decimal(&pr.optimum.cost_to_go(pr.problem.initial()), 9),
+        mean_time_s: None,
+        std_time_s: None,
+        convergence_rate: None,
+        mean_actions_converged: None,
+        mean_actions: None,
+        std_actions: None,
+        mean_iterations: None,
+        std_iterations: None,
+        initial_within_rate: None,
+        mean_actions_initial_within: None,
+        mean_episode_initial_within: None,
+        mean_time_initial_within_s: None,
+        goal_discovery_rate: None,
+        mean_actions_goal_discovered: None,
+        mean_time_goal_discovered_s: None,
+        mean_value_initial: None,
+        max_error: None,
+        shortest_path: None,
+        longest_path: None,
+        goal_reached_rate: None,
+        optimal_path_rate: None,
+        noise: settings.noise,
+        tolerance: settings.tolerance,
+        seed: settings.seed,
+        note: None,
+    }
+}
+
+fn summarise(
+    pr: &Prepared,
+    r: usize,
+    e: usize,
+    samples: &[Sample],
+    settings: &Settings,
+) -> RowSummary {
+    let mut row = empty_row(pr, "q-learning", settings);
+    row.rho = Some(settings.rhos[r].text.clone());
+    row.epsilon = Some(settings.epsilons[e].text.clone());
+    row.samples = samples.len() as u32;
+    if !pr.reachable {
+        row.note = Some("not run: the goal is unreachable from x1".into());
+        return row;
+    }
+    let n = samples.len() as f64;
+    let f = |get: &dyn Fn(&Sample) -> f64| -> Vec<f64> { samples.iter().map(get).collect() };
+    let o = |get: &dyn Fn(&Sample) -> Option<f64>| -> Vec<Option<f64>> {
+        samples.iter().map(get).collect()
+    };
+    let rate = |pred: &dyn Fn(&Sample) -> bool| {
+        (!samples.is_empty()).then(|| samples.iter().filter(|s| pred(s)).count() as f64 / n)
+    };
+    (row.mean_time_s, row.std_time_s) = unzip(mean_std(&f(&|s| s.time_s)));
+    (row.mean_actions, row.std_actions) = unzip(mean_std(&f(&|s| s.actions as f64)));
+    (row.mean_iterations, row.std_iterations) = unzip(mean_std(&f(&|s| f64::from(s.episodes))));
+    row.convergence_rate = rate(&|s| s.converged_at.is_some());
+    row.mean_actions_converged = mean_of_present(&o(&|s| s.converged_at.map(|a| a as f64)));
+    row.initial_within_rate = rate(&|s| s.initial_at.is_some());
+    row.mean_actions_initial_within = mean_of_present(&o(&|s| s.initial_at.map(|a| a as f64)));
+    row.mean_episode_initial_within = mean_of_present(&o(&|s| s.initial_episode.map(f64::from)));
+    row.mean_time_initial_within_s = mean_of_present(&o(&|s| s.initial_time_s));
+    row.goal_discovery_rate = rate(&|s| s.goal_at.is_some());
+    row.mean_actions_goal_discovered = mean_of_present(&o(&|s| s.goal_at.map(|a| a as f64)));
+    row.mean_time_goal_discovered_s = mean_of_present(&o(&|s| s.goal_time_s));
+    row.mean_value_initial = mean_std(&f(&|s| s.value_initial)).map(|(m, _)| m);
+    row.max_error = samples
+        .iter()
+        .map(|s| &s.max_error)
+        .max()
+        .map(|m| decimal(&crate::value::Extended::Finite(m.clone()), 6));
+    row.shortest_path = samples.iter().map(|s| s.path_states).min();
+    row.longest_path = samples.iter().map(|s| s.path_states).max();
+    row.goal_reached_rate = rate(&|s| s.reached_goal);
+    row.optimal_path_rate = rate(&|s| s.path_optimal);
+    row
+}
+
+fn vi_row(
+    pr: &Prepared,
+    schedule: Schedule,
+    settings: &Settings,
+) -> Result<RowSummary, ExperimentError> {
+    let name = match schedule {
+        Schedule::Asynchronous => "stochastic-async-vi",
+        Schedule::Synchronous => "stochastic-vi",
+    };
+    let mut row = empty_row(pr, name, settings);
+    row.samples = 1;
+    let options = ViOptions::reference(schedule);
+    let (run, time_s) = match settings.tolerance {
+        Tolerance::Relative => {
+            let model = FloatModel::nearest(&pr.problem);
+            let watch = Stopwatch::start();
+            let run = value_iteration_f64(&pr.problem, &model, &options);
+            (run, watch.seconds())
+        }
+        Tolerance::Reference => {
+            let grid = reference_grid(pr.id, settings.noise, &settings.gammas[pr.gamma])?;
+            let watch = Stopwatch::start();
+            let run = value_iteration_f64(&grid.problem, &grid.float, &options);
+            (run, watch.seconds())
+        }
+    };
+    let v = &run.cost_to_go;
+    if v.len() != pr.problem.states() {
+        row.note = Some("not run: the reference grid differs from the exact grid".into());
+        return Ok(row);
+    }
+    let x1 = pr.problem.initial();
+    let tracked: Vec<usize> = (0..v.len()).filter(|&x| pr.target.is_tracked(x)).collect();
+    let all_within = tracked.iter().all(|&x| pr.target.within(x, v[x]));
+    row.mean_time_s = Some(time_s);
+    row.std_time_s = Some(0.0);
+    row.mean_actions = Some(run.reference_counted as f64);
+    row.std_actions = Some(0.0);
+    row.mean_iterations = Some(run.sweeps as f64);
+    row.std_iterations = Some(0.0);
+    if !pr.reachable {
+        row.note =
+            Some("the goal is unreachable from x1 (G*(x1) = inf): nothing to converge to".into());
+        return Ok(row);
+    }
+    row.convergence_rate = Some(if all_within { 1.0 } else { 0.0 });
+    row.initial_within_rate = Some(if pr.target.within(x1, v[x1]) {
+        1.0
+    } else {
+        0.0
+    });
+    row.mean_value_initial = Some(v[x1]);
+    row.max_error = Some(decimal(
+        &crate::value::Extended::Finite(tracked_error(pr, v)),
+        6,
+    ));
+    if !run.converged {
+        row.note = Some(format!(
+            "stopped after {} sweeps without meeting the 0.1 stopping rule",
+            run.sweeps
+        ));
+    }
+    Ok(row)
+}
+
+/// `γ` as exact decimal text when it has a finite decimal expansion (as every `γ` given as
+/// decimal text has), else as a fraction.
+///
+/// ```
+/// use truecost::experiments::stochastic::gamma_text;
+/// use truecost::stochastic::Predictability;
+/// assert_eq!(gamma_text(&Predictability::parse("0.999").unwrap()), "0.999");
+/// assert_eq!(gamma_text(&Predictability::parse("1").unwrap()), "1");
+/// assert_eq!(gamma_text(&Predictability::parse("2/3").unwrap()), "2/3");
+/// ```
+pub fn gamma_text(gamma: &Predictability) -> String {
+    let r = gamma.value();
+    let mut scaled = r.clone();
+    for d in 0..40usize {
+        if scaled.is_integer() {
+            let digits = scaled.to_integer().to_string();
+            if d == 0 {
+                return digits;
+            }
+            let padded = format!("{digits:0>width$}", width = d + 1);
+            let (int, frac) = padded.split_at(padded.len() - d);
+            return format!("{int}.{frac}");
+        }
+        scaled *= Rational::from_integer(10.into());
+    }
+    gamma.to_string()
+}
+
+fn unzip(x: Option<(f64, f64)>) -> (Option<f64>, Option<f64>) {
+    match x {
+        Some((a, b)) => (Some(a), Some(b)),
+        None => (None, None),
+    }
+}

@@ -285,3 +285,125 @@ fn reproduce_writes_the_plots() {
         assert_eq!(png.read_info().unwrap().info().width, 1000);
     }
 }
+
+/// The polyline's points in a rendered SVG.
+fn path_points(svg: &str) -> usize {
+    let line = svg.lines().find(|l| l.contains("class=\"path\"")).unwrap();
+    line.split("points=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap()
+        .split(' ')
+        .count()
+}
+
+#[test]
+fn gamma_draws_the_stochastic_optimum() {
+    let dir = tempfile::tempdir().unwrap();
+    // γ = 1 is the deterministic model: the intended path is an optimal one, 63 moves on
+    // Problem 10 (published).
+    let svg = render(
+        &["--problem", "10", "--gamma", "1", "--overlay", "path"],
+        &dir.path().join("g1.svg"),
+    );
+    assert_eq!(path_points(&svg), 64);
+    assert!(svg.contains("stochastic model, paper noise, γ = 1"));
+    // Under noise every state of Problem 0 (no obstacles) still reaches the goal.
+    let svg = render(
+        &["--problem", "0", "--gamma", "0.9", "--overlay", "values"],
+        &dir.path().join("v.svg"),
+    );
+    assert_eq!(count(&svg, "value"), 400);
+    assert!(count(&svg, "colorbar") > 0);
+    assert!(svg.contains("γ = 0.9"));
+    let svg = render(
+        &[
+            "--problem",
+            "0",
+            "--gamma",
+            "0.5",
+            "--noise",
+            "reference",
+            "--overlay",
+            "policy",
+        ],
+        &dir.path().join("p.svg"),
+    );
+    assert_eq!(count(&svg, "policy"), 399, "every state but the goal");
+    assert!(svg.contains("reference noise, γ = 0.5"));
+    // The noise makes expected costs larger than the deterministic 17 of Problem 0.
+    let g: f64 = svg
+        .split("G*(x1) = ")
+        .nth(1)
+        .unwrap()
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(g > 17.0, "{g}");
+}
+
+#[test]
+fn stochastic_files_render_with_their_own_outcomes() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/problems/slippery.json");
+    let svg = render(
+        &["--file", file, "--overlay", "path"],
+        &dir.path().join("s.svg"),
+    );
+    assert_eq!(count(&svg, "node"), 3);
+    // 0 -> 1 (most likely outcome of its only action), 1 -> 2 (the cheaper action in
+    // expectation: 1 + G(0)/4 against 1/2 + G(0)).
+    assert_eq!(path_points(&svg), 3);
+    // G*(0) = 76/27 (computed by hand in the file's name).
+    assert!(svg.contains("G*(x1) = 2.81481481481"), "{svg}");
+}
+
+#[test]
+fn bad_stochastic_render_arguments_are_clear_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.svg").display().to_string();
+    let slippery = concat!(env!("CARGO_MANIFEST_DIR"), "/problems/slippery.json");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec!["--problem", "0", "--noise", "paper"],
+            "give --gamma too",
+        ),
+        (vec!["--problem", "0", "--gamma", "1.5"], "(0, 1]"),
+        (vec!["--problem", "0", "--gamma", "0"], "(0, 1]"),
+        (vec!["--problem", "0", "--gamma", "x"], "gamma"),
+        (
+            vec!["--problem", "0", "--gamma", "0.9", "--mode", "reference"],
+            "--mode exact",
+        ),
+        (
+            vec!["--problem", "0", "--gamma", "0.9", "--overlay", "visits"],
+            "--overlay visits",
+        ),
+        (
+            vec!["--problem", "6", "--gamma", "0.9", "--overlay", "path"],
+            "no policy reaches a goal",
+        ),
+        (
+            vec!["--file", slippery, "--gamma", "0.9"],
+            "its own outcome",
+        ),
+    ];
+    for (args, expect) in cases {
+        let output = Command::cargo_bin("truecost")
+            .unwrap()
+            .arg("render")
+            .args(&args)
+            .args(["--out", &out])
+            .assert()
+            .code(1)
+            .get_output()
+            .clone();
+        let err = String::from_utf8(output.stderr).unwrap();
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.contains(expect), "{args:?}: {err}");
+    }
+}

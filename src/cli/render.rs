@@ -5,14 +5,18 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 
 use truecost::experiments::visits::visit_counts;
-use truecost::figures::render::{draw, Overlay};
-use truecost::figures::{file_scene, grid_scene};
+use truecost::figures::render::{draw, Overlay, Scene};
+use truecost::figures::{file_scene, grid_scene, stochastic_file_scene};
 use truecost::learning::q_learning::LearningValue;
 use truecost::model::file;
 use truecost::model::{ExactGraph, Graph};
 use truecost::planning::{plan_exact, plan_reference, Algorithm, Mode, PlanReport};
 use truecost::problems::{GridLayout, StepCost};
 use truecost::solvers::dijkstra;
+use truecost::stochastic::file::{self as stochastic_file, ProblemFile};
+use truecost::stochastic::policy_iteration::optimum;
+use truecost::stochastic::problem::Provenance;
+use truecost::stochastic::{decimal, NoiseModel, Predictability, StochasticProblem};
 use truecost::value::{parse_rational, CostValue, Extended};
 
 /// What to draw over the problem.
@@ -49,6 +53,15 @@ pub struct RenderArgs {
     /// The overlay.
     #[arg(long, value_enum, default_value_t = OverlayKind::None)]
     overlay: OverlayKind,
+    /// Draw the exact optimum of the stochastic model with predictability gamma in (0, 1]
+    /// (exact decimal text, e.g. 0.9) instead of the deterministic one: values, policy and path
+    /// overlays (exact mode).
+    #[arg(long, value_name = "G")]
+    gamma: Option<String>,
+    /// With --gamma: how the probability 1 - gamma is spread, `paper` (the text) or
+    /// `reference` (the paper's code) [default: paper].
+    #[arg(long, value_enum)]
+    noise: Option<NoiseModel>,
     /// Width in pixels.
     #[arg(long, default_value_t = 900)]
     width: u32,
@@ -74,6 +87,9 @@ pub struct RenderArgs {
 
 /// Runs the command; returns the message printed on success.
 pub fn run(args: &RenderArgs) -> Result<String, String> {
+    if args.gamma.is_some() || args.noise.is_some() || file_lists_outcomes(args) {
+        return stochastic(args);
+    }
     let mut visits: Option<PairCounts> = None;
     let (mut scene, report, what) = match (&args.file, args.problem) {
         (Some(path), _) => {
@@ -102,14 +118,13 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
                 let problem = layout.to_problem(step);
                 let report = plan_exact(&problem, Algorithm::Dijkstra, false);
                 visits = exact_visits(&problem, args)?;
-                let step = match step {
-                    StepCost::Unit => "unit step costs",
-                    StepCost::Euclidean => "step cost 800/19",
-                };
                 (
                     grid_scene(&layout, Mode::Exact),
                     report,
-                    format!("Problem {id}, exact model (paper text, {step})"),
+                    format!(
+                        "Problem {id}, exact model (paper text, {})",
+                        step_text(step)
+                    ),
                 )
             }
             Mode::Reference => {
@@ -157,7 +172,12 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         OverlayKind::Policy => Overlay::Policy(report.policy.clone()),
         OverlayKind::Visits => Overlay::Visits(visits.unwrap_or_default()),
     };
-    let canvas = draw(&scene, &overlay, args.width, args.height).map_err(|e| e.to_string())?;
+    save(&scene, &overlay, args)
+}
+
+/// Draws and writes the figure; returns the success message.
+fn save(scene: &Scene, overlay: &Overlay, args: &RenderArgs) -> Result<String, String> {
+    let canvas = draw(scene, overlay, args.width, args.height).map_err(|e| e.to_string())?;
     canvas.save(&args.out).map_err(|e| e.to_string())?;
     Ok(format!(
         "wrote {} ({}x{})\n",
@@ -165,6 +185,159 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         args.width,
         args.height
     ))
+}
+
+/// Whether `--file` names a file some action of which lists outcomes (a stochastic problem).
+fn file_lists_outcomes(args: &RenderArgs) -> bool {
+    args.file.as_ref().is_some_and(|path| {
+        std::fs::read_to_string(path).is_ok_and(|text| stochastic_file::lists_outcomes(&text))
+    })
+}
+
+/// The figure of the stochastic model (SPEC §3): its exact optimum by policy iteration.
+fn stochastic(args: &RenderArgs) -> Result<String, String> {
+    if args.noise.is_some() && args.gamma.is_none() {
+        return Err(
+            "--noise chooses how the probability 1 - gamma is spread: give --gamma too".into(),
+        );
+    }
+    if args.mode == Mode::Reference {
+        return Err("--gamma draws the exact optimum of the stochastic model: use --mode exact (with --step-cost euclidean --noise reference for the exact counterpart of the paper's code)".into());
+    }
+    if args.overlay == OverlayKind::Visits {
+        return Err("--overlay visits draws a deterministic Q-learning run; it does not take --gamma, --noise or a file with outcomes".into());
+    }
+    let gamma = match &args.gamma {
+        Some(text) => Predictability::parse(text).map_err(|e| e.to_string())?,
+        None => Predictability::one(),
+    };
+    let noise = args.noise.unwrap_or_default();
+    let noisy = |p: &truecost::model::Problem| {
+        StochasticProblem::from_deterministic(p, noise, &gamma).map_err(|e| e.to_string())
+    };
+    let (mut scene, problem, what) = match (&args.file, args.problem) {
+        (Some(path), _) => {
+            if args.step_cost.is_some() {
+                return Err(
+                    "--step-cost applies to the paper's grid problems (--problem N)".into(),
+                );
+            }
+            let what = format!("file {}", path.display());
+            match stochastic_file::read(path).map_err(|e| e.to_string())? {
+                ProblemFile::Deterministic(p) => (file_scene(&p), noisy(&p)?, what),
+                ProblemFile::Stochastic(s) => {
+                    if args.gamma.is_some() {
+                        return Err("this problem file lists its own outcome probabilities; --gamma and --noise apply to deterministic problems".into());
+                    }
+                    (stochastic_file_scene(&s), *s, what)
+                }
+            }
+        }
+        (None, Some(id)) => {
+            let layout = GridLayout::exact(id).map_err(|e| e.to_string())?;
+            let step = args.step_cost.unwrap_or_default();
+            let problem = noisy(&layout.to_problem(step))?;
+            (
+                grid_scene(&layout, Mode::Exact),
+                problem,
+                format!(
+                    "Problem {id}, exact model (paper text, {})",
+                    step_text(step)
+                ),
+            )
+        }
+        (None, None) => return Err("give --problem N or --file FILE".into()),
+    };
+    let optimum = optimum(&problem).map_err(|e| e.to_string())?;
+    let values = optimum.cost_to_go_all();
+    let successor = |x: usize| {
+        if problem.is_goal(x) {
+            Some(x)
+        } else {
+            optimum.policy_actions()[x].map(|a| intended(&problem, a))
+        }
+    };
+    let model = match (problem.provenance(), &args.gamma) {
+        (Provenance::Noise { model, .. }, Some(g)) => format!("{} noise, γ = {g}", model.name()),
+        _ => "outcome probabilities from the file".to_string(),
+    };
+    let g = match &values[problem.initial()] {
+        Extended::Infinite => "goal not reached with probability 1 from x1".to_string(),
+        v => format!("G*(x1) = {}", decimal(v, 12)),
+    };
+    let (overlay, shown) = match args.overlay {
+        OverlayKind::None => (Overlay::None, ""),
+        OverlayKind::Values => (
+            Overlay::Values {
+                values: values
+                    .iter()
+                    .map(|v| Some(v.to_f64()).filter(|v| v.is_finite()))
+                    .collect(),
+                label: "G*".into(),
+            },
+            "; overlay: optimal expected cost-to-go G*",
+        ),
+        OverlayKind::Policy => (
+            Overlay::Policy((0..problem.states()).map(successor).collect()),
+            "; overlay: the optimal policy (arrow to the commanded or else the most likely successor)",
+        ),
+        OverlayKind::Path => (
+            Overlay::Path(intended_path(&problem, &values[problem.initial()], successor)?),
+            "; overlay: the optimal policy's intended path (every action reaching its commanded or else most likely successor)",
+        ),
+        OverlayKind::Visits => unreachable!("refused above"),
+    };
+    scene.title = what;
+    scene.caption = format!(
+        "{g} (stochastic model, {model}; exact optimum by policy iteration){shown}; grey segments: allowed moves"
+    );
+    save(&scene, &overlay, args)
+}
+
+/// The successor an action aims at: the commanded one, or (for an action of a file that lists
+/// only outcomes) its most likely outcome, the first of equals.
+fn intended(problem: &StochasticProblem, action: usize) -> usize {
+    problem.commanded(action).unwrap_or_else(|| {
+        let outcomes = problem.outcomes(action);
+        let weights = problem.weights(action);
+        let best = (0..outcomes.len())
+            .rev()
+            .max_by_key(|&k| weights[k])
+            .expect("an action has at least one outcome");
+        outcomes[best].successor
+    })
+}
+
+/// From x1, the states the optimal policy visits when every move goes as commanded.
+fn intended_path(
+    problem: &StochasticProblem,
+    initial_value: &Extended,
+    successor: impl Fn(usize) -> Option<usize>,
+) -> Result<Vec<usize>, String> {
+    if matches!(initial_value, Extended::Infinite) {
+        return Err(
+            "no policy reaches a goal with probability 1 from the initial state: there is no path to draw".into(),
+        );
+    }
+    let mut path = vec![problem.initial()];
+    let mut x = problem.initial();
+    while !problem.is_goal(x) {
+        match successor(x) {
+            Some(y) if path.len() <= problem.states() => {
+                path.push(y);
+                x = y;
+            }
+            _ => return Err("the optimal policy's commanded moves do not lead from x1 to a goal: there is no intended path to draw (try --overlay policy)".into()),
+        }
+    }
+    Ok(path)
+}
+
+fn step_text(step: StepCost) -> &'static str {
+    match step {
+        StepCost::Unit => "unit step costs",
+        StepCost::Euclidean => "step cost 800/19",
+    }
 }
 
 /// The value as an `f64` for colouring only (the exact value is what `solve` reports).

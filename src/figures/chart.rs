@@ -2,6 +2,7 @@
 //! with axis labels, ticks, a legend, and a caption naming the model and seed.
 
 use super::canvas::{Canvas, FigureError, Rgb, Shape};
+use super::wrap;
 
 /// One named series.
 #[derive(Clone, Debug, PartialEq)]
@@ -191,21 +192,6 @@ impl LineChart {
         }
         Ok(canvas)
     }
-}
-
-/// Splits text at "; " into lines of at most about `width` characters.
-fn wrap(text: &str, width: usize) -> Vec<String> {
-    let mut lines: Vec<String> = Vec::new();
-    for part in text.split("; ") {
-        match lines.last_mut() {
-            Some(line) if line.chars().count() + part.chars().count() + 2 <= width => {
-                line.push_str("; ");
-                line.push_str(part);
-            }
-            _ => lines.push(part.to_string()),
-        }
-    }
-    lines
 }
 
 /// The range of the values, widened when empty or degenerate.

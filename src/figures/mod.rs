@@ -10,6 +10,7 @@ pub mod render;
 use crate::model::Problem;
 use crate::planning::Mode;
 use crate::problems::{reference_coordinates, GridLayout, SIDE};
+use crate::stochastic::StochasticProblem;
 use render::Scene;
 
 /// The scene of a paper grid problem: exact grid points `(800·col/19, 800·row/19)` in exact
@@ -53,25 +54,59 @@ pub fn grid_scene(layout: &GridLayout, mode: Mode) -> Scene {
 
 /// The scene of a user problem (no geometry): states on a circle, in index order.
 pub fn file_scene(problem: &Problem) -> Scene {
-    let n = problem.states();
+    circle_scene(
+        problem.states(),
+        problem.initial(),
+        problem.goals(),
+        (0..problem.states()).flat_map(|x| problem.moves(x).iter().map(move |m| (x, m.successor))),
+    )
+}
+
+/// The scene of a stochastic user problem: states on a circle, a segment between a state and
+/// every possible outcome of its actions.
+///
+/// ```
+/// use truecost::figures::stochastic_file_scene;
+/// use truecost::stochastic::{file, NoiseModel, Predictability, StochasticProblem};
+/// let line = file::read(concat!(env!("CARGO_MANIFEST_DIR"), "/problems/line.json").as_ref()).unwrap();
+/// let file::ProblemFile::Deterministic(p) = line else { panic!() };
+/// let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::parse("0.9").unwrap()).unwrap();
+/// assert_eq!(stochastic_file_scene(&s).positions.len(), 4);
+/// ```
+pub fn stochastic_file_scene(problem: &StochasticProblem) -> Scene {
+    circle_scene(
+        problem.states(),
+        problem.initial(),
+        problem.goals(),
+        (0..problem.action_total()).flat_map(|a| {
+            let x = problem.state_of(a);
+            problem.outcomes(a).iter().map(move |o| (x, o.successor))
+        }),
+    )
+}
+
+/// `n` states on a circle, in index order, with a segment per unordered pair of `edges`.
+fn circle_scene(
+    n: usize,
+    initial: usize,
+    goals: &[usize],
+    edges: impl Iterator<Item = (usize, usize)>,
+) -> Scene {
     let positions = (0..n)
         .map(|i| {
             let a = std::f64::consts::TAU * i as f64 / n as f64;
             (50.0 + 40.0 * a.cos(), 50.0 + 40.0 * a.sin())
         })
         .collect();
-    let moves = undirected_pairs(
-        (0..n).flat_map(|x| problem.moves(x).iter().map(move |m| (x, m.successor))),
-    );
     Scene {
         title: String::new(),
         caption: String::new(),
         positions,
         extent: (100.0, 100.0),
         obstacles: Vec::new(),
-        moves,
-        initial: problem.initial(),
-        goals: problem.goals().to_vec(),
+        moves: undirected_pairs(edges),
+        initial,
+        goals: goals.to_vec(),
     }
 }
 
@@ -83,4 +118,19 @@ fn undirected_pairs(edges: impl Iterator<Item = (usize, usize)>) -> Vec<(usize, 
         .map(|(a, b)| (a.min(b), a.max(b)))
         .filter(|p| seen.insert(*p))
         .collect()
+}
+
+/// Splits text at "; " into lines of at most about `width` characters.
+pub(crate) fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for part in text.split("; ") {
+        match lines.last_mut() {
+            Some(line) if line.chars().count() + part.chars().count() + 2 <= width => {
+                line.push_str("; ");
+                line.push_str(part);
+            }
+            _ => lines.push(part.to_string()),
+        }
+    }
+    lines
 }

@@ -188,13 +188,17 @@ pub fn draw(
         size: 18.0,
         centre: false,
     });
-    shapes.push(Shape::Text {
-        class: "caption",
-        at: (LEFT, h - 22.0),
-        text: scene.caption.clone(),
-        size: 12.0,
-        centre: false,
-    });
+    // The caption is wrapped at "; " boundaries to the canvas width (about 6.5 px a character).
+    let lines = super::wrap(&scene.caption, ((w - 2.0 * LEFT) / 6.5).max(20.0) as usize);
+    for (k, line) in lines.iter().enumerate() {
+        shapes.push(Shape::Text {
+            class: "caption",
+            at: (LEFT, h - 10.0 - 14.0 * (lines.len() - 1 - k) as f64),
+            text: line.clone(),
+            size: 12.0,
+            centre: false,
+        });
+    }
     Ok(canvas)
 }
 

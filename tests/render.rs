@@ -407,3 +407,57 @@ fn bad_stochastic_render_arguments_are_clear_errors() {
         assert!(err.contains(expect), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn reproduce_stochastic_writes_the_plots() {
+    let dir = tempfile::tempdir().unwrap();
+    let plots = dir.path().join("plots");
+    Command::cargo_bin("truecost")
+        .unwrap()
+        .args([
+            "reproduce",
+            "stochastic",
+            "--problems",
+            "0",
+            "--gammas",
+            "0.9,0.5",
+            "--rhos",
+            "0.99,0.5,1/n^0.8",
+            "--epsilons",
+            "0.9",
+            "--samples",
+            "1",
+            "--episodes",
+            "20",
+            "--max-steps",
+            "100",
+            "--quiet",
+            "--seed",
+            "7",
+            "--format",
+            "json",
+            "--plots",
+        ])
+        .arg(&plots)
+        .assert()
+        .success();
+    for (stem, ticks) in [
+        ("run_time_vs_rho", &["0.99", "0.5", "1/n^0.8"][..]),
+        ("convergence_rate_vs_rho", &["0.99", "0.5", "1/n^0.8"][..]),
+        ("convergence_rate_vs_epsilon", &["0.9"][..]),
+    ] {
+        let svg = std::fs::read_to_string(plots.join(format!("{stem}.svg"))).unwrap();
+        // One series per γ, one marker per (γ, category).
+        assert_eq!(count(&svg, "series"), 2, "{stem}");
+        assert_eq!(count(&svg, "marker"), 2 * ticks.len(), "{stem}");
+        assert!(svg.contains("γ = 0.9") && svg.contains("γ = 0.5"), "{stem}");
+        for t in ticks {
+            assert!(svg.contains(&format!(">{t}<")), "{stem}: tick {t}");
+        }
+        assert!(svg.contains("seed 7"), "{stem}");
+        assert!(svg.contains("noise paper"), "{stem}: names the model");
+        let png =
+            png::Decoder::new(std::fs::File::open(plots.join(format!("{stem}.png"))).unwrap());
+        assert_eq!(png.read_info().unwrap().info().width, 1000);
+    }
+}

@@ -71,6 +71,10 @@ struct StochasticArgs {
     /// Also write stochastic.md, stochastic.csv and stochastic.json into DIR.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// Also write the paper's plots (run time against ρ, convergence rate against ρ and ε; one
+    /// series per γ) as SVG and PNG into DIR.
+    #[arg(long, value_name = "DIR")]
+    plots: Option<PathBuf>,
     /// Output format on stdout.
     #[arg(long, value_enum, default_value_t = ListFormat::Text)]
     format: ListFormat,
@@ -253,6 +257,9 @@ fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
         ] {
             write_file(&dir.join(name), &render_stochastic(&report, format))?;
         }
+    }
+    if let Some(dir) = &args.plots {
+        write_plots(dir, truecost::figures::plots::stochastic(&report))?;
     }
     Ok(render_stochastic(&report, args.format))
 }

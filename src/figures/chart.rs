@@ -26,6 +26,11 @@ pub struct LineChart {
     pub y_label: String,
     /// The series.
     pub series: Vec<Series>,
+    /// Named x positions: when not empty, x value `k` stands for `x_categories[k]` and the x
+    /// axis is labelled with these names instead of numbers (e.g. ρ = 0.99, 1/n^0.8).
+    pub x_categories: Vec<String>,
+    /// A fixed y range (e.g. `[0, 1]` for rates); `None`: from the data, with 0 included.
+    pub y_range: Option<(f64, f64)>,
 }
 
 /// Colours for up to ten series (then repeated).
@@ -55,7 +60,7 @@ impl LineChart {
     /// use truecost::figures::chart::{LineChart, Series};
     /// let chart = LineChart { title: "t".into(), caption: "c".into(), x_label: "ε".into(),
     ///     y_label: "y".into(), series: vec![Series { name: "a".into(),
-    ///     points: vec![(0.0, 1.0), (0.5, 2.0), (1.0, f64::NAN)] }] };
+    ///     points: vec![(0.0, 1.0), (0.5, 2.0), (1.0, f64::NAN)] }], x_categories: vec![], y_range: None };
     /// let canvas = chart.draw(600, 400).unwrap();
     /// assert_eq!(canvas.of_class("series").count(), 1);
     /// assert_eq!(canvas.of_class("marker").count(), 2);
@@ -69,9 +74,19 @@ impl LineChart {
             .flat_map(|s| s.points.iter().copied())
             .filter(|p| p.0.is_finite() && p.1.is_finite())
             .collect();
-        let (x0, x1) = span(finite.iter().map(|p| p.0));
-        let (y0, y1) = span(finite.iter().map(|p| p.1).chain([0.0]));
-        let (px0, px1, py0, py1) = (LEFT, w - RIGHT, h - BOTTOM, TOP);
+        let (x0, x1) = if self.x_categories.is_empty() {
+            span(finite.iter().map(|p| p.0))
+        } else {
+            (-0.5, self.x_categories.len() as f64 - 0.5)
+        };
+        let (y0, y1) = self
+            .y_range
+            .unwrap_or_else(|| span(finite.iter().map(|p| p.1).chain([0.0])));
+        // The caption is wrapped at '; ' boundaries into lines of about 130 characters, below
+        // the x-axis label.
+        let lines = wrap(&self.caption, 130);
+        let bottom = BOTTOM + 15.0 * lines.len().saturating_sub(2) as f64;
+        let (px0, px1, py0, py1) = (LEFT, w - RIGHT, h - bottom, TOP);
         let to_px = |(x, y): (f64, f64)| {
             (
                 px0 + (x - x0) / (x1 - x0) * (px1 - px0),
@@ -91,11 +106,21 @@ impl LineChart {
                 width: 1.0,
             });
         }
-        for (t, is_x) in ticks(x0, x1)
-            .into_iter()
-            .map(|t| (t, true))
-            .chain(ticks(y0, y1).into_iter().map(|t| (t, false)))
-        {
+        let x_ticks: Vec<(f64, String)> = if self.x_categories.is_empty() {
+            ticks(x0, x1)
+                .into_iter()
+                .map(|t| (t, tick_text(t)))
+                .collect()
+        } else {
+            (0..self.x_categories.len())
+                .map(|k| (k as f64, self.x_categories[k].clone()))
+                .collect()
+        };
+        for ((t, text), is_x) in x_ticks.into_iter().map(|t| (t, true)).chain(
+            ticks(y0, y1)
+                .into_iter()
+                .map(|t| ((t, tick_text(t)), false)),
+        ) {
             let (at, a, b) = if is_x {
                 let p = to_px((t, y0));
                 ((p.0, py0 + 20.0), p, (p.0, py0 + 5.0))
@@ -113,7 +138,7 @@ impl LineChart {
             shapes.push(Shape::Text {
                 class: "tick-label",
                 at: if is_x { at } else { (at.0 - 30.0, at.1) },
-                text: tick_text(t),
+                text,
                 size: 11.0,
                 centre: is_x,
             });
@@ -179,8 +204,6 @@ impl LineChart {
             size: 16.0,
             centre: false,
         });
-        // The caption is wrapped at '; ' boundaries into lines of about 130 characters.
-        let lines = wrap(&self.caption, 130);
         for (k, line) in lines.iter().enumerate() {
             shapes.push(Shape::Text {
                 class: "caption",
@@ -263,6 +286,8 @@ mod tests {
                     points: vec![(0.0, i as f64), (1.0, 2.0 * i as f64)],
                 })
                 .collect(),
+            x_categories: vec![],
+            y_range: None,
         };
         let c = chart.draw(700, 500).unwrap();
         assert_eq!(c.of_class("legend").count(), 3);
@@ -270,5 +295,32 @@ mod tests {
         assert_eq!(c.of_class("marker").count(), 6);
         assert!(c.to_svg().contains("seed 1"));
         assert_eq!(wrap("aa; bb; cc", 6), vec!["aa; bb", "cc"]);
+    }
+
+    #[test]
+    fn categories_label_the_x_axis() {
+        let chart = LineChart {
+            title: "t".into(),
+            caption: "c".into(),
+            x_label: "ρ".into(),
+            y_label: "y".into(),
+            series: vec![Series {
+                name: "a".into(),
+                points: vec![(0.0, 1.0), (1.0, 2.0)],
+            }],
+            x_categories: vec!["0.99".into(), "1/n^0.8".into()],
+            y_range: Some((0.0, 1.0)),
+        };
+        let c = chart.draw(700, 500).unwrap();
+        let svg = c.to_svg();
+        assert!(svg.contains(">0.99<") && svg.contains(">1/n^0.8<"), "{svg}");
+        // Two x ticks (the categories) plus the numeric y ticks.
+        let x_labels = c
+            .of_class("tick-label")
+            .filter(
+                |s| matches!(s, Shape::Text { text, .. } if text == "0.99" || text == "1/n^0.8"),
+            )
+            .count();
+        assert_eq!(x_labels, 2);
     }
 }

@@ -1,6 +1,8 @@
 //! The paper's plots from an experiment report (issue 6, item 2): goal discovery against ε
 //! (normalised per problem, in "easy" and "hard" problem groups) and convergence rate against
-//! ε. Every caption names the model, the seed and the sample count.
+//! ε for the deterministic runner; run time against ρ and convergence rate against ρ and ε for
+//! the stochastic one (one series per γ). Every caption names the model, the seed and the
+//! sample count.
 //!
 //! Grouping rule (ours, stated on every plot): a problem is *hard* when its optimal path has
 //! more moves than the median over the plotted problems, *easy* otherwise. Goal discovery is
@@ -11,6 +13,7 @@ use std::collections::BTreeMap;
 
 use super::chart::{LineChart, Series};
 use crate::experiments::deterministic::{Report, RowSummary};
+use crate::experiments::stochastic;
 use crate::problems::GridLayout;
 
 /// The plots of a deterministic report, each with a file stem.
@@ -67,6 +70,8 @@ pub fn deterministic(report: &Report) -> Vec<(String, LineChart)> {
                 x_label: "ε".into(),
                 y_label: "actions to goal discovery (normalised per problem)".into(),
                 series: by_group(&discovery),
+                x_categories: Vec::new(),
+                y_range: Some((0.0, 1.0)),
             },
         ),
         (
@@ -77,9 +82,132 @@ pub fn deterministic(report: &Report) -> Vec<(String, LineChart)> {
                 x_label: "ε".into(),
                 y_label: "fraction of samples with V = G* everywhere".into(),
                 series: by_group(&convergence),
+                x_categories: Vec::new(),
+                y_range: Some((0.0, 1.0)),
             },
         ),
     ]
+}
+
+/// The plots of a stochastic report, each with a file stem: mean run time against ρ and
+/// convergence rate against ρ and against ε, one series per `γ`, each point the mean over the
+/// report's problems and the other parameter's values (Q-learning rows only). ρ and ε are
+/// categories in the order given (a decaying rate 1/n^ω or ε-decay is not a number).
+///
+/// ```no_run
+/// # use truecost::experiments::stochastic::Report;
+/// # fn f(report: &Report) {
+/// for (stem, chart) in truecost::figures::plots::stochastic(report) {
+///     chart.draw(900, 600).unwrap().save(std::path::Path::new(&format!("{stem}.svg"))).unwrap();
+/// }
+/// # }
+/// ```
+pub fn stochastic(report: &stochastic::Report) -> Vec<(String, LineChart)> {
+    let learning: Vec<&stochastic::RowSummary> = report
+        .rows
+        .iter()
+        .filter(|r| r.algorithm == "q-learning")
+        .collect();
+    let rhos = categories(learning.iter().filter_map(|r| r.rho.clone()));
+    let epsilons = categories(learning.iter().filter_map(|r| r.epsilon.clone()));
+    let caption = format!(
+        "{}; seed {}; {} samples per row, {} episodes x {} steps; mean over problems {}",
+        report.model,
+        report.seed,
+        report.samples,
+        report.episodes,
+        report.max_steps,
+        join(&report.problems),
+    );
+    let chart = |title: &str,
+                 x_label: &str,
+                 y_label: &str,
+                 x: &[String],
+                 key: fn(&stochastic::RowSummary) -> Option<&String>,
+                 metric: fn(&stochastic::RowSummary) -> Option<f64>,
+                 y_range: Option<(f64, f64)>,
+                 other: &str| LineChart {
+        title: title.into(),
+        caption: format!("{caption} and {other}"),
+        x_label: x_label.into(),
+        y_label: y_label.into(),
+        series: report
+            .gammas
+            .iter()
+            .map(|g| Series {
+                name: format!("γ = {g}"),
+                points: x
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(k, value)| {
+                        let ys: Vec<f64> = learning
+                            .iter()
+                            .filter(|r| &r.gamma == g && key(r) == Some(value))
+                            .filter_map(|r| metric(r))
+                            .collect();
+                        (!ys.is_empty())
+                            .then(|| (k as f64, ys.iter().sum::<f64>() / ys.len() as f64))
+                    })
+                    .collect(),
+            })
+            .collect(),
+        x_categories: x.to_vec(),
+        y_range,
+    };
+    let over_epsilons = format!("ε in {{{}}}", epsilons.join(", "));
+    let over_rhos = format!("ρ in {{{}}}", rhos.join(", "));
+    vec![
+        (
+            "run_time_vs_rho".to_string(),
+            chart(
+                "Run time against ρ (stochastic Q-learning)",
+                "learning rate ρ",
+                "mean wall time of a run (s, this machine)",
+                &rhos,
+                |r| r.rho.as_ref(),
+                |r| r.mean_time_s,
+                None,
+                &over_epsilons,
+            ),
+        ),
+        (
+            "convergence_rate_vs_rho".to_string(),
+            chart(
+                "Convergence rate against ρ (stochastic Q-learning)",
+                "learning rate ρ",
+                "fraction of samples within tolerance everywhere",
+                &rhos,
+                |r| r.rho.as_ref(),
+                |r| r.convergence_rate,
+                Some((0.0, 1.0)),
+                &over_epsilons,
+            ),
+        ),
+        (
+            "convergence_rate_vs_epsilon".to_string(),
+            chart(
+                "Convergence rate against ε (stochastic Q-learning)",
+                "exploration ε",
+                "fraction of samples within tolerance everywhere",
+                &epsilons,
+                |r| r.epsilon.as_ref(),
+                |r| r.convergence_rate,
+                Some((0.0, 1.0)),
+                &over_rhos,
+            ),
+        ),
+    ]
+}
+
+/// Distinct values in first-seen order.
+fn categories(values: impl Iterator<Item = String>) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for v in values {
+        if !out.contains(&v) {
+            out.push(v);
+        }
+    }
+    out
 }
 
 /// Per problem, a curve of points `(ε, value)`.

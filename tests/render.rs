@@ -37,15 +37,7 @@ fn path_polyline_has_the_optimal_number_of_moves() {
             &dir.path().join(format!("p10-{mode}.svg")),
         );
         assert_eq!(count(&svg, "path"), 1);
-        let line = svg.lines().find(|l| l.contains("class=\"path\"")).unwrap();
-        let points = line
-            .split("points=\"")
-            .nth(1)
-            .unwrap()
-            .split('"')
-            .next()
-            .unwrap();
-        assert_eq!(points.split(' ').count(), 64, "{mode}: 63 moves");
+        assert_eq!(path_points(&svg), 64, "{mode}: 63 moves");
         assert!(svg.contains(&format!("{mode} model")));
     }
 }
@@ -111,18 +103,7 @@ fn files_render_too() {
     );
     assert_eq!(count(&svg, "node"), 4);
     assert_eq!(count(&svg, "move"), 4); // {0,1}, {0,3}, {1,2}, {2,3}
-    let line = svg.lines().find(|l| l.contains("class=\"path\"")).unwrap();
-    assert_eq!(
-        line.split("points=\"")
-            .nth(1)
-            .unwrap()
-            .split('"')
-            .next()
-            .unwrap()
-            .split(' ')
-            .count(),
-        4
-    );
+    assert_eq!(path_points(&svg), 4);
 }
 
 #[test]

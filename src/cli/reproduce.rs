@@ -65,14 +65,23 @@ struct StochasticArgs {
     /// Steps per episode.
     #[arg(long, default_value_t = 3000, value_name = "M")]
     max_steps: u32,
+    #[command(flatten)]
+    output: Output,
+}
+
+/// Threads and outputs, as every experiment takes them.
+#[derive(Args, Debug)]
+struct Output {
     /// Worker threads [default: all cores, or RAYON_NUM_THREADS].
     #[arg(long, value_name = "T")]
     threads: Option<usize>,
-    /// Also write stochastic.md, stochastic.csv and stochastic.json into DIR.
+    /// Also write the report as Markdown, CSV and JSON into DIR (deterministic.md, .csv,
+    /// .json, or stochastic.*).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
-    /// Also write the paper's plots (run time against ρ, convergence rate against ρ and ε; one
-    /// series per γ) as SVG and PNG into DIR.
+    /// Also write the paper's plots as SVG and PNG into DIR: goal discovery and convergence
+    /// rate against ε (deterministic); run time and convergence rate against ρ, convergence
+    /// rate against ε, a series per γ (stochastic).
     #[arg(long, value_name = "DIR")]
     plots: Option<PathBuf>,
     /// Output format on stdout.
@@ -81,6 +90,40 @@ struct StochasticArgs {
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
+}
+
+impl Output {
+    /// Creates the `--out` directory before the (long) run, so a bad path fails at once.
+    fn prepare(&self) -> Result<(), String> {
+        if let Some(dir) = &self.out {
+            std::fs::create_dir_all(dir)
+                .map_err(|e| format!("cannot create output directory {}: {e}", dir.display()))?;
+        }
+        Ok(())
+    }
+
+    /// Writes `DIR/stem.md`, `.csv`, `.json` (`--out`) and the charts (`--plots`), and returns
+    /// the report in the `--format` asked for.
+    fn finish(
+        &self,
+        stem: &str,
+        render: impl Fn(ListFormat) -> String,
+        charts: impl FnOnce() -> Vec<(String, truecost::figures::chart::LineChart)>,
+    ) -> Result<String, String> {
+        if let Some(dir) = &self.out {
+            for (ext, format) in [
+                ("md", ListFormat::Markdown),
+                ("csv", ListFormat::Csv),
+                ("json", ListFormat::Json),
+            ] {
+                write_file(&dir.join(format!("{stem}.{ext}")), &render(format))?;
+            }
+        }
+        if let Some(dir) = &self.plots {
+            write_plots(dir, charts())?;
+        }
+        Ok(render(self.format))
+    }
 }
 
 #[derive(Args, Debug)]
@@ -109,22 +152,8 @@ struct DeterministicArgs {
     /// Steps per episode.
     #[arg(long, default_value_t = 3000, value_name = "M")]
     max_steps: u32,
-    /// Worker threads [default: all cores, or RAYON_NUM_THREADS].
-    #[arg(long, value_name = "T")]
-    threads: Option<usize>,
-    /// Also write deterministic.md, deterministic.csv and deterministic.json into DIR.
-    #[arg(long, value_name = "DIR")]
-    out: Option<PathBuf>,
-    /// Also write the paper's plots (goal discovery and convergence rate against ε) into DIR,
-    /// as SVG and PNG.
-    #[arg(long, value_name = "DIR")]
-    plots: Option<PathBuf>,
-    /// Output format on stdout.
-    #[arg(long, value_enum, default_value_t = ListFormat::Text)]
-    format: ListFormat,
-    /// No progress bar.
-    #[arg(long)]
-    quiet: bool,
+    #[command(flatten)]
+    output: Output,
 }
 
 /// Runs a `reproduce` command; returns what to print.
@@ -150,29 +179,18 @@ fn deterministic_command(args: &DeterministicArgs) -> Result<String, String> {
         step_cost: args.step_cost.unwrap_or_default(),
         episodes: args.episodes,
         max_steps: args.max_steps,
-        threads: args.threads,
+        threads: args.output.threads,
     };
     settings.validate().map_err(|e| e.to_string())?;
-    if let Some(dir) = &args.out {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| format!("cannot create output directory {}: {e}", dir.display()))?;
-    }
-    let bar = progress_bar(args.quiet, deterministic::total_runs(&settings));
+    args.output.prepare()?;
+    let bar = progress_bar(args.output.quiet, deterministic::total_runs(&settings));
     let report = deterministic::run(&settings, &|k| bar.inc(k)).map_err(|e| e.to_string())?;
     bar.finish_and_clear();
-    if let Some(dir) = &args.out {
-        for (name, format) in [
-            ("deterministic.md", ListFormat::Markdown),
-            ("deterministic.csv", ListFormat::Csv),
-            ("deterministic.json", ListFormat::Json),
-        ] {
-            write_file(&dir.join(name), &render(&report, format))?;
-        }
-    }
-    if let Some(dir) = &args.plots {
-        write_plots(dir, truecost::figures::plots::deterministic(&report))?;
-    }
-    Ok(render(&report, args.format))
+    args.output.finish(
+        "deterministic",
+        |format| render(&report, format),
+        || truecost::figures::plots::deterministic(&report),
+    )
 }
 
 /// Writes each chart as `DIR/stem.svg` and `DIR/stem.png`.
@@ -239,29 +257,18 @@ fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
         tolerance: args.tolerance,
         episodes: args.episodes,
         max_steps: args.max_steps,
-        threads: args.threads,
+        threads: args.output.threads,
     };
     settings.validate().map_err(e)?;
-    if let Some(dir) = &args.out {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| format!("cannot create output directory {}: {e}", dir.display()))?;
-    }
-    let bar = progress_bar(args.quiet, stochastic::total_runs(&settings));
+    args.output.prepare()?;
+    let bar = progress_bar(args.output.quiet, stochastic::total_runs(&settings));
     let report = stochastic::run(&settings, &|k| bar.inc(k)).map_err(e)?;
     bar.finish_and_clear();
-    if let Some(dir) = &args.out {
-        for (name, format) in [
-            ("stochastic.md", ListFormat::Markdown),
-            ("stochastic.csv", ListFormat::Csv),
-            ("stochastic.json", ListFormat::Json),
-        ] {
-            write_file(&dir.join(name), &render_stochastic(&report, format))?;
-        }
-    }
-    if let Some(dir) = &args.plots {
-        write_plots(dir, truecost::figures::plots::stochastic(&report))?;
-    }
-    Ok(render_stochastic(&report, args.format))
+    args.output.finish(
+        "stochastic",
+        |format| render_stochastic(&report, format),
+        || truecost::figures::plots::stochastic(&report),
+    )
 }
 
 /// Renders a stochastic report in a format. Every format names the noise model, tolerance and

@@ -34,6 +34,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::clock::Stopwatch;
+use super::runs::{in_pool, RunSettings};
 use super::stats::{mean_of_present, mean_std};
 use crate::learning::plan::{sample_rng, EpsilonSchedule, PiStream, Plan, Probability};
 use crate::learning::q_learning::{
@@ -41,7 +42,7 @@ use crate::learning::q_learning::{
 };
 use crate::model::{ExactGraph, Graph, Problem};
 use crate::planning::{plan_exact, plan_reference, Algorithm, Mode};
-use crate::problems::{GridLayout, ProblemError, StepCost, PAPER_PROBLEMS};
+use crate::problems::{GridLayout, StepCost, PAPER_PROBLEMS};
 use crate::solvers::dijkstra;
 use crate::solvers::value_iteration::{value_iteration, Schedule};
 use crate::value::{CostValue, Rational};
@@ -194,10 +195,7 @@ pub struct Settings {
     pub threads: Option<usize>,
 }
 
-/// The most samples per row.
-pub const MAX_SAMPLES: u32 = 1 << 20;
-/// The most actions one learning run may take (`episodes × max_steps`).
-pub const MAX_ACTIONS_PER_RUN: u64 = 1 << 32;
+pub use super::runs::{RunError as ExperimentError, MAX_ACTIONS_PER_RUN, MAX_SAMPLES};
 
 impl Default for Settings {
     /// The paper's experiment: its 16 problems, 100 samples, seed 0, exact mode.
@@ -215,78 +213,20 @@ impl Default for Settings {
     }
 }
 
-/// Why an experiment cannot run.
-#[derive(Debug, thiserror::Error)]
-pub enum ExperimentError {
-    /// A bad problem id.
-    #[error(transparent)]
-    Problem(#[from] ProblemError),
-    /// A problem listed twice.
-    #[error("problem {0} is listed twice")]
-    DuplicateProblem(usize),
-    /// No problem.
-    #[error("no problem given")]
-    NoProblems,
-    /// Samples out of range.
-    #[error("the number of samples must be between 1 and {MAX_SAMPLES}, not {0}")]
-    Samples(u32),
-    /// A run would be too long.
-    #[error(
-        "episodes × max steps = {0} exceeds the limit of {MAX_ACTIONS_PER_RUN} actions per run"
-    )]
-    TooLong(u64),
-    /// A bad learning parameter.
-    #[error(transparent)]
-    Learning(#[from] LearningError),
-    /// The thread pool could not be built.
-    #[error("cannot start {threads} worker threads: {message}")]
-    Threads {
-        /// Threads asked for.
-        threads: usize,
-        /// Why not.
-        message: String,
-    },
-}
-
 impl Settings {
     /// Checks every parameter (one clear error for the first bad one).
     pub fn validate(&self) -> Result<(), ExperimentError> {
-        if self.problems.is_empty() {
-            return Err(ExperimentError::NoProblems);
+        self.runs().validate()
+    }
+
+    fn runs(&self) -> RunSettings<'_> {
+        RunSettings {
+            problems: &self.problems,
+            samples: self.samples,
+            episodes: self.episodes,
+            max_steps: self.max_steps,
+            threads: self.threads,
         }
-        let count = crate::problems::paper_scenarios().len();
-        for (i, &p) in self.problems.iter().enumerate() {
-            if p >= count {
-                return Err(ProblemError::Unknown {
-                    id: p,
-                    last: count - 1,
-                }
-                .into());
-            }
-            if self.problems[..i].contains(&p) {
-                return Err(ExperimentError::DuplicateProblem(p));
-            }
-        }
-        if self.samples == 0 || self.samples > MAX_SAMPLES {
-            return Err(ExperimentError::Samples(self.samples));
-        }
-        if self.episodes == 0 {
-            return Err(LearningError::NoEpisodes.into());
-        }
-        if self.max_steps == 0 {
-            return Err(LearningError::NoSteps.into());
-        }
-        let total = u64::from(self.episodes) * u64::from(self.max_steps);
-        if total > MAX_ACTIONS_PER_RUN {
-            return Err(ExperimentError::TooLong(total));
-        }
-        if self.threads == Some(0) {
-            return Err(ExperimentError::Threads {
-                threads: 0,
-                message: "at least one thread is needed".into(),
-            });
-        }
-        Ok(())
     }
 
     /// The model in words, for every output.
@@ -614,9 +554,9 @@ fn summarise(
     let rate = |pred: &dyn Fn(&Sample) -> bool| {
         (!samples.is_empty()).then(|| samples.iter().filter(|s| pred(s)).count() as f64 / n)
     };
-    let (mean_time, std_time) = unzip(mean_std(&f(&|s| s.time_s)));
-    let (mean_actions, std_actions) = unzip(mean_std(&f(&|s| s.actions as f64)));
-    let (mean_iterations, std_iterations) = unzip(mean_std(&f(&|s| s.iterations as f64)));
+    let (mean_time, std_time) = mean_std(&f(&|s| s.time_s)).unzip();
+    let (mean_actions, std_actions) = mean_std(&f(&|s| s.actions as f64)).unzip();
+    let (mean_iterations, std_iterations) = mean_std(&f(&|s| s.iterations as f64)).unzip();
     let opt = |get: &dyn Fn(&Sample) -> Option<f64>| -> Vec<Option<f64>> {
         samples.iter().map(get).collect()
     };
@@ -666,13 +606,6 @@ fn summarise(
     }
 }
 
-fn unzip(x: Option<(f64, f64)>) -> (Option<f64>, Option<f64>) {
-    match x {
-        Some((a, b)) => (Some(a), Some(b)),
-        None => (None, None),
-    }
-}
-
 /// The number of sample runs an experiment performs (for a progress bar).
 pub fn total_runs(settings: &Settings) -> u64 {
     settings.problems.len() as u64 * PAPER_ROWS.len() as u64 * u64::from(settings.samples)
@@ -698,18 +631,7 @@ pub fn run(
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Report, ExperimentError> {
     settings.validate()?;
-    let work = || run_validated(settings, progress);
-    match settings.threads {
-        None => work(),
-        Some(threads) => rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .map_err(|e| ExperimentError::Threads {
-                threads,
-                message: e.to_string(),
-            })?
-            .install(work),
-    }
+    in_pool(settings.threads, || run_validated(settings, progress))?
 }
 
 fn run_validated(

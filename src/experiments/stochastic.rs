@@ -34,6 +34,7 @@ use serde::Serialize;
 
 use super::clock::Stopwatch;
 use super::deterministic::stream;
+use super::runs::{in_pool, RunError, RunSettings};
 use super::stats::{mean_of_present, mean_std};
 use crate::learning::plan::{sample_rng, EpsilonSchedule, Plan, Probability, ProbabilityError};
 use crate::learning::q_learning::{Event, LearningError, Milestone};
@@ -41,7 +42,7 @@ use crate::learning::stochastic_q::{
     optimal_action_flags, LearningRate, RateError, StochasticQConfig, StochasticQLearner, Target,
     Tolerance,
 };
-use crate::problems::{ProblemError, StepCost, PAPER_PROBLEMS};
+use crate::problems::{StepCost, PAPER_PROBLEMS};
 use crate::stochastic::grid::{exact_grid, reference_grid, GridError};
 use crate::stochastic::policy_iteration::{optimum, Optimum};
 use crate::stochastic::value_iteration::{value_iteration_f64, FloatModel, Schedule, ViOptions};
@@ -198,30 +199,21 @@ pub const MAX_LEARNING_ROWS: usize = 256;
 /// Why an experiment cannot run. Every message is one line.
 #[derive(Debug, thiserror::Error)]
 pub enum ExperimentError {
-    /// A bad problem id.
+    /// A bad common setting (problems, samples, run length, threads).
     #[error(transparent)]
-    Problem(#[from] ProblemError),
+    Run(#[from] RunError),
     /// A grid could not be built.
     #[error(transparent)]
     Grid(#[from] GridError),
     /// A stochastic input or computation failed.
     #[error(transparent)]
     Stochastic(#[from] StochasticError),
-    /// A problem listed twice.
-    #[error("problem {0} is listed twice")]
-    DuplicateProblem(usize),
     /// An empty list.
     #[error("no {0} given")]
     Empty(&'static str),
-    /// Samples out of range.
-    #[error("the number of samples must be between 1 and {max}, not {0}", max = super::deterministic::MAX_SAMPLES)]
-    Samples(u32),
     /// Too many learning rows.
     #[error("|gammas| x |rhos| x |epsilons| = {0} exceeds {MAX_LEARNING_ROWS} learning rows per problem")]
     TooManyRows(usize),
-    /// A run would be too long.
-    #[error("episodes x max steps = {0} exceeds the limit of {max} actions per run", max = super::deterministic::MAX_ACTIONS_PER_RUN)]
-    TooLong(u64),
     /// Text that is not a number.
     #[error("{what} {text:?}: {message}")]
     Parse {
@@ -241,35 +233,19 @@ pub enum ExperimentError {
     /// A bad learning parameter.
     #[error(transparent)]
     Learning(#[from] LearningError),
-    /// The thread pool could not be built.
-    #[error("cannot start {threads} worker threads: {message}")]
-    Threads {
-        /// Threads asked for.
-        threads: usize,
-        /// Why not.
-        message: String,
-    },
 }
 
 impl Settings {
     /// Checks every parameter (one clear error for the first bad one).
     pub fn validate(&self) -> Result<(), ExperimentError> {
-        if self.problems.is_empty() {
-            return Err(ExperimentError::Empty("problem"));
+        RunSettings {
+            problems: &self.problems,
+            samples: self.samples,
+            episodes: self.episodes,
+            max_steps: self.max_steps,
+            threads: self.threads,
         }
-        let count = crate::problems::paper_scenarios().len();
-        for (i, &p) in self.problems.iter().enumerate() {
-            if p >= count {
-                return Err(ProblemError::Unknown {
-                    id: p,
-                    last: count - 1,
-                }
-                .into());
-            }
-            if self.problems[..i].contains(&p) {
-                return Err(ExperimentError::DuplicateProblem(p));
-            }
-        }
+        .validate()?;
         for (list, name) in [
             (self.gammas.len(), "gamma"),
             (self.rhos.len(), "rho"),
@@ -283,27 +259,8 @@ impl Settings {
         if rows > MAX_LEARNING_ROWS {
             return Err(ExperimentError::TooManyRows(rows));
         }
-        if self.samples == 0 || self.samples > super::deterministic::MAX_SAMPLES {
-            return Err(ExperimentError::Samples(self.samples));
-        }
-        if self.episodes == 0 {
-            return Err(LearningError::NoEpisodes.into());
-        }
-        if self.max_steps == 0 {
-            return Err(LearningError::NoSteps.into());
-        }
-        let total = u64::from(self.episodes) * u64::from(self.max_steps);
-        if total > super::deterministic::MAX_ACTIONS_PER_RUN {
-            return Err(ExperimentError::TooLong(total));
-        }
         for e in &self.epsilons {
             e.schedule.validate(self.episodes)?;
-        }
-        if self.threads == Some(0) {
-            return Err(ExperimentError::Threads {
-                threads: 0,
-                message: "at least one thread is needed".into(),
-            });
         }
         Ok(())
     }
@@ -578,18 +535,7 @@ pub fn run(
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Report, ExperimentError> {
     settings.validate()?;
-    let work = || run_validated(settings, progress);
-    match settings.threads {
-        None => work(),
-        Some(threads) => rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .map_err(|e| ExperimentError::Threads {
-                threads,
-                message: e.to_string(),
-            })?
-            .install(work),
-    }
+    in_pool(settings.threads, || run_validated(settings, progress))?
 }
 
 fn run_validated(
@@ -736,9 +682,9 @@ fn summarise(
     let rate = |pred: &dyn Fn(&Sample) -> bool| {
         (!samples.is_empty()).then(|| samples.iter().filter(|s| pred(s)).count() as f64 / n)
     };
-    (row.mean_time_s, row.std_time_s) = unzip(mean_std(&f(&|s| s.time_s)));
-    (row.mean_actions, row.std_actions) = unzip(mean_std(&f(&|s| s.actions as f64)));
-    (row.mean_iterations, row.std_iterations) = unzip(mean_std(&f(&|s| f64::from(s.episodes))));
+    (row.mean_time_s, row.std_time_s) = mean_std(&f(&|s| s.time_s)).unzip();
+    (row.mean_actions, row.std_actions) = mean_std(&f(&|s| s.actions as f64)).unzip();
+    (row.mean_iterations, row.std_iterations) = mean_std(&f(&|s| f64::from(s.episodes))).unzip();
     row.convergence_rate = rate(&|s| s.converged_at.is_some());
     row.mean_actions_converged = mean_of_present(&o(&|s| s.converged_at.map(|a| a as f64)));
     row.initial_within_rate = rate(&|s| s.initial_at.is_some());
@@ -852,11 +798,4 @@ pub fn gamma_text(gamma: &Predictability) -> String {
         scaled *= Rational::from_integer(10.into());
     }
     gamma.to_string()
-}
-
-fn unzip(x: Option<(f64, f64)>) -> (Option<f64>, Option<f64>) {
-    match x {
-        Some((a, b)) => (Some(a), Some(b)),
-        None => (None, None),
-    }
 }

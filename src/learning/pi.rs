@@ -106,12 +106,15 @@ fn pi_scaled(bits: usize) -> UBig {
     // Each term adds log2(151931373056000) ≈ 47.11 bits; two spare terms bound the tail far
     // below one unit.
     let terms = (bits as u64) / 47 + 2;
-    let split = binary_split(0, terms, false);
+    // The series and ⌊√10005·2^bits⌋ are independent: compute them side by side.
+    let (split, root) = rayon::join(
+        || binary_split(0, terms, false),
+        || (UBig::from(10005u32) << (2 * bits)).sqrt(),
+    );
     let q = split.q.unsigned_abs();
     let t = split.t.unsigned_abs();
-    let root = (UBig::from(10005u32) << (2 * bits)).sqrt(); // ⌊√10005·2^bits⌋
-                                                            // Error: ⌊√⌋ loses < 1, scaled by 426880·Q/T ≈ 0.0314; the division loses < 1; the tail
-                                                            // beyond `terms` is < 2^-bits. Total < 2 ≤ 4.
+    // Error: ⌊√⌋ loses < 1, scaled by 426880·Q/T ≈ 0.0314; the division loses < 1; the tail
+    // beyond `terms` is < 2^-bits. Total < 2 ≤ 4.
     (UBig::from(426880u32) * root * q) / t
 }
 

@@ -169,8 +169,14 @@ impl Target {
     }
 
     /// The same from explicit exact values `G*` (one per state).
+    ///
+    /// # Panics
+    ///
+    /// If `g` does not hold exactly one value per state of `problem` (a caller's bug: the
+    /// command line always passes the optimum of the same problem).
     pub fn from_values(problem: &StochasticProblem, g: &[Extended], tolerance: Tolerance) -> Self {
         let n = problem.states();
+        assert_eq!(g.len(), n, "Target::from_values: one value per state");
         let mut reachable = vec![false; n];
         let mut stack = vec![problem.initial()];
         reachable[problem.initial()] = true;

@@ -202,7 +202,7 @@ fn stochastic(args: &RenderArgs) -> Result<String, String> {
         );
     }
     if args.mode == Mode::Reference {
-        return Err("--gamma draws the exact optimum of the stochastic model: use --mode exact (with --step-cost euclidean --noise reference for the exact counterpart of the paper's code)".into());
+        return Err("the stochastic model (--gamma, or a file with outcomes) is drawn from its exact optimum: use --mode exact (with --step-cost euclidean --noise reference for the exact counterpart of the paper's code)".into());
     }
     if args.overlay == OverlayKind::Visits {
         return Err("--overlay visits draws a deterministic Q-learning run; it does not take --gamma, --noise or a file with outcomes".into());

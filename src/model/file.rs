@@ -77,18 +77,52 @@ pub enum FileError {
     Model(#[from] ModelError),
 }
 
+/// The JSON shape of a problem file, shared with the stochastic format; `A` is an action entry.
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct FileProblem {
+pub(crate) struct FileProblem<A> {
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    format: Option<String>,
+    pub(crate) format: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    name: Option<String>,
+    pub(crate) name: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    states: Option<usize>,
-    initial: usize,
-    goals: Vec<usize>,
-    actions: Vec<Vec<FileAction>>,
+    pub(crate) states: Option<usize>,
+    pub(crate) initial: usize,
+    pub(crate) goals: Vec<usize>,
+    pub(crate) actions: Vec<Vec<A>>,
+}
+
+impl<A: serde::de::DeserializeOwned> FileProblem<A> {
+    /// Parses the JSON text; a serde error becomes one line.
+    pub(crate) fn parse(text: &str) -> Result<Self, FileError> {
+        serde_json::from_str(text).map_err(|e| FileError::Json(one_line(&e.to_string())))
+    }
+}
+
+impl<A> FileProblem<A> {
+    /// Checks the optional `states` against the number of action lists.
+    pub(crate) fn check_states(&self) -> Result<(), FileError> {
+        match self.states {
+            Some(states) if states != self.actions.len() => Err(FileError::StatesMismatch {
+                states,
+                lists: self.actions.len(),
+            }),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// Parses the exact cost text of action `action` of `state`.
+pub(crate) fn parse_cost(
+    state: usize,
+    action: usize,
+    text: &str,
+) -> Result<crate::value::Rational, FileError> {
+    parse_rational(text).map_err(|source| FileError::Cost {
+        state,
+        action,
+        source,
+    })
 }
 
 #[derive(Serialize, Deserialize)]
@@ -107,33 +141,20 @@ struct FileAction {
 /// assert!(truecost::model::file::from_json(r#"{"initial": 0, "goals": [1], "actions": [[{"to": 1, "cost": 1.5}], []]}"#).is_err());
 /// ```
 pub fn from_json(text: &str) -> Result<Problem, FileError> {
-    let file: FileProblem =
-        serde_json::from_str(text).map_err(|e| FileError::Json(one_line(&e.to_string())))?;
+    let file = FileProblem::<FileAction>::parse(text)?;
     if let Some(f) = &file.format {
         if f != FORMAT {
             return Err(FileError::Format(f.clone()));
         }
     }
-    if let Some(states) = file.states {
-        if states != file.actions.len() {
-            return Err(FileError::StatesMismatch {
-                states,
-                lists: file.actions.len(),
-            });
-        }
-    }
+    file.check_states()?;
     let mut moves = Vec::with_capacity(file.actions.len());
     for (x, list) in file.actions.iter().enumerate() {
         let mut row = Vec::with_capacity(list.len());
         for (a, action) in list.iter().enumerate() {
-            let cost = parse_rational(&action.cost).map_err(|source| FileError::Cost {
-                state: x,
-                action: a,
-                source,
-            })?;
             row.push(Move {
                 successor: action.to,
-                cost,
+                cost: parse_cost(x, a, &action.cost)?,
             });
         }
         moves.push(row);

@@ -83,19 +83,8 @@ pub enum StochasticFileError {
     Stochastic(#[from] StochasticError),
 }
 
-#[derive(Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct FileProblem {
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    format: Option<String>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    name: Option<String>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    states: Option<usize>,
-    initial: usize,
-    goals: Vec<usize>,
-    actions: Vec<Vec<FileAction>>,
-}
+/// A stochastic problem file: the deterministic file's shape with richer actions.
+type FileProblem = det_file::FileProblem<FileAction>;
 
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -114,10 +103,6 @@ struct FileOutcome {
     p: String,
 }
 
-fn one_line(s: &str) -> String {
-    s.split_whitespace().collect::<Vec<_>>().join(" ")
-}
-
 /// Parses a problem file's text (either format).
 ///
 /// ```
@@ -132,8 +117,7 @@ fn one_line(s: &str) -> String {
 /// assert!(matches!(from_json(det).unwrap(), ProblemFile::Deterministic(_)));
 /// ```
 pub fn from_json(text: &str) -> Result<ProblemFile, StochasticFileError> {
-    let file: FileProblem =
-        serde_json::from_str(text).map_err(|e| FileError::Json(one_line(&e.to_string())))?;
+    let file = FileProblem::parse(text)?;
     if let Some(f) = &file.format {
         if f != FORMAT && f != det_file::FORMAT {
             return Err(FileError::Json(format!(
@@ -152,24 +136,12 @@ pub fn from_json(text: &str) -> Result<ProblemFile, StochasticFileError> {
         let text = serde_json::to_string(&plain).expect("serialisable");
         return Ok(ProblemFile::Deterministic(det_file::from_json(&text)?));
     }
-    if let Some(states) = file.states {
-        if states != file.actions.len() {
-            return Err(FileError::StatesMismatch {
-                states,
-                lists: file.actions.len(),
-            }
-            .into());
-        }
-    }
+    file.check_states()?;
     let mut actions = Vec::with_capacity(file.actions.len());
     for (x, list) in file.actions.iter().enumerate() {
         let mut row = Vec::with_capacity(list.len());
         for (a, action) in list.iter().enumerate() {
-            let cost = parse_rational(&action.cost).map_err(|source| FileError::Cost {
-                state: x,
-                action: a,
-                source,
-            })?;
+            let cost = det_file::parse_cost(x, a, &action.cost)?;
             let outcomes = match (&action.to, &action.outcomes) {
                 (Some(to), None) => vec![Outcome {
                     successor: *to,

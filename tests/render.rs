@@ -170,18 +170,23 @@ fn bad_outputs_and_sizes_are_clear_errors() {
         ),
     ];
     for (args, expect) in cases {
-        let out = Command::cargo_bin("truecost")
-            .unwrap()
-            .arg("render")
-            .args(&args)
-            .assert()
-            .code(1)
-            .get_output()
-            .clone();
-        let err = String::from_utf8(out.stderr).unwrap();
-        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
-        assert!(err.contains(expect), "{args:?}: {err}");
+        assert_refused(&args, expect);
     }
+}
+
+/// `render ARGS` exits with 1 and one line on stderr that contains `expect`.
+fn assert_refused<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S], expect: &str) {
+    let out = Command::cargo_bin("truecost")
+        .unwrap()
+        .arg("render")
+        .args(args)
+        .assert()
+        .code(1)
+        .get_output()
+        .clone();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+    assert!(err.contains(expect), "{args:?}: {err}");
 }
 
 #[test]
@@ -373,19 +378,9 @@ fn bad_stochastic_render_arguments_are_clear_errors() {
             "its own outcome",
         ),
     ];
-    for (args, expect) in cases {
-        let output = Command::cargo_bin("truecost")
-            .unwrap()
-            .arg("render")
-            .args(&args)
-            .args(["--out", &out])
-            .assert()
-            .code(1)
-            .get_output()
-            .clone();
-        let err = String::from_utf8(output.stderr).unwrap();
-        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
-        assert!(err.contains(expect), "{args:?}: {err}");
+    for (mut args, expect) in cases {
+        args.extend(["--out", &out]);
+        assert_refused(&args, expect);
     }
 }
 

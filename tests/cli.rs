@@ -1,44 +1,9 @@
 //! The command line: outputs and every bad argument (one-line error, non-zero exit, no panic).
 
-use assert_cmd::Command;
+mod common;
+
+use common::cli::{fails, fails_one_line, json, truecost};
 use serde_json::Value;
-
-fn truecost() -> Command {
-    Command::cargo_bin("truecost").unwrap()
-}
-
-fn json(args: &[&str]) -> Value {
-    let out = truecost()
-        .args(args)
-        .assert()
-        .success()
-        .get_output()
-        .clone();
-    serde_json::from_slice(&out.stdout).unwrap()
-}
-
-/// Runs a command that must fail cleanly; returns its stderr.
-fn fails(args: &[&str], code: i32) -> String {
-    let out = truecost()
-        .args(args)
-        .assert()
-        .code(code)
-        .get_output()
-        .clone();
-    let err = String::from_utf8(out.stderr).unwrap();
-    assert!(!err.contains("panicked"), "{args:?}: {err}");
-    assert!(!err.to_lowercase().contains("backtrace"), "{args:?}: {err}");
-    assert!(out.stdout.is_empty(), "{args:?}: nothing on stdout");
-    err
-}
-
-/// Our own errors (exit 1) are exactly one line.
-fn fails_one_line(args: &[&str]) -> String {
-    let err = fails(args, 1);
-    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
-    assert!(err.starts_with("error: "), "{args:?}: {err}");
-    err
-}
 
 #[test]
 fn problems_json_lists_all_19_with_the_required_fields() {

@@ -1,7 +1,10 @@
 //! `truecost render`: structure, not pixels. Expected counts come from the paper's data and the
 //! published facts (Problem 0: 760 moves; Problem 10: 63 optimal moves; Problem 2: 5 discs).
 
+mod common;
+
 use assert_cmd::Command;
+use common::cli::fails_one_line;
 
 fn render(args: &[&str], out: &std::path::Path) -> String {
     let mut cmd = Command::cargo_bin("truecost").unwrap();
@@ -176,16 +179,9 @@ fn bad_outputs_and_sizes_are_clear_errors() {
 
 /// `render ARGS` exits with 1 and one line on stderr that contains `expect`.
 fn assert_refused<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S], expect: &str) {
-    let out = Command::cargo_bin("truecost")
-        .unwrap()
-        .arg("render")
-        .args(args)
-        .assert()
-        .code(1)
-        .get_output()
-        .clone();
-    let err = String::from_utf8(out.stderr).unwrap();
-    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+    let mut all: Vec<std::ffi::OsString> = vec!["render".into()];
+    all.extend(args.iter().map(|a| a.as_ref().to_owned()));
+    let err = fails_one_line(&all);
     assert!(err.contains(expect), "{args:?}: {err}");
 }
 

@@ -2,49 +2,9 @@
 //! exact strings, the published reference counts come out, and every bad combination of options
 //! fails with one line and exit code 1 (usage errors 2).
 
-use assert_cmd::Command;
-use serde_json::Value;
+mod common;
 
-fn truecost() -> Command {
-    Command::cargo_bin("truecost").unwrap()
-}
-
-fn json(args: &[&str]) -> Value {
-    let out = truecost()
-        .args(args)
-        .assert()
-        .success()
-        .get_output()
-        .clone();
-    serde_json::from_slice(&out.stdout).unwrap()
-}
-
-fn text(args: &[&str]) -> String {
-    let out = truecost()
-        .args(args)
-        .assert()
-        .success()
-        .get_output()
-        .clone();
-    String::from_utf8(out.stdout).unwrap()
-}
-
-fn fails(args: &[&str], code: i32) -> String {
-    let out = truecost()
-        .args(args)
-        .assert()
-        .code(code)
-        .get_output()
-        .clone();
-    let err = String::from_utf8(out.stderr).unwrap();
-    assert!(!err.contains("panicked"), "{args:?}: {err}");
-    assert!(out.stdout.is_empty(), "{args:?}: nothing on stdout");
-    if code == 1 {
-        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
-        assert!(err.starts_with("error: "), "{args:?}: {err}");
-    }
-    err
-}
+use common::cli::{fails, json, stdout as text};
 
 #[test]
 fn exact_optimum_of_a_file_problem_is_an_exact_string() {

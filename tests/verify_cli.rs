@@ -1,30 +1,9 @@
 //! `truecost verify` and `truecost discount` on the command line.
 
-use assert_cmd::Command;
+mod common;
+
+use common::cli::{fails_one_line, stdout, truecost};
 use serde_json::Value;
-
-fn truecost() -> Command {
-    Command::cargo_bin("truecost").unwrap()
-}
-
-fn stdout(args: &[&str]) -> String {
-    let out = truecost()
-        .args(args)
-        .assert()
-        .success()
-        .get_output()
-        .clone();
-    String::from_utf8(out.stdout).unwrap()
-}
-
-fn fails_one_line(args: &[&str]) -> String {
-    let out = truecost().args(args).assert().code(1).get_output().clone();
-    let err = String::from_utf8(out.stderr).unwrap();
-    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
-    assert!(err.starts_with("error: "), "{err}");
-    assert!(!err.contains("panicked"));
-    err
-}
 
 #[test]
 fn verify_json_has_the_required_shape_and_exits_0_with_refuted_claims() {

@@ -5,6 +5,8 @@
 //! (states, ordered moves, goals) with their own `Option<BigRational>` arithmetic (`None` = +∞).
 #![allow(dead_code)]
 
+pub mod cli;
+
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, ToPrimitive, Zero};

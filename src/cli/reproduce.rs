@@ -465,25 +465,8 @@ fn stochastic_table(report: &stochastic::Report, format: ListFormat) -> String {
                 }
                 s.push('\n');
             } else {
-                let widths: Vec<usize> = (0..STOCHASTIC_HEADER.len())
-                    .map(|i| {
-                        cells
-                            .iter()
-                            .map(|c| c[i].chars().count())
-                            .chain([STOCHASTIC_HEADER[i].chars().count()])
-                            .max()
-                            .unwrap_or(0)
-                    })
-                    .collect();
-                let line = |c: &[String]| {
-                    c.iter()
-                        .zip(&widths)
-                        .map(|(c, &w)| format!("{c}{}", " ".repeat(w - c.chars().count())))
-                        .collect::<Vec<_>>()
-                        .join("  ")
-                        .trim_end()
-                        .to_string()
-                };
+                let widths = column_widths(&STOCHASTIC_HEADER, cells.iter());
+                let line = |c: &[String]| aligned(c, &widths);
                 let _ = writeln!(s, "\nProblem {p}, γ = {g} (G*(x1) = {optimum})");
                 let header: Vec<String> = STOCHASTIC_HEADER.iter().map(|h| h.to_string()).collect();
                 let _ = writeln!(s, "{}", line(&header));
@@ -729,25 +712,8 @@ fn text(report: &Report) -> String {
                 .filter(|(_, s)| s.note.is_none())
                 .map(|(r, _)| r)
         };
-        let widths: Vec<usize> = (0..HEADER.len())
-            .map(|c| {
-                measured()
-                    .map(|r| r[c].chars().count())
-                    .chain([HEADER[c].chars().count()])
-                    .max()
-                    .unwrap_or(0)
-            })
-            .collect();
-        let line = |cells: &[String]| {
-            cells
-                .iter()
-                .zip(&widths)
-                .map(|(c, &w)| format!("{c}{}", " ".repeat(w - c.chars().count())))
-                .collect::<Vec<_>>()
-                .join("  ")
-                .trim_end()
-                .to_string()
-        };
+        let widths = column_widths(&HEADER, measured());
+        let line = |cells: &[String]| aligned(cells, &widths);
         let _ = writeln!(s, "\nProblem {p}");
         let header: Vec<String> = HEADER.iter().map(|h| h.to_string()).collect();
         let _ = writeln!(s, "{}", line(&header));
@@ -764,4 +730,32 @@ fn text(report: &Report) -> String {
         }
     }
     s
+}
+
+/// The width of each column: its widest cell among `header` and `rows`.
+fn column_widths<'a>(
+    header: &[&str],
+    rows: impl Iterator<Item = &'a Vec<String>> + Clone,
+) -> Vec<usize> {
+    (0..header.len())
+        .map(|c| {
+            rows.clone()
+                .map(|r| r[c].chars().count())
+                .chain([header[c].chars().count()])
+                .max()
+                .unwrap_or(0)
+        })
+        .collect()
+}
+
+/// One line of an aligned text table: cells padded to `widths`, two spaces apart.
+fn aligned(cells: &[String], widths: &[usize]) -> String {
+    cells
+        .iter()
+        .zip(widths)
+        .map(|(c, &w)| format!("{c}{}", " ".repeat(w.saturating_sub(c.chars().count()))))
+        .collect::<Vec<_>>()
+        .join("  ")
+        .trim_end()
+        .to_string()
 }

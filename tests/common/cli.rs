@@ -1,0 +1,50 @@
+//! Running the `truecost` binary in the command-line tests.
+
+use assert_cmd::Command;
+use serde_json::Value;
+
+/// The binary under test.
+pub fn truecost() -> Command {
+    Command::cargo_bin("truecost").unwrap()
+}
+
+/// Runs a command that must succeed; returns its stdout.
+pub fn stdout(args: &[&str]) -> String {
+    let out = truecost()
+        .args(args)
+        .assert()
+        .success()
+        .get_output()
+        .clone();
+    String::from_utf8(out.stdout).unwrap()
+}
+
+/// Runs a command that must succeed and print JSON.
+pub fn json(args: &[&str]) -> Value {
+    serde_json::from_str(&stdout(args)).unwrap()
+}
+
+/// Runs a command that must fail cleanly with exit `code` (no panic, no backtrace, nothing on
+/// stdout); our own errors (exit 1) are exactly one line starting with `error: `. Returns stderr.
+pub fn fails<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S], code: i32) -> String {
+    let out = truecost()
+        .args(args)
+        .assert()
+        .code(code)
+        .get_output()
+        .clone();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+    assert!(!err.to_lowercase().contains("backtrace"), "{args:?}: {err}");
+    assert!(out.stdout.is_empty(), "{args:?}: nothing on stdout");
+    if code == 1 {
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(err.starts_with("error: "), "{args:?}: {err}");
+    }
+    err
+}
+
+/// [`fails`] with exit code 1.
+pub fn fails_one_line<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S]) -> String {
+    fails(args, 1)
+}

@@ -178,7 +178,7 @@ fn smoke_report_verdicts_and_minimal_counterexamples() {
         }
     }
     // Engine 3 is listed for every claim, with at least 8 harnesses overall.
-    assert!(truecost::claims::registry::HARNESSES.len() >= 8);
+    assert!(truecost::claims::harnesses::HARNESSES.len() >= 8);
     for c in &r.claims {
         assert!(
             c.engines

@@ -4,7 +4,7 @@
 //! symbolically (with the real `kani` crate, which Kani injects); under `cargo test` the
 //! stand-in crate `kani-standin` (a dependency only when not compiling under Kani) turns each
 //! harness into a test that enumerates every `kani::any()` choice explicitly. Each harness is
-//! listed in `truecost::claims::registry::HARNESSES` with what it proves and its bounds.
+//! listed in `truecost::claims::harnesses::HARNESSES` with what it proves and its bounds.
 //!
 //! Harnesses use fixed arrays, small integers and bounded loops (`#[kani::unwind]`); choices
 //! are small enums deriving `kani::Arbitrary`, so the stand-in's enumeration is exact and
@@ -59,7 +59,7 @@ impl Three {
 
 #[cfg(all(test, not(kani)))]
 mod registry {
-    use truecost::claims::registry::HARNESSES;
+    use truecost::claims::harnesses::HARNESSES;
 
     /// Every harness of the registry runs under the stand-in with the number of executions the
     /// registry states (hand-derived from the choice domains: products of enum sizes).

@@ -24,6 +24,7 @@ pub mod c3;
 pub mod c4;
 pub mod discount;
 pub mod exact;
+pub mod harnesses;
 pub mod oracle;
 pub mod poly;
 pub mod qlearning;

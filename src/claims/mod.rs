@@ -31,6 +31,7 @@ pub mod qlearning;
 pub mod registry;
 pub mod report;
 pub mod sampled;
+pub mod smt;
 pub mod tiny;
 
 use rayon::prelude::*;

@@ -1,0 +1,1 @@
+//! C1 encodings (placeholder while written).

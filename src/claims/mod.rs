@@ -67,6 +67,9 @@ impl Scope {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Verdict {
+    /// The SMT engine showed the negation unsatisfiable over the reals for every structure of
+    /// its stated scope, with its trust checks passing (PROOFS.md).
+    Proved,
     /// Holds on every case of the stated scope (not a proof beyond it).
     Verified,
     /// A counterexample was found (the smallest in the scope's order is reported).
@@ -76,9 +79,10 @@ pub enum Verdict {
 }
 
 impl Verdict {
-    /// `verified`, `refuted` or `inconclusive`.
+    /// `proved`, `verified`, `refuted` or `inconclusive`.
     pub fn name(self) -> &'static str {
         match self {
+            Verdict::Proved => "proved",
             Verdict::Verified => "verified",
             Verdict::Refuted => "refuted",
             Verdict::Inconclusive => "inconclusive",
@@ -89,7 +93,7 @@ impl Verdict {
 /// What one engine did for a claim.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct EngineRun {
-    /// `exhaustive enumeration`, `proptest` or `kani harness`.
+    /// `exhaustive enumeration`, `proptest`, `kani harness …` or `smt`.
     pub engine: String,
     /// `exhaustive`, `sampled`, or `not run by verify` (Kani harnesses: see `proofs/`).
     pub mode: String,
@@ -206,7 +210,7 @@ pub fn min_of<K: Ord, T>(a: Option<(K, T)>, b: Option<(K, T)>) -> Option<(K, T)>
     }
 }
 
-/// Runs the claims selected by `only` (all when `None`) in `scope`.
+/// Runs the claims selected by `only` (all when `None`) in `scope`, every engine included.
 pub fn run(scope: Scope, only: Option<&str>) -> Result<report::Report, String> {
-    registry::run(scope, only)
+    registry::run(scope, only, &registry::Options::default())
 }

@@ -48,13 +48,23 @@ pub struct Report {
     pub claims: Vec<ClaimResult>,
     /// `α*` (C3's worked example).
     pub alpha_star: Option<AlphaStar>,
+    /// The SMT solver and its version, when the SMT engine ran (shown with times only: it is
+    /// a property of the machine).
+    pub solver: Option<String>,
+    /// The SMT engine's outcomes, every obligation with its answer (for `--smt-out`).
+    pub smt: Vec<super::smt::Outcome>,
 }
 
-fn rate(cases: u64, seconds: f64) -> String {
+fn rate(cases: u64, seconds: f64, engine: &str) -> String {
+    let what = if engine.starts_with("smt") {
+        "obligations/s"
+    } else {
+        "cases/s"
+    };
     if seconds <= 0.0 {
         "n/a".into()
     } else {
-        format!("{:.0} cases/s", cases as f64 / seconds)
+        format!("{:.0} {what}", cases as f64 / seconds)
     }
 }
 
@@ -102,6 +112,9 @@ pub fn json(report: &Report, with_times: bool) -> String {
     });
     if with_times {
         root["commit"] = json!(report.commit);
+        if let Some(solver) = &report.solver {
+            root["solver"] = json!(solver);
+        }
     }
     let mut s = serde_json::to_string_pretty(&root).expect("serialisable");
     s.push('\n');
@@ -119,6 +132,9 @@ pub fn text(report: &Report, with_times: bool) -> String {
     );
     if with_times {
         let _ = writeln!(s, "commit {}", report.commit);
+        if let Some(solver) = &report.solver {
+            let _ = writeln!(s, "smt solver: {solver}");
+        }
     }
     for c in &report.claims {
         let _ = writeln!(s);
@@ -128,7 +144,7 @@ pub fn text(report: &Report, with_times: bool) -> String {
         let _ = writeln!(s, "  scope: {}", c.scope);
         for e in &c.engines {
             let t = if with_times && e.seconds > 0.0 {
-                format!(", {}", rate(e.cases, e.seconds))
+                format!(", {}", rate(e.cases, e.seconds, &e.engine))
             } else {
                 String::new()
             };
@@ -199,7 +215,7 @@ pub fn markdown(report: &Report, with_times: bool) -> String {
         );
         for e in &c.engines {
             let t = if with_times && e.seconds > 0.0 {
-                format!(", {}", rate(e.cases, e.seconds))
+                format!(", {}", rate(e.cases, e.seconds, &e.engine))
             } else {
                 String::new()
             };

@@ -55,6 +55,18 @@ pub struct VerifyArgs {
     /// With --claim C4: the exact bonus set of this paper problem.
     #[arg(long, value_name = "N")]
     problem: Option<usize>,
+    /// Write every SMT obligation as a standard SMT-LIB 2.6 file (with Z3's answer as
+    /// `:status`) under this directory, with an index (index.tsv), for cvc5 or Yices to
+    /// re-check. The directory must be empty or not exist.
+    #[arg(long, value_name = "DIR", conflicts_with = "no_smt")]
+    smt_out: Option<PathBuf>,
+    /// Skip the SMT engine (no `proved` verdicts).
+    #[arg(long)]
+    no_smt: bool,
+    /// Per-obligation time limit of the SMT engine, in seconds (an obligation that runs out
+    /// of time is `unknown`: the claim is then not proved).
+    #[arg(long, value_name = "SECONDS", default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=3600))]
+    smt_timeout: u32,
 }
 
 /// Runs `verify`.
@@ -75,7 +87,19 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
         return bonus(&problem, args.format);
     }
     let with_times = !args.no_times;
-    let r = truecost::claims::run(args.scope, args.claim.as_deref())?;
+    if let Some(dir) = &args.smt_out {
+        truecost::claims::smt::prepare_out_dir(dir)?;
+    }
+    let options = truecost::claims::registry::Options {
+        smt: !args.no_smt,
+        smt_timeout_ms: args.smt_timeout * 1000,
+    };
+    let r = truecost::claims::registry::run(args.scope, args.claim.as_deref(), &options)?;
+    if let Some(dir) = &args.smt_out {
+        for o in &r.smt {
+            truecost::claims::smt::write_files(dir, &o.solved)?;
+        }
+    }
     if let Some(dir) = &args.counterexamples {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;

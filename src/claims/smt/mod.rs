@@ -346,7 +346,7 @@ pub fn parse_numeral(s: &str) -> Option<Rational> {
 /// assert_eq!(solve(&o, 10_000), Answer::Unsat);
 /// ```
 pub fn solve(ob: &Obligation, timeout_ms: u32) -> Answer {
-    let solver = z3::Solver::new();
+    let solver = z3::Solver::new_for_logic(ob.logic.name()).unwrap_or_default();
     let mut params = z3::Params::new();
     params.set_u32("timeout", timeout_ms);
     solver.set_params(&params);
@@ -392,8 +392,35 @@ pub fn solve(ob: &Obligation, timeout_ms: u32) -> Answer {
     }
 }
 
+/// Re-solves an SMT-LIB script (e.g. a file written by `--smt-out`) with Z3 and returns its
+/// status (`None` for `unknown`). The logic is read from its `set-logic` line.
+///
+/// ```
+/// use truecost::claims::smt::{solve_text, Status};
+/// let text = "(set-logic QF_LRA)\n(declare-const x Real)\n(assert (< x x))\n(check-sat)\n";
+/// assert_eq!(solve_text(text, 10_000), Some(Status::Unsat));
+/// ```
+pub fn solve_text(text: &str, timeout_ms: u32) -> Option<Status> {
+    let logic = text
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("(set-logic "))
+        .and_then(|r| r.strip_suffix(')'));
+    let solver = logic
+        .and_then(z3::Solver::new_for_logic)
+        .unwrap_or_default();
+    let mut params = z3::Params::new();
+    params.set_u32("timeout", timeout_ms);
+    solver.set_params(&params);
+    solver.from_string(text);
+    match solver.check() {
+        z3::SatResult::Unsat => Some(Status::Unsat),
+        z3::SatResult::Sat => Some(Status::Sat),
+        z3::SatResult::Unknown => None,
+    }
+}
+
 /// One obligation's result.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Solved {
     /// The obligation.
     pub obligation: Obligation,
@@ -425,6 +452,26 @@ pub fn discharge(obligations: Vec<Obligation>, timeout_ms: u32) -> Vec<Solved> {
             }
         })
         .collect()
+}
+
+/// Checks, before any work, that `dir` can receive the obligation files: it is created if
+/// missing, and must be an empty directory.
+pub fn prepare_out_dir(dir: &Path) -> Result<(), String> {
+    if dir.exists() {
+        if !dir.is_dir() {
+            return Err(format!("--smt-out {}: not a directory", dir.display()));
+        }
+        let mut entries = std::fs::read_dir(dir)
+            .map_err(|e| format!("--smt-out {}: cannot read: {e}", dir.display()))?;
+        if entries.next().is_some() {
+            return Err(format!(
+                "--smt-out {}: the directory is not empty (the index would mix runs)",
+                dir.display()
+            ));
+        }
+    }
+    std::fs::create_dir_all(dir)
+        .map_err(|e| format!("--smt-out {}: cannot create: {e}", dir.display()))
 }
 
 /// Writes every solved obligation as an SMT-LIB file under `dir/<claim>/`, with
@@ -563,7 +610,7 @@ pub enum SmtVerdict {
 }
 
 /// The SMT engine's result for one claim.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Outcome {
     /// The claim id.
     pub claim: &'static str,

@@ -41,7 +41,7 @@ fn encoding(id: &str, scope: Scope) -> Option<Encoding> {
 fn attach_smt(result: &mut ClaimResult, outcome: &Outcome) {
     let s = &outcome.summary;
     let failures = match outcome.verdict {
-        SmtVerdict::Refuted => s.trust_checks.saturating_sub(s.trust_ok).max(1),
+        SmtVerdict::Refuted => s.printed_sat.max(1),
         _ => (s.proofs - s.proofs_unsat) + (s.trust_checks - s.trust_ok),
     };
     result.engines.push(EngineRun {
@@ -52,14 +52,21 @@ fn attach_smt(result: &mut ClaimResult, outcome: &Outcome) {
             SmtVerdict::Inconclusive => "inconclusive".into(),
         },
         scope: outcome.scope.clone(),
-        cases: s.proofs + s.trust_checks,
+        cases: s.proofs + s.trust_checks + s.printed,
         failures,
         seconds: s.seconds,
     });
-    result.notes.push(format!(
-        "smt: {} proof obligations, {} unsat; {} trust checks, {} as required (hypotheses satisfiable; dropped hypotheses and printed statements satisfiable); {} unknown",
-        s.proofs, s.proofs_unsat, s.trust_checks, s.trust_ok, s.unknown
-    ));
+    result.notes.push(if s.printed > 0 {
+        format!(
+            "smt: the printed statement searched on {} structures, satisfiable (a counterexample) on {}; {} trust checks, {} as required; {} unknown",
+            s.printed, s.printed_sat, s.trust_checks, s.trust_ok, s.unknown
+        )
+    } else {
+        format!(
+            "smt: {} proof obligations, {} unsat; {} trust checks, {} as required (hypotheses satisfiable; dropped hypotheses satisfiable); {} unknown",
+            s.proofs, s.proofs_unsat, s.trust_checks, s.trust_ok, s.unknown
+        )
+    });
     result.notes.extend(outcome.notes.iter().cloned());
     match (outcome.verdict, result.verdict) {
         (SmtVerdict::Proved, Verdict::Verified) => {

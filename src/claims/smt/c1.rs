@@ -660,7 +660,7 @@ fn printed_structures() -> Vec<Tiny> {
 }
 
 /// C1 as printed: on a structure where every state reaches the goal, costs ≥ 0 and initial
-/// values `Q₀` that every update leaves unchanged (the termination pair updated as an
+/// values `Q₀` (the termination pair's at its optimum 0) that every update leaves unchanged (the termination pair updated as an
 /// ordinary zero-cost self-loop) while `Q₀ ≠ Q*`: no fair order ever converges.
 pub fn printed() -> Encoding {
     let mut obligations = Vec::new();
@@ -688,6 +688,10 @@ pub fn printed() -> Encoding {
         w.o.assert(and(&facts));
         let differs: Vec<String> = (0..w.pairs.len()).map(|p| ne(&q[p], &w.qstar[p])).collect();
         w.o.assert(or(&differs));
+        // The termination pair starts at its optimum, 0: the failure is not (only) that a
+        // zero-cost self-loop keeps any value, but a zero-cost cycle started below Q*.
+        let terminal = (0..w.pairs.len()).find(|&p| w.pairs[p].2).expect("a goal");
+        w.o.assert(eq(&q[terminal], "0.0"));
         obligations.push(w.o);
     }
     Encoding {

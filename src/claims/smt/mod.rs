@@ -346,15 +346,65 @@ pub fn parse_numeral(s: &str) -> Option<Rational> {
 /// assert_eq!(solve(&o, 10_000), Answer::Unsat);
 /// ```
 pub fn solve(ob: &Obligation, timeout_ms: u32) -> Answer {
-    let solver = z3::Solver::new_for_logic(ob.logic.name()).unwrap_or_default();
+    // Linear obligations reuse one solver per thread and logic (push, assert, check, pop):
+    // creating a Z3 solver costs tens of milliseconds, solving a small linear obligation well
+    // under one. Nonlinear ones get a fresh solver, so that Z3 chooses its complete nonlinear
+    // procedure (nlsat) rather than the incremental one.
+    if ob.logic == Logic::QfNra {
+        let solver = fresh_solver(ob.logic.name(), timeout_ms);
+        return answer(&solver, ob);
+    }
+    thread_local! {
+        static SOLVERS: std::cell::RefCell<Vec<(Logic, u32, z3::Solver)>> =
+            const { std::cell::RefCell::new(Vec::new()) };
+    }
+    SOLVERS.with(|cell| {
+        let mut solvers = cell.borrow_mut();
+        let k = match solvers
+            .iter()
+            .position(|(l, t, _)| *l == ob.logic && *t == timeout_ms)
+        {
+            Some(k) => k,
+            None => {
+                solvers.push((
+                    ob.logic,
+                    timeout_ms,
+                    fresh_solver(ob.logic.name(), timeout_ms),
+                ));
+                solvers.len() - 1
+            }
+        };
+        let solver = &solvers[k].2;
+        solver.push();
+        let a = answer(solver, ob);
+        solver.pop(1);
+        a
+    })
+}
+
+fn fresh_solver(logic: &str, timeout_ms: u32) -> z3::Solver {
+    let solver = z3::Solver::new_for_logic(logic).unwrap_or_default();
     let mut params = z3::Params::new();
     params.set_u32("timeout", timeout_ms);
     solver.set_params(&params);
-    solver.from_string(ob.smtlib(None));
-    if solver.get_assertions().len() != ob.asserts.len() {
+    solver
+}
+
+/// Asserts the obligation's script (without its `set-logic` line, which the solver already
+/// has) in `solver`'s current scope and reads the answer.
+fn answer(solver: &z3::Solver, ob: &Obligation) -> Answer {
+    let before = solver.get_assertions().len();
+    let script: String = ob
+        .smtlib(None)
+        .lines()
+        .filter(|l| !l.starts_with("(set-logic ") && !l.starts_with("(set-info "))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    solver.from_string(script);
+    let parsed = solver.get_assertions().len() - before;
+    if parsed != ob.asserts.len() {
         return Answer::Unknown(format!(
-            "Z3 parsed {} of {} assertions",
-            solver.get_assertions().len(),
+            "Z3 parsed {parsed} of {} assertions",
             ob.asserts.len()
         ));
     }
@@ -431,9 +481,14 @@ pub struct Solved {
 }
 
 impl Solved {
-    /// Whether the answer is the one the role requires.
+    /// Whether the answer is the one the role requires. A `Printed` obligation is a search
+    /// for a counterexample on one structure: either decided answer is acceptable (the claim
+    /// is refuted when at least one is `sat` and replays).
     pub fn as_expected(&self) -> bool {
-        self.answer.status() == Some(self.obligation.role.expected())
+        match self.obligation.role {
+            Role::Printed => self.answer.status().is_some(),
+            _ => self.answer.status() == Some(self.obligation.role.expected()),
+        }
     }
 }
 
@@ -509,7 +564,11 @@ pub fn write_files(dir: &Path, solved: &[Solved]) -> Result<(), String> {
             clean(&o.lemma),
             clean(&o.structure),
             clean(&o.role.name()),
-            o.role.expected().name(),
+            if o.role == Role::Printed {
+                "sat-or-unsat"
+            } else {
+                o.role.expected().name()
+            },
             s.answer.name()
         );
     }
@@ -524,10 +583,14 @@ pub struct Summary {
     pub proofs: u64,
     /// Proof obligations answered `unsat`.
     pub proofs_unsat: u64,
-    /// Trust checks (every other role).
+    /// Trust checks (`Hypotheses` and `Dropped`).
     pub trust_checks: u64,
     /// Trust checks answered as required (`sat`).
     pub trust_ok: u64,
+    /// Searches for a counterexample of a printed statement (`Printed`).
+    pub printed: u64,
+    /// Those answered `sat`.
+    pub printed_sat: u64,
     /// Obligations answered `unknown` (or timed out).
     pub unknown: u64,
     /// Wall-clock seconds over all obligations (sum of per-obligation times).
@@ -542,6 +605,8 @@ impl Summary {
             proofs_unsat: 0,
             trust_checks: 0,
             trust_ok: 0,
+            printed: 0,
+            printed_sat: 0,
             unknown: 0,
             seconds: 0.0,
         };
@@ -553,6 +618,9 @@ impl Summary {
             if x.obligation.role == Role::Proof {
                 s.proofs += 1;
                 s.proofs_unsat += u64::from(x.answer == Answer::Unsat);
+            } else if x.obligation.role == Role::Printed {
+                s.printed += 1;
+                s.printed_sat += u64::from(matches!(x.answer, Answer::Sat(_)));
             } else {
                 s.trust_checks += 1;
                 s.trust_ok += u64::from(x.as_expected());
@@ -697,7 +765,8 @@ pub fn run(enc: Encoding, timeout_ms: u32) -> Outcome {
     let verdict = if replay_failed || summary.unknown > 0 {
         SmtVerdict::Inconclusive
     } else if has_printed {
-        if printed_confirmed && summary.trust_ok == summary.trust_checks {
+        if printed_confirmed && summary.printed_sat > 0 && summary.trust_ok == summary.trust_checks
+        {
             SmtVerdict::Refuted
         } else {
             SmtVerdict::Inconclusive

@@ -132,10 +132,11 @@ fn c4_corrected_is_proved_on_the_smoke_scope_with_every_trust_check() {
     }
 }
 
-/// The printed statement on the 3-state shape `0 -> 1 -> 2`, `0 -> 2`: by hand, with every
-/// cost 1 on the detour's moves' sum and the direct move (a = 1, L = 1), the exact condition
-/// is M <= 2L − 3a = −1 while the printed one is M <= 1/2 − 3a/(4L) = −1/4: M = −1/2 breaks
-/// it. Z3 must find some failure, and the exact oracle must confirm it.
+/// The printed statement fails, e.g. on the 3-state shape `0 -> 2` (cost a), `0 -> 1 -> 2`
+/// (total L): by hand, with a = L = 1 and π* the direct move, the exact condition is
+/// (a + M)/2 <= (L + M)/3, i.e. M <= 2L − 3a = −1, while the printed one is
+/// M <= A(u) = (1 − 3/2)(3a/(2L) − 1) = −1/4: M = −1/2 breaks it. Z3 must find some failure
+/// on every shape of the printed encoding, and the exact oracle must confirm each.
 #[test]
 fn c4_as_printed_is_refuted_by_a_replayed_model() {
     let enc = c4::encoding_printed(Scope::Smoke);

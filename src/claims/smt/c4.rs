@@ -257,7 +257,8 @@ impl Shape {
     }
 }
 
-/// The canonical reachable part of a structure given as per-state successor lists (state 0 is
+/// The canonical reachable part of a structure (Proposition 4 concerns only what is reachable
+/// from `x1`; issue 9, item 1: structures up to relabelling), given as per-state successor lists (state 0 is
 /// `x1`, the last state the goal): `None` when the goal is not reachable (no single-shot path,
 /// so no `π*`: the claim says nothing). States other than `x1` and the goal are relabelled
 /// to the lexicographically least adjacency.
@@ -326,7 +327,8 @@ fn permutations(m: usize) -> Vec<Vec<usize>> {
     out
 }
 
-/// Every distinct reachable shape of the structures with `2..=max_states` states (x1 = 0,
+/// The scope of the C4 proofs (issue 9, item 1): every distinct reachable shape of the
+/// structures with `2..=max_states` states (x1 = 0,
 /// goal last with no moves, 1–2 moves per other state, parallel moves and self-loops
 /// allowed), enumerated up to relabelling by [`Family`] with one cost value; with the number
 /// of canonical structures enumerated.
@@ -516,7 +518,8 @@ fn single_shot_optimal(parts: &Parts, p: &Walk) -> Vec<String> {
         .collect()
 }
 
-/// One shape's obligation comparing exact optimality with `f`'s interval, for every choice
+/// One shape's obligation for Proposition 4 (issue 9, item 1), comparing exact average-cost
+/// optimality of `π*` with `f`'s interval, for every choice
 /// of `π*` among the optimal single-shot paths (one disjunct per choice), or `None` when no
 /// case can differ syntactically (for `Printed`: no two goal paths of different lengths).
 ///
@@ -735,7 +738,7 @@ fn formula_interval(shape: &Shape, costs: &[Q], p: &Walk, f: Formula) -> Option<
     Some(iv)
 }
 
-/// Replays a `sat` model (exact rationals) through the exact oracle
+/// Replays a `sat` model (exact rationals; issue 9, item 2) through the exact oracle
 /// [`crate::claims::c4::bonus_sets`]: the costs and `M` are scaled by the least common
 /// denominator to integers (the exact set of the scaled instance is the scaled exact set);
 /// the model is confirmed when, for some optimal single-shot path, `π*`'s exact optimality at

@@ -18,6 +18,7 @@
 //! The claims' encodings live beside their oracles' modules: [`c1`] (C1 and C1-corrected), ….
 
 pub mod c1;
+pub mod c4;
 pub mod term;
 
 use std::fmt::Write as _;

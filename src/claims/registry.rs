@@ -32,6 +32,8 @@ fn encoding(id: &str, scope: Scope) -> Option<Encoding> {
     match id {
         "C1" => Some(smt::c1::printed()),
         "C1-corrected" => Some(smt::c1::corrected(scope)),
+        "C4" => Some(smt::c4::encoding_printed(scope)),
+        "C4-corrected" => Some(smt::c4::encoding(scope)),
         _ => None,
     }
 }

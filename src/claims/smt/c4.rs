@@ -574,7 +574,7 @@ pub fn obligation(claim: &str, shape: &Shape, f: Formula, role: Role) -> Option<
 fn max_states(scope: Scope) -> usize {
     match scope {
         Scope::Smoke => 3,
-        Scope::Quick => 4,
+        Scope::Quick => 5,
         Scope::Full => 5,
     }
 }

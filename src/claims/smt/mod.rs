@@ -18,6 +18,8 @@
 //! The claims' encodings live beside their oracles' modules: [`c1`] (C1 and C1-corrected), ….
 
 pub mod c1;
+pub mod c2;
+pub mod c3;
 pub mod term;
 
 use std::fmt::Write as _;

@@ -163,7 +163,10 @@ pub fn parse_shape(text: &str) -> Option<Vec<Vec<(u8, String)>>> {
             return None;
         }
         let mut list = Vec::new();
-        for m in moves.map(|m| m.split(", ").collect::<Vec<_>>()).unwrap_or_default() {
+        for m in moves
+            .map(|m| m.split(", ").collect::<Vec<_>>())
+            .unwrap_or_default()
+        {
             let m = m.strip_prefix("->")?;
             let (to, label) = m.split_once(" (")?;
             list.push((to.parse().ok()?, label.strip_suffix(')')?.to_string()));
@@ -255,13 +258,7 @@ fn le_ext(a: &Value, b: &Value) -> String {
         (Some((ap, an)), Some((bp, bn))) => or(&[
             an.clone(),
             bp.clone(),
-            and(&[
-                not(ap),
-                not(an),
-                not(bp),
-                not(bn),
-                le(&a.finite, &b.finite),
-            ]),
+            and(&[not(ap), not(an), not(bp), not(bn), le(&a.finite, &b.finite)]),
         ]),
         _ => le(&a.finite, &b.finite),
     }
@@ -300,8 +297,7 @@ fn lasso_value(f: Option<Functional>, lasso: &Lasso, stage: &dyn Fn(MoveId) -> S
         Functional::Discounted(a) => {
             // Σ_{k<p} α^k s_k + α^p (Σ_{j<c} α^j c_j) / (1 − α^c), α rational.
             let c = cyc.len() as u32;
-            let mut terms: Vec<String> =
-                (0..p).map(|k| mul(&q(a.pow(k as u32)), &st(k))).collect();
+            let mut terms: Vec<String> = (0..p).map(|k| mul(&q(a.pow(k as u32)), &st(k))).collect();
             let factor = a.pow(p as u32) / (Q::ONE - a.pow(c));
             terms.extend(
                 cyc.iter()
@@ -374,8 +370,9 @@ pub fn shape_specs(scope: Scope) -> Vec<FamilySpec> {
 /// them, so that shapes whose parts reachable from `x1` agree give the same text.
 fn structure_obligation(t: &Tiny, role: Role, plant: Plant) -> (Obligation, String) {
     let ls = lassos(t, true);
-    let mut names: Vec<Vec<Option<String>>> =
-        (0..t.states()).map(|x| vec![None; t.moves(x).len()]).collect();
+    let mut names: Vec<Vec<Option<String>>> = (0..t.states())
+        .map(|x| vec![None; t.moves(x).len()])
+        .collect();
     let mut order = Vec::new();
     for l in &ls {
         for &(x, i) in l.prefix.iter().chain(&l.cycle) {
@@ -385,7 +382,9 @@ fn structure_obligation(t: &Tiny, role: Role, plant: Plant) -> (Obligation, Stri
             }
         }
     }
-    let structure = shape_text(t, |(x, i)| names[x][i].clone().unwrap_or_else(|| "-".into()));
+    let structure = shape_text(t, |(x, i)| {
+        names[x][i].clone().unwrap_or_else(|| "-".into())
+    });
     // A planted fault's failures are looked for among integer costs 0..=20 (a failure there is
     // a failure), so that the model fits the oracle's integer costs.
     let integer = plant != Plant::None;
@@ -415,20 +414,39 @@ fn structure_obligation(t: &Tiny, role: Role, plant: Plant) -> (Obligation, Stri
         let c: Vec<Value> = ls
             .iter()
             .enumerate()
-            .map(|(p, l)| bind(&format!("c{fi}_{p}"), lasso_value(f, l, &cost), &mut bindings))
+            .map(|(p, l)| {
+                bind(
+                    &format!("c{fi}_{p}"),
+                    lasso_value(f, l, &cost),
+                    &mut bindings,
+                )
+            })
             .collect();
         let r: Vec<Value> = ls
             .iter()
             .enumerate()
-            .map(|(p, l)| bind(&format!("r{fi}_{p}"), lasso_value(f, l, &reward), &mut bindings))
+            .map(|(p, l)| {
+                bind(
+                    &format!("r{fi}_{p}"),
+                    lasso_value(f, l, &reward),
+                    &mut bindings,
+                )
+            })
             .collect();
         let mut failures = Vec::new();
         for p in 0..ls.len() {
-            let minimises = and(&(0..ls.len()).map(|s| le_ext(&c[p], &c[s])).collect::<Vec<_>>());
-            let maximises = and(&(0..ls.len()).map(|s| le_ext(&r[s], &r[p])).collect::<Vec<_>>());
+            let minimises = and(&(0..ls.len())
+                .map(|s| le_ext(&c[p], &c[s]))
+                .collect::<Vec<_>>());
+            let maximises = and(&(0..ls.len())
+                .map(|s| le_ext(&r[s], &r[p]))
+                .collect::<Vec<_>>());
             failures.push(not(&eq(&minimises, &maximises)));
         }
-        per_functional.push(app("let", &[format!("({})", bindings.join(" ")), or(&failures)]));
+        per_functional.push(app(
+            "let",
+            &[format!("({})", bindings.join(" ")), or(&failures)],
+        ));
     }
     o.assert(or(&per_functional));
     (o, structure)
@@ -555,7 +573,9 @@ pub fn replay(o: &Obligation, m: &Model) -> Replay {
         }
     }
     let Some(scaled) = scale_to_u8(&labels) else {
-        return Replay::NotConfirmed("the model's costs do not scale into the oracle's range".into());
+        return Replay::NotConfirmed(
+            "the model's costs do not scale into the oracle's range".into(),
+        );
     };
     let mut k = 0;
     let lists: Vec<Vec<(u8, u8)>> = shape
@@ -615,12 +635,7 @@ pub fn replay(o: &Obligation, m: &Model) -> Replay {
             .map(|f| f.name())
             .collect(),
         _ => {
-            let as_ext = |v: i64| {
-                FracExt::Fin(crate::claims::exact::Frac {
-                    n: v as i128,
-                    d: 1,
-                })
-            };
+            let as_ext = |v: i64| FracExt::Fin(crate::claims::exact::Frac { n: v as i128, d: 1 });
             let cost = trs.iter().map(|tr| as_ext(sup_of_stages(tr, 1))).collect();
             let reward = trs.iter().map(|tr| as_ext(sup_of_stages(tr, -1))).collect();
             if differ(cost, reward) {

@@ -16,7 +16,9 @@ const LOOP_OR_GOAL: &str = "0: ->0 (l1), ->1 (l2); 1 (goal)";
 fn find<'a>(obligations: &'a [Obligation], structure: &str, role: &Role) -> &'a Obligation {
     obligations
         .iter()
-        .find(|o| o.structure == structure && &o.role == role)
+        .find(|o| {
+            o.structure == structure && &o.role == role && o.lemma.contains("every functional")
+        })
         .unwrap_or_else(|| panic!("no {role:?} obligation for {structure}"))
 }
 
@@ -57,6 +59,30 @@ fn hand_checked_structure() {
     }
     assert_eq!(solve(proof, TIMEOUT_MS), Answer::Unsat);
     assert!(matches!(solve(hyp, TIMEOUT_MS), Answer::Sat(Some(_))));
+
+    // Discounted for every real α: the loop costs l1/(1 − α) = N/D with N = D·0 + l1, the goal
+    // lasso l2/1; the reward's numerators have the negated stages.
+    let every_alpha = enc
+        .obligations
+        .iter()
+        .find(|o| {
+            o.structure == LOOP_OR_GOAL && o.role == Role::Proof && o.lemma.contains("every alpha")
+        })
+        .expect("the every-alpha obligation");
+    let text = every_alpha.smtlib(None);
+    assert!(text.contains("(set-logic QF_NRA)"));
+    for fragment in [
+        "(assert (and (> a 0.0) (< a 1.0)))",
+        "(c0_n (+ (* (- 1.0 (* 1.0 a)) 0.0) l1))",
+        "(c0_d (- 1.0 (* 1.0 a)))",
+        "(c1_n l2)",
+        "(c1_d 1.0)",
+        "(r0_n (+ (* (- 1.0 (* 1.0 a)) 0.0) (- l1)))",
+        "(r1_n (- l2))",
+    ] {
+        assert!(text.contains(fragment), "{fragment} not in\n{text}");
+    }
+    assert_eq!(solve(every_alpha, TIMEOUT_MS), Answer::Unsat);
 }
 
 #[test]
@@ -159,7 +185,9 @@ fn files_parse_back_to_the_same_answers() {
     for (line, s) in index.lines().skip(1).zip(&solved) {
         let file = line.split('\t').next().expect("a file name");
         let text = std::fs::read_to_string(dir.path().join(file)).expect("a file");
-        assert!(text.contains("(set-logic QF_L"));
+        assert!(["QF_LRA", "QF_LIRA", "QF_NRA"]
+            .iter()
+            .any(|l| text.contains(&format!("(set-logic {l})"))));
         let (o, status) = parse_back(&text, &s.obligation);
         assert_eq!(o.asserts, s.obligation.asserts);
         assert_eq!(status.as_deref(), Some(s.answer.name()));

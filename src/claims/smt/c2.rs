@@ -18,7 +18,7 @@
 
 use std::collections::HashSet;
 
-use super::term::{and, app, eq, ge, gt, le, lt, max, mul, not, or, real, real_int, sum};
+use super::term::{and, app, eq, ge, gt, le, lt, max, mul, not, or, real, real_int, sub, sum};
 use super::{Encoding, Logic, Model, Obligation, Replay, Role, Sort};
 use crate::claims::c2::functionals;
 use crate::claims::exact::{FracExt, Q};
@@ -368,13 +368,16 @@ pub fn shape_specs(scope: Scope) -> Vec<FamilySpec> {
 /// One structure's C2 obligation (and the cost constants' names per move, `None` for moves
 /// no lasso uses). Cost constants are named `l1, l2, …` in the order the lassos first use
 /// them, so that shapes whose parts reachable from `x1` agree give the same text.
-fn structure_obligation(t: &Tiny, role: Role, plant: Plant) -> (Obligation, String) {
-    let ls = lassos(t, true);
-    let mut names: Vec<Vec<Option<String>>> = (0..t.states())
+type Names = Vec<Vec<Option<String>>>;
+
+/// The cost constants' names per move (`l1, l2, …` in the order the lassos first use them;
+/// `None` for moves no lasso uses), the moves in that order, and the structure's text.
+fn cost_names(t: &Tiny, ls: &[Lasso]) -> (Names, Vec<MoveId>, String) {
+    let mut names: Names = (0..t.states())
         .map(|x| vec![None; t.moves(x).len()])
         .collect();
     let mut order = Vec::new();
-    for l in &ls {
+    for l in ls {
         for &(x, i) in l.prefix.iter().chain(&l.cycle) {
             if names[x][i].is_none() {
                 names[x][i] = Some(format!("l{}", order.len() + 1));
@@ -385,6 +388,98 @@ fn structure_obligation(t: &Tiny, role: Role, plant: Plant) -> (Obligation, Stri
     let structure = shape_text(t, |(x, i)| {
         names[x][i].clone().unwrap_or_else(|| "-".into())
     });
+    (names, order, structure)
+}
+
+const LEMMA_ALPHA: &str = "argmin cost = argmax reward (r = -l), discounted, every alpha in (0,1)";
+
+/// `α^k · s` as a term (`s` for `k = 0`).
+fn times_power(s: &str, k: usize, a: &str) -> String {
+    if k == 0 {
+        return s.to_string();
+    }
+    let mut args = vec![s.to_string()];
+    args.extend(std::iter::repeat(a.to_string()).take(k));
+    app("*", &args)
+}
+
+/// One structure's obligation for the discounted functional with the discount a real unknown
+/// `α ∈ (0,1)` (QF_NRA): each lasso's value is `N/D` with `D = 1 − α^q` (a terminating lasso:
+/// `D = 1`), `N = D·Σ_{k<p} α^k s_k + α^p Σ_{j<q} α^j c_j`; `D > 0` on `(0,1)` (the C3
+/// obligations `1 - alpha^q > 0`), so `V_a ≤ V_b ⟺ N_a·D_b ≤ N_b·D_a`.
+fn symbolic_alpha_obligation(t: &Tiny, role: Role) -> Obligation {
+    let ls = lassos(t, true);
+    let (names, order, structure) = cost_names(t, &ls);
+    let mut o = Obligation::new("C2", LEMMA_ALPHA, &structure, role, Logic::QfNra);
+    for &(x, i) in &order {
+        let n = o.declare(names[x][i].as_ref().expect("named"), Sort::Real);
+        o.assert(ge(&n, &real_int(0)));
+    }
+    let a = o.declare("a", Sort::Real);
+    o.assert(and(&[gt(&a, &real_int(0)), lt(&a, &real_int(1))]));
+    let cost = |m: MoveId| names[m.0][m.1].clone().expect("named");
+    let reward = |m: MoveId| app("-", &[cost(m)]);
+    let mut bindings = Vec::new();
+    let mut fraction = |name: &str, l: &Lasso, stage: &dyn Fn(MoveId) -> String| {
+        let series = |moves: &[MoveId]| {
+            sum(&moves
+                .iter()
+                .enumerate()
+                .map(|(k, &m)| times_power(&stage(m), k, &a))
+                .collect::<Vec<_>>())
+        };
+        let prefix = series(&l.prefix);
+        let (n, d) = if l.terminates {
+            (prefix, real_int(1))
+        } else {
+            let d = sub(&real_int(1), &times_power(&real_int(1), l.cycle.len(), &a));
+            let cycle = times_power(&series(&l.cycle), l.prefix.len(), &a);
+            (sum(&[mul(&d, &prefix), cycle]), d)
+        };
+        bindings.push(format!("({name}_n {n})"));
+        bindings.push(format!("({name}_d {d})"));
+        (format!("{name}_n"), format!("{name}_d"))
+    };
+    let c: Vec<(String, String)> = ls
+        .iter()
+        .enumerate()
+        .map(|(p, l)| fraction(&format!("c{p}"), l, &cost))
+        .collect();
+    let r: Vec<(String, String)> = ls
+        .iter()
+        .enumerate()
+        .map(|(p, l)| fraction(&format!("r{p}"), l, &reward))
+        .collect();
+    let le_frac =
+        |x: &(String, String), y: &(String, String)| le(&mul(&x.0, &y.1), &mul(&y.0, &x.1));
+    let mut failures = Vec::new();
+    for p in 0..ls.len() {
+        let minimises = and(&(0..ls.len())
+            .map(|s| le_frac(&c[p], &c[s]))
+            .collect::<Vec<_>>());
+        let maximises = and(&(0..ls.len())
+            .map(|s| le_frac(&r[s], &r[p]))
+            .collect::<Vec<_>>());
+        failures.push(not(&eq(&minimises, &maximises)));
+    }
+    o.assert(app(
+        "let",
+        &[format!("({})", bindings.join(" ")), or(&failures)],
+    ));
+    o
+}
+
+/// The largest structures whose discounted functional is proved for every real `α ∈ (0,1)`.
+pub fn symbolic_alpha_states(scope: Scope) -> usize {
+    match scope {
+        Scope::Smoke | Scope::Quick => 2,
+        Scope::Full => 3,
+    }
+}
+
+fn structure_obligation(t: &Tiny, role: Role, plant: Plant) -> (Obligation, String) {
+    let ls = lassos(t, true);
+    let (names, order, structure) = cost_names(t, &ls);
     // A planted fault's failures are looked for among integer costs 0..=20 (a failure there is
     // a failure), so that the model fits the oracle's integer costs.
     let integer = plant != Plant::None;
@@ -492,8 +587,17 @@ pub fn encoding(scope: Scope) -> Encoding {
 pub fn encoding_with(scope: Scope, plant: Plant) -> Encoding {
     let (proofs, shapes) = structures(scope, Role::Proof, plant);
     let mut obligations = Vec::new();
+    let mut symbolic = 0;
     for (t, o) in &proofs {
         obligations.push(o.clone());
+        if plant == Plant::None && t.states() <= symbolic_alpha_states(scope) {
+            let s = symbolic_alpha_obligation(t, Role::Proof);
+            let mut h = s.with_role(Role::Hypotheses);
+            h.asserts.pop();
+            obligations.push(s);
+            obligations.push(h);
+            symbolic += 1;
+        }
         // Hypotheses alone: the cost constants and value definitions, without the negated
         // conclusion (the last assertion).
         let mut h = o.with_role(Role::Hypotheses);
@@ -530,11 +634,14 @@ pub fn encoding_with(scope: Scope, plant: Plant) -> Encoding {
         "every structure with 1-{max_states} states, 1-2 moves per non-goal state and 0-2 at the goal (besides \
 termination), parallel moves allowed, x1 = 0, one goal, up to relabelling ({shapes} shapes, enumerated outside the \
 solver; {} distinct obligations once shapes whose part reachable from x1 gives the same obligation are merged); every \
-deterministic stationary policy from x1 (one lasso per class); functionals: {}; every move's stage cost a real >= 0; trust checks: hypotheses of every structure satisfiable, the \
+deterministic stationary policy from x1 (one lasso per class); functionals: {}; every move's stage cost a real >= 0; the discounted functional also for every real alpha in (0,1) on the {} \
+distinct obligations with <= {} states (QF_NRA); trust checks: hypotheses of every structure satisfiable, the \
 planted reward r = l fails on each of the {} structures with <= {} states and >= 2 lassos, the planted sup of stages \
 fails on a hand-checked structure",
         proofs.len(),
         names.join(", "),
+        symbolic,
+        symbolic_alpha_states(scope),
         checks - 1,
         dropped_states(scope)
     );
@@ -597,6 +704,9 @@ pub fn replay(o: &Obligation, m: &Model) -> Replay {
     } else {
         Plant::None
     };
+    if o.lemma == LEMMA_ALPHA {
+        return replay_symbolic_alpha(&t, m);
+    }
     if plant == Plant::None {
         return match crate::claims::c2::check_problem(&t, &functionals(), 1).0 {
             Some(what) => Replay::Confirmed(
@@ -659,5 +769,26 @@ pub fn replay(o: &Obligation, m: &Model) -> Replay {
             ),
             None,
         )
+    }
+}
+
+/// Replays a model of the every-α discounted obligation: α read back (as a small exact
+/// rational), every policy's discounted cost and reward evaluated by the oracle.
+fn replay_symbolic_alpha(t: &Tiny, m: &Model) -> Replay {
+    let alpha = m.get("a").and_then(|a| {
+        let n = i128::try_from(a.numer()).ok()?;
+        let d = i128::try_from(a.denom()).ok()?;
+        (n.abs() < 1 << 20 && d < 1 << 20).then(|| Q::new(n, d))
+    });
+    let Some(alpha) = alpha else {
+        return Replay::NotConfirmed("alpha does not fit the oracle".into());
+    };
+    let f = Functional::Discounted(alpha);
+    match crate::claims::c2::check_problem(t, &[f], 1).0 {
+        Some(what) => Replay::Confirmed(format!("C2 fails on {}: {what}", t.describe()), None),
+        None => Replay::NotConfirmed(format!(
+            "the oracle finds argmin cost = argmax reward at alpha = {alpha} on {}",
+            t.describe()
+        )),
     }
 }

@@ -490,7 +490,7 @@ fn structure_obligation(t: &Tiny, role: Role, plant: Plant) -> (Obligation, Stri
         o.assert(ge(&n, &real_int(0)));
         if integer {
             let z = o.declare(&format!("k{}", k + 1), Sort::Int);
-            o.assert(eq(&n, &app("to_real", &[z.clone()])));
+            o.assert(eq(&n, &app("to_real", std::slice::from_ref(&z))));
             o.assert(le(&z, &super::term::int(20)));
         }
     }

@@ -32,6 +32,9 @@ fn encoding(id: &str, scope: Scope) -> Option<Encoding> {
     match id {
         "C1" => Some(smt::c1::printed()),
         "C1-corrected" => Some(smt::c1::corrected(scope)),
+        "C2" => Some(smt::c2::encoding(scope)),
+        "C3" => Some(smt::c3::encoding(scope)),
+        "C3-example" => Some(smt::c3::example_encoding(scope)),
         "C4" => Some(smt::c4::encoding_printed(scope)),
         "C4-corrected" => Some(smt::c4::encoding(scope)),
         _ => None,

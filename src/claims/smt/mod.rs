@@ -15,9 +15,12 @@
 //! through its exact oracle before anything is reported. `unknown` or a timeout is
 //! [`Answer::Unknown`]: never a proof.
 //!
-//! The claims' encodings live beside their oracles' modules: [`c1`] (C1 and C1-corrected), ….
+//! The claims' encodings live beside their oracles' modules: [`c1`] (C1, C1-corrected), [`c2`],
+//! [`c3`] (C3, C3-example), [`c4`] (C4, C4-corrected); their arguments are in `docs/proofs/`.
 
 pub mod c1;
+pub mod c2;
+pub mod c3;
 pub mod c4;
 pub mod term;
 

@@ -9,6 +9,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use super::ListFormat;
 use truecost::experiments::deterministic::{self, Report, RowSummary, Settings};
+use truecost::experiments::published::{Comparison, Summary, Verdict};
 use truecost::experiments::stochastic;
 use truecost::learning::stochastic_q::Tolerance;
 use truecost::planning::Mode;
@@ -65,6 +66,11 @@ struct StochasticArgs {
     /// Steps per episode.
     #[arg(long, default_value_t = 3000, value_name = "M")]
     max_steps: u32,
+    /// Put the paper's published numbers (data/published/) beside ours, with a verdict per
+    /// metric and closing counts. The paper's VI counts need `--noise reference --tolerance
+    /// reference`.
+    #[arg(long)]
+    against_published: bool,
     #[command(flatten)]
     output: Output,
 }
@@ -152,6 +158,11 @@ struct DeterministicArgs {
     /// Steps per episode.
     #[arg(long, default_value_t = 3000, value_name = "M")]
     max_steps: u32,
+    /// Put the paper's published numbers (data/published/) beside ours, with a verdict per
+    /// metric (exact / consistent / differs / machine) and closing counts. The published
+    /// counts come out `exact` with `--mode reference`.
+    #[arg(long)]
+    against_published: bool,
     #[command(flatten)]
     output: Output,
 }
@@ -184,8 +195,11 @@ fn deterministic_command(args: &DeterministicArgs) -> Result<String, String> {
     settings.validate().map_err(|e| e.to_string())?;
     args.output.prepare()?;
     let bar = progress_bar(args.output.quiet, deterministic::total_runs(&settings));
-    let report = deterministic::run(&settings, &|k| bar.inc(k)).map_err(|e| e.to_string())?;
+    let mut report = deterministic::run(&settings, &|k| bar.inc(k)).map_err(|e| e.to_string())?;
     bar.finish_and_clear();
+    if args.against_published {
+        deterministic::against_published(&mut report, &settings).map_err(|e| e.to_string())?;
+    }
     args.output.finish(
         "deterministic",
         |format| render(&report, format),
@@ -262,8 +276,11 @@ fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
     settings.validate().map_err(e)?;
     args.output.prepare()?;
     let bar = progress_bar(args.output.quiet, stochastic::total_runs(&settings));
-    let report = stochastic::run(&settings, &|k| bar.inc(k)).map_err(e)?;
+    let mut report = stochastic::run(&settings, &|k| bar.inc(k)).map_err(e)?;
     bar.finish_and_clear();
+    if args.against_published {
+        stochastic::against_published(&mut report, &settings).map_err(|e| e.to_string())?;
+    }
     args.output.finish(
         "stochastic",
         |format| render_stochastic(&report, format),
@@ -275,13 +292,10 @@ fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
 /// seed (JSON and CSV in every row).
 pub fn render_stochastic(report: &stochastic::Report, format: ListFormat) -> String {
     match format {
-        ListFormat::Json => {
-            let mut s = serde_json::to_string_pretty(&report.rows).expect("serialisable");
-            s.push('\n');
-            s
-        }
+        ListFormat::Json => json(&report.rows, report.against_published.as_ref()),
         ListFormat::Csv => {
-            let mut s = STOCHASTIC_CSV_COLUMNS.join(",") + "\n";
+            let metrics = comparison_metrics(report.rows.iter().map(|r| r.comparison.as_ref()));
+            let mut s = STOCHASTIC_CSV_COLUMNS.join(",") + &comparison_csv_header(&metrics) + "\n";
             for row in &report.rows {
                 let value = serde_json::to_value(row).expect("serialisable");
                 let cells: Vec<String> = STOCHASTIC_CSV_COLUMNS
@@ -296,16 +310,18 @@ pub fn render_stochastic(report: &stochastic::Report, format: ListFormat) -> Str
                         },
                     })
                     .collect();
-                s += &(cells.join(",") + "\n");
+                s += &(cells.join(",")
+                    + &comparison_csv_cells(row.comparison.as_ref(), &metrics)
+                    + "\n");
             }
-            s
+            s + &summary_csv(report.against_published.as_ref())
         }
         ListFormat::Markdown | ListFormat::Text => stochastic_table(report, format),
     }
 }
 
 /// The columns of the stochastic CSV file, in order.
-const STOCHASTIC_CSV_COLUMNS: [&str; 34] = [
+const STOCHASTIC_CSV_COLUMNS: [&str; 35] = [
     "problem",
     "gamma",
     "algorithm",
@@ -319,6 +335,7 @@ const STOCHASTIC_CSV_COLUMNS: [&str; 34] = [
     "mean_actions_converged",
     "mean_actions",
     "std_actions",
+    "mean_ns_per_action",
     "mean_iterations",
     "std_iterations",
     "initial_within_rate",
@@ -342,10 +359,11 @@ const STOCHASTIC_CSV_COLUMNS: [&str; 34] = [
     "note",
 ];
 
-const STOCHASTIC_HEADER: [&str; 10] = [
+const STOCHASTIC_HEADER: [&str; 11] = [
     "algorithm",
     "run time s (mean ± std)",
     "actions (mean ± std)",
+    "ns/action",
     "episodes/sweeps (mean ± std)",
     "converged",
     "goal discovered: actions / s",
@@ -382,6 +400,7 @@ fn stochastic_cells(row: &stochastic::RowSummary) -> Vec<String> {
         label,
         pm(row.mean_time_s, row.std_time_s, 5),
         pm(row.mean_actions, row.std_actions, 1),
+        opt(row.mean_ns_per_action, 1),
         pm(row.mean_iterations, row.std_iterations, 2),
         pct(row.convergence_rate),
         if learning {
@@ -464,6 +483,11 @@ fn stochastic_table(report: &stochastic::Report, format: ListFormat) -> String {
                     let _ = writeln!(s, "| {} |", c.join(" | "));
                 }
                 s.push('\n');
+                s += &comparison_table(
+                    rows.iter()
+                        .map(|r| (stochastic_cells(r)[0].clone(), r.comparison.as_ref())),
+                    true,
+                );
             } else {
                 let widths = column_widths(&STOCHASTIC_HEADER, cells.iter());
                 let line = |c: &[String]| aligned(c, &widths);
@@ -473,10 +497,15 @@ fn stochastic_table(report: &stochastic::Report, format: ListFormat) -> String {
                 for c in &cells {
                     let _ = writeln!(s, "{}", line(c));
                 }
+                s += &comparison_table(
+                    rows.iter()
+                        .map(|r| (stochastic_cells(r)[0].clone(), r.comparison.as_ref())),
+                    false,
+                );
             }
         }
     }
-    s
+    s + &summary_text(report.against_published.as_ref(), markdown)
 }
 
 fn write_file(path: &Path, text: &str) -> Result<(), String> {
@@ -486,11 +515,7 @@ fn write_file(path: &Path, text: &str) -> Result<(), String> {
 /// Renders a report in a format.
 pub fn render(report: &Report, format: ListFormat) -> String {
     match format {
-        ListFormat::Json => {
-            let mut s = serde_json::to_string_pretty(&report.rows).expect("serialisable");
-            s.push('\n');
-            s
-        }
+        ListFormat::Json => json(&report.rows, report.against_published.as_ref()),
         ListFormat::Csv => csv(report),
         ListFormat::Markdown => markdown(report),
         ListFormat::Text => text(report),
@@ -498,7 +523,7 @@ pub fn render(report: &Report, format: ListFormat) -> String {
 }
 
 /// The columns of the CSV file, in order.
-const CSV_COLUMNS: [&str; 32] = [
+const CSV_COLUMNS: [&str; 34] = [
     "problem",
     "algorithm",
     "epsilon",
@@ -511,6 +536,8 @@ const CSV_COLUMNS: [&str; 32] = [
     "mean_actions_converged",
     "mean_actions",
     "std_actions",
+    "mean_planner_actions",
+    "mean_ns_per_action",
     "mean_iterations",
     "std_iterations",
     "shortest_path",
@@ -534,7 +561,8 @@ const CSV_COLUMNS: [&str; 32] = [
 ];
 
 fn csv(report: &Report) -> String {
-    let mut s = CSV_COLUMNS.join(",") + "\n";
+    let metrics = comparison_metrics(report.rows.iter().map(|r| r.comparison.as_ref()));
+    let mut s = CSV_COLUMNS.join(",") + &comparison_csv_header(&metrics) + "\n";
     for row in &report.rows {
         let value = serde_json::to_value(row).expect("serialisable");
         let cells: Vec<String> = CSV_COLUMNS
@@ -550,9 +578,9 @@ fn csv(report: &Report) -> String {
                 },
             })
             .collect();
-        s += &(cells.join(",") + "\n");
+        s += &(cells.join(",") + &comparison_csv_cells(row.comparison.as_ref(), &metrics) + "\n");
     }
-    s
+    s + &summary_csv(report.against_published.as_ref())
 }
 
 /// A CSV cell: quoted when it contains a separator or a quote.
@@ -600,7 +628,7 @@ fn label(row: &RowSummary) -> String {
 fn cells(row: &RowSummary) -> Vec<String> {
     if let Some(note) = &row.note {
         let mut c = vec![label(row), note.clone()];
-        c.resize(9, String::new());
+        c.resize(HEADER.len(), String::new());
         return c;
     }
     let paths = match (row.shortest_path, row.longest_path) {
@@ -612,6 +640,7 @@ fn cells(row: &RowSummary) -> Vec<String> {
         label(row),
         pm(row.mean_time_s, row.std_time_s, 5),
         pm(row.mean_actions, row.std_actions, 1),
+        opt(row.mean_ns_per_action, 1),
         pm(row.mean_iterations, row.std_iterations, 2),
         row.convergence_rate
             .map_or("–".into(), |r| format!("{:.1} %", 100.0 * r)),
@@ -639,10 +668,11 @@ fn cells(row: &RowSummary) -> Vec<String> {
     ]
 }
 
-const HEADER: [&str; 9] = [
+const HEADER: [&str; 10] = [
     "algorithm",
     "run time s (mean ± std)",
     "actions (mean ± std)",
+    "ns/action",
     "iterations (mean ± std)",
     "converged",
     "goal discovered: actions / s",
@@ -693,8 +723,16 @@ fn markdown(report: &Report) -> String {
             let _ = writeln!(s, "| {} |", cells(row).join(" | "));
         }
         s.push('\n');
+        s += &comparison_table(
+            report
+                .rows
+                .iter()
+                .filter(|r| r.problem == *p)
+                .map(|r| (label(r), r.comparison.as_ref())),
+            true,
+        );
     }
-    s
+    s + &summary_text(report.against_published.as_ref(), true)
 }
 
 fn text(report: &Report) -> String {
@@ -728,8 +766,12 @@ fn text(report: &Report) -> String {
                 }
             }
         }
+        s += &comparison_table(
+            summaries.iter().map(|r| (label(r), r.comparison.as_ref())),
+            false,
+        );
     }
-    s
+    s + &summary_text(report.against_published.as_ref(), false)
 }
 
 /// The width of each column: its widest cell among `header` and `rows`.
@@ -758,4 +800,173 @@ fn aligned(cells: &[String], widths: &[usize]) -> String {
         .join("  ")
         .trim_end()
         .to_string()
+}
+
+/// JSON: the rows; with `--against-published` an object `{"rows": […], "against_published":
+/// {counts, differs_lines, sources}}`.
+fn json<T: serde::Serialize>(rows: &[T], summary: Option<&Summary>) -> String {
+    let mut s = match summary {
+        None => serde_json::to_string_pretty(rows),
+        Some(summary) => serde_json::to_string_pretty(&serde_json::json!({
+            "rows": rows,
+            "against_published": summary,
+        })),
+    }
+    .expect("serialisable");
+    s.push('\n');
+    s
+}
+
+/// Every metric compared in any row, sorted.
+fn comparison_metrics<'a>(rows: impl Iterator<Item = Option<&'a Comparison>>) -> Vec<String> {
+    let set: std::collections::BTreeSet<&String> =
+        rows.flatten().flat_map(|c| c.agreement.keys()).collect();
+    set.into_iter().cloned().collect()
+}
+
+/// `,published_M,agreement_M` for each metric.
+fn comparison_csv_header(metrics: &[String]) -> String {
+    metrics
+        .iter()
+        .map(|m| format!(",published_{m},agreement_{m}"))
+        .collect()
+}
+
+/// The published value (as published) and the verdict of each metric (empty when none).
+fn comparison_csv_cells(c: Option<&Comparison>, metrics: &[String]) -> String {
+    metrics
+        .iter()
+        .map(|m| {
+            let published = c
+                .and_then(|c| c.published_text.get(m))
+                .cloned()
+                .unwrap_or_default();
+            let verdict = c
+                .and_then(|c| c.agreement.get(m))
+                .map_or(String::new(), verdict_text);
+            format!(",{},{}", quote(&published), quote(&verdict))
+        })
+        .collect()
+}
+
+/// The summary as trailing `# ` lines of a CSV file (with `--against-published` only).
+fn summary_csv(summary: Option<&Summary>) -> String {
+    summary.map_or(String::new(), |s| {
+        s.lines().iter().map(|l| format!("# {l}\n")).collect()
+    })
+}
+
+/// A verdict in words, with its numbers.
+fn verdict_text(v: &Verdict) -> String {
+    let times = |x: Option<f64>| x.map_or("–".into(), |x| format!("{x:.1}×"));
+    match v {
+        Verdict::Exact => "exact".into(),
+        Verdict::Consistent { difference, bound } => {
+            format!("consistent (|Δ| {difference:.4} ≤ {bound:.4})")
+        }
+        Verdict::Differs { difference, reason } => format!(
+            "differs (Δ {}; {reason})",
+            difference.map_or("–".into(), |d| format!("{d:+.4}"))
+        ),
+        Verdict::Machine {
+            ratio,
+            relative_published,
+            relative_ours,
+        } => {
+            let mut t = format!(
+                "machine (ours/published {})",
+                ratio.map_or("–".into(), |r| format!("{r:.3}"))
+            );
+            if relative_published.is_some() || relative_ours.is_some() {
+                t += &format!(
+                    "; ÷ model-free Dijkstra: published {}, ours {}",
+                    times(*relative_published),
+                    times(*relative_ours)
+                );
+            }
+            t
+        }
+    }
+}
+
+const COMPARISON_HEADER: [&str; 5] = ["row", "metric", "published", "ours", "verdict"];
+
+/// The published numbers beside ours, one line per (row, metric); empty without comparisons.
+fn comparison_table<'a>(
+    rows: impl Iterator<Item = (String, Option<&'a Comparison>)>,
+    markdown: bool,
+) -> String {
+    let mut cells: Vec<Vec<String>> = Vec::new();
+    for (label, c) in rows {
+        let Some(c) = c else { continue };
+        for (metric, verdict) in &c.agreement {
+            cells.push(vec![
+                label.clone(),
+                metric.clone(),
+                c.published_text.get(metric).cloned().unwrap_or_default(),
+                c.ours
+                    .get(metric)
+                    .copied()
+                    .flatten()
+                    .map_or("–".into(), |o| format!("{o}")),
+                verdict_text(verdict),
+            ]);
+        }
+    }
+    if cells.is_empty() {
+        return String::new();
+    }
+    let mut s = String::new();
+    if markdown {
+        let _ = writeln!(s, "Against published:\n");
+        let _ = writeln!(s, "| {} |", COMPARISON_HEADER.join(" | "));
+        let _ = writeln!(s, "|{}", "---|".repeat(COMPARISON_HEADER.len()));
+        for c in &cells {
+            let _ = writeln!(s, "| {} |", c.join(" | "));
+        }
+        s.push('\n');
+    } else {
+        let widths = column_widths(&COMPARISON_HEADER, cells.iter());
+        let _ = writeln!(s, "Against published:");
+        let header: Vec<String> = COMPARISON_HEADER.iter().map(|h| h.to_string()).collect();
+        let _ = writeln!(s, "{}", aligned(&header, &widths));
+        for c in &cells {
+            let _ = writeln!(s, "{}", aligned(c, &widths));
+        }
+    }
+    s
+}
+
+/// The closing summary and the sources (with `--against-published` only).
+fn summary_text(summary: Option<&Summary>, markdown: bool) -> String {
+    let Some(summary) = summary else {
+        return String::new();
+    };
+    let mut s = String::new();
+    let lines = summary.lines();
+    if markdown {
+        let _ = writeln!(s, "## Reproduction summary\n");
+        let _ = writeln!(s, "{}\n", lines[0]);
+        for l in &lines[1..] {
+            let _ = writeln!(s, "- {l}");
+        }
+        if lines.len() > 1 {
+            s.push('\n');
+        }
+    } else {
+        let _ = writeln!(s, "\nReproduction summary");
+        for l in &lines {
+            let _ = writeln!(s, "{l}");
+        }
+    }
+    let files = summary.sources.len();
+    let commits: std::collections::BTreeSet<&str> =
+        summary.sources.iter().map(|x| x.commit.as_str()).collect();
+    let _ = writeln!(
+        s,
+        "{}Sources: {files} CSV files of the paper's repository at commits {} (data/published/sources.csv names each file, commit and machine).",
+        if markdown { "\n" } else { "" },
+        commits.into_iter().map(|c| &c[..c.len().min(12)]).collect::<Vec<_>>().join(", ")
+    );
+    s
 }

@@ -53,7 +53,7 @@ pub struct VerifyArgs {
     #[arg(long, value_name = "FILE", conflicts_with = "problem")]
     file: Option<PathBuf>,
     /// With --claim C4: the exact bonus set of this paper problem.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
 }
 

@@ -118,11 +118,16 @@ struct Output {
 }
 
 impl Output {
-    /// Creates the `--out` directory before the (long) run, so a bad path fails at once.
+    /// Creates the `--out` and `--plots` directories before the (long) run, so a bad path
+    /// fails at once and no result is lost (issue 12).
     fn prepare(&self) -> Result<(), String> {
         if let Some(dir) = &self.out {
             std::fs::create_dir_all(dir)
                 .map_err(|e| format!("cannot create output directory {}: {e}", dir.display()))?;
+        }
+        if let Some(dir) = &self.plots {
+            std::fs::create_dir_all(dir)
+                .map_err(|e| format!("cannot create plot directory {}: {e}", dir.display()))?;
         }
         Ok(())
     }

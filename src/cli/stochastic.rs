@@ -429,11 +429,8 @@ fn vi_report(
                         .iter()
                         .map(|v| render_f64(*v))
                         .collect::<Vec<_>>(),
-                    if g.is_finite() {
-                        json!(g)
-                    } else {
-                        json!("inf")
-                    },
+                    // An f64 value is a JSON number; null where infinite (JSON has no inf).
+                    json!(Some(g).filter(|g| g.is_finite())),
                     render_f64(g),
                     exact,
                     meta,
@@ -635,7 +632,10 @@ fn text(r: &Report) -> String {
             .cost_to_go_initial
             .as_str()
             .map(str::to_string)
-            .unwrap_or_else(|| r.cost_to_go_initial.to_string());
+            .unwrap_or_else(|| match &r.cost_to_go_initial {
+                Value::Null => "inf".to_string(),
+                v => v.to_string(),
+            });
         if r.value_type == "big-rational" && exact.len() > SHORT {
             let (n, d) = exact
                 .split_once('/')

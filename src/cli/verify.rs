@@ -10,7 +10,7 @@ use num_integer::Integer;
 use num_traits::{One, ToPrimitive};
 use serde_json::json;
 
-use truecost::claims::c4::{bonus_sets, End, Instance, Interval};
+use truecost::claims::c4::{bonus_analysis, End, Instance, Interval};
 use truecost::claims::exact::Q;
 use truecost::claims::{report, Scope};
 use truecost::model::{file, Problem};
@@ -153,9 +153,9 @@ fn interval_text(i: &Interval, d: &BigInt) -> String {
 
 fn bonus(problem: &Problem, format: VerifyFormat) -> Result<String, String> {
     let (inst, d) = integer_instance(problem)?;
-    let sets = bonus_sets(&inst, 1 << 22)?.ok_or(
-        "no goal is reachable from x1, or more than 2^22 stationary policies (too large for the enumeration oracle)",
-    )?;
+    let sets = bonus_analysis(&inst, 1 << 22)
+        .map_err(|e| e.to_string())?
+        .ok_or("no goal is reachable from x1: there is no single-shot path and no bonus set")?;
     let rows: Vec<_> = sets
         .iter()
         .map(|s| {

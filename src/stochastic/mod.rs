@@ -81,7 +81,7 @@ pub enum StochasticError {
         state: usize,
     },
     /// `γ`'s denominator makes a state's probabilities exceed [`problem::MAX_DENOMINATOR`].
-    #[error("gamma = {gamma} has too large a denominator: at state {state} ({moves} moves) the noise model's probabilities need a common denominator above 2^62, the exact solver's limit (gamma with at most 15 significant digits fits states of up to 2000 moves)")]
+    #[error("gamma = {gamma} has too large a denominator: at state {state} ({moves} moves) the common denominator of the noise model's probabilities exceeds 2^62, the exact solver's limit (gamma with at most 15 significant digits fits states of up to 2000 moves)")]
     GammaDenominator {
         /// `γ` as text (echoed, shortened).
         gamma: String,

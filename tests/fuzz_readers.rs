@@ -279,22 +279,20 @@ fn brute_force_optimum(s: &StochasticProblem) -> Vec<Ext> {
                 .expect("a proper policy's system is regular");
             a.swap(col, pivot);
             let inv = Q::one() / &a[col][col];
-            for k in col..=m {
-                a[col][k] = &a[col][k] * &inv;
-            }
-            for r in 0..m {
-                if r != col && !a[r][col].is_zero() {
-                    let f = a[r][col].clone();
-                    for k in col..=m {
-                        let t = &a[col][k] * &f;
-                        a[r][k] -= t;
+            let row: Vec<Q> = a[col].iter().map(|v| v * &inv).collect();
+            for (r, other) in a.iter_mut().enumerate() {
+                if r != col && !other[col].is_zero() {
+                    let f = other[col].clone();
+                    for (o, p) in other.iter_mut().zip(&row).skip(col) {
+                        *o -= p * &f;
                     }
                 }
             }
+            a[col] = row;
         }
         for (i, &x) in idx.iter().enumerate() {
             let v = a[i][m].clone();
-            if best[x].as_ref().is_none_or(|b| &v < b) {
+            if best[x].as_ref().map_or(true, |b| &v < b) {
                 best[x] = Some(v);
             }
         }

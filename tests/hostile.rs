@@ -257,6 +257,11 @@ fn f06_discount_of_a_large_grid_is_refused_with_its_bound() {
         err.contains("too large for the exact parametric analysis"),
         "{err}"
     );
+    // A 3 x 3 grid has few trajectories but a quadratic breakpoint search (696 pairs of
+    // degree 17 took five minutes): refused before it starts.
+    let small = write(dir.path(), "grid3.json", &grid_file(3, true, None));
+    let err = fails_one_line(&["discount", "--file", small.to_str().unwrap()]);
+    assert!(err.contains("units of breakpoint work"), "{err}");
     // The unit-cost grid is decided by a lemma, without enumeration.
     let unit = write(dir.path(), "unit32.json", &grid_file(32, false, None));
     let v = json(&[

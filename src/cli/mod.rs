@@ -132,7 +132,7 @@ pub fn main() -> ExitCode {
             .map(|s| s.to_string())
             .or_else(|| info.payload().downcast_ref::<String>().cloned())
             .unwrap_or_else(|| "unknown".into());
-        let line = msg.lines().next().unwrap_or("").to_string();
+        let line = truecost::echo::one_line(msg.lines().next().unwrap_or(""));
         eprintln!("error: internal error (please report): {line}");
     }));
     let cli = match Cli::try_parse() {

@@ -36,19 +36,29 @@ enum Experiment {
 #[derive(Args, Debug)]
 struct StochasticArgs {
     /// Problems, comma-separated [default: the paper's 16 problems 0-5,7-16].
-    #[arg(long, value_delimiter = ',', value_name = "LIST")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "LIST",
+        allow_negative_numbers = true
+    )]
     problems: Option<Vec<usize>>,
     /// Predictability factors γ ∈ (0, 1], decimal text, comma-separated.
-    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_GAMMAS.map(String::from))]
+    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_GAMMAS.map(String::from), allow_negative_numbers = true)]
     gammas: Vec<String>,
     /// Learning rates: ρ ∈ (0, 1] or the per-pair decay 1/n^ω with ω ∈ (0.5, 1].
-    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_RHOS.map(String::from))]
+    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_RHOS.map(String::from), allow_negative_numbers = true)]
     rhos: Vec<String>,
     /// Exploration rates ε ∈ [0, 1], or `decay` (linear from 1 to 0.1 over the episodes).
-    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_EPSILONS.map(String::from))]
+    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_EPSILONS.map(String::from), allow_negative_numbers = true)]
     epsilons: Vec<String>,
     /// Samples per learning row.
-    #[arg(long, default_value_t = 10, value_name = "N")]
+    #[arg(
+        long,
+        default_value_t = 10,
+        value_name = "N",
+        allow_negative_numbers = true
+    )]
     samples: u32,
     /// Noise model: `paper` (text) or `reference` (code).
     #[arg(long, value_enum, default_value_t = truecost::stochastic::NoiseModel::Paper)]
@@ -58,13 +68,28 @@ struct StochasticArgs {
     #[arg(long, value_enum, default_value_t = Tolerance::Relative)]
     tolerance: Tolerance,
     /// Master seed: every random choice derives from it and the sample's coordinates.
-    #[arg(long, default_value_t = 0, value_name = "S")]
+    #[arg(
+        long,
+        default_value_t = 0,
+        value_name = "S",
+        allow_negative_numbers = true
+    )]
     seed: u64,
     /// Episodes per learning run (the paper's stochastic runs: 3000).
-    #[arg(long, default_value_t = 3000, value_name = "E")]
+    #[arg(
+        long,
+        default_value_t = 3000,
+        value_name = "E",
+        allow_negative_numbers = true
+    )]
     episodes: u32,
     /// Steps per episode.
-    #[arg(long, default_value_t = 3000, value_name = "M")]
+    #[arg(
+        long,
+        default_value_t = 3000,
+        value_name = "M",
+        allow_negative_numbers = true
+    )]
     max_steps: u32,
     /// Put the paper's published numbers (data/published/) beside ours, with a verdict per
     /// metric and closing counts. The paper's VI counts need `--noise reference --tolerance
@@ -79,7 +104,7 @@ struct StochasticArgs {
 #[derive(Args, Debug)]
 struct Output {
     /// Worker threads [default: all cores, or RAYON_NUM_THREADS].
-    #[arg(long, value_name = "T")]
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
     threads: Option<usize>,
     /// Also write the report as Markdown, CSV and JSON into DIR (deterministic.md, .csv,
     /// .json, or stochastic.*).
@@ -99,11 +124,16 @@ struct Output {
 }
 
 impl Output {
-    /// Creates the `--out` directory before the (long) run, so a bad path fails at once.
+    /// Creates the `--out` and `--plots` directories before the (long) run, so a bad path
+    /// fails at once and no result is lost (issue 12).
     fn prepare(&self) -> Result<(), String> {
         if let Some(dir) = &self.out {
             std::fs::create_dir_all(dir)
                 .map_err(|e| format!("cannot create output directory {}: {e}", dir.display()))?;
+        }
+        if let Some(dir) = &self.plots {
+            std::fs::create_dir_all(dir)
+                .map_err(|e| format!("cannot create plot directory {}: {e}", dir.display()))?;
         }
         Ok(())
     }
@@ -136,13 +166,28 @@ impl Output {
 struct DeterministicArgs {
     /// Problems, comma-separated, in the order the π rows run [default: the paper's 16
     /// problems 0-5,7-16].
-    #[arg(long, value_delimiter = ',', value_name = "LIST")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "LIST",
+        allow_negative_numbers = true
+    )]
     problems: Option<Vec<usize>>,
     /// Samples per row.
-    #[arg(long, default_value_t = 100, value_name = "N")]
+    #[arg(
+        long,
+        default_value_t = 100,
+        value_name = "N",
+        allow_negative_numbers = true
+    )]
     samples: u32,
     /// Master seed: every random choice derives from it and the sample's coordinates.
-    #[arg(long, default_value_t = 0, value_name = "S")]
+    #[arg(
+        long,
+        default_value_t = 0,
+        value_name = "S",
+        allow_negative_numbers = true
+    )]
     seed: u64,
     /// `exact`: the paper's text (exact values, unit step costs, metrics after every action).
     /// `reference`: the paper's code (f64, its orders and counting rules; reproduces the
@@ -153,10 +198,20 @@ struct DeterministicArgs {
     #[arg(long, value_enum)]
     step_cost: Option<StepCost>,
     /// Episodes per learning run.
-    #[arg(long, default_value_t = 1000, value_name = "E")]
+    #[arg(
+        long,
+        default_value_t = 1000,
+        value_name = "E",
+        allow_negative_numbers = true
+    )]
     episodes: u32,
     /// Steps per episode.
-    #[arg(long, default_value_t = 3000, value_name = "M")]
+    #[arg(
+        long,
+        default_value_t = 3000,
+        value_name = "M",
+        allow_negative_numbers = true
+    )]
     max_steps: u32,
     /// Put the paper's published numbers (data/published/) beside ours, with a verdict per
     /// metric (exact / consistent / differs / machine) and closing counts. The published

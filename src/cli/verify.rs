@@ -10,7 +10,7 @@ use num_integer::Integer;
 use num_traits::{One, ToPrimitive};
 use serde_json::json;
 
-use truecost::claims::c4::{bonus_sets, End, Instance, Interval};
+use truecost::claims::c4::{bonus_analysis, End, Instance, Interval};
 use truecost::claims::exact::Q;
 use truecost::claims::{report, Scope};
 use truecost::model::{file, Problem};
@@ -53,7 +53,7 @@ pub struct VerifyArgs {
     #[arg(long, value_name = "FILE", conflicts_with = "problem")]
     file: Option<PathBuf>,
     /// With --claim C4: the exact bonus set of this paper problem.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
     /// Write every SMT obligation as a standard SMT-LIB 2.6 file (with Z3's answer as
     /// `:status`) under this directory, with an index (index.tsv), for cvc5 or Yices to
@@ -177,9 +177,9 @@ fn interval_text(i: &Interval, d: &BigInt) -> String {
 
 fn bonus(problem: &Problem, format: VerifyFormat) -> Result<String, String> {
     let (inst, d) = integer_instance(problem)?;
-    let sets = bonus_sets(&inst, 1 << 22)?.ok_or(
-        "no goal is reachable from x1, or more than 2^22 stationary policies (too large for the enumeration oracle)",
-    )?;
+    let sets = bonus_analysis(&inst, 1 << 22)
+        .map_err(|e| e.to_string())?
+        .ok_or("no goal is reachable from x1: there is no single-shot path and no bonus set")?;
     let rows: Vec<_> = sets
         .iter()
         .map(|s| {

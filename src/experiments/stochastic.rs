@@ -71,6 +71,10 @@ impl RateSpec {
     /// assert_eq!(RateSpec::parse("1/n^0.8").unwrap().rate, LearningRate::Decay(0.8));
     /// assert!(RateSpec::parse("1.5").is_err());
     /// assert!(RateSpec::parse("1/n^0.4").is_err());
+    /// // Checked on the f64 the learner runs with, and printed as it runs.
+    /// assert!(RateSpec::parse("1/n^0.50000000000000001").is_err());
+    /// assert!(RateSpec::parse("1e-400").is_err());
+    /// assert_eq!(RateSpec::parse("0.5000000000000000000000001").unwrap().text, "0.5");
     /// ```
     pub fn parse(text: &str) -> Result<Self, ExperimentError> {
         let t = text.trim();
@@ -89,10 +93,20 @@ impl RateSpec {
             })?;
             LearningRate::constant(&rho)?
         };
-        Ok(RateSpec {
-            text: t.into(),
-            rate,
-        })
+        // The text printed is what runs: the input when its f64 prints back as the same exact
+        // number (0.99, 1/n^0.8), else the f64's shortest decimal (issue 12).
+        let (value, prefix) = match rate {
+            LearningRate::Constant(r) => (r, ""),
+            LearningRate::Decay(w) => (w, "1/n^"),
+        };
+        let shortest = format!("{value:?}");
+        let given = parse_rational(t.strip_prefix("1/n^").unwrap_or(t)).ok();
+        let text = if given == parse_rational(&shortest).ok() {
+            t.to_string()
+        } else {
+            format!("{prefix}{shortest}")
+        };
+        Ok(RateSpec { text, rate })
     }
 }
 

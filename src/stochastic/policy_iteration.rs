@@ -445,7 +445,9 @@ pub fn evaluate(
 
 fn linear_error(e: LinearError) -> StochasticError {
     match e {
-        LinearError::TooLarge => StochasticError::CostTooLarge { state: 0 },
+        LinearError::TooLarge => StochasticError::TooLarge(
+            "the exact linear solve needs numbers beyond its limits (matrix entries below 2^62, right-hand sides below 2^100, at most 2^32 states)".into(),
+        ),
         e @ LinearError::TooWide { .. } => StochasticError::TooLarge(e.to_string()),
         LinearError::Singular => {
             unreachable!("policy evaluation of a proper policy is never singular (a truecost bug)")

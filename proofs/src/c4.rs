@@ -43,7 +43,7 @@ pub fn c4_corrected_set_is_the_oracles() {
 
 /// **C4 as printed** over the same domain: wherever the printed formula is defined, `π*` is
 /// average-cost optimal iff `a ≤ M ≤ min{b, S*·Lav(Ĉ) − L*}`. Must fail (the printed `A(u)`
-/// does not scale with the costs).
+/// does not scale with the costs). Domain 2^123.
 #[kani::proof]
 #[kani::unwind(9)]
 #[kani::solver(kissat)]

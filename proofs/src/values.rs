@@ -23,7 +23,7 @@ pub fn units_plus_is_exact_when_it_fits() {
 
 /// `Units::plus` on two finite values whose sum does not fit (`≥ u64::MAX`, which would read as
 /// `+∞`): the addition must report it (panic) rather than wrap or saturate. Must fail on every
-/// execution of this domain (the stand-in's test checks all of them fail). Domain ≈ 2^127.
+/// execution (the stand-in's test checks that all of them fail). Domain 2^128.
 #[kani::proof]
 #[kani::should_panic]
 pub fn units_plus_reports_every_overflow() {

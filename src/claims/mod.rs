@@ -29,6 +29,7 @@ pub mod oracle;
 pub mod poly;
 pub mod qlearning;
 pub mod registry;
+pub mod replay;
 pub mod report;
 pub mod sampled;
 pub mod tiny;
@@ -117,6 +118,8 @@ pub struct Counterexample {
     /// The problem file's text.
     #[serde(skip)]
     pub problem_file: String,
+    /// A command that shows the failure (issue 10, item 4), starting with `truecost `.
+    pub replay: Option<String>,
 }
 
 impl Counterexample {
@@ -129,6 +132,15 @@ impl Counterexample {
             details,
             file: format!("problems/counterexamples/{file}.json"),
             problem_file: crate::model::file::to_json(&problem, Some(&summary)) + "\n",
+            replay: None,
+        }
+    }
+
+    /// The same counterexample with the command that replays its failure (issue 10, item 4).
+    pub fn with_replay(self, command: String) -> Self {
+        Counterexample {
+            replay: Some(command),
+            ..self
         }
     }
 }

@@ -94,13 +94,9 @@ pub fn __choose_in(domain: u128, boundaries: &[u128]) -> u128 {
                     b[(next_random(&mut x.rng) % b.len() as u64) as usize]
                 }
             };
-            return if x.execution < BOUNDARY_EXECUTIONS {
-                boundary(x)
-            } else if next_random(&mut x.rng) % 8 == 0 {
-                boundary(x)
-            } else {
-                uniform(x)
-            };
+            let from_boundaries =
+                x.execution < BOUNDARY_EXECUTIONS || next_random(&mut x.rng).is_multiple_of(8);
+            return if from_boundaries { boundary(x) } else { uniform(x) };
         }
         if x.wide_seen {
             return 0; // the run restarts in sampled mode

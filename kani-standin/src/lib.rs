@@ -96,7 +96,11 @@ pub fn __choose_in(domain: u128, boundaries: &[u128]) -> u128 {
             };
             let from_boundaries =
                 x.execution < BOUNDARY_EXECUTIONS || next_random(&mut x.rng).is_multiple_of(8);
-            return if from_boundaries { boundary(x) } else { uniform(x) };
+            return if from_boundaries {
+                boundary(x)
+            } else {
+                uniform(x)
+            };
         }
         if x.wide_seen {
             return 0; // the run restarts in sampled mode

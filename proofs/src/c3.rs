@@ -33,9 +33,10 @@ pub fn c3_certificate_makes_discounting_avoid_the_goal() {
             );
         }
         None => {
-            // K = floor(1/((1-α) α^2)) + 1 must then exceed 255 (n = 4 states).
+            // K = floor(1/((1-α) α^2)) + 1 must then exceed 255 (n = 4 states): K <= 255 iff
+            // floor(...) < 255.
             let bound = Q::ONE / ((Q::ONE - alpha) * alpha * alpha);
-            let fits = bound.numer() / bound.denom() + 1 <= 255;
+            let fits = bound.numer() / bound.denom() < 255;
             kani::assert(!(hypotheses && fits), "a certificate whenever K fits");
         }
     }

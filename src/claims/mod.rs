@@ -203,7 +203,7 @@ where
 
 /// Keeps the minimal `(key, value)`.
 pub fn keep_min<K: Ord, T>(slot: &mut Option<(K, T)>, key: K, value: impl FnOnce() -> T) {
-    if slot.as_ref().map_or(true, |(k, _)| key < *k) {
+    if slot.as_ref().is_none_or(|(k, _)| key < *k) {
         *slot = Some((key, value()));
     }
 }

@@ -309,3 +309,29 @@ fn counterexamples_carry_a_replay_that_shows_the_failure() {
         }
     }
 }
+
+/// Issue 10, item 5, on the command line: a negative initial value makes the
+/// `⌈(max Q* − min(0, min Q₀))/c⌉` term of C1-corrected's bound decide, and the replay attains
+/// it: `0 → 0 (1), 0 → goal (1)` from `Q₀ = −2`, by hand `Q(0→0)` = −1, 0, 1, 2 over rounds 1–4.
+#[test]
+fn a_negative_start_needs_the_negative_term_of_the_bound() {
+    let (_d, f) = problem(
+        r#"{"initial": 0, "goals": [1], "actions": [[{"to": 0, "cost": "1"}, {"to": 1, "cost": "1"}], []]}"#,
+    );
+    let t = learn(
+        &f,
+        &[
+            "--q0",
+            "-2,-2,0",
+            "--order",
+            "cyclic",
+            "--rounds",
+            "10",
+            "--terminal",
+            "held",
+        ],
+    );
+    assert!(t.contains("round 1: Q(0->0)=-1 Q(0->1)=1 Q(1,uT)=0"), "{t}");
+    assert!(t.contains("round 3: Q(0->0)=1 Q(0->1)=1 Q(1,uT)=0"), "{t}");
+    assert!(t.ends_with("converged at round 4\n"), "{t}");
+}

@@ -113,7 +113,7 @@ fn corrected_values(scope: Scope) -> &'static [i64] {
     match scope {
         Scope::Smoke => &[0, 1, 3],
         // Quick includes a negative value, so the min(0, min Q0) term of R is checked in CI.
-        Scope::Quick => &[-2, 0, 1, 4],
+        Scope::Quick => &[-2, 0, 1, 2, 4],
         Scope::Full => &[-2, -1, 0, 1, 2, 4],
     }
 }
@@ -716,4 +716,34 @@ termination pair held at 0; instances satisfying H0-H2 only; fair orders: cyclic
     };
     let _ = Q::ZERO;
     (printed, corrected)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::claims::qlearning::{QProblem, Terminal};
+    use crate::claims::tiny::Tiny;
+
+    /// Issue 10, item 5: the quick scope (CI) checks the `min(0, min Q₀)` term of `R`, which
+    /// only a negative initial value exercises: on `0 → 0 (1), 0 → goal (1)` from `Q₀ = −2`,
+    /// `R = max(R₁, ⌈(max Q* − (−2))/c⌉) = max(2, 4) = 4`, and the cyclic order needs all 4
+    /// rounds (`Q(0→0)`: −1, 0, 1, 2 by hand), so a scope without negative values never sees
+    /// the term decide the bound.
+    #[test]
+    fn quick_scope_has_negative_initial_values_and_they_set_the_bound() {
+        assert!(corrected_values(Scope::Quick).iter().any(|&v| v < 0));
+        assert!(corrected_values(Scope::Quick).contains(&0));
+        let q = QProblem::new(
+            &Tiny::from_lists(&[vec![(0, 1), (1, 1)], vec![]]),
+            Terminal::HeldAtZero,
+        );
+        let mut q0 = [0i64; crate::claims::qlearning::MAX_PAIRS];
+        q0[0] = -2;
+        q0[1] = -2;
+        assert_eq!(q.round_bound(&q0), Some(4));
+        assert_eq!(
+            crate::claims::qlearning::run(&q, &q0, Order::Cyclic, 10),
+            Run::Converged(4)
+        );
+    }
 }

@@ -685,6 +685,10 @@ fn counterexample(f: &Finding, printed: bool) -> Counterexample {
         ],
         if printed { "c4-as-printed" } else { "c4-corrected" },
     )
+    .with_replay(format!(
+        "truecost verify --claim C4 --file problems/counterexamples/{}.json",
+        if printed { "c4-as-printed" } else { "c4-corrected" }
+    ))
 }
 
 /// Checks C4 as printed and C4-corrected in `scope`. Returns `(C4, C4-corrected)`.

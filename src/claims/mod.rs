@@ -29,6 +29,7 @@ pub mod oracle;
 pub mod poly;
 pub mod qlearning;
 pub mod registry;
+pub mod replay;
 pub mod report;
 pub mod sampled;
 pub mod smt;
@@ -122,6 +123,8 @@ pub struct Counterexample {
     /// The problem file's text.
     #[serde(skip)]
     pub problem_file: String,
+    /// A command that shows the failure (issue 10, item 4), starting with `truecost `.
+    pub replay: Option<String>,
 }
 
 impl Counterexample {
@@ -134,6 +137,15 @@ impl Counterexample {
             details,
             file: format!("problems/counterexamples/{file}.json"),
             problem_file: crate::model::file::to_json(&problem, Some(&summary)) + "\n",
+            replay: None,
+        }
+    }
+
+    /// The same counterexample with the command that replays its failure (issue 10, item 4).
+    pub fn with_replay(self, command: String) -> Self {
+        Counterexample {
+            replay: Some(command),
+            ..self
         }
     }
 }
@@ -196,7 +208,7 @@ where
 
 /// Keeps the minimal `(key, value)`.
 pub fn keep_min<K: Ord, T>(slot: &mut Option<(K, T)>, key: K, value: impl FnOnce() -> T) {
-    if slot.as_ref().map_or(true, |(k, _)| key < *k) {
+    if slot.as_ref().is_none_or(|(k, _)| key < *k) {
         *slot = Some((key, value()));
     }
 }

@@ -2,6 +2,7 @@
 //! 2 for usage errors (clap), 1 for bad input or a failed run.
 
 mod discount;
+mod learn;
 mod output;
 mod render;
 mod reproduce;
@@ -34,6 +35,8 @@ enum Command {
     Verify(verify::VerifyArgs),
     /// The exact set of discount factors for which a discount-optimal policy misses the goal.
     Discount(discount::DiscountArgs),
+    /// Replay derandomized Q-learning (rho = 1) on a problem file, round by round, in exact arithmetic.
+    Learn(learn::LearnArgs),
     /// List the paper's 19 grid problems with their facts (states, edges, x1, goal, optimum).
     Problems(ProblemsArgs),
     /// Solve one problem with an exact planner (or the paper's code, in reference mode).
@@ -154,6 +157,7 @@ pub fn main() -> ExitCode {
         Command::Reproduce(args) => reproduce::run(&args),
         Command::Verify(args) => verify::verify(&args),
         Command::Discount(args) => discount::discount(&args),
+        Command::Learn(args) => learn::learn(&args),
     };
     match result.and_then(|text| emit(&text)) {
         Ok(()) => ExitCode::SUCCESS,

@@ -323,7 +323,7 @@ pub fn optimum(problem: &StochasticProblem) -> Result<Optimum, StochasticError> 
                         k += nv * BigInt::from(w);
                     }
                 }
-                if best.as_ref().map_or(true, |(b, _)| &k < b) {
+                if best.as_ref().is_none_or(|(b, _)| &k < b) {
                     best = Some((k, a));
                 }
             }

@@ -35,6 +35,14 @@ impl AlphaStar {
     }
 }
 
+/// The command that shows a counterexample's failure: its own replay (issue 10, item 4), or
+/// the exact solve of its problem file.
+fn replay_command(ce: &super::Counterexample) -> String {
+    ce.replay
+        .clone()
+        .unwrap_or_else(|| format!("truecost solve --file {} --algorithm dijkstra", ce.file))
+}
+
 /// The whole report.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Report {
@@ -86,6 +94,7 @@ pub fn json(report: &Report, with_times: bool) -> String {
                         "problem": ce.problem,
                         "details": ce.details.iter().map(|(k, v)| json!({"name": k, "value": v})).collect::<Vec<_>>(),
                         "file": ce.file,
+                        "replay": replay_command(ce),
                         "problem_file": serde_json::from_str::<Value>(&ce.problem_file).expect("valid problem file"),
                     }),
                 );
@@ -160,11 +169,7 @@ pub fn text(report: &Report, with_times: bool) -> String {
             for (k, v) in &ce.details {
                 let _ = writeln!(s, "    {k}: {v}");
             }
-            let _ = writeln!(
-                s,
-                "    replay: truecost solve --file {} --algorithm dijkstra",
-                ce.file
-            );
+            let _ = writeln!(s, "    replay: {}", replay_command(ce));
         }
         for n in &c.notes {
             let _ = writeln!(s, "  note: {n}");
@@ -235,6 +240,7 @@ pub fn markdown(report: &Report, with_times: bool) -> String {
                 let _ = writeln!(s, "- {k}: `{v}`");
             }
             let _ = writeln!(s, "- file: `{}`", ce.file);
+            let _ = writeln!(s, "- replay: `{}`", replay_command(ce));
         }
         for n in &c.notes {
             let _ = writeln!(s, "- note: {n}");

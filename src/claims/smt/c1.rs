@@ -790,7 +790,15 @@ fn replay_printed(o: &Obligation, m: &Model) -> Replay {
                 format!("C1 counterexample (smt): {what}"),
                 vec![("initial values".into(), values.join(", "))],
                 "c1-smt",
-            );
+            )
+            .with_replay(format!(
+                "truecost learn --file problems/counterexamples/c1-smt.json --q0 {} --order cyclic --terminal updated --rounds {}",
+                (0..pairs.len())
+                    .map(|p| q0[p].to_string())
+                    .collect::<Vec<_>>()
+                    .join(","),
+                (k + period + 2).max(4)
+            ));
             Replay::Confirmed(what, Some(ce))
         }
         Run::Converged(k) => Replay::NotConfirmed(format!("the oracle converges after {k} rounds")),

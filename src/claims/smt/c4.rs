@@ -944,6 +944,9 @@ fn counterexample(
         ],
         file: format!("problems/counterexamples/{name}.json"),
         problem_file: crate::model::file::to_json(&problem, Some(what)) + "\n",
+        replay: Some(format!(
+            "truecost verify --claim C4 --file problems/counterexamples/{name}.json"
+        )),
     }
 }
 

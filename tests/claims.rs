@@ -156,12 +156,23 @@ fn smoke_report_verdicts_and_minimal_counterexamples() {
     let r = run(Scope::Smoke, None).unwrap();
     let verdict = |id: &str| r.claims.iter().find(|c| c.id == id).unwrap().verdict;
     assert_eq!(verdict("C1"), Verdict::Refuted);
-    assert_eq!(verdict("C1-corrected"), Verdict::Verified);
-    assert_eq!(verdict("C2"), Verdict::Verified);
-    assert_eq!(verdict("C3"), Verdict::Verified);
-    assert_eq!(verdict("C3-example"), Verdict::Verified);
+    assert_eq!(verdict("C1-corrected"), Verdict::Proved);
+    assert_eq!(verdict("C2"), Verdict::Proved);
+    assert_eq!(verdict("C3"), Verdict::Proved);
+    assert_eq!(verdict("C3-example"), Verdict::Proved);
     assert_eq!(verdict("C4"), Verdict::Refuted);
-    assert_eq!(verdict("C4-corrected"), Verdict::Verified);
+    assert_eq!(verdict("C4-corrected"), Verdict::Proved);
+    // The proved claims were decided by the SMT engine, and every engine that ran agrees.
+    for c in r.claims.iter().filter(|c| c.verdict == Verdict::Proved) {
+        assert_eq!(c.engine, "smt (Z3)", "{}", c.id);
+        let smt = c.engines.iter().find(|e| e.engine == "smt (Z3)").unwrap();
+        assert_eq!((smt.mode.as_str(), smt.failures), ("proof", 0), "{}", c.id);
+        assert!(c
+            .engines
+            .iter()
+            .filter(|e| e.engine.starts_with("exhaustive"))
+            .all(|e| e.failures == 0));
+    }
     // C1: the headline counterexample is the zero-cost cycle started below Q* (issue 10): state
     // 0 with a zero-cost self-loop and a move of cost 1 to the goal, every value 0: the self-loop
     // keeps Q(0->0) = 0 < Q* = 1. The lone goal whose termination value starts at 1 is a note.

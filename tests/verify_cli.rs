@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::cli::{fails_one_line, stdout, truecost};
+use common::cli::{fails, fails_one_line, stdout, truecost};
 use serde_json::Value;
 
 #[test]
@@ -59,8 +59,33 @@ fn verify_json_has_the_required_shape_and_exits_0_with_refuted_claims() {
 fn verify_prints_cases_per_second_unless_told_not_to() {
     let text = stdout(&["verify", "--scope", "smoke", "--claim", "C2"]);
     assert!(text.contains("cases/s"), "{text}");
-    assert!(text.contains("C2  VERIFIED"));
+    assert!(text.contains("obligations/s"), "{text}");
+    assert!(text.contains("smt solver: Z3 4."), "{text}");
+    assert!(text.contains("C2  PROVED"));
     assert!(!text.contains("C1 "));
+    // Without times: neither the rates nor the solver's version (a property of the machine).
+    let quiet = stdout(&["verify", "--scope", "smoke", "--claim", "C2", "--no-times"]);
+    assert!(quiet.contains("C2  PROVED") && quiet.contains("engine: smt (Z3) [proof]"));
+    assert!(!quiet.contains("obligations/s") && !quiet.contains("smt solver"));
+    // --no-smt leaves the enumeration's verdict.
+    let no_smt = stdout(&["verify", "--scope", "smoke", "--claim", "C2", "--no-smt"]);
+    assert!(no_smt.contains("C2  VERIFIED") && !no_smt.contains("smt (Z3)"));
+}
+
+#[test]
+fn verify_smt_out_refuses_a_non_empty_directory_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("x"), "x").unwrap();
+    let e = fails_one_line(&[
+        "verify",
+        "--scope",
+        "smoke",
+        "--smt-out",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert!(e.contains("not empty"), "{e}");
+    let e = fails(&["verify", "--smt-out", "x", "--no-smt"], 2);
+    assert!(e.contains("--no-smt"), "{e}");
 }
 
 #[test]

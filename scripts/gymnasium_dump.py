@@ -40,8 +40,7 @@ CONFIGS = [
     ("frozenlake_map_3x5", "frozenlake:map=tests/data/gymnasium/map_3x5.txt", "FrozenLake-v1",
      {"desc": read_map("map_3x5.txt")}),
     ("cliffwalking", "cliffwalking", "CliffWalking-v1", {}),
-    ("cliffwalking_slippery", "cliffwalking:slippery=true", "CliffWalking-v1",
-     {"is_slippery": True}),
+    ("cliffwalking_slippery", "cliffwalking:slippery=true", "CliffWalkingSlippery-v1", {}),
     ("taxi", "taxi", "Taxi-v4", {}),
 ]
 

@@ -10,10 +10,12 @@
 #![warn(missing_docs)]
 
 pub mod claims;
+pub mod envs;
 pub mod experiments;
 pub mod figures;
 pub mod learning;
 pub mod model;
+pub mod objectives;
 pub mod planning;
 pub mod problems;
 pub mod solvers;

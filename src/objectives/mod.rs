@@ -26,6 +26,10 @@
 //! truecost and number of steps of the policy it reports (`+∞` if that policy is improper).
 //! With an initial distribution (Taxi), values at "the initial state" are expectations over it.
 
+pub mod report;
+
+pub use report::facts;
+
 use num_traits::{One, Signed, Zero};
 
 use crate::envs::Environment;
@@ -574,4 +578,152 @@ pub fn min_reach(
             }
         })
         .collect())
+}
+
+/// The objective named on the command line (`truecost`, `reach`, `discounted`), with `α`'s
+/// exact decimal text for `discounted` (issue 11, item 2).
+///
+/// ```
+/// use truecost::objectives::Objective;
+/// assert_eq!(truecost::objectives::parse_objective("discounted", Some("0.99")).unwrap(), Objective::Discounted("99/100".parse().unwrap()));
+/// assert!(truecost::objectives::parse_objective("discounted", None).is_err());
+/// assert!(truecost::objectives::parse_objective("reach", Some("0.9")).is_err());
+/// ```
+pub fn parse_objective(name: &str, alpha: Option<&str>) -> Result<Objective, String> {
+    match (name, alpha) {
+        ("truecost", None) => Ok(Objective::Truecost),
+        ("reach", None) => Ok(Objective::Reach),
+        ("discounted", Some(text)) => Ok(Objective::Discounted(parse_alpha(text)?)),
+        ("discounted", None) => Err("--objective discounted needs --alpha A (in (0, 1))".into()),
+        ("truecost" | "reach", Some(_)) => {
+            Err("--alpha applies to --objective discounted only".into())
+        }
+        (other, _) => Err(format!(
+            "unknown objective '{other}' (truecost, reach, discounted)"
+        )),
+    }
+}
+
+/// Parses a discount factor `α ∈ (0, 1)` from its exact text.
+pub fn parse_alpha(text: &str) -> Result<Rational, String> {
+    let a = crate::value::parse_rational(text).map_err(|e| format!("alpha: {e}"))?;
+    if a.is_positive() && a < Rational::one() {
+        Ok(a)
+    } else {
+        Err(ObjectiveError::Alpha(text.to_string()).to_string())
+    }
+}
+
+/// Where a model comes from: an environment, a paper problem or a problem file (issue 11,
+/// item 1: `--env` wherever `--problem`/`--file` is accepted).
+#[derive(Clone, Debug)]
+pub enum Source {
+    /// `--env SPEC`.
+    Env(String),
+    /// `--problem N` (exact paper text, unit or Euclidean step costs), with `γ` and a noise
+    /// model (γ = 1: deterministic).
+    Paper {
+        /// The problem number.
+        id: usize,
+        /// The step cost.
+        step: crate::problems::StepCost,
+        /// The noise model.
+        noise: crate::stochastic::NoiseModel,
+        /// `γ`.
+        gamma: crate::stochastic::Predictability,
+    },
+    /// `--file F` (a deterministic file gets the noise model and `γ`).
+    File {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The noise model.
+        noise: crate::stochastic::NoiseModel,
+        /// `γ`, if given (refused for files that list outcomes).
+        gamma: Option<crate::stochastic::Predictability>,
+    },
+}
+
+impl Source {
+    /// Builds the model (reads files, builds environments). Errors are one line.
+    pub fn load(&self) -> Result<Model, String> {
+        use crate::stochastic::file::{read, ProblemFile};
+        match self {
+            Source::Env(spec) => {
+                let env = crate::envs::EnvSpec::parse(spec)
+                    .and_then(|s| s.build())
+                    .map_err(|e| e.to_string())?;
+                Model::from_environment(&env).map_err(|e| e.to_string())
+            }
+            Source::Paper {
+                id,
+                step,
+                noise,
+                gamma,
+            } => {
+                let p = crate::stochastic::grid::exact_grid(*id, *step, *noise, gamma)
+                    .map_err(|e| e.to_string())?;
+                Ok(Model::from_problem(p, format!("paper problem {id}")))
+            }
+            Source::File { path, noise, gamma } => {
+                let p = match read(path).map_err(|e| e.to_string())? {
+                    ProblemFile::Deterministic(d) => StochasticProblem::from_deterministic(
+                        &d,
+                        *noise,
+                        gamma
+                            .as_ref()
+                            .unwrap_or(&crate::stochastic::Predictability::one()),
+                    )
+                    .map_err(|e| e.to_string())?,
+                    ProblemFile::Stochastic(s) => {
+                        if gamma.is_some() {
+                            return Err("this problem file lists its own outcome probabilities; --gamma applies to deterministic problems".into());
+                        }
+                        *s
+                    }
+                };
+                Ok(Model::from_problem(p, format!("file {}", path.display())))
+            }
+        }
+    }
+}
+
+impl Model {
+    /// The problem as a problem file can hold it (issue 11, item 1, `export`): with a single
+    /// initial state, the problem itself; with an initial distribution (Taxi), one extra state
+    /// (numbered `|X|`, the new initial state) whose single zero-cost action draws the initial
+    /// state — truecost and reach values are unchanged, every path is one step longer.
+    ///
+    /// ```
+    /// use truecost::envs::EnvSpec;
+    /// use truecost::objectives::Model;
+    /// let m = Model::from_environment(&EnvSpec::parse("taxi").unwrap().build().unwrap()).unwrap();
+    /// let p = m.exportable().unwrap();
+    /// assert_eq!((p.states(), p.initial(), p.outcomes(p.actions(500).start).len()), (501, 500, 300));
+    /// ```
+    pub fn exportable(&self) -> Result<StochasticProblem, StochasticError> {
+        if self.initial.len() == 1 {
+            return Ok(self.problem.clone());
+        }
+        let p = &self.problem;
+        let n = p.states();
+        let mut actions: Vec<Vec<StochasticAction>> = (0..n)
+            .map(|x| {
+                p.actions(x)
+                    .map(|a| StochasticAction {
+                        cost: p.cost(a).clone(),
+                        outcomes: p.outcomes(a).to_vec(),
+                    })
+                    .collect()
+            })
+            .collect();
+        actions.push(vec![StochasticAction {
+            cost: Rational::zero(),
+            outcomes: self
+                .initial
+                .iter()
+                .map(|(x, q)| listed(*x, q.clone()))
+                .collect(),
+        }]);
+        StochasticProblem::new(actions, n, p.goals().to_vec())
+    }
 }

@@ -5,8 +5,10 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 
-use truecost::objectives::report::{compare, compare_json, compare_latex, compare_markdown, compare_text};
 use truecost::objectives::parse_alpha;
+use truecost::objectives::report::{
+    compare, compare_json, compare_latex, compare_markdown, compare_text,
+};
 use truecost::problems::StepCost;
 use truecost::stochastic::NoiseModel;
 

@@ -95,7 +95,10 @@ pub fn solution_text(model: &Model, s: &Solution) -> String {
     let initial = if model.initial.len() == 1 {
         format!("state {}", model.initial[0].0)
     } else {
-        format!("uniform over {} states (values are expectations)", model.initial.len())
+        format!(
+            "uniform over {} states (values are expectations)",
+            model.initial.len()
+        )
     };
     let value = exact(&s.value_initial);
     let value = if value.len() > 60 {
@@ -112,7 +115,10 @@ pub fn solution_text(model: &Model, s: &Solution) -> String {
             format!("{value} ~ {}", decimal(&s.value_initial, DIGITS)),
         ),
         ("success probability", success_text(&s.success)),
-        ("policy success", decimal(&rational(&s.policy_success), DIGITS)),
+        (
+            "policy success",
+            decimal(&rational(&s.policy_success), DIGITS),
+        ),
         ("expected truecost", decimal(&s.truecost, DIGITS)),
         ("expected steps", decimal(&s.steps, DIGITS)),
     ];
@@ -120,13 +126,20 @@ pub fn solution_text(model: &Model, s: &Solution) -> String {
         out.push_str(&format!("{k:<26}{v}\n"));
     }
     if let Some(m) = &model.terminal_bonus {
-        out.push_str(&format!("{:<26}{m} (Proposition 4's M: the delivery's +20)\n", "terminal bonus"));
+        out.push_str(&format!(
+            "{:<26}{m} (Proposition 4's M: the delivery's +20)\n",
+            "terminal bonus"
+        ));
     }
     let policy: Vec<String> = policy_indices(model, s)
         .iter()
         .map(|a| a.map_or("-".into(), |a| a.to_string()))
         .collect();
-    out.push_str(&format!("{:<26}{}\n", "policy (action per state)", policy.join(" ")));
+    out.push_str(&format!(
+        "{:<26}{}\n",
+        "policy (action per state)",
+        policy.join(" ")
+    ));
     out
 }
 
@@ -156,7 +169,7 @@ pub fn compare(model: &Model, alphas: &[Rational]) -> Result<Vec<CompareRow>, Ob
 
 fn label(o: &Objective) -> String {
     match o {
-        Objective::Discounted(a) => format!("discounted a={}", decimal(&rational(a), DIGITS)),
+        Objective::Discounted(a) => format!("discounted a={}", decimal(&rational(a), 6)),
         o => o.name().to_string(),
     }
 }
@@ -183,6 +196,14 @@ pub fn compare_json(model: &Model, rows: &[CompareRow]) -> Value {
     })
 }
 
+/// A table cell: integers exactly, other values as 6 significant digits.
+fn cell(v: &Extended) -> String {
+    match v {
+        Extended::Finite(r) if r.is_integer() => r.to_string(),
+        v => decimal(v, 6),
+    }
+}
+
 /// The comparison's cells as decimals: objective, value, success, truecost, steps.
 fn cells(rows: &[CompareRow]) -> Vec<[String; 5]> {
     rows.iter()
@@ -190,13 +211,13 @@ fn cells(rows: &[CompareRow]) -> Vec<[String; 5]> {
             let s = &r.solution;
             [
                 label(&r.objective),
-                decimal(&s.value_initial, 6),
+                cell(&s.value_initial),
                 match (&s.success.min, &s.success.max) {
-                    (a, b) if a == b => decimal(&rational(a), 6),
-                    (a, b) => format!("{}..{}", decimal(&rational(a), 6), decimal(&rational(b), 6)),
+                    (a, b) if a == b => cell(&rational(a)),
+                    (a, b) => format!("{}..{}", cell(&rational(a)), cell(&rational(b))),
                 },
-                decimal(&s.truecost, 6),
-                decimal(&s.steps, 6),
+                cell(&s.truecost),
+                cell(&s.steps),
             ]
         })
         .collect()
@@ -229,7 +250,10 @@ pub fn compare_text(model: &Model, rows: &[CompareRow]) -> String {
             .trim_end()
             .to_string()
     };
-    let mut out = format!("{} ({}; decimals of exact values)\n", model.name, model.reward_source);
+    let mut out = format!(
+        "{} ({}; decimals of exact values)\n",
+        model.name, model.reward_source
+    );
     out.push_str(&line(&HEADER.map(String::from)));
     out.push('\n');
     for row in &body {
@@ -241,7 +265,13 @@ pub fn compare_text(model: &Model, rows: &[CompareRow]) -> String {
 
 /// The comparison as a Markdown table.
 pub fn compare_markdown(model: &Model, rows: &[CompareRow]) -> String {
-    let mut out = format!("**{}** ({})\n\n| {} |\n|{}|\n", model.name, model.reward_source, HEADER.join(" | "), "---|".repeat(5));
+    let mut out = format!(
+        "**{}** ({})\n\n| {} |\n|{}\n",
+        model.name,
+        model.reward_source,
+        HEADER.join(" | "),
+        "---|".repeat(5)
+    );
     for row in cells(rows) {
         out.push_str(&format!("| {} |\n", row.join(" | ")));
     }
@@ -250,7 +280,11 @@ pub fn compare_markdown(model: &Model, rows: &[CompareRow]) -> String {
 
 /// The comparison as a LaTeX tabular.
 pub fn compare_latex(model: &Model, rows: &[CompareRow]) -> String {
-    let esc = |s: &str| s.replace('_', "\\_").replace('%', "\\%").replace("inf", "$\\infty$");
+    let esc = |s: &str| {
+        s.replace('_', "\\_")
+            .replace('%', "\\%")
+            .replace("inf", "$\\infty$")
+    };
     let mut out = format!(
         "% {} ({})\n\\begin{{tabular}}{{lrrrr}}\n\\hline\n{} \\\\\n\\hline\n",
         model.name,

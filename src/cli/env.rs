@@ -133,9 +133,22 @@ pub fn problems(spec: &str, format: super::ListFormat) -> Result<String, String>
         super::ListFormat::Json => pretty(&facts),
         _ => {
             let mut out = String::new();
-            for (k, v) in facts.as_object().expect("an object") {
+            for k in [
+                "source",
+                "states",
+                "actions",
+                "outcomes",
+                "initial_states",
+                "goals",
+                "traps",
+                "terminal_bonus",
+                "cost_to_go_initial",
+                "reach_probability_initial",
+                "reach_probability_initial_decimal",
+            ] {
+                let v = &facts[k];
                 let v = v.as_str().map_or_else(|| v.to_string(), str::to_string);
-                out.push_str(&format!("{k:<28}{v}\n"));
+                out.push_str(&format!("{k:<35}{v}\n"));
             }
             out
         }

@@ -169,7 +169,7 @@ pub fn compare(model: &Model, alphas: &[Rational]) -> Result<Vec<CompareRow>, Ob
 
 fn label(o: &Objective) -> String {
     match o {
-        Objective::Discounted(a) => format!("discounted a={}", decimal(&rational(a), 6)),
+        Objective::Discounted(a) => format!("discounted a={}", short_decimal(a)),
         o => o.name().to_string(),
     }
 }
@@ -194,6 +194,21 @@ pub fn compare_json(model: &Model, rows: &[CompareRow]) -> Value {
             v
         }).collect::<Vec<_>>(),
     })
+}
+
+/// `α` as a short decimal (`0.99`), or `p/q` if its expansion does not end within 12 digits.
+fn short_decimal(a: &Rational) -> String {
+    let d = decimal(&rational(a), DIGITS);
+    let d = if d.contains('.') && !d.contains('e') {
+        d.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        d
+    };
+    if crate::value::parse_rational(&d).ok().as_ref() == Some(a) {
+        d
+    } else {
+        a.to_string()
+    }
 }
 
 /// A table cell: integers exactly, other values as 6 significant digits.

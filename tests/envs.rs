@@ -328,3 +328,38 @@ fn bad_objectives_and_specs_are_refused() {
         );
     }
 }
+
+#[test]
+fn figures_draw_the_map_and_the_policy() {
+    use truecost::envs::figure::{policy_overlay, scene, value_overlay};
+    use truecost::figures::render::draw;
+    let env = EnvSpec::parse("frozenlake:map=8x8")
+        .unwrap()
+        .build()
+        .unwrap();
+    let m = Model::from_environment(&env).unwrap();
+    let s = m.solve(&Objective::Discounted(q("0.9"))).unwrap();
+    let sc = scene(&env).unwrap();
+    let canvas = draw(&sc, &policy_overlay(&env, &m, &s), 600, 600).unwrap();
+    assert_eq!(canvas.of_class("obstacle").count(), 10, "the ten holes");
+    // One arrow per state with an action (64 − 10 holes − 1 goal), except the actions aimed at
+    // the border (LEFT 0 in column 0, DOWN 1 in row 7, RIGHT 2 in column 7, UP 3 in row 0).
+    let mut arrows = 0;
+    for x in 0..64 {
+        if let Some(a) = s.policy[x] {
+            let a = a - m.problem.actions(x).start;
+            let (r, c) = (x / 8, x % 8);
+            let wall = matches!((a, r, c), (0, _, 0) | (1, 7, _) | (2, _, 7) | (3, 0, _));
+            arrows += usize::from(!wall);
+        }
+    }
+    assert!(arrows < 53 && arrows > 30);
+    assert_eq!(canvas.of_class("policy").count(), arrows);
+    let cliff = EnvSpec::parse("cliffwalking").unwrap().build().unwrap();
+    let cm = Model::from_environment(&cliff).unwrap();
+    let cs = cm.solve(&Objective::Truecost).unwrap();
+    let canvas = draw(&scene(&cliff).unwrap(), &value_overlay(&cs), 600, 300).unwrap();
+    assert_eq!(canvas.of_class("obstacle").count(), 10, "the cliff");
+    assert_eq!(canvas.of_class("value").count(), 48);
+    assert!(scene(&EnvSpec::parse("taxi").unwrap().build().unwrap()).is_err());
+}

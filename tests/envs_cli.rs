@@ -294,3 +294,44 @@ fn bad_input_fails_cleanly() {
         2,
     );
 }
+
+#[test]
+fn render_env_writes_svg_and_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("fl.svg");
+    let svg = svg.to_str().unwrap();
+    stdout(&[
+        "render",
+        "--env",
+        "frozenlake",
+        "--overlay",
+        "policy",
+        "--objective",
+        "reach",
+        "--out",
+        svg,
+    ]);
+    let text = std::fs::read_to_string(svg).unwrap();
+    assert!(text.contains("success probability 0.823529"), "caption");
+    let png = dir.path().join("cw.png");
+    stdout(&[
+        "render",
+        "--env",
+        "cliffwalking",
+        "--overlay",
+        "values",
+        "--out",
+        png.to_str().unwrap(),
+    ]);
+    assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+    fails_one_line(&["render", "--env", "taxi", "--out", svg]);
+    fails_one_line(&[
+        "render",
+        "--env",
+        "frozenlake",
+        "--overlay",
+        "visits",
+        "--out",
+        svg,
+    ]);
+}

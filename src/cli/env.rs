@@ -161,3 +161,61 @@ pub fn pretty(v: &serde_json::Value) -> String {
     s.push('\n');
     s
 }
+
+/// `render --env SPEC [--objective O --alpha A] --overlay none|values|policy --out F`
+/// (issue 11, item 5).
+pub fn render(
+    spec: &str,
+    objective: &ObjectiveArgs,
+    overlay: super::render::OverlayKind,
+    width: u32,
+    height: u32,
+    out: &std::path::Path,
+) -> Result<String, String> {
+    use super::render::OverlayKind;
+    use truecost::envs::figure::{policy_overlay, scene, value_overlay};
+    use truecost::figures::render::{draw, Overlay};
+    let env = truecost::envs::EnvSpec::parse(spec)
+        .and_then(|s| s.build())
+        .map_err(|e| e.to_string())?;
+    let mut scene = scene(&env).map_err(|e| e.to_string())?;
+    let name = match objective.objective.unwrap_or(ObjectiveName::Truecost) {
+        ObjectiveName::Truecost => "truecost",
+        ObjectiveName::Reach => "reach",
+        ObjectiveName::Discounted => "discounted",
+    };
+    let objective = parse_objective(name, objective.alpha.as_deref())?;
+    let overlay = match overlay {
+        OverlayKind::None => Overlay::None,
+        OverlayKind::Values | OverlayKind::Policy => {
+            let model = Model::from_environment(&env).map_err(|e| e.to_string())?;
+            let s = model.solve(&objective).map_err(|e| e.to_string())?;
+            let p = |r: &truecost::value::Rational| {
+                truecost::stochastic::decimal(&truecost::value::Extended::Finite(r.clone()), 6)
+            };
+            let success = if s.success.min == s.success.max {
+                p(&s.success.min)
+            } else {
+                format!("{} to {}", p(&s.success.min), p(&s.success.max))
+            };
+            scene.caption = format!(
+                "{}; {} objective, exact; initial value {}; success probability {success}",
+                scene.caption,
+                name,
+                truecost::stochastic::decimal(&s.value_initial, 6)
+            );
+            if overlay == OverlayKind::Values {
+                value_overlay(&s)
+            } else {
+                scene
+                    .caption
+                    .push_str(" (an action aimed at the border is not drawn)");
+                policy_overlay(&env, &model, &s)
+            }
+        }
+        _ => return Err("render --env draws --overlay none, values or policy".into()),
+    };
+    let canvas = draw(&scene, &overlay, width, height).map_err(|e| e.to_string())?;
+    canvas.save(out).map_err(|e| e.to_string())?;
+    Ok(format!("wrote {} ({width}x{height})\n", out.display()))
+}

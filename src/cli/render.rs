@@ -36,8 +36,12 @@ pub enum OverlayKind {
 }
 
 #[derive(Args, Debug)]
-#[command(group(clap::ArgGroup::new("source").required(true).args(["problem", "file"])))]
+#[command(group(clap::ArgGroup::new("source").required(true).args(["problem", "file", "env"])))]
 pub struct RenderArgs {
+    #[command(flatten)]
+    env: super::env::EnvArg,
+    #[command(flatten)]
+    objective: super::env::ObjectiveArgs,
     /// One of the paper's problems, 0 to 18.
     #[arg(long, value_name = "N")]
     problem: Option<usize>,
@@ -87,6 +91,16 @@ pub struct RenderArgs {
 
 /// Runs the command; returns the message printed on success.
 pub fn run(args: &RenderArgs) -> Result<String, String> {
+    if let Some(spec) = &args.env.env {
+        return super::env::render(
+            spec,
+            &args.objective,
+            args.overlay,
+            args.width,
+            args.height,
+            &args.out,
+        );
+    }
     if args.gamma.is_some() || args.noise.is_some() || file_lists_outcomes(args) {
         return stochastic(args);
     }

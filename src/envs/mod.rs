@@ -16,6 +16,7 @@
 //! The problem the solvers see is built by [`crate::objectives::Model::from_environment`].
 
 pub mod cliffwalking;
+pub mod figure;
 pub mod frozenlake;
 pub mod taxi;
 

@@ -23,7 +23,9 @@ fn objectives(c: &mut Criterion) {
     let mut group = c.benchmark_group("objectives");
     group.sample_size(10);
     for spec in ENVS {
-        let env = EnvSpec::parse(spec).and_then(|s| s.build()).expect("a valid spec");
+        let env = EnvSpec::parse(spec)
+            .and_then(|s| s.build())
+            .expect("a valid spec");
         let model = Model::from_environment(&env).expect("a valid environment");
         for objective in [
             Objective::Truecost,

@@ -287,7 +287,7 @@ impl Model {
                     let allowed = (0..p.action_total())
                         .map(|a| {
                             let x = p.state_of(a);
-                            !values[x].is_finite_value() || opt.is_optimal_action(p, a)
+                            values[x].finite().is_none() || opt.is_optimal_action(p, a)
                         })
                         .collect();
                     (values, opt.policy_actions().to_vec(), allowed)
@@ -412,16 +412,6 @@ fn listed(successor: StateId, probability: Rational) -> Outcome {
         successor,
         probability,
         kind: OutcomeKind::Listed,
-    }
-}
-
-trait FiniteValue {
-    fn is_finite_value(&self) -> bool;
-}
-
-impl FiniteValue for Extended {
-    fn is_finite_value(&self) -> bool {
-        matches!(self, Extended::Finite(_))
     }
 }
 

@@ -10,6 +10,7 @@
 #![warn(missing_docs)]
 
 pub mod claims;
+pub mod echo;
 pub mod envs;
 pub mod experiments;
 pub mod figures;

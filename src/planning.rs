@@ -194,3 +194,90 @@ fn plan_on<V: CostValue>(
         policy,
     }
 }
+
+/// What one model-free planning run measures: counts only — no values, no text, nothing on the
+/// heap (it is `Copy`), so the timed region that returns it cannot render or build a report
+/// (issue 13, item 1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct PlanCounts {
+    /// Sweeps (VI) or heap pops (Dijkstra).
+    pub iterations: u64,
+    /// Actions counted by the exploration.
+    pub exploration_actions: u64,
+    /// Actions counted by the planner: backups (VI) or relaxations (Dijkstra).
+    pub planner_actions: u64,
+    /// Whether the planner found a path from `x1` to a goal.
+    pub reached_goal: bool,
+    /// States on that path, `x1` and the goal included (0 if none).
+    pub path_states: usize,
+}
+
+impl PlanCounts {
+    /// `exploration_actions + planner_actions` (SPEC §2, "Report actions = exploration + solver").
+    pub fn actions(&self) -> u64 {
+        self.exploration_actions + self.planner_actions
+    }
+}
+
+/// The timed region of a model-free planner row (issue 13, item 1; SPEC §2 "model-free
+/// variants"): the robot explores the **prepared** graph, then the planner runs on the
+/// discovered graph and its path is read off — what the paper's code times. Problem
+/// compilation happens before (the caller passes a compiled [`Graph`]); no oracle runs here (in
+/// reference mode Dijkstra is only the paper's forward search, never the backward search
+/// [`plan_reference`] adds for reporting `G*`), and nothing is rendered.
+///
+/// The counts agree with [`plan_exact`] / [`plan_reference`] with `model_free = true`.
+///
+/// ```
+/// use truecost::planning::{model_free_counts, plan_reference, Algorithm, Mode};
+/// use truecost::problems::GridLayout;
+/// let graph = GridLayout::reference(10).unwrap().to_reference_graph();
+/// let c = model_free_counts(&graph, Algorithm::Dijkstra, Mode::Reference);
+/// // The published counts of Problem 10 (shared/reference/problem10.md).
+/// assert_eq!((c.exploration_actions, c.iterations, c.planner_actions), (3266, 331, 1157));
+/// assert_eq!((c.actions(), c.path_states), (4423, 64));
+/// let report = plan_reference(&graph, Algorithm::Dijkstra, true);
+/// assert_eq!((report.iterations, report.actions), (c.iterations, c.actions()));
+/// ```
+pub fn model_free_counts<V: CostValue>(
+    graph: &Graph<V>,
+    algorithm: Algorithm,
+    mode: Mode,
+) -> PlanCounts {
+    let explored = explore(graph);
+    let work = &explored.graph;
+    let path_counts = |path: Option<Vec<usize>>| {
+        let path = path.unwrap_or_default();
+        (!path.is_empty(), path.len())
+    };
+    let (iterations, planner_actions, (reached_goal, path_states)) = match algorithm {
+        Algorithm::Dijkstra if mode == Mode::Reference => {
+            let forward = dijkstra::from_initial(work);
+            let c = forward.counts;
+            (c.pops, c.relaxations, path_counts(Some(forward.path)))
+        }
+        Algorithm::Dijkstra => {
+            let s = dijkstra::to_goals(work);
+            let path = follow_policy(work, &s.policy, work.initial());
+            (s.iterations, s.actions, path_counts(path))
+        }
+        Algorithm::Vi | Algorithm::AsyncVi => {
+            let schedule = if algorithm == Algorithm::Vi {
+                Schedule::Synchronous
+            } else {
+                Schedule::Asynchronous
+            };
+            let max_sweeps = (mode == Mode::Reference).then_some(REFERENCE_MAX_SWEEPS);
+            let s = value_iteration(work, schedule, max_sweeps);
+            let path = follow_policy(work, &s.policy, work.initial());
+            (s.iterations, s.actions, path_counts(path))
+        }
+    };
+    PlanCounts {
+        iterations,
+        exploration_actions: explored.actions,
+        planner_actions,
+        reached_goal,
+        path_states,
+    }
+}

@@ -249,19 +249,51 @@ impl std::str::FromStr for Extended {
     }
 }
 
-/// Why a text is not an exact rational.
+/// The longest number text [`parse_rational`] reads, in bytes (surrounding blanks excluded):
+/// 4096 digits are far more than any exact input needs (the paper's largest exact values have
+/// about 1500 digits), and the bound keeps every parse and every message small.
+pub const MAX_NUMBER_TEXT: usize = 4096;
+
+/// The largest decimal exponent `|e|` of `1e…` that [`parse_rational`] reads: `10^10000`
+/// already has 10001 digits.
+pub const MAX_EXPONENT: u64 = 10_000;
+
+/// Why a text is not an exact rational: the input (escaped and shortened by
+/// [`crate::echo::echo`], so a message stays one short line) and the reason.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("'{text}' is not an exact number (expected an integer, a decimal such as 0.999, or a fraction such as 800/19)")]
+#[error("'{}' {reason}", crate::echo::echo(.text))]
 pub struct ParseRationalError {
-    /// The offending text.
+    /// The offending text (as given; echoed escaped and shortened).
     pub text: String,
+    /// Why it was refused.
+    pub reason: ParseRationalReason,
+}
+
+/// Why [`parse_rational`] refused a text.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ParseRationalReason {
+    /// Not of the accepted shapes.
+    #[error("is not an exact number (expected an integer, a decimal such as 0.999, or a fraction such as 800/19)")]
+    Syntax,
+    /// Longer than [`MAX_NUMBER_TEXT`].
+    #[error("is too long for an exact number ({0} bytes; the limit is 4096)")]
+    TooLong(usize),
+    /// An exponent beyond [`MAX_EXPONENT`].
+    #[error("has an exponent outside the supported range -10000..=10000")]
+    Exponent,
+    /// A zero denominator.
+    #[error("divides by zero")]
+    ZeroDenominator,
 }
 
 /// Parses an exact rational from its text: an integer (`"42"`), a decimal (`"0.999"`, `"-1.5"`,
-/// `"2e-3"`) or a fraction (`"800/19"`). Never goes through `f64`.
+/// `"2e-3"`) or a fraction (`"800/19"`, each side such a number). Never goes through `f64`.
+///
+/// Limits (issue 12): at most [`MAX_NUMBER_TEXT`] bytes and exponents within
+/// ±[`MAX_EXPONENT`]; each refusal says which rule was broken.
 ///
 /// ```
-/// use truecost::value::parse_rational;
+/// use truecost::value::{parse_rational, ParseRationalReason};
 /// use num_rational::BigRational;
 /// use num_bigint::BigInt;
 /// assert_eq!(parse_rational("0.999").unwrap(),
@@ -269,30 +301,35 @@ pub struct ParseRationalError {
 /// assert_eq!(parse_rational("800/19").unwrap(),
 ///            BigRational::new(BigInt::from(800), BigInt::from(19)));
 /// assert!(parse_rational("0.1.2").is_err());
-/// assert!(parse_rational("1/0").is_err());
+/// assert_eq!(parse_rational("1/0").unwrap_err().reason, ParseRationalReason::ZeroDenominator);
+/// assert!(parse_rational("1e10000").is_ok());
+/// assert_eq!(parse_rational("1e10001").unwrap_err().reason, ParseRationalReason::Exponent);
+/// assert_eq!(parse_rational(&"9".repeat(5000)).unwrap_err().reason, ParseRationalReason::TooLong(5000));
 /// ```
 pub fn parse_rational(text: &str) -> Result<Rational, ParseRationalError> {
-    let err = || ParseRationalError {
+    let err = |reason| ParseRationalError {
         text: text.to_string(),
+        reason,
     };
     let t = text.trim();
-    if t.is_empty() || t.len() > 4096 {
-        return Err(err());
+    if t.len() > MAX_NUMBER_TEXT {
+        return Err(err(ParseRationalReason::TooLong(t.len())));
     }
     if let Some((n, d)) = t.split_once('/') {
-        let n = parse_decimal(n.trim()).ok_or_else(err)?;
-        let d = parse_decimal(d.trim()).ok_or_else(err)?;
+        let n = parse_decimal(n.trim()).map_err(err)?;
+        let d = parse_decimal(d.trim()).map_err(err)?;
         if d.is_zero() {
-            return Err(err());
+            return Err(err(ParseRationalReason::ZeroDenominator));
         }
         return Ok(n / d);
     }
-    parse_decimal(t).ok_or_else(err)
+    parse_decimal(t).map_err(err)
 }
 
 /// Parses `[+-]digits[.digits][e[+-]digits]` exactly.
-fn parse_decimal(t: &str) -> Option<Rational> {
-    let (neg, rest) = match t.as_bytes().first()? {
+fn parse_decimal(t: &str) -> Result<Rational, ParseRationalReason> {
+    use ParseRationalReason::{Exponent, Syntax};
+    let (neg, rest) = match t.as_bytes().first().ok_or(Syntax)? {
         b'-' => (true, &t[1..]),
         b'+' => (false, &t[1..]),
         _ => (false, t),
@@ -306,22 +343,39 @@ fn parse_decimal(t: &str) -> Option<Rational> {
         None => (mantissa, ""),
     };
     if int_part.is_empty() && frac_part.is_empty() {
-        return None;
+        return Err(Syntax);
     }
     if !int_part.bytes().all(|b| b.is_ascii_digit())
         || !frac_part.bytes().all(|b| b.is_ascii_digit())
     {
-        return None;
+        return Err(Syntax);
     }
     let digits = format!("{int_part}{frac_part}");
-    let mut value = Rational::from_integer(digits.parse::<BigInt>().ok()?);
+    let mut value = Rational::from_integer(digits.parse::<BigInt>().map_err(|_| Syntax)?);
     let mut scale: i64 = -(frac_part.len() as i64);
     if let Some(e) = exponent {
-        let e: i64 = e.parse().ok()?;
-        if e.unsigned_abs() > 10_000 {
-            return None;
+        let (e_neg, e_digits) = match e.as_bytes().first() {
+            Some(b'-') => (true, &e[1..]),
+            Some(b'+') => (false, &e[1..]),
+            _ => (false, e),
+        };
+        if e_digits.is_empty() || !e_digits.bytes().all(|b| b.is_ascii_digit()) {
+            return Err(Syntax);
         }
-        scale += e;
+        // Leading zeros aside, more than 5 digits is beyond the limit (and beyond i64).
+        let significant = e_digits.trim_start_matches('0');
+        if significant.len() > 5 {
+            return Err(Exponent);
+        }
+        let magnitude: i64 = if significant.is_empty() {
+            0
+        } else {
+            significant.parse().map_err(|_| Syntax)?
+        };
+        if magnitude.unsigned_abs() > MAX_EXPONENT {
+            return Err(Exponent);
+        }
+        scale += if e_neg { -magnitude } else { magnitude };
     }
     let ten = BigInt::from(10);
     let p = Rational::from_integer(num_traits::pow(ten, scale.unsigned_abs() as usize));
@@ -330,7 +384,7 @@ fn parse_decimal(t: &str) -> Option<Rational> {
     } else {
         value /= p;
     }
-    Some(if neg { -value } else { value })
+    Ok(if neg { -value } else { value })
 }
 
 /// Whether `r` lies in the half-open interval `(0, 1]` (used to validate γ, ρ).

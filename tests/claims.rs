@@ -162,15 +162,17 @@ fn smoke_report_verdicts_and_minimal_counterexamples() {
     assert_eq!(verdict("C3-example"), Verdict::Verified);
     assert_eq!(verdict("C4"), Verdict::Refuted);
     assert_eq!(verdict("C4-corrected"), Verdict::Verified);
-    // C1: the smallest counterexample is a lone goal whose termination value starts at 1: the
-    // rho = 1 rule maps Q(g,uT) to min over the goal's pairs = itself.
+    // C1: the headline counterexample is the zero-cost cycle started below Q* (issue 10): state
+    // 0 with a zero-cost self-loop and a move of cost 1 to the goal, every value 0: the self-loop
+    // keeps Q(0->0) = 0 < Q* = 1. The lone goal whose termination value starts at 1 is a note.
     let c1 = r.claims.iter().find(|c| c.id == "C1").unwrap();
     let ce = c1.counterexample.as_ref().unwrap();
-    assert_eq!(ce.problem, "0 (goal)");
+    assert_eq!(ce.problem, "0: ->0 (0), ->1 (1); 1 (goal)");
     assert!(ce
         .details
         .iter()
-        .any(|(k, v)| k == "initial values Q0" && v == "Q(0,uT)=1"));
+        .any(|(k, v)| k == "initial values Q0" && v == "Q(0->0)=0, Q(0->1)=0, Q(1,uT)=0"));
+    assert!(c1.notes.iter().any(|n| n.contains("Q(0,uT)=1")));
     // Each counterexample's file replays with `solve --file` (it parses as a problem).
     for c in &r.claims {
         if let Some(ce) = &c.counterexample {

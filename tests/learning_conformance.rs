@@ -2,7 +2,8 @@
 //! π universal plan and the model-free planners reproduce the paper's numbers with the same
 //! code for every problem.
 //!
-//! Expected values are copied from published sources, never from truecost's output:
+//! Expected values are copied from published sources, never from truecost's output (and
+//! cross-checked with the shipped `data/published/`, extracted independently for issue 13):
 //! * `shared/reference/problem10.md` (Problem 10, and the first three π runs of Problem 0);
 //! * the paper's result tables, generated from the CSV files of the paper's code repository
 //!   (`filkata123/valit_q_comparison`, `sims/sims_det_section_3000_steps/
@@ -246,5 +247,59 @@ fn pi_rows_of_every_paper_problem_match_the_published_means() {
             (episodes, actions, converged, goal, initial),
             "problem {id}"
         );
+    }
+}
+
+/// The shipped published data (`data/published/`, read from the paper's repository for issue
+/// 13) agrees with the counts above, which an earlier session copied from the paper's tables:
+/// two independent extractions of the same published numbers.
+#[test]
+fn shipped_published_data_agrees_with_the_counts_copied_here() {
+    use truecost::experiments::published::{deterministic, KeyPart};
+    use truecost::value::parse_rational;
+    let data = deterministic().unwrap();
+    let value = |p: usize, alg: &str, eps: &str, metric: &str| {
+        data.rows[&(p, vec![KeyPart::parse(alg), KeyPart::parse(eps)])][metric]
+            .value
+            .clone()
+    };
+    let n = |x: u64| parse_rational(&x.to_string()).unwrap();
+    for (id, pops, d_actions, a_sweeps, a_actions, s_sweeps, s_actions, path) in MODEL_FREE {
+        for (alg, iterations, actions) in [
+            ("model-free-dijkstra", pops, d_actions),
+            ("model-free-async-vi", a_sweeps, a_actions),
+            ("model-free-vi", s_sweeps, s_actions),
+        ] {
+            assert_eq!(
+                value(id, alg, "", "mean_iterations"),
+                n(iterations),
+                "{id} {alg}"
+            );
+            assert_eq!(value(id, alg, "", "mean_actions"), n(actions), "{id} {alg}");
+            assert_eq!(
+                value(id, alg, "", "shortest_path"),
+                n(path as u64),
+                "{id} {alg}"
+            );
+        }
+    }
+    for (id, episode, actions, goal, initial, converged, path) in GREEDY {
+        let v = |m: &str| value(id, "q-learning", "0", m);
+        assert_eq!(v("mean_iterations"), n(u64::from(episode)), "{id}");
+        assert_eq!(v("mean_actions"), n(actions), "{id}");
+        assert_eq!(v("mean_actions_goal_discovered"), n(goal), "{id}");
+        assert_eq!(v("mean_actions_initial_optimal"), n(initial), "{id}");
+        assert_eq!(v("longest_path"), n(path as u64), "{id}");
+        if converged > 0 {
+            assert_eq!(v("mean_actions_converged"), n(converged), "{id}");
+        }
+    }
+    for (id, episodes, actions, converged, goal, initial) in PI_ROWS {
+        let v = |m: &str| value(id, "q-learning-pi", "1", m) * n(100);
+        assert_eq!(v("mean_iterations"), n(episodes), "{id}");
+        assert_eq!(v("mean_actions"), n(actions), "{id}");
+        assert_eq!(v("mean_actions_converged"), n(converged), "{id}");
+        assert_eq!(v("mean_actions_goal_discovered"), n(goal), "{id}");
+        assert_eq!(v("mean_actions_initial_optimal"), n(initial), "{id}");
     }
 }

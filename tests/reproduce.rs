@@ -47,7 +47,7 @@ fn without_times(stdout: &[u8]) -> Vec<Value> {
         .iter()
         .map(|row| {
             let mut row = row.as_object().unwrap().clone();
-            row.retain(|k, _| !k.ends_with("_s"));
+            row.retain(|k, _| !k.ends_with("_s") && k != "mean_ns_per_action");
             Value::Object(row)
         })
         .collect()
@@ -73,6 +73,7 @@ fn json_rows_have_the_required_fields_and_state_mode_and_seed() {
             "longest_path",
             "mean_actions_initial_optimal",
             "mean_actions_goal_discovered",
+            "mean_ns_per_action",
         ] {
             assert!(row.get(key).is_some(), "{key} missing");
         }
@@ -227,7 +228,8 @@ fn learning_rows_are_not_run_where_the_goal_is_unreachable() {
             assert_eq!(row["mean_actions"], Value::Null);
         } else {
             assert_eq!(row["samples"], 2);
-            assert_eq!(row["convergence_rate"], 0.0);
+            // The planners' values equal G* (+inf everywhere): converged (issue 12, failure 13).
+            assert_eq!(row["convergence_rate"], 1.0);
             assert_eq!(row["goal_reached_rate"], 0.0);
         }
     }

@@ -210,7 +210,9 @@ fn without_times(report: &stochastic::Report) -> Vec<serde_json::Value> {
         .iter()
         .map(|r| {
             let mut v = serde_json::to_value(r).unwrap();
-            v.as_object_mut().unwrap().retain(|k, _| !k.ends_with("_s"));
+            v.as_object_mut()
+                .unwrap()
+                .retain(|k, _| !k.ends_with("_s") && k != "mean_ns_per_action");
             v
         })
         .collect()

@@ -30,7 +30,8 @@ fn verify_json_has_the_required_shape_and_exits_0_with_refuted_claims() {
         ] {
             assert!(c.get(key).is_some(), "{key} in {c}");
         }
-        assert!(["verified", "refuted", "inconclusive"].contains(&c["verdict"].as_str().unwrap()));
+        assert!(["proved", "verified", "refuted", "inconclusive"]
+            .contains(&c["verdict"].as_str().unwrap()));
     }
     assert!(claims.iter().any(|c| c["verdict"] == "refuted"));
     let lo = v["alpha_star"]["lo"].as_str().unwrap();

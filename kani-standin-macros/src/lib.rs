@@ -1,7 +1,7 @@
 //! Macros of the `kani` stand-in: `#[kani::proof]` keeps the harness function (so the same
 //! source compiles under real Kani) and adds a `#[test]` that runs it through the stand-in's
-//! explicit-state enumerator; `#[kani::unwind]`, `#[kani::solver]` and `#[kani::should_panic]`
-//! are read by `proof` (put `#[kani::proof]` first); `#[derive(kani::Arbitrary)]` makes every
+//! explicit-state enumerator (or seeded sampler); `#[kani::unwind]`, `#[kani::solver]`,
+//! `#[kani::should_panic]` and the stand-in's own `#[kani::samples]` are read by `proof` (put `#[kani::proof]` first); `#[derive(kani::Arbitrary)]` makes every
 //! value of a type a choice.
 
 use proc_macro::TokenStream;
@@ -24,8 +24,20 @@ fn is_kani_attr(attr: &syn::Attribute, name: &str) -> bool {
 pub fn proof(_attr: TokenStream, item: TokenStream) -> TokenStream {
     let mut f = parse_macro_input!(item as ItemFn);
     let should_panic = f.attrs.iter().any(|a| is_kani_attr(a, "should_panic"));
+    let samples: Option<syn::LitInt> =
+        f.attrs
+            .iter()
+            .find(|a| is_kani_attr(a, "samples"))
+            .map(|a| {
+                a.parse_args()
+                    .expect("#[kani::samples(N)] takes one integer")
+            });
+    let samples = match samples {
+        Some(n) => quote!(#n),
+        None => quote!(::kani::SAMPLES),
+    };
     f.attrs.retain(|a| {
-        !["should_panic", "unwind", "solver", "stub"]
+        !["should_panic", "unwind", "solver", "stub", "samples"]
             .iter()
             .any(|n| is_kani_attr(a, n))
     });
@@ -36,7 +48,7 @@ pub fn proof(_attr: TokenStream, item: TokenStream) -> TokenStream {
         #[cfg(test)]
         #[test]
         fn #test() {
-            let summary = ::kani::__run(stringify!(#name), #should_panic, #name);
+            let summary = ::kani::__run_with(stringify!(#name), #should_panic, #samples, #name);
             ::std::eprintln!("{}", summary);
         }
     }
@@ -58,6 +70,13 @@ pub fn unwind(_attr: TokenStream, _item: TokenStream) -> TokenStream {
 #[proc_macro_attribute]
 pub fn solver(_attr: TokenStream, _item: TokenStream) -> TokenStream {
     misplaced("solver")
+}
+
+/// Stand-in only (write it as `#[cfg_attr(not(kani), kani::samples(N))]`): the number of
+/// executions when the harness is sampled (read by `#[kani::proof]`).
+#[proc_macro_attribute]
+pub fn samples(_attr: TokenStream, _item: TokenStream) -> TokenStream {
+    misplaced("samples")
 }
 
 /// The harness must fail (read by `#[kani::proof]`).

@@ -1,22 +1,44 @@
 //! A stand-in for Kani's `kani` crate (see `../shared/KANI.md`), used only when not compiling
 //! under Kani. Same public names and signatures as Kani's API (`any`, `any_where`, `assume`,
 //! `assert`, `cover`, `Arbitrary`, the attributes); different engine: every `kani::any()` is a
-//! choice point, and [`__run`] re-executes the harness depth-first over **every** choice
-//! (`assume(false)` prunes a branch; a failing assertion reports the exact choice sequence).
-//! A choice wider than 2^16 values switches the harness to seeded sampling (boundary values
-//! first) and the summary says so. Nothing here is symbolic: it is not Kani.
+//! choice point, and [`__run`] re-executes the harness body.
+//!
+//! * **Exhaustive** when every choice has at most 2^16 values and every execution's choices at
+//!   most 2^22 combinations: depth-first over every choice
+//!   sequence (`assume(false)` prunes a branch; a failing assertion reports the exact choice
+//!   sequence).
+//! * **Sampled** as soon as one choice is wider (a `u32`, an `i32`, ...) or one execution's
+//!   choices span more than 2^22 combinations ([`EXHAUSTIVE_BITS`]): a stated number of
+//!   seeded executions ([`SAMPLES`], or the harness's `#[cfg_attr(not(kani), kani::samples(N))]`),
+//!   boundary values first (the first [`BOUNDARY_EXECUTIONS`] executions draw every integer from
+//!   its boundary set: `MIN`, `MIN + 1`, `-1`, `0`, `1`, `2`, `MAX - 1`, `MAX`), then uniform
+//!   values mixed with boundary values (one choice in eight). The summary says `sampled`; a
+//!   sampled run is evidence, never a proof.
+//!
+//! The summary also states the harness's *domain* in bits (the largest `Σ log2 |choice|` over the
+//! executions), which is what a model checker covers symbolically. Nothing here is symbolic: it
+//! is not Kani. As under Kani's `#[kani::should_panic]`, only an assertion failure (a
+//! `kani::assert`, `assert!` or `panic!`) counts as the expected failure: an arithmetic overflow
+//! (`attempt to ...`) fails every harness.
 
 use std::cell::RefCell;
 use std::fmt;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::Once;
 
-pub use kani_standin_macros::{proof, should_panic, solver, unwind, Arbitrary};
+pub use kani_standin_macros::{proof, samples, should_panic, solver, unwind, Arbitrary};
 
 /// Executions allowed in exhaustive mode before the stand-in refuses (size the harness down).
 pub const MAX_EXHAUSTIVE: u64 = 5_000_000;
-/// Executions in sampled mode.
+/// Executions in sampled mode unless the harness states its own number.
 pub const SAMPLES: u64 = 20_000;
+/// Sampled mode: the first executions draw every integer choice from its boundary values.
+pub const BOUNDARY_EXECUTIONS: u64 = 1_000;
+/// A choice wider than this many values switches the harness to sampling.
+pub const EXHAUSTIVE_CHOICE: u128 = 1 << 16;
+/// An execution whose choices span more than 2^this many combinations switches the harness to
+/// sampling (about [`MAX_EXHAUSTIVE`]).
+pub const EXHAUSTIVE_BITS: f64 = 22.0;
 
 struct AssumeFailed;
 
@@ -28,6 +50,8 @@ struct Explorer {
     wide_seen: bool,
     rng: u64,
     execution: u64,
+    bits: f64,
+    max_bits: f64,
 }
 
 thread_local! {
@@ -43,29 +67,45 @@ fn next_random(state: &mut u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// A choice point with `domain` values (`0..domain`); used by the `Arbitrary` impls.
+/// A choice point with `domain` values (`0..domain`, at most 2^64); `boundaries` are the indices
+/// a sampled run tries first (out-of-range ones are ignored). Used by the `Arbitrary` impls.
 #[doc(hidden)]
-pub fn __choose(domain: u64) -> u64 {
-    assert!(domain > 0);
+pub fn __choose_in(domain: u128, boundaries: &[u128]) -> u128 {
+    assert!(domain > 0 && domain <= 1 << 64);
     EXPLORER.with(|e| {
         let mut e = e.borrow_mut();
         let Some(x) = e.as_mut() else {
             panic!("kani::any() called outside a harness run");
         };
-        if domain > 1 << 16 {
+        x.bits += (domain as f64).log2();
+        if x.bits > x.max_bits {
+            x.max_bits = x.bits;
+        }
+        if domain > EXHAUSTIVE_CHOICE || x.bits > EXHAUSTIVE_BITS {
             x.wide_seen = true;
         }
         if x.sampled {
-            let boundary = x.execution;
-            return match boundary {
-                0 => 0,
-                1 => domain - 1,
-                _ => next_random(&mut x.rng) % domain,
+            let uniform = |x: &mut Explorer| (next_random(&mut x.rng) as u128) % domain;
+            let boundary = |x: &mut Explorer| {
+                let b: Vec<u128> = boundaries.iter().copied().filter(|&b| b < domain).collect();
+                if b.is_empty() {
+                    uniform(x)
+                } else {
+                    b[(next_random(&mut x.rng) % b.len() as u64) as usize]
+                }
+            };
+            let from_boundaries =
+                x.execution < BOUNDARY_EXECUTIONS || next_random(&mut x.rng).is_multiple_of(8);
+            return if from_boundaries {
+                boundary(x)
+            } else {
+                uniform(x)
             };
         }
-        if domain > 1 << 16 {
+        if x.wide_seen {
             return 0; // the run restarts in sampled mode
         }
+        let domain = domain as u64;
         let v = if x.pos < x.trail.len() {
             x.trail[x.pos].0
         } else {
@@ -73,8 +113,14 @@ pub fn __choose(domain: u64) -> u64 {
             0
         };
         x.pos += 1;
-        v
+        v as u128
     })
+}
+
+/// A choice point with `domain` values (`0..domain`); used by `#[derive(kani::Arbitrary)]`.
+#[doc(hidden)]
+pub fn __choose(domain: u64) -> u64 {
+    __choose_in(domain as u128, &[0, domain as u128 - 1]) as u64
 }
 
 /// Types whose every value `kani::any()` can produce (Kani's trait, same signatures).
@@ -94,12 +140,22 @@ macro_rules! int_impl {
     ($($t:ty),*) => {$(
         impl Arbitrary for $t {
             fn any() -> Self {
+                // Choices of at most 64 bits: the index is `value - MIN`.
+                fn part(bits: u32, min: i128) -> u128 {
+                    let domain = 1u128 << bits;
+                    let zero = (-min) as u128; // index of the value 0
+                    let b = [0, 1, domain - 2, domain - 1, zero, zero + 1, zero + 2, zero.wrapping_sub(1)];
+                    __choose_in(domain, &b)
+                }
                 let bits = <$t>::BITS;
-                if bits <= 16 {
-                    (<$t>::MIN as i128 + __choose(1u64 << bits) as i128) as $t
+                if bits <= 64 {
+                    let min = <$t>::MIN as i128;
+                    (min + part(bits, min) as i128) as $t
                 } else {
-                    let v = __choose(u64::MAX) as u128 | ((__choose(u64::MAX) as u128) << 64);
-                    v as $t
+                    // 128 bits: two 64-bit halves (boundary values of each half).
+                    let lo = part(64, 0);
+                    let hi = part(64, 0);
+                    (lo | (hi << 64)) as $t
                 }
             }
         }
@@ -218,12 +274,22 @@ macro_rules! cover {
 pub enum Mode {
     /// Every choice enumerated.
     Exhaustive,
-    /// Seeded sampling (a domain wider than 2^16 values).
+    /// Seeded sampling (a choice wider than 2^16 values, or more than 2^22 combinations).
     Sampled,
 }
 
+impl Mode {
+    /// `exhaustive` or `sampled`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Exhaustive => "exhaustive",
+            Mode::Sampled => "sampled",
+        }
+    }
+}
+
 /// The outcome of running a harness.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Summary {
     /// Harness name.
     pub name: String,
@@ -233,23 +299,27 @@ pub struct Summary {
     pub executions: u64,
     /// Executions pruned by `assume`.
     pub pruned: u64,
-    /// Executions that failed (panicked).
+    /// Executions that failed (an assertion failed or the body panicked).
     pub failures: u64,
+    /// The domain in bits: the largest `Σ log2 |choice|` of one execution (rounded down).
+    pub domain_bits: u32,
 }
 
 impl fmt::Display for Summary {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "kani-standin: {}: {}, {} executions ({} pruned by assume), {} failing",
+            "kani-standin: {}: {} ({} executions{}; {} pruned by assume), {} failing; domain 2^{} choices",
             self.name,
-            match self.mode {
-                Mode::Exhaustive => "exhaustive",
-                Mode::Sampled => "sampled (seeded, boundary values first)",
-            },
+            self.mode.name(),
             self.executions,
+            match self.mode {
+                Mode::Exhaustive => ", every choice",
+                Mode::Sampled => ", seeded, boundary values first",
+            },
             self.pruned,
-            self.failures
+            self.failures,
+            self.domain_bits
         )
     }
 }
@@ -268,10 +338,21 @@ fn install_hook() {
     });
 }
 
-/// Runs a harness over every choice (or a seeded sample); panics with the failing choice
-/// sequence if a non-`should_panic` harness fails, or if a `should_panic` harness never fails.
+fn is_overflow(msg: &str) -> bool {
+    msg.starts_with("attempt to ")
+}
+
+/// Runs a harness over every choice (or a seeded sample of [`SAMPLES`] executions); panics with
+/// the failing choice sequence if a non-`should_panic` harness fails, if a `should_panic`
+/// harness never fails (or fails by an arithmetic overflow), or if every execution was pruned.
 #[doc(hidden)]
 pub fn __run(name: &str, should_panic: bool, body: fn()) -> Summary {
+    __run_with(name, should_panic, SAMPLES, body)
+}
+
+/// [`__run`] with a stated number of executions for sampled mode.
+#[doc(hidden)]
+pub fn __run_with(name: &str, should_panic: bool, samples: u64, body: fn()) -> Summary {
     install_hook();
     let mut summary = Summary {
         name: name.to_string(),
@@ -279,15 +360,18 @@ pub fn __run(name: &str, should_panic: bool, body: fn()) -> Summary {
         executions: 0,
         pruned: 0,
         failures: 0,
+        domain_bits: 0,
     };
     EXPLORER.with(|e| *e.borrow_mut() = Some(Explorer::default()));
     QUIET.with(|q| *q.borrow_mut() = should_panic);
     let mut first_failure: Option<(String, Vec<u64>)> = None;
+    let mut overflow: Option<String> = None;
     loop {
         EXPLORER.with(|e| {
             let mut e = e.borrow_mut();
             let x = e.as_mut().expect("explorer");
             x.pos = 0;
+            x.bits = 0.0;
             x.execution = summary.executions;
         });
         let outcome = catch_unwind(AssertUnwindSafe(body));
@@ -311,6 +395,9 @@ pub fn __run(name: &str, should_panic: bool, body: fn()) -> Summary {
                     .map(|s| s.to_string())
                     .or_else(|| p.downcast_ref::<String>().cloned())
                     .unwrap_or_default();
+                if is_overflow(&msg) {
+                    overflow.get_or_insert(msg.clone());
+                }
                 first_failure.get_or_insert((msg, trail.clone()));
             }
         }
@@ -324,6 +411,7 @@ pub fn __run(name: &str, should_panic: bool, body: fn()) -> Summary {
                 ..summary
             };
             first_failure = None;
+            overflow = None;
             EXPLORER.with(|e| {
                 *e.borrow_mut() = Some(Explorer {
                     sampled: true,
@@ -335,7 +423,7 @@ pub fn __run(name: &str, should_panic: bool, body: fn()) -> Summary {
             continue;
         }
         let done = if sampled {
-            summary.executions >= SAMPLES
+            summary.executions >= samples
         } else {
             EXPLORER.with(|e| {
                 let mut e = e.borrow_mut();
@@ -360,13 +448,24 @@ pub fn __run(name: &str, should_panic: bool, body: fn()) -> Summary {
             "kani-standin: {name}: more than {MAX_EXHAUSTIVE} executions; shrink the harness domains"
         );
     }
+    summary.domain_bits = EXPLORER.with(|e| {
+        let e = e.borrow();
+        e.as_ref().expect("explorer").max_bits.floor() as u32
+    });
     EXPLORER.with(|e| *e.borrow_mut() = None);
     QUIET.with(|q| *q.borrow_mut() = false);
+    if summary.pruned == summary.executions {
+        panic!("kani-standin: {name} is vacuous: every execution was pruned by assume; {summary}");
+    }
     match (should_panic, first_failure) {
         (false, Some((msg, choices))) => {
             panic!("kani-standin: {name} fails: {msg}; choice sequence {choices:?}; {summary}")
         }
         (true, None) => panic!("kani-standin: {name} was expected to fail but passed: {summary}"),
+        (true, Some(_)) if overflow.is_some() => panic!(
+            "kani-standin: {name}: an arithmetic overflow is not the expected failure: {}; {summary}",
+            overflow.unwrap_or_default()
+        ),
         _ => summary,
     }
 }

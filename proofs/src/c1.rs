@@ -1,105 +1,146 @@
-//! Claim C1: derandomized Q-learning (`ρ = 1`).
+//! Claim C1: derandomized Q-learning (`ρ = 1`), over truecost's own update
+//! (`truecost::claims::qlearning::QProblem::update`).
+//!
+//! C1-corrected is proved by induction over rounds (the shared argument of `claims::c1` and the
+//! SMT engine): the two inductive steps below each take *any* values satisfying the invariant
+//! on *any* structure of the family and *one arbitrary fair round*, and re-establish the
+//! invariant one level up — a statement about every number of rounds, not about R simulated
+//! ones. Family: 3 non-goal states with 2 moves each (successors symbolic), the goal without
+//! moves whose termination pair is held at 0 (H0), every state reaching the goal (H1, assumed),
+//! `u16` costs, `i32` values (computed in `i64`: no overflow is possible, and Kani checks it).
 
-use crate::Four;
+use truecost::claims::qlearning::Terminal;
 
-/// Round-robin `ρ = 1` updates on the 2-state problem "state 0: a self-loop of cost 0 and a
-/// move of cost `c` to the goal 1", termination pair of the goal held at 0.
-fn zero_cost_cycle_rounds(q_self: i64, q_goal: i64, c: i64, rounds: usize) -> (i64, i64) {
-    let (mut s, mut g) = (q_self, q_goal);
-    for _ in 0..rounds {
-        s = s.min(g); // Q(0,self) <- 0 + min(Q(0,self), Q(0,->1))
-        g = c; // Q(0,->1) <- c + Q(1,uT) = c + 0
+use crate::symbolic::{
+    any_round, any_structure, cost_to_go, learner, optimal_steps, optimum, values, MOVES, N,
+    TERMINAL,
+};
+
+/// **C1-corrected, Part A, inductive step** (costs `≥ 0`, `Q₀ ≥ Q*`). Invariant `I_r`: `Q ≥ Q*`
+/// on every pair, and every pair with `h(f(x,u)) ≤ r − 1` is exact. From any values satisfying
+/// `I_r` (`r ∈ 0..=N+1`; a value not forced exact is `max(any i32, Q*)`, i.e. any `i32` value
+/// `≥ Q*`), one arbitrary fair round (12 freely chosen updates at most — symbolic order, repeats
+/// allowed — then any pair missed; `symbolic::any_round`) re-establishes `I_{r+1}` (Lemmas A1,
+/// A2). Domain: structure 2^144 × values 2^192 × level 2^8 × round 2^104 = 2^448. CBMC: fixed
+/// arrays, loops of at most 18 iterations (unwind 19).
+#[kani::proof]
+#[kani::unwind(19)]
+#[kani::solver(kissat)]
+pub fn c1_corrected_round_lifts_the_exact_level() {
+    let s = any_structure(0);
+    let g = cost_to_go(&s);
+    kani::assume(g.iter().all(Option::is_some)); // H1
+    let h = optimal_steps(&s, &g);
+    let star = optimum(&s, &g);
+    let r = (kani::any::<u8>() % (N as u8 + 2)) as u32;
+    let q = learner(&s, Terminal::HeldAtZero);
+    let mut v = values();
+    for p in 0..MOVES {
+        let raw = kani::any::<i32>() as i64;
+        let exact = h[s.to[p]].expect("H1") < r;
+        v[p] = if exact { star[p] } else { raw.max(star[p]) };
     }
-    (s, g)
-}
-
-/// C1 as printed, at the goal's termination pair: the lone goal's pair `Q(g,uT)` is a
-/// zero-cost self-loop, so the `ρ = 1` rule keeps any initial value: `Q ≠ Q* = 0` forever when
-/// `Q0 ≠ 0`. The statement "converges from any initial value" must fail.
-#[kani::proof]
-#[kani::unwind(5)]
-#[kani::should_panic]
-pub fn c1_as_printed_fails_at_the_termination_pair() {
-    let q0: Four = kani::any();
-    let mut q = q0.value();
-    for _ in 0..4 {
-        q = q.min(q); // Q(g,uT) <- 0 + min over the goal's pairs = Q(g,uT)
+    let (order, len) = any_round();
+    for k in 0..len {
+        q.update(&mut v, order[k]);
     }
-    kani::assert(q == 0, "Q(g,uT) = Q*(g,uT) = 0 after 4 rounds");
-}
-
-/// C1 as printed, on a zero-cost cycle: with `Q0(0,self) < c` the values settle at a fixed
-/// point below `Q* = c`. Must fail for some choice.
-#[kani::proof]
-#[kani::unwind(10)]
-#[kani::should_panic]
-pub fn c1_as_printed_fails_on_a_zero_cost_cycle() {
-    let c = match kani::any::<crate::Three>() {
-        crate::Three::Zero => 1,
-        crate::Three::One => 2,
-        crate::Three::Two => 3,
-    };
-    let a: Four = kani::any();
-    let b: Four = kani::any();
-    let (s, g) = zero_cost_cycle_rounds(a.value(), b.value(), c, 8);
-    kani::assert(s == c && g == c, "Q = Q* after 8 rounds");
-}
-
-/// C1-corrected on a 3-state family with positive costs: state 0 has a move to `s ∈ {0,1,2}`
-/// with cost `a ∈ {1,2}` and a move to 1 with cost `b ∈ {1,2}`; state 1 moves to the goal 2
-/// with cost `c ∈ {1,2}`; `Q0 ∈ 0..=3` on the three move pairs; each of 6 rounds updates the
-/// three pairs forward or backward (chosen by the adversary). Then `Q = Q*` at the end of
-/// round `R = max(R1, ⌈max Q* / min cost⌉)` and stays there.
-#[kani::proof]
-#[kani::unwind(12)]
-pub fn c1_corrected_converges_within_the_bound() {
-    let s = kani::any::<crate::Three>().value();
-    let a = if kani::any::<bool>() { 2 } else { 1 };
-    let b = if kani::any::<bool>() { 2 } else { 1 };
-    let c = if kani::any::<bool>() { 2 } else { 1 };
-    let q0: [i64; 3] = [
-        kani::any::<Four>().value(),
-        kani::any::<Four>().value(),
-        kani::any::<Four>().value(),
-    ];
-    let mut q = q0;
-    // Optimal values of this family, by cases (independent of the update rule).
-    let g1 = c;
-    let via_first = match s {
-        1 => a + c,
-        2 => a,
-        _ => i64::MAX, // a positive-cost self-loop never helps
-    };
-    let g0 = (b + c).min(via_first);
-    let g = [g0, g1, 0i64];
-    let star = [a + g[s], b + g1, c];
-    // h: fewest moves of an optimal path to the goal.
-    let h = [if s == 2 && a == g0 { 1 } else { 2 }, 1, 0];
-    let r1 = 1 + h[s].max(h[1]);
-    let above = q0[0] >= star[0] && q0[1] >= star[1] && q0[2] >= star[2];
-    let min_cost = a.min(b).min(c);
-    let qmax = star[0].max(star[1]).max(star[2]);
-    let r2 = (qmax + min_cost - 1) / min_cost; // Q0 >= 0, so min(0, min Q0) = 0
-    let bound = if above { r1 } else { r1.max(r2) } as usize;
-    kani::assert(bound <= 6, "the bound fits the 6 rounds checked");
-    for round in 1..=6 {
-        let forward: bool = kani::any();
-        for k in 0..3 {
-            let p = if forward { k } else { 2 - k };
-            // successors: pair 0 -> s, pair 1 -> 1, pair 2 -> goal (termination held at 0)
-            let min_at = |x: usize, q: &[i64; 3]| match x {
-                0 => q[0].min(q[1]),
-                1 => q[2],
-                _ => 0,
-            };
-            q[p] = match p {
-                0 => a + min_at(s, &q),
-                1 => b + min_at(1, &q),
-                _ => c,
-            };
+    kani::assert(v[TERMINAL] == 0, "the termination pair stays 0 (H0)");
+    for p in 0..MOVES {
+        kani::assert(v[p] >= star[p], "Q >= Q* after the round (Lemma A1)");
+        if h[s.to[p]].expect("H1") < r + 1 {
+            kani::assert(
+                v[p] == star[p],
+                "pairs with h(f(x,u)) <= r are exact (Lemma A2)",
+            );
         }
-        if round >= bound {
-            kani::assert(q == star, "Q = Q* from the end of round R on");
+    }
+}
+
+/// **C1-corrected, Part B, inductive step** (every move costs `≥ c ≥ 1`, any `Q₀`). Invariant
+/// `J_t`: every pair has `Q ≥ min(Q*, t)`. From any `t` (`i32`) and any values satisfying `J_t`
+/// (`max(any i32, min(Q*, t))`), one arbitrary fair round re-establishes `J_{t+c}`, `c` the least
+/// move cost (Lemma B1). Domain ≈ 2^(144 + 32 + 192 + 104) = 2^472.
+#[kani::proof]
+#[kani::unwind(19)]
+#[kani::solver(kissat)]
+pub fn c1_corrected_round_raises_the_floor_by_c() {
+    let s = any_structure(1);
+    let g = cost_to_go(&s);
+    kani::assume(g.iter().all(Option::is_some)); // H1
+    let star = optimum(&s, &g);
+    let c = s.cost.iter().copied().min().expect("moves");
+    let t = kani::any::<i32>() as i64;
+    let q = learner(&s, Terminal::HeldAtZero);
+    let mut v = values();
+    for p in 0..MOVES {
+        v[p] = (kani::any::<i32>() as i64).max(star[p].min(t));
+    }
+    let (order, len) = any_round();
+    for k in 0..len {
+        q.update(&mut v, order[k]);
+    }
+    for p in 0..MOVES {
+        kani::assert(
+            v[p] >= star[p].min(t + c),
+            "J_{t+c}: Q >= min(Q*, t + c) after the round (Lemma B1)",
+        );
+    }
+}
+
+/// **C1-corrected, Part B, the sandwich** (costs `≥ 0`): for any values `Q ≤ Q'` (`Q = min(any
+/// i32, Q*)`, `Q' = Q + any u32`), after the same arbitrary fair round `Q ≤ Q'` (Lemma B2,
+/// monotonicity) and `Q ≤ Q*` (Lemma B3). Domain ≈ 2^(144 + 192 + 192 + 104) = 2^632.
+#[kani::proof]
+#[kani::unwind(19)]
+#[kani::solver(kissat)]
+pub fn c1_corrected_round_is_monotone_below_q_star() {
+    let s = any_structure(0);
+    let g = cost_to_go(&s);
+    kani::assume(g.iter().all(Option::is_some)); // H1
+    let star = optimum(&s, &g);
+    let q = learner(&s, Terminal::HeldAtZero);
+    let (mut low, mut high) = (values(), values());
+    for p in 0..MOVES {
+        low[p] = (kani::any::<i32>() as i64).min(star[p]);
+        high[p] = low[p] + kani::any::<u32>() as i64;
+    }
+    let (order, len) = any_round();
+    for k in 0..len {
+        q.update(&mut low, order[k]);
+        q.update(&mut high, order[k]);
+    }
+    for p in 0..MOVES {
+        kani::assert(low[p] <= high[p], "Q <= Q' is preserved (Lemma B2)");
+        kani::assert(low[p] <= star[p], "Q <= Q* is preserved (Lemma B3)");
+    }
+}
+
+/// **C1 as printed** (costs `≥ 0`, any `Q₀`, the termination pair updated by the same rule as
+/// every pair), over the same wide domains, H1 assumed: it implies that a round of the cyclic
+/// order (a fair order) that changes nothing ends at `Q*` — otherwise the cyclic order repeats
+/// those values forever. Must fail: a zero-cost self-loop (the termination pair, or a zero-cost
+/// cycle) started below `Q*` is such a fixed point. Domain ≈ 2^(144 + 224) = 2^368; 6 rounds.
+#[kani::proof]
+#[kani::unwind(8)]
+#[kani::should_panic]
+pub fn c1_as_printed_round_fixed_points_are_optimal() {
+    let s = any_structure(0);
+    let g = cost_to_go(&s);
+    kani::assume(g.iter().all(Option::is_some)); // H1 (the failure does not need it absent)
+    let star = optimum(&s, &g);
+    let q = learner(&s, Terminal::Updated);
+    let mut v = values();
+    for p in 0..=TERMINAL {
+        v[p] = kani::any::<i32>() as i64;
+    }
+    for _round in 0..6 {
+        let before = v;
+        for p in 0..=TERMINAL {
+            q.update(&mut v, p);
+        }
+        if v == before {
+            let optimal = (0..MOVES).all(|p| v[p] == star[p]) && v[TERMINAL] == 0;
+            kani::assert(optimal, "a round that changes nothing ends at Q*");
         }
     }
 }

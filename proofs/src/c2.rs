@@ -1,58 +1,23 @@
-//! Claim C2: cost–reward equivalence.
+//! Claim C2: cost–reward equivalence, over truecost's own policy-enumeration oracle
+//! (`claims::oracle`, `claims::c2::check_problem`).
 
-use crate::Four;
+use truecost::claims::c2::{check_problem, functionals};
 
-/// The functionals of this harness.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, kani::Arbitrary)]
-pub enum Functional {
-    /// Total cost (`±∞` as `i64::MAX`/`MIN`).
-    Total,
-    /// Discounted with `α = 1/2`, scaled by 2.
-    HalfDiscounted,
-    /// Total over the first 3 stages.
-    ThreeStages,
-}
+use crate::symbolic::any_tiny;
 
-/// The value of a policy of the 2-state problem whose single move at state 0 has cost `cost`
-/// and loops (`to_goal = false`) or reaches the goal 1 (then 0 forever), for stage values
-/// multiplied by `sign`.
-fn value(f: Functional, cost: i64, to_goal: bool, sign: i64) -> i64 {
-    let s = sign * cost;
-    match (f, to_goal) {
-        (Functional::Total, true) => s,
-        (Functional::Total, false) => {
-            if s > 0 {
-                i64::MAX
-            } else if s < 0 {
-                i64::MIN
-            } else {
-                0
-            }
-        }
-        // Scaled by 2: s (then zeros) → 2s; s forever → 2·Σ s/2^k = 4s.
-        (Functional::HalfDiscounted, true) => 2 * s,
-        (Functional::HalfDiscounted, false) => 4 * s,
-        (Functional::ThreeStages, true) => s,
-        (Functional::ThreeStages, false) => 3 * s,
-    }
-}
-
-/// In every 2-state problem whose state 0 has two moves (each to 0 or to the goal, cost
-/// `0..=3`), for each functional, the set of cost-minimising policies equals the set of
-/// reward-maximising ones (rewards `-l`, evaluated from the negated stages).
+/// On any 4-state problem (3 non-goal states with 1–2 moves each, symbolic successors, any `u8`
+/// costs) and for each of C2's seven functionals (total, discounted 1/2 and 9/10, average,
+/// 3-stage total, 3-stage discounted, 4-stage average), truecost's oracle finds the policies
+/// minimising the cost from `x1` to be exactly those maximising the reward `−l`. Kani also
+/// checks the oracle's exact `i128` arithmetic for overflow at every cost up to 255. Domain
+/// 2^99. CBMC: at most 8 policies, trajectories of at most 4 stages; loops bounded by 8.
 #[kani::proof]
-#[kani::unwind(8)]
-pub fn c2_argmin_cost_is_argmax_reward() {
-    let moves: [(bool, Four); 2] = [(kani::any(), kani::any()), (kani::any(), kani::any())];
-    let f: Functional = kani::any();
-    let cost = [0, 1].map(|i| value(f, moves[i].1.value(), moves[i].0, 1));
-    let reward = [0, 1].map(|i| value(f, moves[i].1.value(), moves[i].0, -1));
-    let min = cost[0].min(cost[1]);
-    let max = reward[0].max(reward[1]);
-    for i in 0..2 {
-        kani::assert(
-            (cost[i] == min) == (reward[i] == max),
-            "argmin cost = argmax reward",
-        );
-    }
+#[kani::unwind(9)]
+#[kani::solver(kissat)]
+#[cfg_attr(not(kani), kani::samples(4000))]
+pub fn c2_oracle_argmin_cost_is_argmax_reward() {
+    let t = any_tiny(4);
+    let (failure, comparisons) = check_problem(&t, &functionals(), 1);
+    kani::assert(comparisons == 7, "every functional compared");
+    kani::assert(failure.is_none(), "argmin cost = argmax reward");
 }

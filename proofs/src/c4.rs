@@ -1,46 +1,68 @@
-//! Claim C4: episodic equivalence (average cost with a reset bonus `M < 0`).
+//! Claim C4: episodic equivalence (average cost with a reset bonus `M < 0`), over truecost's
+//! own policy-enumeration oracle (`claims::c4::bonus_sets`: exact averages of every policy).
 
-use crate::Four;
+use truecost::claims::c4::{bonus_sets, Instance};
+use truecost::claims::exact::Q;
 
-/// The printed formula on a fixed problem with costs scaled by `k ∈ 1..=4`: `x1 → 1` (cost 0),
-/// `x1 → goal` (cost `k`), `1 → goal` (cost 0). `π*` goes through 1 (`S* = 3`, `L* = 0`); the
-/// other path has `S = 2`, `L = k`. The true lower threshold on `M` is where
-/// `(0 + M)/3 = (k + M)/2`, i.e. `M = −3k`; the printed `a = A(u) = (1 − 2/3)(2·0/(3k) − 1) =
-/// −1/3` does not scale. Must fail.
-#[kani::proof]
-#[kani::unwind(8)]
-#[kani::should_panic]
-pub fn c4_printed_formula_fails() {
-    let k = kani::any::<Four>().value() + 1;
-    // Thresholds as fractions n/d.
-    let (true_n, true_d) = (-3 * k, 1i64);
-    let (printed_n, printed_d) = (-1i64, 3i64);
-    kani::assert(
-        true_n * printed_d == printed_n * true_d,
-        "printed a equals the true threshold",
-    );
+use crate::symbolic::any_tiny;
+
+fn any_bonus() -> Q {
+    // M = -(n + 1)/(d + 1): every negative rational with numerator ≤ 2^16 and denominator ≤ 2^8.
+    let n = kani::any::<u16>() as i128 + 1;
+    let d = kani::any::<u8>() as i128 + 1;
+    Q::new(-n, d)
 }
 
-/// For `x1 → goal` (cost `d`) and `x1 → 1 → goal` (costs `e1`, `e2`), all in `0..=3`, and every
-/// bonus `M ∈ −8..=−1`: `π*` (the cheaper path; the direct one on ties) has the least average
-/// cost `(L + M)/S` iff the corrected threshold `T(u) = (S*·L(u) − S(u)·L*)/(S(u) − S*)` says so.
+/// **C4-corrected** on any 4-state problem (`x1 = 0`, goal 3, 1–2 moves per state, symbolic
+/// successors, any `u8` costs) with a goal path, for every distinct `S*`, at any bonus
+/// `M = −n/d` (`n ≤ 2^16`, `d ≤ 2^8`): `π*` is average-cost optimal (policy-enumeration oracle)
+/// iff `M` lies in the corrected set, and the two sets are equal as sets. Domain 2^123.
 #[kani::proof]
-#[kani::unwind(10)]
-pub fn c4_corrected_threshold_matches_averages() {
-    let d = kani::any::<Four>().value();
-    let e = kani::any::<Four>().value() + kani::any::<Four>().value();
-    let (lstar, sstar, l, s) = if d <= e {
-        (d, 2i64, e, 3i64)
-    } else {
-        (e, 3, d, 2)
+#[kani::unwind(9)]
+#[kani::solver(kissat)]
+#[cfg_attr(not(kani), kani::samples(4000))]
+pub fn c4_corrected_set_is_the_oracles() {
+    let t = any_tiny(4);
+    let m = any_bonus();
+    let sets = bonus_sets(&Instance::from_tiny(&t), 1 << 12).expect("Karp agrees with policies");
+    let Some(sets) = sets else {
+        kani::assume(false); // no goal path: the claim says nothing
+        return;
     };
-    for m in -8i64..=-1 {
-        // Oracle: (L* + M)/S* <= (L + M)/S, cross-multiplied (S, S* > 0).
-        let oracle = (lstar + m) * s <= (l + m) * sstar;
-        // Corrected: M >= T if S < S*, M <= T if S > S*; T = (S*·L − S·L*)/(S − S*).
-        let (tn, td) = (sstar * l - s * lstar, s - sstar);
-        // S > S* (td > 0): M <= tn/td ⇔ M·td <= tn; S < S* (td < 0): M >= tn/td ⇔ M·td <= tn.
-        let formula = m * td <= tn;
-        kani::assert(oracle == formula, "corrected threshold = oracle");
+    for s in &sets {
+        kani::assert(
+            s.exact.same_set(&s.corrected),
+            "corrected set = oracle's set",
+        );
+        kani::assert(
+            s.exact.contains(m) == s.corrected.contains(m),
+            "pi* optimal at M iff M in the corrected set",
+        );
+    }
+}
+
+/// **C4 as printed** over the same domain: wherever the printed formula is defined, `π*` is
+/// average-cost optimal iff `a ≤ M ≤ min{b, S*·Lav(Ĉ) − L*}`. Must fail (the printed `A(u)`
+/// does not scale with the costs). Domain 2^123.
+#[kani::proof]
+#[kani::unwind(9)]
+#[kani::solver(kissat)]
+#[kani::should_panic]
+#[cfg_attr(not(kani), kani::samples(4000))]
+pub fn c4_as_printed_set_is_the_oracles() {
+    let t = any_tiny(4);
+    let m = any_bonus();
+    let sets = bonus_sets(&Instance::from_tiny(&t), 1 << 12).expect("Karp agrees with policies");
+    let Some(sets) = sets else {
+        kani::assume(false);
+        return;
+    };
+    for s in &sets {
+        if let Some(printed) = s.printed {
+            kani::assert(
+                s.exact.contains(m) == printed.contains(m),
+                "pi* optimal at M iff M in the printed set",
+            );
+        }
     }
 }

@@ -47,6 +47,10 @@ struct Finding {
     q0: Values,
     terminal_q0: i64,
     what: String,
+    /// The order under which the failure shows (`None`: a pair with `Q* = +∞`).
+    order: Option<Order>,
+    /// Rounds after which the failure is visible under that order.
+    rounds: u64,
 }
 
 #[derive(Default)]
@@ -55,6 +59,7 @@ struct Acc {
     printed_failures: u64,
     printed_undecided: u64,
     printed_min: Option<(Key, Finding)>,
+    printed_cycle_min: Option<(Key, Finding)>,
     corrected_cases: u64,
     corrected_failures: u64,
     corrected_min: Option<(Key, Finding)>,
@@ -77,6 +82,7 @@ fn merge(a: Acc, b: Acc) -> Acc {
         printed_failures: a.printed_failures + b.printed_failures,
         printed_undecided: a.printed_undecided + b.printed_undecided,
         printed_min: min_of(a.printed_min, b.printed_min),
+        printed_cycle_min: min_of(a.printed_cycle_min, b.printed_cycle_min),
         corrected_cases: a.corrected_cases + b.corrected_cases,
         corrected_failures: a.corrected_failures + b.corrected_failures,
         corrected_min: min_of(a.corrected_min, b.corrected_min),
@@ -106,8 +112,9 @@ fn initial_values(scope: Scope) -> &'static [i64] {
 fn corrected_values(scope: Scope) -> &'static [i64] {
     match scope {
         Scope::Smoke => &[0, 1, 3],
-        Scope::Quick => &[0, 1, 2, 4],
-        Scope::Full => &[-1, 0, 1, 2, 4],
+        // Quick includes a negative value, so the min(0, min Q0) term of R is checked in CI.
+        Scope::Quick => &[-2, 0, 1, 2, 4],
+        Scope::Full => &[-2, -1, 0, 1, 2, 4],
     }
 }
 
@@ -286,7 +293,11 @@ fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], correcte
             // As printed.
             acc.printed_cases += 1;
             let verdict = if !printed.all_finite() {
-                Some("some pair has Q* = inf (its state cannot reach the goal) while Q stays finite forever".to_string())
+                Some((
+                    "some pair has Q* = inf (its state cannot reach the goal) while Q stays finite forever".to_string(),
+                    None,
+                    1,
+                ))
             } else {
                 let mut bad = None;
                 for o in orders(seed) {
@@ -294,8 +305,12 @@ fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], correcte
                     let r = run(&printed, &q0, o, MAX_ROUNDS);
                     match r {
                         Run::Converged(_) => {}
-                        Run::Cycles(..) => {
-                            bad = Some(format!("under the {}: {}", order_name(o), describe_run(r)));
+                        Run::Cycles(from, period) => {
+                            bad = Some((
+                                format!("under the {}: {}", order_name(o), describe_run(r)),
+                                Some(o),
+                                from + period,
+                            ));
                             break;
                         }
                         Run::NotWithin(_) => {
@@ -305,14 +320,22 @@ fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], correcte
                 }
                 bad
             };
-            if let Some(what) = verdict {
+            if let Some((what, order, rounds)) = verdict {
                 acc.printed_failures += 1;
-                keep_min(&mut acc.printed_min, key, || Finding {
+                let finding = || Finding {
                     t: *t,
                     q0,
                     terminal_q0,
-                    what,
-                });
+                    what: what.clone(),
+                    order,
+                    rounds,
+                };
+                // A failure with the termination pair at 0 and Q* finite is a zero-cost cycle
+                // started below Q* (the headline counterexample; issue 10, item 4).
+                if terminal_q0 == 0 && printed.all_finite() {
+                    keep_min(&mut acc.printed_cycle_min, key, finding);
+                }
+                keep_min(&mut acc.printed_min, key, finding);
             }
         }
     }
@@ -362,18 +385,22 @@ fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], correcte
                                     order_name(o),
                                     describe_run(r)
                                 ),
+                                order: Some(o),
+                                rounds: MAX_ROUNDS.min(bound + 1),
                             });
                         }
                     }
                 }
             } else if h1 && !h2 {
                 let r = run(&held, &q0, Order::Cyclic, MAX_ROUNDS);
-                if let Run::Cycles(..) = r {
+                if let Run::Cycles(from, period) = r {
                     keep_min(&mut acc.drop_h2, key, || Finding {
                         t: *t,
                         q0,
                         terminal_q0,
                         what: format!("under the cyclic order: {}", describe_run(r)),
+                        order: Some(Order::Cyclic),
+                        rounds: from + period,
                     });
                 }
             } else if !h1 && positive {
@@ -382,6 +409,8 @@ fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], correcte
                     q0,
                     terminal_q0,
                     what: "a state cannot reach the goal: Q* = inf there, Q stays finite".into(),
+                    order: None,
+                    rounds: 1,
                 });
             }
         }
@@ -431,6 +460,8 @@ fn check_all_orders(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64]) {
                     q0: *q0,
                     terminal_q0: 0,
                     what: format!("every-order exploration: {other:?} (bound R = {bound})"),
+                    order: Some(Order::FarFirst),
+                    rounds: MAX_ROUNDS.min(bound + 1),
                 });
             }
         }
@@ -452,6 +483,7 @@ fn counterexample(f: &Finding, terminal: Terminal, file: &str) -> Counterexample
         values_text(&q, &q0),
         f.what
     );
+    let replay = replay_command(f, &q, &q0, terminal, file);
     Counterexample::new(
         &f.t,
         summary,
@@ -468,6 +500,35 @@ fn counterexample(f: &Finding, terminal: Terminal, file: &str) -> Counterexample
             ("what happens".into(), f.what.clone()),
         ],
         file,
+    )
+    .with_replay(replay)
+}
+
+/// The `truecost learn` command that replays a finding on its problem file (issue 10, item 4):
+/// the same initial values (one per pair, in the file's pair order), order and treatment of the
+/// termination pair, for enough rounds to show the failure.
+fn replay_command(
+    f: &Finding,
+    q: &QProblem,
+    q0: &Values,
+    terminal: Terminal,
+    file: &str,
+) -> String {
+    let values: Vec<String> = (0..q.len()).map(|p| q0[p].to_string()).collect();
+    let order = match f.order.unwrap_or(Order::Cyclic) {
+        Order::Cyclic => "cyclic".to_string(),
+        Order::Reverse => "reverse".to_string(),
+        Order::FarFirst => "far-first".to_string(),
+        Order::Random(seed) => format!("random --seed {seed}"),
+    };
+    format!(
+        "truecost learn --file problems/counterexamples/{file}.json --q0 {} --order {order} --terminal {} --rounds {}",
+        values.join(","),
+        match terminal {
+            Terminal::Updated => "updated",
+            Terminal::HeldAtZero => "held",
+        },
+        f.rounds.max(4)
     )
 }
 
@@ -525,8 +586,9 @@ termination pair 0 or 1; fair orders: cyclic, reverse, far-from-goal-first (adve
         scope: scope_line.clone(),
         cases: acc.printed_cases,
         counterexample: acc
-            .printed_min
+            .printed_cycle_min
             .as_ref()
+            .or(acc.printed_min.as_ref())
             .map(|(_, f)| counterexample(f, Terminal::Updated, "c1-as-printed")),
         engines: vec![EngineRun {
             engine: "exhaustive enumeration".into(),
@@ -546,6 +608,25 @@ values under a periodic order)",
                 .into(),
         ],
     };
+    let mut printed = printed;
+    if let (Some((_, headline)), Some((_, smallest))) = (&acc.printed_cycle_min, &acc.printed_min) {
+        if headline.t != smallest.t
+            || headline.q0 != smallest.q0
+            || headline.terminal_q0 != smallest.terminal_q0
+        {
+            let q = QProblem::new(&smallest.t, Terminal::Updated);
+            let mut q0 = smallest.q0;
+            if let Some(p) = (0..q.len()).find(|&p| q.pairs[p].terminal) {
+                q0[p] = smallest.terminal_q0;
+            }
+            printed.notes.push(format!(
+                "also refuted at the goal's termination pair (a zero-cost self-loop updated by the same rule): {} ({}; initial values {})",
+                smallest.what,
+                smallest.t.describe(),
+                values_text(&q, &q0)
+            ));
+        }
+    }
     let mut notes = vec![
         format!(
             "worst observed number of rounds: {} (simulated orders), {} (every fair order); the bound R is attained \
@@ -635,4 +716,34 @@ termination pair held at 0; instances satisfying H0-H2 only; fair orders: cyclic
     };
     let _ = Q::ZERO;
     (printed, corrected)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::claims::qlearning::{QProblem, Terminal};
+    use crate::claims::tiny::Tiny;
+
+    /// Issue 10, item 5: the quick scope (CI) checks the `min(0, min Q₀)` term of `R`, which
+    /// only a negative initial value exercises: on `0 → 0 (1), 0 → goal (1)` from `Q₀ = −2`,
+    /// `R = max(R₁, ⌈(max Q* − (−2))/c⌉) = max(2, 4) = 4`, and the cyclic order needs all 4
+    /// rounds (`Q(0→0)`: −1, 0, 1, 2 by hand), so a scope without negative values never sees
+    /// the term decide the bound.
+    #[test]
+    fn quick_scope_has_negative_initial_values_and_they_set_the_bound() {
+        assert!(corrected_values(Scope::Quick).iter().any(|&v| v < 0));
+        assert!(corrected_values(Scope::Quick).contains(&0));
+        let q = QProblem::new(
+            &Tiny::from_lists(&[vec![(0, 1), (1, 1)], vec![]]),
+            Terminal::HeldAtZero,
+        );
+        let mut q0 = [0i64; crate::claims::qlearning::MAX_PAIRS];
+        q0[0] = -2;
+        q0[1] = -2;
+        assert_eq!(q.round_bound(&q0), Some(4));
+        assert_eq!(
+            crate::claims::qlearning::run(&q, &q0, Order::Cyclic, 10),
+            Run::Converged(4)
+        );
+    }
 }

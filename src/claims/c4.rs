@@ -216,40 +216,62 @@ impl Instance {
         (n, arcs)
     }
 
-    /// Every simple path from `x1` to a goal as `(L, S)`.
-    pub fn goal_paths(&self) -> Vec<(i64, i64)> {
-        let mut out = Vec::new();
-        let mut on = vec![false; self.moves.len()];
-        fn dfs(
-            inst: &Instance,
-            x: usize,
-            cost: i64,
-            states: i64,
-            on: &mut [bool],
-            out: &mut Vec<(i64, i64)>,
-        ) {
-            if inst.is_goal[x] {
-                out.push((cost, states));
-                return;
+    /// Every simple path from `x1` to a goal as `(L, S)`, or `Err(BonusError::SearchTooLong)`
+    /// once the depth-first search has taken more than `max_steps` steps (issue 12: the bound
+    /// is checked while the search runs, so a grid refuses at once instead of listing its
+    /// astronomically many paths).
+    ///
+    /// ```
+    /// use truecost::claims::c4::{BonusError, Instance};
+    /// // x1 = 0 -> 1 -> goal 2, and 0 -> goal 2 directly.
+    /// let inst = Instance { initial: 0, is_goal: vec![false, false, true],
+    ///     moves: vec![vec![(1, 1), (2, 5)], vec![(2, 1)], vec![]] };
+    /// let mut paths = inst.goal_paths(100).unwrap();
+    /// paths.sort();
+    /// assert_eq!(paths, vec![(2, 3), (5, 2)]);
+    /// assert_eq!(inst.goal_paths(2), Err(BonusError::SearchTooLong { steps: 2 }));
+    /// ```
+    pub fn goal_paths(&self, max_steps: u64) -> Result<Vec<(i64, i64)>, BonusError> {
+        struct Search<'a> {
+            inst: &'a Instance,
+            on: Vec<bool>,
+            out: Vec<(i64, i64)>,
+            steps: u64,
+            max_steps: u64,
+        }
+        fn dfs(s: &mut Search, x: usize, cost: i64, states: i64) -> Result<(), BonusError> {
+            s.steps += 1;
+            if s.steps > s.max_steps {
+                return Err(BonusError::SearchTooLong { steps: s.max_steps });
             }
-            for &(y, c) in &inst.moves[x] {
-                if !on[y] {
-                    on[y] = true;
-                    dfs(inst, y, cost + c, states + 1, on, out);
-                    on[y] = false;
+            if s.inst.is_goal[x] {
+                s.out.push((cost, states));
+                return Ok(());
+            }
+            for &(y, c) in &s.inst.moves[x] {
+                if !s.on[y] {
+                    s.on[y] = true;
+                    dfs(s, y, cost + c, states + 1)?;
+                    s.on[y] = false;
                 }
             }
+            Ok(())
         }
-        on[self.initial] = true;
-        dfs(self, self.initial, 0, 1, &mut on, &mut out);
-        out
+        let mut search = Search {
+            inst: self,
+            on: vec![false; self.moves.len()],
+            out: Vec::new(),
+            steps: 0,
+            max_steps,
+        };
+        search.on[self.initial] = true;
+        dfs(&mut search, self.initial, 0, 1)?;
+        Ok(search.out)
     }
 
-    /// Every stationary policy's average cost from `x1` as `(c, r, k)`: `(c + r·M)/k`.
-    /// `None` if there are more than `limit` policies.
-    pub fn policy_averages(&self, limit: u64) -> Option<Vec<(i64, i64, i64)>> {
+    /// The states reachable from `x1` without passing through a goal (goals reached included).
+    fn reachable(&self) -> Vec<bool> {
         let n = self.moves.len();
-        // Only states reachable from x1 matter.
         let mut reach = vec![false; n];
         reach[self.initial] = true;
         let mut stack = vec![self.initial];
@@ -264,17 +286,43 @@ impl Instance {
                 }
             }
         }
-        let free: Vec<usize> = (0..n).filter(|&x| reach[x] && !self.is_goal[x]).collect();
+        reach
+    }
+
+    /// The number of stationary policies over the non-goal states reachable from `x1`
+    /// (`Π |U(x)|`), or `None` as soon as it exceeds `limit` (computed without enumerating).
+    ///
+    /// ```
+    /// use truecost::claims::c4::Instance;
+    /// let inst = Instance { initial: 0, is_goal: vec![false, false, true],
+    ///     moves: vec![vec![(1, 1), (2, 5)], vec![(2, 1), (0, 1)], vec![]] };
+    /// assert_eq!(inst.policy_count(10), Some(4));
+    /// assert_eq!(inst.policy_count(3), None);
+    /// ```
+    pub fn policy_count(&self, limit: u64) -> Option<u64> {
+        let reach = self.reachable();
         let mut count: u64 = 1;
-        for &x in &free {
-            if self.moves[x].is_empty() {
-                return Some(Vec::new());
-            }
+        for x in (0..self.moves.len()).filter(|&x| reach[x] && !self.is_goal[x]) {
             count = count.checked_mul(self.moves[x].len() as u64)?;
             if count > limit {
                 return None;
             }
         }
+        Some(count)
+    }
+
+    /// Every stationary policy's average cost from `x1` as `(c, r, k)`: `(c + r·M)/k`.
+    /// `None` if there are more than `limit` policies.
+    /// The bound is checked before anything is enumerated ([`Instance::policy_count`]).
+    pub fn policy_averages(&self, limit: u64) -> Option<Vec<(i64, i64, i64)>> {
+        let n = self.moves.len();
+        // Only states reachable from x1 matter.
+        let reach = self.reachable();
+        let free: Vec<usize> = (0..n).filter(|&x| reach[x] && !self.is_goal[x]).collect();
+        if free.iter().any(|&x| self.moves[x].is_empty()) {
+            return Some(Vec::new());
+        }
+        let count = self.policy_count(limit)?;
         let mut choice = vec![0usize; n];
         let mut out = Vec::with_capacity(count as usize);
         loop {
@@ -349,17 +397,90 @@ pub struct BonusSets {
     pub corrected: Interval,
 }
 
+/// The most states reachable from `x1` that [`bonus_analysis`] accepts: with integer costs
+/// below 2^40 (as `verify --claim C4` scales them), every sum and product it forms then stays
+/// below 2^63.
+pub const MAX_BONUS_STATES: usize = 1024;
+
+/// Why the exact bonus analysis of one problem refuses (issue 12: every search with a
+/// combinatorial blow-up has an effort bound, named in the refusal).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum BonusError {
+    /// More stationary policies than the enumeration oracle's bound.
+    #[error("more than {limit} stationary policies from x1 (the bound of the policy-enumeration oracle): too large for the exact bonus analysis")]
+    TooManyPolicies {
+        /// The bound.
+        limit: u64,
+    },
+    /// The search for simple goal paths went past its step bound.
+    #[error("the search for simple goal paths from x1 took more than {steps} steps (its bound): too large for the exact bonus analysis")]
+    SearchTooLong {
+        /// The bound.
+        steps: u64,
+    },
+    /// Too many states for exact integer arithmetic.
+    #[error("{states} states are reachable from x1; the exact bonus analysis takes at most {MAX_BONUS_STATES}")]
+    TooManyStates {
+        /// States reachable from `x1`.
+        states: usize,
+    },
+    /// A cross-check failed (a truecost bug).
+    #[error("internal error: {0}")]
+    Internal(String),
+}
+
 /// Computes the bonus sets for every distinct `S*` of an optimal single-shot path. `Ok(None)`
-/// if no goal is reachable or the policies exceed `limit`.
+/// if no goal is reachable or the effort bounds are exceeded (see [`bonus_analysis`]).
 pub fn bonus_sets(inst: &Instance, limit: u64) -> Result<Option<Vec<BonusSets>>, String> {
-    let paths = inst.goal_paths();
+    match bonus_analysis(inst, limit) {
+        Ok(sets) => Ok(sets),
+        Err(BonusError::Internal(e)) => Err(e),
+        Err(_) => Ok(None),
+    }
+}
+
+/// The bonus sets of C4 for every distinct `S*` of an optimal single-shot path (`Ok(None)`
+/// if no goal is reachable from `x1`), refusing before or during the work when it would be
+/// too large: more than [`MAX_BONUS_STATES`] reachable states, more than `limit` stationary
+/// policies (counted before enumerating), or a goal-path search longer than
+/// `limit × (states + 1)` steps (checked while it runs).
+///
+/// ```
+/// use truecost::claims::c4::{bonus_analysis, BonusError, Instance};
+/// // A 4 x 4 grid: 4^15 policies, refused at once.
+/// let n = 16;
+/// let moves = (0..n).map(|x: usize| {
+///     let (r, c) = (x / 4, x % 4);
+///     let mut m = Vec::new();
+///     if c > 0 { m.push((x - 1, 1)); } if c < 3 { m.push((x + 1, 1)); }
+///     if r > 0 { m.push((x - 4, 1)); } if r < 3 { m.push((x + 4, 1)); }
+///     m
+/// }).collect();
+/// let mut is_goal = vec![false; n];
+/// is_goal[15] = true;
+/// let grid = Instance { initial: 0, is_goal, moves };
+/// assert_eq!(bonus_analysis(&grid, 1 << 22), Err(BonusError::TooManyPolicies { limit: 1 << 22 }));
+/// ```
+pub fn bonus_analysis(inst: &Instance, limit: u64) -> Result<Option<Vec<BonusSets>>, BonusError> {
+    let reach = inst.reachable();
+    if !(0..inst.moves.len()).any(|x| reach[x] && inst.is_goal[x]) {
+        return Ok(None);
+    }
+    let states = reach.iter().filter(|&&r| r).count();
+    if states > MAX_BONUS_STATES {
+        return Err(BonusError::TooManyStates { states });
+    }
+    if inst.policy_count(limit).is_none() {
+        return Err(BonusError::TooManyPolicies { limit });
+    }
+    let paths = inst.goal_paths(limit.saturating_mul(states as u64 + 1))?;
     let Some(lstar) = paths.iter().map(|p| p.0).min() else {
         return Ok(None);
     };
     let Some(averages) = inst.policy_averages(limit) else {
-        return Ok(None);
+        return Err(BonusError::TooManyPolicies { limit });
     };
-    let lav = inst.least_mean_cycle()?;
+    let lav = inst.least_mean_cycle().map_err(BonusError::Internal)?;
     // Cross-check Karp against the policies' goal-avoiding cycles.
     let from_policies = averages
         .iter()
@@ -367,9 +488,9 @@ pub fn bonus_sets(inst: &Instance, limit: u64) -> Result<Option<Vec<BonusSets>>,
         .map(|a| Q::new(a.0 as i128, a.2 as i128))
         .min();
     if from_policies != lav {
-        return Err(format!(
+        return Err(BonusError::Internal(format!(
             "Karp {lav:?} disagrees with the policies' cycles {from_policies:?}"
-        ));
+        )));
     }
     let mut sstars: Vec<i64> = paths.iter().filter(|p| p.0 == lstar).map(|p| p.1).collect();
     sstars.sort_unstable();
@@ -564,6 +685,10 @@ fn counterexample(f: &Finding, printed: bool) -> Counterexample {
         ],
         if printed { "c4-as-printed" } else { "c4-corrected" },
     )
+    .with_replay(format!(
+        "truecost verify --claim C4 --file problems/counterexamples/{}.json",
+        if printed { "c4-as-printed" } else { "c4-corrected" }
+    ))
 }
 
 /// Checks C4 as printed and C4-corrected in `scope`. Returns `(C4, C4-corrected)`.

@@ -54,24 +54,57 @@ pub struct DiscountSet {
     pub method: String,
 }
 
-/// Why the analysis cannot run.
+/// The most depth-first steps the enumeration of goal paths and lassos may take.
+pub const MAX_SEARCH_STEPS: u64 = 2_000_000;
+
+/// The most polynomial coefficients the enumerated trajectories may hold together (a lasso
+/// of `k` stages holds about `2k`); bounds the memory of the enumeration.
+pub const MAX_COEFFICIENTS: u64 = 1_000_000;
+
+/// The most work the breakpoint search may do, checked before it starts: `pairs² · (d + 1)³`
+/// with `pairs` = lassos × paths and `d` the largest degree of a difference polynomial (each
+/// candidate root is tested against every pair by Sturm sequences of cubic cost). Measured: a
+/// 3 × 3 grid with costs 1–4 (696 pairs, degree 17, ≈ 2.8·10⁹ units) took 5 minutes, so this
+/// bound keeps a run to seconds.
+pub const MAX_PAIR_WORK: u64 = 200_000_000;
+
+/// Why the analysis cannot run. Each refusal names the bound that was reached (issue 12: every
+/// search with a combinatorial blow-up is bounded while it runs).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum DiscountError {
     /// Too many trajectories for the exact enumeration.
     #[error("the problem has more than {0} goal paths or goal-avoiding lassos from x1: too large for the exact parametric analysis")]
     TooLarge(usize),
+    /// The enumeration went past one of its effort bounds.
+    #[error("the enumeration of goal paths and lassos from x1 passed its bound of {bound} {what}: too large for the exact parametric analysis")]
+    Effort {
+        /// What was counted.
+        what: &'static str,
+        /// The bound.
+        bound: u64,
+    },
 }
 
-/// Discounted value of a stage sequence `prefix` then `cycle` forever, as `(N, D)`.
+/// Discounted value of a stage sequence `prefix` then `cycle` forever, as `(N, D)`:
+/// `N = P(α)(1 − α^k) + α^s C(α)`, `D = 1 − α^k` (`s`, `k` the lengths), formed in time linear
+/// in `s + k` (no general polynomial product).
 fn value(prefix: &[Rational], cycle: &[Rational]) -> (Poly, Poly) {
-    let p = Poly::new(prefix.to_vec());
     if cycle.is_empty() {
-        return (p, Poly::from_i64(&[1]));
+        return (Poly::new(prefix.to_vec()), Poly::from_i64(&[1]));
     }
-    let k = cycle.len();
-    let d = Poly::from_i64(&[1]).sub(&Poly::monomial(k));
-    let c = Poly::new(cycle.to_vec());
-    (p.mul(&d).add(&Poly::monomial(prefix.len()).mul(&c)), d)
+    let (s, k) = (prefix.len(), cycle.len());
+    let mut n = vec![Rational::zero(); s + k];
+    for (i, p) in prefix.iter().enumerate() {
+        n[i] += p;
+        n[i + k] -= p;
+    }
+    for (i, c) in cycle.iter().enumerate() {
+        n[s + i] += c;
+    }
+    let mut d = vec![Rational::zero(); k + 1];
+    d[0] = Rational::one();
+    d[k] = -Rational::one();
+    (Poly::new(n), Poly::new(d))
 }
 
 struct Trajectories {
@@ -79,53 +112,96 @@ struct Trajectories {
     lassos: Vec<(Poly, Poly)>,
 }
 
+/// Every goal path and goal-avoiding lasso from `x1`, each bound checked as the search runs.
 fn trajectories(problem: &Problem, limit: usize) -> Result<Trajectories, DiscountError> {
-    let n = problem.states();
-    let mut out = Trajectories {
-        paths: Vec::new(),
-        lassos: Vec::new(),
-    };
-    let mut pos = vec![usize::MAX; n];
-    let mut costs: Vec<Rational> = Vec::new();
-    fn dfs(
-        problem: &Problem,
-        x: usize,
-        pos: &mut Vec<usize>,
-        costs: &mut Vec<Rational>,
-        out: &mut Trajectories,
+    struct Walk<'a> {
+        problem: &'a Problem,
+        pos: Vec<usize>,
+        costs: Vec<Rational>,
+        out: Trajectories,
         limit: usize,
-    ) -> Result<(), DiscountError> {
-        if problem.is_goal(x) {
-            out.paths.push(value(costs, &[]));
-        } else {
-            pos[x] = costs.len();
-            for m in problem.moves(x) {
-                let y = m.successor;
-                costs.push(m.cost.clone());
-                if pos[y] != usize::MAX {
-                    let s = pos[y];
-                    out.lassos.push(value(&costs[..s], &costs[s..]));
-                } else {
-                    dfs(problem, y, pos, costs, out, limit)?;
-                }
-                costs.pop();
+        steps: u64,
+        coefficients: u64,
+    }
+    impl Walk<'_> {
+        /// Counts a stored trajectory of `stages` stages and checks every bound.
+        fn stored(&mut self, stages: usize) -> Result<(), DiscountError> {
+            self.coefficients += 2 * stages as u64 + 2;
+            if self.out.paths.len() > self.limit || self.out.lassos.len() > self.limit {
+                return Err(DiscountError::TooLarge(self.limit));
             }
-            pos[x] = usize::MAX;
+            if self.coefficients > MAX_COEFFICIENTS {
+                return Err(DiscountError::Effort {
+                    what: "polynomial coefficients",
+                    bound: MAX_COEFFICIENTS,
+                });
+            }
+            Ok(())
         }
-        if out.paths.len() > limit || out.lassos.len() > limit {
-            return Err(DiscountError::TooLarge(limit));
+    }
+    fn dfs(w: &mut Walk, x: usize) -> Result<(), DiscountError> {
+        w.steps += 1;
+        if w.steps > MAX_SEARCH_STEPS {
+            return Err(DiscountError::Effort {
+                what: "search steps",
+                bound: MAX_SEARCH_STEPS,
+            });
         }
+        if w.problem.is_goal(x) {
+            w.out.paths.push(value(&w.costs, &[]));
+            return w.stored(w.costs.len());
+        }
+        w.pos[x] = w.costs.len();
+        for m in w.problem.moves(x) {
+            let y = m.successor;
+            w.costs.push(m.cost.clone());
+            if w.pos[y] != usize::MAX {
+                let s = w.pos[y];
+                let lasso = value(&w.costs[..s], &w.costs[s..]);
+                w.out.lassos.push(lasso);
+                w.stored(w.costs.len())?;
+            } else {
+                dfs(w, y)?;
+            }
+            w.costs.pop();
+        }
+        w.pos[x] = usize::MAX;
         Ok(())
     }
-    dfs(
+    let mut walk = Walk {
         problem,
-        problem.initial(),
-        &mut pos,
-        &mut costs,
-        &mut out,
+        pos: vec![usize::MAX; problem.states()],
+        costs: Vec::new(),
+        out: Trajectories {
+            paths: Vec::new(),
+            lassos: Vec::new(),
+        },
         limit,
-    )?;
-    Ok(out)
+        steps: 0,
+        coefficients: 0,
+    };
+    dfs(&mut walk, problem.initial())?;
+    Ok(walk.out)
+}
+
+/// Checks, before the breakpoint search, that its work (`pairs² · (d + 1)³`, see
+/// [`MAX_PAIR_WORK`]) stays within its bound.
+fn check_pair_work(t: &Trajectories) -> Result<(), DiscountError> {
+    let degree =
+        |(n, d): &(Poly, Poly)| n.degree().unwrap_or(0).max(d.degree().unwrap_or(0)) as u64;
+    let pairs = (t.lassos.len() as u64).saturating_mul(t.paths.len() as u64);
+    let d = t.lassos.iter().map(degree).max().unwrap_or(0)
+        + t.paths.iter().map(degree).max().unwrap_or(0);
+    let work = pairs
+        .saturating_mul(pairs)
+        .saturating_mul((d + 1).saturating_pow(3));
+    if work > MAX_PAIR_WORK {
+        return Err(DiscountError::Effort {
+            what: "units of breakpoint work (pairs^2 x (degree+1)^3)",
+            bound: MAX_PAIR_WORK,
+        });
+    }
+    Ok(())
 }
 
 fn min_value(list: &[(Poly, Poly)], a: &Rational) -> Option<Rational> {
@@ -171,7 +247,9 @@ fn member_algebraic(t: &Trajectories, b: &Algebraic) -> bool {
 }
 
 /// The exact set of `α ∈ (0,1)` for which a discount-optimal policy fails to reach a goal from
-/// `x1`. `limit` bounds the number of paths and lassos enumerated.
+/// `x1`. `limit` bounds the number of paths and lassos enumerated; [`MAX_SEARCH_STEPS`],
+/// [`MAX_COEFFICIENTS`] and [`MAX_PAIR_WORK`] bound the rest of the work (issue 12), so a
+/// large problem is refused within seconds, naming the bound it reached.
 ///
 /// ```
 /// use truecost::claims::discount::discount_set;
@@ -249,6 +327,7 @@ the cost of any lasso",
         ));
     }
     let t = trajectories(problem, limit)?;
+    check_pair_work(&t)?;
     // Candidate breakpoints.
     let mut polys: Vec<Poly> = Vec::new();
     for (nl, dl) in &t.lassos {

@@ -29,8 +29,10 @@ pub mod oracle;
 pub mod poly;
 pub mod qlearning;
 pub mod registry;
+pub mod replay;
 pub mod report;
 pub mod sampled;
+pub mod smt;
 pub mod tiny;
 
 use rayon::prelude::*;
@@ -66,6 +68,9 @@ impl Scope {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Verdict {
+    /// The SMT engine showed the negation unsatisfiable over the reals for every structure of
+    /// its stated scope, with its trust checks passing (PROOFS.md).
+    Proved,
     /// Holds on every case of the stated scope (not a proof beyond it).
     Verified,
     /// A counterexample was found (the smallest in the scope's order is reported).
@@ -75,9 +80,10 @@ pub enum Verdict {
 }
 
 impl Verdict {
-    /// `verified`, `refuted` or `inconclusive`.
+    /// `proved`, `verified`, `refuted` or `inconclusive`.
     pub fn name(self) -> &'static str {
         match self {
+            Verdict::Proved => "proved",
             Verdict::Verified => "verified",
             Verdict::Refuted => "refuted",
             Verdict::Inconclusive => "inconclusive",
@@ -88,7 +94,7 @@ impl Verdict {
 /// What one engine did for a claim.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct EngineRun {
-    /// `exhaustive enumeration`, `proptest` or `kani harness`.
+    /// `exhaustive enumeration`, `proptest`, `kani harness …` or `smt`.
     pub engine: String,
     /// `exhaustive`, `sampled`, or `not run by verify` (Kani harnesses: see `proofs/`).
     pub mode: String,
@@ -117,6 +123,8 @@ pub struct Counterexample {
     /// The problem file's text.
     #[serde(skip)]
     pub problem_file: String,
+    /// A command that shows the failure (issue 10, item 4), starting with `truecost `.
+    pub replay: Option<String>,
 }
 
 impl Counterexample {
@@ -129,6 +137,15 @@ impl Counterexample {
             details,
             file: format!("problems/counterexamples/{file}.json"),
             problem_file: crate::model::file::to_json(&problem, Some(&summary)) + "\n",
+            replay: None,
+        }
+    }
+
+    /// The same counterexample with the command that replays its failure (issue 10, item 4).
+    pub fn with_replay(self, command: String) -> Self {
+        Counterexample {
+            replay: Some(command),
+            ..self
         }
     }
 }
@@ -191,7 +208,7 @@ where
 
 /// Keeps the minimal `(key, value)`.
 pub fn keep_min<K: Ord, T>(slot: &mut Option<(K, T)>, key: K, value: impl FnOnce() -> T) {
-    if slot.as_ref().map_or(true, |(k, _)| key < *k) {
+    if slot.as_ref().is_none_or(|(k, _)| key < *k) {
         *slot = Some((key, value()));
     }
 }
@@ -205,7 +222,7 @@ pub fn min_of<K: Ord, T>(a: Option<(K, T)>, b: Option<(K, T)>) -> Option<(K, T)>
     }
 }
 
-/// Runs the claims selected by `only` (all when `None`) in `scope`.
+/// Runs the claims selected by `only` (all when `None`) in `scope`, every engine included.
 pub fn run(scope: Scope, only: Option<&str>) -> Result<report::Report, String> {
-    registry::run(scope, only)
+    registry::run(scope, only, &registry::Options::default())
 }

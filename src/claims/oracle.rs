@@ -298,7 +298,7 @@ pub fn optimal_cost_to_go(t: &Tiny) -> [Option<i64>; MAX_STATES] {
             let tr = trajectory(t, &p, x);
             if tr.terminates {
                 let c: i64 = tr.prefix[..tr.prefix_len].iter().sum();
-                if b.map_or(true, |v| c < v) {
+                if b.is_none_or(|v| c < v) {
                     *b = Some(c);
                 }
             }
@@ -331,7 +331,7 @@ pub fn karp_minimum_mean_cycle(n: usize, arcs: &[(usize, usize, i64)]) -> Option
         for &(u, v, w) in arcs {
             if let Some(du) = d[k - 1][u] {
                 let c = du + w;
-                if d[k][v].map_or(true, |x| c < x) {
+                if d[k][v].is_none_or(|x| c < x) {
                     d[k][v] = Some(c);
                 }
             }
@@ -344,13 +344,13 @@ pub fn karp_minimum_mean_cycle(n: usize, arcs: &[(usize, usize, i64)]) -> Option
         for (k, dk) in d.iter().enumerate().take(n) {
             if let Some(dk) = dk[v] {
                 let m = Q::new((dn - dk) as i128, (n - k) as i128);
-                if worst.map_or(true, |w| m > w) {
+                if worst.is_none_or(|w| m > w) {
                     worst = Some(m);
                 }
             }
         }
         if let Some(w) = worst {
-            if best.map_or(true, |b| w < b) {
+            if best.is_none_or(|b| w < b) {
                 best = Some(w);
             }
         }

@@ -185,7 +185,7 @@ impl QProblem {
                     }
                     let y = p.to as usize;
                     if let (Some(gy), Some(hy)) = (self.cost_to_go[y], h[y]) {
-                        if p.cost + gy == g && h[x].map_or(true, |hx| hy + 1 < hx) {
+                        if p.cost + gy == g && h[x].is_none_or(|hx| hy + 1 < hx) {
                             h[x] = Some(hy + 1);
                             changed = true;
                         }

@@ -6,7 +6,89 @@ use std::time::Instant;
 use super::harnesses::harness_runs;
 use super::report::{AlphaStar, Report};
 use super::sampled::{self, PropertyRun};
-use super::{alpha, c1, c2, c3, c4, ClaimResult, Counterexample, Scope, Verdict};
+use super::smt::{self, Encoding, Outcome, SmtVerdict};
+use super::{alpha, c1, c2, c3, c4, ClaimResult, Counterexample, EngineRun, Scope, Verdict};
+
+/// What `verify` runs besides the enumeration, proptest and harness engines.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Run the SMT engine (engine 4).
+    pub smt: bool,
+    /// Per-obligation timeout of the SMT engine, in milliseconds.
+    pub smt_timeout_ms: u32,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            smt: true,
+            smt_timeout_ms: smt::TIMEOUT_MS,
+        }
+    }
+}
+
+/// The SMT encoding of a claim, if it has one.
+fn encoding(id: &str, scope: Scope) -> Option<Encoding> {
+    match id {
+        "C1" => Some(smt::c1::printed()),
+        "C1-corrected" => Some(smt::c1::corrected(scope)),
+        "C2" => Some(smt::c2::encoding(scope)),
+        "C3" => Some(smt::c3::encoding(scope)),
+        "C3-example" => Some(smt::c3::example_encoding(scope)),
+        "C4" => Some(smt::c4::encoding_printed(scope)),
+        "C4-corrected" => Some(smt::c4::encoding(scope)),
+        _ => None,
+    }
+}
+
+/// Adds the SMT engine's run to a claim and lets its verdict decide when it is stronger:
+/// `proved` over `verified`; a contradiction between engines gives `inconclusive`.
+fn attach_smt(result: &mut ClaimResult, outcome: &Outcome) {
+    let s = &outcome.summary;
+    let failures = match outcome.verdict {
+        SmtVerdict::Refuted => s.printed_sat.max(1),
+        _ => (s.proofs - s.proofs_unsat) + (s.trust_checks - s.trust_ok),
+    };
+    result.engines.push(EngineRun {
+        engine: "smt (Z3)".into(),
+        mode: match outcome.verdict {
+            SmtVerdict::Proved => "proof".into(),
+            SmtVerdict::Refuted => "refutation (model replayed exactly)".into(),
+            SmtVerdict::Inconclusive => "inconclusive".into(),
+        },
+        scope: outcome.scope.clone(),
+        cases: s.proofs + s.trust_checks + s.printed,
+        failures,
+        seconds: s.seconds,
+    });
+    result.notes.push(if s.printed > 0 {
+        format!(
+            "smt: the printed statement searched on {} structures, satisfiable (a counterexample) on {}; {} trust checks, {} as required; {} unknown",
+            s.printed, s.printed_sat, s.trust_checks, s.trust_ok, s.unknown
+        )
+    } else {
+        format!(
+            "smt: {} proof obligations, {} unsat; {} trust checks, {} as required (hypotheses satisfiable; dropped hypotheses satisfiable); {} unknown",
+            s.proofs, s.proofs_unsat, s.trust_checks, s.trust_ok, s.unknown
+        )
+    });
+    result.notes.extend(outcome.notes.iter().cloned());
+    match (outcome.verdict, result.verdict) {
+        (SmtVerdict::Proved, Verdict::Verified) => {
+            result.verdict = Verdict::Proved;
+            result.engine = "smt (Z3)".into();
+            result.scope = outcome.scope.clone();
+            result.cases = s.proofs;
+        }
+        (SmtVerdict::Proved, Verdict::Refuted) | (SmtVerdict::Refuted, Verdict::Verified) => {
+            result
+                .notes
+                .push("engines disagree (smt against enumeration/proptest): inconclusive".into());
+            result.verdict = Verdict::Inconclusive;
+        }
+        _ => {}
+    }
+}
 
 /// The claim ids, in report order.
 pub const IDS: [&str; 7] = [
@@ -59,7 +141,7 @@ fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
 }
 
 /// Runs the selected claims (all when `only` is `None`; `C1` selects `C1` and `C1-corrected`).
-pub fn run(scope: Scope, only: Option<&str>) -> Result<Report, String> {
+pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report, String> {
     if let Some(o) = only {
         if !IDS.iter().any(|id| selected(id, Some(o))) {
             return Err(format!("unknown claim '{o}' (known: {})", IDS.join(", ")));
@@ -105,7 +187,19 @@ pub fn run(scope: Scope, only: Option<&str>) -> Result<Report, String> {
         }
     }
     let alpha_star = star.map(|a| AlphaStar::new(&a));
+    let mut smt_outcomes = Vec::new();
+    if options.smt {
+        for c in claims.iter_mut() {
+            if let Some(enc) = encoding(&c.id, scope) {
+                let outcome = smt::run(enc, options.smt_timeout_ms);
+                attach_smt(c, &outcome);
+                smt_outcomes.push(outcome);
+            }
+        }
+    }
     Ok(Report {
+        solver: options.smt.then(smt::solver_version),
+        smt: smt_outcomes,
         tool: format!("truecost {}", env!("CARGO_PKG_VERSION")),
         commit: option_env!("TRUECOST_GIT_COMMIT")
             .unwrap_or("unknown")

@@ -35,6 +35,14 @@ impl AlphaStar {
     }
 }
 
+/// The command that shows a counterexample's failure: its own replay (issue 10, item 4), or
+/// the exact solve of its problem file.
+fn replay_command(ce: &super::Counterexample) -> String {
+    ce.replay
+        .clone()
+        .unwrap_or_else(|| format!("truecost solve --file {} --algorithm dijkstra", ce.file))
+}
+
 /// The whole report.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Report {
@@ -48,13 +56,23 @@ pub struct Report {
     pub claims: Vec<ClaimResult>,
     /// `α*` (C3's worked example).
     pub alpha_star: Option<AlphaStar>,
+    /// The SMT solver and its version, when the SMT engine ran (shown with times only: it is
+    /// a property of the machine).
+    pub solver: Option<String>,
+    /// The SMT engine's outcomes, every obligation with its answer (for `--smt-out`).
+    pub smt: Vec<super::smt::Outcome>,
 }
 
-fn rate(cases: u64, seconds: f64) -> String {
+fn rate(cases: u64, seconds: f64, engine: &str) -> String {
+    let what = if engine.starts_with("smt") {
+        "obligations/s"
+    } else {
+        "cases/s"
+    };
     if seconds <= 0.0 {
         "n/a".into()
     } else {
-        format!("{:.0} cases/s", cases as f64 / seconds)
+        format!("{:.0} {what}", cases as f64 / seconds)
     }
 }
 
@@ -76,6 +94,7 @@ pub fn json(report: &Report, with_times: bool) -> String {
                         "problem": ce.problem,
                         "details": ce.details.iter().map(|(k, v)| json!({"name": k, "value": v})).collect::<Vec<_>>(),
                         "file": ce.file,
+                        "replay": replay_command(ce),
                         "problem_file": serde_json::from_str::<Value>(&ce.problem_file).expect("valid problem file"),
                     }),
                 );
@@ -102,6 +121,9 @@ pub fn json(report: &Report, with_times: bool) -> String {
     });
     if with_times {
         root["commit"] = json!(report.commit);
+        if let Some(solver) = &report.solver {
+            root["solver"] = json!(solver);
+        }
     }
     let mut s = serde_json::to_string_pretty(&root).expect("serialisable");
     s.push('\n');
@@ -119,6 +141,9 @@ pub fn text(report: &Report, with_times: bool) -> String {
     );
     if with_times {
         let _ = writeln!(s, "commit {}", report.commit);
+        if let Some(solver) = &report.solver {
+            let _ = writeln!(s, "smt solver: {solver}");
+        }
     }
     for c in &report.claims {
         let _ = writeln!(s);
@@ -128,7 +153,7 @@ pub fn text(report: &Report, with_times: bool) -> String {
         let _ = writeln!(s, "  scope: {}", c.scope);
         for e in &c.engines {
             let t = if with_times && e.seconds > 0.0 {
-                format!(", {}", rate(e.cases, e.seconds))
+                format!(", {}", rate(e.cases, e.seconds, &e.engine))
             } else {
                 String::new()
             };
@@ -144,11 +169,7 @@ pub fn text(report: &Report, with_times: bool) -> String {
             for (k, v) in &ce.details {
                 let _ = writeln!(s, "    {k}: {v}");
             }
-            let _ = writeln!(
-                s,
-                "    replay: truecost solve --file {} --algorithm dijkstra",
-                ce.file
-            );
+            let _ = writeln!(s, "    replay: {}", replay_command(ce));
         }
         for n in &c.notes {
             let _ = writeln!(s, "  note: {n}");
@@ -199,7 +220,7 @@ pub fn markdown(report: &Report, with_times: bool) -> String {
         );
         for e in &c.engines {
             let t = if with_times && e.seconds > 0.0 {
-                format!(", {}", rate(e.cases, e.seconds))
+                format!(", {}", rate(e.cases, e.seconds, &e.engine))
             } else {
                 String::new()
             };
@@ -219,6 +240,7 @@ pub fn markdown(report: &Report, with_times: bool) -> String {
                 let _ = writeln!(s, "- {k}: `{v}`");
             }
             let _ = writeln!(s, "- file: `{}`", ce.file);
+            let _ = writeln!(s, "- replay: `{}`", replay_command(ce));
         }
         for n in &c.notes {
             let _ = writeln!(s, "- note: {n}");

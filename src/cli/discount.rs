@@ -17,7 +17,7 @@ use super::ReportFormat;
 #[command(group(clap::ArgGroup::new("source").required(true).args(["problem", "file"])))]
 pub struct DiscountArgs {
     /// One of the paper's problems, 0 to 18.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
     /// A problem file.
     #[arg(long, value_name = "FILE")]

@@ -5,6 +5,7 @@ mod compare;
 mod discount;
 mod env;
 mod export;
+mod learn;
 mod output;
 mod render;
 mod reproduce;
@@ -17,9 +18,10 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use truecost::model::file;
+use truecost::echo::echo;
 use truecost::planning::{plan_exact, plan_reference, Mode};
 use truecost::problems::{GridLayout, StepCost, GRID_NODES};
+use truecost::stochastic::file::{self as stochastic_file, ProblemFile};
 
 /// Exact planning, the paper's problems, and machine-checked claims of "Relating Reinforcement
 /// Learning to Dynamic Programming-Based Planning" (Georgiev, Timperi, Sakçak, LaValle).
@@ -36,6 +38,8 @@ enum Command {
     Verify(verify::VerifyArgs),
     /// The exact set of discount factors for which a discount-optimal policy misses the goal.
     Discount(discount::DiscountArgs),
+    /// Replay derandomized Q-learning (rho = 1) on a problem file, round by round, in exact arithmetic.
+    Learn(learn::LearnArgs),
     /// List the paper's 19 grid problems with their facts (states, edges, x1, goal, optimum).
     Problems(ProblemsArgs),
     /// Solve one problem with an exact planner (or the paper's code, in reference mode).
@@ -92,7 +96,7 @@ struct SolveArgs {
     #[command(flatten)]
     objective: env::ObjectiveArgs,
     /// One of the paper's problems, 0 to 18 (`truecost problems` lists them).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
     /// A problem file in truecost's JSON format (see README, "Problem files").
     #[arg(long, value_name = "FILE")]
@@ -128,7 +132,7 @@ struct SolveArgs {
     #[arg(long, value_name = "T", allow_hyphen_values = true)]
     tolerance: Option<String>,
     /// Stochastic VI: stop after this many sweeps at the latest [default: 1000].
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     max_sweeps: Option<u64>,
     /// Stochastic VI in exact mode: exact rationals or f64 [default: exact].
     #[arg(long, value_enum)]
@@ -144,15 +148,19 @@ pub fn main() -> ExitCode {
             .map(|s| s.to_string())
             .or_else(|| info.payload().downcast_ref::<String>().cloned())
             .unwrap_or_else(|| "unknown".into());
-        let line = msg.lines().next().unwrap_or("").to_string();
+        let line = truecost::echo::one_line(msg.lines().next().unwrap_or(""));
         eprintln!("error: internal error (please report): {line}");
     }));
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
-        Err(e) => {
-            let code = if e.use_stderr() { 2 } else { 0 };
+        Err(e) if !e.use_stderr() => {
+            // --help and --version: clap's own output on stdout.
             let _ = e.print();
-            return ExitCode::from(code);
+            return ExitCode::SUCCESS;
+        }
+        Err(e) => {
+            eprintln!("error: {}", usage_line(&e));
+            return ExitCode::from(2);
         }
     };
     let result = match cli.command {
@@ -164,14 +172,52 @@ pub fn main() -> ExitCode {
         Command::Discount(args) => discount::discount(&args),
         Command::Compare(args) => compare::run(&args),
         Command::Export(args) => export::run(&args),
+        Command::Learn(args) => learn::learn(&args),
     };
     match result.and_then(|text| emit(&text)) {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
-            eprintln!("error: {message}");
+            eprintln!("error: {}", truecost::echo::one_line(&message));
             ExitCode::from(1)
         }
     }
+}
+
+/// A clap usage error as one escaped line: its message (without clap's `error: ` prefix, tips
+/// and usage block) and the help to read.
+fn usage_line(e: &clap::Error) -> String {
+    let rendered = e.render().to_string();
+    let message = rendered
+        .lines()
+        .map(str::trim)
+        .find(|l| !l.is_empty())
+        .unwrap_or("invalid arguments");
+    let message = message.strip_prefix("error: ").unwrap_or(message);
+    let args: Vec<String> = std::env::args_os()
+        .skip(1)
+        .take(2)
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
+    let mut help = String::from("truecost");
+    let commands = [
+        "verify",
+        "discount",
+        "problems",
+        "solve",
+        "render",
+        "reproduce",
+    ];
+    if let Some(command) = args.first().filter(|a| commands.contains(&a.as_str())) {
+        help.push(' ');
+        help.push_str(command);
+        if let Some(experiment) = args.get(1).filter(|a| {
+            command == "reproduce" && ["deterministic", "stochastic"].contains(&a.as_str())
+        }) {
+            help.push(' ');
+            help.push_str(experiment);
+        }
+    }
+    truecost::echo::one_line(&format!("{message} (see '{help} --help')"))
 }
 
 /// Writes to stdout; a closed pipe (e.g. `| head`) is not an error.
@@ -203,20 +249,31 @@ fn solve(args: &SolveArgs) -> Result<String, String> {
     if env::wants(args) {
         return env::solve(args);
     }
-    let Some(algorithm) = stochastic::deterministic_algorithm(args) else {
-        return stochastic::solve(args);
+    if args.file.is_some() && args.mode == Mode::Reference {
+        return Err("--mode reference reproduces the paper's code and applies to the paper's problems (--problem N) only".into());
+    }
+    if args.file.is_some() && args.step_cost.is_some() {
+        return Err("--step-cost applies to the paper's grid problems (--problem N); a problem file gives its own costs".into());
+    }
+    // A file is read once, in either format (issue 12: pipes and FIFOs can be read only once).
+    let loaded = match &args.file {
+        Some(path) => Some(stochastic_file::read(path).map_err(|e| e.to_string())?),
+        None => None,
     };
-    let (report, source) = match (&args.file, args.problem, args.mode) {
-        (Some(_), _, Mode::Reference) => {
-            return Err("--mode reference reproduces the paper's code and applies to the paper's problems (--problem N) only".into())
-        }
-        (Some(_), _, _) if args.step_cost.is_some() => {
-            return Err("--step-cost applies to the paper's grid problems (--problem N); a problem file gives its own costs".into())
-        }
-        (Some(path), _, Mode::Exact) => {
-            let problem = file::read(path).map_err(|e| e.to_string())?;
+    let Some(algorithm) = stochastic::deterministic_algorithm(args, loaded.as_ref()) else {
+        return stochastic::solve(args, loaded);
+    };
+    let (report, source) = match (loaded, args.problem, args.mode) {
+        (Some(ProblemFile::Deterministic(problem)), _, _) => {
+            let path = args.file.as_deref().expect("a file was read");
             let report = plan_exact(&problem, algorithm, args.model_free);
-            (report, format!("file {}", path.display()))
+            (
+                report,
+                format!("file {}", echo(&path.display().to_string())),
+            )
+        }
+        (Some(ProblemFile::Stochastic(_)), _, _) => {
+            unreachable!("a file with outcomes goes to the stochastic solvers")
         }
         (None, Some(id), Mode::Exact) => {
             let step = args.step_cost.unwrap_or_default();
@@ -239,7 +296,10 @@ fn solve(args: &SolveArgs) -> Result<String, String> {
                 .to_reference_graph();
             debug_assert_eq!(graph.nodes(), GRID_NODES);
             let report = plan_reference(&graph, algorithm, args.model_free);
-            (report, format!("paper problem {id} (reference code: f64 Euclidean costs)"))
+            (
+                report,
+                format!("paper problem {id} (reference code: f64 Euclidean costs)"),
+            )
         }
         (None, None, _) => return Err("give --problem N or --file FILE".into()),
     };

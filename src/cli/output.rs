@@ -106,12 +106,14 @@ pub fn report_json(report: &PlanReport, source: &str) -> String {
     obj.insert("problem".into(), json!(source));
     obj.insert("model".into(), json!(mode_name(report.mode)));
     if report.mode == Mode::Reference {
-        // The reference mode's value is an f64: give it as a JSON number when finite.
-        if let Ok(v) = report.cost_to_go_initial.parse::<f64>() {
-            if v.is_finite() {
-                obj.insert("cost_to_go_initial".into(), json!(v));
-            }
-        }
+        // The reference mode's value is an f64: a JSON number, or null where no goal is
+        // reachable (JSON has no infinity; issue 12, failure 14: this was the string "inf").
+        let v = report
+            .cost_to_go_initial
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite());
+        obj.insert("cost_to_go_initial".into(), json!(v));
     }
     let mut s = serde_json::to_string_pretty(&Value::Object(obj.clone())).expect("serialisable");
     s.push('\n');

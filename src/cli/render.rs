@@ -4,11 +4,13 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 
+use truecost::echo::echo;
 use truecost::experiments::visits::visit_counts;
+use truecost::figures::canvas::Canvas;
 use truecost::figures::render::{draw, Overlay, Scene};
 use truecost::figures::{file_scene, grid_scene, stochastic_file_scene};
+use truecost::learning::plan::Probability;
 use truecost::learning::q_learning::LearningValue;
-use truecost::model::file;
 use truecost::model::{ExactGraph, Graph};
 use truecost::planning::{plan_exact, plan_reference, Algorithm, Mode, PlanReport};
 use truecost::problems::{GridLayout, StepCost};
@@ -17,7 +19,7 @@ use truecost::stochastic::file::{self as stochastic_file, ProblemFile};
 use truecost::stochastic::policy_iteration::optimum;
 use truecost::stochastic::problem::Provenance;
 use truecost::stochastic::{decimal, NoiseModel, Predictability, StochasticProblem};
-use truecost::value::{parse_rational, CostValue, Extended};
+use truecost::value::{parse_rational, CostValue, Extended, Rational};
 
 /// What to draw over the problem.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -43,7 +45,7 @@ pub struct RenderArgs {
     #[command(flatten)]
     objective: super::env::ObjectiveArgs,
     /// One of the paper's problems, 0 to 18.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
     /// A problem file (states are drawn on a circle: files carry no geometry).
     #[arg(long, value_name = "FILE")]
@@ -60,33 +62,105 @@ pub struct RenderArgs {
     /// Draw the exact optimum of the stochastic model with predictability gamma in (0, 1]
     /// (exact decimal text, e.g. 0.9) instead of the deterministic one: values, policy and path
     /// overlays (exact mode).
-    #[arg(long, value_name = "G")]
+    #[arg(long, value_name = "G", allow_negative_numbers = true)]
     gamma: Option<String>,
     /// With --gamma: how the probability 1 - gamma is spread, `paper` (the text) or
     /// `reference` (the paper's code) [default: paper].
     #[arg(long, value_enum)]
     noise: Option<NoiseModel>,
     /// Width in pixels.
-    #[arg(long, default_value_t = 900)]
+    #[arg(long, default_value_t = 900, allow_negative_numbers = true)]
     width: u32,
     /// Height in pixels.
-    #[arg(long, default_value_t = 900)]
+    #[arg(long, default_value_t = 900, allow_negative_numbers = true)]
     height: u32,
-    /// Visits overlay: exploration probability ε of the Q-learning run (exact decimal).
-    #[arg(long, default_value = "0.9", value_name = "E")]
-    epsilon: String,
-    /// Visits overlay: seed of the Q-learning run.
-    #[arg(long, default_value_t = 0, value_name = "S")]
-    seed: u64,
-    /// Visits overlay: episodes of the Q-learning run.
-    #[arg(long, default_value_t = 1000, value_name = "N")]
-    episodes: u32,
-    /// Visits overlay: steps per episode.
-    #[arg(long, default_value_t = 3000, value_name = "N")]
-    max_steps: u32,
+    /// Visits overlay: exploration probability ε of the Q-learning run (exact decimal)
+    /// [default: 0.9].
+    #[arg(long, value_name = "E", allow_negative_numbers = true)]
+    epsilon: Option<String>,
+    /// Visits overlay: seed of the Q-learning run [default: 0].
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
+    seed: Option<u64>,
+    /// Visits overlay: episodes of the Q-learning run [default: 1000].
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    episodes: Option<u32>,
+    /// Visits overlay: steps per episode [default: 3000].
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    max_steps: Option<u32>,
     /// Output file; the format follows its extension (.svg or .png).
     #[arg(long, value_name = "FILE.svg|FILE.png")]
     out: PathBuf,
+}
+
+/// The settings of the Q-learning run behind `--overlay visits`, checked before any work.
+struct VisitsRun {
+    epsilon: Rational,
+    seed: u64,
+    episodes: u32,
+    max_steps: u32,
+}
+
+impl VisitsRun {
+    /// The run's settings (defaults filled in), or a refusal when they are given without
+    /// `--overlay visits` (issue 12, failure 12) or out of range.
+    fn from_args(args: &RenderArgs) -> Result<Option<VisitsRun>, String> {
+        let given = args.epsilon.is_some()
+            || args.seed.is_some()
+            || args.episodes.is_some()
+            || args.max_steps.is_some();
+        if args.overlay != OverlayKind::Visits {
+            if given {
+                return Err("--epsilon, --seed, --episodes and --max-steps set the Q-learning run of --overlay visits; they do not apply to other overlays".into());
+            }
+            return Ok(None);
+        }
+        let text = args.epsilon.as_deref().unwrap_or("0.9");
+        let epsilon = parse_rational(text).map_err(|e| format!("--epsilon: {e}"))?;
+        Probability::new("epsilon", &epsilon).map_err(|e| format!("--epsilon: {e}"))?;
+        let run = VisitsRun {
+            epsilon,
+            seed: args.seed.unwrap_or(0),
+            episodes: args.episodes.unwrap_or(1000),
+            max_steps: args.max_steps.unwrap_or(3000),
+        };
+        if run.episodes == 0 || run.max_steps == 0 {
+            return Err("--episodes and --max-steps must be at least 1".into());
+        }
+        Ok(Some(run))
+    }
+}
+
+/// Checks the output before any work: a size the canvas accepts and a `.svg` or `.png` name
+/// in an existing directory.
+fn check_output(args: &RenderArgs) -> Result<(), String> {
+    Canvas::new(args.width, args.height).map_err(|e| e.to_string())?;
+    let ext = args
+        .out
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    if !matches!(ext.as_deref(), Some("svg" | "png")) {
+        return Err(format!(
+            "cannot tell the figure format of '{}': the file name must end in .svg or .png",
+            echo(&args.out.display().to_string())
+        ));
+    }
+    if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        if !dir.is_dir() {
+            return Err(format!(
+                "cannot write figure {}: no directory {}",
+                echo(&args.out.display().to_string()),
+                echo(&dir.display().to_string())
+            ));
+        }
+    }
+    if args.out.is_dir() {
+        return Err(format!(
+            "cannot write figure {}: it is a directory",
+            echo(&args.out.display().to_string())
+        ));
+    }
+    Ok(())
 }
 
 /// Runs the command; returns the message printed on success.
@@ -101,37 +175,45 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
             &args.out,
         );
     }
-    if args.gamma.is_some() || args.noise.is_some() || file_lists_outcomes(args) {
-        return stochastic(args);
+    let visits_run = VisitsRun::from_args(args)?;
+    check_output(args)?;
+    if args.file.is_some() && args.mode == Mode::Reference {
+        return Err("--mode reference applies to the paper's problems (--problem N) only".into());
+    }
+    if args.file.is_some() && args.step_cost.is_some() {
+        return Err("--step-cost applies to the paper's grid problems (--problem N)".into());
+    }
+    // The file is read once, in either format (pipes and FIFOs can be read only once).
+    let loaded = match &args.file {
+        Some(path) => Some(stochastic_file::read(path).map_err(|e| e.to_string())?),
+        None => None,
+    };
+    if args.gamma.is_some()
+        || args.noise.is_some()
+        || matches!(loaded, Some(ProblemFile::Stochastic(_)))
+    {
+        return stochastic(args, loaded);
     }
     let mut visits: Option<PairCounts> = None;
-    let (mut scene, report, what) = match (&args.file, args.problem) {
-        (Some(path), _) => {
-            if args.mode == Mode::Reference {
-                return Err(
-                    "--mode reference applies to the paper's problems (--problem N) only".into(),
-                );
-            }
-            if args.step_cost.is_some() {
-                return Err(
-                    "--step-cost applies to the paper's grid problems (--problem N)".into(),
-                );
-            }
-            let problem = file::read(path).map_err(|e| e.to_string())?;
+    let (mut scene, report, what) = match (loaded, args.problem) {
+        (Some(ProblemFile::Deterministic(problem)), _) => {
+            let path = args.file.as_deref().expect("a file was read");
             let report = plan_exact(&problem, Algorithm::Dijkstra, false);
+            visits = exact_visits(&problem, visits_run.as_ref())?;
             (
                 file_scene(&problem),
                 report,
-                format!("file {}", path.display()),
+                format!("file {}", echo(&path.display().to_string())),
             )
         }
+        (Some(ProblemFile::Stochastic(_)), _) => unreachable!("drawn by stochastic() above"),
         (None, Some(id)) => match args.mode {
             Mode::Exact => {
                 let layout = GridLayout::exact(id).map_err(|e| e.to_string())?;
                 let step = args.step_cost.unwrap_or_default();
                 let problem = layout.to_problem(step);
                 let report = plan_exact(&problem, Algorithm::Dijkstra, false);
-                visits = exact_visits(&problem, args)?;
+                visits = exact_visits(&problem, visits_run.as_ref())?;
                 (
                     grid_scene(&layout, Mode::Exact),
                     report,
@@ -159,10 +241,14 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
     };
     scene.title = what;
     scene.caption = caption(&report, args.overlay);
-    if args.overlay == OverlayKind::Visits {
+    if let Some(run) = &visits_run {
         scene.caption = format!(
             "{} (ε = {}, seed {}, ρ = 1, Q0 = 0, up to {} episodes x {} steps, stops at convergence)",
-            scene.caption, args.epsilon, args.seed, args.episodes, args.max_steps
+            scene.caption,
+            Extended::Finite(run.epsilon.clone()),
+            run.seed,
+            run.episodes,
+            run.max_steps
         );
     }
     let overlay = match args.overlay {
@@ -201,15 +287,8 @@ fn save(scene: &Scene, overlay: &Overlay, args: &RenderArgs) -> Result<String, S
     ))
 }
 
-/// Whether `--file` names a file some action of which lists outcomes (a stochastic problem).
-fn file_lists_outcomes(args: &RenderArgs) -> bool {
-    args.file.as_ref().is_some_and(|path| {
-        std::fs::read_to_string(path).is_ok_and(|text| stochastic_file::lists_outcomes(&text))
-    })
-}
-
 /// The figure of the stochastic model (SPEC §3): its exact optimum by policy iteration.
-fn stochastic(args: &RenderArgs) -> Result<String, String> {
+fn stochastic(args: &RenderArgs, loaded: Option<ProblemFile>) -> Result<String, String> {
     if args.noise.is_some() && args.gamma.is_none() {
         return Err(
             "--noise chooses how the probability 1 - gamma is spread: give --gamma too".into(),
@@ -229,15 +308,11 @@ fn stochastic(args: &RenderArgs) -> Result<String, String> {
     let noisy = |p: &truecost::model::Problem| {
         StochasticProblem::from_deterministic(p, noise, &gamma).map_err(|e| e.to_string())
     };
-    let (mut scene, problem, what) = match (&args.file, args.problem) {
-        (Some(path), _) => {
-            if args.step_cost.is_some() {
-                return Err(
-                    "--step-cost applies to the paper's grid problems (--problem N)".into(),
-                );
-            }
-            let what = format!("file {}", path.display());
-            match stochastic_file::read(path).map_err(|e| e.to_string())? {
+    let (mut scene, problem, what) = match (loaded, args.problem) {
+        (Some(loaded), _) => {
+            let path = args.file.as_deref().expect("a file was read");
+            let what = format!("file {}", echo(&path.display().to_string()));
+            match loaded {
                 ProblemFile::Deterministic(p) => (file_scene(&p), noisy(&p)?, what),
                 ProblemFile::Stochastic(s) => {
                     if args.gamma.is_some() {
@@ -368,30 +443,29 @@ type PairCounts = Vec<((usize, usize), u64)>;
 /// Visit counts on the exact model (the narrowest exact representation), if asked for.
 fn exact_visits(
     problem: &truecost::model::Problem,
-    args: &RenderArgs,
+    run: Option<&VisitsRun>,
 ) -> Result<Option<PairCounts>, String> {
-    if args.overlay != OverlayKind::Visits {
+    let Some(run) = run else {
         return Ok(None);
-    }
+    };
     Ok(Some(match ExactGraph::new(problem) {
-        ExactGraph::Units(g) => pair_counts(&g, learn_visits(&g, args)?),
-        ExactGraph::Big(g) => pair_counts(&g, learn_visits(&g, args)?),
+        ExactGraph::Units(g) => pair_counts(&g, learn_visits(&g, run)?),
+        ExactGraph::Big(g) => pair_counts(&g, learn_visits(&g, run)?),
     }))
 }
 
 fn learn_visits<V: LearningValue>(
     graph: &Graph<V>,
-    args: &RenderArgs,
+    run: &VisitsRun,
 ) -> Result<Vec<Vec<u64>>, String> {
-    let epsilon = parse_rational(&args.epsilon).map_err(|e| format!("--epsilon: {e}"))?;
     let optimum = dijkstra::to_goals(graph).cost_to_go;
     visit_counts(
         graph,
         &optimum,
-        &epsilon,
-        args.seed,
-        args.episodes,
-        args.max_steps,
+        &run.epsilon,
+        run.seed,
+        run.episodes,
+        run.max_steps,
     )
     .map_err(|e| e.to_string())
 }

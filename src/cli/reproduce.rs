@@ -9,6 +9,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use super::ListFormat;
 use truecost::experiments::deterministic::{self, Report, RowSummary, Settings};
+use truecost::experiments::published::{Comparison, Summary, Verdict};
 use truecost::experiments::stochastic;
 use truecost::learning::stochastic_q::Tolerance;
 use truecost::planning::Mode;
@@ -35,19 +36,29 @@ enum Experiment {
 #[derive(Args, Debug)]
 struct StochasticArgs {
     /// Problems, comma-separated [default: the paper's 16 problems 0-5,7-16].
-    #[arg(long, value_delimiter = ',', value_name = "LIST")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "LIST",
+        allow_negative_numbers = true
+    )]
     problems: Option<Vec<usize>>,
     /// Predictability factors γ ∈ (0, 1], decimal text, comma-separated.
-    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_GAMMAS.map(String::from))]
+    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_GAMMAS.map(String::from), allow_negative_numbers = true)]
     gammas: Vec<String>,
     /// Learning rates: ρ ∈ (0, 1] or the per-pair decay 1/n^ω with ω ∈ (0.5, 1].
-    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_RHOS.map(String::from))]
+    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_RHOS.map(String::from), allow_negative_numbers = true)]
     rhos: Vec<String>,
     /// Exploration rates ε ∈ [0, 1], or `decay` (linear from 1 to 0.1 over the episodes).
-    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_EPSILONS.map(String::from))]
+    #[arg(long, value_delimiter = ',', value_name = "LIST", default_values_t = stochastic::DEFAULT_EPSILONS.map(String::from), allow_negative_numbers = true)]
     epsilons: Vec<String>,
     /// Samples per learning row.
-    #[arg(long, default_value_t = 10, value_name = "N")]
+    #[arg(
+        long,
+        default_value_t = 10,
+        value_name = "N",
+        allow_negative_numbers = true
+    )]
     samples: u32,
     /// Noise model: `paper` (text) or `reference` (code).
     #[arg(long, value_enum, default_value_t = truecost::stochastic::NoiseModel::Paper)]
@@ -57,14 +68,34 @@ struct StochasticArgs {
     #[arg(long, value_enum, default_value_t = Tolerance::Relative)]
     tolerance: Tolerance,
     /// Master seed: every random choice derives from it and the sample's coordinates.
-    #[arg(long, default_value_t = 0, value_name = "S")]
+    #[arg(
+        long,
+        default_value_t = 0,
+        value_name = "S",
+        allow_negative_numbers = true
+    )]
     seed: u64,
     /// Episodes per learning run (the paper's stochastic runs: 3000).
-    #[arg(long, default_value_t = 3000, value_name = "E")]
+    #[arg(
+        long,
+        default_value_t = 3000,
+        value_name = "E",
+        allow_negative_numbers = true
+    )]
     episodes: u32,
     /// Steps per episode.
-    #[arg(long, default_value_t = 3000, value_name = "M")]
+    #[arg(
+        long,
+        default_value_t = 3000,
+        value_name = "M",
+        allow_negative_numbers = true
+    )]
     max_steps: u32,
+    /// Put the paper's published numbers (data/published/) beside ours, with a verdict per
+    /// metric and closing counts. The paper's VI counts need `--noise reference --tolerance
+    /// reference`.
+    #[arg(long)]
+    against_published: bool,
     #[command(flatten)]
     output: Output,
 }
@@ -73,7 +104,7 @@ struct StochasticArgs {
 #[derive(Args, Debug)]
 struct Output {
     /// Worker threads [default: all cores, or RAYON_NUM_THREADS].
-    #[arg(long, value_name = "T")]
+    #[arg(long, value_name = "T", allow_negative_numbers = true)]
     threads: Option<usize>,
     /// Also write the report as Markdown, CSV and JSON into DIR (deterministic.md, .csv,
     /// .json, or stochastic.*).
@@ -93,11 +124,16 @@ struct Output {
 }
 
 impl Output {
-    /// Creates the `--out` directory before the (long) run, so a bad path fails at once.
+    /// Creates the `--out` and `--plots` directories before the (long) run, so a bad path
+    /// fails at once and no result is lost (issue 12).
     fn prepare(&self) -> Result<(), String> {
         if let Some(dir) = &self.out {
             std::fs::create_dir_all(dir)
                 .map_err(|e| format!("cannot create output directory {}: {e}", dir.display()))?;
+        }
+        if let Some(dir) = &self.plots {
+            std::fs::create_dir_all(dir)
+                .map_err(|e| format!("cannot create plot directory {}: {e}", dir.display()))?;
         }
         Ok(())
     }
@@ -130,13 +166,28 @@ impl Output {
 struct DeterministicArgs {
     /// Problems, comma-separated, in the order the π rows run [default: the paper's 16
     /// problems 0-5,7-16].
-    #[arg(long, value_delimiter = ',', value_name = "LIST")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        value_name = "LIST",
+        allow_negative_numbers = true
+    )]
     problems: Option<Vec<usize>>,
     /// Samples per row.
-    #[arg(long, default_value_t = 100, value_name = "N")]
+    #[arg(
+        long,
+        default_value_t = 100,
+        value_name = "N",
+        allow_negative_numbers = true
+    )]
     samples: u32,
     /// Master seed: every random choice derives from it and the sample's coordinates.
-    #[arg(long, default_value_t = 0, value_name = "S")]
+    #[arg(
+        long,
+        default_value_t = 0,
+        value_name = "S",
+        allow_negative_numbers = true
+    )]
     seed: u64,
     /// `exact`: the paper's text (exact values, unit step costs, metrics after every action).
     /// `reference`: the paper's code (f64, its orders and counting rules; reproduces the
@@ -147,11 +198,26 @@ struct DeterministicArgs {
     #[arg(long, value_enum)]
     step_cost: Option<StepCost>,
     /// Episodes per learning run.
-    #[arg(long, default_value_t = 1000, value_name = "E")]
+    #[arg(
+        long,
+        default_value_t = 1000,
+        value_name = "E",
+        allow_negative_numbers = true
+    )]
     episodes: u32,
     /// Steps per episode.
-    #[arg(long, default_value_t = 3000, value_name = "M")]
+    #[arg(
+        long,
+        default_value_t = 3000,
+        value_name = "M",
+        allow_negative_numbers = true
+    )]
     max_steps: u32,
+    /// Put the paper's published numbers (data/published/) beside ours, with a verdict per
+    /// metric (exact / consistent / differs / machine) and closing counts. The published
+    /// counts come out `exact` with `--mode reference`.
+    #[arg(long)]
+    against_published: bool,
     #[command(flatten)]
     output: Output,
 }
@@ -184,8 +250,11 @@ fn deterministic_command(args: &DeterministicArgs) -> Result<String, String> {
     settings.validate().map_err(|e| e.to_string())?;
     args.output.prepare()?;
     let bar = progress_bar(args.output.quiet, deterministic::total_runs(&settings));
-    let report = deterministic::run(&settings, &|k| bar.inc(k)).map_err(|e| e.to_string())?;
+    let mut report = deterministic::run(&settings, &|k| bar.inc(k)).map_err(|e| e.to_string())?;
     bar.finish_and_clear();
+    if args.against_published {
+        deterministic::against_published(&mut report, &settings).map_err(|e| e.to_string())?;
+    }
     args.output.finish(
         "deterministic",
         |format| render(&report, format),
@@ -262,8 +331,11 @@ fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
     settings.validate().map_err(e)?;
     args.output.prepare()?;
     let bar = progress_bar(args.output.quiet, stochastic::total_runs(&settings));
-    let report = stochastic::run(&settings, &|k| bar.inc(k)).map_err(e)?;
+    let mut report = stochastic::run(&settings, &|k| bar.inc(k)).map_err(e)?;
     bar.finish_and_clear();
+    if args.against_published {
+        stochastic::against_published(&mut report, &settings).map_err(|e| e.to_string())?;
+    }
     args.output.finish(
         "stochastic",
         |format| render_stochastic(&report, format),
@@ -275,13 +347,10 @@ fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
 /// seed (JSON and CSV in every row).
 pub fn render_stochastic(report: &stochastic::Report, format: ListFormat) -> String {
     match format {
-        ListFormat::Json => {
-            let mut s = serde_json::to_string_pretty(&report.rows).expect("serialisable");
-            s.push('\n');
-            s
-        }
+        ListFormat::Json => json(&report.rows, report.against_published.as_ref()),
         ListFormat::Csv => {
-            let mut s = STOCHASTIC_CSV_COLUMNS.join(",") + "\n";
+            let metrics = comparison_metrics(report.rows.iter().map(|r| r.comparison.as_ref()));
+            let mut s = STOCHASTIC_CSV_COLUMNS.join(",") + &comparison_csv_header(&metrics) + "\n";
             for row in &report.rows {
                 let value = serde_json::to_value(row).expect("serialisable");
                 let cells: Vec<String> = STOCHASTIC_CSV_COLUMNS
@@ -296,16 +365,18 @@ pub fn render_stochastic(report: &stochastic::Report, format: ListFormat) -> Str
                         },
                     })
                     .collect();
-                s += &(cells.join(",") + "\n");
+                s += &(cells.join(",")
+                    + &comparison_csv_cells(row.comparison.as_ref(), &metrics)
+                    + "\n");
             }
-            s
+            s + &summary_csv(report.against_published.as_ref())
         }
         ListFormat::Markdown | ListFormat::Text => stochastic_table(report, format),
     }
 }
 
 /// The columns of the stochastic CSV file, in order.
-const STOCHASTIC_CSV_COLUMNS: [&str; 34] = [
+const STOCHASTIC_CSV_COLUMNS: [&str; 35] = [
     "problem",
     "gamma",
     "algorithm",
@@ -319,6 +390,7 @@ const STOCHASTIC_CSV_COLUMNS: [&str; 34] = [
     "mean_actions_converged",
     "mean_actions",
     "std_actions",
+    "mean_ns_per_action",
     "mean_iterations",
     "std_iterations",
     "initial_within_rate",
@@ -342,10 +414,11 @@ const STOCHASTIC_CSV_COLUMNS: [&str; 34] = [
     "note",
 ];
 
-const STOCHASTIC_HEADER: [&str; 10] = [
+const STOCHASTIC_HEADER: [&str; 11] = [
     "algorithm",
     "run time s (mean ± std)",
     "actions (mean ± std)",
+    "ns/action",
     "episodes/sweeps (mean ± std)",
     "converged",
     "goal discovered: actions / s",
@@ -382,6 +455,7 @@ fn stochastic_cells(row: &stochastic::RowSummary) -> Vec<String> {
         label,
         pm(row.mean_time_s, row.std_time_s, 5),
         pm(row.mean_actions, row.std_actions, 1),
+        opt(row.mean_ns_per_action, 1),
         pm(row.mean_iterations, row.std_iterations, 2),
         pct(row.convergence_rate),
         if learning {
@@ -464,6 +538,11 @@ fn stochastic_table(report: &stochastic::Report, format: ListFormat) -> String {
                     let _ = writeln!(s, "| {} |", c.join(" | "));
                 }
                 s.push('\n');
+                s += &comparison_table(
+                    rows.iter()
+                        .map(|r| (stochastic_cells(r)[0].clone(), r.comparison.as_ref())),
+                    true,
+                );
             } else {
                 let widths = column_widths(&STOCHASTIC_HEADER, cells.iter());
                 let line = |c: &[String]| aligned(c, &widths);
@@ -473,10 +552,15 @@ fn stochastic_table(report: &stochastic::Report, format: ListFormat) -> String {
                 for c in &cells {
                     let _ = writeln!(s, "{}", line(c));
                 }
+                s += &comparison_table(
+                    rows.iter()
+                        .map(|r| (stochastic_cells(r)[0].clone(), r.comparison.as_ref())),
+                    false,
+                );
             }
         }
     }
-    s
+    s + &summary_text(report.against_published.as_ref(), markdown)
 }
 
 fn write_file(path: &Path, text: &str) -> Result<(), String> {
@@ -486,11 +570,7 @@ fn write_file(path: &Path, text: &str) -> Result<(), String> {
 /// Renders a report in a format.
 pub fn render(report: &Report, format: ListFormat) -> String {
     match format {
-        ListFormat::Json => {
-            let mut s = serde_json::to_string_pretty(&report.rows).expect("serialisable");
-            s.push('\n');
-            s
-        }
+        ListFormat::Json => json(&report.rows, report.against_published.as_ref()),
         ListFormat::Csv => csv(report),
         ListFormat::Markdown => markdown(report),
         ListFormat::Text => text(report),
@@ -498,7 +578,7 @@ pub fn render(report: &Report, format: ListFormat) -> String {
 }
 
 /// The columns of the CSV file, in order.
-const CSV_COLUMNS: [&str; 32] = [
+const CSV_COLUMNS: [&str; 34] = [
     "problem",
     "algorithm",
     "epsilon",
@@ -511,6 +591,8 @@ const CSV_COLUMNS: [&str; 32] = [
     "mean_actions_converged",
     "mean_actions",
     "std_actions",
+    "mean_planner_actions",
+    "mean_ns_per_action",
     "mean_iterations",
     "std_iterations",
     "shortest_path",
@@ -534,7 +616,8 @@ const CSV_COLUMNS: [&str; 32] = [
 ];
 
 fn csv(report: &Report) -> String {
-    let mut s = CSV_COLUMNS.join(",") + "\n";
+    let metrics = comparison_metrics(report.rows.iter().map(|r| r.comparison.as_ref()));
+    let mut s = CSV_COLUMNS.join(",") + &comparison_csv_header(&metrics) + "\n";
     for row in &report.rows {
         let value = serde_json::to_value(row).expect("serialisable");
         let cells: Vec<String> = CSV_COLUMNS
@@ -550,9 +633,9 @@ fn csv(report: &Report) -> String {
                 },
             })
             .collect();
-        s += &(cells.join(",") + "\n");
+        s += &(cells.join(",") + &comparison_csv_cells(row.comparison.as_ref(), &metrics) + "\n");
     }
-    s
+    s + &summary_csv(report.against_published.as_ref())
 }
 
 /// A CSV cell: quoted when it contains a separator or a quote.
@@ -600,7 +683,7 @@ fn label(row: &RowSummary) -> String {
 fn cells(row: &RowSummary) -> Vec<String> {
     if let Some(note) = &row.note {
         let mut c = vec![label(row), note.clone()];
-        c.resize(9, String::new());
+        c.resize(HEADER.len(), String::new());
         return c;
     }
     let paths = match (row.shortest_path, row.longest_path) {
@@ -612,6 +695,7 @@ fn cells(row: &RowSummary) -> Vec<String> {
         label(row),
         pm(row.mean_time_s, row.std_time_s, 5),
         pm(row.mean_actions, row.std_actions, 1),
+        opt(row.mean_ns_per_action, 1),
         pm(row.mean_iterations, row.std_iterations, 2),
         row.convergence_rate
             .map_or("–".into(), |r| format!("{:.1} %", 100.0 * r)),
@@ -639,10 +723,11 @@ fn cells(row: &RowSummary) -> Vec<String> {
     ]
 }
 
-const HEADER: [&str; 9] = [
+const HEADER: [&str; 10] = [
     "algorithm",
     "run time s (mean ± std)",
     "actions (mean ± std)",
+    "ns/action",
     "iterations (mean ± std)",
     "converged",
     "goal discovered: actions / s",
@@ -693,8 +778,16 @@ fn markdown(report: &Report) -> String {
             let _ = writeln!(s, "| {} |", cells(row).join(" | "));
         }
         s.push('\n');
+        s += &comparison_table(
+            report
+                .rows
+                .iter()
+                .filter(|r| r.problem == *p)
+                .map(|r| (label(r), r.comparison.as_ref())),
+            true,
+        );
     }
-    s
+    s + &summary_text(report.against_published.as_ref(), true)
 }
 
 fn text(report: &Report) -> String {
@@ -728,8 +821,12 @@ fn text(report: &Report) -> String {
                 }
             }
         }
+        s += &comparison_table(
+            summaries.iter().map(|r| (label(r), r.comparison.as_ref())),
+            false,
+        );
     }
-    s
+    s + &summary_text(report.against_published.as_ref(), false)
 }
 
 /// The width of each column: its widest cell among `header` and `rows`.
@@ -758,4 +855,173 @@ fn aligned(cells: &[String], widths: &[usize]) -> String {
         .join("  ")
         .trim_end()
         .to_string()
+}
+
+/// JSON: the rows; with `--against-published` an object `{"rows": […], "against_published":
+/// {counts, differs_lines, sources}}`.
+fn json<T: serde::Serialize>(rows: &[T], summary: Option<&Summary>) -> String {
+    let mut s = match summary {
+        None => serde_json::to_string_pretty(rows),
+        Some(summary) => serde_json::to_string_pretty(&serde_json::json!({
+            "rows": rows,
+            "against_published": summary,
+        })),
+    }
+    .expect("serialisable");
+    s.push('\n');
+    s
+}
+
+/// Every metric compared in any row, sorted.
+fn comparison_metrics<'a>(rows: impl Iterator<Item = Option<&'a Comparison>>) -> Vec<String> {
+    let set: std::collections::BTreeSet<&String> =
+        rows.flatten().flat_map(|c| c.agreement.keys()).collect();
+    set.into_iter().cloned().collect()
+}
+
+/// `,published_M,agreement_M` for each metric.
+fn comparison_csv_header(metrics: &[String]) -> String {
+    metrics
+        .iter()
+        .map(|m| format!(",published_{m},agreement_{m}"))
+        .collect()
+}
+
+/// The published value (as published) and the verdict of each metric (empty when none).
+fn comparison_csv_cells(c: Option<&Comparison>, metrics: &[String]) -> String {
+    metrics
+        .iter()
+        .map(|m| {
+            let published = c
+                .and_then(|c| c.published_text.get(m))
+                .cloned()
+                .unwrap_or_default();
+            let verdict = c
+                .and_then(|c| c.agreement.get(m))
+                .map_or(String::new(), verdict_text);
+            format!(",{},{}", quote(&published), quote(&verdict))
+        })
+        .collect()
+}
+
+/// The summary as trailing `# ` lines of a CSV file (with `--against-published` only).
+fn summary_csv(summary: Option<&Summary>) -> String {
+    summary.map_or(String::new(), |s| {
+        s.lines().iter().map(|l| format!("# {l}\n")).collect()
+    })
+}
+
+/// A verdict in words, with its numbers.
+fn verdict_text(v: &Verdict) -> String {
+    let times = |x: Option<f64>| x.map_or("–".into(), |x| format!("{x:.1}×"));
+    match v {
+        Verdict::Exact => "exact".into(),
+        Verdict::Consistent { difference, bound } => {
+            format!("consistent (|Δ| {difference:.4} ≤ {bound:.4})")
+        }
+        Verdict::Differs { difference, reason } => format!(
+            "differs (Δ {}; {reason})",
+            difference.map_or("–".into(), |d| format!("{d:+.4}"))
+        ),
+        Verdict::Machine {
+            ratio,
+            relative_published,
+            relative_ours,
+        } => {
+            let mut t = format!(
+                "machine (ours/published {})",
+                ratio.map_or("–".into(), |r| format!("{r:.3}"))
+            );
+            if relative_published.is_some() || relative_ours.is_some() {
+                t += &format!(
+                    "; ÷ model-free Dijkstra: published {}, ours {}",
+                    times(*relative_published),
+                    times(*relative_ours)
+                );
+            }
+            t
+        }
+    }
+}
+
+const COMPARISON_HEADER: [&str; 5] = ["row", "metric", "published", "ours", "verdict"];
+
+/// The published numbers beside ours, one line per (row, metric); empty without comparisons.
+fn comparison_table<'a>(
+    rows: impl Iterator<Item = (String, Option<&'a Comparison>)>,
+    markdown: bool,
+) -> String {
+    let mut cells: Vec<Vec<String>> = Vec::new();
+    for (label, c) in rows {
+        let Some(c) = c else { continue };
+        for (metric, verdict) in &c.agreement {
+            cells.push(vec![
+                label.clone(),
+                metric.clone(),
+                c.published_text.get(metric).cloned().unwrap_or_default(),
+                c.ours
+                    .get(metric)
+                    .copied()
+                    .flatten()
+                    .map_or("–".into(), |o| format!("{o}")),
+                verdict_text(verdict),
+            ]);
+        }
+    }
+    if cells.is_empty() {
+        return String::new();
+    }
+    let mut s = String::new();
+    if markdown {
+        let _ = writeln!(s, "Against published:\n");
+        let _ = writeln!(s, "| {} |", COMPARISON_HEADER.join(" | "));
+        let _ = writeln!(s, "|{}", "---|".repeat(COMPARISON_HEADER.len()));
+        for c in &cells {
+            let _ = writeln!(s, "| {} |", c.join(" | "));
+        }
+        s.push('\n');
+    } else {
+        let widths = column_widths(&COMPARISON_HEADER, cells.iter());
+        let _ = writeln!(s, "Against published:");
+        let header: Vec<String> = COMPARISON_HEADER.iter().map(|h| h.to_string()).collect();
+        let _ = writeln!(s, "{}", aligned(&header, &widths));
+        for c in &cells {
+            let _ = writeln!(s, "{}", aligned(c, &widths));
+        }
+    }
+    s
+}
+
+/// The closing summary and the sources (with `--against-published` only).
+fn summary_text(summary: Option<&Summary>, markdown: bool) -> String {
+    let Some(summary) = summary else {
+        return String::new();
+    };
+    let mut s = String::new();
+    let lines = summary.lines();
+    if markdown {
+        let _ = writeln!(s, "## Reproduction summary\n");
+        let _ = writeln!(s, "{}\n", lines[0]);
+        for l in &lines[1..] {
+            let _ = writeln!(s, "- {l}");
+        }
+        if lines.len() > 1 {
+            s.push('\n');
+        }
+    } else {
+        let _ = writeln!(s, "\nReproduction summary");
+        for l in &lines {
+            let _ = writeln!(s, "{l}");
+        }
+    }
+    let files = summary.sources.len();
+    let commits: std::collections::BTreeSet<&str> =
+        summary.sources.iter().map(|x| x.commit.as_str()).collect();
+    let _ = writeln!(
+        s,
+        "{}Sources: {files} CSV files of the paper's repository at commits {} (data/published/sources.csv names each file, commit and machine).",
+        if markdown { "\n" } else { "" },
+        commits.into_iter().map(|c| &c[..c.len().min(12)]).collect::<Vec<_>>().join(", ")
+    );
+    s
 }

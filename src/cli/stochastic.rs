@@ -11,7 +11,7 @@ use super::{ReportFormat, SolveArgs};
 use truecost::model::Decision;
 use truecost::planning::{Algorithm, Mode};
 use truecost::problems::StepCost;
-use truecost::stochastic::file::{self, ProblemFile};
+use truecost::stochastic::file::ProblemFile;
 use truecost::stochastic::grid::{exact_grid, exact_twin, reference_grid};
 use truecost::stochastic::policy_iteration::{optimum, Distance, Optimum};
 use truecost::stochastic::problem::Provenance;
@@ -51,20 +51,16 @@ const SHORT: usize = 60;
 
 /// The deterministic planner to run, or `None` when the stochastic model is asked for (any of
 /// `--gamma`, `--noise`, `--tolerance`, `--max-sweeps`, `--arithmetic`, `--algorithm exact`, or
-/// a problem file that lists outcomes).
-pub fn deterministic_algorithm(args: &SolveArgs) -> Option<Algorithm> {
+/// a problem file that lists outcomes). `file` is the problem file, already read.
+pub fn deterministic_algorithm(args: &SolveArgs, file: Option<&ProblemFile>) -> Option<Algorithm> {
     if args.gamma.is_some()
         || args.noise.is_some()
         || args.tolerance.is_some()
         || args.max_sweeps.is_some()
         || args.arithmetic.is_some()
+        || matches!(file, Some(ProblemFile::Stochastic(_)))
     {
         return None;
-    }
-    if let Some(path) = &args.file {
-        if std::fs::read_to_string(path).is_ok_and(|text| file::lists_outcomes(&text)) {
-            return None;
-        }
     }
     match args.algorithm {
         SolveAlgorithm::Dijkstra => Some(Algorithm::Dijkstra),
@@ -85,8 +81,8 @@ struct Prepared {
     twin: Option<StochasticProblem>,
 }
 
-/// Runs `solve` in the stochastic model.
-pub fn solve(args: &SolveArgs) -> Result<String, String> {
+/// Runs `solve` in the stochastic model; `file` is the problem file of `--file`, already read.
+pub fn solve(args: &SolveArgs, file: Option<ProblemFile>) -> Result<String, String> {
     if args.model_free {
         return Err("--model-free applies to the deterministic model; the stochastic solvers run on the whole problem, as the paper's code does".into());
     }
@@ -129,7 +125,7 @@ pub fn solve(args: &SolveArgs) -> Result<String, String> {
     if args.max_sweeps == Some(0) {
         return Err("--max-sweeps must be at least 1".into());
     }
-    let prepared = prepare(args, noise, &gamma)?;
+    let prepared = prepare(args, file, noise, &gamma)?;
     let opt = match &prepared.twin {
         Some(t) => Some(optimum(t).map_err(|e| e.to_string())?),
         None => None,
@@ -153,17 +149,17 @@ pub fn solve(args: &SolveArgs) -> Result<String, String> {
 
 fn prepare(
     args: &SolveArgs,
+    file: Option<ProblemFile>,
     noise: NoiseModel,
     gamma: &Predictability,
 ) -> Result<Prepared, String> {
     let noisy = |p: &truecost::model::Problem| {
         StochasticProblem::from_deterministic(p, noise, gamma).map_err(|e| e.to_string())
     };
-    match (&args.file, args.problem, args.mode) {
-        (Some(_), _, Mode::Reference) => Err("--mode reference reproduces the paper's code and applies to the paper's problems (--problem N) only".into()),
-        (Some(_), _, _) if args.step_cost.is_some() => Err("--step-cost applies to the paper's grid problems (--problem N); a problem file gives its own costs".into()),
-        (Some(path), _, Mode::Exact) => {
-            let problem = match file::read(path).map_err(|e| e.to_string())? {
+    match (file, args.problem, args.mode) {
+        (Some(file), _, _) => {
+            let path = args.file.as_deref().expect("a file was read");
+            let problem = match file {
                 ProblemFile::Deterministic(p) => noisy(&p)?,
                 ProblemFile::Stochastic(s) => {
                     if args.gamma.is_some() {
@@ -175,7 +171,7 @@ fn prepare(
             Ok(Prepared {
                 twin: Some(problem.clone()),
                 problem,
-                source: format!("file {}", path.display()),
+                source: format!("file {}", truecost::echo::echo(&path.display().to_string())),
                 float: None,
             })
         }
@@ -433,11 +429,8 @@ fn vi_report(
                         .iter()
                         .map(|v| render_f64(*v))
                         .collect::<Vec<_>>(),
-                    if g.is_finite() {
-                        json!(g)
-                    } else {
-                        json!("inf")
-                    },
+                    // An f64 value is a JSON number; null where infinite (JSON has no inf).
+                    json!(Some(g).filter(|g| g.is_finite())),
                     render_f64(g),
                     exact,
                     meta,
@@ -639,7 +632,10 @@ fn text(r: &Report) -> String {
             .cost_to_go_initial
             .as_str()
             .map(str::to_string)
-            .unwrap_or_else(|| r.cost_to_go_initial.to_string());
+            .unwrap_or_else(|| match &r.cost_to_go_initial {
+                Value::Null => "inf".to_string(),
+                v => v.to_string(),
+            });
         if r.value_type == "big-rational" && exact.len() > SHORT {
             let (n, d) = exact
                 .split_once('/')

@@ -10,7 +10,7 @@ use num_integer::Integer;
 use num_traits::{One, ToPrimitive};
 use serde_json::json;
 
-use truecost::claims::c4::{bonus_sets, End, Instance, Interval};
+use truecost::claims::c4::{bonus_analysis, End, Instance, Interval};
 use truecost::claims::exact::Q;
 use truecost::claims::{report, Scope};
 use truecost::model::{file, Problem};
@@ -53,8 +53,20 @@ pub struct VerifyArgs {
     #[arg(long, value_name = "FILE", conflicts_with = "problem")]
     file: Option<PathBuf>,
     /// With --claim C4: the exact bonus set of this paper problem.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
+    /// Write every SMT obligation as a standard SMT-LIB 2.6 file (with Z3's answer as
+    /// `:status`) under this directory, with an index (index.tsv), for cvc5 or Yices to
+    /// re-check. The directory must be empty or not exist.
+    #[arg(long, value_name = "DIR", conflicts_with = "no_smt")]
+    smt_out: Option<PathBuf>,
+    /// Skip the SMT engine (no `proved` verdicts).
+    #[arg(long)]
+    no_smt: bool,
+    /// Per-obligation time limit of the SMT engine, in seconds (an obligation that runs out
+    /// of time is `unknown`: the claim is then not proved).
+    #[arg(long, value_name = "SECONDS", default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=3600))]
+    smt_timeout: u32,
 }
 
 /// Runs `verify`.
@@ -75,7 +87,19 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
         return bonus(&problem, args.format);
     }
     let with_times = !args.no_times;
-    let r = truecost::claims::run(args.scope, args.claim.as_deref())?;
+    if let Some(dir) = &args.smt_out {
+        truecost::claims::smt::prepare_out_dir(dir)?;
+    }
+    let options = truecost::claims::registry::Options {
+        smt: !args.no_smt,
+        smt_timeout_ms: args.smt_timeout * 1000,
+    };
+    let r = truecost::claims::registry::run(args.scope, args.claim.as_deref(), &options)?;
+    if let Some(dir) = &args.smt_out {
+        for o in &r.smt {
+            truecost::claims::smt::write_files(dir, &o.solved)?;
+        }
+    }
     if let Some(dir) = &args.counterexamples {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
@@ -153,9 +177,9 @@ fn interval_text(i: &Interval, d: &BigInt) -> String {
 
 fn bonus(problem: &Problem, format: VerifyFormat) -> Result<String, String> {
     let (inst, d) = integer_instance(problem)?;
-    let sets = bonus_sets(&inst, 1 << 22)?.ok_or(
-        "no goal is reachable from x1, or more than 2^22 stationary policies (too large for the enumeration oracle)",
-    )?;
+    let sets = bonus_analysis(&inst, 1 << 22)
+        .map_err(|e| e.to_string())?
+        .ok_or("no goal is reachable from x1: there is no single-shot path and no bonus set")?;
     let rows: Vec<_> = sets
         .iter()
         .map(|s| {

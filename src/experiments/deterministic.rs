@@ -33,15 +33,18 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::clock::Stopwatch;
+use std::collections::BTreeMap;
+
+use super::clock::{timed, Stopwatch};
+use super::published::{self, Comparison, DataError, Kind, Observed, Summary};
 use super::runs::{in_pool, RunSettings};
 use super::stats::{mean_of_present, mean_std};
 use crate::learning::plan::{sample_rng, EpsilonSchedule, PiStream, Plan, Probability};
 use crate::learning::q_learning::{
     Event, LearningError, LearningValue, Milestone, QLearner, QLearningConfig, Rules,
 };
-use crate::model::{ExactGraph, Graph, Problem};
-use crate::planning::{plan_exact, plan_reference, Algorithm, Mode};
+use crate::model::{ExactGraph, Graph};
+use crate::planning::{model_free_counts, Algorithm, Mode, PlanCounts};
 use crate::problems::{GridLayout, StepCost, PAPER_PROBLEMS};
 use crate::solvers::dijkstra;
 use crate::solvers::value_iteration::{value_iteration, Schedule};
@@ -255,6 +258,8 @@ pub struct Sample {
     pub time_s: f64,
     /// Actions applied (learning) or exploration + planner actions (DP).
     pub actions: u64,
+    /// Actions counted by the planner alone (DP rows; 0 for learning).
+    pub planner_actions: u64,
     /// Episodes (see the mode) or sweeps / heap pops.
     pub iterations: u64,
     /// Whether `Q̂` reached `Q*` on every tracked state (DP: the planner solved it).
@@ -307,6 +312,12 @@ pub struct RowSummary {
     pub mean_actions: Option<f64>,
     /// Standard deviation of the actions.
     pub std_actions: Option<f64>,
+    /// Mean actions of the planner alone, after exploration (model-free rows: relaxations or
+    /// backups; the paper's "convergence action" column of these rows).
+    pub mean_planner_actions: Option<f64>,
+    /// Mean nanoseconds per counted action: total run time over total actions (issue 13, item
+    /// 2), comparable across machines and languages.
+    pub mean_ns_per_action: Option<f64>,
     /// Mean iterations (episodes / sweeps / pops; see the mode).
     pub mean_iterations: Option<f64>,
     /// Standard deviation of the iterations.
@@ -341,6 +352,17 @@ pub struct RowSummary {
     pub value_type: &'static str,
     /// Why a row was not run, if it was not.
     pub note: Option<String>,
+    /// With `--against-published`: `published` (metric → the paper's value) and `agreement`
+    /// (metric → verdict), see [`published`].
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub comparison: Option<Comparison>,
+    /// Our side of every metric the paper publishes, for the comparison.
+    #[serde(skip)]
+    pub observed: BTreeMap<&'static str, Observed>,
+    /// Whether the row's counts are a pure function of the settings and the settings are the
+    /// published ones (see [`published`]: the verdict `exact`).
+    #[serde(skip)]
+    pub exact_comparable: bool,
 }
 
 /// The whole result.
@@ -362,15 +384,14 @@ pub struct Report {
     pub problems: Vec<usize>,
     /// One summary per (problem, row), problems in the given order, rows as [`PAPER_ROWS`].
     pub rows: Vec<RowSummary>,
+    /// The closing counts of [`against_published`], once it ran.
+    pub against_published: Option<Summary>,
 }
 
 /// A problem compiled for one mode, with the oracle values `G*` of the convergence checks.
 enum Prepared {
-    /// The paper's text: the exact problem (for the planners) and its compiled graph.
-    Exact {
-        problem: Problem,
-        graph: ExactOptimum,
-    },
+    /// The paper's text: the compiled exact graph with its optimum.
+    Exact { graph: ExactOptimum },
     /// The paper's code: the `f64` graph and its value iteration's values.
     Reference {
         graph: Graph<f64>,
@@ -395,6 +416,7 @@ fn prepare(id: usize, settings: &Settings) -> Result<ProblemRun, ExperimentError
     match settings.mode {
         Mode::Exact => {
             let problem = GridLayout::exact(id)?.to_problem(settings.step_cost);
+            // Compiled once, before any clock starts (issue 13, item 1).
             let compiled = ExactGraph::new(&problem);
             let value_type = compiled.representation();
             let (graph, reachable) = match compiled {
@@ -411,7 +433,7 @@ fn prepare(id: usize, settings: &Settings) -> Result<ProblemRun, ExperimentError
             };
             Ok(ProblemRun {
                 id,
-                prepared: Prepared::Exact { problem, graph },
+                prepared: Prepared::Exact { graph },
                 reachable,
                 value_type,
             })
@@ -431,8 +453,11 @@ fn prepare(id: usize, settings: &Settings) -> Result<ProblemRun, ExperimentError
     }
 }
 
-/// One learning sample on a graph: the clock wraps the learner; milestones are timed between
-/// calls to [`QLearner::advance`].
+/// One learning sample on a prepared graph: the clock wraps the learner only (setting up its
+/// Q-table and learning); milestones are timed between calls to [`QLearner::advance`]; the
+/// greedy path is read after the clock stopped. The oracle values `optimum` are prepared
+/// before; the learner compares with them through a counter updated with each `Q̂` update
+/// (`O(1)` per action, see [`crate::learning::q_learning`]).
 fn learn_sample<V: LearningValue>(
     graph: &Graph<V>,
     optimum: &[V],
@@ -462,6 +487,7 @@ fn learn_sample<V: LearningValue>(
     Ok(Sample {
         time_s,
         actions: outcome.actions,
+        planner_actions: 0,
         iterations,
         converged: outcome.converged,
         converged_at: outcome.converged_at,
@@ -518,27 +544,58 @@ fn run_sample(
     let Row::ModelFree(algorithm) = *row else {
         unreachable!("learning rows handled above")
     };
-    let watch = Stopwatch::start();
-    let report = match &run.prepared {
-        Prepared::Exact { problem, .. } => plan_exact(problem, algorithm, true),
-        Prepared::Reference { graph, .. } => plan_reference(graph, algorithm, true),
+    let mode = settings.mode;
+    let (counts, time_s) = match &run.prepared {
+        Prepared::Exact {
+            graph: ExactOptimum::Units(g, _),
+        } => time_model_free(g, algorithm, mode),
+        Prepared::Exact {
+            graph: ExactOptimum::Big(g, _),
+        } => time_model_free(g, algorithm, mode),
+        Prepared::Reference { graph, .. } => time_model_free(graph, algorithm, mode),
     };
-    let time_s = watch.seconds();
     Ok(Sample {
         time_s,
-        actions: report.actions,
-        iterations: report.iterations,
-        converged: report.reachable,
+        actions: counts.actions(),
+        planner_actions: counts.planner_actions,
+        iterations: counts.iterations,
+        // A DP planner on the explored graph (x1's whole component: every reachable move was
+        // tried) computes the optimum itself, so its values equal G* — also where G* = +inf,
+        // as on Problem 6 (issue 12, failure 13: this said "not converged" there).
+        converged: true,
         converged_at: None,
         initial_optimal_at: None,
         initial_optimal_time_s: None,
         goal_discovered_at: None,
         goal_discovered_time_s: None,
-        path_states: report.path.len(),
-        reached_goal: report.reachable,
+        path_states: counts.path_states,
+        reached_goal: counts.reached_goal,
         looped: false,
-        path_optimal: report.reachable,
+        // Every planner here is exact on the discovered graph (reference mode: on the paper's
+        // f64 costs), so a path found is optimal.
+        path_optimal: counts.reached_goal,
     })
+}
+
+/// The timed region of a model-free row (issue 13, item 1): the clock wraps
+/// [`model_free_counts`] on a graph compiled before — exploration, the planner on the
+/// discovered graph, its path — and the region returns counts only ([`PlanCounts`] is `Copy`).
+///
+/// ```
+/// use truecost::experiments::deterministic::time_model_free;
+/// use truecost::planning::{Algorithm, Mode};
+/// use truecost::problems::GridLayout;
+/// let graph = GridLayout::reference(16).unwrap().to_reference_graph();
+/// let (counts, seconds) = time_model_free(&graph, Algorithm::Dijkstra, Mode::Reference);
+/// assert_eq!((counts.iterations, counts.actions()), (6, 28)); // published: 6 pops, 28 actions
+/// assert!(seconds >= 0.0);
+/// ```
+pub fn time_model_free<V: CostValue>(
+    graph: &Graph<V>,
+    algorithm: Algorithm,
+    mode: Mode,
+) -> (PlanCounts, f64) {
+    timed(|| model_free_counts(graph, algorithm, mode))
 }
 
 /// Summarises the samples of one row.
@@ -562,6 +619,8 @@ fn summarise(
     };
     let learning = !matches!(row, Row::ModelFree(_));
     let when = |x: Option<f64>| if learning { x } else { None };
+    let total_actions: u64 = samples.iter().map(|s| s.actions).sum();
+    let total_time: f64 = samples.iter().map(|s| s.time_s).sum();
     let to_f64 = |(a, b): (u64, u64)| a as f64 / b as f64;
     RowSummary {
         problem: run.id,
@@ -582,6 +641,10 @@ fn summarise(
         mean_actions_converged: when(mean_of_present(&opt(&|s| s.converged_at.map(|a| a as f64)))),
         mean_actions,
         std_actions,
+        mean_planner_actions: (!learning)
+            .then(|| mean_std(&f(&|s| s.planner_actions as f64)).map(|(m, _)| m))
+            .flatten(),
+        mean_ns_per_action: (total_actions > 0).then(|| total_time * 1e9 / total_actions as f64),
         mean_iterations,
         std_iterations,
         shortest_path: samples.iter().map(|s| s.path_states).min(),
@@ -603,7 +666,201 @@ fn summarise(
         seed: settings.seed,
         value_type: run.value_type,
         note,
+        comparison: None,
+        observed: observe(row, samples),
+        exact_comparable: false,
     }
+}
+
+/// Our side of every metric the paper publishes for a row (names as in
+/// `data/published/deterministic.csv`).
+fn observe(row: &Row, samples: &[Sample]) -> BTreeMap<&'static str, Observed> {
+    let mut o = BTreeMap::new();
+    let n = samples.len() as u64;
+    if n == 0 {
+        return o;
+    }
+    let counts = |get: &dyn Fn(&Sample) -> Option<u64>| {
+        Observed::counts(&samples.iter().filter_map(get).collect::<Vec<_>>())
+    };
+    let times = |get: &dyn Fn(&Sample) -> Option<f64>| {
+        Observed::times(&samples.iter().filter_map(get).collect::<Vec<_>>())
+    };
+    let hits = |pred: &dyn Fn(&Sample) -> bool| samples.iter().filter(|s| pred(s)).count() as u64;
+    let mut put = |k: &'static str, v: Option<Observed>| {
+        if let Some(v) = v {
+            o.insert(k, v);
+        }
+    };
+    put("mean_time_s", times(&|s| Some(s.time_s)));
+    put("mean_iterations", counts(&|s| Some(s.iterations)));
+    put("mean_actions", counts(&|s| Some(s.actions)));
+    put(
+        "convergence_rate",
+        Observed::rate(hits(&|s| s.converged), n),
+    );
+    let path = samples.iter().map(|s| s.path_states as u64);
+    put(
+        "shortest_path",
+        path.clone().min().map(|v| Observed::value(v, n)),
+    );
+    put("longest_path", path.max().map(|v| Observed::value(v, n)));
+    let all_reached = u64::from(hits(&|s| s.reached_goal) == n);
+    put("goal_reached_all", Some(Observed::value(all_reached, n)));
+    put(
+        "loops_any",
+        Some(Observed::value(u64::from(hits(&|s| s.looped) > 0), n)),
+    );
+    if matches!(row, Row::ModelFree(_)) {
+        put("mean_planner_actions", counts(&|s| Some(s.planner_actions)));
+    } else {
+        put("mean_actions_converged", counts(&|s| s.converged_at));
+        put(
+            "mean_actions_goal_discovered",
+            counts(&|s| s.goal_discovered_at),
+        );
+        put(
+            "mean_time_goal_discovered_s",
+            times(&|s| s.goal_discovered_time_s),
+        );
+        put(
+            "mean_actions_initial_optimal",
+            counts(&|s| s.initial_optimal_at),
+        );
+        put(
+            "mean_time_initial_optimal_s",
+            times(&|s| s.initial_optimal_time_s),
+        );
+    }
+    o
+}
+
+/// How a published deterministic metric is judged (`None`: not a metric of this table).
+fn metric_kind(metric: &str) -> Option<Kind> {
+    Some(match metric {
+        "mean_time_s" | "mean_time_goal_discovered_s" | "mean_time_initial_optimal_s" => Kind::Time,
+        "convergence_rate" => Kind::Rate,
+        "shortest_path" | "longest_path" | "goal_reached_all" | "loops_any" => Kind::Extreme,
+        "mean_iterations"
+        | "mean_actions"
+        | "mean_planner_actions"
+        | "mean_actions_converged"
+        | "mean_actions_goal_discovered"
+        | "mean_actions_initial_optimal" => Kind::Mean,
+        _ => return None,
+    })
+}
+
+/// Whether row `row` on the `index`-th problem of `settings` is a pure function of settings
+/// the paper published (so its counts must be `exact`): reference mode, the paper's 1000 ×
+/// 3000 run; model-free planners and greedy ε = 0 always; the π rows only with the paper's 100
+/// samples and the paper's problems before it in the paper's order (one digit stream is shared
+/// in problem order). Every other learning row draws from our generator, not the paper's.
+fn exact_comparable(row: &Row, index: usize, settings: &Settings) -> bool {
+    if settings.mode != Mode::Reference || settings.episodes != 1000 || settings.max_steps != 3000 {
+        return false;
+    }
+    match row {
+        Row::ModelFree(_) => true,
+        Row::QLearning {
+            epsilon: (0, _),
+            plan: PlanKind::Random,
+        } => true,
+        Row::QLearning {
+            plan: PlanKind::Pi, ..
+        } => {
+            settings.samples == 100
+                && settings.problems.len() > index
+                && PAPER_PROBLEMS.len() > index
+                && settings.problems[..=index] == PAPER_PROBLEMS[..=index]
+        }
+        _ => false,
+    }
+}
+
+/// A row in words, for the summary's lines.
+fn row_label(r: &RowSummary) -> String {
+    match (r.algorithm, r.epsilon) {
+        ("q-learning" | "q-learning-pi", Some(e)) => format!("{} ε={e}", r.algorithm),
+        ("q-learning-epsilon-decay", Some(e)) => format!("{} from ε={e}", r.algorithm),
+        (a, _) => a.to_string(),
+    }
+}
+
+/// The published key of a row: algorithm and ε as in `data/published/deterministic.csv`.
+fn published_key(r: &RowSummary) -> published::RowKey {
+    let eps = match r.algorithm {
+        "model-free-dijkstra" | "model-free-async-vi" | "model-free-vi" => String::new(),
+        _ => r.epsilon.map_or(String::new(), |e| e.to_string()),
+    };
+    (
+        r.problem,
+        vec![
+            published::KeyPart::parse(r.algorithm),
+            published::KeyPart::parse(&eps),
+        ],
+    )
+}
+
+/// Puts the paper's published numbers beside ours (issue 13, items 3 and 4): every row the
+/// paper's CSV files publish gains `published` and `agreement`, and the report its closing
+/// [`Summary`]. Rows the paper does not publish stay as they are.
+///
+/// ```
+/// use truecost::experiments::deterministic::{against_published, run, Settings};
+/// use truecost::planning::Mode;
+/// let settings = Settings { problems: vec![16], samples: 2, mode: Mode::Reference,
+///     ..Settings::default() };
+/// let mut report = run(&settings, &|_| {}).unwrap();
+/// let summary = against_published(&mut report, &settings).unwrap();
+/// let dijkstra = report.rows.iter().find(|r| r.algorithm == "model-free-dijkstra").unwrap();
+/// let verdict = &dijkstra.comparison.as_ref().unwrap().agreement["mean_actions"];
+/// assert_eq!(verdict.name(), "exact");
+/// assert!(summary.exact > 0 && summary.compared >= summary.exact + summary.machine);
+/// ```
+pub fn against_published(report: &mut Report, settings: &Settings) -> Result<Summary, DataError> {
+    let data = published::deterministic()?;
+    let mut summary = Summary {
+        sources: data.sources.clone(),
+        ..Summary::default()
+    };
+    for (index, &problem) in settings.problems.iter().enumerate() {
+        let mut rows: Vec<&mut RowSummary> = report
+            .rows
+            .iter_mut()
+            .filter(|r| r.problem == problem)
+            .collect();
+        for (r, row) in rows.iter_mut().zip(PAPER_ROWS.iter()) {
+            let Some(values) = data.rows.get(&published_key(r)) else {
+                continue;
+            };
+            r.exact_comparable = exact_comparable(row, index, settings);
+            let observed = &r.observed;
+            r.comparison = Some(published::compare_row(
+                values,
+                metric_kind,
+                |m| observed.get(m).cloned(),
+                r.exact_comparable,
+            ));
+        }
+        let dijkstra = rows
+            .iter()
+            .find(|r| r.algorithm == "model-free-dijkstra")
+            .and_then(|r| r.comparison.as_ref())
+            .map(published::Comparison::run_time);
+        if let Some(d) = dijkstra {
+            for c in rows.iter_mut().filter_map(|r| r.comparison.as_mut()) {
+                c.relate_time(d);
+            }
+        }
+        for r in rows.iter() {
+            if let Some(c) = &r.comparison {
+                summary.add(&format!("problem {}, {}", r.problem, row_label(r)), c);
+            }
+        }
+    }
+    report.against_published = Some(summary.clone());
+    Ok(summary)
 }
 
 /// The number of sample runs an experiment performs (for a progress bar).
@@ -739,5 +996,6 @@ fn run_validated(
         max_steps: settings.max_steps,
         problems: settings.problems.clone(),
         rows,
+        against_published: None,
     })
 }

@@ -5,6 +5,7 @@
 
 pub mod clock;
 pub mod deterministic;
+pub mod published;
 pub mod runs;
 pub mod stats;
 pub mod stochastic;

@@ -8,6 +8,9 @@ use crate::problems::ProblemError;
 pub const MAX_SAMPLES: u32 = 1 << 20;
 /// The most actions one learning run may take (episodes × max steps).
 pub const MAX_ACTIONS_PER_RUN: u64 = 1 << 32;
+/// The most worker threads (`--threads`; issue 12: a huge count would spawn threads until the
+/// system gives out).
+pub const MAX_THREADS: usize = 256;
 
 /// Why the common settings of an experiment are refused. Every message is one line.
 #[derive(Debug, thiserror::Error)]
@@ -67,6 +70,7 @@ impl RunSettings<'_> {
     /// let twice = RunSettings { problems: &[3, 3], ..ok };
     /// assert_eq!(twice.validate().unwrap_err().to_string(), "problem 3 is listed twice");
     /// assert!(RunSettings { threads: Some(0), ..ok }.validate().is_err());
+    /// assert!(RunSettings { threads: Some(100_000), ..ok }.validate().is_err());
     /// ```
     pub fn validate(&self) -> Result<(), RunError> {
         if self.problems.is_empty() {
@@ -102,6 +106,12 @@ impl RunSettings<'_> {
             return Err(RunError::Threads {
                 threads: 0,
                 message: "at least one thread is needed".into(),
+            });
+        }
+        if let Some(threads) = self.threads.filter(|&t| t > MAX_THREADS) {
+            return Err(RunError::Threads {
+                threads,
+                message: format!("at most {MAX_THREADS} worker threads are supported"),
             });
         }
         Ok(())

@@ -32,8 +32,11 @@
 use rayon::prelude::*;
 use serde::Serialize;
 
+use std::collections::BTreeMap;
+
 use super::clock::Stopwatch;
 use super::deterministic::stream;
+use super::published::{self, Comparison, DataError, Kind, Observed, Summary};
 use super::runs::{in_pool, RunError, RunSettings};
 use super::stats::{mean_of_present, mean_std};
 use crate::learning::plan::{sample_rng, EpsilonSchedule, Plan, Probability, ProbabilityError};
@@ -68,6 +71,10 @@ impl RateSpec {
     /// assert_eq!(RateSpec::parse("1/n^0.8").unwrap().rate, LearningRate::Decay(0.8));
     /// assert!(RateSpec::parse("1.5").is_err());
     /// assert!(RateSpec::parse("1/n^0.4").is_err());
+    /// // Checked on the f64 the learner runs with, and printed as it runs.
+    /// assert!(RateSpec::parse("1/n^0.50000000000000001").is_err());
+    /// assert!(RateSpec::parse("1e-400").is_err());
+    /// assert_eq!(RateSpec::parse("0.5000000000000000000000001").unwrap().text, "0.5");
     /// ```
     pub fn parse(text: &str) -> Result<Self, ExperimentError> {
         let t = text.trim();
@@ -86,10 +93,20 @@ impl RateSpec {
             })?;
             LearningRate::constant(&rho)?
         };
-        Ok(RateSpec {
-            text: t.into(),
-            rate,
-        })
+        // The text printed is what runs: the input when its f64 prints back as the same exact
+        // number (0.99, 1/n^0.8), else the f64's shortest decimal (issue 12).
+        let (value, prefix) = match rate {
+            LearningRate::Constant(r) => (r, ""),
+            LearningRate::Decay(w) => (w, "1/n^"),
+        };
+        let shortest = format!("{value:?}");
+        let given = parse_rational(t.strip_prefix("1/n^").unwrap_or(t)).ok();
+        let text = if given == parse_rational(&shortest).ok() {
+            t.to_string()
+        } else {
+            format!("{prefix}{shortest}")
+        };
+        Ok(RateSpec { text, rate })
     }
 }
 
@@ -315,6 +332,9 @@ pub struct RowSummary {
     pub mean_actions: Option<f64>,
     /// Their standard deviation.
     pub std_actions: Option<f64>,
+    /// Mean nanoseconds per counted action: total run time over total actions (issue 13, item
+    /// 2), comparable across machines and languages.
+    pub mean_ns_per_action: Option<f64>,
     /// Mean episodes run (VI: sweeps).
     pub mean_iterations: Option<f64>,
     /// Their standard deviation.
@@ -353,6 +373,13 @@ pub struct RowSummary {
     pub seed: u64,
     /// Why the row was not run.
     pub note: Option<String>,
+    /// With `--against-published`: `published` (metric → the paper's value) and `agreement`
+    /// (metric → verdict), see [`published`].
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub comparison: Option<Comparison>,
+    /// Our side of every metric the paper publishes, for the comparison.
+    #[serde(skip)]
+    pub observed: BTreeMap<&'static str, Observed>,
 }
 
 /// The result of an experiment.
@@ -378,6 +405,8 @@ pub struct Report {
     pub gammas: Vec<String>,
     /// The rows: per problem, per `γ`, learning rows then the two VIs.
     pub rows: Vec<RowSummary>,
+    /// The closing counts of [`against_published`], once it ran.
+    pub against_published: Option<Summary>,
 }
 
 /// A problem at one `γ`, with its exact optimum.
@@ -619,6 +648,7 @@ fn run_validated(
         problems: settings.problems.clone(),
         gammas: settings.gammas.iter().map(gamma_text).collect(),
         rows: out,
+        against_published: None,
     })
 }
 
@@ -637,6 +667,7 @@ fn empty_row(pr: &Prepared, algorithm: &'static str, settings: &Settings) -> Row
         mean_actions_converged: None,
         mean_actions: None,
         std_actions: None,
+        mean_ns_per_action: None,
         mean_iterations: None,
         std_iterations: None,
         initial_within_rate: None,
@@ -656,6 +687,8 @@ fn empty_row(pr: &Prepared, algorithm: &'static str, settings: &Settings) -> Row
         tolerance: settings.tolerance,
         seed: settings.seed,
         note: None,
+        comparison: None,
+        observed: BTreeMap::new(),
     }
 }
 
@@ -704,7 +737,121 @@ fn summarise(
     row.longest_path = samples.iter().map(|s| s.path_states).max();
     row.goal_reached_rate = rate(&|s| s.reached_goal);
     row.optimal_path_rate = rate(&|s| s.path_optimal);
+    let total_actions: u64 = samples.iter().map(|s| s.actions).sum();
+    let total_time: f64 = samples.iter().map(|s| s.time_s).sum();
+    row.mean_ns_per_action = (total_actions > 0).then(|| total_time * 1e9 / total_actions as f64);
+    row.observed = observe(samples);
     row
+}
+
+/// Our side of every metric the paper publishes for a learning row (names as in
+/// `data/published/stochastic.csv`).
+fn observe(samples: &[Sample]) -> BTreeMap<&'static str, Observed> {
+    let mut o = BTreeMap::new();
+    let n = samples.len() as u64;
+    let counts = |get: &dyn Fn(&Sample) -> Option<u64>| {
+        Observed::counts(&samples.iter().filter_map(get).collect::<Vec<_>>())
+    };
+    let times = |get: &dyn Fn(&Sample) -> Option<f64>| {
+        Observed::times(&samples.iter().filter_map(get).collect::<Vec<_>>())
+    };
+    let hits = |pred: &dyn Fn(&Sample) -> bool| samples.iter().filter(|s| pred(s)).count() as u64;
+    let mut put = |k: &'static str, v: Option<Observed>| {
+        if let Some(v) = v {
+            o.insert(k, v);
+        }
+    };
+    put("mean_time_s", times(&|s| Some(s.time_s)));
+    put("mean_actions", counts(&|s| Some(s.actions)));
+    put(
+        "convergence_rate",
+        Observed::rate(hits(&|s| s.converged_at.is_some()), n),
+    );
+    put(
+        "initial_within_rate",
+        Observed::rate(hits(&|s| s.initial_at.is_some()), n),
+    );
+    put("mean_actions_converged", counts(&|s| s.converged_at));
+    put("mean_actions_goal_discovered", counts(&|s| s.goal_at));
+    put("mean_time_goal_discovered_s", times(&|s| s.goal_time_s));
+    put("mean_actions_initial_within", counts(&|s| s.initial_at));
+    put("mean_time_initial_within_s", times(&|s| s.initial_time_s));
+    o
+}
+
+/// How a published stochastic metric is judged (`None`: not a metric of this table).
+fn metric_kind(metric: &str) -> Option<Kind> {
+    Some(match metric {
+        "mean_time_s" | "mean_time_goal_discovered_s" | "mean_time_initial_within_s" => Kind::Time,
+        "convergence_rate" | "initial_within_rate" => Kind::Rate,
+        "mean_actions"
+        | "mean_iterations"
+        | "mean_actions_converged"
+        | "mean_actions_goal_discovered"
+        | "mean_actions_initial_within" => Kind::Mean,
+        _ => return None,
+    })
+}
+
+/// Puts the paper's published stochastic numbers beside ours (issue 13, items 3 and 4). The
+/// paper's files publish problems 1, 10 and 11 at `γ` 0.999 and 0.99 (100 samples,
+/// `ρ` 0.5–0.99, `ε` 0–1) under the reference code's noise model and ±5 tolerance: rows are
+/// matched on problem, `γ`, `ρ` and `ε` (as exact numbers). The VI rows are deterministic:
+/// with `--noise reference --tolerance reference` their counts must be `exact`; the learning
+/// rows draw from our generator and are judged statistically.
+///
+/// ```
+/// use truecost::experiments::stochastic::{against_published, run, Settings, RateSpec, EpsilonSpec};
+/// use truecost::learning::stochastic_q::Tolerance;
+/// use truecost::stochastic::{NoiseModel, Predictability};
+/// let settings = Settings { problems: vec![10], gammas: vec![Predictability::parse("0.999").unwrap()],
+///     rhos: vec![RateSpec::parse("0.99").unwrap()], epsilons: vec![EpsilonSpec::parse("0.9").unwrap()],
+///     samples: 1, episodes: 2, max_steps: 10, noise: NoiseModel::Reference,
+///     tolerance: Tolerance::Reference, ..Settings::default() };
+/// let mut report = run(&settings, &|_| {}).unwrap();
+/// let summary = against_published(&mut report, &settings).unwrap();
+/// let vi = report.rows.iter().find(|r| r.algorithm == "stochastic-async-vi").unwrap();
+/// assert_eq!(vi.comparison.as_ref().unwrap().agreement["mean_actions"].name(), "exact");
+/// assert!(summary.compared > 0);
+/// ```
+pub fn against_published(report: &mut Report, settings: &Settings) -> Result<Summary, DataError> {
+    let data = published::stochastic()?;
+    let mut summary = Summary {
+        sources: data.sources.clone(),
+        ..Summary::default()
+    };
+    let vi_exact =
+        settings.noise == NoiseModel::Reference && settings.tolerance == Tolerance::Reference;
+    for r in report.rows.iter_mut() {
+        let key = (
+            r.problem,
+            [
+                r.gamma.as_str(),
+                r.algorithm,
+                r.rho.as_deref().unwrap_or(""),
+                r.epsilon.as_deref().unwrap_or(""),
+            ]
+            .map(published::KeyPart::parse)
+            .to_vec(),
+        );
+        let Some(values) = data.rows.get(&key) else {
+            continue;
+        };
+        let exact = r.algorithm != "q-learning" && vi_exact;
+        let observed = &r.observed;
+        let c = published::compare_row(values, metric_kind, |m| observed.get(m).cloned(), exact);
+        let label = match (&r.rho, &r.epsilon) {
+            (Some(rho), Some(e)) => format!("{} ρ={rho} ε={e}", r.algorithm),
+            _ => r.algorithm.to_string(),
+        };
+        summary.add(
+            &format!("problem {}, γ={}, {label}", r.problem, r.gamma),
+            &c,
+        );
+        r.comparison = Some(c);
+    }
+    report.against_published = Some(summary.clone());
+    Ok(summary)
 }
 
 fn vi_row(
@@ -744,6 +891,18 @@ fn vi_row(
     row.mean_time_s = Some(time_s);
     row.std_time_s = Some(0.0);
     row.mean_actions = Some(run.reference_counted as f64);
+    row.mean_ns_per_action =
+        (run.reference_counted > 0).then(|| time_s * 1e9 / run.reference_counted as f64);
+    let one = |v: u64| Observed::counts(&[v]);
+    row.observed.extend(
+        [
+            ("mean_time_s", Observed::times(&[time_s])),
+            ("mean_actions", one(run.reference_counted)),
+            ("mean_iterations", one(run.sweeps)),
+        ]
+        .into_iter()
+        .filter_map(|(k, v)| v.map(|v| (k, v))),
+    );
     row.std_actions = Some(0.0);
     row.mean_iterations = Some(run.sweeps as f64);
     row.std_iterations = Some(0.0);
@@ -753,6 +912,8 @@ fn vi_row(
         return Ok(row);
     }
     row.convergence_rate = Some(if all_within { 1.0 } else { 0.0 });
+    row.observed
+        .extend(Observed::rate(u64::from(all_within), 1).map(|o| ("convergence_rate", o)));
     row.initial_within_rate = Some(if pr.target.within(x1, v[x1]) {
         1.0
     } else {

@@ -651,7 +651,7 @@ impl<'a, V: LearningValue> QLearner<'a, V> {
             step += 1;
             observer.update(s, a, &old, &q[e], v);
             if reference {
-                if actions % REFERENCE_CHECK_INTERVAL == 0 {
+                if actions.is_multiple_of(REFERENCE_CHECK_INTERVAL) {
                     if optimal_count == tracked_total {
                         if converged_at.is_none() {
                             pending |= PENDING_CONVERGED;

@@ -244,6 +244,20 @@ pub enum RateError {
     /// `ω ∉ (1/2, 1]`.
     #[error("learning-rate exponent omega = {0} is outside (0.5, 1] (the range where sum rho = inf and sum rho^2 < inf)")]
     Omega(String),
+    /// In range exactly, but not once rounded to the learner's `f64` (issue 12).
+    #[error(
+        "{name} = {text} rounds to {rounded} in f64 (the learner's arithmetic), outside {range}"
+    )]
+    Rounded {
+        /// `rho` or `omega`.
+        name: &'static str,
+        /// The exact value as text (echoed, shortened).
+        text: String,
+        /// The `f64` it rounds to, as Rust prints it.
+        rounded: String,
+        /// The admissible range.
+        range: &'static str,
+    },
 }
 
 /// The learning rate of stochastic Q-learning.
@@ -264,11 +278,23 @@ impl LearningRate {
     /// assert_eq!(LearningRate::constant(&parse_rational("0.5").unwrap()), Ok(LearningRate::Constant(0.5)));
     /// assert!(LearningRate::constant(&parse_rational("0").unwrap()).is_err());
     /// ```
+    /// The range is checked on the exact value **and** on the `f64` the learner uses (`1e-400`
+    /// rounds to 0 and is refused before any run).
     pub fn constant(rho: &Rational) -> Result<Self, RateError> {
+        let text = || crate::stochastic::short_text(rho);
         if !rho.is_positive() || rho > &Rational::one() {
-            return Err(RateError::Rho(Extended::Finite(rho.clone()).to_string()));
+            return Err(RateError::Rho(text()));
         }
-        Ok(LearningRate::Constant(rho.to_f64().unwrap_or(1.0)))
+        let rounded = rho.to_f64().unwrap_or(0.0);
+        if !(rounded > 0.0 && rounded <= 1.0) {
+            return Err(RateError::Rounded {
+                name: "learning rate rho",
+                text: text(),
+                rounded: format!("{rounded:?}"),
+                range: "(0, 1]",
+            });
+        }
+        Ok(LearningRate::Constant(rounded))
     }
 
     /// The decaying rate `1/n^ω`, `ω` checked to lie in `(1/2, 1]`.
@@ -280,14 +306,24 @@ impl LearningRate {
     /// assert!(LearningRate::decay(&parse_rational("0.5").unwrap()).is_err());
     /// assert!(LearningRate::decay(&parse_rational("1.1").unwrap()).is_err());
     /// ```
+    /// Checked exactly and on the `f64` the learner uses (`0.50000000000000001` rounds to 0.5
+    /// and is refused).
     pub fn decay(omega: &Rational) -> Result<Self, RateError> {
         let half = Rational::new(1.into(), 2.into());
+        let text = || crate::stochastic::short_text(omega);
         if omega <= &half || omega > &Rational::one() {
-            return Err(RateError::Omega(
-                Extended::Finite(omega.clone()).to_string(),
-            ));
+            return Err(RateError::Omega(text()));
         }
-        Ok(LearningRate::Decay(omega.to_f64().unwrap_or(1.0)))
+        let rounded = omega.to_f64().unwrap_or(0.0);
+        if !(rounded > 0.5 && rounded <= 1.0) {
+            return Err(RateError::Rounded {
+                name: "learning-rate exponent omega",
+                text: text(),
+                rounded: format!("{rounded:?}"),
+                range: "(0.5, 1]",
+            });
+        }
+        Ok(LearningRate::Decay(rounded))
     }
 }
 

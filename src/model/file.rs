@@ -22,34 +22,85 @@
 //! * Costs are **strings** holding exact non-negative numbers: `"1"`, `"0.25"`, `"800/19"`,
 //!   `"1e-3"`. JSON numbers are refused: they would pass through `f64`.
 //! * `format`, `name` and `states` are optional; `states`, if given, must equal the number of
-//!   action lists. Unknown fields are refused.
+//!   action lists. Unknown fields are refused. The format tag may also be
+//!   `truecost-stochastic/1` (the stochastic format, [`crate::stochastic::file`], of which a
+//!   file without `outcomes` is a deterministic problem); an action listing `outcomes` is
+//!   refused here with a message naming it (only the stochastic solvers read those).
+//!
+//! Limits (issue 12), each refusal naming its bound: a file of at most [`MAX_FILE_BYTES`]
+//! bytes, read **once** (so `/dev/stdin`, pipes and FIFOs work); each number as in
+//! [`crate::value::parse_rational`] (at most 4096 bytes, exponents within ±10000); the exact
+//! numbers of one file at most [`MAX_NUMBER_BITS`] bits in all.
 
+use std::io::Read;
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
 use super::{ModelError, Move, Problem};
-use crate::value::{parse_rational, Extended, ParseRationalError};
+use crate::echo::echo;
+use crate::value::{parse_rational, Extended, ParseRationalError, Rational};
 
 /// The format tag written by [`to_json`].
 pub const FORMAT: &str = "truecost-problem/1";
+
+/// The format tag of stochastic files ([`crate::stochastic::file::FORMAT`]).
+pub const STOCHASTIC_FORMAT: &str = "truecost-stochastic/1";
+
+/// The largest problem file read, in bytes (32 MiB: a 100×100 stochastic grid with every
+/// outcome listed takes about 6 MiB).
+pub const MAX_FILE_BYTES: u64 = 32 << 20;
+
+/// The most bits all exact numbers (costs, probabilities) of one file may take together
+/// (numerators and denominators), so that a small file of huge exponents cannot fill memory.
+pub const MAX_NUMBER_BITS: u64 = 1 << 28;
 
 /// Why a problem file was refused. Every message fits on one line.
 #[derive(Debug, thiserror::Error)]
 pub enum FileError {
     /// The file could not be read.
-    #[error("cannot read problem file {path}: {source}")]
+    #[error("cannot read problem file {}: {source}", echo(.path))]
     Io {
         /// The path.
         path: String,
         /// The cause.
         source: std::io::Error,
     },
+    /// The file is larger than [`MAX_FILE_BYTES`].
+    #[error("problem file {} is larger than {} bytes (32 MiB), the limit of this reader", echo(.path), MAX_FILE_BYTES)]
+    TooLarge {
+        /// The path.
+        path: String,
+    },
+    /// The exact numbers of the file exceed [`MAX_NUMBER_BITS`].
+    #[error("state {state}, action {action}: the exact numbers of this file take more than 2^28 bits in all, the limit of this reader")]
+    NumbersTooLarge {
+        /// The state where the budget ran out.
+        state: usize,
+        /// The action index.
+        action: usize,
+    },
+    /// A deterministic action without its successor.
+    #[error("state {state}, action {action}: missing field `to` (the successor of a deterministic move)")]
+    MissingSuccessor {
+        /// The state.
+        state: usize,
+        /// The action index.
+        action: usize,
+    },
+    /// An action listing outcomes where a deterministic problem is needed.
+    #[error("state {state}, action {action} lists outcomes (a stochastic action): this command needs a deterministic problem (stochastic files are solved by `solve --algorithm exact|vi|async-vi` and drawn by `render`)")]
+    Stochastic {
+        /// The state.
+        state: usize,
+        /// The action index.
+        action: usize,
+    },
     /// Not valid JSON of the expected shape.
     #[error("problem file is not valid: {0}")]
     Json(String),
     /// A format tag this version does not read.
-    #[error("unsupported format '{0}' (this truecost reads '{FORMAT}')")]
+    #[error("unsupported format '{}' (this truecost reads '{FORMAT}' and '{STOCHASTIC_FORMAT}')", echo(.0))]
     Format(String),
     /// `states` disagrees with the action lists.
     #[error("'states' is {states} but {lists} action lists are given")]
@@ -100,6 +151,14 @@ impl<A: serde::de::DeserializeOwned> FileProblem<A> {
 }
 
 impl<A> FileProblem<A> {
+    /// Checks the optional format tag: one of the two formats this version reads.
+    pub(crate) fn check_format(&self) -> Result<(), FileError> {
+        match &self.format {
+            Some(f) if f != FORMAT && f != STOCHASTIC_FORMAT => Err(FileError::Format(f.clone())),
+            _ => Ok(()),
+        }
+    }
+
     /// Checks the optional `states` against the number of action lists.
     pub(crate) fn check_states(&self) -> Result<(), FileError> {
         match self.states {
@@ -125,37 +184,84 @@ pub(crate) fn parse_cost(
     })
 }
 
+/// An action entry of either format: a deterministic move `{to, cost}` or a stochastic action
+/// `{cost, outcomes}` (only the stochastic reader accepts the latter).
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct FileAction {
-    to: usize,
-    cost: String,
+pub(crate) struct FileAction {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) to: Option<usize>,
+    pub(crate) cost: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) outcomes: Option<Vec<FileOutcome>>,
 }
 
-/// Parses a problem file's text.
+/// One listed outcome `{to, p}` of a stochastic action.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct FileOutcome {
+    pub(crate) to: usize,
+    pub(crate) p: String,
+}
+
+/// The running total of the bits of a file's exact numbers (checked against
+/// [`MAX_NUMBER_BITS`] as the numbers are parsed).
+#[derive(Default)]
+pub(crate) struct NumberBudget(u64);
+
+impl NumberBudget {
+    /// Counts `r` (parsed at `state`, `action`); refuses once the total passes the bound.
+    pub(crate) fn take(
+        &mut self,
+        r: &Rational,
+        state: usize,
+        action: usize,
+    ) -> Result<(), FileError> {
+        self.0 += r.numer().bits() + r.denom().bits();
+        if self.0 > MAX_NUMBER_BITS {
+            return Err(FileError::NumbersTooLarge { state, action });
+        }
+        Ok(())
+    }
+}
+
+/// Parses a problem file's text (a deterministic problem: no action may list outcomes).
 ///
 /// ```
 /// let text = r#"{"initial": 0, "goals": [1], "actions": [[{"to": 1, "cost": "800/19"}], []]}"#;
 /// let p = truecost::model::file::from_json(text).unwrap();
 /// assert_eq!(p.states(), 2);
 /// assert!(truecost::model::file::from_json(r#"{"initial": 0, "goals": [1], "actions": [[{"to": 1, "cost": 1.5}], []]}"#).is_err());
+/// // The stochastic tag is accepted when no action lists outcomes (issue 12, failure 8).
+/// let tagged = text.replace("{\"initial\"", "{\"format\": \"truecost-stochastic/1\", \"initial\"");
+/// assert_eq!(truecost::model::file::from_json(&tagged).unwrap(), p);
 /// ```
 pub fn from_json(text: &str) -> Result<Problem, FileError> {
-    let file = FileProblem::<FileAction>::parse(text)?;
-    if let Some(f) = &file.format {
-        if f != FORMAT {
-            return Err(FileError::Format(f.clone()));
-        }
-    }
+    from_file(FileProblem::<FileAction>::parse(text)?)
+}
+
+/// Builds the deterministic problem of a parsed file (shared with the stochastic reader).
+pub(crate) fn from_file(file: FileProblem<FileAction>) -> Result<Problem, FileError> {
+    file.check_format()?;
     file.check_states()?;
+    let mut budget = NumberBudget::default();
     let mut moves = Vec::with_capacity(file.actions.len());
     for (x, list) in file.actions.iter().enumerate() {
         let mut row = Vec::with_capacity(list.len());
         for (a, action) in list.iter().enumerate() {
-            row.push(Move {
-                successor: action.to,
-                cost: parse_cost(x, a, &action.cost)?,
-            });
+            if action.outcomes.is_some() {
+                return Err(FileError::Stochastic {
+                    state: x,
+                    action: a,
+                });
+            }
+            let successor = action.to.ok_or(FileError::MissingSuccessor {
+                state: x,
+                action: a,
+            })?;
+            let cost = parse_cost(x, a, &action.cost)?;
+            budget.take(&cost, x, a)?;
+            row.push(Move { successor, cost });
         }
         moves.push(row);
     }
@@ -168,13 +274,40 @@ pub fn from_json(text: &str) -> Result<Problem, FileError> {
     Ok(problem)
 }
 
-/// Reads and parses a problem file.
-pub fn read(path: &Path) -> Result<Problem, FileError> {
-    let text = std::fs::read_to_string(path).map_err(|source| FileError::Io {
+/// Reads a problem file's text **once**, at most [`MAX_FILE_BYTES`] bytes (so standard input,
+/// pipes and FIFOs work, and `/dev/zero` is refused rather than read for ever).
+///
+/// ```
+/// use truecost::model::file::{read_text, FileError};
+/// let err = read_text(std::path::Path::new("/no/such/file.json")).unwrap_err();
+/// assert!(matches!(err, FileError::Io { .. }));
+/// ```
+pub fn read_text(path: &Path) -> Result<String, FileError> {
+    let io = |source| FileError::Io {
         path: path.display().to_string(),
         source,
-    })?;
-    from_json(&text)
+    };
+    let file = std::fs::File::open(path).map_err(io)?;
+    let mut bytes = Vec::new();
+    file.take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(FileError::TooLarge {
+            path: path.display().to_string(),
+        });
+    }
+    String::from_utf8(bytes).map_err(|_| {
+        io(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            "stream did not contain valid UTF-8",
+        ))
+    })
+}
+
+/// Reads and parses a deterministic problem file (read once, see [`read_text`]).
+pub fn read(path: &Path) -> Result<Problem, FileError> {
+    from_json(&read_text(path)?)
 }
 
 /// Writes a problem in the file format (costs as exact strings); `from_json` reads it back.
@@ -199,8 +332,9 @@ pub fn to_json(problem: &Problem, name: Option<&str>) -> String {
                     .moves(x)
                     .iter()
                     .map(|m| FileAction {
-                        to: m.successor,
+                        to: Some(m.successor),
                         cost: Extended::Finite(m.cost.clone()).to_string(),
+                        outcomes: None,
                     })
                     .collect()
             })
@@ -209,6 +343,7 @@ pub fn to_json(problem: &Problem, name: Option<&str>) -> String {
     serde_json::to_string_pretty(&file).expect("serialisable")
 }
 
+/// A serde message as one short line (it may quote a key or value of the file).
 fn one_line(s: &str) -> String {
-    s.split_whitespace().collect::<Vec<_>>().join(" ")
+    crate::echo::escape(&s.split_whitespace().collect::<Vec<_>>().join(" "), 200)
 }

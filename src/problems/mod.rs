@@ -125,7 +125,7 @@ pub fn parse_circles(text: &str) -> Result<Vec<Scenario>, ProblemError> {
         .map(|(i, l)| (i + 1, l.trim()))
         .filter(|(_, l)| !l.is_empty())
         .collect();
-    if lines.is_empty() || lines.len() % 3 != 0 {
+    if lines.is_empty() || !lines.len().is_multiple_of(3) {
         return Err(ProblemError::Malformed {
             line: lines.last().map_or(1, |l| l.0),
             message: format!(

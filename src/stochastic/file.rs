@@ -24,7 +24,9 @@
 //!   through `f64`). Outcomes are kept in the order given (a sampler draws them in that order).
 //! * The cost is paid whatever the outcome. Costs, goals, `initial`, `states`, `name` and the
 //!   "only goals may have an empty action list" rule are as in the deterministic format.
-//! * `format` is optional; if given it is `truecost-stochastic/1` or `truecost-problem/1`.
+//! * `format` is optional; if given it is `truecost-stochastic/1` or `truecost-problem/1`, and a
+//!   file tagged `truecost-problem/1` may not list outcomes (issue 12, failure 8).
+//! * The limits of [`crate::model::file`] apply (file size, number sizes); the file is read once.
 //!
 //! A file without any `outcomes` is a deterministic problem ([`ProblemFile::Deterministic`]), to
 //! which a noise model and `γ` may be applied; a file with outcomes is a stochastic problem as
@@ -32,11 +34,9 @@
 
 use std::path::Path;
 
-use serde::{Deserialize, Serialize};
-
 use super::problem::{StochasticAction, StochasticProblem};
 use super::{Outcome, OutcomeKind, StochasticError};
-use crate::model::file::{self as det_file, FileError};
+use crate::model::file::{self as det_file, FileAction, FileError, FileOutcome, NumberBudget};
 use crate::model::Problem;
 use crate::value::{parse_rational, Extended, ParseRationalError};
 
@@ -78,30 +78,21 @@ pub enum StochasticFileError {
         /// The action index.
         action: usize,
     },
+    /// A file tagged deterministic that lists outcomes.
+    #[error("state {state}, action {action} lists outcomes, but the file is tagged 'truecost-problem/1' (deterministic): tag it 'truecost-stochastic/1'")]
+    TaggedDeterministic {
+        /// The state.
+        state: usize,
+        /// The action index.
+        action: usize,
+    },
     /// Probabilities out of range or not summing to 1, and similar.
     #[error("{0}")]
     Stochastic(#[from] StochasticError),
 }
 
-/// A stochastic problem file: the deterministic file's shape with richer actions.
+/// A stochastic problem file: the deterministic file's shape (its actions may list outcomes).
 type FileProblem = det_file::FileProblem<FileAction>;
-
-#[derive(Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct FileAction {
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    to: Option<usize>,
-    cost: String,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    outcomes: Option<Vec<FileOutcome>>,
-}
-
-#[derive(Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct FileOutcome {
-    to: usize,
-    p: String,
-}
 
 /// Parses a problem file's text (either format).
 ///
@@ -118,54 +109,53 @@ struct FileOutcome {
 /// ```
 pub fn from_json(text: &str) -> Result<ProblemFile, StochasticFileError> {
     let file = FileProblem::parse(text)?;
-    if let Some(f) = &file.format {
-        if f != FORMAT && f != det_file::FORMAT {
-            return Err(FileError::Json(format!(
-                "unsupported format '{f}' (this truecost reads '{FORMAT}' and '{}')",
-                det_file::FORMAT
-            ))
-            .into());
-        }
-    }
-    let stochastic = file.actions.iter().flatten().any(|a| a.outcomes.is_some());
-    if !stochastic {
-        // The deterministic reader validates everything else (and refuses a stochastic tag
-        // only through this path, so accept it by stripping it).
-        let mut plain = file;
-        plain.format = None;
-        let text = serde_json::to_string(&plain).expect("serialisable");
-        return Ok(ProblemFile::Deterministic(det_file::from_json(&text)?));
+    file.check_format()?;
+    let first_listing = file.actions.iter().enumerate().find_map(|(x, list)| {
+        list.iter()
+            .position(|a| a.outcomes.is_some())
+            .map(|a| (x, a))
+    });
+    let Some((state, action)) = first_listing else {
+        // No outcomes: a deterministic problem, whichever of the two tags it carries.
+        return Ok(ProblemFile::Deterministic(det_file::from_file(file)?));
+    };
+    if file.format.as_deref() == Some(det_file::FORMAT) {
+        return Err(StochasticFileError::TaggedDeterministic { state, action });
     }
     file.check_states()?;
+    let mut budget = NumberBudget::default();
     let mut actions = Vec::with_capacity(file.actions.len());
     for (x, list) in file.actions.iter().enumerate() {
         let mut row = Vec::with_capacity(list.len());
         for (a, action) in list.iter().enumerate() {
             let cost = det_file::parse_cost(x, a, &action.cost)?;
+            budget.take(&cost, x, a)?;
             let outcomes = match (&action.to, &action.outcomes) {
                 (Some(to), None) => vec![Outcome {
                     successor: *to,
                     probability: crate::value::Rational::from_integer(1.into()),
                     kind: OutcomeKind::Listed,
                 }],
-                (None, Some(list)) => list
-                    .iter()
-                    .enumerate()
-                    .map(|(i, o)| {
-                        parse_rational(&o.p)
-                            .map(|probability| Outcome {
-                                successor: o.to,
-                                probability,
-                                kind: OutcomeKind::Listed,
-                            })
-                            .map_err(|source| StochasticFileError::Probability {
+                (None, Some(list)) => {
+                    let mut outcomes = Vec::with_capacity(list.len());
+                    for (i, o) in list.iter().enumerate() {
+                        let probability = parse_rational(&o.p).map_err(|source| {
+                            StochasticFileError::Probability {
                                 state: x,
                                 action: a,
                                 outcome: i,
                                 source,
-                            })
-                    })
-                    .collect::<Result<_, _>>()?,
+                            }
+                        })?;
+                        budget.take(&probability, x, a)?;
+                        outcomes.push(Outcome {
+                            successor: o.to,
+                            probability,
+                            kind: OutcomeKind::Listed,
+                        });
+                    }
+                    outcomes
+                }
                 _ => {
                     return Err(StochasticFileError::Shape {
                         state: x,
@@ -187,12 +177,10 @@ pub fn from_json(text: &str) -> Result<ProblemFile, StochasticFileError> {
 }
 
 /// Reads and parses a problem file (either format).
+///
+/// The file is read once ([`det_file::read_text`]): standard input and pipes work.
 pub fn read(path: &Path) -> Result<ProblemFile, StochasticFileError> {
-    let text = std::fs::read_to_string(path).map_err(|source| FileError::Io {
-        path: path.display().to_string(),
-        source,
-    })?;
-    from_json(&text)
+    from_json(&det_file::read_text(path)?)
 }
 
 /// Whether a file's text lists outcomes anywhere (it needs the stochastic solvers), without

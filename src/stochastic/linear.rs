@@ -536,7 +536,7 @@ fn lift(
             debug_assert_eq!(s.rem_euclid(pi), 0);
             *r = s.div_euclid(pi);
         }
-        if steps % 2 == 0 {
+        if steps.is_multiple_of(2) {
             digits.push((0..n).map(|j| y[ordering.position[j]]).collect());
         } else {
             let last = digits.last_mut().expect("pushed at the even step");

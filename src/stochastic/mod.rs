@@ -80,6 +80,16 @@ pub enum StochasticError {
         /// The state.
         state: usize,
     },
+    /// `γ`'s denominator makes a state's probabilities exceed [`problem::MAX_DENOMINATOR`].
+    #[error("gamma = {gamma} has too large a denominator: at state {state} ({moves} moves) the common denominator of the noise model's probabilities exceeds 2^62, the exact solver's limit (gamma with at most 15 significant digits fits states of up to 2000 moves)")]
+    GammaDenominator {
+        /// `γ` as text (echoed, shortened).
+        gamma: String,
+        /// The first state where the limit is passed.
+        state: usize,
+        /// Its number of moves.
+        moves: usize,
+    },
     /// A stage cost too large for the exact solver.
     #[error("state {state}: stage costs times the probabilities' denominators exceed 2^100 (the exact solver's limit)")]
     CostTooLarge {
@@ -95,6 +105,25 @@ pub enum StochasticError {
     /// The deterministic problem is ill formed.
     #[error("{0}")]
     Model(#[from] crate::model::ModelError),
+}
+
+/// An exact value as it may appear in a message: its exact text when at most 40 characters,
+/// else `≈` and 17 significant digits (so `1e-400` does not become a 401-digit fraction).
+///
+/// ```
+/// use truecost::stochastic::short_text;
+/// use truecost::value::parse_rational;
+/// assert_eq!(short_text(&parse_rational("0.75").unwrap()), "3/4");
+/// assert_eq!(short_text(&parse_rational("1e-400").unwrap()), "≈1e-400");
+/// ```
+pub fn short_text(r: &crate::value::Rational) -> String {
+    let exact = crate::value::Extended::Finite(r.clone());
+    let text = exact.to_string();
+    if text.chars().count() <= 40 {
+        text
+    } else {
+        format!("≈{}", decimal(&exact, 17))
+    }
 }
 
 /// The decimal expansion of an exact value rounded (half away from zero) to `significant`

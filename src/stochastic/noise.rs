@@ -50,9 +50,7 @@ impl Predictability {
         if in_unit_interval_open_closed(&gamma) {
             Ok(Predictability(gamma))
         } else {
-            Err(StochasticError::GammaRange(
-                crate::value::Extended::Finite(gamma).to_string(),
-            ))
+            Err(StochasticError::GammaRange(super::short_text(&gamma)))
         }
     }
 

@@ -323,7 +323,7 @@ pub fn optimum(problem: &StochasticProblem) -> Result<Optimum, StochasticError> 
                         k += nv * BigInt::from(w);
                     }
                 }
-                if best.as_ref().map_or(true, |(b, _)| &k < b) {
+                if best.as_ref().is_none_or(|(b, _)| &k < b) {
                     best = Some((k, a));
                 }
             }
@@ -445,7 +445,9 @@ pub fn evaluate(
 
 fn linear_error(e: LinearError) -> StochasticError {
     match e {
-        LinearError::TooLarge => StochasticError::CostTooLarge { state: 0 },
+        LinearError::TooLarge => StochasticError::TooLarge(
+            "the exact linear solve needs numbers beyond its limits (matrix entries below 2^62, right-hand sides below 2^100, at most 2^32 states)".into(),
+        ),
         e @ LinearError::TooWide { .. } => StochasticError::TooLarge(e.to_string()),
         LinearError::Singular => {
             unreachable!("policy evaluation of a proper policy is never singular (a truecost bug)")

@@ -119,7 +119,8 @@ impl StochasticProblem {
     /// Perturbs a deterministic problem with a noise model (table in [`super::noise`]).
     ///
     /// Fails only if a state's probabilities have a common denominator above 2⁶² (a `γ` with
-    /// more than about 17 decimal digits).
+    /// more than about 17 decimal digits): [`StochasticError::GammaDenominator`] names `γ`,
+    /// the state and its number of moves.
     pub fn from_deterministic(
         problem: &Problem,
         model: NoiseModel,
@@ -174,7 +175,16 @@ impl StochasticProblem {
                 model,
                 gamma: gamma.clone(),
             },
-        )?;
+        )
+        .map_err(|e| match e {
+            // The only source of a large denominator here is γ: say so (issue 12).
+            StochasticError::DenominatorTooLarge { state } => StochasticError::GammaDenominator {
+                gamma: super::short_text(gamma.value()),
+                state,
+                moves: problem.moves(state).len(),
+            },
+            e => e,
+        })?;
         s.commanded = commanded;
         Ok(s)
     }

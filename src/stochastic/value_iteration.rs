@@ -276,7 +276,7 @@ impl<'a> ExactVi<'a> {
                     }
                 }
             }
-            if best.as_ref().map_or(true, |(b, _)| &k < b) {
+            if best.as_ref().is_none_or(|(b, _)| &k < b) {
                 best = Some((k, a - problem.actions(x).start));
             }
         }
@@ -437,7 +437,7 @@ fn greedy<V: PartialOrd>(
                 let v = q(a);
                 if best
                     .as_ref()
-                    .map_or(true, |(b, _)| v.partial_cmp(b) == Some(Ordering::Less))
+                    .is_none_or(|(b, _)| v.partial_cmp(b) == Some(Ordering::Less))
                 {
                     best = Some((v, i));
                 }

@@ -1,0 +1,183 @@
+//! The Kani harness registry (`claims::harnesses`, issue 10 item 2) against the harness sources
+//! in `proofs/src/`: every `#[kani::proof]` is registered under its file, with the source's
+//! `#[kani::unwind]`, `#[kani::should_panic]` and stated sample count, and its doc comment
+//! states the domain the registry gives. (The proofs crate's own test runs every harness through
+//! the stand-in and compares mode, executions, domain bits and failures.)
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use truecost::claims::harnesses::{harness_runs, StandinMode, HARNESSES};
+
+#[derive(Debug, Default)]
+struct Source {
+    file: String,
+    doc: String,
+    unwind: Option<u32>,
+    should_panic: bool,
+    samples: Option<u64>,
+}
+
+fn number<T: std::str::FromStr>(line: &str, attr: &str) -> Option<T> {
+    let rest = line.split(attr).nth(1)?;
+    let inner = rest.split(')').next()?.replace('_', "");
+    inner.trim().parse().ok()
+}
+
+/// Every harness of `proofs/src/*.rs`, parsed from the source text.
+fn sources() -> BTreeMap<String, Source> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("proofs/src");
+    let mut out = BTreeMap::new();
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    for path in files {
+        let text = std::fs::read_to_string(&path).unwrap();
+        let file = path.file_name().unwrap().to_string_lossy().to_string();
+        let mut doc = String::new();
+        let mut current: Option<Source> = None;
+        for line in text.lines() {
+            let t = line.trim();
+            if let Some(d) = t.strip_prefix("///") {
+                doc.push(' ');
+                doc.push_str(d.trim());
+                continue;
+            }
+            if t == "#[kani::proof]" {
+                current = Some(Source {
+                    file: file.clone(),
+                    doc: std::mem::take(&mut doc),
+                    ..Source::default()
+                });
+                continue;
+            }
+            if let Some(s) = current.as_mut() {
+                if t.starts_with("#[kani::unwind(") {
+                    s.unwind = number(t, "unwind(");
+                } else if t == "#[kani::should_panic]" {
+                    s.should_panic = true;
+                } else if t.contains("kani::samples(") {
+                    assert!(t.starts_with("#[cfg_attr(not(kani), kani::samples("), "{t}");
+                    s.samples = number(t, "samples(");
+                } else if let Some(rest) = t.strip_prefix("pub fn ") {
+                    let name = rest.split('(').next().unwrap().to_string();
+                    let s = current.take().unwrap();
+                    assert!(out.insert(name, s).is_none(), "duplicate harness name");
+                } else if !t.starts_with("#[") {
+                    panic!("{file}: unexpected line between #[kani::proof] and its fn: {t}");
+                }
+            }
+            if !t.starts_with("#[") {
+                doc.clear();
+            }
+        }
+    }
+    out
+}
+
+fn standin_samples() -> u64 {
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("kani-standin/src/lib.rs"),
+    )
+    .unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("pub const SAMPLES: u64 = "))
+        .expect("the stand-in states its default sample count");
+    line.trim_start_matches("pub const SAMPLES: u64 = ")
+        .trim_end_matches(';')
+        .replace('_', "")
+        .parse()
+        .unwrap()
+}
+
+#[test]
+fn registry_matches_the_harness_sources() {
+    let src = sources();
+    let default_samples = standin_samples();
+    assert_eq!(default_samples, 20_000);
+    let registered: Vec<&str> = HARNESSES.iter().map(|h| h.name).collect();
+    let in_sources: Vec<&str> = src.keys().map(String::as_str).collect();
+    let mut sorted = registered.clone();
+    sorted.sort_unstable();
+    assert_eq!(sorted, in_sources, "every harness registered, nothing else");
+    for h in HARNESSES {
+        let s = &src[h.name];
+        assert_eq!(h.file, s.file, "{}", h.name);
+        assert_eq!(h.unwind, s.unwind, "{}: unwind", h.name);
+        assert_eq!(h.should_panic, s.should_panic, "{}: should_panic", h.name);
+        match h.mode {
+            StandinMode::Sampled => assert_eq!(
+                h.executions,
+                s.samples.unwrap_or(default_samples),
+                "{}: the stated sample count",
+                h.name
+            ),
+            StandinMode::Exhaustive => {
+                assert!(
+                    s.samples.is_none(),
+                    "{}: an exhaustive harness states no samples",
+                    h.name
+                );
+                assert!(
+                    h.name.ends_with("_exhaustive_small"),
+                    "{}: named as such",
+                    h.name
+                );
+                assert!(
+                    s.doc.contains("exhaustive variant"),
+                    "{}: documented as such",
+                    h.name
+                );
+            }
+        }
+        // Wide harnesses state their domain in their doc comment, as the registry does.
+        if h.domain_bits >= 32 {
+            assert_eq!(h.mode, StandinMode::Sampled, "{}", h.name);
+            assert!(
+                s.doc.contains(&format!("2^{}", h.domain_bits)),
+                "{}: the doc comment states the domain 2^{}: {}",
+                h.name,
+                h.domain_bits,
+                s.doc
+            );
+        }
+        // A printed claim's harness says it must fail; a corrected one does not.
+        assert_eq!(
+            h.proves.starts_with("FAILS as expected"),
+            h.should_panic,
+            "{}",
+            h.name
+        );
+        assert_eq!(h.failing > 0, h.should_panic, "{}", h.name);
+        assert!(!h.kani_adds.is_empty(), "{}", h.name);
+    }
+}
+
+#[test]
+fn every_claim_has_a_wide_harness_and_the_report_says_sampled() {
+    for id in ["C1", "C1-corrected", "C2", "C3", "C4", "C4-corrected"] {
+        let runs = harness_runs(id);
+        assert!(!runs.is_empty(), "{id}");
+        for r in &runs {
+            assert!(r.mode.contains("sampled ("), "{id}: {}", r.mode);
+            assert!(!r.mode.contains("exhaustive"), "{id}: {}", r.mode);
+            assert!(
+                r.mode.contains("Kani itself not run here"),
+                "{id}: {}",
+                r.mode
+            );
+        }
+    }
+    // C1-corrected: the three inductive steps (Parts A and B, the sandwich).
+    assert_eq!(harness_runs("C1-corrected").len(), 3);
+    // The small exhaustive variant says so.
+    let ex = harness_runs("C3-example");
+    assert!(
+        ex[0].mode.contains("exhaustive (256 executions)"),
+        "{}",
+        ex[0].mode
+    );
+}

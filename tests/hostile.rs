@@ -1,0 +1,619 @@
+//! Hostile input (issue 12, item 1): one regression test per failure listed in the issue, and
+//! the contract everywhere — one escaped line on stderr (≤ 300 characters after `error: `),
+//! exit 1 for bad input and 2 for usage, no panic, no hang, bounded work.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::cli::{fails, fails_one_line, json, stdout, truecost};
+use serde_json::Value;
+
+/// The line-length contract: `error: ` and at most 300 characters, no raw control character.
+fn assert_contract(err: &str) {
+    let line = err.trim_end_matches('\n');
+    assert_eq!(line.lines().count(), 1, "{err:?}");
+    let body = line.strip_prefix("error: ").expect("starts with 'error: '");
+    assert!(
+        body.chars().count() <= 300,
+        "{} characters: {body}",
+        body.len()
+    );
+    assert!(
+        !body.chars().any(char::is_control),
+        "raw control character: {body:?}"
+    );
+}
+
+/// Writes `text` as `name` in `dir`.
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+/// A 4-neighbour `n × n` grid file (goal in the far corner), costs 1-4 or 1.
+fn grid_file(n: usize, varied: bool, format: Option<&str>) -> String {
+    let mut lists = Vec::new();
+    for x in 0..n * n {
+        let (r, c) = (x / n, x % n);
+        let mut moves = Vec::new();
+        if x != n * n - 1 {
+            for (dr, dc) in [(0i64, -1i64), (-1, 0), (1, 0), (0, 1)] {
+                let (rr, cc) = (r as i64 + dr, c as i64 + dc);
+                if (0..n as i64).contains(&rr) && (0..n as i64).contains(&cc) {
+                    let y = rr as usize * n + cc as usize;
+                    let cost = if varied { 1 + (x * 7 + y * 3) % 4 } else { 1 };
+                    moves.push(format!(r#"{{"to": {y}, "cost": "{cost}"}}"#));
+                }
+            }
+        }
+        lists.push(format!("[{}]", moves.join(", ")));
+    }
+    let tag = format
+        .map(|f| format!(r#""format": "{f}", "#))
+        .unwrap_or_default();
+    format!(
+        r#"{{{tag}"initial": 0, "goals": [{}], "actions": [{}]}}"#,
+        n * n - 1,
+        lists.join(",\n")
+    )
+}
+
+const LINE: &str = include_str!("../problems/line.json");
+
+// Failure 1: `verify --claim C4` on a grid listed every simple path before any limit applied.
+#[test]
+fn f01_c4_bonus_set_of_a_grid_is_refused_with_its_bound() {
+    for problem in ["10", "0"] {
+        let err = fails_one_line(&["verify", "--claim", "C4", "--problem", problem]);
+        assert_contract(&err);
+        assert!(
+            err.contains("more than 4194304 stationary policies"),
+            "{err}"
+        );
+    }
+    let err = fails_one_line(&["verify", "--claim", "C4", "--problem", "6"]);
+    assert!(err.contains("no goal is reachable"), "{err}");
+    let dir = tempfile::tempdir().unwrap();
+    let grid = write(dir.path(), "grid7.json", &grid_file(7, false, None));
+    let err = fails_one_line(&["verify", "--claim", "C4", "--file", grid.to_str().unwrap()]);
+    assert!(err.contains("stationary policies"), "{err}");
+    // A small file is still analysed.
+    let v = json(&[
+        "verify",
+        "--claim",
+        "C4",
+        "--file",
+        "problems/line.json",
+        "--format",
+        "json",
+    ]);
+    assert!(
+        v["bonus_sets"].as_array().is_some_and(|a| !a.is_empty()),
+        "{v}"
+    );
+}
+
+// Failure 2: `--file /dev/stdin` was read twice (refused); a FIFO hung.
+#[test]
+fn f02_problem_files_are_read_once_from_pipes() {
+    let out = truecost()
+        .args([
+            "solve",
+            "--file",
+            "/dev/stdin",
+            "--algorithm",
+            "dijkstra",
+            "--format",
+            "json",
+        ])
+        .write_stdin(LINE)
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let v: Value = serde_json::from_slice(&out).unwrap();
+    assert_eq!(v["cost_to_go_initial"], "5/2");
+    let slippery = std::fs::read_to_string("problems/slippery.json").unwrap();
+    truecost()
+        .args(["solve", "--file", "/dev/stdin", "--algorithm", "exact"])
+        .write_stdin(slippery)
+        .assert()
+        .success();
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("line.svg");
+    truecost()
+        .args([
+            "render",
+            "--file",
+            "/dev/stdin",
+            "--overlay",
+            "path",
+            "--out",
+        ])
+        .arg(&out)
+        .write_stdin(LINE)
+        .assert()
+        .success();
+    assert!(std::fs::read_to_string(&out).unwrap().contains("<svg"));
+}
+
+#[cfg(unix)]
+#[test]
+fn f02_a_fifo_is_read_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("problem.fifo");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if !made.is_ok_and(|s| s.success()) {
+        // No mkfifo on this system: the pipe test above covers reading once.
+        return;
+    }
+    let writer = {
+        let fifo = fifo.clone();
+        // Opening a FIFO for writing blocks until the reader opens it: exactly one reader.
+        std::thread::spawn(move || std::fs::write(fifo, LINE).unwrap())
+    };
+    let text = stdout(&[
+        "solve",
+        "--file",
+        fifo.to_str().unwrap(),
+        "--algorithm",
+        "vi",
+    ]);
+    assert!(text.contains("G*(x1)       5/2"), "{text}");
+    writer.join().unwrap();
+}
+
+// Failure 3: rates were checked exactly, rounded to f64, and checked (or used) again.
+#[test]
+fn f03_learning_rates_are_checked_as_the_learner_uses_them() {
+    let base = [
+        "reproduce",
+        "stochastic",
+        "--problems",
+        "10",
+        "--gammas",
+        "0.9",
+        "--epsilons",
+        "0.9",
+        "--samples",
+        "1",
+        "--episodes",
+        "1",
+        "--max-steps",
+        "1",
+        "--format",
+        "json",
+        "--rhos",
+    ];
+    fn with<'a>(base: &[&'a str], rho: &'a str) -> Vec<&'a str> {
+        [base, &[rho]].concat()
+    }
+    let run = |rho: &'static str| with(&base, rho);
+    let err = fails_one_line(&run("1/n^0.50000000000000001"));
+    assert!(err.contains("rounds to 0.5 in f64"), "{err}");
+    assert!(err.contains("outside (0.5, 1]"), "{err}");
+    let err = fails_one_line(&run("1e-400"));
+    assert!(err.contains("rounds to 0.0 in f64"), "{err}");
+    assert_contract(&err);
+    // A rate beyond f64 precision runs, and the output names the rate that ran.
+    let v = json(&run("0.5000000000000000000000001"));
+    let rows = v.as_array().unwrap();
+    let learning: Vec<&Value> = rows.iter().filter(|r| !r["rho"].is_null()).collect();
+    assert!(!learning.is_empty(), "{v}");
+    for row in learning {
+        assert_eq!(row["rho"], "0.5", "{row}");
+    }
+}
+
+// Failure 4: `--threads 100000` spawned threads until killed.
+#[test]
+fn f04_thread_count_is_bounded() {
+    for experiment in ["deterministic", "stochastic"] {
+        let err = fails_one_line(&[
+            "reproduce",
+            experiment,
+            "--problems",
+            "10",
+            "--samples",
+            "1",
+            "--threads",
+            "100000",
+        ]);
+        assert!(err.contains("at most 256 worker threads"), "{err}");
+    }
+}
+
+// Failure 5: `--plots FILE` was checked only after the run.
+#[test]
+fn f05_plot_directory_is_checked_before_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write(dir.path(), "not-a-dir", "x");
+    let out = dir.path().join("out");
+    // The default run takes minutes: failing at once shows the check comes first.
+    let err = fails_one_line(&[
+        "reproduce",
+        "deterministic",
+        "--plots",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(err.contains("cannot create plot directory"), "{err}");
+    assert!(!out.join("deterministic.json").exists());
+}
+
+// Failure 6: `discount` on a 32 × 32 grid ran minutes and took 1.35 GB before refusing.
+#[test]
+fn f06_discount_of_a_large_grid_is_refused_with_its_bound() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = write(dir.path(), "grid32.json", &grid_file(32, true, None));
+    let err = fails_one_line(&["discount", "--file", grid.to_str().unwrap()]);
+    assert_contract(&err);
+    assert!(err.contains("passed its bound of"), "{err}");
+    assert!(
+        err.contains("too large for the exact parametric analysis"),
+        "{err}"
+    );
+    // A 3 x 3 grid has few trajectories but a quadratic breakpoint search (696 pairs of
+    // degree 17 took five minutes): refused before it starts.
+    let small = write(dir.path(), "grid3.json", &grid_file(3, true, None));
+    let err = fails_one_line(&["discount", "--file", small.to_str().unwrap()]);
+    assert!(err.contains("units of breakpoint work"), "{err}");
+    // The unit-cost grid is decided by a lemma, without enumeration.
+    let unit = write(dir.path(), "unit32.json", &grid_file(32, false, None));
+    let v = json(&[
+        "discount",
+        "--file",
+        unit.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    assert_eq!(v["set"], "empty");
+}
+
+/// A file with one move `0 → 1` of cost `cost` (raw JSON string content).
+fn one_move(cost: &str) -> String {
+    format!(r#"{{"initial": 0, "goals": [1], "actions": [[{{"to": 1, "cost": "{cost}"}}], []]}}"#)
+}
+
+// Failure 7: a long cost was "not an exact number" (undocumented limit), echoed whole.
+#[test]
+fn f07_number_limits_are_named_and_echoes_are_short() {
+    let dir = tempfile::tempdir().unwrap();
+    let long = write(dir.path(), "long.json", &one_move(&"7".repeat(5000)));
+    let err = fails_one_line(&[
+        "solve",
+        "--file",
+        long.to_str().unwrap(),
+        "--algorithm",
+        "dijkstra",
+    ]);
+    assert_contract(&err);
+    assert!(
+        err.contains("too long for an exact number (5000 bytes; the limit is 4096)"),
+        "{err}"
+    );
+    let huge = write(dir.path(), "huge.json", &one_move(&"7".repeat(1_000_000)));
+    let err = fails_one_line(&[
+        "solve",
+        "--file",
+        huge.to_str().unwrap(),
+        "--algorithm",
+        "dijkstra",
+    ]);
+    assert_contract(&err);
+    assert!(err.len() < 400, "{} bytes", err.len());
+    let big = write(dir.path(), "big.json", &one_move("1e10001"));
+    let err = fails_one_line(&[
+        "solve",
+        "--file",
+        big.to_str().unwrap(),
+        "--algorithm",
+        "dijkstra",
+    ]);
+    assert!(
+        err.contains("exponent outside the supported range -10000..=10000"),
+        "{err}"
+    );
+    let edge = write(dir.path(), "edge.json", &one_move("1e10000"));
+    let v = json(&[
+        "solve",
+        "--file",
+        edge.to_str().unwrap(),
+        "--algorithm",
+        "dijkstra",
+        "--format",
+        "json",
+    ]);
+    let expected = format!("1{}", "0".repeat(10_000));
+    assert_eq!(v["cost_to_go_initial"], expected);
+}
+
+// Failure 8: a stochastic-tagged file without outcomes was refused; a deterministic-tagged
+// file with outcomes was accepted by some commands.
+#[test]
+fn f08_format_tags_and_outcomes_agree_in_every_command() {
+    let dir = tempfile::tempdir().unwrap();
+    let tagged = write(
+        dir.path(),
+        "tagged.json",
+        &LINE.replace("truecost-problem/1", "truecost-stochastic/1"),
+    );
+    let t = tagged.to_str().unwrap();
+    for algorithm in ["dijkstra", "vi", "async-vi", "exact"] {
+        let v = json(&[
+            "solve",
+            "--file",
+            t,
+            "--algorithm",
+            algorithm,
+            "--format",
+            "json",
+        ]);
+        assert_eq!(v["cost_to_go_initial"], "5/2", "{algorithm}: {v}");
+    }
+    let svg = dir.path().join("t.svg");
+    truecost()
+        .args(["render", "--file", t, "--out"])
+        .arg(&svg)
+        .assert()
+        .success();
+    json(&["discount", "--file", t, "--format", "json"]);
+    json(&["verify", "--claim", "C4", "--file", t, "--format", "json"]);
+
+    let slippery = std::fs::read_to_string("problems/slippery.json").unwrap();
+    let mislabelled = write(
+        dir.path(),
+        "mislabelled.json",
+        &slippery.replace("truecost-stochastic/1", "truecost-problem/1"),
+    );
+    assert!(slippery.contains("truecost-stochastic/1"));
+    let m = mislabelled.to_str().unwrap();
+    let out = dir.path().join("m.svg");
+    for args in [
+        vec!["solve", "--file", m, "--algorithm", "exact"],
+        vec!["solve", "--file", m, "--algorithm", "dijkstra"],
+        vec!["render", "--file", m, "--out", out.to_str().unwrap()],
+    ] {
+        let err = fails_one_line(&args);
+        assert!(
+            err.contains("tagged 'truecost-problem/1'"),
+            "{args:?}: {err}"
+        );
+    }
+    // Commands of the deterministic model name the outcomes they cannot take.
+    let s = "problems/slippery.json";
+    for args in [
+        vec!["discount", "--file", s],
+        vec!["verify", "--claim", "C4", "--file", s],
+    ] {
+        let err = fails_one_line(&args);
+        assert!(err.contains("lists outcomes"), "{args:?}: {err}");
+    }
+}
+
+// Failure 9: newlines and ANSI escapes in costs, tags and paths reached the terminal raw.
+#[test]
+fn f09_echoed_input_is_escaped() {
+    let dir = tempfile::tempdir().unwrap();
+    let cost = write(dir.path(), "cost.json", &one_move("1\\n\\u001b[31mred"));
+    let err = fails_one_line(&[
+        "solve",
+        "--file",
+        cost.to_str().unwrap(),
+        "--algorithm",
+        "dijkstra",
+    ]);
+    assert_contract(&err);
+    assert!(err.contains("\\n\\x1b[31mred"), "{err}");
+    let tag = write(
+        dir.path(),
+        "tag.json",
+        &LINE.replace("truecost-problem/1", "x\\u001b[2J\\ny"),
+    );
+    let err = fails_one_line(&[
+        "solve",
+        "--file",
+        tag.to_str().unwrap(),
+        "--algorithm",
+        "dijkstra",
+    ]);
+    assert_contract(&err);
+    assert!(err.contains("x\\x1b[2J\\ny"), "{err}");
+    let path = dir.path().join("no\nsuch\u{1b}[31m.json");
+    let err = fails(
+        &[
+            "solve".as_ref(),
+            "--file".as_ref(),
+            path.as_os_str(),
+            "--algorithm".as_ref(),
+            "dijkstra".as_ref(),
+        ],
+        1,
+    );
+    assert_contract(&err);
+    assert!(err.contains("no\\nsuch\\x1b[31m.json"), "{err}");
+    // Usage errors (exit 2) are one escaped line too.
+    let err = fails(&["solve", "--algorithm", "\u{1b}[31m"], 2);
+    assert_contract(&err);
+}
+
+// Failure 10: γ with a huge denominator blamed "state 0".
+#[test]
+fn f10_gamma_denominator_limit_names_gamma() {
+    let gamma = format!("0.{}1", "9".repeat(30));
+    let err = fails_one_line(&[
+        "solve",
+        "--problem",
+        "10",
+        "--gamma",
+        &gamma,
+        "--algorithm",
+        "exact",
+    ]);
+    assert_contract(&err);
+    assert!(err.contains("gamma = "), "{err}");
+    assert!(err.contains("too large a denominator"), "{err}");
+    assert!(err.contains("2^62"), "{err}");
+}
+
+// Failure 11: negative numbers after flags gave clap's "unexpected argument '-0'".
+#[test]
+fn f11_negative_numbers_reach_the_range_checks() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("v.svg");
+    let svg = svg.to_str().unwrap();
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec![
+                "render",
+                "--problem",
+                "10",
+                "--overlay",
+                "visits",
+                "--epsilon",
+                "-0.1",
+                "--out",
+                svg,
+            ],
+            "outside",
+        ),
+        (
+            vec![
+                "reproduce",
+                "stochastic",
+                "--problems",
+                "10",
+                "--samples",
+                "1",
+                "--gammas",
+                "-1",
+            ],
+            "(0, 1]",
+        ),
+        (
+            vec![
+                "reproduce",
+                "stochastic",
+                "--problems",
+                "10",
+                "--samples",
+                "1",
+                "--rhos",
+                "-0.5",
+            ],
+            "outside (0, 1]",
+        ),
+        (
+            vec![
+                "reproduce",
+                "stochastic",
+                "--problems",
+                "10",
+                "--samples",
+                "1",
+                "--epsilons",
+                "-0.1",
+            ],
+            "-1/10",
+        ),
+        (
+            vec![
+                "solve",
+                "--problem",
+                "10",
+                "--gamma",
+                "-1",
+                "--algorithm",
+                "exact",
+            ],
+            "(0, 1]",
+        ),
+    ];
+    for (args, needle) in cases {
+        let err = fails_one_line(&args);
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(!err.contains("unexpected argument"), "{args:?}: {err}");
+    }
+}
+
+// Failure 12: `render --overlay path --epsilon 0.5 --seed 5` ignored the visits options.
+#[test]
+fn f12_visits_options_need_the_visits_overlay() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("p.svg");
+    let err = fails_one_line(&[
+        "render",
+        "--problem",
+        "10",
+        "--overlay",
+        "path",
+        "--epsilon",
+        "0.5",
+        "--seed",
+        "5",
+        "--out",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(err.contains("--overlay visits"), "{err}");
+    assert!(!svg.exists());
+}
+
+// Failure 13 is pinned in tests/reproduce.rs (Problem 6's planner rows converge).
+
+// Failure 14: reference-mode JSON said `"inf"` where a number is promised.
+#[test]
+fn f14_reference_json_value_is_a_number_or_null() {
+    let v = json(&[
+        "solve",
+        "--problem",
+        "6",
+        "--algorithm",
+        "dijkstra",
+        "--mode",
+        "reference",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(v["cost_to_go_initial"], Value::Null);
+    assert_eq!(v["reachable"], false);
+    let v = json(&[
+        "solve",
+        "--problem",
+        "10",
+        "--algorithm",
+        "dijkstra",
+        "--mode",
+        "reference",
+        "--format",
+        "json",
+    ]);
+    assert!(
+        v["cost_to_go_initial"].as_f64().is_some_and(|g| g > 0.0),
+        "{v}"
+    );
+}
+
+// The contract beyond the listed failures: oversized input, output checked before work.
+#[test]
+fn oversized_files_and_bad_outputs_are_refused_first() {
+    let err = fails_one_line(&["solve", "--file", "/dev/zero", "--algorithm", "dijkstra"]);
+    assert!(err.contains("larger than 33554432 bytes"), "{err}");
+    let err = fails_one_line(&["render", "--problem", "10", "--out", "figure.gif"]);
+    assert!(err.contains(".svg or .png"), "{err}");
+    let err = fails_one_line(&[
+        "render",
+        "--problem",
+        "10",
+        "--width",
+        "100000",
+        "--out",
+        "f.svg",
+    ]);
+    assert!(err.contains("out of range"), "{err}");
+    let err = fails_one_line(&["render", "--problem", "10", "--out", "/no/such/dir/f.svg"]);
+    assert!(err.contains("no directory"), "{err}");
+}

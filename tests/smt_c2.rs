@@ -1,0 +1,196 @@
+//! The SMT encoding of C2 (issue 9): a hand-checked structure's obligations, the trust checks,
+//! a mutation test (a planted wrong reward makes the proof fail, and the model replays), and
+//! the SMT-LIB files parsing back to the same answers. Smoke scope only.
+
+use truecost::claims::smt::c2::{self, lassos, Plant};
+use truecost::claims::smt::{
+    run, solve, write_files, Answer, Obligation, Replay, Role, SmtVerdict, Sort, Status, TIMEOUT_MS,
+};
+use truecost::claims::tiny::Tiny;
+use truecost::claims::Scope;
+
+/// The structure `0: ->0, ->1; 1 (goal)`: x1 may loop forever (cost l1 per stage) or move to
+/// the goal (cost l2) and terminate.
+const LOOP_OR_GOAL: &str = "0: ->0 (l1), ->1 (l2); 1 (goal)";
+
+fn find<'a>(obligations: &'a [Obligation], structure: &str, role: &Role) -> &'a Obligation {
+    obligations
+        .iter()
+        .find(|o| {
+            o.structure == structure && &o.role == role && o.lemma.contains("every functional")
+        })
+        .unwrap_or_else(|| panic!("no {role:?} obligation for {structure}"))
+}
+
+#[test]
+fn hand_checked_structure() {
+    let t = Tiny::from_lists(&[vec![(0, 0), (1, 0)], vec![]]);
+    // Two classes of stationary policies from x1: loop forever, or go to the goal and stop.
+    let ls = lassos(&t, true);
+    assert_eq!(ls.len(), 2);
+    assert_eq!((ls[0].prefix.len(), ls[0].cycle.len()), (0, 1));
+    assert!(ls[1].terminates && ls[1].prefix.len() == 1);
+
+    let enc = c2::encoding(Scope::Smoke);
+    let hyp = find(&enc.obligations, LOOP_OR_GOAL, &Role::Hypotheses);
+    let expected = "(set-info :smt-lib-version 2.6)\n(set-logic QF_LRA)\n\
+(set-info :source |truecost 0.1.0: C2 / argmin cost = argmax reward (r = -l), every functional / \
+0: ->0 (l1), ->1 (l2); 1 (goal) / hypotheses satisfiable|)\n\
+(declare-const l1 Real)\n(declare-const l2 Real)\n(assert (>= l1 0.0))\n(assert (>= l2 0.0))\n(check-sat)\n(exit)\n";
+    assert_eq!(hyp.smtlib(None), expected);
+
+    let proof = find(&enc.obligations, LOOP_OR_GOAL, &Role::Proof);
+    let text = proof.smtlib(None);
+    // Values derived by hand from the lassos. Total: looping is +inf iff l1 > 0, the goal
+    // lasso costs l2. Discounted (1/2): looping costs l1/(1 - 1/2) = 2 l1, its reward is the
+    // same sum over the negated stages; the goal lasso costs l2 + (1/2)·0/(1 − 1/2).
+    for fragment in [
+        "(c0_0_pinf (> l1 0.0))",
+        "(c0_1 l2)",
+        "(r0_0_ninf (< (- l1) 0.0))",
+        "(c1_0 (* 2.0 l1))",
+        "(r1_0 (* 2.0 (- l1)))",
+        "(c1_1 (+ (* 1.0 l2) (* 1.0 0.0)))",
+        // Average: the loop's cycle mean l1; the terminated lasso stays at cost 0.
+        "(c3_0 (* 1.0 l1))",
+        "(c3_1 (* 1.0 0.0))",
+    ] {
+        assert!(text.contains(fragment), "{fragment} not in\n{text}");
+    }
+    assert_eq!(solve(proof, TIMEOUT_MS), Answer::Unsat);
+    assert!(matches!(solve(hyp, TIMEOUT_MS), Answer::Sat(Some(_))));
+
+    // Discounted for every real α: the loop costs l1/(1 − α) = N/D with N = D·0 + l1, the goal
+    // lasso l2/1; the reward's numerators have the negated stages.
+    let every_alpha = enc
+        .obligations
+        .iter()
+        .find(|o| {
+            o.structure == LOOP_OR_GOAL && o.role == Role::Proof && o.lemma.contains("every alpha")
+        })
+        .expect("the every-alpha obligation");
+    let text = every_alpha.smtlib(None);
+    assert!(text.contains("(set-logic QF_NRA)"));
+    for fragment in [
+        "(assert (and (> a 0.0) (< a 1.0)))",
+        "(c0_n (+ (* (- 1.0 (* 1.0 a)) 0.0) l1))",
+        "(c0_d (- 1.0 (* 1.0 a)))",
+        "(c1_n l2)",
+        "(c1_d 1.0)",
+        "(r0_n (+ (* (- 1.0 (* 1.0 a)) 0.0) (- l1)))",
+        "(r1_n (- l2))",
+    ] {
+        assert!(text.contains(fragment), "{fragment} not in\n{text}");
+    }
+    assert_eq!(solve(every_alpha, TIMEOUT_MS), Answer::Unsat);
+}
+
+#[test]
+fn trust_checks_answer_as_required_and_replay() {
+    let enc = c2::encoding(Scope::Smoke);
+    let replay = enc.replay;
+    let dropped = enc
+        .obligations
+        .iter()
+        .filter(|o| matches!(o.role, Role::Dropped(_)))
+        .count();
+    // Every 1–2-state structure with at least two lassos, and the sup-of-stages check.
+    assert!(dropped >= 10, "{dropped}");
+    let out = run(enc, TIMEOUT_MS);
+    assert_eq!(out.verdict, SmtVerdict::Proved, "{:?}", out.notes);
+    assert_eq!(out.summary.proofs, out.summary.proofs_unsat);
+    assert_eq!(out.summary.trust_checks, out.summary.trust_ok);
+    assert_eq!(out.summary.unknown, 0);
+    let mut replayed = 0;
+    for s in &out.solved {
+        if let Role::Dropped(_) = s.obligation.role {
+            let Answer::Sat(Some(m)) = &s.answer else {
+                panic!("{:?}: {:?}", s.obligation.structure, s.answer)
+            };
+            assert!(matches!(
+                replay(&s.obligation, m),
+                Replay::Confirmed(_, None)
+            ));
+            replayed += 1;
+        }
+    }
+    assert_eq!(replayed, dropped);
+}
+
+#[test]
+fn planted_wrong_reward_breaks_the_proof() {
+    for plant in [Plant::RewardNotNegated, Plant::MaxOfStages] {
+        let enc = c2::encoding_with(Scope::Smoke, plant);
+        let replay = enc.replay;
+        let out = run(enc, TIMEOUT_MS);
+        assert_eq!(
+            out.verdict,
+            SmtVerdict::Refuted,
+            "{plant:?}: {:?}",
+            out.notes
+        );
+        let failing: Vec<_> = out
+            .solved
+            .iter()
+            .filter(|s| s.obligation.role == Role::Proof && s.answer.status() == Some(Status::Sat))
+            .collect();
+        assert!(!failing.is_empty());
+        for s in failing {
+            let Answer::Sat(Some(m)) = &s.answer else {
+                panic!("no model")
+            };
+            assert!(matches!(replay(&s.obligation, m), Replay::Confirmed(..)));
+        }
+    }
+}
+
+/// Reads an SMT-LIB file written by `write_files` back into an obligation (one command a line).
+fn parse_back(text: &str, template: &Obligation) -> (Obligation, Option<String>) {
+    let mut o = Obligation::new(
+        &template.claim,
+        &template.lemma,
+        &template.structure,
+        template.role.clone(),
+        template.logic,
+    );
+    let mut status = None;
+    for line in text.lines() {
+        if let Some(rest) = line.strip_prefix("(declare-const ") {
+            let (name, sort) = rest.trim_end_matches(')').split_once(' ').expect("a sort");
+            let sort = match sort {
+                "Real" => Sort::Real,
+                "Int" => Sort::Int,
+                "Bool" => Sort::Bool,
+                other => panic!("sort {other}"),
+            };
+            o.declare(name, sort);
+        } else if let Some(rest) = line.strip_prefix("(assert ") {
+            o.assert(rest.strip_suffix(')').expect("closing").to_string());
+        } else if let Some(rest) = line.strip_prefix("(set-info :status ") {
+            status = Some(rest.trim_end_matches(')').to_string());
+        }
+    }
+    (o, status)
+}
+
+#[test]
+fn files_parse_back_to_the_same_answers() {
+    let enc = c2::encoding(Scope::Smoke);
+    let obligations: Vec<Obligation> = enc.obligations.into_iter().step_by(3).collect();
+    let solved = truecost::claims::smt::discharge(obligations, TIMEOUT_MS);
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    write_files(dir.path(), &solved).expect("files written");
+    let index = std::fs::read_to_string(dir.path().join("index.tsv")).expect("an index");
+    assert_eq!(index.lines().count(), solved.len() + 1);
+    for (line, s) in index.lines().skip(1).zip(&solved) {
+        let file = line.split('\t').next().expect("a file name");
+        let text = std::fs::read_to_string(dir.path().join(file)).expect("a file");
+        assert!(["QF_LRA", "QF_LIRA", "QF_NRA"]
+            .iter()
+            .any(|l| text.contains(&format!("(set-logic {l})"))));
+        let (o, status) = parse_back(&text, &s.obligation);
+        assert_eq!(o.asserts, s.obligation.asserts);
+        assert_eq!(status.as_deref(), Some(s.answer.name()));
+        assert_eq!(solve(&o, TIMEOUT_MS).status(), s.answer.status());
+    }
+}

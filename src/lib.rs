@@ -11,10 +11,12 @@
 
 pub mod claims;
 pub mod echo;
+pub mod envs;
 pub mod experiments;
 pub mod figures;
 pub mod learning;
 pub mod model;
+pub mod objectives;
 pub mod planning;
 pub mod problems;
 pub mod solvers;

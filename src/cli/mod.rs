@@ -1,7 +1,10 @@
 //! Command-line interface (clap). Every error is one line on stderr and a non-zero exit:
 //! 2 for usage errors (clap), 1 for bad input or a failed run.
 
+mod compare;
 mod discount;
+mod env;
+mod export;
 mod learn;
 mod output;
 mod render;
@@ -45,6 +48,10 @@ enum Command {
     Render(render::RenderArgs),
     /// Reproduce one of the paper's experiments over seeded samples.
     Reproduce(reproduce::ReproduceArgs),
+    /// Every objective side by side: success probability, expected truecost, expected steps.
+    Compare(compare::CompareArgs),
+    /// Write a Gymnasium benchmark (--env) as a stochastic problem file.
+    Export(export::ExportArgs),
 }
 
 /// Output format of a listing.
@@ -77,11 +84,17 @@ struct ProblemsArgs {
     /// Build the problems as the paper's reference code does (f64 geometry, its action order).
     #[arg(long, value_enum, default_value_t = Mode::Exact)]
     mode: Mode,
+    #[command(flatten)]
+    env: env::EnvArg,
 }
 
 #[derive(Args, Debug)]
-#[command(group(clap::ArgGroup::new("source").required(true).args(["problem", "file"])))]
+#[command(group(clap::ArgGroup::new("source").required(true).args(["problem", "file", "env"])))]
 struct SolveArgs {
+    #[command(flatten)]
+    env: env::EnvArg,
+    #[command(flatten)]
+    objective: env::ObjectiveArgs,
     /// One of the paper's problems, 0 to 18 (`truecost problems` lists them).
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
@@ -157,6 +170,8 @@ pub fn main() -> ExitCode {
         Command::Reproduce(args) => reproduce::run(&args),
         Command::Verify(args) => verify::verify(&args),
         Command::Discount(args) => discount::discount(&args),
+        Command::Compare(args) => compare::run(&args),
+        Command::Export(args) => export::run(&args),
         Command::Learn(args) => learn::learn(&args),
     };
     match result.and_then(|text| emit(&text)) {
@@ -215,6 +230,9 @@ fn emit(text: &str) -> Result<(), String> {
 }
 
 fn problems(args: &ProblemsArgs) -> Result<String, String> {
+    if let Some(spec) = &args.env.env {
+        return env::problems(spec, args.format);
+    }
     let facts = (0..truecost::problems::paper_scenarios().len())
         .map(|id| {
             let layout = match args.mode {
@@ -228,6 +246,9 @@ fn problems(args: &ProblemsArgs) -> Result<String, String> {
 }
 
 fn solve(args: &SolveArgs) -> Result<String, String> {
+    if env::wants(args) {
+        return env::solve(args);
+    }
     if args.file.is_some() && args.mode == Mode::Reference {
         return Err("--mode reference reproduces the paper's code and applies to the paper's problems (--problem N) only".into());
     }

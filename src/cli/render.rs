@@ -38,8 +38,12 @@ pub enum OverlayKind {
 }
 
 #[derive(Args, Debug)]
-#[command(group(clap::ArgGroup::new("source").required(true).args(["problem", "file"])))]
+#[command(group(clap::ArgGroup::new("source").required(true).args(["problem", "file", "env"])))]
 pub struct RenderArgs {
+    #[command(flatten)]
+    env: super::env::EnvArg,
+    #[command(flatten)]
+    objective: super::env::ObjectiveArgs,
     /// One of the paper's problems, 0 to 18.
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
@@ -161,6 +165,16 @@ fn check_output(args: &RenderArgs) -> Result<(), String> {
 
 /// Runs the command; returns the message printed on success.
 pub fn run(args: &RenderArgs) -> Result<String, String> {
+    if let Some(spec) = &args.env.env {
+        return super::env::render(
+            spec,
+            &args.objective,
+            args.overlay,
+            args.width,
+            args.height,
+            &args.out,
+        );
+    }
     let visits_run = VisitsRun::from_args(args)?;
     check_output(args)?;
     if args.file.is_some() && args.mode == Mode::Reference {

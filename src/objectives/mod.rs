@@ -1,0 +1,719 @@
+//! Three objectives, exact, on any stochastic problem (issue 11, item 2): the paper's
+//! *truecost* (least expected cost among the policies that reach a goal with probability 1,
+//! SPEC §3), *reach* (the greatest probability of reaching a goal) and *discounted* (the RL
+//! formulation: rewards discounted by `α ∈ (0, 1)`, maximised).
+//!
+//! All three reduce to the exact stochastic-shortest-path optimum of
+//! [`crate::stochastic::policy_iteration::optimum`] (policy iteration with exact rational linear
+//! solves) on an auxiliary problem; nothing is iterated in floating point:
+//! * **truecost** — the problem itself.
+//! * **reach** — `Z` = the states that cannot reach a goal; in the problem whose goals are
+//!   `XG ∪ Z` and whose stage cost is the probability of stepping into `Z`, the least expected
+//!   cost over proper policies is `1 − max P(reach XG)` (a reach-optimal policy that is proper
+//!   for `XG ∪ Z` exists: strict policy improvement from a proper policy stays proper, and a
+//!   proper fixed point `v = max_u P_u v` dominates every policy).
+//!   The least success probability over a set of policies uses the dual construction: `S0` =
+//!   the states from which some policy avoids the goals forever (greatest fixpoint), goals
+//!   `XG ∪ S0`, stage cost = the probability of stepping into `XG` (every policy is proper there).
+//! * **discounted** — a killed process: every step continues with probability `α` and ends in an
+//!   extra absorbing state with `1 − α`; rewards are shifted to costs `R − r ≥ 0`
+//!   (`R = max(0, max r)`), and an ended episode (goal, trap) keeps paying `R` (reward 0). Then
+//!   `V_α(x) = R/(1 − α) − C*(x)` exactly, and the discount-optimal actions are those with
+//!   `Q = C*` in the auxiliary problem.
+//!
+//! Every objective reports its optimal policy's success probability — as `{min, max}` over all
+//! the policies optimal for it (any choice among tied optimal actions) — and the expected
+//! truecost and number of steps of the policy it reports (`+∞` if that policy is improper).
+//! With an initial distribution (Taxi), values at "the initial state" are expectations over it.
+
+pub mod report;
+
+pub use report::facts;
+
+use num_traits::{One, Signed, Zero};
+
+use crate::envs::Environment;
+use crate::model::StateId;
+use crate::stochastic::policy_iteration::{evaluate, optimum};
+use crate::stochastic::{
+    Outcome, OutcomeKind, StochasticAction, StochasticError, StochasticProblem,
+};
+use crate::value::{Extended, Rational};
+
+/// A problem with everything the three objectives need.
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// What it is (the `--env` text, a problem number or a file name).
+    pub name: String,
+    /// The truecost problem: stage costs, goals; traps (non-goal states where the episode ends)
+    /// have a single zero-cost self-loop.
+    pub problem: StochasticProblem,
+    /// Per action of [`Self::problem`]: the expected reward of the discounted objective
+    /// (Gymnasium's rewards for environments, the negated stage cost otherwise).
+    pub reward: Vec<Rational>,
+    /// Per state: the episode is over (goals and traps): no reward any more.
+    pub terminal: Vec<bool>,
+    /// The initial state distribution (a single state with probability 1 for paper problems
+    /// and files).
+    pub initial: Vec<(StateId, Rational)>,
+    /// The terminal bonus `M` of Proposition 4, if the benchmark has one (Taxi's +20).
+    pub terminal_bonus: Option<Rational>,
+    /// Where the rewards come from (said in every output).
+    pub reward_source: &'static str,
+}
+
+/// An objective of issue 11, item 2.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Objective {
+    /// The paper's: least expected cost among the policies reaching a goal with probability 1.
+    Truecost,
+    /// The greatest probability of reaching a goal.
+    Reach,
+    /// The discounted rewards, maximised, with the discount factor `α ∈ (0, 1)`.
+    Discounted(Rational),
+}
+
+impl Objective {
+    /// The objective's name on the command line.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Objective::Truecost => "truecost",
+            Objective::Reach => "reach",
+            Objective::Discounted(_) => "discounted",
+        }
+    }
+}
+
+/// Why an objective could not be computed. One line each.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ObjectiveError {
+    /// `α ∉ (0, 1)`.
+    #[error("the discount factor alpha must be in (0, 1), got {0}")]
+    Alpha(String),
+    /// The exact solver refused (sizes, denominators).
+    #[error("{0}")]
+    Solver(#[from] StochasticError),
+}
+
+/// `{min, max}` of a quantity over the tied optimal policies.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Bounds {
+    /// The least value.
+    pub min: Rational,
+    /// The greatest value.
+    pub max: Rational,
+}
+
+/// The answer for one objective.
+#[derive(Clone, Debug)]
+pub struct Solution {
+    /// The objective.
+    pub objective: Objective,
+    /// The optimal value per state (truecost: `G*`, `+∞` allowed; reach: the probability;
+    /// discounted: `V_α`, possibly negative).
+    pub values: Vec<Extended>,
+    /// The optimal value at the initial distribution.
+    pub value_initial: Extended,
+    /// The reported optimal policy: an action (global id of [`Model::problem`]) per state,
+    /// `None` at ended episodes and where the objective prescribes nothing (truecost where
+    /// `G* = +∞`: every policy is optimal there).
+    pub policy: Vec<Option<usize>>,
+    /// The success probability (reaching a goal) over all optimal policies, at the initial
+    /// distribution.
+    pub success: Bounds,
+    /// The success probability of the reported policy (`0` where it prescribes nothing).
+    pub policy_success: Rational,
+    /// The expected truecost of the reported policy at the initial distribution (`+∞` if improper).
+    pub truecost: Extended,
+    /// The expected number of steps of the reported policy at the initial distribution
+    /// (`+∞` if improper).
+    pub steps: Extended,
+}
+
+impl Model {
+    /// The model of a stochastic problem: discounted rewards are the negated stage costs
+    /// (the paper's reward form, SPEC §1); goals and action-less states end the episode.
+    pub fn from_problem(problem: StochasticProblem, name: String) -> Self {
+        let reward = (0..problem.action_total())
+            .map(|a| -problem.cost(a).clone())
+            .collect();
+        let terminal = (0..problem.states())
+            .map(|x| problem.is_goal(x) || problem.actions(x).is_empty())
+            .collect();
+        let initial = vec![(problem.initial(), Rational::one())];
+        Model {
+            name,
+            problem,
+            reward,
+            terminal,
+            initial,
+            terminal_bonus: None,
+            reward_source: "negated stage costs",
+        }
+    }
+
+    /// The model of a Gymnasium environment (issue 11, item 1): the same states and, at every
+    /// state where the episode runs, the same actions in Gymnasium's order (so an action's
+    /// index in `U(x)` is Gymnasium's action number). An action's stage cost is the expected
+    /// truecost of its outcomes ([`Environment::truecost_cost`]) and its reward the expected
+    /// Gymnasium reward — equal expectations give equal expected totals, discounted or not.
+    /// Outcomes to the same state are merged, zero-probability entries dropped. Goals have no
+    /// action (termination); traps a single zero-cost self-loop.
+    ///
+    /// ```
+    /// use truecost::envs::EnvSpec;
+    /// use truecost::objectives::Model;
+    /// let env = EnvSpec::parse("frozenlake").unwrap().build().unwrap();
+    /// let m = Model::from_environment(&env).unwrap();
+    /// let a = m.problem.actions(0).start; // LEFT at the start: 1/3 up (stays), 1/3 left (stays), 1/3 down
+    /// let out: Vec<_> = m.problem.outcomes(a).iter().map(|o| (o.successor, o.probability.to_string())).collect();
+    /// assert_eq!(out, vec![(0, "2/3".into()), (4, "1/3".into())]);
+    /// ```
+    pub fn from_environment(env: &Environment) -> Result<Self, StochasticError> {
+        let n = env.states();
+        let mut actions = Vec::with_capacity(n);
+        let mut reward = Vec::new();
+        let mut terminal = vec![false; n];
+        for (x, row) in env.table.iter().enumerate() {
+            if env.goals.contains(&x) {
+                terminal[x] = true;
+                actions.push(Vec::new());
+            } else if env.traps.contains(&x) {
+                terminal[x] = true;
+                actions.push(vec![StochasticAction {
+                    cost: Rational::zero(),
+                    outcomes: vec![Outcome {
+                        successor: x,
+                        probability: Rational::one(),
+                        kind: OutcomeKind::Stay,
+                    }],
+                }]);
+                reward.push(Rational::zero());
+            } else {
+                let mut list = Vec::with_capacity(row.len());
+                for transitions in row {
+                    let mut cost = Rational::zero();
+                    let mut r = Rational::zero();
+                    let mut outcomes: Vec<Outcome> = Vec::new();
+                    for t in transitions.iter().filter(|t| t.probability.is_positive()) {
+                        cost += &t.probability * env.truecost_cost(t);
+                        r += &t.probability * Rational::from_integer(t.reward.into());
+                        match outcomes.iter_mut().find(|o| o.successor == t.next) {
+                            Some(o) => o.probability += &t.probability,
+                            None => outcomes.push(Outcome {
+                                successor: t.next,
+                                probability: t.probability.clone(),
+                                kind: OutcomeKind::Listed,
+                            }),
+                        }
+                    }
+                    list.push(StochasticAction { cost, outcomes });
+                    reward.push(r);
+                }
+                actions.push(list);
+            }
+        }
+        let problem = StochasticProblem::new(actions, env.initial[0].0, env.goals.clone())?;
+        Ok(Model {
+            name: env.spec.clone(),
+            problem,
+            reward,
+            terminal,
+            initial: env.initial.clone(),
+            terminal_bonus: env.terminal_bonus(),
+            reward_source: "Gymnasium's rewards",
+        })
+    }
+
+    /// The expectation of per-state values over the initial distribution (`+∞` if any state
+    /// of positive probability has `+∞`).
+    pub fn at_initial(&self, values: &[Extended]) -> Extended {
+        let mut sum = Rational::zero();
+        for (x, p) in &self.initial {
+            match &values[*x] {
+                Extended::Finite(v) => sum += v * p,
+                Extended::Infinite => return Extended::Infinite,
+            }
+        }
+        Extended::Finite(sum)
+    }
+
+    fn at_initial_rational(&self, values: &[Rational]) -> Rational {
+        self.initial
+            .iter()
+            .map(|(x, p)| &values[*x] * p)
+            .fold(Rational::zero(), |a, b| a + b)
+    }
+
+    /// The same problem with every action costing 1 (trap loops 0): expected steps.
+    fn unit_costs(&self) -> Result<StochasticProblem, StochasticError> {
+        derive(&self.problem, self.problem.goals().to_vec(), |a| {
+            let x = self.problem.state_of(a);
+            let cost = if self.terminal[x] {
+                Rational::zero()
+            } else {
+                Rational::one()
+            };
+            Some(StochasticAction {
+                cost,
+                outcomes: self.problem.outcomes(a).to_vec(),
+            })
+        })
+        .map(|(p, _)| p)
+    }
+
+    /// Solves one objective exactly (module docs).
+    ///
+    /// ```
+    /// use truecost::envs::EnvSpec;
+    /// use truecost::objectives::{Model, Objective};
+    /// let env = EnvSpec::parse("frozenlake:slippery=false").unwrap().build().unwrap();
+    /// let m = Model::from_environment(&env).unwrap();
+    /// let t = m.solve(&Objective::Truecost).unwrap();
+    /// assert_eq!(t.value_initial.to_string(), "6"); // six steps around the holes
+    /// let d = m.solve(&Objective::Discounted("9/10".parse().unwrap())).unwrap();
+    /// assert_eq!(d.value_initial.to_string(), "59049/100000"); // 0.9^5: the reward comes on the sixth step
+    /// assert_eq!(d.success.min.to_string(), "1");
+    /// ```
+    pub fn solve(&self, objective: &Objective) -> Result<Solution, ObjectiveError> {
+        let p = &self.problem;
+        let n = p.states();
+        let everything = |_: usize| true;
+        let (values, policy, allowed): (Vec<Extended>, Vec<Option<usize>>, Vec<bool>) =
+            match objective {
+                Objective::Truecost => {
+                    let opt = optimum(p)?;
+                    let values = opt.cost_to_go_all().to_vec();
+                    let allowed = (0..p.action_total())
+                        .map(|a| {
+                            let x = p.state_of(a);
+                            values[x].finite().is_none() || opt.is_optimal_action(p, a)
+                        })
+                        .collect();
+                    (values, opt.policy_actions().to_vec(), allowed)
+                }
+                Objective::Reach => {
+                    let (max, policy) = max_reach(p, &everything)?;
+                    let values = max.into_iter().map(Extended::Finite).collect();
+                    (values, policy, vec![true; p.action_total()])
+                }
+                Objective::Discounted(alpha) => self.discounted(alpha)?,
+            };
+        let allow = |a: usize| allowed[a];
+        let success = match objective {
+            Objective::Reach => {
+                let v = self.at_initial(&values);
+                let v = v.finite().cloned().unwrap_or_else(Rational::zero);
+                Bounds {
+                    min: v.clone(),
+                    max: v,
+                }
+            }
+            _ => {
+                let (max, _) = max_reach(p, &allow)?;
+                let min = min_reach(p, &allow)?;
+                Bounds {
+                    min: self.at_initial_rational(&min),
+                    max: self.at_initial_rational(&max),
+                }
+            }
+        };
+        let chosen = |a: usize| policy[p.state_of(a)] == Some(a);
+        let policy_success = self.at_initial_rational(&min_reach(p, &chosen)?);
+        let truecost = self.at_initial(&evaluate(p, &policy)?);
+        let steps = self.at_initial(&evaluate(&self.unit_costs()?, &policy)?);
+        let value_initial = self.at_initial(&values);
+        debug_assert_eq!(values.len(), n);
+        Ok(Solution {
+            objective: objective.clone(),
+            values,
+            value_initial,
+            policy,
+            success,
+            policy_success,
+            truecost,
+            steps,
+        })
+    }
+
+    /// The discounted objective by the killed-process construction (module docs).
+    #[allow(clippy::type_complexity)]
+    fn discounted(
+        &self,
+        alpha: &Rational,
+    ) -> Result<(Vec<Extended>, Vec<Option<usize>>, Vec<bool>), ObjectiveError> {
+        if !(alpha.is_positive() && alpha < &Rational::one()) {
+            return Err(ObjectiveError::Alpha(alpha.to_string()));
+        }
+        let p = &self.problem;
+        let n = p.states();
+        let top = self
+            .reward
+            .iter()
+            .cloned()
+            .fold(Rational::zero(), |a, b| if b > a { b } else { a });
+        let kill = n;
+        let end = Rational::one() - alpha;
+        let mut actions: Vec<Vec<StochasticAction>> = Vec::with_capacity(n + 1);
+        let mut aux_of: Vec<Option<usize>> = Vec::new();
+        for x in 0..n {
+            if self.terminal[x] {
+                actions.push(vec![StochasticAction {
+                    cost: top.clone(),
+                    outcomes: vec![listed(x, alpha.clone()), listed(kill, end.clone())],
+                }]);
+                aux_of.push(None);
+            } else {
+                let mut list = Vec::new();
+                for a in p.actions(x) {
+                    let mut outcomes: Vec<Outcome> = p
+                        .outcomes(a)
+                        .iter()
+                        .map(|o| listed(o.successor, &o.probability * alpha))
+                        .collect();
+                    outcomes.push(listed(kill, end.clone()));
+                    list.push(StochasticAction {
+                        cost: &top - &self.reward[a],
+                        outcomes,
+                    });
+                    aux_of.push(Some(a));
+                }
+                actions.push(list);
+            }
+        }
+        actions.push(Vec::new());
+        let aux = StochasticProblem::new(actions, p.initial(), vec![kill])?;
+        let opt = optimum(&aux)?;
+        let scale = &top / &end;
+        let values: Vec<Extended> = (0..n)
+            .map(|x| {
+                let c = opt.cost_to_go(x);
+                Extended::Finite(&scale - c.finite().expect("every state is proper: α < 1"))
+            })
+            .collect();
+        let mut allowed = vec![true; p.action_total()];
+        let mut policy = vec![None; n];
+        for (aux_a, orig) in aux_of.iter().enumerate() {
+            if let Some(a) = *orig {
+                allowed[a] = opt.is_optimal_action(&aux, aux_a);
+            }
+        }
+        for (x, slot) in policy.iter_mut().enumerate() {
+            if !self.terminal[x] {
+                *slot = opt.policy_actions()[x].and_then(|aux_a| aux_of[aux_a]);
+            }
+        }
+        Ok((values, policy, allowed))
+    }
+}
+
+fn listed(successor: StateId, probability: Rational) -> Outcome {
+    Outcome {
+        successor,
+        probability,
+        kind: OutcomeKind::Listed,
+    }
+}
+
+/// A problem on the same states with other goals and actions: `action(a)` gives the new form of
+/// the original action `a` (or `None` to drop it); new goals get no actions. Returns the
+/// problem and, per new action, the original action id.
+fn derive(
+    problem: &StochasticProblem,
+    goals: Vec<StateId>,
+    mut action: impl FnMut(usize) -> Option<StochasticAction>,
+) -> Result<(StochasticProblem, Vec<usize>), StochasticError> {
+    let n = problem.states();
+    let mut is_goal = vec![false; n];
+    for &g in &goals {
+        is_goal[g] = true;
+    }
+    let mut origin = Vec::new();
+    let actions = (0..n)
+        .map(|x| {
+            if is_goal[x] {
+                return Vec::new();
+            }
+            problem
+                .actions(x)
+                .filter_map(|a| {
+                    let new = action(a)?;
+                    origin.push(a);
+                    Some(new)
+                })
+                .collect()
+        })
+        .collect();
+    Ok((
+        StochasticProblem::new(actions, problem.initial(), goals)?,
+        origin,
+    ))
+}
+
+/// The greatest probability of reaching a goal from every state using only the actions with
+/// `allowed(a)`, with a policy attaining it (proper for goals ∪ {probability-0 states}).
+pub fn max_reach(
+    problem: &StochasticProblem,
+    allowed: &dyn Fn(usize) -> bool,
+) -> Result<(Vec<Rational>, Vec<Option<usize>>), StochasticError> {
+    let n = problem.states();
+    // States that can reach a goal through allowed actions (backward search).
+    let mut reaches = vec![false; n];
+    for &g in problem.goals() {
+        reaches[g] = true;
+    }
+    loop {
+        let mut changed = false;
+        for x in 0..n {
+            if !reaches[x]
+                && problem
+                    .actions(x)
+                    .any(|a| allowed(a) && problem.outcomes(a).iter().any(|o| reaches[o.successor]))
+            {
+                reaches[x] = true;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let zero: Vec<bool> = reaches.iter().map(|r| !r).collect();
+    let goals: Vec<StateId> = (0..n).filter(|&x| problem.is_goal(x) || zero[x]).collect();
+    let (aux, origin) = derive(problem, goals, |a| {
+        allowed(a).then(|| StochasticAction {
+            cost: problem
+                .outcomes(a)
+                .iter()
+                .filter(|o| zero[o.successor])
+                .map(|o| o.probability.clone())
+                .fold(Rational::zero(), |s, p| s + p),
+            outcomes: problem.outcomes(a).to_vec(),
+        })
+    })?;
+    let opt = optimum(&aux)?;
+    let values = (0..n)
+        .map(|x| {
+            if problem.is_goal(x) {
+                Rational::one()
+            } else if zero[x] {
+                Rational::zero()
+            } else {
+                Rational::one()
+                    - opt
+                        .cost_to_go(x)
+                        .finite()
+                        .expect("a state that can reach a goal has a proper policy")
+            }
+        })
+        .collect();
+    let policy = opt
+        .policy_actions()
+        .iter()
+        .map(|a| a.map(|a| origin[a]))
+        .collect();
+    Ok((values, policy))
+}
+
+/// The least probability of reaching a goal from every state over the policies using only the
+/// actions with `allowed(a)` (a state without allowed action ends there, unsuccessfully).
+pub fn min_reach(
+    problem: &StochasticProblem,
+    allowed: &dyn Fn(usize) -> bool,
+) -> Result<Vec<Rational>, StochasticError> {
+    let n = problem.states();
+    // S0: the states from which some policy avoids the goals forever (greatest fixpoint).
+    let mut avoid: Vec<bool> = (0..n).map(|x| !problem.is_goal(x)).collect();
+    loop {
+        let mut changed = false;
+        for x in 0..n {
+            if avoid[x] {
+                let mut own = problem.actions(x).filter(|&a| allowed(a)).peekable();
+                let stays = own.peek().is_none()
+                    || own.any(|a| problem.outcomes(a).iter().all(|o| avoid[o.successor]));
+                if !stays {
+                    avoid[x] = false;
+                    changed = true;
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let goals: Vec<StateId> = (0..n).filter(|&x| problem.is_goal(x) || avoid[x]).collect();
+    let (aux, _) = derive(problem, goals, |a| {
+        allowed(a).then(|| StochasticAction {
+            cost: problem
+                .outcomes(a)
+                .iter()
+                .filter(|o| problem.is_goal(o.successor))
+                .map(|o| o.probability.clone())
+                .fold(Rational::zero(), |s, p| s + p),
+            outcomes: problem.outcomes(a).to_vec(),
+        })
+    })?;
+    let opt = optimum(&aux)?;
+    Ok((0..n)
+        .map(|x| {
+            if problem.is_goal(x) {
+                Rational::one()
+            } else if avoid[x] {
+                Rational::zero()
+            } else {
+                opt.cost_to_go(x)
+                    .finite()
+                    .cloned()
+                    .expect("every policy leaves the avoiding states' complement")
+            }
+        })
+        .collect())
+}
+
+/// The objective named on the command line (`truecost`, `reach`, `discounted`), with `α`'s
+/// exact decimal text for `discounted` (issue 11, item 2).
+///
+/// ```
+/// use truecost::objectives::Objective;
+/// assert_eq!(truecost::objectives::parse_objective("discounted", Some("0.99")).unwrap(), Objective::Discounted("99/100".parse().unwrap()));
+/// assert!(truecost::objectives::parse_objective("discounted", None).is_err());
+/// assert!(truecost::objectives::parse_objective("reach", Some("0.9")).is_err());
+/// ```
+pub fn parse_objective(name: &str, alpha: Option<&str>) -> Result<Objective, String> {
+    match (name, alpha) {
+        ("truecost", None) => Ok(Objective::Truecost),
+        ("reach", None) => Ok(Objective::Reach),
+        ("discounted", Some(text)) => Ok(Objective::Discounted(parse_alpha(text)?)),
+        ("discounted", None) => Err("--objective discounted needs --alpha A (in (0, 1))".into()),
+        ("truecost" | "reach", Some(_)) => {
+            Err("--alpha applies to --objective discounted only".into())
+        }
+        (other, _) => Err(format!(
+            "unknown objective '{other}' (truecost, reach, discounted)"
+        )),
+    }
+}
+
+/// Parses a discount factor `α ∈ (0, 1)` from its exact text.
+pub fn parse_alpha(text: &str) -> Result<Rational, String> {
+    let a = crate::value::parse_rational(text).map_err(|e| format!("alpha: {e}"))?;
+    if a.is_positive() && a < Rational::one() {
+        Ok(a)
+    } else {
+        Err(ObjectiveError::Alpha(text.to_string()).to_string())
+    }
+}
+
+/// Where a model comes from: an environment, a paper problem or a problem file (issue 11,
+/// item 1: `--env` wherever `--problem`/`--file` is accepted).
+#[derive(Clone, Debug)]
+pub enum Source {
+    /// `--env SPEC`.
+    Env(String),
+    /// `--problem N` (exact paper text, unit or Euclidean step costs), with `γ` and a noise
+    /// model (γ = 1: deterministic).
+    Paper {
+        /// The problem number.
+        id: usize,
+        /// The step cost.
+        step: crate::problems::StepCost,
+        /// The noise model.
+        noise: crate::stochastic::NoiseModel,
+        /// `γ`.
+        gamma: crate::stochastic::Predictability,
+    },
+    /// `--file F` (a deterministic file gets the noise model and `γ`).
+    File {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The noise model.
+        noise: crate::stochastic::NoiseModel,
+        /// `γ`, if given (refused for files that list outcomes).
+        gamma: Option<crate::stochastic::Predictability>,
+    },
+}
+
+impl Source {
+    /// Builds the model (reads files, builds environments). Errors are one line.
+    pub fn load(&self) -> Result<Model, String> {
+        use crate::stochastic::file::{read, ProblemFile};
+        match self {
+            Source::Env(spec) => {
+                let env = crate::envs::EnvSpec::parse(spec)
+                    .and_then(|s| s.build())
+                    .map_err(|e| e.to_string())?;
+                Model::from_environment(&env).map_err(|e| e.to_string())
+            }
+            Source::Paper {
+                id,
+                step,
+                noise,
+                gamma,
+            } => {
+                let p = crate::stochastic::grid::exact_grid(*id, *step, *noise, gamma)
+                    .map_err(|e| e.to_string())?;
+                Ok(Model::from_problem(p, format!("paper problem {id}")))
+            }
+            Source::File { path, noise, gamma } => {
+                let p = match read(path).map_err(|e| e.to_string())? {
+                    ProblemFile::Deterministic(d) => StochasticProblem::from_deterministic(
+                        &d,
+                        *noise,
+                        gamma
+                            .as_ref()
+                            .unwrap_or(&crate::stochastic::Predictability::one()),
+                    )
+                    .map_err(|e| e.to_string())?,
+                    ProblemFile::Stochastic(s) => {
+                        if gamma.is_some() {
+                            return Err("this problem file lists its own outcome probabilities; --gamma applies to deterministic problems".into());
+                        }
+                        *s
+                    }
+                };
+                Ok(Model::from_problem(p, format!("file {}", path.display())))
+            }
+        }
+    }
+}
+
+impl Model {
+    /// The problem as a problem file can hold it (issue 11, item 1, `export`): with a single
+    /// initial state, the problem itself; with an initial distribution (Taxi), one extra state
+    /// (numbered `|X|`, the new initial state) whose single zero-cost action draws the initial
+    /// state — truecost and reach values are unchanged, every path is one step longer.
+    ///
+    /// ```
+    /// use truecost::envs::EnvSpec;
+    /// use truecost::objectives::Model;
+    /// let m = Model::from_environment(&EnvSpec::parse("taxi").unwrap().build().unwrap()).unwrap();
+    /// let p = m.exportable().unwrap();
+    /// assert_eq!((p.states(), p.initial(), p.outcomes(p.actions(500).start).len()), (501, 500, 300));
+    /// ```
+    pub fn exportable(&self) -> Result<StochasticProblem, StochasticError> {
+        if self.initial.len() == 1 {
+            return Ok(self.problem.clone());
+        }
+        let p = &self.problem;
+        let n = p.states();
+        let mut actions: Vec<Vec<StochasticAction>> = (0..n)
+            .map(|x| {
+                p.actions(x)
+                    .map(|a| StochasticAction {
+                        cost: p.cost(a).clone(),
+                        outcomes: p.outcomes(a).to_vec(),
+                    })
+                    .collect()
+            })
+            .collect();
+        actions.push(vec![StochasticAction {
+            cost: Rational::zero(),
+            outcomes: self
+                .initial
+                .iter()
+                .map(|(x, q)| listed(*x, q.clone()))
+                .collect(),
+        }]);
+        StochasticProblem::new(actions, n, p.goals().to_vec())
+    }
+}

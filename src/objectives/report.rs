@@ -1,0 +1,339 @@
+//! What `solve --objective` and `compare` print (issue 11, items 2 and 4): exact strings, with
+//! decimals beside them, in JSON, text, Markdown and LaTeX.
+
+use serde_json::{json, Value};
+
+use super::{Bounds, Model, Objective, ObjectiveError, Solution};
+use crate::stochastic::decimal;
+use crate::value::{Extended, Rational};
+
+/// Significant digits of the decimals printed beside exact values.
+pub const DIGITS: usize = 12;
+
+/// An exact value as text (`inf` for `+∞`).
+pub fn exact(v: &Extended) -> String {
+    v.to_string()
+}
+
+fn rational(r: &Rational) -> Extended {
+    Extended::Finite(r.clone())
+}
+
+/// The success probability: the exact string if every optimal policy has the same, else
+/// `{"min", "max"}` (issue 11, item 2).
+pub fn success_json(b: &Bounds) -> Value {
+    if b.min == b.max {
+        json!(exact(&rational(&b.min)))
+    } else {
+        json!({"min": exact(&rational(&b.min)), "max": exact(&rational(&b.max))})
+    }
+}
+
+fn success_text(b: &Bounds) -> String {
+    if b.min == b.max {
+        decimal(&rational(&b.min), DIGITS)
+    } else {
+        format!(
+            "{} to {}",
+            decimal(&rational(&b.min), DIGITS),
+            decimal(&rational(&b.max), DIGITS)
+        )
+    }
+}
+
+/// The JSON key of an objective's value at the initial distribution.
+pub fn value_key(o: &Objective) -> &'static str {
+    match o {
+        Objective::Truecost => "cost_to_go_initial",
+        Objective::Reach => "reach_probability_initial",
+        Objective::Discounted(_) => "discounted_value_initial",
+    }
+}
+
+/// The policy as action indices in `U(x)` (Gymnasium's action numbers for environments).
+pub fn policy_indices(model: &Model, s: &Solution) -> Vec<Option<usize>> {
+    s.policy
+        .iter()
+        .enumerate()
+        .map(|(x, a)| a.map(|a| a - model.problem.actions(x).start))
+        .collect()
+}
+
+/// The JSON report of one objective.
+pub fn solution_json(model: &Model, s: &Solution) -> Value {
+    let alpha = match &s.objective {
+        Objective::Discounted(a) => Some(exact(&rational(a))),
+        _ => None,
+    };
+    let mut v = json!({
+        "source": model.name,
+        "objective": s.objective.name(),
+        "alpha": alpha,
+        "rewards": model.reward_source,
+        "states": model.problem.states(),
+        "initial_states": model.initial.len(),
+        "success_probability": success_json(&s.success),
+        "policy_success_probability": exact(&rational(&s.policy_success)),
+        "expected_truecost": exact(&s.truecost),
+        "expected_steps": exact(&s.steps),
+        "terminal_bonus": model.terminal_bonus.as_ref().map(|m| exact(&rational(m))),
+        "policy": policy_indices(model, s),
+        "values": s.values.iter().map(exact).collect::<Vec<_>>(),
+    });
+    v[value_key(&s.objective)] = json!(exact(&s.value_initial));
+    v[format!("{}_decimal", value_key(&s.objective))] = json!(decimal(&s.value_initial, DIGITS));
+    v
+}
+
+/// The text report of one objective.
+pub fn solution_text(model: &Model, s: &Solution) -> String {
+    let mut out = String::new();
+    let objective = match &s.objective {
+        Objective::Discounted(a) => format!("discounted, alpha = {a} ({})", model.reward_source),
+        o => o.name().to_string(),
+    };
+    let initial = if model.initial.len() == 1 {
+        format!("state {}", model.initial[0].0)
+    } else {
+        format!(
+            "uniform over {} states (values are expectations)",
+            model.initial.len()
+        )
+    };
+    let value = exact(&s.value_initial);
+    let value = if value.len() > 60 {
+        format!("({} characters)", value.len())
+    } else {
+        value
+    };
+    let rows = [
+        ("source", model.name.clone()),
+        ("objective", objective),
+        ("initial", initial),
+        (
+            value_key(&s.objective),
+            format!("{value} ~ {}", decimal(&s.value_initial, DIGITS)),
+        ),
+        ("success probability", success_text(&s.success)),
+        (
+            "policy success",
+            decimal(&rational(&s.policy_success), DIGITS),
+        ),
+        ("expected truecost", decimal(&s.truecost, DIGITS)),
+        ("expected steps", decimal(&s.steps, DIGITS)),
+    ];
+    for (k, v) in rows {
+        out.push_str(&format!("{k:<26}{v}\n"));
+    }
+    if let Some(m) = &model.terminal_bonus {
+        out.push_str(&format!(
+            "{:<26}{m} (Proposition 4's M: the delivery's +20)\n",
+            "terminal bonus"
+        ));
+    }
+    let policy: Vec<String> = policy_indices(model, s)
+        .iter()
+        .map(|a| a.map_or("-".into(), |a| a.to_string()))
+        .collect();
+    out.push_str(&format!(
+        "{:<26}{}\n",
+        "policy (action per state)",
+        policy.join(" ")
+    ));
+    out
+}
+
+/// One row of `compare` (issue 11, item 4).
+#[derive(Clone, Debug)]
+pub struct CompareRow {
+    /// The objective.
+    pub objective: Objective,
+    /// Its solution.
+    pub solution: Solution,
+}
+
+/// Solves every objective: truecost, reach and discounted for each `α` given.
+pub fn compare(model: &Model, alphas: &[Rational]) -> Result<Vec<CompareRow>, ObjectiveError> {
+    let mut objectives = vec![Objective::Truecost, Objective::Reach];
+    objectives.extend(alphas.iter().cloned().map(Objective::Discounted));
+    objectives
+        .into_iter()
+        .map(|o| {
+            model.solve(&o).map(|solution| CompareRow {
+                objective: o,
+                solution,
+            })
+        })
+        .collect()
+}
+
+fn label(o: &Objective) -> String {
+    match o {
+        Objective::Discounted(a) => format!("discounted a={}", short_decimal(a)),
+        o => o.name().to_string(),
+    }
+}
+
+/// The comparison as JSON.
+pub fn compare_json(model: &Model, rows: &[CompareRow]) -> Value {
+    json!({
+        "source": model.name,
+        "rewards": model.reward_source,
+        "initial_states": model.initial.len(),
+        "rows": rows.iter().map(|r| {
+            let s = &r.solution;
+            let mut v = json!({
+                "objective": r.objective.name(),
+                "alpha": match &r.objective { Objective::Discounted(a) => Some(a.to_string()), _ => None },
+                "value_initial": exact(&s.value_initial),
+                "success_probability": success_json(&s.success),
+                "expected_truecost": exact(&s.truecost),
+                "expected_steps": exact(&s.steps),
+            });
+            v[value_key(&r.objective)] = json!(exact(&s.value_initial));
+            v
+        }).collect::<Vec<_>>(),
+    })
+}
+
+/// `α` as a short decimal (`0.99`), or `p/q` if its expansion does not end within 12 digits.
+fn short_decimal(a: &Rational) -> String {
+    let d = decimal(&rational(a), DIGITS);
+    let d = if d.contains('.') && !d.contains('e') {
+        d.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        d
+    };
+    if crate::value::parse_rational(&d).ok().as_ref() == Some(a) {
+        d
+    } else {
+        a.to_string()
+    }
+}
+
+/// A table cell: integers exactly, other values as 6 significant digits.
+fn cell(v: &Extended) -> String {
+    match v {
+        Extended::Finite(r) if r.is_integer() => r.to_string(),
+        v => decimal(v, 6),
+    }
+}
+
+/// The comparison's cells as decimals: objective, value, success, truecost, steps.
+fn cells(rows: &[CompareRow]) -> Vec<[String; 5]> {
+    rows.iter()
+        .map(|r| {
+            let s = &r.solution;
+            [
+                label(&r.objective),
+                cell(&s.value_initial),
+                match (&s.success.min, &s.success.max) {
+                    (a, b) if a == b => cell(&rational(a)),
+                    (a, b) => format!("{}..{}", cell(&rational(a)), cell(&rational(b))),
+                },
+                cell(&s.truecost),
+                cell(&s.steps),
+            ]
+        })
+        .collect()
+}
+
+const HEADER: [&str; 5] = [
+    "objective",
+    "optimal value",
+    "success probability",
+    "expected truecost",
+    "expected steps",
+];
+
+/// The comparison as an aligned text table.
+pub fn compare_text(model: &Model, rows: &[CompareRow]) -> String {
+    let body = cells(rows);
+    let mut width = HEADER.map(str::len);
+    for row in &body {
+        for (w, c) in width.iter_mut().zip(row) {
+            *w = (*w).max(c.len());
+        }
+    }
+    let line = |cells: &[String]| {
+        cells
+            .iter()
+            .zip(width)
+            .map(|(c, w)| format!("{c:<w$}"))
+            .collect::<Vec<_>>()
+            .join("  ")
+            .trim_end()
+            .to_string()
+    };
+    let mut out = format!(
+        "{} ({}; decimals of exact values)\n",
+        model.name, model.reward_source
+    );
+    out.push_str(&line(&HEADER.map(String::from)));
+    out.push('\n');
+    for row in &body {
+        out.push_str(&line(row));
+        out.push('\n');
+    }
+    out
+}
+
+/// The comparison as a Markdown table.
+pub fn compare_markdown(model: &Model, rows: &[CompareRow]) -> String {
+    let mut out = format!(
+        "**{}** ({})\n\n| {} |\n|{}\n",
+        model.name,
+        model.reward_source,
+        HEADER.join(" | "),
+        "---|".repeat(5)
+    );
+    for row in cells(rows) {
+        out.push_str(&format!("| {} |\n", row.join(" | ")));
+    }
+    out
+}
+
+/// The comparison as a LaTeX tabular.
+pub fn compare_latex(model: &Model, rows: &[CompareRow]) -> String {
+    let esc = |s: &str| {
+        s.replace('_', "\\_")
+            .replace('%', "\\%")
+            .replace("inf", "$\\infty$")
+    };
+    let mut out = format!(
+        "% {} ({})\n\\begin{{tabular}}{{lrrrr}}\n\\hline\n{} \\\\\n\\hline\n",
+        model.name,
+        model.reward_source,
+        HEADER.join(" & ")
+    );
+    for row in cells(rows) {
+        let row: Vec<String> = row.iter().map(|c| esc(c)).collect();
+        out.push_str(&format!("{} \\\\\n", row.join(" & ")));
+    }
+    out.push_str("\\hline\n\\end{tabular}\n");
+    out
+}
+
+/// The facts `problems --env SPEC` lists: sizes, goals and traps, and the exact `G*` and
+/// greatest success probability at the initial distribution.
+pub fn facts(model: &Model) -> Result<Value, ObjectiveError> {
+    let p = &model.problem;
+    let truecost = model.solve(&Objective::Truecost)?;
+    let reach = model.solve(&Objective::Reach)?;
+    let traps = (0..p.states())
+        .filter(|&x| model.terminal[x] && !p.is_goal(x))
+        .count();
+    Ok(json!({
+        "source": model.name,
+        "states": p.states(),
+        "actions": p.action_total(),
+        "outcomes": p.outcome_total(),
+        "initial_states": model.initial.len(),
+        "goals": p.goals().len(),
+        "traps": traps,
+        "terminal_bonus": model.terminal_bonus.as_ref().map(|m| m.to_string()),
+        "cost_to_go_initial": exact(&truecost.value_initial),
+        "reach_probability_initial": exact(&reach.value_initial),
+        "reach_probability_initial_decimal": decimal(&reach.value_initial, DIGITS),
+    }))
+}

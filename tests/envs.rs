@@ -1,0 +1,365 @@
+//! The three objectives on the Gymnasium benchmarks (issue 11, item 2), against oracles that
+//! share no code with the solvers: value iteration in `f64` and breadth-first search run on
+//! Gymnasium's own `P` tables (the dumps of `tests/data/gymnasium/`), and values published
+//! for these benchmarks.
+
+use num_traits::ToPrimitive;
+use serde_json::Value;
+use truecost::envs::EnvSpec;
+use truecost::objectives::{Model, Objective};
+use truecost::value::{Extended, Rational};
+
+fn model(spec: &str) -> Model {
+    Model::from_environment(&EnvSpec::parse(spec).unwrap().build().unwrap()).unwrap()
+}
+
+fn q(s: &str) -> Rational {
+    truecost::value::parse_rational(s).unwrap()
+}
+
+/// Gymnasium's table: per state, per action, (p, next, reward, terminated).
+type Table = Vec<Vec<Vec<(f64, usize, f64, bool)>>>;
+
+fn dump(name: &str) -> (Table, Vec<f64>) {
+    let path = format!(
+        "{}/tests/data/gymnasium/{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let f = |x: &Value| x.as_str().unwrap().parse::<f64>().unwrap();
+    let table = v["P"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|row| {
+            row.as_array()
+                .unwrap()
+                .iter()
+                .map(|list| {
+                    list.as_array()
+                        .unwrap()
+                        .iter()
+                        .map(|t| {
+                            (
+                                f(&t[0]),
+                                t[1].as_u64().unwrap() as usize,
+                                t[2].as_f64().unwrap(),
+                                t[3].as_bool().unwrap(),
+                            )
+                        })
+                        .collect()
+                })
+                .collect()
+        })
+        .collect();
+    let init = v["initial_state_distrib"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(f)
+        .collect();
+    (table, init)
+}
+
+/// Value iteration in f64 on Gymnasium's table: `V(s) = max_a Σ p (r + α V(s'))`, `V = 0` after
+/// termination; states where an episode has ended (FrozenLake's G and H rows) are skipped by
+/// the flag. `reward` maps Gymnasium's reward.
+fn gym_vi(
+    table: &Table,
+    alpha: f64,
+    reward: impl Fn(f64, bool, usize) -> f64,
+    sweeps: usize,
+) -> Vec<f64> {
+    let mut v = vec![0.0; table.len()];
+    for _ in 0..sweeps {
+        let next: Vec<f64> = table
+            .iter()
+            .map(|row| {
+                row.iter()
+                    .map(|list| {
+                        list.iter()
+                            .map(|&(p, s2, r, t)| {
+                                p * (reward(r, t, s2) + if t { 0.0 } else { alpha * v[s2] })
+                            })
+                            .sum::<f64>()
+                    })
+                    .fold(f64::NEG_INFINITY, f64::max)
+            })
+            .collect();
+        v = next;
+    }
+    v
+}
+
+fn at_init(v: &[f64], init: &[f64]) -> f64 {
+    v.iter()
+        .zip(init)
+        .filter(|(_, &b)| b > 0.0)
+        .map(|(a, b)| a * b)
+        .sum()
+}
+
+fn f(e: &Extended) -> f64 {
+    e.to_f64()
+}
+
+#[test]
+fn frozenlake_4x4_slippery_reach_is_14_17_and_no_policy_is_proper() {
+    let m = model("frozenlake");
+    let reach = m.solve(&Objective::Reach).unwrap();
+    // 0.8235294… is the success probability published for FrozenLake 4x4 under gamma = 1.
+    assert_eq!(reach.value_initial.to_string(), "14/17");
+    let (table, init) = dump("frozenlake_4x4_slippery");
+    // Reach as value iteration with Gymnasium's reward (1 on entering G), undiscounted.
+    let oracle = at_init(&gym_vi(&table, 1.0, |r, _, _| r, 20_000), &init);
+    assert!((oracle - 14.0 / 17.0).abs() < 1e-12, "{oracle}");
+    let truecost = m.solve(&Objective::Truecost).unwrap();
+    assert_eq!(truecost.value_initial, Extended::Infinite);
+    assert_eq!(
+        (
+            truecost.success.min.to_string(),
+            truecost.success.max.to_string()
+        ),
+        ("0".into(), "14/17".into())
+    );
+}
+
+#[test]
+fn discounted_values_agree_with_value_iteration_on_gymnasium_tables() {
+    for (spec, name, alpha) in [
+        ("frozenlake", "frozenlake_4x4_slippery", "0.9"),
+        ("frozenlake:map=8x8", "frozenlake_8x8_slippery", "0.99"),
+        ("cliffwalking:slippery=true", "cliffwalking_slippery", "0.9"),
+        ("taxi", "taxi", "0.95"),
+    ] {
+        let m = model(spec);
+        let s = m.solve(&Objective::Discounted(q(alpha))).unwrap();
+        let (table, init) = dump(name);
+        let a: f64 = alpha.parse().unwrap();
+        let mut v = gym_vi(&table, a, |r, _, _| r, 6000);
+        // Taxi's 100 "delivered" rows are never used; an episode ends on entering them.
+        if name == "taxi" {
+            for (x, val) in v.iter_mut().enumerate() {
+                if (x / 4) % 5 == x % 4 {
+                    *val = 0.0;
+                }
+            }
+            v = {
+                let mut w = v.clone();
+                for _ in 0..6000 {
+                    w = table
+                        .iter()
+                        .enumerate()
+                        .map(|(x, row)| {
+                            if (x / 4) % 5 == x % 4 {
+                                0.0
+                            } else {
+                                row.iter()
+                                    .map(|l| {
+                                        l.iter()
+                                            .map(|&(p, s2, r, t)| {
+                                                p * (r + if t { 0.0 } else { a * w[s2] })
+                                            })
+                                            .sum::<f64>()
+                                    })
+                                    .fold(f64::NEG_INFINITY, f64::max)
+                            }
+                        })
+                        .collect();
+                }
+                w
+            };
+        }
+        let oracle = at_init(&v, &init);
+        let ours = f(&s.value_initial);
+        assert!(
+            (oracle - ours).abs() < 1e-9 * oracle.abs().max(1.0),
+            "{spec}: {ours} vs VI {oracle}"
+        );
+    }
+}
+
+#[test]
+fn truecost_of_deterministic_benchmarks_is_the_shortest_path() {
+    // Breadth-first distances on Gymnasium's tables (every action costs 1; CliffWalking's
+    // optimal path never falls; Taxi's never makes an illegal move).
+    for (spec, name, expected) in [
+        ("cliffwalking", "cliffwalking", "13"),
+        ("taxi", "taxi", "1307/100"),
+        ("frozenlake:slippery=false", "frozenlake_4x4", "6"),
+        ("frozenlake:map=8x8,slippery=false", "frozenlake_8x8", "14"),
+    ] {
+        let (table, init) = dump(name);
+        let n = table.len();
+        let mut d = vec![f64::INFINITY; n];
+        for _ in 0..n {
+            for s in 0..n {
+                for list in &table[s] {
+                    let (_, s2, r, t) = list[0];
+                    let hole = t && r == 0.0 && name.starts_with("frozenlake");
+                    let v = if hole {
+                        f64::INFINITY
+                    } else if t {
+                        1.0
+                    } else {
+                        1.0 + d[s2]
+                    };
+                    if v < d[s] {
+                        d[s] = v;
+                    }
+                }
+            }
+        }
+        let oracle = at_init(&d, &init);
+        let m = model(spec);
+        let s = m.solve(&Objective::Truecost).unwrap();
+        assert_eq!(s.value_initial.to_string(), expected, "{spec}");
+        assert!(
+            (f(&s.value_initial) - oracle).abs() < 1e-9,
+            "{spec}: BFS {oracle}"
+        );
+        assert_eq!(s.success.min.to_string(), "1");
+        assert_eq!(
+            s.steps, s.value_initial,
+            "{spec}: unit costs on the optimal path"
+        );
+    }
+}
+
+/// The paper's Proposition 3 on a standard benchmark: on FrozenLake 8x8 (slippery) a policy
+/// reaches the goal with probability 1, yet the discount-optimal policy for α = 0.9 gives up
+/// a quarter of the success probability, and its truecost is +∞.
+#[test]
+fn frozenlake_8x8_discounting_gives_up_success() {
+    let m = model("frozenlake:map=8x8");
+    let t = m.solve(&Objective::Truecost).unwrap();
+    assert!(t.value_initial.finite().is_some());
+    assert_eq!(t.policy_success.to_string(), "1");
+    let d = m.solve(&Objective::Discounted(q("0.9"))).unwrap();
+    assert!(d.success.max < q("0.76"), "{}", d.success.max);
+    assert!(d.success.max > q("0.74"));
+    assert_eq!(d.truecost, Extended::Infinite);
+    // The truecost-optimal policy costs no more than any other proper policy (the reach row's).
+    let r = m.solve(&Objective::Reach).unwrap();
+    assert_eq!(r.value_initial.to_string(), "1");
+    assert!(r.truecost >= t.value_initial);
+}
+
+#[test]
+fn exact_probabilities_are_exact() {
+    let m = model("frozenlake:success_rate=4/5");
+    let a = m.problem.actions(5 - 4).start + 1; // state 1, DOWN: 1/10 right, 4/5 down (hole), 1/10 left
+    let out: Vec<String> = m
+        .problem
+        .outcomes(a)
+        .iter()
+        .map(|o| format!("{}:{}", o.successor, o.probability))
+        .collect();
+    assert_eq!(out, ["0:1/10", "5:4/5", "2:1/10"]);
+    // success_rate = 1: Gymnasium lists zero-probability entries; the problem drops them.
+    let sure = model("frozenlake:success_rate=1");
+    assert_eq!(
+        sure.problem.outcomes(sure.problem.actions(0).start).len(),
+        1
+    );
+    assert_eq!(
+        sure.solve(&Objective::Truecost)
+            .unwrap()
+            .value_initial
+            .to_string(),
+        "6"
+    );
+}
+
+#[test]
+fn discounted_values_of_ended_episodes_are_zero_and_policies_are_gymnasium_actions() {
+    let m = model("frozenlake");
+    let d = m.solve(&Objective::Discounted(q("0.9"))).unwrap();
+    for x in [5, 7, 11, 12, 15] {
+        assert_eq!(d.values[x].to_string(), "0", "state {x}");
+        assert_eq!(d.policy[x], None);
+    }
+    // Known optimal action at the start of FrozenLake 4x4 for gamma = 0.9: LEFT (0).
+    assert_eq!(d.policy[0].map(|a| a - m.problem.actions(0).start), Some(0));
+    assert!(d.value_initial.to_f64() > 0.0688 && d.value_initial.to_f64() < 0.0690);
+}
+
+#[test]
+fn taxi_terminal_bonus_and_initial_expectation() {
+    let m = model("taxi");
+    assert_eq!(m.terminal_bonus.as_ref().unwrap().to_string(), "-20");
+    assert_eq!(m.initial.len(), 300);
+    let t = m.solve(&Objective::Truecost).unwrap();
+    // The expectation over the 300 initial states of the per-state values.
+    let mean = m
+        .initial
+        .iter()
+        .map(|(x, p)| t.values[*x].finite().unwrap() * p)
+        .fold(Rational::from_integer(0.into()), |a, b| a + b);
+    assert_eq!(Extended::Finite(mean), t.value_initial);
+    // Gymnasium's return of the truecost-optimal policy: 21 - steps (no illegal moves).
+    assert_eq!(
+        (Rational::from_integer(21.into()) - t.steps.finite().unwrap())
+            .to_f64()
+            .unwrap(),
+        7.93
+    );
+}
+
+#[test]
+fn bad_objectives_and_specs_are_refused() {
+    let m = model("frozenlake");
+    for a in ["0", "1", "3/2"] {
+        assert!(m.solve(&Objective::Discounted(q(a))).is_err(), "{a}");
+    }
+    for bad in [
+        "lake",
+        "frozenlake:map",
+        "frozenlake:slippery=yes",
+        "frozenlake:slippery=false,success_rate=1/2",
+        "frozenlake:map=/nonexistent",
+        "cliffwalking:wind=1",
+        "frozenlake:success_rate=-1/3",
+        "frozenlake:map=4x4,map=8x8",
+    ] {
+        assert!(
+            EnvSpec::parse(bad).and_then(|s| s.build()).is_err(),
+            "{bad}"
+        );
+    }
+}
+
+#[test]
+fn figures_draw_the_map_and_the_policy() {
+    use truecost::envs::figure::{policy_overlay, scene, value_overlay};
+    use truecost::figures::render::draw;
+    let env = EnvSpec::parse("frozenlake:map=8x8")
+        .unwrap()
+        .build()
+        .unwrap();
+    let m = Model::from_environment(&env).unwrap();
+    let s = m.solve(&Objective::Discounted(q("0.9"))).unwrap();
+    let sc = scene(&env).unwrap();
+    let canvas = draw(&sc, &policy_overlay(&env, &m, &s), 600, 600).unwrap();
+    assert_eq!(canvas.of_class("obstacle").count(), 10, "the ten holes");
+    // One arrow per state with an action (64 − 10 holes − 1 goal), except the actions aimed at
+    // the border (LEFT 0 in column 0, DOWN 1 in row 7, RIGHT 2 in column 7, UP 3 in row 0).
+    let mut arrows = 0;
+    for x in 0..64 {
+        if let Some(a) = s.policy[x] {
+            let a = a - m.problem.actions(x).start;
+            let (r, c) = (x / 8, x % 8);
+            let wall = matches!((a, r, c), (0, _, 0) | (1, 7, _) | (2, _, 7) | (3, 0, _));
+            arrows += usize::from(!wall);
+        }
+    }
+    assert!(arrows < 53 && arrows > 30);
+    assert_eq!(canvas.of_class("policy").count(), arrows);
+    let cliff = EnvSpec::parse("cliffwalking").unwrap().build().unwrap();
+    let cm = Model::from_environment(&cliff).unwrap();
+    let cs = cm.solve(&Objective::Truecost).unwrap();
+    let canvas = draw(&scene(&cliff).unwrap(), &value_overlay(&cs), 600, 300).unwrap();
+    assert_eq!(canvas.of_class("obstacle").count(), 10, "the cliff");
+    assert_eq!(canvas.of_class("value").count(), 48);
+    assert!(scene(&EnvSpec::parse("taxi").unwrap().build().unwrap()).is_err());
+}

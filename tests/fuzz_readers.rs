@@ -292,7 +292,7 @@ fn brute_force_optimum(s: &StochasticProblem) -> Vec<Ext> {
         }
         for (i, &x) in idx.iter().enumerate() {
             let v = a[i][m].clone();
-            if best[x].as_ref().map_or(true, |b| &v < b) {
+            if best[x].as_ref().is_none_or(|b| &v < b) {
                 best[x] = Some(v);
             }
         }

@@ -195,7 +195,7 @@ pub fn poly_term(p: &Poly, var: &str) -> String {
                 real(c)
             } else {
                 let mut args = vec![real(c)];
-                args.extend(std::iter::repeat(var.to_string()).take(k));
+                args.extend(std::iter::repeat_n(var.to_string(), k));
                 app("*", &args)
             }
         })
@@ -399,7 +399,7 @@ fn times_power(s: &str, k: usize, a: &str) -> String {
         return s.to_string();
     }
     let mut args = vec![s.to_string()];
-    args.extend(std::iter::repeat(a.to_string()).take(k));
+    args.extend(std::iter::repeat_n(a.to_string(), k));
     app("*", &args)
 }
 

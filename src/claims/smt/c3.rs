@@ -113,7 +113,7 @@ fn threshold_term(o: &mut Obligation, coefficients: &[Rational], a: &str) -> Str
             terms.push(p);
         } else {
             let mut factors = vec![p];
-            factors.extend(std::iter::repeat(a.to_string()).take(k));
+            factors.extend(std::iter::repeat_n(a.to_string(), k));
             terms.push(super::term::app("*", &factors));
         }
     }

@@ -302,7 +302,7 @@ pub fn reachable_shape(succ: &[Vec<usize>]) -> Option<Shape> {
             }
         }
         edges.sort_unstable();
-        if best.as_ref().map_or(true, |b| edges < *b) {
+        if best.as_ref().is_none_or(|b| edges < *b) {
             best = Some(edges);
         }
     }

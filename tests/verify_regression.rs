@@ -78,7 +78,15 @@ fn quick_scope_verdicts_counts_and_counterexamples_are_pinned() {
     let ids: Vec<&str> = r.claims.iter().map(|c| c.id.as_str()).collect();
     assert_eq!(
         ids,
-        ["C1", "C1-corrected", "C2", "C3", "C3-example", "C4", "C4-corrected"]
+        [
+            "C1",
+            "C1-corrected",
+            "C2",
+            "C3",
+            "C3-example",
+            "C4",
+            "C4-corrected"
+        ]
     );
     for c in &r.claims {
         let enumeration: Vec<_> = c
@@ -96,8 +104,8 @@ fn quick_scope_verdicts_counts_and_counterexamples_are_pinned() {
             assert_eq!(headline(c.verdict.name()), "holds", "{}", c.id);
             assert!(c.counterexample.is_none(), "{}", c.id);
             for e in &c.engines {
-                let must_fail = e.engine.starts_with("kani harness")
-                    && e.mode.contains("must fail");
+                let must_fail =
+                    e.engine.starts_with("kani harness") && e.mode.contains("must fail");
                 if !must_fail {
                     assert_eq!(e.failures, 0, "{}: {}", c.id, e.engine);
                 }

@@ -579,7 +579,8 @@ proptest! {
         a.sort();
         prop_assert_eq!(&a, &brute);
         let mut b: Vec<(i64, usize)> = Instance::from_tiny(&t)
-            .goal_paths()
+            .goal_paths(u64::MAX)
+            .expect("no step bound")
             .into_iter()
             .map(|(l, s)| (l, s as usize))
             .collect();

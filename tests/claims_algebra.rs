@@ -815,7 +815,7 @@ proptest! {
             prop_assert_eq!(p.sign_at(x), value(&p, x).cmp(&Rational::zero()));
         }
         // Degree and coefficients: no trailing zeros.
-        prop_assert!(p.coefficients().last().map_or(true, |c| !c.is_zero()));
+        prop_assert!(p.coefficients().last().is_none_or(|c| !c.is_zero()));
         prop_assert_eq!(p.degree(), p.coefficients().len().checked_sub(1));
         prop_assert_eq!(p.is_zero(), p.coefficients().is_empty());
         // Derivative: coefficient i·c_i, and the product rule.

@@ -2,9 +2,12 @@
 //! a mutation test (a planted wrong reward makes the proof fail, and the model replays), and
 //! the SMT-LIB files parsing back to the same answers. Smoke scope only.
 
+mod common;
+
+use common::smt::parse_back;
 use truecost::claims::smt::c2::{self, lassos, Plant};
 use truecost::claims::smt::{
-    run, solve, write_files, Answer, Obligation, Replay, Role, SmtVerdict, Sort, Status, TIMEOUT_MS,
+    run, solve, write_files, Answer, Obligation, Replay, Role, SmtVerdict, Status, TIMEOUT_MS,
 };
 use truecost::claims::tiny::Tiny;
 use truecost::claims::Scope;
@@ -142,35 +145,6 @@ fn planted_wrong_reward_breaks_the_proof() {
             assert!(matches!(replay(&s.obligation, m), Replay::Confirmed(..)));
         }
     }
-}
-
-/// Reads an SMT-LIB file written by `write_files` back into an obligation (one command a line).
-fn parse_back(text: &str, template: &Obligation) -> (Obligation, Option<String>) {
-    let mut o = Obligation::new(
-        &template.claim,
-        &template.lemma,
-        &template.structure,
-        template.role.clone(),
-        template.logic,
-    );
-    let mut status = None;
-    for line in text.lines() {
-        if let Some(rest) = line.strip_prefix("(declare-const ") {
-            let (name, sort) = rest.trim_end_matches(')').split_once(' ').expect("a sort");
-            let sort = match sort {
-                "Real" => Sort::Real,
-                "Int" => Sort::Int,
-                "Bool" => Sort::Bool,
-                other => panic!("sort {other}"),
-            };
-            o.declare(name, sort);
-        } else if let Some(rest) = line.strip_prefix("(assert ") {
-            o.assert(rest.strip_suffix(')').expect("closing").to_string());
-        } else if let Some(rest) = line.strip_prefix("(set-info :status ") {
-            status = Some(rest.trim_end_matches(')').to_string());
-        }
-    }
-    (o, status)
 }
 
 #[test]

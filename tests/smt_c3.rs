@@ -2,12 +2,15 @@
 //! checks, mutation tests (a planted wrong threshold or interval makes the proof fail, and the
 //! model replays), and the SMT-LIB files parsing back to the same answers. Smoke scope only.
 
+mod common;
+
+use common::smt::parse_back;
 use truecost::claims::exact::Q;
 use truecost::claims::smt::c2::lassos;
 use truecost::claims::smt::c3::{self, THRESHOLD};
 use truecost::claims::smt::{
-    discharge, run, solve, write_files, Answer, Encoding, Obligation, Replay, Role, SmtVerdict,
-    Sort, Status, TIMEOUT_MS,
+    discharge, run, solve, write_files, Answer, Encoding, Replay, Role, SmtVerdict, Status,
+    TIMEOUT_MS,
 };
 use truecost::claims::tiny::Tiny;
 use truecost::claims::Scope;
@@ -160,35 +163,6 @@ fn planted_wrong_interval_breaks_the_certificate_proof() {
         Scope::Smoke,
         (Q::new(1, 2), Q::new(99, 100)),
     ));
-}
-
-/// Reads an SMT-LIB file written by `write_files` back into an obligation (one command a line).
-fn parse_back(text: &str, template: &Obligation) -> (Obligation, Option<String>) {
-    let mut o = Obligation::new(
-        &template.claim,
-        &template.lemma,
-        &template.structure,
-        template.role.clone(),
-        template.logic,
-    );
-    let mut status = None;
-    for line in text.lines() {
-        if let Some(rest) = line.strip_prefix("(declare-const ") {
-            let (name, sort) = rest.trim_end_matches(')').split_once(' ').expect("a sort");
-            let sort = match sort {
-                "Real" => Sort::Real,
-                "Int" => Sort::Int,
-                "Bool" => Sort::Bool,
-                other => panic!("sort {other}"),
-            };
-            o.declare(name, sort);
-        } else if let Some(rest) = line.strip_prefix("(assert ") {
-            o.assert(rest.strip_suffix(')').expect("closing").to_string());
-        } else if let Some(rest) = line.strip_prefix("(set-info :status ") {
-            status = Some(rest.trim_end_matches(')').to_string());
-        }
-    }
-    (o, status)
 }
 
 #[test]

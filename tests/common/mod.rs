@@ -6,6 +6,7 @@
 #![allow(dead_code)]
 
 pub mod cli;
+pub mod smt;
 
 use num_bigint::BigInt;
 use num_rational::BigRational;

@@ -96,10 +96,28 @@ fn verify_latex_and_markdown() {
     assert!(tex.contains("\\begin{tabular}") && tex.contains("\\bottomrule"));
     assert!(tex.contains("truecost 0.1.0") && tex.contains("commit"));
     assert!(tex.contains("C4 & refuted"));
+    assert!(
+        tex.contains("C4-corrected & proved & 24 & smt (Z3)"),
+        "{tex}"
+    );
+    assert!(tex.contains("SMT solver Z3 4."), "{tex}");
     let md = stdout(&[
         "verify", "--scope", "smoke", "--claim", "C3", "--format", "markdown",
     ]);
     assert!(md.contains("| claim | verdict | engine | cases | scope |"));
+    assert!(md.contains("| C3 | proved | smt (Z3) |"), "{md}");
+    assert!(md.contains("SMT solver: Z3 4."), "{md}");
+    let quiet = stdout(&[
+        "verify",
+        "--scope",
+        "smoke",
+        "--claim",
+        "C3",
+        "--format",
+        "markdown",
+        "--no-times",
+    ]);
+    assert!(!quiet.contains("SMT solver"), "{quiet}");
 }
 
 #[test]

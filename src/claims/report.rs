@@ -197,6 +197,11 @@ pub fn markdown(report: &Report, with_times: bool) -> String {
         report.tool,
         report.scope.name()
     );
+    if with_times {
+        if let Some(solver) = &report.solver {
+            let _ = writeln!(s, "SMT solver: {solver}\n");
+        }
+    }
     let _ = writeln!(s, "| claim | verdict | engine | cases | scope |");
     let _ = writeln!(s, "|---|---|---|---|---|");
     for c in &report.claims {
@@ -304,10 +309,15 @@ pub fn latex(report: &Report) -> String {
         .unwrap_or_default();
     let _ = writeln!(
         s,
-        "\\caption{{Machine-checked claims ({}, commit \\texttt{{{}}}, scope {}).{alpha}}}",
+        "\\caption{{Machine-checked claims ({}, commit \\texttt{{{}}}, scope {}{}).{alpha}}}",
         tex(&report.tool),
         tex(&report.commit[..report.commit.len().min(12)]),
-        report.scope.name()
+        report.scope.name(),
+        report
+            .solver
+            .as_ref()
+            .map(|v| format!("; SMT solver {}", tex(v)))
+            .unwrap_or_default()
     );
     let _ = writeln!(s, "\\end{{table}}");
     s

@@ -391,3 +391,27 @@ fn parse_decimal(t: &str) -> Result<Rational, ParseRationalReason> {
 pub fn in_unit_interval_open_closed(r: &Rational) -> bool {
     r.is_positive() && r <= &Rational::one()
 }
+
+/// Exact rationals as integers on one scale: `(d, [v·d])` with `d` the least common multiple of
+/// the denominators (`1` for none). A positive common scale changes no comparison, argmin or
+/// ratio of costs, which is why the claims' integer oracles can replay rational models.
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use truecost::value::{to_common_scale, Rational};
+/// let r = |n: i64, d: i64| Rational::new(n.into(), d.into());
+/// let (d, ints) = to_common_scale(&[r(1, 4), r(-5, 6), r(2, 1)]);
+/// assert_eq!(d, BigInt::from(12));
+/// assert_eq!(ints, vec![BigInt::from(3), BigInt::from(-10), BigInt::from(24)]);
+/// ```
+pub fn to_common_scale(values: &[Rational]) -> (BigInt, Vec<BigInt>) {
+    use num_integer::Integer;
+    let d = values
+        .iter()
+        .fold(BigInt::one(), |acc, v| acc.lcm(v.denom()));
+    let ints = values
+        .iter()
+        .map(|v| v.numer() * (&d / v.denom()))
+        .collect();
+    (d, ints)
+}

@@ -6,8 +6,7 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use num_bigint::BigInt;
-use num_integer::Integer;
-use num_traits::{One, ToPrimitive};
+use num_traits::ToPrimitive;
 use serde_json::json;
 
 use truecost::claims::c4::{bonus_analysis, End, Instance, Interval};
@@ -125,18 +124,17 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
 
 /// The problem with integer costs: every cost times `D` (the lcm of the denominators).
 fn integer_instance(problem: &Problem) -> Result<(Instance, BigInt), String> {
-    let mut d = BigInt::one();
-    for x in 0..problem.states() {
-        for m in problem.moves(x) {
-            d = d.lcm(m.cost.denom());
-        }
-    }
-    let scale = truecost::value::Rational::from_integer(d.clone());
+    let costs: Vec<truecost::value::Rational> = (0..problem.states())
+        .flat_map(|x| problem.moves(x).iter().map(|m| m.cost.clone()))
+        .collect();
+    let (d, scaled) = truecost::value::to_common_scale(&costs);
+    let mut scaled = scaled.into_iter();
     let mut moves = Vec::new();
     for x in 0..problem.states() {
         let mut list = Vec::new();
         for m in problem.moves(x) {
-            let c = (&m.cost * &scale).to_integer().to_i64().filter(|c| *c < 1 << 40).ok_or(
+            let c = scaled.next().expect("one scaled cost per move");
+            let c = c.to_i64().filter(|c| *c < 1 << 40).ok_or(
                 "costs too large for the exact bonus analysis (scaled costs must stay below 2^40)",
             )?;
             list.push((m.successor, c));

@@ -23,9 +23,7 @@
 //! **C1 as printed** is satisfiable: a fixed point of every update that differs from `Q*`
 //! (so no order ever converges), replayed exactly through the Q-learning oracle.
 
-use num_bigint::BigInt;
-use num_integer::Integer;
-use num_traits::{One, ToPrimitive, Zero};
+use num_traits::{ToPrimitive, Zero};
 
 use super::term::{
     and, app, eq, ge, gt, implies, is_min, le, lt, min, ne, not, or, real_int, sub, sum,
@@ -34,7 +32,7 @@ use super::{Encoding, Logic, Model, Obligation, Replay, Role, Sort};
 use crate::claims::qlearning::{run as run_q, Order, QProblem, Run, Terminal, MAX_PAIRS};
 use crate::claims::tiny::{Family, FamilySpec, Tiny};
 use crate::claims::{Counterexample, Scope};
-use crate::value::Rational;
+use crate::value::{to_common_scale, Rational};
 
 const CLAIM: &str = "C1-corrected";
 const PRINTED: &str = "C1";
@@ -732,28 +730,24 @@ fn replay_printed(o: &Obligation, m: &Model) -> Replay {
             _ => return Replay::NotConfirmed(format!("pair {p} has no value in the model")),
         }
     }
-    let scale = all.iter().fold(BigInt::one(), |acc, v| acc.lcm(v.denom()));
-    let scaled: Vec<Option<i64>> = all
+    // Costs (even positions) must fit the oracle's u8 costs, values its i64 range.
+    let (scale, ints) = to_common_scale(&all);
+    let scaled: Option<Vec<i64>> = ints
         .iter()
-        .map(|v| {
-            (v * Rational::from_integer(scale.clone()))
-                .to_integer()
-                .to_i64()
+        .enumerate()
+        .map(|(k, v)| {
+            v.to_i64().filter(|v| {
+                if k % 2 == 0 {
+                    (0..=255).contains(v)
+                } else {
+                    v.abs() < 1 << 40
+                }
+            })
         })
         .collect();
-    let fits = scaled.iter().enumerate().all(|(k, v)| {
-        v.is_some_and(|v| {
-            if k % 2 == 0 {
-                (0..=255).contains(&v)
-            } else {
-                v.abs() < 1 << 40
-            }
-        })
-    });
-    if !fits {
+    let Some(scaled) = scaled else {
         return Replay::NotConfirmed("the model's values are too large for the oracle".into());
-    }
-    let scaled: Vec<i64> = scaled.into_iter().map(|v| v.expect("fits")).collect();
+    };
     // Rebuild the structure with the scaled integer costs.
     let mut lists: Vec<Vec<(u8, u8)>> = vec![Vec::new(); t.states()];
     for (p, &(x, to, terminal)) in pairs.iter().enumerate() {

@@ -207,18 +207,8 @@ pub fn poly_term(p: &Poly, var: &str) -> String {
 /// multiple of the denominators (a positive scale, which changes no argmin or argmax of a
 /// positively homogeneous functional). `None` if a value is negative or does not fit a `u8`.
 pub fn scale_to_u8(values: &[Rational]) -> Option<Vec<u8>> {
-    use num_integer::Integer;
-    let mut l = num_bigint::BigInt::from(1);
-    for v in values {
-        l = l.lcm(v.denom());
-    }
-    values
-        .iter()
-        .map(|v| {
-            let n = (v * Rational::from_integer(l.clone())).to_integer();
-            u8::try_from(n).ok()
-        })
-        .collect()
+    let (_, ints) = crate::value::to_common_scale(values);
+    ints.iter().map(|n| u8::try_from(n).ok()).collect()
 }
 
 /// The planted faults of the mutation tests and trust checks (issue 9, item 2).

@@ -25,7 +25,6 @@
 use std::collections::HashSet;
 
 use num_bigint::BigInt;
-use num_integer::Integer;
 use num_traits::{Signed, ToPrimitive, Zero};
 
 use super::term::{self, and, app, eq, ge, le, lt, not, or, real, real_int, sum};
@@ -765,20 +764,13 @@ pub fn replay(ob: &Obligation, model: &Model) -> Replay {
     if !m.is_negative() || costs.iter().any(|c| c.is_negative()) {
         return Replay::NotConfirmed(format!("the model breaks a hypothesis (M = {m})"));
     }
-    // Scale to integers.
-    let mut d = m.denom().clone();
-    for c in &costs {
-        d = d.lcm(c.denom());
-    }
-    let scale = Rational::from_integer(d.clone());
-    let int = |r: &Rational| {
-        (r * &scale)
-            .to_integer()
-            .to_i64()
-            .filter(|v| v.abs() < 1 << 40)
-    };
-    let scaled: Option<Vec<i64>> = costs.iter().map(int).collect();
-    let (Some(scaled), Some(m_scaled)) = (scaled, int(&m)) else {
+    // Scale to integers (costs, then M, on one scale d).
+    let mut values = costs.clone();
+    values.push(m.clone());
+    let (d, ints) = crate::value::to_common_scale(&values);
+    let int = |n: &BigInt| n.to_i64().filter(|v| v.abs() < 1 << 40);
+    let scaled: Option<Vec<i64>> = ints[..costs.len()].iter().map(int).collect();
+    let (Some(scaled), Some(m_scaled)) = (scaled, int(&ints[costs.len()])) else {
         return Replay::NotConfirmed("the model's values are too large to replay".into());
     };
     let (Some(qcosts), Some(qm)) = (costs.iter().map(to_q).collect::<Option<Vec<Q>>>(), to_q(&m))

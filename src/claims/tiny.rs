@@ -126,12 +126,25 @@ impl Tiny {
 
     /// A one-line description: `0: ->1 (1), ->0 (0); 1 (goal)`.
     pub fn describe(&self) -> String {
+        self.describe_with(|(x, i)| self.moves(x)[i].cost.to_string())
+    }
+
+    /// [`Tiny::describe`] with each move's cost replaced by `label((state, move index))` (e.g.
+    /// the name of the SMT unknown that is its cost).
+    ///
+    /// ```
+    /// use truecost::claims::tiny::Tiny;
+    /// let t = Tiny::from_lists(&[vec![(0, 0), (1, 1)], vec![]]);
+    /// assert_eq!(t.describe_with(|(x, i)| format!("l{x}{i}")), "0: ->0 (l00), ->1 (l01); 1 (goal)");
+    /// ```
+    pub fn describe_with(&self, label: impl Fn((usize, usize)) -> String) -> String {
         (0..self.states())
             .map(|x| {
                 let list: Vec<String> = self
                     .moves(x)
                     .iter()
-                    .map(|m| format!("->{} ({})", m.to, m.cost))
+                    .enumerate()
+                    .map(|(i, m)| format!("->{} ({})", m.to, label((x, i))))
                     .collect();
                 let tag = if self.is_goal(x) { " (goal)" } else { "" };
                 if list.is_empty() {
@@ -298,6 +311,22 @@ impl Family {
             c *= self.options.len() as u64;
         }
         c
+    }
+
+    /// Every problem of the family once up to relabelling (the canonical ones), in index
+    /// order, sequentially (the parallel pass is [`crate::claims::enumerate`]).
+    ///
+    /// ```
+    /// use truecost::claims::tiny::{Family, FamilySpec};
+    /// let spec = FamilySpec { states: 2, initial_fixed: false, degree: (1, 1), goal_degree: (0, 0),
+    ///     costs: vec![0], distinct_successors: false };
+    /// // State 0 has one move, to itself or to the goal.
+    /// assert_eq!(Family::new(&spec).canonical().count(), 2);
+    /// ```
+    pub fn canonical(&self) -> impl Iterator<Item = Tiny> + '_ {
+        (0..self.labelled_count())
+            .map(|i| self.problem(i))
+            .filter(|t| self.is_canonical(t))
     }
 
     /// The labelled problem with this index (`0..labelled_count()`).

@@ -562,13 +562,7 @@ fn whole_b(t: &Tiny, role: Role, positive: bool) -> Option<(Obligation, String)>
 fn structures(scope: Scope) -> Vec<Tiny> {
     let mut out = Vec::new();
     for spec in structure_specs(scope) {
-        let family = Family::new(&spec);
-        for i in 0..family.labelled_count() {
-            let t = family.problem(i);
-            if family.is_canonical(&t) {
-                out.push(t);
-            }
-        }
+        out.extend(Family::new(&spec).canonical());
     }
     out
 }
@@ -646,13 +640,7 @@ fn printed_structures() -> Vec<Tiny> {
     };
     let mut out = Vec::new();
     for s in [spec(1), spec(2)] {
-        let family = Family::new(&s);
-        for i in 0..family.labelled_count() {
-            let t = family.problem(i);
-            if family.is_canonical(&t) {
-                out.push(t);
-            }
-        }
+        out.extend(Family::new(&s).canonical());
     }
     out
 }

@@ -125,23 +125,7 @@ pub fn lassos(t: &Tiny, goal_may_move: bool) -> Vec<Lasso> {
 /// label in parentheses (a number, or the name of the SMT constant that is its cost; `-` for a
 /// move no policy from `x1` uses). [`parse_shape`] reads it back.
 pub fn shape_text(t: &Tiny, label: impl Fn(MoveId) -> String) -> String {
-    (0..t.states())
-        .map(|x| {
-            let list: Vec<String> = t
-                .moves(x)
-                .iter()
-                .enumerate()
-                .map(|(i, m)| format!("->{} ({})", m.to, label((x, i))))
-                .collect();
-            let tag = if t.is_goal(x) { " (goal)" } else { "" };
-            if list.is_empty() {
-                format!("{x}{tag}")
-            } else {
-                format!("{x}{tag}: {}", list.join(", "))
-            }
-        })
-        .collect::<Vec<_>>()
-        .join("; ")
+    t.describe_with(label)
 }
 
 /// Reads a [`shape_text`] back: per state, its moves as `(successor, cost label)`.
@@ -547,11 +531,7 @@ fn structures(scope: Scope, role: Role, plant: Plant) -> (Vec<(Tiny, Obligation)
     let mut shapes = 0;
     for spec in shape_specs(scope) {
         let family = Family::new(&spec);
-        for i in 0..family.labelled_count() {
-            let t = family.problem(i);
-            if !family.is_canonical(&t) {
-                continue;
-            }
+        for t in family.canonical() {
             shapes += 1;
             let (o, _) = structure_obligation(&t, role.clone(), plant);
             let key = o.asserts.join("\n");

@@ -11,7 +11,7 @@
 //! `V_a ≤ V_b ⟺ N_a·D_b ≤ N_b·D_a`: every comparison is a polynomial inequality in `α` with the
 //! denominators cleared by their known sign.
 
-use super::c2::{lassos, parse_shape, poly_term, shape_text, Lasso};
+use super::c2::{lassos, parse_shape, poly_term, Lasso};
 use super::term::{and, eq, ge, gt, le, lt, mul, not, or, real, real_int, sub};
 use super::{Encoding, Logic, Model, Obligation, Replay, Role, Sort};
 use crate::claims::alpha::{
@@ -328,7 +328,7 @@ const CERTIFIED: &str = "every other policy is strictly worse than the goal-avoi
 fn certificate_obligation(c: &Tiny, bounds: (Option<Q>, Option<Q>), role: Role) -> Obligation {
     let cost = |(x, i): (usize, usize)| i64::from(c.moves(x)[i].cost);
     let ls = lassos(c, false);
-    let structure = shape_text(c, |(x, i)| c.moves(x)[i].cost.to_string());
+    let structure = c.describe();
     let mut o = Obligation::new("C3", CERTIFIED, &structure, role, Logic::QfNra);
     let a = o.declare("a", Sort::Real);
     o.assert(unit(&a));
@@ -372,11 +372,7 @@ pub fn encoding_with(scope: Scope, (lo, hi): (Q, Q)) -> Encoding {
             spec.states, spec.degree.1
         ));
         let family = Family::new(&spec);
-        for i in 0..family.labelled_count() {
-            let t = family.problem(i);
-            if !family.is_canonical(&t) {
-                continue;
-            }
+        for t in family.canonical() {
             shapes += 1;
             let Some(c) = interval_certificate(&t, interval()) else {
                 hypotheses_fail += 1;

@@ -345,11 +345,7 @@ pub fn shapes(max_states: usize) -> (Vec<Shape>, u64) {
             distinct_successors: false,
         };
         let family = Family::new(&spec);
-        for i in 0..family.labelled_count() {
-            let t = family.problem(i);
-            if !family.is_canonical(&t) {
-                continue;
-            }
+        for t in family.canonical() {
             structures += 1;
             let succ: Vec<Vec<usize>> = (0..t.states())
                 .map(|x| t.moves(x).iter().map(|mv| mv.to as usize).collect())

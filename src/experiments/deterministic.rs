@@ -36,7 +36,7 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 
 use super::clock::{timed, Stopwatch};
-use super::published::{self, Comparison, DataError, Kind, Observed, Summary};
+use super::published::{self, Comparison, DataError, Kind, Observations, Observed, Summary};
 use super::runs::{in_pool, RunSettings};
 use super::stats::{mean_of_present, mean_std};
 use crate::learning::plan::{sample_rng, EpsilonSchedule, PiStream, Plan, Probability};
@@ -675,64 +675,35 @@ fn summarise(
 /// Our side of every metric the paper publishes for a row (names as in
 /// `data/published/deterministic.csv`).
 fn observe(row: &Row, samples: &[Sample]) -> BTreeMap<&'static str, Observed> {
-    let mut o = BTreeMap::new();
-    let n = samples.len() as u64;
+    let mut o = Observations::new(samples);
+    let n = o.n();
     if n == 0 {
-        return o;
+        return o.finish();
     }
-    let counts = |get: &dyn Fn(&Sample) -> Option<u64>| {
-        Observed::counts(&samples.iter().filter_map(get).collect::<Vec<_>>())
-    };
-    let times = |get: &dyn Fn(&Sample) -> Option<f64>| {
-        Observed::times(&samples.iter().filter_map(get).collect::<Vec<_>>())
-    };
-    let hits = |pred: &dyn Fn(&Sample) -> bool| samples.iter().filter(|s| pred(s)).count() as u64;
-    let mut put = |k: &'static str, v: Option<Observed>| {
-        if let Some(v) = v {
-            o.insert(k, v);
-        }
-    };
-    put("mean_time_s", times(&|s| Some(s.time_s)));
-    put("mean_iterations", counts(&|s| Some(s.iterations)));
-    put("mean_actions", counts(&|s| Some(s.actions)));
-    put(
-        "convergence_rate",
-        Observed::rate(hits(&|s| s.converged), n),
-    );
+    o.time("mean_time_s", |s| Some(s.time_s));
+    o.count("mean_iterations", |s| Some(s.iterations));
+    o.count("mean_actions", |s| Some(s.actions));
+    o.rate("convergence_rate", |s| s.converged);
     let path = samples.iter().map(|s| s.path_states as u64);
-    put(
+    o.put(
         "shortest_path",
         path.clone().min().map(|v| Observed::value(v, n)),
     );
-    put("longest_path", path.max().map(|v| Observed::value(v, n)));
-    let all_reached = u64::from(hits(&|s| s.reached_goal) == n);
-    put("goal_reached_all", Some(Observed::value(all_reached, n)));
-    put(
-        "loops_any",
-        Some(Observed::value(u64::from(hits(&|s| s.looped) > 0), n)),
-    );
+    o.put("longest_path", path.max().map(|v| Observed::value(v, n)));
+    let all_reached = u64::from(o.hits(|s| s.reached_goal) == n);
+    o.put("goal_reached_all", Some(Observed::value(all_reached, n)));
+    let any_loop = u64::from(o.hits(|s| s.looped) > 0);
+    o.put("loops_any", Some(Observed::value(any_loop, n)));
     if matches!(row, Row::ModelFree(_)) {
-        put("mean_planner_actions", counts(&|s| Some(s.planner_actions)));
+        o.count("mean_planner_actions", |s| Some(s.planner_actions));
     } else {
-        put("mean_actions_converged", counts(&|s| s.converged_at));
-        put(
-            "mean_actions_goal_discovered",
-            counts(&|s| s.goal_discovered_at),
-        );
-        put(
-            "mean_time_goal_discovered_s",
-            times(&|s| s.goal_discovered_time_s),
-        );
-        put(
-            "mean_actions_initial_optimal",
-            counts(&|s| s.initial_optimal_at),
-        );
-        put(
-            "mean_time_initial_optimal_s",
-            times(&|s| s.initial_optimal_time_s),
-        );
+        o.count("mean_actions_converged", |s| s.converged_at);
+        o.count("mean_actions_goal_discovered", |s| s.goal_discovered_at);
+        o.time("mean_time_goal_discovered_s", |s| s.goal_discovered_time_s);
+        o.count("mean_actions_initial_optimal", |s| s.initial_optimal_at);
+        o.time("mean_time_initial_optimal_s", |s| s.initial_optimal_time_s);
     }
-    o
+    o.finish()
 }
 
 /// How a published deterministic metric is judged (`None`: not a metric of this table).

@@ -256,6 +256,63 @@ pub struct Observed {
     pub exact: Option<Rational>,
 }
 
+/// Our side of a row's published metrics, collected from its samples by name (the deterministic
+/// and stochastic runners' `observe` share it; each knows its own `Sample` type).
+pub struct Observations<'a, S> {
+    samples: &'a [S],
+    metrics: BTreeMap<&'static str, Observed>,
+}
+
+impl<'a, S> Observations<'a, S> {
+    /// No metric yet, over `samples`.
+    pub fn new(samples: &'a [S]) -> Self {
+        Observations {
+            samples,
+            metrics: BTreeMap::new(),
+        }
+    }
+
+    /// The number of samples.
+    pub fn n(&self) -> u64 {
+        self.samples.len() as u64
+    }
+
+    /// How many samples satisfy `pred`.
+    pub fn hits(&self, pred: impl Fn(&S) -> bool) -> u64 {
+        self.samples.iter().filter(|s| pred(s)).count() as u64
+    }
+
+    /// Records `metric` when there is a value.
+    pub fn put(&mut self, metric: &'static str, value: Option<Observed>) {
+        if let Some(v) = value {
+            self.metrics.insert(metric, v);
+        }
+    }
+
+    /// The exact mean of the counts that `get` gives (samples without one left out).
+    pub fn count(&mut self, metric: &'static str, get: impl Fn(&S) -> Option<u64>) {
+        let v: Vec<u64> = self.samples.iter().filter_map(get).collect();
+        self.put(metric, Observed::counts(&v));
+    }
+
+    /// The mean of the times that `get` gives.
+    pub fn time(&mut self, metric: &'static str, get: impl Fn(&S) -> Option<f64>) {
+        let v: Vec<f64> = self.samples.iter().filter_map(get).collect();
+        self.put(metric, Observed::times(&v));
+    }
+
+    /// The fraction of samples satisfying `pred`.
+    pub fn rate(&mut self, metric: &'static str, pred: impl Fn(&S) -> bool) {
+        let (hits, n) = (self.hits(pred), self.n());
+        self.put(metric, Observed::rate(hits, n));
+    }
+
+    /// The metrics collected.
+    pub fn finish(self) -> BTreeMap<&'static str, Observed> {
+        self.metrics
+    }
+}
+
 impl Observed {
     /// The mean of integer counts, exact (`None` for no samples).
     ///

@@ -36,7 +36,7 @@ use std::collections::BTreeMap;
 
 use super::clock::Stopwatch;
 use super::deterministic::stream;
-use super::published::{self, Comparison, DataError, Kind, Observed, Summary};
+use super::published::{self, Comparison, DataError, Kind, Observations, Observed, Summary};
 use super::runs::{in_pool, RunError, RunSettings};
 use super::stats::{mean_of_present, mean_std};
 use crate::learning::plan::{sample_rng, EpsilonSchedule, Plan, Probability, ProbabilityError};
@@ -747,36 +747,17 @@ fn summarise(
 /// Our side of every metric the paper publishes for a learning row (names as in
 /// `data/published/stochastic.csv`).
 fn observe(samples: &[Sample]) -> BTreeMap<&'static str, Observed> {
-    let mut o = BTreeMap::new();
-    let n = samples.len() as u64;
-    let counts = |get: &dyn Fn(&Sample) -> Option<u64>| {
-        Observed::counts(&samples.iter().filter_map(get).collect::<Vec<_>>())
-    };
-    let times = |get: &dyn Fn(&Sample) -> Option<f64>| {
-        Observed::times(&samples.iter().filter_map(get).collect::<Vec<_>>())
-    };
-    let hits = |pred: &dyn Fn(&Sample) -> bool| samples.iter().filter(|s| pred(s)).count() as u64;
-    let mut put = |k: &'static str, v: Option<Observed>| {
-        if let Some(v) = v {
-            o.insert(k, v);
-        }
-    };
-    put("mean_time_s", times(&|s| Some(s.time_s)));
-    put("mean_actions", counts(&|s| Some(s.actions)));
-    put(
-        "convergence_rate",
-        Observed::rate(hits(&|s| s.converged_at.is_some()), n),
-    );
-    put(
-        "initial_within_rate",
-        Observed::rate(hits(&|s| s.initial_at.is_some()), n),
-    );
-    put("mean_actions_converged", counts(&|s| s.converged_at));
-    put("mean_actions_goal_discovered", counts(&|s| s.goal_at));
-    put("mean_time_goal_discovered_s", times(&|s| s.goal_time_s));
-    put("mean_actions_initial_within", counts(&|s| s.initial_at));
-    put("mean_time_initial_within_s", times(&|s| s.initial_time_s));
-    o
+    let mut o = Observations::new(samples);
+    o.time("mean_time_s", |s| Some(s.time_s));
+    o.count("mean_actions", |s| Some(s.actions));
+    o.rate("convergence_rate", |s| s.converged_at.is_some());
+    o.rate("initial_within_rate", |s| s.initial_at.is_some());
+    o.count("mean_actions_converged", |s| s.converged_at);
+    o.count("mean_actions_goal_discovered", |s| s.goal_at);
+    o.time("mean_time_goal_discovered_s", |s| s.goal_time_s);
+    o.count("mean_actions_initial_within", |s| s.initial_at);
+    o.time("mean_time_initial_within_s", |s| s.initial_time_s);
+    o.finish()
 }
 
 /// How a published stochastic metric is judged (`None`: not a metric of this table).

@@ -4,11 +4,9 @@
 
 mod common;
 
-use common::smt::parse_back;
+use common::smt::{assert_files_parse_back, assert_refuted};
 use truecost::claims::smt::c2::{self, lassos, Plant};
-use truecost::claims::smt::{
-    run, solve, write_files, Answer, Obligation, Replay, Role, SmtVerdict, Status, TIMEOUT_MS,
-};
+use truecost::claims::smt::{run, solve, Answer, Obligation, Replay, Role, SmtVerdict, TIMEOUT_MS};
 use truecost::claims::tiny::Tiny;
 use truecost::claims::Scope;
 
@@ -123,27 +121,7 @@ fn trust_checks_answer_as_required_and_replay() {
 #[test]
 fn planted_wrong_reward_breaks_the_proof() {
     for plant in [Plant::RewardNotNegated, Plant::MaxOfStages] {
-        let enc = c2::encoding_with(Scope::Smoke, plant);
-        let replay = enc.replay;
-        let out = run(enc, TIMEOUT_MS);
-        assert_eq!(
-            out.verdict,
-            SmtVerdict::Refuted,
-            "{plant:?}: {:?}",
-            out.notes
-        );
-        let failing: Vec<_> = out
-            .solved
-            .iter()
-            .filter(|s| s.obligation.role == Role::Proof && s.answer.status() == Some(Status::Sat))
-            .collect();
-        assert!(!failing.is_empty());
-        for s in failing {
-            let Answer::Sat(Some(m)) = &s.answer else {
-                panic!("no model")
-            };
-            assert!(matches!(replay(&s.obligation, m), Replay::Confirmed(..)));
-        }
+        assert_refuted(c2::encoding_with(Scope::Smoke, plant));
     }
 }
 
@@ -152,19 +130,5 @@ fn files_parse_back_to_the_same_answers() {
     let enc = c2::encoding(Scope::Smoke);
     let obligations: Vec<Obligation> = enc.obligations.into_iter().step_by(3).collect();
     let solved = truecost::claims::smt::discharge(obligations, TIMEOUT_MS);
-    let dir = tempfile::tempdir().expect("a temporary directory");
-    write_files(dir.path(), &solved).expect("files written");
-    let index = std::fs::read_to_string(dir.path().join("index.tsv")).expect("an index");
-    assert_eq!(index.lines().count(), solved.len() + 1);
-    for (line, s) in index.lines().skip(1).zip(&solved) {
-        let file = line.split('\t').next().expect("a file name");
-        let text = std::fs::read_to_string(dir.path().join(file)).expect("a file");
-        assert!(["QF_LRA", "QF_LIRA", "QF_NRA"]
-            .iter()
-            .any(|l| text.contains(&format!("(set-logic {l})"))));
-        let (o, status) = parse_back(&text, &s.obligation);
-        assert_eq!(o.asserts, s.obligation.asserts);
-        assert_eq!(status.as_deref(), Some(s.answer.name()));
-        assert_eq!(solve(&o, TIMEOUT_MS).status(), s.answer.status());
-    }
+    assert_files_parse_back(&solved, &["QF_LRA", "QF_LIRA", "QF_NRA"]);
 }

@@ -4,13 +4,12 @@
 
 mod common;
 
-use common::smt::parse_back;
+use common::smt::{assert_files_parse_back, assert_refuted};
 use truecost::claims::exact::Q;
 use truecost::claims::smt::c2::lassos;
 use truecost::claims::smt::c3::{self, THRESHOLD};
 use truecost::claims::smt::{
-    discharge, run, solve, write_files, Answer, Encoding, Replay, Role, SmtVerdict, Status,
-    TIMEOUT_MS,
+    discharge, run, solve, Answer, Encoding, Replay, Role, SmtVerdict, Status, TIMEOUT_MS,
 };
 use truecost::claims::tiny::Tiny;
 use truecost::claims::Scope;
@@ -132,24 +131,6 @@ fn certificate_trust_checks() {
     assert_trust(c3::encoding(Scope::Smoke));
 }
 
-fn assert_refuted(enc: Encoding) {
-    let replay = enc.replay;
-    let out = run(enc, TIMEOUT_MS);
-    assert_eq!(out.verdict, SmtVerdict::Refuted, "{:?}", out.notes);
-    let failing: Vec<_> = out
-        .solved
-        .iter()
-        .filter(|s| s.obligation.role == Role::Proof && s.answer.status() == Some(Status::Sat))
-        .collect();
-    assert!(!failing.is_empty());
-    for s in failing {
-        let Answer::Sat(Some(m)) = &s.answer else {
-            panic!("no rational model")
-        };
-        assert!(matches!(replay(&s.obligation, m), Replay::Confirmed(..)));
-    }
-}
-
 #[test]
 fn planted_wrong_threshold_breaks_the_example_proof() {
     // 10α − 9: its root 9/10 lies below α* ≈ 0.916.
@@ -175,17 +156,5 @@ fn files_parse_back_to_the_same_answers() {
             .step_by(3),
     );
     let solved = discharge(obligations, TIMEOUT_MS);
-    let dir = tempfile::tempdir().expect("a temporary directory");
-    write_files(dir.path(), &solved).expect("files written");
-    let index = std::fs::read_to_string(dir.path().join("index.tsv")).expect("an index");
-    assert_eq!(index.lines().count(), solved.len() + 1);
-    for (line, s) in index.lines().skip(1).zip(&solved) {
-        let file = line.split('\t').next().expect("a file name");
-        let text = std::fs::read_to_string(dir.path().join(file)).expect("a file");
-        assert!(text.contains("(set-logic QF_NRA)"));
-        let (o, status) = parse_back(&text, &s.obligation);
-        assert_eq!(o.asserts, s.obligation.asserts);
-        assert_eq!(status.as_deref(), Some(s.answer.name()));
-        assert_eq!(solve(&o, TIMEOUT_MS).status(), s.answer.status());
-    }
+    assert_files_parse_back(&solved, &["QF_NRA"]);
 }

@@ -147,3 +147,33 @@ fn smt_out_files_parse_back_and_re_solve_to_their_status() {
     let e = smt::prepare_out_dir(&out_dir).unwrap_err();
     assert!(e.contains("not empty"), "{e}");
 }
+
+#[test]
+fn an_unknown_answer_is_inconclusive_never_proved() {
+    use truecost::claims::smt::{Encoding, Logic, Obligation, Replay, Sort};
+    // A proof obligation Z3 cannot read (an undeclared symbol): `solve` answers unknown.
+    let mut bad = Obligation::new("demo", "unreadable", "none", Role::Proof, Logic::QfLra);
+    let x = bad.declare("x", Sort::Real);
+    bad.assert(format!("(< {x} undeclared)"));
+    assert!(matches!(solve(&bad, 10_000), Answer::Unknown(_)));
+    // Its satisfiable twin, so that every trust check passes and only the unknown decides.
+    let mut hyp = Obligation::new("demo", "unreadable", "none", Role::Hypotheses, Logic::QfLra);
+    let y = hyp.declare("y", Sort::Real);
+    hyp.assert(format!("(> {y} 0.0)"));
+    let out = smt::run(
+        Encoding {
+            claim: "demo",
+            scope: "one obligation".into(),
+            obligations: vec![hyp, bad],
+            replay: |_, _| Replay::NotApplicable,
+        },
+        smt::TIMEOUT_MS,
+    );
+    assert_eq!(out.verdict, SmtVerdict::Inconclusive);
+    assert_eq!(out.summary.unknown, 1);
+    assert!(
+        out.notes.iter().any(|n| n.contains("unknown")),
+        "{:?}",
+        out.notes
+    );
+}

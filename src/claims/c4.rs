@@ -23,10 +23,15 @@
 
 use std::fmt;
 
+use num_bigint::BigInt;
+use num_traits::ToPrimitive;
+
 use super::exact::Q;
 use super::oracle::{karp_minimum_mean_cycle, simple_cycles};
 use super::tiny::{minimality_key, FamilySpec, Tiny};
 use super::{enumerate, keep_min, min_of, ClaimResult, Counterexample, EngineRun, Scope, Verdict};
+use crate::model::Problem;
+use crate::value::{to_common_scale, Rational};
 
 /// The statement of C4 as printed.
 pub const STATEMENT: &str = "C4 (as printed): with bonus M < 0 paid at the reset to x1 (one stage), pi* (the optimal \
@@ -170,6 +175,46 @@ pub struct Instance {
 }
 
 impl Instance {
+    /// A problem with exact rational costs as an instance with integer costs: every cost times
+    /// `D`, the least common multiple of the denominators (averages and bonuses scale by `D`;
+    /// the caller divides the thresholds back). Returns the instance and `D`.
+    ///
+    /// ```
+    /// use truecost::claims::c4::Instance;
+    /// use truecost::model::{Move, Problem};
+    /// let half = truecost::value::Rational::new(1.into(), 2.into());
+    /// let p = Problem::new(vec![vec![Move { successor: 1, cost: half }], vec![]], 0, vec![1]).unwrap();
+    /// let (inst, d) = Instance::from_problem(&p).unwrap();
+    /// assert_eq!((inst.moves[0].clone(), d), (vec![(1, 1)], 2.into()));
+    /// ```
+    pub fn from_problem(problem: &Problem) -> Result<(Instance, BigInt), String> {
+        let costs: Vec<Rational> = (0..problem.states())
+            .flat_map(|x| problem.moves(x).iter().map(|m| m.cost.clone()))
+            .collect();
+        let (d, scaled) = to_common_scale(&costs);
+        let mut scaled = scaled.into_iter();
+        let mut moves = Vec::new();
+        for x in 0..problem.states() {
+            let mut list = Vec::new();
+            for m in problem.moves(x) {
+                let c = scaled.next().expect("one scaled cost per move");
+                let c = c.to_i64().filter(|c| *c < 1 << 40).ok_or(
+                    "costs too large for the exact bonus analysis (scaled costs must stay below 2^40)",
+                )?;
+                list.push((m.successor, c));
+            }
+            moves.push(list);
+        }
+        Ok((
+            Instance {
+                initial: problem.initial(),
+                is_goal: (0..problem.states()).map(|x| problem.is_goal(x)).collect(),
+                moves,
+            },
+            d,
+        ))
+    }
+
     /// From a tiny problem.
     pub fn from_tiny(t: &Tiny) -> Instance {
         Instance {

@@ -6,7 +6,6 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use num_bigint::BigInt;
-use num_traits::ToPrimitive;
 use serde_json::json;
 
 use truecost::claims::c4::{bonus_analysis, End, Instance, Interval};
@@ -122,35 +121,6 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
     })
 }
 
-/// The problem with integer costs: every cost times `D` (the lcm of the denominators).
-fn integer_instance(problem: &Problem) -> Result<(Instance, BigInt), String> {
-    let costs: Vec<truecost::value::Rational> = (0..problem.states())
-        .flat_map(|x| problem.moves(x).iter().map(|m| m.cost.clone()))
-        .collect();
-    let (d, scaled) = truecost::value::to_common_scale(&costs);
-    let mut scaled = scaled.into_iter();
-    let mut moves = Vec::new();
-    for x in 0..problem.states() {
-        let mut list = Vec::new();
-        for m in problem.moves(x) {
-            let c = scaled.next().expect("one scaled cost per move");
-            let c = c.to_i64().filter(|c| *c < 1 << 40).ok_or(
-                "costs too large for the exact bonus analysis (scaled costs must stay below 2^40)",
-            )?;
-            list.push((m.successor, c));
-        }
-        moves.push(list);
-    }
-    Ok((
-        Instance {
-            initial: problem.initial(),
-            is_goal: (0..problem.states()).map(|x| problem.is_goal(x)).collect(),
-            moves,
-        },
-        d,
-    ))
-}
-
 fn unscale(q: Q, d: &BigInt) -> String {
     let r = q.to_rational() / truecost::value::Rational::from_integer(d.clone());
     truecost::claims::discount::rat(&r)
@@ -174,7 +144,7 @@ fn interval_text(i: &Interval, d: &BigInt) -> String {
 }
 
 fn bonus(problem: &Problem, format: VerifyFormat) -> Result<String, String> {
-    let (inst, d) = integer_instance(problem)?;
+    let (inst, d) = Instance::from_problem(problem)?;
     let sets = bonus_analysis(&inst, 1 << 22)
         .map_err(|e| e.to_string())?
         .ok_or("no goal is reachable from x1: there is no single-shot path and no bonus set")?;

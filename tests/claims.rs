@@ -286,3 +286,23 @@ fn discount_set_agrees_with_exact_solves_on_every_3_state_problem() {
         "{nontrivial} problems with a proper breakpoint"
     );
 }
+
+#[test]
+fn bonus_analysis_scales_costs_exactly_and_refuses_2_to_the_40() {
+    use truecost::claims::c4::Instance;
+    use truecost::model::{Move, Problem};
+    use truecost::value::Rational;
+    let problem = |cost: Rational| {
+        Problem::new(vec![vec![Move { successor: 1, cost }], vec![]], 0, vec![1]).unwrap()
+    };
+    let big = num_bigint::BigInt::from(1u64 << 40);
+    // Just below the bound: 2^40 - 1 passes, on scale 1.
+    let (inst, d) = Instance::from_problem(&problem(Rational::from_integer(&big - 1))).unwrap();
+    assert_eq!(inst.moves[0], vec![(1, (1i64 << 40) - 1)]);
+    assert_eq!(d, 1.into());
+    // At the bound: refused, naming it.
+    let e = Instance::from_problem(&problem(Rational::from_integer(big.clone()))).unwrap_err();
+    assert!(e.contains("2^40"), "{e}");
+    let (inst, d) = Instance::from_problem(&problem(Rational::new(7.into(), 3.into()))).unwrap();
+    assert_eq!((inst.moves[0].clone(), d), (vec![(1, 7)], 3.into()));
+}

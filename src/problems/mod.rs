@@ -275,28 +275,8 @@ impl GridLayout {
                 })
                 .expect("grid is non-empty")
         };
-        let initial = nearest(scenario.start);
-        let goal = nearest(scenario.goal);
-        let neighbours = (0..GRID_NODES)
-            .map(|i| {
-                ORDER
-                    .iter()
-                    .filter_map(|&d| neighbour(i, d))
-                    .filter(|&j| safe(i, j))
-                    .collect()
-            })
-            .collect();
-        let mut layout = GridLayout {
-            id,
-            scenario,
-            neighbours,
-            initial,
-            goal,
-        };
-        if PRUNED.contains(&id) {
-            layout.prune_behind_goal();
-        }
-        Ok(layout)
+        let (initial, goal) = (nearest(scenario.start), nearest(scenario.goal));
+        Ok(Self::assemble(id, scenario, &ORDER, safe, initial, goal))
     }
 
     /// The reference code's layout (SPEC §7): `f64` coordinates by repeated addition, `f64`
@@ -322,13 +302,32 @@ impl GridLayout {
             }
             best.1
         };
-        let initial = nearest(scenario.start);
-        let goal = nearest(scenario.goal);
+        let (initial, goal) = (nearest(scenario.start), nearest(scenario.goal));
         let order = if PRUNED.contains(&id) {
             ORDER_PRUNED_REFERENCE
         } else {
             ORDER
         };
+        Ok(Self::assemble(
+            id,
+            scenario.clone(),
+            &order,
+            safe,
+            initial,
+            goal,
+        ))
+    }
+
+    /// The layout from a geometry: every node's neighbours in `order` joined by a safe
+    /// segment, then the pocket behind the goal pruned for the problems of SPEC §5 that do so.
+    fn assemble(
+        id: usize,
+        scenario: Scenario,
+        order: &[Direction],
+        safe: impl Fn(usize, usize) -> bool,
+        initial: usize,
+        goal: usize,
+    ) -> Self {
         let neighbours = (0..GRID_NODES)
             .map(|i| {
                 order
@@ -348,7 +347,7 @@ impl GridLayout {
         if PRUNED.contains(&id) {
             layout.prune_behind_goal();
         }
-        Ok(layout)
+        layout
     }
 
     /// Removes the nodes of x1's component that can only be reached through the goal (the

@@ -1,5 +1,5 @@
 //! Claim C1: derandomized Q-learning (`ρ = 1`), over truecost's own update
-//! (`truecost::claims::qlearning::QProblem::update`).
+//! (`truecost_kernel::claims::qlearning::QProblem::update`).
 //!
 //! C1-corrected is proved by induction over rounds (the shared argument of `claims::c1` and the
 //! SMT engine): the two inductive steps below each take *any* values satisfying the invariant
@@ -9,7 +9,7 @@
 //! moves whose termination pair is held at 0 (H0), every state reaching the goal (H1, assumed),
 //! `u16` costs, `i32` values (computed in `i64`: no overflow is possible, and Kani checks it).
 
-use truecost::claims::qlearning::Terminal;
+use truecost_kernel::claims::qlearning::Terminal;
 
 use crate::symbolic::{
     any_round, any_structure, cost_to_go, learner, optimal_steps, optimum, values, MOVES, N,

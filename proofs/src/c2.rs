@@ -1,7 +1,7 @@
 //! Claim C2: cost–reward equivalence, over truecost's own policy-enumeration oracle
 //! (`claims::oracle`, `claims::c2::check_problem`).
 
-use truecost::claims::c2::{check_problem, functionals};
+use truecost_kernel::claims::c2::{check_problem, functionals};
 
 use crate::symbolic::any_tiny;
 

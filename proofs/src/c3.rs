@@ -1,10 +1,10 @@
 //! Claim C3: the dangers of discounting — truecost's certificate (`claims::c3::certificate`)
 //! checked by its own discounted-policy oracle on symbolic structures.
 
-use truecost::claims::c3::{
+use truecost_kernel::claims::c3::{
     certificate, goal_avoiding_core, goal_reachable, optimal_policy_avoids_goal,
 };
-use truecost::claims::exact::Q;
+use truecost_kernel::claims::exact::Q;
 
 use crate::symbolic::any_tiny;
 

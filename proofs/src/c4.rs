@@ -1,8 +1,8 @@
 //! Claim C4: episodic equivalence (average cost with a reset bonus `M < 0`), over truecost's
 //! own policy-enumeration oracle (`claims::c4::bonus_sets`: exact averages of every policy).
 
-use truecost::claims::c4::{bonus_sets, Instance};
-use truecost::claims::exact::Q;
+use truecost_kernel::claims::c4::{bonus_sets, Instance};
+use truecost_kernel::claims::exact::Q;
 
 use crate::symbolic::any_tiny;
 

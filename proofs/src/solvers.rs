@@ -9,7 +9,7 @@ use truecost_kernel::value::{CostValue, Units};
 use crate::Three;
 
 /// States of the symbolic planning problems (goal last, without moves).
-const STATES: usize = 4;
+pub const STATES: usize = 4;
 
 /// Any 4-state problem with `u32` stage costs: states 0..=2 have one move and optionally a
 /// second (successor `u8 % 4`, cost any `u32`), the goal 3 has none. Domain `2^3 · 2^(6·8) ·

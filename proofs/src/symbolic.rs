@@ -14,6 +14,8 @@ pub const D: usize = 2;
 pub const MOVES: usize = N * D;
 /// The goal's termination pair `(g, uT)` comes after the moves.
 pub const TERMINAL: usize = MOVES;
+/// States of the tiny problems of the C2, C3 and C4 harnesses ([`any_tiny`]; goal last).
+pub const TINY_STATES: usize = 4;
 /// Longest freely chosen part of a round (see [`any_round`]).
 pub const ROUND: usize = 2 * MOVES;
 

@@ -6,7 +6,12 @@
 //!
 //! Architecture (each layer imports only the ones before it):
 //! [`value`] → [`model`] → [`problems`] → [`solvers`] → [`learning`] → [`planning`] → [`experiments`] → `cli`
-//! (the binary).
+//! (the binary). Beneath them all, the `kernel/` crate `truecost_kernel` (no dependencies): the
+//! value types' arithmetic core ([`value::CostValue`], [`value::Units`]), the planning graph,
+//! the planners ([`solvers`]) and the claims' bignum-free oracles (`claims::{exact, tiny,
+//! oracle, qlearning}`, the C2/C3/C4 checks) — exactly what the Kani harnesses in `proofs/`
+//! verify (issue 10, item 3). This crate re-exports every kernel item under its old path and
+//! adds what needs big rationals ([`value::ExactValue`], the unit of [`model::Graph`]).
 #![warn(missing_docs)]
 
 pub mod claims;

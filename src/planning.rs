@@ -8,11 +8,11 @@
 
 use serde::Serialize;
 
-use crate::model::{Decision, ExactGraph, Graph, Problem};
+use crate::model::{Decision, ExactGraph, Graph, Problem, RenderValue};
 use crate::solvers::exploration::explore;
 use crate::solvers::value_iteration::{value_iteration, Schedule};
 use crate::solvers::{dijkstra, follow_policy};
-use crate::value::CostValue;
+use crate::value::{CostValue, ExactValue};
 
 /// Which model produced the numbers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum, Serialize)]
@@ -121,7 +121,7 @@ pub fn plan_reference(graph: &Graph<f64>, algorithm: Algorithm, model_free: bool
     )
 }
 
-fn plan_on<V: CostValue>(
+fn plan_on<V: ExactValue>(
     graph: &Graph<V>,
     algorithm: Algorithm,
     model_free: bool,

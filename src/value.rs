@@ -2,7 +2,9 @@
 //! run on.
 //!
 //! A cost-to-go `G(x)` is a non-negative rational or `+∞` (no goal reachable). The solvers are
-//! generic over [`CostValue`]; three implementations exist:
+//! generic over [`CostValue`] (the arithmetic core, with [`Units`], in the bignum-free kernel
+//! `truecost_kernel::value`; re-exported here); [`ExactValue`] adds the exact meaning of a
+//! value. Three implementations exist:
 //!
 //! * [`Units`] — a `u64` count of a problem-wide cost unit `1/D`. Every deterministic cost-to-go
 //!   is a sum of stage costs, so when all stage costs are multiples of `1/D` every value is too.
@@ -23,23 +25,19 @@ use num_traits::{One, Signed, ToPrimitive, Zero};
 /// An exact rational (arbitrary precision).
 pub type Rational = BigRational;
 
-/// The value type a planner computes with (SPEC §2: "generic over the value type").
+pub use truecost_kernel::value::{CostValue, Units};
+
+/// The exact meaning of a planner's value (SPEC §1): the big-rational side of [`CostValue`],
+/// kept out of the bignum-free kernel that the Kani harnesses verify (issue 10, item 3).
 ///
-/// `plus` is the extended addition of the cost model (`+∞` absorbs); implementations must be
-/// exact or, for `f64`, say that they are not.
-pub trait CostValue: Clone + PartialEq + PartialOrd + fmt::Debug + Send + Sync + 'static {
-    /// Whether values of this type are exact (false only for `f64`).
-    const EXACT: bool;
-    /// The additive identity (the value of a goal).
-    fn zero() -> Self;
-    /// `+∞`: no goal is reachable.
-    fn infinity() -> Self;
-    /// Whether the value is finite.
-    fn is_finite(&self) -> bool;
-    /// Extended addition: `a + ∞ = ∞`, otherwise the exact (or, for `f64`, rounded) sum.
-    fn plus(&self, other: &Self) -> Self;
-    /// The total order used by planners (`f64` values here are never NaN).
-    fn compare(&self, other: &Self) -> Ordering;
+/// ```
+/// use truecost::value::{ExactValue, Extended, Units};
+/// let unit = truecost::value::parse_rational("1/19").unwrap();
+/// assert_eq!(Units(50400).render(&unit), "50400/19");
+/// assert_eq!(Units(19).to_extended(&unit), Some(Extended::from_integer(1)));
+/// assert_eq!(1.5f64.to_extended(&unit), None);
+/// ```
+pub trait ExactValue: CostValue {
     /// The exact value, given the value of one unit of this type in the graph it came from
     /// (`1/D` for [`Units`], 1 otherwise); `None` for the inexact `f64`.
     fn to_extended(&self, unit: &Rational) -> Option<Extended>;
@@ -48,47 +46,7 @@ pub trait CostValue: Clone + PartialEq + PartialOrd + fmt::Debug + Send + Sync +
     fn render(&self, unit: &Rational) -> String;
 }
 
-/// A count of the problem's cost unit `1/D`; `u64::MAX` stands for `+∞`.
-///
-/// ```
-/// use truecost::value::{CostValue, Units};
-/// assert_eq!(Units(2).plus(&Units(3)), Units(5));
-/// assert!(!Units(2).plus(&Units::infinity()).is_finite());
-/// ```
-#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug)]
-pub struct Units(pub u64);
-
-impl CostValue for Units {
-    const EXACT: bool = true;
-    #[inline]
-    fn zero() -> Self {
-        Units(0)
-    }
-    #[inline]
-    fn infinity() -> Self {
-        Units(u64::MAX)
-    }
-    #[inline]
-    fn is_finite(&self) -> bool {
-        self.0 != u64::MAX
-    }
-    #[inline]
-    fn plus(&self, other: &Self) -> Self {
-        if self.0 == u64::MAX || other.0 == u64::MAX {
-            return Units(u64::MAX);
-        }
-        // The graph constructor proves `states × max cost < u64::MAX`; planners never add more
-        // than `states` stage costs, so this cannot fail. If it ever did, failing loudly is the
-        // only acceptable outcome: a wrapped or saturated sum would be a silently wrong number.
-        match self.0.checked_add(other.0) {
-            Some(s) if s != u64::MAX => Units(s),
-            _ => panic!("exact cost overflow: the Units bound was violated (a truecost bug)"),
-        }
-    }
-    #[inline]
-    fn compare(&self, other: &Self) -> Ordering {
-        self.0.cmp(&other.0)
-    }
+impl ExactValue for Units {
     fn to_extended(&self, unit: &Rational) -> Option<Extended> {
         Some(if self.is_finite() {
             Extended::Finite(Rational::from_integer(BigInt::from(self.0)) * unit)
@@ -179,6 +137,9 @@ impl CostValue for Extended {
     fn compare(&self, other: &Self) -> Ordering {
         self.cmp(other)
     }
+}
+
+impl ExactValue for Extended {
     fn to_extended(&self, unit: &Rational) -> Option<Extended> {
         Some(match self {
             Extended::Finite(r) => Extended::Finite(r * unit),
@@ -193,28 +154,7 @@ impl CostValue for Extended {
 }
 
 /// `f64` is the value type of the reference mode only (SPEC §7). It is not exact.
-impl CostValue for f64 {
-    const EXACT: bool = false;
-    #[inline]
-    fn zero() -> Self {
-        0.0
-    }
-    #[inline]
-    fn infinity() -> Self {
-        f64::INFINITY
-    }
-    #[inline]
-    fn is_finite(&self) -> bool {
-        f64::is_finite(*self)
-    }
-    #[inline]
-    fn plus(&self, other: &Self) -> Self {
-        self + other
-    }
-    #[inline]
-    fn compare(&self, other: &Self) -> Ordering {
-        self.total_cmp(other)
-    }
+impl ExactValue for f64 {
     fn to_extended(&self, _unit: &Rational) -> Option<Extended> {
         None
     }

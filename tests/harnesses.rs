@@ -181,3 +181,80 @@ fn every_claim_has_a_wide_harness_and_the_report_says_sampled() {
         ex[0].mode
     );
 }
+
+/// `(major, minor)` of a `rust-version` such as `"1.88"` or `"1.60.0"` (`None`: not declared).
+fn version(v: &serde_json::Value) -> Option<(u32, u32)> {
+    let mut parts = v
+        .as_str()?
+        .split('.')
+        .map(|p| p.parse::<u32>().expect("a number"));
+    Some((parts.next()?, parts.next().unwrap_or(0)))
+}
+
+/// Issue 10, item 3: every workspace crate's `rust-version` is at least what each crate it
+/// depends on (normal and build dependencies, transitively, every target and feature) declares,
+/// so a toolchain that the manifest accepts can build it (the previous 1.80 could not: z3 and
+/// proptest need 1.88). The other side — no std API newer than `rust-version` is used — is
+/// clippy's `incompatible_msrv` lint, which `cargo clippy -- -D warnings` enforces.
+#[test]
+fn rust_version_covers_every_dependency() {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
+    let out = std::process::Command::new(cargo)
+        .args(["metadata", "--offline", "--format-version", "1"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("cargo runs");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let m: serde_json::Value = serde_json::from_slice(&out.stdout).expect("metadata JSON");
+    let packages: BTreeMap<&str, &serde_json::Value> = m["packages"]
+        .as_array()
+        .expect("packages")
+        .iter()
+        .map(|p| (p["id"].as_str().expect("id"), p))
+        .collect();
+    let nodes: BTreeMap<&str, &serde_json::Value> = m["resolve"]["nodes"]
+        .as_array()
+        .expect("nodes")
+        .iter()
+        .map(|n| (n["id"].as_str().expect("id"), n))
+        .collect();
+    let mut members = 0;
+    for id in m["workspace_members"].as_array().expect("members") {
+        let id = id.as_str().expect("id");
+        let name = packages[id]["name"].as_str().expect("name");
+        let own = version(&packages[id]["rust_version"])
+            .unwrap_or_else(|| panic!("{name} declares no rust-version"));
+        let (mut seen, mut stack) = (std::collections::BTreeSet::new(), vec![id]);
+        while let Some(x) = stack.pop() {
+            for d in nodes[x]["deps"].as_array().expect("deps") {
+                let runtime = d["dep_kinds"]
+                    .as_array()
+                    .expect("kinds")
+                    .iter()
+                    .any(|k| k["kind"].is_null() || k["kind"] == "build");
+                let dep = d["pkg"].as_str().expect("pkg");
+                if runtime && seen.insert(dep) {
+                    stack.push(dep);
+                }
+            }
+        }
+        for dep in seen {
+            if let Some(needed) = version(&packages[dep]["rust_version"]) {
+                assert!(
+                    own >= needed,
+                    "{name} says rust-version {own:?} but {} needs {needed:?}",
+                    packages[dep]["name"]
+                );
+            }
+        }
+        members += 1;
+    }
+    assert_eq!(
+        members, 5,
+        "truecost, kernel, proofs, the stand-in and its macros"
+    );
+}

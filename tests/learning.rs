@@ -290,7 +290,7 @@ fn check_on<V>(
     seed: u64,
 ) -> Result<(), TestCaseError>
 where
-    V: truecost::learning::q_learning::LearningValue,
+    V: truecost::learning::q_learning::LearningValue + truecost::value::ExactValue,
 {
     let n = p.states();
     // G* in the graph's value type, from the exact planner, checked against the oracle.

@@ -11,20 +11,20 @@ use common::*;
 use num_traits::Zero;
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
-use truecost::model::{Decision, ExactGraph, Graph, Problem};
+use truecost::model::{Decision, ExactGraph, Graph, Problem, RenderValue};
 use truecost::solvers::dijkstra;
 use truecost::solvers::exploration::explore;
 use truecost::solvers::policy_evaluation::evaluate_policy;
 use truecost::solvers::value_iteration::{value_iteration, Schedule};
 use truecost::solvers::{follow_policy, Solution};
-use truecost::value::{CostValue, Extended};
+use truecost::value::{ExactValue, Extended};
 
 type TestResult = Result<(), TestCaseError>;
 
 /// Checks a policy returned by a planner against the oracle's `G*`:
 /// goals terminate, `+∞` states have no decision, and following the policy from every state
 /// with finite `G*` reaches a goal along moves whose stage costs sum to exactly `G*(x)`.
-fn check_policy<V: CostValue>(
+fn check_policy<V: ExactValue>(
     p: &Problem,
     g: &Graph<V>,
     policy: &[Option<Decision>],
@@ -96,7 +96,7 @@ fn check_policy<V: CostValue>(
 }
 
 /// All planners on one graph (node `v` = state `v` of `p`) against the oracles.
-fn check_planners<V: CostValue>(p: &Problem, g: &Graph<V>) -> TestResult {
+fn check_planners<V: ExactValue>(p: &Problem, g: &Graph<V>) -> TestResult {
     let n = p.states();
     let oracle = bellman_ford(p);
     if n <= 7 {
@@ -183,7 +183,7 @@ fn check_planners<V: CostValue>(p: &Problem, g: &Graph<V>) -> TestResult {
 
 /// Model-free exploration: it discovers exactly the reachable part, every move out of it, and
 /// the planners on the discovered graph agree with the full graph.
-fn check_exploration<V: CostValue>(p: &Problem, g: &Graph<V>) -> TestResult {
+fn check_exploration<V: ExactValue>(p: &Problem, g: &Graph<V>) -> TestResult {
     let n = p.states();
     let reach = reachable(p);
     let e = explore(g);
@@ -295,7 +295,7 @@ fn check_exploration<V: CostValue>(p: &Problem, g: &Graph<V>) -> TestResult {
 }
 
 /// Runs a solver on a graph and returns its exact values.
-fn exact_solution<V: CostValue>(g: &Graph<V>, s: &Solution<V>) -> Vec<Ext> {
+fn exact_solution<V: ExactValue>(g: &Graph<V>, s: &Solution<V>) -> Vec<Ext> {
     exact_all(g, &s.cost_to_go)
 }
 
@@ -319,7 +319,7 @@ fn big_graph(p: &Problem) -> Graph<Extended> {
 }
 
 /// All three planners' exact values on a graph.
-fn all_planners<V: CostValue>(g: &Graph<V>) -> [Vec<Ext>; 3] {
+fn all_planners<V: ExactValue>(g: &Graph<V>) -> [Vec<Ext>; 3] {
     [
         exact_solution(g, &dijkstra::to_goals(g)),
         exact_solution(g, &value_iteration(g, Schedule::Synchronous, None)),

@@ -23,7 +23,7 @@ use truecost::stochastic::{
     NoiseModel, Outcome, OutcomeKind, Predictability, StochasticAction, StochasticError,
     StochasticProblem,
 };
-use truecost::value::{parse_rational, CostValue, Extended, Rational};
+use truecost::value::{parse_rational, ExactValue, Extended, Rational};
 
 fn q(text: &str) -> Rational {
     parse_rational(text).unwrap()

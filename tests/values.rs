@@ -8,10 +8,12 @@ use std::cmp::Ordering;
 use common::*;
 use num_bigint::BigInt;
 use num_traits::One;
-use truecost::model::{ExactGraph, Problem};
+use truecost::model::{ExactGraph, Problem, RenderValue};
 use truecost::solvers::dijkstra;
 use truecost::solvers::value_iteration::{value_iteration, Schedule};
-use truecost::value::{in_unit_interval_open_closed, parse_rational, CostValue, Extended, Units};
+use truecost::value::{
+    in_unit_interval_open_closed, parse_rational, CostValue, ExactValue, Extended, Units,
+};
 
 fn p(text: &str) -> Q {
     parse_rational(text).unwrap_or_else(|e| panic!("{text:?} should parse: {e}"))
@@ -210,9 +212,9 @@ fn units_to_extended_and_render() {
 fn f64_value_type_is_inexact() {
     const { assert!(!<f64 as CostValue>::EXACT) };
     assert_eq!(1.5f64.to_extended(&int(1)), None);
-    assert_eq!(CostValue::render(&1.5f64, &int(1)), "1.5");
-    assert_eq!(CostValue::render(&42.0f64, &int(1)), "42.0");
-    assert_eq!(CostValue::render(&f64::INFINITY, &int(1)), "inf");
+    assert_eq!(ExactValue::render(&1.5f64, &int(1)), "1.5");
+    assert_eq!(ExactValue::render(&42.0f64, &int(1)), "42.0");
+    assert_eq!(ExactValue::render(&f64::INFINITY, &int(1)), "inf");
     assert_eq!(CostValue::plus(&1.0f64, &f64::INFINITY), f64::INFINITY);
     assert!(!CostValue::is_finite(&<f64 as CostValue>::infinity()));
 }

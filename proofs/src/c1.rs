@@ -1,5 +1,5 @@
 //! Claim C1: derandomized Q-learning (`ρ = 1`), over truecost's own update
-//! (`truecost::claims::qlearning::QProblem::update`).
+//! (`truecost_kernel::claims::qlearning::QProblem::update`).
 //!
 //! C1-corrected is proved by induction over rounds (the shared argument of `claims::c1` and the
 //! SMT engine): the two inductive steps below each take *any* values satisfying the invariant
@@ -9,7 +9,7 @@
 //! moves whose termination pair is held at 0 (H0), every state reaching the goal (H1, assumed),
 //! `u16` costs, `i32` values (computed in `i64`: no overflow is possible, and Kani checks it).
 
-use truecost::claims::qlearning::Terminal;
+use truecost_kernel::claims::qlearning::Terminal;
 
 use crate::symbolic::{
     any_round, any_structure, cost_to_go, learner, optimal_steps, optimum, values, MOVES, N,
@@ -115,6 +115,9 @@ pub fn c1_corrected_round_is_monotone_below_q_star() {
     }
 }
 
+/// Cyclic rounds simulated by [`c1_as_printed_round_fixed_points_are_optimal`].
+pub const PRINTED_ROUNDS: usize = 6;
+
 /// **C1 as printed** (costs `≥ 0`, any `Q₀`, the termination pair updated by the same rule as
 /// every pair), over the same wide domains, H1 assumed: it implies that a round of the cyclic
 /// order (a fair order) that changes nothing ends at `Q*` — otherwise the cyclic order repeats
@@ -133,7 +136,7 @@ pub fn c1_as_printed_round_fixed_points_are_optimal() {
     for p in 0..=TERMINAL {
         v[p] = kani::any::<i32>() as i64;
     }
-    for _round in 0..6 {
+    for _round in 0..PRINTED_ROUNDS {
         let before = v;
         for p in 0..=TERMINAL {
             q.update(&mut v, p);

@@ -1,25 +1,28 @@
 //! Claim C3: the dangers of discounting — truecost's certificate (`claims::c3::certificate`)
 //! checked by its own discounted-policy oracle on symbolic structures.
 
-use truecost::claims::c3::{
+use truecost_kernel::claims::c3::{
     certificate, goal_avoiding_core, goal_reachable, optimal_policy_avoids_goal,
 };
-use truecost::claims::exact::Q;
+use truecost_kernel::claims::exact::Q;
 
-use crate::symbolic::any_tiny;
+use crate::symbolic::{any_tiny, TINY_STATES};
 
 /// On any 4-state problem (symbolic successors, 1–2 moves per non-goal state; the certificate
 /// replaces the costs) and any discount `α = k/256`, `k ∈ 1..=255`: when C3's hypotheses hold
 /// (the goal is reachable from `x1`, and a goal-avoiding cycle is reachable: `x1` in the
 /// goal-avoiding core), truecost's certificate exists whenever its cost `K` fits a `u8`, and
 /// under it a discount-optimal policy from `x1` never reaches the goal (every policy's exact
-/// discounted value compared). Domain 2^107 (structure 2^99 × α 2^8).
+/// discounted value compared). Domain 2^107 (structure 2^99 × α 2^8). CBMC: at most 8
+/// policies, trajectories of at most 4 stages; the `Q` arithmetic (on `α` alone) runs Euclid's
+/// loop in `Q::new` on operands below `256^3 = 2^24`, at most 36 iterations by Lamé's theorem
+/// (`tests/unwind_bounds.rs`): unwind 37.
 #[kani::proof]
-#[kani::unwind(9)]
+#[kani::unwind(37)]
 #[kani::solver(kissat)]
 #[cfg_attr(not(kani), kani::samples(4000))]
 pub fn c3_certificate_makes_discounting_avoid_the_goal() {
-    let t = any_tiny(4);
+    let t = any_tiny(TINY_STATES);
     let k = kani::any::<u8>();
     kani::assume(k > 0);
     let alpha = Q::new(k as i128, 256);
@@ -42,6 +45,9 @@ pub fn c3_certificate_makes_discounting_avoid_the_goal() {
     }
 }
 
+/// The stationary policies of C3's worked example over states `0..5` (up or down at each).
+pub const EXAMPLE_POLICIES: u32 = 1 << 5;
+
 /// Small exhaustive variant (C3's worked example is one fixed problem and one parameter: a
 /// harness over it is a finite check, enumerated completely by the stand-in). The worked example
 /// at `α = k/64`, `k = 1..=63` (any `u8`, assumed in range): the discount-optimal policy from 0 (over
@@ -56,7 +62,7 @@ pub fn c3_example_sides_of_alpha_star_exhaustive_small() {
     // Best avoiding policy and best reaching policy, over all 32 policies of states 0..4
     // (the goal terminates): trajectories from 0 are simple paths up then a bounce or a loop.
     let mut best: Option<(i128, i128, bool)> = None; // (numerator, denominator, reaches)
-    for mask in 0u32..32 {
+    for mask in 0u32..EXAMPLE_POLICIES {
         // bit x: state x moves up (+1) if set, else down (-1, clamped at 0).
         let mut seen = [usize::MAX; 6];
         let mut costs = [0i128; 6];

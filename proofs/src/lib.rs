@@ -15,6 +15,12 @@
 //! truecost's own code: the derandomized Q-learning update, Dijkstra, value iteration, the
 //! exploration, the claims' oracles and certificates, the exact value types. Fixed arrays,
 //! loops bounded by constants, `#[kani::unwind]` ≥ iterations + 1.
+//!
+//! Every harness body calls only `truecost-kernel` (the bignum-free kernel that `truecost`
+//! re-exports under its old paths), the very code `truecost` runs: under `--cfg kani` this
+//! crate's dependency tree is the kernel alone (issue 10, item 3; checked by
+//! `tests/lean_kani_build.rs`). `truecost` itself is a dev-dependency for the registry
+//! cross-check only.
 
 // Harnesses index small fixed arrays in bounded loops, as Kani prefers.
 #![allow(clippy::needless_range_loop)]

@@ -1,17 +1,15 @@
-//! The solvers' core lemmas, on truecost's own planners (`truecost::solvers`).
+//! The solvers' core lemmas, on truecost's own planners (`truecost_kernel::solvers`).
 
-use num_bigint::BigInt;
-use num_rational::BigRational;
-use truecost::model::Graph;
-use truecost::solvers::dijkstra;
-use truecost::solvers::exploration::explore;
-use truecost::solvers::value_iteration::{value_iteration, Schedule};
-use truecost::value::{CostValue, Units};
+use truecost_kernel::model::Graph;
+use truecost_kernel::solvers::dijkstra;
+use truecost_kernel::solvers::exploration::explore;
+use truecost_kernel::solvers::value_iteration::{value_iteration, Schedule};
+use truecost_kernel::value::{CostValue, Units};
 
 use crate::Three;
 
 /// States of the symbolic planning problems (goal last, without moves).
-const STATES: usize = 4;
+pub const STATES: usize = 4;
 
 /// Any 4-state problem with `u32` stage costs: states 0..=2 have one move and optionally a
 /// second (successor `u8 % 4`, cost any `u32`), the goal 3 has none. Domain `2^3 · 2^(6·8) ·
@@ -29,13 +27,7 @@ fn any_problem() -> Graph<Units> {
             }
         }
     }
-    Graph::from_adjacency(
-        adjacency,
-        0,
-        &[STATES - 1],
-        (0..STATES).collect(),
-        BigRational::from_integer(BigInt::from(1)),
-    )
+    Graph::from_adjacency(adjacency, 0, &[STATES - 1], (0..STATES).collect(), ())
 }
 
 /// Bellman optimality of truecost's Dijkstra (`solvers::dijkstra::to_goals`): `G*(goal) = 0`
@@ -95,13 +87,7 @@ pub fn dijkstra_equals_value_iteration_exhaustive_small() {
             list.push((to.value(), Units(c.value() as u64)));
         }
     }
-    let g = Graph::from_adjacency(
-        adjacency,
-        0,
-        &[2],
-        vec![0, 1, 2],
-        BigRational::from_integer(BigInt::from(1)),
-    );
+    let g = Graph::from_adjacency(adjacency, 0, &[2], vec![0, 1, 2], ());
     let d = dijkstra::to_goals(&g).cost_to_go;
     kani::assert(
         value_iteration(&g, Schedule::Synchronous, None).cost_to_go == d,
@@ -137,13 +123,7 @@ pub fn exploration_discovers_the_reachable_states_exhaustive_small() {
             }
         }
     }
-    let g = Graph::from_adjacency(
-        adjacency,
-        0,
-        &[2],
-        vec![0, 1, 2],
-        BigRational::from_integer(BigInt::from(1)),
-    );
+    let g = Graph::from_adjacency(adjacency, 0, &[2], vec![0, 1, 2], ());
     let e = explore(&g);
     for x in 0..3 {
         kani::assert(

@@ -3,8 +3,8 @@
 //! Their optimal values are computed here independently (Bellman–Ford over fixed arrays), never
 //! by the code under test.
 
-use truecost::claims::qlearning::{Pair, QProblem, Terminal, Values, MAX_PAIRS};
-use truecost::claims::tiny::MAX_STATES;
+use truecost_kernel::claims::qlearning::{Pair, QProblem, Terminal, Values, MAX_PAIRS};
+use truecost_kernel::claims::tiny::MAX_STATES;
 
 /// Non-goal states `0..N`; the goal is state `N`.
 pub const N: usize = 3;
@@ -14,6 +14,8 @@ pub const D: usize = 2;
 pub const MOVES: usize = N * D;
 /// The goal's termination pair `(g, uT)` comes after the moves.
 pub const TERMINAL: usize = MOVES;
+/// States of the tiny problems of the C2, C3 and C4 harnesses ([`any_tiny`]; goal last).
+pub const TINY_STATES: usize = 4;
 /// Longest freely chosen part of a round (see [`any_round`]).
 pub const ROUND: usize = 2 * MOVES;
 
@@ -150,8 +152,8 @@ pub fn values() -> Values {
 /// (goal last, `x1 = 0`): every non-goal state has 1 or 2 moves (a `bool`), successors
 /// `u8 % states`, costs any `u8` (the oracles' cost type); the goal has no moves. Domain for 4
 /// states: `2^3 · 2^(6·8) · 2^(6·8) = 2^99` choices.
-pub fn any_tiny(states: usize) -> truecost::claims::tiny::Tiny {
-    use truecost::claims::tiny::{Tiny, TinyMove};
+pub fn any_tiny(states: usize) -> truecost_kernel::claims::tiny::Tiny {
+    use truecost_kernel::claims::tiny::{Tiny, TinyMove};
     let mut t = Tiny::empty(states);
     for x in 0..states - 1 {
         let deg = if kani::any::<bool>() { 2 } else { 1 };

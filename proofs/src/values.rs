@@ -2,8 +2,8 @@
 //! and `claims::exact::Q` (the oracles' `i128` rationals). Never a silent wrap: every sum that
 //! fits is exact, every overflow is reported (a panic, never a wrong number).
 
-use truecost::claims::exact::Q;
-use truecost::value::{CostValue, Units};
+use truecost_kernel::claims::exact::Q;
+use truecost_kernel::value::{CostValue, Units};
 
 /// `Units::plus` on any two `u64` values (`u64::MAX` is `+∞`): `+∞` absorbs, and a finite sum
 /// below `u64::MAX` is the exact sum. Domain 2^128.

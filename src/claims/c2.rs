@@ -7,28 +7,16 @@
 //! of reward maximisers from the *negated stage sequence* (evaluated afresh, not by negating
 //! the cost), and the two sets are compared.
 
-use super::exact::{FracExt, Q};
-use super::oracle::{evaluate_fast, policies, trajectory, Functional};
+use super::oracle::Functional;
 use super::tiny::{minimality_key, FamilySpec, Tiny};
+pub use truecost_kernel::claims::c2::{check_problem, functionals};
+
 use super::{enumerate, keep_min, min_of, ClaimResult, Counterexample, EngineRun, Scope, Verdict};
 
 /// The statement of C2 as printed.
 pub const STATEMENT: &str = "C2 (as printed): for any cost functional linear in the sequence of stage costs (total, \
 discounted, average, and their finite-horizon versions), a policy minimises the cost iff it maximises the reward \
 obtained by negating every stage cost (r = -l).";
-
-/// The functionals checked.
-pub fn functionals() -> Vec<Functional> {
-    vec![
-        Functional::Total,
-        Functional::Discounted(Q::new(1, 2)),
-        Functional::Discounted(Q::new(9, 10)),
-        Functional::Average,
-        Functional::HorizonTotal(3),
-        Functional::HorizonDiscounted(3, Q::new(1, 2)),
-        Functional::HorizonAverage(4),
-    ]
-}
 
 type Key = (usize, usize, u64, u64, u64);
 
@@ -47,50 +35,6 @@ fn merge(a: Acc, b: Acc) -> Acc {
         failures: a.failures + b.failures,
         min: min_of(a.min, b.min),
     }
-}
-
-/// Checks one problem from the start states `0..starts`; `None` if the equivalence holds for
-/// each of them and every functional, else a description of the failure. Also returns the
-/// number of comparisons made.
-pub fn check_problem(t: &Tiny, fs: &[Functional], starts: usize) -> (Option<String>, u64) {
-    let ps = policies(t, true);
-    assert!(ps.len() <= 128);
-    let mut comparisons = 0;
-    let mut costs = [FracExt::NegInf; 128];
-    let mut rewards = [FracExt::NegInf; 128];
-    for start in 0..starts.min(t.states()) {
-        let trs: Vec<_> = ps.iter().map(|p| trajectory(t, p, start)).collect();
-        for &f in fs {
-            for (i, tr) in trs.iter().enumerate() {
-                costs[i] = evaluate_fast(tr, f, 1);
-                rewards[i] = evaluate_fast(tr, f, -1);
-            }
-            let (costs, rewards) = (&costs[..trs.len()], &rewards[..trs.len()]);
-            let min = *costs.iter().min().expect("a policy");
-            let max = *rewards.iter().max().expect("a policy");
-            let argmin: u128 = costs
-                .iter()
-                .enumerate()
-                .filter(|(_, c)| **c == min)
-                .fold(0, |m, (i, _)| m | 1 << i);
-            let argmax: u128 = rewards
-                .iter()
-                .enumerate()
-                .filter(|(_, r)| **r == max)
-                .fold(0, |m, (i, _)| m | 1 << i);
-            comparisons += 1;
-            if argmin != argmax {
-                return (
-                    Some(format!(
-                        "from state {start}, {}: cost minimisers {argmin:#b} differ from reward maximisers {argmax:#b}",
-                        f.name()
-                    )),
-                    comparisons,
-                );
-            }
-        }
-    }
-    (None, comparisons)
 }
 
 fn specs(scope: Scope) -> Vec<FamilySpec> {

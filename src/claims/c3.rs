@@ -10,20 +10,18 @@
 //! `K > 1/((1-α) α^{n-2})` elsewhere), but it is *checked*, never trusted. We check the stronger
 //! statement "for each α in a set, some `l` works".
 
-use super::exact::{Frac, FracExt, Q};
-use super::oracle::{evaluate_fast, policies, trajectory, Functional};
-use super::tiny::{minimality_key, FamilySpec, Tiny, MAX_STATES};
+use super::exact::Q;
+use super::tiny::{minimality_key, FamilySpec, Tiny};
+pub use truecost_kernel::claims::c3::{
+    alphas, certificate, goal_avoiding_core, goal_reachable, optimal_policy_avoids_goal,
+};
+
 use super::{enumerate, keep_min, min_of, ClaimResult, Counterexample, EngineRun, Scope, Verdict};
 
 /// The statement of C3 as printed.
 pub const STATEMENT: &str = "C3 (as printed): if a goal-reaching policy exists and some policy reaches a cycle avoiding \
 the goal, then there are stage costs l and a discount factor alpha for which a discount-optimal policy has infinite \
 true cost.";
-
-/// The discount factors for which a certificate is required.
-pub fn alphas() -> [Q; 2] {
-    [Q::new(1, 2), Q::new(9, 10)]
-}
 
 /// The discount factors checked in a scope (`full` adds 2/3 and 99/100).
 pub fn scope_alphas(scope: Scope) -> Vec<Q> {
@@ -33,100 +31,6 @@ pub fn scope_alphas(scope: Scope) -> Vec<Q> {
         v.push(Q::new(99, 100));
     }
     v
-}
-
-/// States from which an infinite walk avoiding the goal exists (greatest fixed point).
-pub fn goal_avoiding_core(t: &Tiny) -> [bool; MAX_STATES] {
-    let n = t.states();
-    let mut w = [false; MAX_STATES];
-    for (x, wx) in w.iter_mut().enumerate().take(n) {
-        *wx = !t.is_goal(x);
-    }
-    loop {
-        let mut changed = false;
-        for x in 0..n {
-            if w[x] && !t.moves(x).iter().any(|m| w[m.to as usize]) {
-                w[x] = false;
-                changed = true;
-            }
-        }
-        if !changed {
-            return w;
-        }
-    }
-}
-
-/// Whether the goal is reachable from `x1 = 0`.
-pub fn goal_reachable(t: &Tiny) -> bool {
-    let mut seen = [false; MAX_STATES];
-    let mut stack = vec![0usize];
-    seen[0] = true;
-    while let Some(x) = stack.pop() {
-        if t.is_goal(x) {
-            return true;
-        }
-        for m in t.moves(x) {
-            if !seen[m.to as usize] {
-                seen[m.to as usize] = true;
-                stack.push(m.to as usize);
-            }
-        }
-    }
-    false
-}
-
-/// The certificate construction for `alpha` (see the module doc). `None` if the hypotheses
-/// fail or a cost does not fit.
-pub fn certificate(t: &Tiny, alpha: Q) -> Option<Tiny> {
-    let w = goal_avoiding_core(t);
-    if !w[0] || !goal_reachable(t) {
-        return None;
-    }
-    let n = t.states() as u32;
-    let bound = Q::ONE / ((Q::ONE - alpha) * alpha.pow(n.saturating_sub(2)));
-    let k = bound.numer() / bound.denom() + 1;
-    let k = u8::try_from(k).ok()?;
-    let mut marked = [[false; 3]; MAX_STATES];
-    let mut x = 0usize;
-    let mut seen = [false; MAX_STATES];
-    while !seen[x] {
-        seen[x] = true;
-        let i = t.moves(x).iter().position(|m| w[m.to as usize])?;
-        marked[x][i] = true;
-        x = t.moves(x)[i].to as usize;
-    }
-    let mut c = *t;
-    for y in 0..t.states() {
-        for i in 0..t.deg[y] as usize {
-            c.moves[y][i].cost = if marked[y][i] { 1 } else { k };
-        }
-    }
-    Some(c)
-}
-
-/// The oracle: whether some policy that is discount-optimal from `x1 = 0` at `alpha` never
-/// reaches the goal and has only positive stage costs on its trajectory.
-pub fn optimal_policy_avoids_goal(t: &Tiny, alpha: Q) -> bool {
-    let ps = policies(t, false);
-    let mut best: Option<Frac> = None;
-    let mut avoid_at_best = false;
-    for p in &ps {
-        let tr = trajectory(t, p, 0);
-        let FracExt::Fin(value) = evaluate_fast(&tr, Functional::Discounted(alpha), 1) else {
-            unreachable!("discounted values are finite")
-        };
-        let avoids =
-            !tr.visits_goal && !tr.terminates && tr.cycle[..tr.cycle_len].iter().all(|&c| c > 0);
-        match best {
-            Some(b) if value > b => {}
-            Some(b) if value == b => avoid_at_best |= avoids,
-            _ => {
-                best = Some(value);
-                avoid_at_best = avoids;
-            }
-        }
-    }
-    avoid_at_best
 }
 
 type Key = (usize, usize, u64, u64, u64);

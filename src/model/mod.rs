@@ -15,10 +15,9 @@ use num_traits::Signed;
 
 use crate::value::Rational;
 
-pub use graph::{ExactGraph, Graph};
-
-/// Index of a state.
-pub type StateId = usize;
+pub use graph::{ExactGraph, Graph, RenderValue};
+/// Index of a state, and a policy's decision (the bignum-free kernel's, re-exported).
+pub use truecost_kernel::model::{Decision, StateId};
 
 /// One non-terminating action `u ∈ U(x)`: its successor `f(x, u)` and stage cost `l(x, u) ≥ 0`.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -27,17 +26,6 @@ pub struct Move {
     pub successor: StateId,
     /// `l(x, u)`, exact and non-negative.
     pub cost: Rational,
-}
-
-/// What a policy does at a state: apply the move with this index in `U(x)`'s order, or
-/// terminate (goals only).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Decision {
-    /// The move at this position in the state's ordered action list.
-    Move(usize),
-    /// The termination action `uT` of a goal.
-    Terminate,
 }
 
 /// Why a problem is not well formed.

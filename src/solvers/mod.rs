@@ -1,134 +1,19 @@
 //! The exact planners of SPEC §2: Dijkstra, synchronous and asynchronous value iteration,
 //! exact policy evaluation, and the model-free exploration that precedes them.
 //!
-//! Every planner is a function over a [`Graph`] generic in its [`CostValue`]; none reads a
-//! clock. A planner returns a [`Solution`]: `G*` for every node, an optimal policy, and the
-//! counts of work it did (its own output, like the number of sweeps).
+//! They live in the bignum-free kernel (`truecost_kernel::solvers`, verified by the Kani
+//! harnesses in `proofs/`; issue 10, item 3) and are re-exported here under their old paths:
+//! `truecost::solvers::dijkstra::to_goals`, `truecost::solvers::value_iteration`, … Every
+//! planner is a function over a [`crate::model::Graph`] generic in its
+//! [`crate::value::CostValue`]; none reads a clock.
+//!
+//! ```
+//! use truecost::model::Graph;
+//! use truecost::solvers::dijkstra;
+//! use truecost::value::Units;
+//! let one = num_rational::BigRational::from_integer(1.into());
+//! let g = Graph::from_adjacency(vec![vec![(1, Units(2))], vec![]], 0, &[1], vec![0, 1], one);
+//! assert_eq!(dijkstra::to_goals(&g).cost_to_go, vec![Units(2), Units(0)]);
+//! ```
 
-pub mod dijkstra;
-pub mod exploration;
-pub mod policy_evaluation;
-pub mod value_iteration;
-
-use std::cmp::Ordering;
-use std::collections::VecDeque;
-
-use crate::model::{Decision, Graph};
-use crate::value::CostValue;
-
-/// The answer of a planner on a graph (node numbering of that graph).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Solution<V> {
-    /// `G*(v)` for every node (`+∞` where no goal is reachable).
-    pub cost_to_go: Vec<V>,
-    /// An optimal policy: `None` where no goal is reachable.
-    pub policy: Vec<Option<Decision>>,
-    /// Sweeps (value iteration) or heap pops (Dijkstra).
-    pub iterations: u64,
-    /// Backups (value iteration) or relaxations (Dijkstra): the planner's counted actions.
-    pub actions: u64,
-}
-
-/// The optimal policy read off an exact cost-to-go: at each node, the **first** move in the
-/// node's action order that attains `G*(x) = l(x,u) + G*(f(x,u))` *and makes progress*, i.e.
-/// `G*(f(x,u)) < G*(x)`, or equal with fewer moves left along optimal moves (`h`, the length of
-/// the shortest path to a goal over optimal moves). With positive costs this is exactly "the
-/// first minimiser in action order"; with zero-cost cycles the progress condition stops the
-/// policy from circling, so following it from any node with finite `G*` reaches a goal with
-/// total cost `G*` (SPEC §1, `π*(x) ∈ argmin_u Q*(x,u)`). Goals terminate.
-///
-/// ```
-/// use truecost::model::{Decision, Graph};
-/// use truecost::solvers::greedy_policy;
-/// use num_rational::BigRational;
-/// // 0 -> 1 (cost 0), 1 -> 0 (cost 0), 1 -> 2 (cost 0), goal 2
-/// let g = Graph::<f64>::from_adjacency(vec![vec![(1, 0.0)], vec![(0, 0.0), (2, 0.0)], vec![]],
-///     0, &[2], vec![0, 1, 2], BigRational::from_integer(1.into()));
-/// let policy = greedy_policy(&g, &[0.0, 0.0, 0.0]);
-/// assert_eq!(policy, vec![Some(Decision::Move(0)), Some(Decision::Move(1)), Some(Decision::Terminate)]);
-/// ```
-pub fn greedy_policy<V: CostValue>(graph: &Graph<V>, cost_to_go: &[V]) -> Vec<Option<Decision>> {
-    let n = graph.nodes();
-    let tight = |x: usize, y: usize, c: &V| {
-        cost_to_go[x].is_finite()
-            && c.plus(&cost_to_go[y]).compare(&cost_to_go[x]) == Ordering::Equal
-    };
-    // h: shortest number of optimal moves to a goal (backward BFS over tight edges).
-    let mut h = vec![u32::MAX; n];
-    let mut queue = VecDeque::new();
-    for (v, hv) in h.iter_mut().enumerate() {
-        if graph.is_goal(v) {
-            *hv = 0;
-            queue.push_back(v);
-        }
-    }
-    while let Some(y) = queue.pop_front() {
-        for (x, c) in graph.in_edges(y) {
-            if h[x] == u32::MAX && tight(x, y, c) {
-                h[x] = h[y] + 1;
-                queue.push_back(x);
-            }
-        }
-    }
-    (0..n)
-        .map(|x| {
-            if graph.is_goal(x) {
-                return Some(Decision::Terminate);
-            }
-            if h[x] == u32::MAX {
-                return None;
-            }
-            graph
-                .edges(x)
-                .position(|(y, c)| {
-                    tight(x, y, c)
-                        && match cost_to_go[y].compare(&cost_to_go[x]) {
-                            Ordering::Less => true,
-                            Ordering::Equal => h[y] < h[x],
-                            Ordering::Greater => false,
-                        }
-                })
-                .map(Decision::Move)
-        })
-        .collect()
-}
-
-/// The nodes visited by following `policy` from `start` until a goal (inclusive). `None` if the
-/// policy is undefined on the way or revisits a node (it never reaches a goal).
-///
-/// ```
-/// use truecost::model::{Decision, Graph};
-/// use truecost::solvers::follow_policy;
-/// let g = Graph::<f64>::from_adjacency(vec![vec![(1, 1.0)], vec![]], 0, &[1], vec![0, 1],
-///     num_rational::BigRational::from_integer(1.into()));
-/// assert_eq!(follow_policy(&g, &[Some(Decision::Move(0)), Some(Decision::Terminate)], 0), Some(vec![0, 1]));
-/// ```
-pub fn follow_policy<V: CostValue>(
-    graph: &Graph<V>,
-    policy: &[Option<Decision>],
-    start: usize,
-) -> Option<Vec<usize>> {
-    let mut path = vec![start];
-    let mut seen = vec![false; graph.nodes()];
-    let mut x = start;
-    seen[x] = true;
-    loop {
-        match policy[x]? {
-            Decision::Terminate => return Some(path),
-            Decision::Move(i) => {
-                let (y, _) = graph.edges(x).nth(i)?;
-                if seen[y] {
-                    return None;
-                }
-                seen[y] = true;
-                path.push(y);
-                x = y;
-            }
-        }
-    }
-}
-
-/// Σ of out-degrees: the number of backups one value-iteration sweep performs.
-pub(crate) fn total_degree<V: CostValue>(graph: &Graph<V>) -> u64 {
-    graph.edge_count() as u64
-}
+pub use truecost_kernel::solvers::*;

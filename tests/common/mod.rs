@@ -13,7 +13,7 @@ use num_rational::BigRational;
 use num_traits::{One, ToPrimitive, Zero};
 use proptest::prelude::*;
 use truecost::model::{Graph, Move, Problem};
-use truecost::value::CostValue;
+use truecost::value::ExactValue;
 
 /// Exact rational.
 pub type Q = BigRational;
@@ -149,7 +149,7 @@ macro_rules! with_exact_graph {
 }
 
 /// The exact value of `v` in graph `g` as an oracle value.
-pub fn exact<V: CostValue>(g: &Graph<V>, v: &V) -> Ext {
+pub fn exact<V: ExactValue>(g: &Graph<V>, v: &V) -> Ext {
     v.to_extended(g.unit())
         .expect("exact value type")
         .finite()
@@ -157,7 +157,7 @@ pub fn exact<V: CostValue>(g: &Graph<V>, v: &V) -> Ext {
 }
 
 /// Exact values of a whole vector.
-pub fn exact_all<V: CostValue>(g: &Graph<V>, vs: &[V]) -> Vec<Ext> {
+pub fn exact_all<V: ExactValue>(g: &Graph<V>, vs: &[V]) -> Vec<Ext> {
     vs.iter().map(|v| exact(g, v)).collect()
 }
 

@@ -19,10 +19,10 @@ use crate::value::CostValue;
 
 /// The outcome of exploring from `x1`.
 #[derive(Clone, Debug)]
-pub struct Exploration<V> {
+pub struct Exploration<V, U = ()> {
     /// The discovered graph; its node `v` is node `graph.origin(v)` of the explored graph's
     /// numbering mapped through to the original problem.
-    pub graph: Graph<V>,
+    pub graph: Graph<V, U>,
     /// Actions counted by the walk (moves inspected).
     pub actions: u64,
     /// For each node of the explored graph, its index in the discovered graph (if reached).
@@ -33,17 +33,17 @@ pub struct Exploration<V> {
 /// every step back pops the stack, so the walk takes at most `2·|moves|` steps.
 ///
 /// ```
-/// use truecost::model::Graph;
-/// use truecost::solvers::exploration::explore;
+/// use truecost_kernel::model::Graph;
+/// use truecost_kernel::solvers::exploration::explore;
 /// // 0 <-> 1 <-> 2, goal 2, node 3 unreachable
 /// let g = Graph::<f64>::from_adjacency(
 ///     vec![vec![(1, 1.0)], vec![(0, 1.0), (2, 1.0)], vec![(1, 1.0)], vec![]],
-///     0, &[2], vec![0, 1, 2, 3], num_rational::BigRational::from_integer(1.into()));
+///     0, &[2], vec![0, 1, 2, 3], ());
 /// let e = explore(&g);
 /// assert_eq!(e.graph.nodes(), 3);
 /// assert_eq!(e.index, vec![Some(0), Some(1), Some(2), None]);
 /// ```
-pub fn explore<V: CostValue>(graph: &Graph<V>) -> Exploration<V> {
+pub fn explore<V: CostValue, U: Clone>(graph: &Graph<V, U>) -> Exploration<V, U> {
     let n = graph.nodes();
     let mut tried = vec![false; graph.edge_count()];
     let mut index: Vec<Option<usize>> = vec![None; n];
@@ -122,7 +122,7 @@ pub fn explore<V: CostValue>(graph: &Graph<V>) -> Exploration<V> {
 /// The flat edge index of each move's reverse partner (`None` for self-loops and moves without a
 /// reverse). The `k`-th move `x → y` among `x`'s moves to `y` pairs with the `k`-th move
 /// `y → x` among `y`'s moves to `x`.
-fn reverse_partners<V: CostValue>(graph: &Graph<V>, offset: &[usize]) -> Vec<Option<usize>> {
+fn reverse_partners<V: CostValue, U>(graph: &Graph<V, U>, offset: &[usize]) -> Vec<Option<usize>> {
     let mut partner = vec![None; graph.edge_count()];
     for x in 0..graph.nodes() {
         let (succ_x, _) = graph.edge_slices(x);
@@ -143,6 +143,6 @@ fn reverse_partners<V: CostValue>(graph: &Graph<V>, offset: &[usize]) -> Vec<Opt
     partner
 }
 
-fn cost_of<V: CostValue>(graph: &Graph<V>, offset: &[usize], y: usize, e: usize) -> V {
+fn cost_of<V: CostValue, U>(graph: &Graph<V, U>, offset: &[usize], y: usize, e: usize) -> V {
     graph.edge_slices(y).1[e - offset[y]].clone()
 }

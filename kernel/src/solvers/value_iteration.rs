@@ -30,17 +30,17 @@ pub enum Schedule {
 /// uses 1000); `None` runs to convergence, which always happens within `|X| + 1` sweeps.
 ///
 /// ```
-/// use truecost::model::Graph;
-/// use truecost::solvers::value_iteration::{value_iteration, Schedule};
+/// use truecost_kernel::model::Graph;
+/// use truecost_kernel::solvers::value_iteration::{value_iteration, Schedule};
 /// let g = Graph::<f64>::from_adjacency(vec![vec![(1, 1.0)], vec![(2, 1.0)], vec![]],
-///     0, &[2], vec![0, 1, 2], num_rational::BigRational::from_integer(1.into()));
+///     0, &[2], vec![0, 1, 2], ());
 /// let s = value_iteration(&g, Schedule::Synchronous, None);
 /// assert_eq!(s.cost_to_go, vec![2.0, 1.0, 0.0]);
 /// assert_eq!(s.iterations, 3); // two sweeps that change values, one that confirms
 /// assert_eq!(s.actions, 3 * 2);
 /// ```
-pub fn value_iteration<V: CostValue>(
-    graph: &Graph<V>,
+pub fn value_iteration<V: CostValue, U>(
+    graph: &Graph<V, U>,
     schedule: Schedule,
     max_sweeps: Option<u64>,
 ) -> Solution<V> {
@@ -98,7 +98,7 @@ pub fn value_iteration<V: CostValue>(
 
 /// `min_u { l(x,u) + G(f(x,u)) }` over the moves of `x` (`None` if it has none).
 #[inline]
-fn best_backup<V: CostValue>(graph: &Graph<V>, x: usize, g: &[V]) -> Option<V> {
+fn best_backup<V: CostValue, U>(graph: &Graph<V, U>, x: usize, g: &[V]) -> Option<V> {
     let (succ, cost) = graph.edge_slices(x);
     let mut best: Option<V> = None;
     for (&y, c) in succ.iter().zip(cost) {

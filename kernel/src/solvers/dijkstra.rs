@@ -124,13 +124,13 @@ fn run<V: CostValue>(
 /// [`greedy_policy`]. `iterations` = heap pops, `actions` = relaxations.
 ///
 /// ```
-/// use truecost::model::Graph;
-/// use truecost::solvers::dijkstra;
+/// use truecost_kernel::model::Graph;
+/// use truecost_kernel::solvers::dijkstra;
 /// let g = Graph::<f64>::from_adjacency(vec![vec![(1, 1.0), (2, 5.0)], vec![(2, 1.0)], vec![]],
-///     0, &[2], vec![0, 1, 2], num_rational::BigRational::from_integer(1.into()));
+///     0, &[2], vec![0, 1, 2], ());
 /// assert_eq!(dijkstra::to_goals(&g).cost_to_go, vec![2.0, 1.0, 0.0]);
 /// ```
-pub fn to_goals<V: CostValue>(graph: &Graph<V>) -> Solution<V> {
+pub fn to_goals<V: CostValue, U>(graph: &Graph<V, U>) -> Solution<V> {
     let search = run(
         graph.nodes(),
         &graph.goals(),
@@ -164,14 +164,14 @@ pub struct ForwardSearch<V> {
 /// Runs [`ForwardSearch`].
 ///
 /// ```
-/// use truecost::model::Graph;
-/// use truecost::solvers::dijkstra;
+/// use truecost_kernel::model::Graph;
+/// use truecost_kernel::solvers::dijkstra;
 /// let g = Graph::<f64>::from_adjacency(vec![vec![(1, 1.0), (2, 5.0)], vec![(2, 1.0)], vec![]],
-///     0, &[2], vec![0, 1, 2], num_rational::BigRational::from_integer(1.into()));
+///     0, &[2], vec![0, 1, 2], ());
 /// let s = dijkstra::from_initial(&g);
 /// assert_eq!((s.cost, s.path), (2.0, vec![0, 1, 2]));
 /// ```
-pub fn from_initial<V: CostValue>(graph: &Graph<V>) -> ForwardSearch<V> {
+pub fn from_initial<V: CostValue, U>(graph: &Graph<V, U>) -> ForwardSearch<V> {
     let search = run(
         graph.nodes(),
         &[graph.initial()],

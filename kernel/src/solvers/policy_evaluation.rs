@@ -11,16 +11,19 @@ use crate::value::CostValue;
 /// `L(π, v)` for every node `v`, in `O(|X|)`.
 ///
 /// ```
-/// use truecost::model::{Decision, Graph};
-/// use truecost::solvers::policy_evaluation::evaluate_policy;
+/// use truecost_kernel::model::{Decision, Graph};
+/// use truecost_kernel::solvers::policy_evaluation::evaluate_policy;
 /// let g = Graph::<f64>::from_adjacency(vec![vec![(1, 2.0)], vec![(0, 0.0), (2, 3.0)], vec![]],
-///     0, &[2], vec![0, 1, 2], num_rational::BigRational::from_integer(1.into()));
+///     0, &[2], vec![0, 1, 2], ());
 /// let reach = [Some(Decision::Move(0)), Some(Decision::Move(1)), Some(Decision::Terminate)];
 /// assert_eq!(evaluate_policy(&g, &reach), vec![5.0, 3.0, 0.0]);
 /// let circle = [Some(Decision::Move(0)), Some(Decision::Move(0)), Some(Decision::Terminate)];
 /// assert_eq!(evaluate_policy(&g, &circle), vec![f64::INFINITY, f64::INFINITY, 0.0]);
 /// ```
-pub fn evaluate_policy<V: CostValue>(graph: &Graph<V>, policy: &[Option<Decision>]) -> Vec<V> {
+pub fn evaluate_policy<V: CostValue, U>(
+    graph: &Graph<V, U>,
+    policy: &[Option<Decision>],
+) -> Vec<V> {
     const UNSEEN: u8 = 0;
     const ON_STACK: u8 = 1;
     const DONE: u8 = 2;

@@ -1,0 +1,597 @@
+//! Claim C4 (SPEC §6): episodic equivalence — the exact bonus analysis. The single-shot
+//! problem versus the infinite-horizon average-cost problem in which reaching the goal resets
+//! to `x1` with bonus `M < 0` (the reset is one stage costing `M`; a path with `S` states is a
+//! reset cycle of `S` stages and cost `L + M`).
+//!
+//! For every distinct `S*` of an optimal single-shot path, [`bonus_analysis`] computes three
+//! sets of bonuses: the exact one (policy-enumeration oracle: every stationary policy's average
+//! from `x1` is `(c + r·M)/k`, `r = 1` for a reset cycle; the set is the intersection of the
+//! half-lines where `π*`'s average is least), the printed formula's
+//! (`a ≤ M ≤ min{b, S*·Lav(Ĉ) − L*}` with `A(u) = (1 − S(u)/S*)·(S(u)·L*/(S*·L(u)) − 1)`) and
+//! the corrected one (`max_{S(u)<S*} T(u) ≤ M ≤ min{ min_{S(u)>S*} T(u), S*·Lav(Ĉ) − L* }`,
+//! `T(u) = (S*·L(u) − S(u)·L*) / (S(u) − S*)`). `Lav(Ĉ)` by Karp's algorithm, cross-checked
+//! against the enumeration of simple cycles and of policies. The statements and the claim
+//! runner are `truecost::claims::c4`.
+
+use std::fmt;
+
+use super::exact::Q;
+use super::oracle::{karp_minimum_mean_cycle, simple_cycles};
+use super::tiny::Tiny;
+
+/// A problem type that converts to an [`Instance`] with integer costs and its scale `D`
+/// ([`Instance::from_problem`]); implemented by `truecost::model::Problem` with
+/// `Scale = BigInt`.
+pub trait ToInstance {
+    /// The common scale `D` of the costs (a big integer in `truecost`).
+    type Scale;
+    /// The instance with every cost times `D`, and `D`; an error (one line) when a scaled cost
+    /// does not fit the exact bonus analysis.
+    fn to_instance(&self) -> Result<(Instance, Self::Scale), String>;
+}
+
+/// One end of an interval of bonuses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum End {
+    /// Unbounded (`-∞` below, `+∞` above).
+    Unbounded,
+    /// Included.
+    Closed(Q),
+    /// Excluded.
+    Open(Q),
+}
+
+/// A convex set of rationals `{M : lo ≤/< M ≤/< hi}`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Interval {
+    /// Lower end.
+    pub lo: End,
+    /// Upper end.
+    pub hi: End,
+    /// Whether the set is empty.
+    pub empty: bool,
+}
+
+impl Interval {
+    /// `M < 0`.
+    pub fn negative() -> Interval {
+        Interval {
+            lo: End::Unbounded,
+            hi: End::Open(Q::ZERO),
+            empty: false,
+        }
+    }
+
+    /// Whether `m` belongs to the set.
+    pub fn contains(&self, m: Q) -> bool {
+        !self.empty
+            && match self.lo {
+                End::Unbounded => true,
+                End::Closed(a) => m >= a,
+                End::Open(a) => m > a,
+            }
+            && match self.hi {
+                End::Unbounded => true,
+                End::Closed(b) => m <= b,
+                End::Open(b) => m < b,
+            }
+    }
+
+    /// Intersects with `[lo, +∞)` (closed).
+    pub fn at_least(&mut self, lo: Q) {
+        self.lo = match self.lo {
+            End::Closed(a) | End::Open(a) if a > lo => self.lo,
+            End::Open(a) if a == lo => self.lo,
+            _ => End::Closed(lo),
+        };
+        self.normalise();
+    }
+
+    /// Intersects with `(-∞, hi]` (closed).
+    pub fn at_most(&mut self, hi: Q) {
+        self.hi = match self.hi {
+            End::Closed(b) | End::Open(b) if b < hi => self.hi,
+            End::Open(b) if b == hi => self.hi,
+            _ => End::Closed(hi),
+        };
+        self.normalise();
+    }
+
+    fn normalise(&mut self) {
+        let (a, ac) = match self.lo {
+            End::Unbounded => return,
+            End::Closed(a) => (a, true),
+            End::Open(a) => (a, false),
+        };
+        let (b, bc) = match self.hi {
+            End::Unbounded => return,
+            End::Closed(b) => (b, true),
+            End::Open(b) => (b, false),
+        };
+        if a > b || (a == b && !(ac && bc)) {
+            self.empty = true;
+        }
+    }
+
+    /// Set equality.
+    pub fn same_set(&self, o: &Interval) -> bool {
+        (self.empty && o.empty) || (!self.empty && !o.empty && self.lo == o.lo && self.hi == o.hi)
+    }
+
+    /// The finite ends.
+    fn ends(&self) -> Vec<Q> {
+        let mut v = Vec::new();
+        for e in [self.lo, self.hi] {
+            if let End::Closed(q) | End::Open(q) = e {
+                v.push(q);
+            }
+        }
+        v
+    }
+}
+
+impl fmt::Display for Interval {
+    /// `[-3/2, -1)`, `(-inf, 0)`, `empty`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.empty {
+            return write!(f, "empty");
+        }
+        match self.lo {
+            End::Unbounded => write!(f, "(-inf, ")?,
+            End::Closed(a) => write!(f, "[{a}, ")?,
+            End::Open(a) => write!(f, "({a}, ")?,
+        }
+        match self.hi {
+            End::Unbounded => write!(f, "+inf)"),
+            End::Closed(b) => write!(f, "{b}]"),
+            End::Open(b) => write!(f, "{b})"),
+        }
+    }
+}
+
+/// A small average-cost instance: states `0..n`, initial state, goals, integer move costs.
+#[derive(Clone, Debug)]
+pub struct Instance {
+    /// The initial state `x1`.
+    pub initial: usize,
+    /// Goal flags.
+    pub is_goal: Vec<bool>,
+    /// Moves `(successor, cost)` of each state.
+    pub moves: Vec<Vec<(usize, i64)>>,
+}
+
+impl Instance {
+    /// A problem with exact rational costs as an instance with integer costs: every cost times
+    /// `D`, the least common multiple of the denominators (averages and bonuses scale by `D`;
+    /// the caller divides the thresholds back). Returns the instance and `D`. Generic over the
+    /// problem type (see [`ToInstance`]: `truecost::model::Problem`, whose `D` is a `BigInt`),
+    /// so that this crate, which Kani verifies, depends on no big-integer crate (issue 10,
+    /// item 3). Errors are one line (the scaled costs must stay below 2^40).
+    pub fn from_problem<P: ToInstance>(problem: &P) -> Result<(Instance, P::Scale), String> {
+        problem.to_instance()
+    }
+
+    /// From a tiny problem.
+    pub fn from_tiny(t: &Tiny) -> Instance {
+        Instance {
+            initial: 0,
+            is_goal: (0..t.states()).map(|x| t.is_goal(x)).collect(),
+            moves: (0..t.states())
+                .map(|x| {
+                    t.moves(x)
+                        .iter()
+                        .map(|m| (m.to as usize, m.cost as i64))
+                        .collect()
+                })
+                .collect(),
+        }
+    }
+
+    fn tiny_like(&self) -> (usize, Vec<(usize, usize, i64)>) {
+        // Goal-avoiding arcs among states reachable from x1 without passing a goal.
+        let n = self.moves.len();
+        let mut seen = vec![false; n];
+        if self.is_goal[self.initial] {
+            return (n, Vec::new());
+        }
+        seen[self.initial] = true;
+        let mut stack = vec![self.initial];
+        while let Some(x) = stack.pop() {
+            for &(y, _) in &self.moves[x] {
+                if !self.is_goal[y] && !seen[y] {
+                    seen[y] = true;
+                    stack.push(y);
+                }
+            }
+        }
+        let mut arcs = Vec::new();
+        for x in 0..n {
+            if seen[x] {
+                for &(y, c) in &self.moves[x] {
+                    if seen[y] {
+                        arcs.push((x, y, c));
+                    }
+                }
+            }
+        }
+        (n, arcs)
+    }
+
+    /// Every simple path from `x1` to a goal as `(L, S)`, or `Err(BonusError::SearchTooLong)`
+    /// once the depth-first search has taken more than `max_steps` steps (issue 12: the bound
+    /// is checked while the search runs, so a grid refuses at once instead of listing its
+    /// astronomically many paths).
+    ///
+    /// ```
+    /// use truecost_kernel::claims::c4::{BonusError, Instance};
+    /// // x1 = 0 -> 1 -> goal 2, and 0 -> goal 2 directly.
+    /// let inst = Instance { initial: 0, is_goal: vec![false, false, true],
+    ///     moves: vec![vec![(1, 1), (2, 5)], vec![(2, 1)], vec![]] };
+    /// let mut paths = inst.goal_paths(100).unwrap();
+    /// paths.sort();
+    /// assert_eq!(paths, vec![(2, 3), (5, 2)]);
+    /// assert_eq!(inst.goal_paths(2), Err(BonusError::SearchTooLong { steps: 2 }));
+    /// ```
+    pub fn goal_paths(&self, max_steps: u64) -> Result<Vec<(i64, i64)>, BonusError> {
+        struct Search<'a> {
+            inst: &'a Instance,
+            on: Vec<bool>,
+            out: Vec<(i64, i64)>,
+            steps: u64,
+            max_steps: u64,
+        }
+        fn dfs(s: &mut Search, x: usize, cost: i64, states: i64) -> Result<(), BonusError> {
+            s.steps += 1;
+            if s.steps > s.max_steps {
+                return Err(BonusError::SearchTooLong { steps: s.max_steps });
+            }
+            if s.inst.is_goal[x] {
+                s.out.push((cost, states));
+                return Ok(());
+            }
+            for &(y, c) in &s.inst.moves[x] {
+                if !s.on[y] {
+                    s.on[y] = true;
+                    dfs(s, y, cost + c, states + 1)?;
+                    s.on[y] = false;
+                }
+            }
+            Ok(())
+        }
+        let mut search = Search {
+            inst: self,
+            on: vec![false; self.moves.len()],
+            out: Vec::new(),
+            steps: 0,
+            max_steps,
+        };
+        search.on[self.initial] = true;
+        dfs(&mut search, self.initial, 0, 1)?;
+        Ok(search.out)
+    }
+
+    /// The states reachable from `x1` without passing through a goal (goals reached included).
+    fn reachable(&self) -> Vec<bool> {
+        let n = self.moves.len();
+        let mut reach = vec![false; n];
+        reach[self.initial] = true;
+        let mut stack = vec![self.initial];
+        while let Some(x) = stack.pop() {
+            if self.is_goal[x] {
+                continue;
+            }
+            for &(y, _) in &self.moves[x] {
+                if !reach[y] {
+                    reach[y] = true;
+                    stack.push(y);
+                }
+            }
+        }
+        reach
+    }
+
+    /// The number of stationary policies over the non-goal states reachable from `x1`
+    /// (`Π |U(x)|`), or `None` as soon as it exceeds `limit` (computed without enumerating).
+    ///
+    /// ```
+    /// use truecost_kernel::claims::c4::Instance;
+    /// let inst = Instance { initial: 0, is_goal: vec![false, false, true],
+    ///     moves: vec![vec![(1, 1), (2, 5)], vec![(2, 1), (0, 1)], vec![]] };
+    /// assert_eq!(inst.policy_count(10), Some(4));
+    /// assert_eq!(inst.policy_count(3), None);
+    /// ```
+    pub fn policy_count(&self, limit: u64) -> Option<u64> {
+        let reach = self.reachable();
+        let mut count: u64 = 1;
+        for x in (0..self.moves.len()).filter(|&x| reach[x] && !self.is_goal[x]) {
+            count = count.checked_mul(self.moves[x].len() as u64)?;
+            if count > limit {
+                return None;
+            }
+        }
+        Some(count)
+    }
+
+    /// Every stationary policy's average cost from `x1` as `(c, r, k)`: `(c + r·M)/k`.
+    /// `None` if there are more than `limit` policies.
+    /// The bound is checked before anything is enumerated ([`Instance::policy_count`]).
+    pub fn policy_averages(&self, limit: u64) -> Option<Vec<(i64, i64, i64)>> {
+        let n = self.moves.len();
+        // Only states reachable from x1 matter.
+        let reach = self.reachable();
+        let free: Vec<usize> = (0..n).filter(|&x| reach[x] && !self.is_goal[x]).collect();
+        if free.iter().any(|&x| self.moves[x].is_empty()) {
+            return Some(Vec::new());
+        }
+        let count = self.policy_count(limit)?;
+        let mut choice = vec![0usize; n];
+        let mut out = Vec::with_capacity(count as usize);
+        loop {
+            // Follow from x1.
+            let mut seen_at = vec![usize::MAX; n];
+            let mut costs = Vec::new();
+            let mut x = self.initial;
+            loop {
+                if self.is_goal[x] {
+                    let l: i64 = costs.iter().sum();
+                    out.push((l, 1, costs.len() as i64 + 1));
+                    break;
+                }
+                if seen_at[x] != usize::MAX {
+                    let cyc = &costs[seen_at[x]..];
+                    out.push((cyc.iter().sum(), 0, cyc.len() as i64));
+                    break;
+                }
+                seen_at[x] = costs.len();
+                let (y, c) = self.moves[x][choice[x]];
+                costs.push(c);
+                x = y;
+            }
+            let mut k = 0;
+            loop {
+                if k == free.len() {
+                    return Some(out);
+                }
+                let x = free[k];
+                choice[x] += 1;
+                if choice[x] < self.moves[x].len() {
+                    break;
+                }
+                choice[x] = 0;
+                k += 1;
+            }
+        }
+    }
+
+    /// `Lav(Ĉ)` by Karp's algorithm, cross-checked against simple-cycle enumeration
+    /// (`Err` on disagreement: an internal error).
+    pub fn least_mean_cycle(&self) -> Result<Option<Q>, String> {
+        let (n, arcs) = self.tiny_like();
+        let karp = karp_minimum_mean_cycle(n, &arcs);
+        let enumerated = simple_cycles(n, &arcs)
+            .into_iter()
+            .map(|(w, l)| Q::new(w as i128, l as i128))
+            .min();
+        if karp != enumerated {
+            return Err(format!(
+                "Karp {karp:?} disagrees with cycle enumeration {enumerated:?}"
+            ));
+        }
+        Ok(karp)
+    }
+}
+
+/// The three sets of bonuses for one choice of `π*` (one value of `S*`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BonusSets {
+    /// `L*`.
+    pub optimal_cost: i64,
+    /// `S*`.
+    pub optimal_states: i64,
+    /// `Lav(Ĉ)` (`None`: no goal-avoiding cycle reachable).
+    pub least_mean_cycle: Option<Q>,
+    /// The exact set, from the policy-enumeration oracle.
+    pub exact: Interval,
+    /// The printed formula's set (`None` when it divides by `L(u) = 0`).
+    pub printed: Option<Interval>,
+    /// The corrected formula's set.
+    pub corrected: Interval,
+}
+
+/// The most states reachable from `x1` that [`bonus_analysis`] accepts: with integer costs
+/// below 2^40 (as `verify --claim C4` scales them), every sum and product it forms then stays
+/// below 2^63.
+pub const MAX_BONUS_STATES: usize = 1024;
+
+/// Why the exact bonus analysis of one problem refuses (issue 12: every search with a
+/// combinatorial blow-up has an effort bound, named in the refusal).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum BonusError {
+    /// More stationary policies than the enumeration oracle's bound.
+    TooManyPolicies {
+        /// The bound.
+        limit: u64,
+    },
+    /// The search for simple goal paths went past its step bound.
+    SearchTooLong {
+        /// The bound.
+        steps: u64,
+    },
+    /// Too many states for exact integer arithmetic.
+    TooManyStates {
+        /// States reachable from `x1`.
+        states: usize,
+    },
+    /// A cross-check failed (a truecost bug).
+    Internal(String),
+}
+
+/// Computes the bonus sets for every distinct `S*` of an optimal single-shot path. `Ok(None)`
+/// if no goal is reachable or the effort bounds are exceeded (see [`bonus_analysis`]).
+pub fn bonus_sets(inst: &Instance, limit: u64) -> Result<Option<Vec<BonusSets>>, String> {
+    match bonus_analysis(inst, limit) {
+        Ok(sets) => Ok(sets),
+        Err(BonusError::Internal(e)) => Err(e),
+        Err(_) => Ok(None),
+    }
+}
+
+/// The bonus sets of C4 for every distinct `S*` of an optimal single-shot path (`Ok(None)`
+/// if no goal is reachable from `x1`), refusing before or during the work when it would be
+/// too large: more than [`MAX_BONUS_STATES`] reachable states, more than `limit` stationary
+/// policies (counted before enumerating), or a goal-path search longer than
+/// `limit × (states + 1)` steps (checked while it runs).
+///
+/// ```
+/// use truecost_kernel::claims::c4::{bonus_analysis, BonusError, Instance};
+/// // A 4 x 4 grid: 4^15 policies, refused at once.
+/// let n = 16;
+/// let moves = (0..n).map(|x: usize| {
+///     let (r, c) = (x / 4, x % 4);
+///     let mut m = Vec::new();
+///     if c > 0 { m.push((x - 1, 1)); } if c < 3 { m.push((x + 1, 1)); }
+///     if r > 0 { m.push((x - 4, 1)); } if r < 3 { m.push((x + 4, 1)); }
+///     m
+/// }).collect();
+/// let mut is_goal = vec![false; n];
+/// is_goal[15] = true;
+/// let grid = Instance { initial: 0, is_goal, moves };
+/// assert_eq!(bonus_analysis(&grid, 1 << 22), Err(BonusError::TooManyPolicies { limit: 1 << 22 }));
+/// ```
+pub fn bonus_analysis(inst: &Instance, limit: u64) -> Result<Option<Vec<BonusSets>>, BonusError> {
+    let reach = inst.reachable();
+    if !(0..inst.moves.len()).any(|x| reach[x] && inst.is_goal[x]) {
+        return Ok(None);
+    }
+    let states = reach.iter().filter(|&&r| r).count();
+    if states > MAX_BONUS_STATES {
+        return Err(BonusError::TooManyStates { states });
+    }
+    if inst.policy_count(limit).is_none() {
+        return Err(BonusError::TooManyPolicies { limit });
+    }
+    let paths = inst.goal_paths(limit.saturating_mul(states as u64 + 1))?;
+    let Some(lstar) = paths.iter().map(|p| p.0).min() else {
+        return Ok(None);
+    };
+    let Some(averages) = inst.policy_averages(limit) else {
+        return Err(BonusError::TooManyPolicies { limit });
+    };
+    let lav = inst.least_mean_cycle().map_err(BonusError::Internal)?;
+    // Cross-check Karp against the policies' goal-avoiding cycles.
+    let from_policies = averages
+        .iter()
+        .filter(|a| a.1 == 0)
+        .map(|a| Q::new(a.0 as i128, a.2 as i128))
+        .min();
+    if from_policies != lav {
+        return Err(BonusError::Internal(format!(
+            "Karp {lav:?} disagrees with the policies' cycles {from_policies:?}"
+        )));
+    }
+    let mut sstars: Vec<i64> = paths.iter().filter(|p| p.0 == lstar).map(|p| p.1).collect();
+    sstars.sort_unstable();
+    sstars.dedup();
+    let mut out = Vec::new();
+    for &s in &sstars {
+        // Exact: (L*+M)/S* <= (c + rM)/k for every policy, i.e. M(k − r S*) <= c S* − L* k.
+        let mut exact = Interval::negative();
+        for &(c, r, k) in &averages {
+            let coef = k - r * s;
+            let rhs = c * s - lstar * k;
+            if coef > 0 {
+                exact.at_most(Q::new(rhs as i128, coef as i128));
+            } else if coef < 0 {
+                exact.at_least(Q::new(rhs as i128, coef as i128));
+            } else if rhs < 0 {
+                exact.empty = true;
+            }
+        }
+        let cycle_bound = lav.map(|l| Q::int(s as i128) * l - Q::int(lstar as i128));
+        // Printed.
+        let printed = if paths.iter().any(|p| p.1 != s && p.0 == 0) {
+            None
+        } else {
+            let a_of = |l: i64, su: i64| {
+                (Q::ONE - Q::new(su as i128, s as i128))
+                    * (Q::new((su * lstar) as i128, (s * l) as i128) - Q::ONE)
+            };
+            let mut iv = Interval::negative();
+            for &(l, su) in &paths {
+                if su < s {
+                    iv.at_least(a_of(l, su));
+                } else if su > s {
+                    iv.at_most(a_of(l, su));
+                }
+            }
+            if let Some(cb) = cycle_bound {
+                iv.at_most(cb);
+            }
+            Some(iv)
+        };
+        let mut corrected = Interval::negative();
+        for &(l, su) in &paths {
+            if su == s {
+                continue;
+            }
+            let t = Q::new((s * l - su * lstar) as i128, (su - s) as i128);
+            if su < s {
+                corrected.at_least(t);
+            } else {
+                corrected.at_most(t);
+            }
+        }
+        if let Some(cb) = cycle_bound {
+            corrected.at_most(cb);
+        }
+        out.push(BonusSets {
+            optimal_cost: lstar,
+            optimal_states: s,
+            least_mean_cycle: lav,
+            exact,
+            printed,
+            corrected,
+        });
+    }
+    Ok(Some(out))
+}
+
+/// A bonus in the symmetric difference of two sets (`None` if they are equal).
+pub fn witness(a: &Interval, b: &Interval) -> Option<Q> {
+    let mut pts: Vec<Q> = a
+        .ends()
+        .into_iter()
+        .chain(b.ends())
+        .filter(|q| *q < Q::ZERO)
+        .collect();
+    pts.sort();
+    pts.dedup();
+    let mut cands = pts.clone();
+    for w in pts.windows(2) {
+        cands.push((w[0] + w[1]) * Q::new(1, 2));
+    }
+    match (pts.first(), pts.last()) {
+        (Some(&lo), Some(&hi)) => {
+            cands.push(lo - Q::ONE);
+            cands.push(hi * Q::new(1, 2));
+        }
+        _ => cands.push(-Q::ONE),
+    }
+    cands.sort();
+    cands
+        .into_iter()
+        .find(|&m| m < Q::ZERO && a.contains(m) != b.contains(m))
+}
+
+impl fmt::Display for BonusError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            BonusError::TooManyPolicies { limit } => write!(f, "more than {limit} stationary policies from x1 (the bound of the policy-enumeration oracle): too large for the exact bonus analysis"),
+            BonusError::SearchTooLong { steps } => write!(f, "the search for simple goal paths from x1 took more than {steps} steps (its bound): too large for the exact bonus analysis"),
+            BonusError::TooManyStates { states } => write!(f, "{states} states are reachable from x1; the exact bonus analysis takes at most {MAX_BONUS_STATES}"),
+            BonusError::Internal(e) => write!(f, "internal error: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for BonusError {}

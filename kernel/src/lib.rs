@@ -1,0 +1,23 @@
+//! # truecost-kernel
+//!
+//! The bignum-free computational kernel of `truecost` (the exact re-implementation of
+//! *Relating Reinforcement Learning to Dynamic Programming-Based Planning*, Georgiev, Timperi,
+//! Sakçak, LaValle): exactly the code that the Kani harnesses in `proofs/` verify, in a crate
+//! with **no dependencies** (issue 10, item 3), so that `cargo kani -p truecost-proofs` compiles
+//! neither big integers nor clap, rayon, plotters, indicatif or z3.
+//!
+//! * [`value`] — the [`value::CostValue`] trait's arithmetic core and [`value::Units`];
+//! * [`model`] — the planning graph (its unit left to the caller) and policy decisions;
+//! * [`solvers`] — Dijkstra, value iteration, policy evaluation, model-free exploration;
+//! * [`claims`] — `i128` rationals, tiny problems, the policy-enumeration oracles, derandomized
+//!   Q-learning, and the C2/C3/C4 checks.
+//!
+//! `truecost` depends on this crate and re-exports every item under its old path
+//! (`truecost::solvers::dijkstra`, `truecost::claims::exact::Q`, …); what needs big rationals
+//! (exact rendering, the unit of a graph, problem files, the claim runners) stays there.
+#![warn(missing_docs)]
+
+pub mod claims;
+pub mod model;
+pub mod solvers;
+pub mod value;

@@ -1,0 +1,198 @@
+//! The deterministic planning model's compiled form (SPEC §1, §2): states, the ordered move
+//! lists the planners run on, and a policy's [`Decision`]s.
+//!
+//! The validated problem with exact rational costs (`truecost::model::Problem`) and the choice
+//! of the exact representation (`truecost::model::ExactGraph`) need big rationals and live in
+//! `truecost`; a [`Graph`] here carries the value of one unit of its value type as an opaque
+//! parameter `U` (`truecost` uses its exact rational; the Kani harnesses use `()`), so this
+//! crate stays free of dependencies (issue 10, item 3).
+
+use crate::value::CostValue;
+
+/// Index of a state.
+pub type StateId = usize;
+
+/// What a policy does at a state: apply the move with this index in `U(x)`'s order, or
+/// terminate (goals only).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Decision {
+    /// The move at this position in the state's ordered action list.
+    Move(usize),
+    /// The termination action `uT` of a goal.
+    Terminate,
+}
+
+/// A planning graph in compressed sparse row form, generic over the value type `V` and the
+/// type `U` of the exact value of one unit of `V` (`()` when nobody needs it).
+///
+/// Node `v` of the graph is state `origin[v]` of the problem it was built from (the identity for
+/// `truecost::model::ExactGraph::new`; the first-appearance order for a graph discovered by
+/// exploration).
+#[derive(Clone, Debug)]
+pub struct Graph<V, U = ()> {
+    first: Vec<u32>,
+    successor: Vec<u32>,
+    cost: Vec<V>,
+    rfirst: Vec<u32>,
+    /// For each reverse entry: the index of the forward edge it mirrors.
+    redge: Vec<u32>,
+    /// For each reverse entry: the source node of that edge.
+    rsource: Vec<u32>,
+    is_goal: Vec<bool>,
+    initial: u32,
+    origin: Vec<StateId>,
+    unit: U,
+}
+
+impl<V: CostValue, U> Graph<V, U> {
+    /// Builds a graph from ordered successor lists (SPEC §1: `U(x)` in order, `f`, `l`).
+    /// `origin[v]` names node `v` in the caller's numbering; `unit` is the exact value of one
+    /// unit of `V` (1 unless `V` is scaled; `()` where it is not needed).
+    ///
+    /// Preconditions (checked by `truecost::model::Problem::new` for problems): `initial`,
+    /// goals and successors are `< adjacency.len()`, costs are non-negative, fewer than
+    /// `u32::MAX` nodes and edges.
+    ///
+    /// ```
+    /// use truecost_kernel::model::Graph;
+    /// let g = Graph::<f64>::from_adjacency(vec![vec![(1, 1.0)], vec![]], 0, &[1], vec![0, 1], ());
+    /// assert_eq!(g.nodes(), 2);
+    /// assert_eq!(g.edges(0).count(), 1);
+    /// ```
+    pub fn from_adjacency(
+        adjacency: Vec<Vec<(usize, V)>>,
+        initial: usize,
+        goals: &[usize],
+        origin: Vec<StateId>,
+        unit: U,
+    ) -> Self {
+        let n = adjacency.len();
+        assert!(n < u32::MAX as usize && initial < n && origin.len() == n);
+        let mut first = Vec::with_capacity(n + 1);
+        let mut successor = Vec::new();
+        let mut cost = Vec::new();
+        first.push(0u32);
+        for list in adjacency {
+            for (y, c) in list {
+                assert!(y < n, "successor out of range");
+                successor.push(y as u32);
+                cost.push(c);
+            }
+            first.push(u32::try_from(successor.len()).expect("too many edges"));
+        }
+        // Reverse CSR by counting sort; within a target, sources appear in forward-edge order.
+        let mut indeg = vec![0u32; n + 1];
+        for &y in &successor {
+            indeg[y as usize + 1] += 1;
+        }
+        for i in 0..n {
+            indeg[i + 1] += indeg[i];
+        }
+        let rfirst = indeg.clone();
+        let mut fill = indeg;
+        let mut redge = vec![0u32; successor.len()];
+        let mut rsource = vec![0u32; successor.len()];
+        for x in 0..n {
+            for e in first[x] as usize..first[x + 1] as usize {
+                let slot = &mut fill[successor[e] as usize];
+                redge[*slot as usize] = e as u32;
+                rsource[*slot as usize] = x as u32;
+                *slot += 1;
+            }
+        }
+        let mut is_goal = vec![false; n];
+        for &g in goals {
+            is_goal[g] = true;
+        }
+        Graph {
+            first,
+            successor,
+            cost,
+            rfirst,
+            redge,
+            rsource,
+            is_goal,
+            initial: initial as u32,
+            origin,
+            unit,
+        }
+    }
+
+    /// Number of nodes.
+    #[inline]
+    pub fn nodes(&self) -> usize {
+        self.is_goal.len()
+    }
+
+    /// Number of directed edges (moves).
+    #[inline]
+    pub fn edge_count(&self) -> usize {
+        self.successor.len()
+    }
+
+    /// The initial node `x1`.
+    #[inline]
+    pub fn initial(&self) -> usize {
+        self.initial as usize
+    }
+
+    /// Whether node `v` is a goal.
+    #[inline]
+    pub fn is_goal(&self, v: usize) -> bool {
+        self.is_goal[v]
+    }
+
+    /// The goal nodes in increasing order.
+    pub fn goals(&self) -> Vec<usize> {
+        (0..self.nodes()).filter(|&v| self.is_goal[v]).collect()
+    }
+
+    /// Out-degree of `v` (termination not counted).
+    #[inline]
+    pub fn degree(&self, v: usize) -> usize {
+        (self.first[v + 1] - self.first[v]) as usize
+    }
+
+    /// The moves of `v` in order: `(successor, cost)`.
+    #[inline]
+    pub fn edges(&self, v: usize) -> impl ExactSizeIterator<Item = (usize, &V)> + '_ {
+        let range = self.first[v] as usize..self.first[v + 1] as usize;
+        self.successor[range.clone()]
+            .iter()
+            .zip(&self.cost[range])
+            .map(|(&y, c)| (y as usize, c))
+    }
+
+    /// The moves into `v`: `(source, cost)`, sources in forward-edge order.
+    #[inline]
+    pub fn in_edges(&self, v: usize) -> impl Iterator<Item = (usize, &V)> + '_ {
+        let range = self.rfirst[v] as usize..self.rfirst[v + 1] as usize;
+        self.redge[range.clone()]
+            .iter()
+            .zip(&self.rsource[range])
+            .map(move |(&e, &x)| (x as usize, &self.cost[e as usize]))
+    }
+
+    /// Raw successor slice and cost slice of `v` (for tight inner loops).
+    #[inline]
+    pub fn edge_slices(&self, v: usize) -> (&[u32], &[V]) {
+        let range = self.first[v] as usize..self.first[v + 1] as usize;
+        (&self.successor[range.clone()], &self.cost[range])
+    }
+
+    /// The problem state that node `v` stands for.
+    #[inline]
+    pub fn origin(&self, v: usize) -> StateId {
+        self.origin[v]
+    }
+
+    /// The whole node → problem-state map.
+    pub fn origins(&self) -> &[StateId] {
+        &self.origin
+    }
+
+    /// The exact value of one unit of `V` in this graph.
+    pub fn unit(&self) -> &U {
+        &self.unit
+    }
+}

@@ -32,7 +32,7 @@ pub fn functionals() -> Vec<Functional> {
 
 type Key = (usize, usize, u64, u64, u64);
 
-#[derive(Default)]
+#[derive(Default, serde::Serialize, serde::Deserialize)]
 struct Acc {
     cases: u64,
     comparisons: u64,

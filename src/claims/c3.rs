@@ -131,7 +131,7 @@ pub fn optimal_policy_avoids_goal(t: &Tiny, alpha: Q) -> bool {
 
 type Key = (usize, usize, u64, u64, u64);
 
-#[derive(Default)]
+#[derive(Default, serde::Serialize, serde::Deserialize)]
 struct Acc {
     cases: u64,
     hypotheses_fail: u64,

@@ -45,7 +45,7 @@ x1, pi* is average-cost optimal iff max{T(u) : S(u) < S*} <= M <= min{ min{T(u) 
 M < 0 (C^ over cycles reachable from x1 avoiding the goal; an empty max is -inf, an empty min +inf).";
 
 /// One end of an interval of bonuses.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum End {
     /// Unbounded (`-∞` below, `+∞` above).
     Unbounded,
@@ -56,7 +56,7 @@ pub enum End {
 }
 
 /// A convex set of rationals `{M : lo ≤/< M ≤/< hi}`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Interval {
     /// Lower end.
     pub lo: End,
@@ -426,7 +426,7 @@ impl Instance {
 }
 
 /// The three sets of bonuses for one choice of `π*` (one value of `S*`).
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct BonusSets {
     /// `L*`.
     pub optimal_cost: i64,
@@ -633,14 +633,14 @@ pub fn witness(a: &Interval, b: &Interval) -> Option<Q> {
 
 type Key = (usize, usize, u64, u64, u64);
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 struct Finding {
     t: Tiny,
     sets: BonusSets,
     m: Q,
 }
 
-#[derive(Default)]
+#[derive(Default, serde::Serialize, serde::Deserialize)]
 struct Acc {
     cases: u64,
     no_path: u64,

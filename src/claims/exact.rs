@@ -19,7 +19,7 @@ use crate::value::Rational;
 /// assert_eq!(Q::new(2, 4) + Q::int(1), Q::new(3, 2));
 /// assert!(Q::new(1, 3) < Q::new(1, 2));
 /// ```
-#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Q {
     n: i128,
     d: i128,

@@ -236,7 +236,7 @@ impl QProblem {
 }
 
 /// A fair update order made of rounds; in each round every updatable pair is updated.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Order {
     /// Pairs in index order, every round.
     Cyclic,

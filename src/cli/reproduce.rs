@@ -31,6 +31,21 @@ enum Experiment {
     /// The stochastic comparison: stochastic Q-learning over γ × ρ × ε, and stochastic
     /// asynchronous / synchronous VI, judged against the exact optimum G*.
     Stochastic(StochasticArgs),
+    /// Combine the shard files of `reproduce deterministic --shard K/N` (all N, of one run)
+    /// into the report the unsharded run gives.
+    Merge(MergeArgs),
+}
+
+#[derive(Args, Debug)]
+struct MergeArgs {
+    /// The shard files (any order).
+    #[arg(required = true, value_name = "FILES")]
+    files: Vec<PathBuf>,
+    /// Put the paper's published numbers beside ours (as the experiment's option).
+    #[arg(long)]
+    against_published: bool,
+    #[command(flatten)]
+    output: Output,
 }
 
 #[derive(Args, Debug)]
@@ -218,6 +233,11 @@ struct DeterministicArgs {
     /// counts come out `exact` with `--mode reference`.
     #[arg(long)]
     against_published: bool,
+    /// Run shard K of N (1 <= K <= N <= 4096): the sample runs t with t mod N = K-1 (the π
+    /// rows, one shared digit stream, on shard 1); writes the shard file (JSON) to stdout for
+    /// `reproduce merge`.
+    #[arg(long, value_name = "K/N", conflicts_with_all = ["against_published", "out", "plots", "format"])]
+    shard: Option<String>,
     #[command(flatten)]
     output: Output,
 }
@@ -227,7 +247,31 @@ pub fn run(args: &ReproduceArgs) -> Result<String, String> {
     match &args.experiment {
         Experiment::Deterministic(a) => deterministic_command(a),
         Experiment::Stochastic(a) => stochastic_command(a),
+        Experiment::Merge(a) => merge_command(a),
     }
+}
+
+/// `reproduce merge FILES…` (issue 12, item 4).
+fn merge_command(args: &MergeArgs) -> Result<String, String> {
+    args.output.prepare()?;
+    let files = args
+        .files
+        .iter()
+        .map(|p| {
+            std::fs::read_to_string(p)
+                .map(|text| (p.display().to_string(), text))
+                .map_err(|e| format!("cannot read {}: {e}", p.display()))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let (mut report, settings) = deterministic::merge(&files)?;
+    if args.against_published {
+        deterministic::against_published(&mut report, &settings).map_err(|e| e.to_string())?;
+    }
+    args.output.finish(
+        "deterministic",
+        |format| render(&report, format),
+        || truecost::figures::plots::deterministic(&report),
+    )
 }
 
 fn deterministic_command(args: &DeterministicArgs) -> Result<String, String> {
@@ -248,6 +292,16 @@ fn deterministic_command(args: &DeterministicArgs) -> Result<String, String> {
         threads: args.output.threads,
     };
     settings.validate().map_err(|e| e.to_string())?;
+    if let Some(part) = &args.shard {
+        let part = truecost::claims::shard::Part::parse(part)?;
+        let bar = progress_bar(
+            args.output.quiet,
+            deterministic::shard_runs(&settings, part),
+        );
+        let file = deterministic::run_shard(&settings, part, &|k| bar.inc(k));
+        bar.finish_and_clear();
+        return file.map_err(|e| e.to_string());
+    }
     args.output.prepare()?;
     let bar = progress_bar(args.output.quiet, deterministic::total_runs(&settings));
     let mut report = deterministic::run(&settings, &|k| bar.inc(k)).map_err(|e| e.to_string())?;

@@ -31,8 +31,8 @@ enum Experiment {
     /// The stochastic comparison: stochastic Q-learning over γ × ρ × ε, and stochastic
     /// asynchronous / synchronous VI, judged against the exact optimum G*.
     Stochastic(StochasticArgs),
-    /// Combine the shard files of `reproduce deterministic --shard K/N` (all N, of one run)
-    /// into the report the unsharded run gives.
+    /// Combine the shard files of `reproduce deterministic|stochastic --shard K/N` (all N, of
+    /// one run) into the report the unsharded run gives.
     Merge(MergeArgs),
 }
 
@@ -111,6 +111,11 @@ struct StochasticArgs {
     /// reference`.
     #[arg(long)]
     against_published: bool,
+    /// Run shard K of N (1 <= K <= N <= 4096): the learning runs t with t mod N = K-1 and the
+    /// VI runs of the (problem, γ) pairs i with i mod N = K-1; writes the shard file (JSON) to
+    /// stdout for `reproduce merge`.
+    #[arg(long, value_name = "K/N", conflicts_with_all = ["against_published", "out", "plots", "format"])]
+    shard: Option<String>,
     #[command(flatten)]
     output: Output,
 }
@@ -263,6 +268,18 @@ fn merge_command(args: &MergeArgs) -> Result<String, String> {
                 .map_err(|e| format!("cannot read {}: {e}", p.display()))
         })
         .collect::<Result<Vec<_>, _>>()?;
+    let first: serde_json::Value = serde_json::from_str(&files[0].1).unwrap_or_default();
+    if first["format"].as_str() == Some(stochastic::SHARD_FORMAT) {
+        let (mut report, settings) = stochastic::merge(&files)?;
+        if args.against_published {
+            stochastic::against_published(&mut report, &settings).map_err(|e| e.to_string())?;
+        }
+        return args.output.finish(
+            "stochastic",
+            |format| render_stochastic(&report, format),
+            || truecost::figures::plots::stochastic(&report),
+        );
+    }
     let (mut report, settings) = deterministic::merge(&files)?;
     if args.against_published {
         deterministic::against_published(&mut report, &settings).map_err(|e| e.to_string())?;
@@ -383,6 +400,13 @@ fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
         threads: args.output.threads,
     };
     settings.validate().map_err(e)?;
+    if let Some(part) = &args.shard {
+        let part = truecost::claims::shard::Part::parse(part)?;
+        let bar = progress_bar(args.output.quiet, stochastic::shard_runs(&settings, part));
+        let file = stochastic::run_shard(&settings, part, &|k| bar.inc(k));
+        bar.finish_and_clear();
+        return file.map_err(e);
+    }
     args.output.prepare()?;
     let bar = progress_bar(args.output.quiet, stochastic::total_runs(&settings));
     let mut report = stochastic::run(&settings, &|k| bar.inc(k)).map_err(e)?;

@@ -120,14 +120,40 @@ struct StochasticArgs {
     output: Output,
 }
 
+/// Output format of a reproduction report.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum Format {
+    /// Aligned text.
+    Text,
+    /// JSON (the rows; with `--against-published` an object with the summary).
+    Json,
+    /// Comma-separated values with a header.
+    Csv,
+    /// Markdown tables.
+    Markdown,
+    /// LaTeX tables (booktabs, longtable), the published values beside ours.
+    Latex,
+}
+
+impl Format {
+    fn list(self) -> ListFormat {
+        match self {
+            Format::Text | Format::Latex => ListFormat::Text,
+            Format::Json => ListFormat::Json,
+            Format::Csv => ListFormat::Csv,
+            Format::Markdown => ListFormat::Markdown,
+        }
+    }
+}
+
 /// Threads and outputs, as every experiment takes them.
 #[derive(Args, Debug)]
 struct Output {
     /// Worker threads [default: all cores, or RAYON_NUM_THREADS].
     #[arg(long, value_name = "T", allow_negative_numbers = true)]
     threads: Option<usize>,
-    /// Also write the report as Markdown, CSV and JSON into DIR (deterministic.md, .csv,
-    /// .json, or stochastic.*).
+    /// Also write the report as Markdown, CSV, JSON and LaTeX into DIR (deterministic.md,
+    /// .csv, .json, .tex, or stochastic.*).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Also write the paper's plots as SVG and PNG into DIR: goal discovery and convergence
@@ -136,8 +162,8 @@ struct Output {
     #[arg(long, value_name = "DIR")]
     plots: Option<PathBuf>,
     /// Output format on stdout.
-    #[arg(long, value_enum, default_value_t = ListFormat::Text)]
-    format: ListFormat,
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
@@ -163,14 +189,15 @@ impl Output {
     fn finish(
         &self,
         stem: &str,
-        render: impl Fn(ListFormat) -> String,
+        render: impl Fn(Format) -> String,
         charts: impl FnOnce() -> Vec<(String, truecost::figures::chart::LineChart)>,
     ) -> Result<String, String> {
         if let Some(dir) = &self.out {
             for (ext, format) in [
-                ("md", ListFormat::Markdown),
-                ("csv", ListFormat::Csv),
-                ("json", ListFormat::Json),
+                ("md", Format::Markdown),
+                ("csv", Format::Csv),
+                ("json", Format::Json),
+                ("tex", Format::Latex),
             ] {
                 write_file(&dir.join(format!("{stem}.{ext}")), &render(format))?;
             }
@@ -276,7 +303,10 @@ fn merge_command(args: &MergeArgs) -> Result<String, String> {
         }
         return args.output.finish(
             "stochastic",
-            |format| render_stochastic(&report, format),
+            |format| match format {
+                Format::Latex => truecost::experiments::latex::stochastic(&report, true),
+                f => render_stochastic(&report, f.list()),
+            },
             || truecost::figures::plots::stochastic(&report),
         );
     }
@@ -286,7 +316,10 @@ fn merge_command(args: &MergeArgs) -> Result<String, String> {
     }
     args.output.finish(
         "deterministic",
-        |format| render(&report, format),
+        |format| match format {
+            Format::Latex => truecost::experiments::latex::deterministic(&report, true),
+            f => render(&report, f.list()),
+        },
         || truecost::figures::plots::deterministic(&report),
     )
 }
@@ -328,7 +361,10 @@ fn deterministic_command(args: &DeterministicArgs) -> Result<String, String> {
     }
     args.output.finish(
         "deterministic",
-        |format| render(&report, format),
+        |format| match format {
+            Format::Latex => truecost::experiments::latex::deterministic(&report, true),
+            f => render(&report, f.list()),
+        },
         || truecost::figures::plots::deterministic(&report),
     )
 }
@@ -416,7 +452,10 @@ fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
     }
     args.output.finish(
         "stochastic",
-        |format| render_stochastic(&report, format),
+        |format| match format {
+            Format::Latex => truecost::experiments::latex::stochastic(&report, true),
+            f => render_stochastic(&report, f.list()),
+        },
         || truecost::figures::plots::stochastic(&report),
     )
 }

@@ -42,7 +42,7 @@ use super::stats::{mean_of_present, mean_std};
 use crate::claims::shard::{self, Entry, Part, ShardFile};
 use crate::learning::plan::{sample_rng, EpsilonSchedule, PiStream, Plan, Probability};
 use crate::learning::q_learning::{
-    Event, LearningError, LearningValue, Milestone, QLearner, QLearningConfig, Rules,
+    Event, LearningError, LearningValue, Milestone, Outcome, QLearner, QLearningConfig, Rules,
 };
 use crate::model::{ExactGraph, Graph};
 use crate::planning::{model_free_counts, Algorithm, Mode, PlanCounts};
@@ -454,19 +454,49 @@ fn prepare(id: usize, settings: &Settings) -> Result<ProblemRun, ExperimentError
     }
 }
 
-/// One learning sample on a prepared graph: the clock wraps the learner only (setting up its
-/// Q-table and learning); milestones are timed between calls to [`QLearner::advance`]; the
-/// greedy path is read after the clock stopped. The oracle values `optimum` are prepared
-/// before; the learner compares with them through a counter updated with each `Q̂` update
-/// (`O(1)` per action, see [`crate::learning::q_learning`]).
-fn learn_sample<V: LearningValue>(
+/// What the clock of a learning row reads (issue 13, item 1): seconds to the end of the run and
+/// to each milestone. `Copy`: nothing is rendered inside the timed region.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LearningClock {
+    /// Seconds from the learner's set-up to the end of the run.
+    pub seconds: f64,
+    /// Seconds until the goal was first entered.
+    pub goal_discovered_s: Option<f64>,
+    /// Seconds until `V(x1) = G*(x1)` first held.
+    pub initial_optimal_s: Option<f64>,
+}
+
+/// The timed region of a learning row (issue 13, item 1): the clock wraps the learner only —
+/// setting up its Q-table on a graph compiled before, and learning until it finishes, with
+/// milestones read between calls to [`QLearner::advance`]. The oracle values `optimum` are
+/// prepared before; the learner compares with them through a counter updated with each `Q̂`
+/// update (`O(1)` per action, see [`crate::learning::q_learning`]). It returns the counts
+/// ([`Outcome`](crate::learning::q_learning::Outcome), `Copy`) and the clock; the learner is
+/// handed back so that the greedy path is read after the clock stopped.
+///
+/// ```
+/// use truecost::experiments::deterministic::time_learning;
+/// use truecost::learning::plan::{sample_rng, EpsilonSchedule, Plan, Probability};
+/// use truecost::learning::q_learning::{QLearningConfig, Rules};
+/// use truecost::solvers::value_iteration::{value_iteration, Schedule};
+/// let graph = truecost::problems::GridLayout::reference(16).unwrap().to_reference_graph();
+/// let optimum = value_iteration(&graph, Schedule::Asynchronous, Some(1000)).cost_to_go;
+/// let config = QLearningConfig { rules: Rules::Reference, max_steps: 100,
+///     ..QLearningConfig::paper(EpsilonSchedule::Constant(Probability::ZERO)) };
+/// let (outcome, clock, learner) =
+///     time_learning(&graph, &optimum, &config, sample_rng(0, 0), Plan::Random).unwrap();
+/// // The paper's code: greedy Q-learning on Problem 16 converges after 1000 actions.
+/// assert_eq!((outcome.actions, outcome.converged), (1000, true));
+/// assert!(clock.seconds >= 0.0);
+/// assert_eq!(learner.greedy_path().states.len(), 5);
+/// ```
+pub fn time_learning<'a, V: LearningValue>(
     graph: &Graph<V>,
     optimum: &[V],
     config: &QLearningConfig,
     rng: rand_chacha::ChaCha8Rng,
-    plan: Plan<'_>,
-    mode: Mode,
-) -> Result<Sample, LearningError> {
+    plan: Plan<'a>,
+) -> Result<(Outcome, LearningClock, QLearner<'a, V>), LearningError> {
     let watch = Stopwatch::start();
     let mut learner = QLearner::new(graph, optimum, V::zero(), config, rng, plan)?;
     let (mut goal_time, mut initial_time) = (None, None);
@@ -478,24 +508,41 @@ fn learn_sample<V: LearningValue>(
             Event::Finished => break,
         }
     }
-    let time_s = watch.seconds();
-    let outcome = learner.outcome();
+    let clock = LearningClock {
+        seconds: watch.seconds(),
+        goal_discovered_s: goal_time,
+        initial_optimal_s: initial_time,
+    };
+    Ok((learner.outcome(), clock, learner))
+}
+
+/// One learning sample on a prepared graph: [`time_learning`], then the greedy path, read
+/// after the clock stopped.
+fn learn_sample<V: LearningValue>(
+    graph: &Graph<V>,
+    optimum: &[V],
+    config: &QLearningConfig,
+    rng: rand_chacha::ChaCha8Rng,
+    plan: Plan<'_>,
+    mode: Mode,
+) -> Result<Sample, LearningError> {
+    let (outcome, clock, learner) = time_learning(graph, optimum, config, rng, plan)?;
     let path = learner.greedy_path();
     let iterations = match mode {
         Mode::Exact => u64::from(outcome.episodes_run),
         Mode::Reference => u64::from(outcome.last_episode_index().unwrap_or(0)),
     };
     Ok(Sample {
-        time_s,
+        time_s: clock.seconds,
         actions: outcome.actions,
         planner_actions: 0,
         iterations,
         converged: outcome.converged,
         converged_at: outcome.converged_at,
         initial_optimal_at: outcome.initial_optimal_at,
-        initial_optimal_time_s: initial_time,
+        initial_optimal_time_s: clock.initial_optimal_s,
         goal_discovered_at: outcome.goal_discovered_at,
-        goal_discovered_time_s: goal_time,
+        goal_discovered_time_s: clock.goal_discovered_s,
         path_states: path.states.len(),
         reached_goal: path.reached_goal,
         looped: path.looped,

@@ -41,7 +41,7 @@ of an optimal path to the goal), R = R1 if Q0 >= Q*, else R = max(R1, ceil((max 
 
 type Key = (usize, usize, u64, u64, u64, u64);
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 struct Finding {
     t: Tiny,
     q0: Values,
@@ -53,7 +53,7 @@ struct Finding {
     rounds: u64,
 }
 
-#[derive(Default)]
+#[derive(Default, serde::Serialize, serde::Deserialize)]
 struct Acc {
     printed_cases: u64,
     printed_failures: u64,

@@ -20,7 +20,7 @@ obtained by negating every stage cost (r = -l).";
 
 type Key = (usize, usize, u64, u64, u64);
 
-#[derive(Default)]
+#[derive(Default, serde::Serialize, serde::Deserialize)]
 struct Acc {
     cases: u64,
     comparisons: u64,

@@ -35,7 +35,7 @@ pub fn scope_alphas(scope: Scope) -> Vec<Q> {
 
 type Key = (usize, usize, u64, u64, u64);
 
-#[derive(Default)]
+#[derive(Default, serde::Serialize, serde::Deserialize)]
 struct Acc {
     cases: u64,
     hypotheses_fail: u64,

@@ -93,14 +93,14 @@ impl ToInstance for Problem {
 
 type Key = (usize, usize, u64, u64, u64);
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 struct Finding {
     t: Tiny,
     sets: BonusSets,
     m: Q,
 }
 
-#[derive(Default)]
+#[derive(Default, serde::Serialize, serde::Deserialize)]
 struct Acc {
     cases: u64,
     no_path: u64,

@@ -32,6 +32,7 @@ pub mod registry;
 pub mod replay;
 pub mod report;
 pub mod sampled;
+pub mod shard;
 pub mod smt;
 pub mod tiny;
 
@@ -177,9 +178,13 @@ pub struct ClaimResult {
 /// accumulators. Deterministic whatever the number of threads: `merge` must be associative and
 /// commutative (sums, minima). Returns the merged accumulator and the number of distinct
 /// problems.
+///
+/// Under `verify --shard K/N` it visits only the labelled indices `i ≡ K − 1 (mod N)` and
+/// records its partial accumulator; `verify merge` merges the shards' accumulators with
+/// `merge` instead of visiting anything ([`shard`], issue 12, item 4) — hence the serde bounds.
 pub fn enumerate<A, I, V, M>(spec: &FamilySpec, init: I, visit: V, merge: M) -> (A, u64)
 where
-    A: Send,
+    A: Send + serde::Serialize + serde::de::DeserializeOwned,
     I: Fn() -> A + Sync + Send,
     V: Fn(&mut A, &Tiny, u64) + Sync + Send,
     M: Fn(A, A) -> A + Sync + Send,
@@ -187,23 +192,30 @@ where
     let family = Family::new(spec);
     let count = family.labelled_count();
     let count = usize::try_from(count).expect("scope fits in memory indices");
-    let (acc, distinct) = (0..count)
-        .into_par_iter()
-        .with_min_len(256)
-        .fold(
-            || (init(), 0u64),
-            |(mut acc, mut distinct), i| {
-                let i = i as u64;
-                let t = family.problem(i);
-                if family.is_canonical(&t) {
-                    distinct += 1;
-                    visit(&mut acc, &t, i);
-                }
-                (acc, distinct)
-            },
-        )
-        .reduce(|| (init(), 0u64), |(a, da), (b, db)| (merge(a, b), da + db));
-    (acc, distinct)
+    shard::split(
+        &format!("enumerate {} ({count} labelled)", spec.describe()),
+        |part| {
+            (0..count)
+                .into_par_iter()
+                .with_min_len(256)
+                .filter(|&i| part.is_none_or(|p| p.owns(i as u64)))
+                .fold(
+                    || (init(), 0u64),
+                    |(mut acc, mut distinct), i| {
+                        let i = i as u64;
+                        let t = family.problem(i);
+                        if family.is_canonical(&t) {
+                            distinct += 1;
+                            visit(&mut acc, &t, i);
+                        }
+                        (acc, distinct)
+                    },
+                )
+                .reduce(|| (init(), 0u64), |(a, da), (b, db)| (merge(a, b), da + db))
+        },
+        |(a, da), (b, db)| (merge(a, b), da + db),
+        || (init(), 0),
+    )
 }
 
 /// Keeps the minimal `(key, value)`.

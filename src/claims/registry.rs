@@ -6,7 +6,9 @@ use std::time::Instant;
 use super::harnesses::harness_runs;
 use super::report::{AlphaStar, Report};
 use super::sampled::{self, PropertyRun};
+use super::shard::{self, Part, ShardFile};
 use super::smt::{self, Encoding, Outcome, SmtVerdict};
+use super::tiny::Tiny;
 use super::{alpha, c1, c2, c3, c4, ClaimResult, Counterexample, EngineRun, Scope, Verdict};
 
 /// What `verify` runs besides the enumeration, proptest and harness engines.
@@ -134,6 +136,52 @@ fn attach(result: &mut ClaimResult, prop: Option<(PropertyRun, f64)>) {
     }
 }
 
+/// A proptest run as a shard records it (issue 12, item 4).
+#[derive(serde::Serialize, serde::Deserialize)]
+struct PropertyRecord {
+    cases: u64,
+    relevant: u64,
+    counterexample: Option<(Tiny, String)>,
+    scope: String,
+    seconds: f64,
+}
+
+/// Runs one property (engine 2), timed: a unit of the run under sharding (proptest stops at
+/// its first failure and shrinks it, so its cases cannot be split without changing the
+/// counterexample).
+fn property(claim: &'static str, run: impl FnOnce() -> PropertyRun) -> (PropertyRun, f64) {
+    let r = shard::unit(
+        &format!("proptest {claim}"),
+        || {
+            let (p, seconds) = timed(run);
+            PropertyRecord {
+                cases: p.cases,
+                relevant: p.relevant,
+                counterexample: p.counterexample,
+                scope: p.scope,
+                seconds,
+            }
+        },
+        || PropertyRecord {
+            cases: 0,
+            relevant: 0,
+            counterexample: None,
+            scope: "run by another shard".into(),
+            seconds: 0.0,
+        },
+    );
+    (
+        PropertyRun {
+            claim,
+            cases: r.cases,
+            relevant: r.relevant,
+            counterexample: r.counterexample,
+            scope: r.scope,
+        },
+        r.seconds,
+    )
+}
+
 fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
     let s = Instant::now();
     let v = f();
@@ -152,22 +200,28 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
     if selected("C1", only) || selected("C1-corrected", only) {
         let (mut a, mut b) = c1::check(scope);
         if selected("C1", only) {
-            attach(&mut a, Some(timed(|| sampled::c1_printed(n, None))));
+            attach(
+                &mut a,
+                Some(property("C1", || sampled::c1_printed(n, None))),
+            );
             claims.push(a);
         }
         if selected("C1-corrected", only) {
-            attach(&mut b, Some(timed(|| sampled::c1_corrected(n, None))));
+            attach(
+                &mut b,
+                Some(property("C1-corrected", || sampled::c1_corrected(n, None))),
+            );
             claims.push(b);
         }
     }
     if selected("C2", only) {
         let mut a = c2::check(scope);
-        attach(&mut a, Some(timed(|| sampled::c2(n, None))));
+        attach(&mut a, Some(property("C2", || sampled::c2(n, None))));
         claims.push(a);
     }
     if selected("C3", only) {
         let mut a = c3::check(scope);
-        attach(&mut a, Some(timed(|| sampled::c3(n, None))));
+        attach(&mut a, Some(property("C3", || sampled::c3(n, None))));
         claims.push(a);
     }
     let (mut example, star) = alpha::check();
@@ -178,11 +232,14 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
     if selected("C4", only) || selected("C4-corrected", only) {
         let (mut a, mut b) = c4::check(scope);
         if selected("C4", only) {
-            attach(&mut a, Some(timed(|| sampled::c4(true, n, None))));
+            attach(&mut a, Some(property("C4", || sampled::c4(true, n, None))));
             claims.push(a);
         }
         if selected("C4-corrected", only) {
-            attach(&mut b, Some(timed(|| sampled::c4(false, n, None))));
+            attach(
+                &mut b,
+                Some(property("C4-corrected", || sampled::c4(false, n, None))),
+            );
             claims.push(b);
         }
     }
@@ -208,4 +265,97 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
         claims,
         alpha_star,
     })
+}
+
+/// What a shard file of `verify` must share with the other shards of its run: the tool and
+/// commit (the sites must be the same), the scope, the claim filter and the options.
+fn fingerprint(scope: Scope, only: Option<&str>, options: &Options) -> serde_json::Value {
+    serde_json::json!({
+        "tool": format!("truecost {}", env!("CARGO_PKG_VERSION")),
+        "commit": option_env!("TRUECOST_GIT_COMMIT").unwrap_or("unknown"),
+        "scope": scope.name(),
+        "claim": only,
+        "smt": options.smt,
+        "smt_timeout_ms": options.smt_timeout_ms,
+    })
+}
+
+/// `truecost verify --shard K/N` (issue 12, item 4): runs shard `part` of [`run`] — the
+/// labelled indices `i ≡ K − 1 (mod N)` of every enumeration, and the proptest runs and SMT
+/// obligations it owns (see [`shard`]) — and returns its partial report as the text of a
+/// shard file for [`merge`].
+///
+/// ```
+/// use truecost::claims::registry::{merge, run, run_shard, Options};
+/// use truecost::claims::shard::Part;
+/// use truecost::claims::{report, Scope};
+/// let options = Options { smt: false, ..Options::default() };
+/// let files: Vec<(String, String)> = (1..=2)
+///     .map(|k| {
+///         let part = Part::parse(&format!("{k}/2")).unwrap();
+///         (format!("shard{k}.json"), run_shard(Scope::Smoke, Some("C2"), &options, part).unwrap())
+///     })
+///     .collect();
+/// let merged = merge(&files).unwrap();
+/// let whole = run(Scope::Smoke, Some("C2"), &options).unwrap();
+/// assert_eq!(report::json(&merged, false), report::json(&whole, false));
+/// ```
+pub fn run_shard(
+    scope: Scope,
+    only: Option<&str>,
+    options: &Options,
+    part: Part,
+) -> Result<String, String> {
+    let started = Instant::now();
+    let (result, entries) = shard::record_shard(part, || run(scope, only, options));
+    result?;
+    Ok(ShardFile {
+        part,
+        fingerprint: fingerprint(scope, only, options),
+        entries,
+        seconds: started.elapsed().as_secs_f64(),
+    }
+    .to_json(shard::VERIFY_FORMAT))
+}
+
+/// `truecost verify merge FILES…` (issue 12, item 4): the report of the whole run from the
+/// texts of its N shard files `(name, text)`: every shard present once, all of one run (the
+/// same scope, claims, options and build). Verdicts, case counts and counterexamples are the
+/// whole run's; the engines' times are the merge's own (render without times).
+pub fn merge(files: &[(String, String)]) -> Result<Report, String> {
+    let read = files
+        .iter()
+        .map(|(name, text)| {
+            ShardFile::from_json(text, shard::VERIFY_FORMAT, name).map(|f| (name.clone(), f))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let shards = shard::complete_set(read)?;
+    let fp = shards[0].fingerprint.clone();
+    let bad = |what: &str| format!("the shards' fingerprint has no valid {what}");
+    let scope = match fp["scope"].as_str() {
+        Some("smoke") => Scope::Smoke,
+        Some("quick") => Scope::Quick,
+        Some("full") => Scope::Full,
+        _ => return Err(bad("scope")),
+    };
+    let only = match &fp["claim"] {
+        serde_json::Value::Null => None,
+        serde_json::Value::String(c) => Some(c.clone()),
+        _ => return Err(bad("claim")),
+    };
+    let options = Options {
+        smt: fp["smt"].as_bool().ok_or_else(|| bad("smt flag"))?,
+        smt_timeout_ms: fp["smt_timeout_ms"]
+            .as_u64()
+            .and_then(|t| u32::try_from(t).ok())
+            .ok_or_else(|| bad("smt timeout"))?,
+    };
+    let mine = fingerprint(scope, only.as_deref(), &options);
+    if mine != fp {
+        return Err(format!(
+            "the shards were made by {} (commit {}), this is {} (commit {}): merge with the same build",
+            fp["tool"], fp["commit"], mine["tool"], mine["commit"]
+        ));
+    }
+    shard::replay(shards, || run(scope, only.as_deref(), &options))?
 }

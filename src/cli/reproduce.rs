@@ -31,6 +31,21 @@ enum Experiment {
     /// The stochastic comparison: stochastic Q-learning over γ × ρ × ε, and stochastic
     /// asynchronous / synchronous VI, judged against the exact optimum G*.
     Stochastic(StochasticArgs),
+    /// Combine the shard files of `reproduce deterministic|stochastic --shard K/N` (all N, of
+    /// one run) into the report the unsharded run gives.
+    Merge(MergeArgs),
+}
+
+#[derive(Args, Debug)]
+struct MergeArgs {
+    /// The shard files (any order).
+    #[arg(required = true, value_name = "FILES")]
+    files: Vec<PathBuf>,
+    /// Put the paper's published numbers beside ours (as the experiment's option).
+    #[arg(long)]
+    against_published: bool,
+    #[command(flatten)]
+    output: Output,
 }
 
 #[derive(Args, Debug)]
@@ -96,8 +111,39 @@ struct StochasticArgs {
     /// reference`.
     #[arg(long)]
     against_published: bool,
+    /// Run shard K of N (1 <= K <= N <= 4096): the learning runs t with t mod N = K-1 and the
+    /// VI runs of the (problem, γ) pairs i with i mod N = K-1; writes the shard file (JSON) to
+    /// stdout for `reproduce merge`.
+    #[arg(long, value_name = "K/N", conflicts_with_all = ["against_published", "out", "plots", "format"])]
+    shard: Option<String>,
     #[command(flatten)]
     output: Output,
+}
+
+/// Output format of a reproduction report.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum Format {
+    /// Aligned text.
+    Text,
+    /// JSON (the rows; with `--against-published` an object with the summary).
+    Json,
+    /// Comma-separated values with a header.
+    Csv,
+    /// Markdown tables.
+    Markdown,
+    /// LaTeX tables (booktabs, longtable), the published values beside ours.
+    Latex,
+}
+
+impl Format {
+    fn list(self) -> ListFormat {
+        match self {
+            Format::Text | Format::Latex => ListFormat::Text,
+            Format::Json => ListFormat::Json,
+            Format::Csv => ListFormat::Csv,
+            Format::Markdown => ListFormat::Markdown,
+        }
+    }
 }
 
 /// Threads and outputs, as every experiment takes them.
@@ -106,8 +152,8 @@ struct Output {
     /// Worker threads [default: all cores, or RAYON_NUM_THREADS].
     #[arg(long, value_name = "T", allow_negative_numbers = true)]
     threads: Option<usize>,
-    /// Also write the report as Markdown, CSV and JSON into DIR (deterministic.md, .csv,
-    /// .json, or stochastic.*).
+    /// Also write the report as Markdown, CSV, JSON and LaTeX into DIR (deterministic.md,
+    /// .csv, .json, .tex, or stochastic.*).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Also write the paper's plots as SVG and PNG into DIR: goal discovery and convergence
@@ -116,8 +162,8 @@ struct Output {
     #[arg(long, value_name = "DIR")]
     plots: Option<PathBuf>,
     /// Output format on stdout.
-    #[arg(long, value_enum, default_value_t = ListFormat::Text)]
-    format: ListFormat,
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
@@ -143,14 +189,15 @@ impl Output {
     fn finish(
         &self,
         stem: &str,
-        render: impl Fn(ListFormat) -> String,
+        render: impl Fn(Format) -> String,
         charts: impl FnOnce() -> Vec<(String, truecost::figures::chart::LineChart)>,
     ) -> Result<String, String> {
         if let Some(dir) = &self.out {
             for (ext, format) in [
-                ("md", ListFormat::Markdown),
-                ("csv", ListFormat::Csv),
-                ("json", ListFormat::Json),
+                ("md", Format::Markdown),
+                ("csv", Format::Csv),
+                ("json", Format::Json),
+                ("tex", Format::Latex),
             ] {
                 write_file(&dir.join(format!("{stem}.{ext}")), &render(format))?;
             }
@@ -218,6 +265,11 @@ struct DeterministicArgs {
     /// counts come out `exact` with `--mode reference`.
     #[arg(long)]
     against_published: bool,
+    /// Run shard K of N (1 <= K <= N <= 4096): the sample runs t with t mod N = K-1 (the π
+    /// rows, one shared digit stream, on shard 1); writes the shard file (JSON) to stdout for
+    /// `reproduce merge`.
+    #[arg(long, value_name = "K/N", conflicts_with_all = ["against_published", "out", "plots", "format"])]
+    shard: Option<String>,
     #[command(flatten)]
     output: Output,
 }
@@ -227,7 +279,49 @@ pub fn run(args: &ReproduceArgs) -> Result<String, String> {
     match &args.experiment {
         Experiment::Deterministic(a) => deterministic_command(a),
         Experiment::Stochastic(a) => stochastic_command(a),
+        Experiment::Merge(a) => merge_command(a),
     }
+}
+
+/// `reproduce merge FILES…` (issue 12, item 4).
+fn merge_command(args: &MergeArgs) -> Result<String, String> {
+    args.output.prepare()?;
+    let files = args
+        .files
+        .iter()
+        .map(|p| {
+            std::fs::read_to_string(p)
+                .map(|text| (p.display().to_string(), text))
+                .map_err(|e| format!("cannot read {}: {e}", p.display()))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let first: serde_json::Value = serde_json::from_str(&files[0].1).unwrap_or_default();
+    if first["format"].as_str() == Some(stochastic::SHARD_FORMAT) {
+        let (mut report, settings) = stochastic::merge(&files)?;
+        if args.against_published {
+            stochastic::against_published(&mut report, &settings).map_err(|e| e.to_string())?;
+        }
+        return args.output.finish(
+            "stochastic",
+            |format| match format {
+                Format::Latex => truecost::experiments::latex::stochastic(&report, true),
+                f => render_stochastic(&report, f.list()),
+            },
+            || truecost::figures::plots::stochastic(&report),
+        );
+    }
+    let (mut report, settings) = deterministic::merge(&files)?;
+    if args.against_published {
+        deterministic::against_published(&mut report, &settings).map_err(|e| e.to_string())?;
+    }
+    args.output.finish(
+        "deterministic",
+        |format| match format {
+            Format::Latex => truecost::experiments::latex::deterministic(&report, true),
+            f => render(&report, f.list()),
+        },
+        || truecost::figures::plots::deterministic(&report),
+    )
 }
 
 fn deterministic_command(args: &DeterministicArgs) -> Result<String, String> {
@@ -248,6 +342,16 @@ fn deterministic_command(args: &DeterministicArgs) -> Result<String, String> {
         threads: args.output.threads,
     };
     settings.validate().map_err(|e| e.to_string())?;
+    if let Some(part) = &args.shard {
+        let part = truecost::claims::shard::Part::parse(part)?;
+        let bar = progress_bar(
+            args.output.quiet,
+            deterministic::shard_runs(&settings, part),
+        );
+        let file = deterministic::run_shard(&settings, part, &|k| bar.inc(k));
+        bar.finish_and_clear();
+        return file.map_err(|e| e.to_string());
+    }
     args.output.prepare()?;
     let bar = progress_bar(args.output.quiet, deterministic::total_runs(&settings));
     let mut report = deterministic::run(&settings, &|k| bar.inc(k)).map_err(|e| e.to_string())?;
@@ -257,7 +361,10 @@ fn deterministic_command(args: &DeterministicArgs) -> Result<String, String> {
     }
     args.output.finish(
         "deterministic",
-        |format| render(&report, format),
+        |format| match format {
+            Format::Latex => truecost::experiments::latex::deterministic(&report, true),
+            f => render(&report, f.list()),
+        },
         || truecost::figures::plots::deterministic(&report),
     )
 }
@@ -329,6 +436,13 @@ fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
         threads: args.output.threads,
     };
     settings.validate().map_err(e)?;
+    if let Some(part) = &args.shard {
+        let part = truecost::claims::shard::Part::parse(part)?;
+        let bar = progress_bar(args.output.quiet, stochastic::shard_runs(&settings, part));
+        let file = stochastic::run_shard(&settings, part, &|k| bar.inc(k));
+        bar.finish_and_clear();
+        return file.map_err(e);
+    }
     args.output.prepare()?;
     let bar = progress_bar(args.output.quiet, stochastic::total_runs(&settings));
     let mut report = stochastic::run(&settings, &|k| bar.inc(k)).map_err(e)?;
@@ -338,7 +452,10 @@ fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
     }
     args.output.finish(
         "stochastic",
-        |format| render_stochastic(&report, format),
+        |format| match format {
+            Format::Latex => truecost::experiments::latex::stochastic(&report, true),
+            f => render_stochastic(&report, f.list()),
+        },
         || truecost::figures::plots::stochastic(&report),
     )
 }

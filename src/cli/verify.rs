@@ -4,7 +4,7 @@
 use std::fmt::Write;
 use std::path::PathBuf;
 
-use clap::{Args, ValueEnum};
+use clap::{Args, Subcommand, ValueEnum};
 use num_bigint::BigInt;
 use serde_json::json;
 
@@ -29,7 +29,15 @@ pub enum VerifyFormat {
 
 /// Arguments of `verify`.
 #[derive(Args, Debug)]
+#[command(args_conflicts_with_subcommands = true)]
 pub struct VerifyArgs {
+    /// `verify merge FILES…`: combine shard files.
+    #[command(subcommand)]
+    command: Option<VerifyCommand>,
+    /// Run shard K of N (1 <= K <= N <= 4096) and write its partial report (a JSON shard
+    /// file) to stdout; `verify merge` combines the N files into the whole run's report.
+    #[arg(long, value_name = "K/N", conflicts_with_all = ["counterexamples", "smt_out", "file", "problem", "format", "no_times"])]
+    shard: Option<String>,
     /// Check one claim only (C1, C1-corrected, C2, C3, C3-example, C4, C4-corrected; C1 also
     /// selects C1-corrected, and so on).
     #[arg(long, value_name = "ID")]
@@ -67,8 +75,92 @@ pub struct VerifyArgs {
     smt_timeout: u32,
 }
 
+/// `verify merge`.
+#[derive(Subcommand, Debug)]
+pub enum VerifyCommand {
+    /// Combine the shard files of `verify --shard K/N` (all N, of one run) into the report
+    /// the unsharded run gives (without times: each shard timed only its own part).
+    Merge(MergeArgs),
+}
+
+/// Arguments of `verify merge`.
+#[derive(Args, Debug)]
+pub struct MergeArgs {
+    /// The shard files (any order).
+    #[arg(required = true, value_name = "FILES")]
+    files: Vec<PathBuf>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = VerifyFormat::Text)]
+    format: VerifyFormat,
+    /// Write each counterexample's problem file into this directory.
+    #[arg(long, value_name = "DIR")]
+    counterexamples: Option<PathBuf>,
+}
+
+/// `verify --shard K/N` (issue 12, item 4): the shard's partial report.
+fn shard(args: &VerifyArgs, part: &str) -> Result<String, String> {
+    let part = truecost::claims::shard::Part::parse(part)?;
+    let options = truecost::claims::registry::Options {
+        smt: !args.no_smt,
+        smt_timeout_ms: args.smt_timeout * 1000,
+    };
+    truecost::claims::registry::run_shard(args.scope, args.claim.as_deref(), &options, part)
+}
+
+/// `verify merge FILES…` (issue 12, item 4): the whole run's report from its shards.
+fn merge(args: &MergeArgs) -> Result<String, String> {
+    if let Some(dir) = &args.counterexamples {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    }
+    let files = args
+        .files
+        .iter()
+        .map(|p| {
+            std::fs::read_to_string(p)
+                .map(|text| (p.display().to_string(), text))
+                .map_err(|e| format!("cannot read {}: {e}", p.display()))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let r = truecost::claims::registry::merge(&files)?;
+    if let Some(dir) = &args.counterexamples {
+        write_counterexamples(dir, &r)?;
+    }
+    Ok(render(&r, args.format, false))
+}
+
+fn render(r: &report::Report, format: VerifyFormat, with_times: bool) -> String {
+    match format {
+        VerifyFormat::Text => report::text(r, with_times),
+        VerifyFormat::Json => report::json(r, with_times),
+        VerifyFormat::Markdown => report::markdown(r, with_times),
+        VerifyFormat::Latex => report::latex(r),
+    }
+}
+
+fn write_counterexamples(dir: &std::path::Path, r: &report::Report) -> Result<(), String> {
+    for c in &r.claims {
+        if let Some(ce) = &c.counterexample {
+            let name = std::path::Path::new(&ce.file)
+                .file_name()
+                .expect("a file name")
+                .to_owned();
+            let path = dir.join(name);
+            std::fs::write(&path, &ce.problem_file)
+                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        }
+    }
+    Ok(())
+}
+
 /// Runs `verify`.
 pub fn verify(args: &VerifyArgs) -> Result<String, String> {
+    if let Some(VerifyCommand::Merge(m)) = &args.command {
+        return merge(m);
+    }
+    if let Some(part) = &args.shard {
+        return shard(args, part);
+    }
     if args.file.is_some() || args.problem.is_some() {
         if args.claim.as_deref() != Some("C4") {
             return Err(

@@ -39,9 +39,10 @@ use super::clock::{timed, Stopwatch};
 use super::published::{self, Comparison, DataError, Kind, Observations, Observed, Summary};
 use super::runs::{in_pool, RunSettings};
 use super::stats::{mean_of_present, mean_std};
+use crate::claims::shard::{self, Entry, Part, ShardFile};
 use crate::learning::plan::{sample_rng, EpsilonSchedule, PiStream, Plan, Probability};
 use crate::learning::q_learning::{
-    Event, LearningError, LearningValue, Milestone, QLearner, QLearningConfig, Rules,
+    Event, LearningError, LearningValue, Milestone, Outcome, QLearner, QLearningConfig, Rules,
 };
 use crate::model::{ExactGraph, Graph};
 use crate::planning::{model_free_counts, Algorithm, Mode, PlanCounts};
@@ -252,7 +253,7 @@ impl Settings {
 }
 
 /// The measurements of one sample run.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct Sample {
     /// Wall time of the run in seconds (the only non-reproducible number).
     pub time_s: f64,
@@ -453,19 +454,49 @@ fn prepare(id: usize, settings: &Settings) -> Result<ProblemRun, ExperimentError
     }
 }
 
-/// One learning sample on a prepared graph: the clock wraps the learner only (setting up its
-/// Q-table and learning); milestones are timed between calls to [`QLearner::advance`]; the
-/// greedy path is read after the clock stopped. The oracle values `optimum` are prepared
-/// before; the learner compares with them through a counter updated with each `Q̂` update
-/// (`O(1)` per action, see [`crate::learning::q_learning`]).
-fn learn_sample<V: LearningValue>(
+/// What the clock of a learning row reads (issue 13, item 1): seconds to the end of the run and
+/// to each milestone. `Copy`: nothing is rendered inside the timed region.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LearningClock {
+    /// Seconds from the learner's set-up to the end of the run.
+    pub seconds: f64,
+    /// Seconds until the goal was first entered.
+    pub goal_discovered_s: Option<f64>,
+    /// Seconds until `V(x1) = G*(x1)` first held.
+    pub initial_optimal_s: Option<f64>,
+}
+
+/// The timed region of a learning row (issue 13, item 1): the clock wraps the learner only —
+/// setting up its Q-table on a graph compiled before, and learning until it finishes, with
+/// milestones read between calls to [`QLearner::advance`]. The oracle values `optimum` are
+/// prepared before; the learner compares with them through a counter updated with each `Q̂`
+/// update (`O(1)` per action, see [`crate::learning::q_learning`]). It returns the counts
+/// ([`Outcome`](crate::learning::q_learning::Outcome), `Copy`) and the clock; the learner is
+/// handed back so that the greedy path is read after the clock stopped.
+///
+/// ```
+/// use truecost::experiments::deterministic::time_learning;
+/// use truecost::learning::plan::{sample_rng, EpsilonSchedule, Plan, Probability};
+/// use truecost::learning::q_learning::{QLearningConfig, Rules};
+/// use truecost::solvers::value_iteration::{value_iteration, Schedule};
+/// let graph = truecost::problems::GridLayout::reference(16).unwrap().to_reference_graph();
+/// let optimum = value_iteration(&graph, Schedule::Asynchronous, Some(1000)).cost_to_go;
+/// let config = QLearningConfig { rules: Rules::Reference, max_steps: 100,
+///     ..QLearningConfig::paper(EpsilonSchedule::Constant(Probability::ZERO)) };
+/// let (outcome, clock, learner) =
+///     time_learning(&graph, &optimum, &config, sample_rng(0, 0), Plan::Random).unwrap();
+/// // The paper's code: greedy Q-learning on Problem 16 converges after 1000 actions.
+/// assert_eq!((outcome.actions, outcome.converged), (1000, true));
+/// assert!(clock.seconds >= 0.0);
+/// assert_eq!(learner.greedy_path().states.len(), 5);
+/// ```
+pub fn time_learning<'a, V: LearningValue>(
     graph: &Graph<V>,
     optimum: &[V],
     config: &QLearningConfig,
     rng: rand_chacha::ChaCha8Rng,
-    plan: Plan<'_>,
-    mode: Mode,
-) -> Result<Sample, LearningError> {
+    plan: Plan<'a>,
+) -> Result<(Outcome, LearningClock, QLearner<'a, V>), LearningError> {
     let watch = Stopwatch::start();
     let mut learner = QLearner::new(graph, optimum, V::zero(), config, rng, plan)?;
     let (mut goal_time, mut initial_time) = (None, None);
@@ -477,24 +508,41 @@ fn learn_sample<V: LearningValue>(
             Event::Finished => break,
         }
     }
-    let time_s = watch.seconds();
-    let outcome = learner.outcome();
+    let clock = LearningClock {
+        seconds: watch.seconds(),
+        goal_discovered_s: goal_time,
+        initial_optimal_s: initial_time,
+    };
+    Ok((learner.outcome(), clock, learner))
+}
+
+/// One learning sample on a prepared graph: [`time_learning`], then the greedy path, read
+/// after the clock stopped.
+fn learn_sample<V: LearningValue>(
+    graph: &Graph<V>,
+    optimum: &[V],
+    config: &QLearningConfig,
+    rng: rand_chacha::ChaCha8Rng,
+    plan: Plan<'_>,
+    mode: Mode,
+) -> Result<Sample, LearningError> {
+    let (outcome, clock, learner) = time_learning(graph, optimum, config, rng, plan)?;
     let path = learner.greedy_path();
     let iterations = match mode {
         Mode::Exact => u64::from(outcome.episodes_run),
         Mode::Reference => u64::from(outcome.last_episode_index().unwrap_or(0)),
     };
     Ok(Sample {
-        time_s,
+        time_s: clock.seconds,
         actions: outcome.actions,
         planner_actions: 0,
         iterations,
         converged: outcome.converged,
         converged_at: outcome.converged_at,
         initial_optimal_at: outcome.initial_optimal_at,
-        initial_optimal_time_s: initial_time,
+        initial_optimal_time_s: clock.initial_optimal_s,
         goal_discovered_at: outcome.goal_discovered_at,
-        goal_discovered_time_s: goal_time,
+        goal_discovered_time_s: clock.goal_discovered_s,
         path_states: path.states.len(),
         reached_goal: path.reached_goal,
         looped: path.looped,
@@ -866,24 +914,59 @@ fn run_validated(
     settings: &Settings,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Report, ExperimentError> {
-    let runs: Vec<ProblemRun> = settings
+    let runs = prepare_all(settings)?;
+    let (pi, results) = compute(&runs, settings, progress, None)?;
+    let pi = pi.expect("the whole run runs the π rows");
+    let results = results
+        .into_iter()
+        .map(|r| r.expect("the whole run runs every task"))
+        .collect();
+    Ok(assemble(&runs, settings, pi, results))
+}
+
+fn prepare_all(settings: &Settings) -> Result<Vec<ProblemRun>, ExperimentError> {
+    settings
         .problems
         .par_iter()
         .map(|&id| prepare(id, settings))
-        .collect::<Result<_, _>>()?;
-    // Every (problem, row, sample) except the π rows, in parallel.
-    let tasks: Vec<(usize, usize, u32)> = (0..runs.len())
+        .collect()
+}
+
+/// Every `(problem index, row index, sample)` except the π rows, in report order.
+fn tasks(problems: usize, samples: u32) -> Vec<(usize, usize, u32)> {
+    (0..problems)
         .flat_map(|p| {
             PAPER_ROWS
                 .iter()
                 .enumerate()
                 .filter(|(_, row)| !row.is_pi())
-                .flat_map(move |(r, _)| (0..settings.samples).map(move |k| (p, r, k)))
+                .flat_map(move |(r, _)| (0..samples).map(move |k| (p, r, k)))
         })
-        .collect();
-    let skip = |run: &ProblemRun, row: &Row| !run.reachable && !matches!(row, Row::ModelFree(_));
+        .collect()
+}
+
+fn skip(run: &ProblemRun, row: &Row) -> bool {
+    !run.reachable && !matches!(row, Row::ModelFree(_))
+}
+
+/// The π rows' samples per problem (`None`: another shard runs them) and every task's sample
+/// (`None`: another shard's task; `Some(None)`: not run, the goal is unreachable). `part`
+/// selects a shard's share (issue 12, item 4): task `t` (in [`tasks`] order) when
+/// `part.owns(t)`, and the π rows — one chain sharing one digit stream, so indivisible —
+/// on shard 1.
+#[allow(clippy::type_complexity)]
+fn compute(
+    runs: &[ProblemRun],
+    settings: &Settings,
+    progress: &(dyn Fn(u64) + Sync),
+    part: Option<Part>,
+) -> Result<(Option<Vec<Vec<Sample>>>, Vec<Option<Option<Sample>>>), ExperimentError> {
+    let tasks = tasks(runs.len(), settings.samples);
     let (pi_results, results) = rayon::join(
-        || -> Result<Vec<Vec<Sample>>, ExperimentError> {
+        || -> Result<Option<Vec<Vec<Sample>>>, ExperimentError> {
+            if part.is_some_and(|p| !p.owns(0)) {
+                return Ok(None);
+            }
             // The π rows: one shared digit stream, problems in the given order.
             let mut stream = PiStream::new();
             // Compute the digits the π runs can accept before any clock starts (a run of A
@@ -920,12 +1003,17 @@ fn run_validated(
                         })
                         .collect()
                 })
-                .collect()
+                .collect::<Result<_, _>>()
+                .map(Some)
         },
-        || -> Result<Vec<Option<Sample>>, ExperimentError> {
+        || -> Result<Vec<Option<Option<Sample>>>, ExperimentError> {
             tasks
                 .par_iter()
-                .map(|&(p, r, k)| {
+                .enumerate()
+                .map(|(t, &(p, r, k))| {
+                    if part.is_some_and(|part| !part.owns(t as u64)) {
+                        return Ok(None);
+                    }
                     let run = &runs[p];
                     let row = &PAPER_ROWS[r];
                     let s = if skip(run, row) {
@@ -934,13 +1022,21 @@ fn run_validated(
                         Some(run_sample(run, r, row, k, settings, None)?)
                     };
                     progress(1);
-                    Ok(s)
+                    Ok(Some(s))
                 })
                 .collect()
         },
     );
-    let pi_results = pi_results?;
-    let results = results?;
+    Ok((pi_results?, results?))
+}
+
+/// The report from every sample: the π rows' per problem and the tasks' in [`tasks`] order.
+fn assemble(
+    runs: &[ProblemRun],
+    settings: &Settings,
+    pi_results: Vec<Vec<Sample>>,
+    results: Vec<Option<Sample>>,
+) -> Report {
     let mut rows = Vec::new();
     let mut next = results.into_iter();
     for (p, run) in runs.iter().enumerate() {
@@ -958,7 +1054,7 @@ fn run_validated(
             rows.push(summarise(run, row, &samples, settings, note));
         }
     }
-    Ok(Report {
+    Report {
         mode: settings.mode,
         model: settings.model(),
         seed: settings.seed,
@@ -968,5 +1064,169 @@ fn run_validated(
         problems: settings.problems.clone(),
         rows,
         against_published: None,
+    }
+}
+
+/// The format tag of a shard file of `reproduce deterministic`.
+pub const SHARD_FORMAT: &str = "truecost-reproduce-deterministic-shard/1";
+
+/// The settings a shard shares with the other shards of its run (threads aside), and the build.
+fn fingerprint(settings: &Settings) -> serde_json::Value {
+    serde_json::json!({
+        "tool": format!("truecost {}", env!("CARGO_PKG_VERSION")),
+        "commit": option_env!("TRUECOST_GIT_COMMIT").unwrap_or("unknown"),
+        "problems": settings.problems,
+        "samples": settings.samples,
+        "seed": settings.seed,
+        "mode": settings.mode,
+        "step_cost": settings.step_cost,
+        "episodes": settings.episodes,
+        "max_steps": settings.max_steps,
     })
+}
+
+/// The number of sample runs shard `part` performs (for its progress bar).
+pub fn shard_runs(settings: &Settings, part: Part) -> u64 {
+    let owned = (0..tasks(settings.problems.len(), settings.samples).len() as u64)
+        .filter(|&t| part.owns(t))
+        .count() as u64;
+    let pi = if part.owns(0) {
+        settings.problems.len() as u64 * u64::from(settings.samples)
+    } else {
+        0
+    };
+    owned + pi
+}
+
+/// `reproduce deterministic --shard K/N` (issue 12, item 4): runs the sample runs `t` (every
+/// `(problem, row, sample)` but the π rows, in report order) with `t mod N = K − 1`, and the
+/// π rows on shard 1 (one digit stream shared in problem order: indivisible), and returns the
+/// shard file's text. [`merge`] combines the N files into the report of [`run`]; every number,
+/// the times included, is the one a shard measured.
+///
+/// ```
+/// use truecost::claims::shard::Part;
+/// use truecost::experiments::deterministic::{merge, run, run_shard, Settings};
+/// use truecost::planning::Mode;
+/// let settings = Settings { problems: vec![16], samples: 2, mode: Mode::Reference,
+///     max_steps: 100, ..Settings::default() };
+/// let files: Vec<(String, String)> = (1..=2)
+///     .map(|k| (format!("{k}"), run_shard(&settings, Part::parse(&format!("{k}/2")).unwrap(), &|_| {}).unwrap()))
+///     .collect();
+/// let (merged, merged_settings) = merge(&files).unwrap();
+/// let whole = run(&settings, &|_| {}).unwrap();
+/// assert_eq!(merged_settings, settings);
+/// assert_eq!(merged.rows.len(), whole.rows.len());
+/// for (a, b) in merged.rows.iter().zip(&whole.rows) {
+///     assert_eq!((a.mean_actions, a.mean_iterations), (b.mean_actions, b.mean_iterations));
+/// }
+/// ```
+pub fn run_shard(
+    settings: &Settings,
+    part: Part,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<String, ExperimentError> {
+    settings.validate()?;
+    let watch = Stopwatch::start();
+    let (pi, results) = in_pool(settings.threads, || -> Result<_, ExperimentError> {
+        let runs = prepare_all(settings)?;
+        compute(&runs, settings, progress, Some(part))
+    })??;
+    let mut entries = vec![Entry {
+        site: "pi rows".into(),
+        value: pi.as_ref().map(encode),
+    }];
+    for (t, r) in results.iter().enumerate() {
+        entries.push(Entry {
+            site: format!("sample run {t}"),
+            value: r.as_ref().map(encode),
+        });
+    }
+    Ok(ShardFile {
+        part,
+        fingerprint: fingerprint(settings),
+        entries,
+        seconds: watch.seconds(),
+    }
+    .to_json(SHARD_FORMAT))
+}
+
+/// A value a shard records, as JSON text.
+fn encode<T: Serialize>(value: &T) -> String {
+    serde_json::to_string(value).expect("serialisable")
+}
+
+/// `reproduce merge` of deterministic shard files `(name, text)` (issue 12, item 4): the
+/// report of [`run`] with the settings the shards ran (every shard present once, all of one
+/// run and build). The problems are prepared again (compiled, their oracle solved: no clock);
+/// no sample is rerun.
+pub fn merge(files: &[(String, String)]) -> Result<(Report, Settings), String> {
+    let read = files
+        .iter()
+        .map(|(name, text)| {
+            ShardFile::from_json(text, SHARD_FORMAT, name).map(|f| (name.clone(), f))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let shards = shard::complete_set(read)?;
+    let fp = &shards[0].fingerprint;
+    let bad = |what: &str| format!("the shards' fingerprint has no valid {what}");
+    let settings = Settings {
+        problems: serde_json::from_value(fp["problems"].clone()).map_err(|_| bad("problems"))?,
+        samples: serde_json::from_value(fp["samples"].clone()).map_err(|_| bad("samples"))?,
+        seed: serde_json::from_value(fp["seed"].clone()).map_err(|_| bad("seed"))?,
+        mode: clap::ValueEnum::from_str(fp["mode"].as_str().unwrap_or(""), false)
+            .map_err(|_| bad("mode"))?,
+        step_cost: clap::ValueEnum::from_str(fp["step_cost"].as_str().unwrap_or(""), false)
+            .map_err(|_| bad("step cost"))?,
+        episodes: serde_json::from_value(fp["episodes"].clone()).map_err(|_| bad("episodes"))?,
+        max_steps: serde_json::from_value(fp["max_steps"].clone()).map_err(|_| bad("max_steps"))?,
+        threads: None,
+    };
+    if fingerprint(&settings) != *fp {
+        return Err(format!(
+            "the shards were made by {} (commit {}) with other settings than they state, or by another build: merge with the same build",
+            fp["tool"], fp["commit"]
+        ));
+    }
+    settings.validate().map_err(|e| e.to_string())?;
+    let runs = in_pool(None, || prepare_all(&settings))
+        .map_err(|e| e.to_string())?
+        .map_err(|e| e.to_string())?;
+    let count = tasks(runs.len(), settings.samples).len();
+    if shards[0].entries.len() != count + 1 {
+        return Err(format!(
+            "the shards record {} sites, these settings have {}",
+            shards[0].entries.len(),
+            count + 1
+        ));
+    }
+    // Site j's value: the one shard that recorded it.
+    let owner = |j: usize| -> Result<&str, String> {
+        let mut present = shards.iter().filter_map(|s| s.entries[j].value.as_deref());
+        match (present.next(), present.next()) {
+            (Some(v), None) => Ok(v),
+            (None, _) => Err(format!(
+                "site '{}': no shard ran it",
+                shards[0].entries[j].site
+            )),
+            (Some(_), Some(_)) => Err(format!(
+                "site '{}': run by two shards",
+                shards[0].entries[j].site
+            )),
+        }
+    };
+    let malformed = |j: usize, e: serde_json::Error| {
+        format!(
+            "site '{}': malformed value ({e})",
+            shards[0].entries[j].site
+        )
+    };
+    let pi: Vec<Vec<Sample>> = serde_json::from_str(owner(0)?).map_err(|e| malformed(0, e))?;
+    if pi.len() != runs.len() {
+        return Err("the π rows do not cover the problems".into());
+    }
+    let results = (1..=count)
+        .map(|j| serde_json::from_str::<Option<Sample>>(owner(j)?).map_err(|e| malformed(j, e)))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok((assemble(&runs, &settings, pi, results), settings))
 }

@@ -5,6 +5,7 @@
 
 pub mod clock;
 pub mod deterministic;
+pub mod latex;
 pub mod published;
 pub mod runs;
 pub mod stats;

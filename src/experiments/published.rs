@@ -20,9 +20,11 @@
 //! * `consistent` — otherwise, for sampled metrics: a rate whose difference from the published
 //!   rate lies within the 99 % two-sample binomial bound `z·√(p̄(1−p̄)(1/n₁+1/n₂))` (pooled `p̄`,
 //!   `z = 2.5758`); a mean whose difference lies within the 99 % two-sample bound
-//!   `z·√(s²(1/n₁+1/n₂))` with the pooled variance `s² = (n₁s₁²+n₂s₂²)/(n₁+n₂)` (population
+//!   `t·√(s²(1/n₁+1/n₂))` with the pooled variance `s² = (n₁s₁²+n₂s₂²)/(n₁+n₂)` (population
 //!   standard deviations, as published; pooling keeps the bound sound when we ran few
-//!   samples). Extremes (shortest and longest path) and flags have no sampling tolerance:
+//!   samples) and `t` Student's 99 % quantile with `n₁+n₂−2` degrees of freedom ([`t99`]; it
+//!   is `z` in the limit, and matters for means over the few runs that reached an event, see
+//!   [`conditional_samples`]). Extremes (shortest and longest path) and flags have no sampling tolerance:
 //!   equal is `consistent`.
 //! * `differs` — outside those bounds, or one side has no value; the difference is given.
 //! * `machine` — run times: the ratio ours / published, and for run times the row's time
@@ -38,6 +40,69 @@ use crate::value::{parse_rational, Rational};
 
 /// The 99 % two-sided normal quantile.
 pub const Z99: f64 = 2.5758;
+
+/// Student's two-sided 99 % quantile `t₀.₉₉₅(df)` (tabulated to 3 decimals; between table
+/// entries interpolated linearly in `1/df`; [`Z99`] beyond).
+///
+/// ```
+/// use truecost::experiments::published::{t99, Z99};
+/// assert_eq!(t99(6), 3.707);
+/// assert!(t99(198) > Z99 && t99(198) < 2.617);
+/// assert!(t99(0).is_infinite());
+/// ```
+pub fn t99(df: u64) -> f64 {
+    const TABLE: [(u64, f64); 34] = [
+        (1, 63.657),
+        (2, 9.925),
+        (3, 5.841),
+        (4, 4.604),
+        (5, 4.032),
+        (6, 3.707),
+        (7, 3.499),
+        (8, 3.355),
+        (9, 3.250),
+        (10, 3.169),
+        (11, 3.106),
+        (12, 3.055),
+        (13, 3.012),
+        (14, 2.977),
+        (15, 2.947),
+        (16, 2.921),
+        (17, 2.898),
+        (18, 2.878),
+        (19, 2.861),
+        (20, 2.845),
+        (21, 2.831),
+        (22, 2.819),
+        (23, 2.807),
+        (24, 2.797),
+        (25, 2.787),
+        (26, 2.779),
+        (27, 2.771),
+        (28, 2.763),
+        (29, 2.756),
+        (30, 2.750),
+        (40, 2.704),
+        (60, 2.660),
+        (120, 2.617),
+        (u64::MAX, Z99),
+    ];
+    if df == 0 {
+        return f64::INFINITY;
+    }
+    let k = TABLE
+        .iter()
+        .position(|&(d, _)| d >= df)
+        .expect("the last entry is unbounded");
+    let (d1, t1) = TABLE[k];
+    if d1 == df || k == 0 {
+        return t1;
+    }
+    let (d0, t0) = TABLE[k - 1];
+    let inv = |d: u64| if d == u64::MAX { 0.0 } else { 1.0 / d as f64 };
+    let w = (inv(d0) - inv(df)) / (inv(d0) - inv(d1));
+    t0 + w * (t1 - t0)
+}
 
 const DETERMINISTIC_CSV: &str = include_str!("../../data/published/deterministic.csv");
 const STOCHASTIC_CSV: &str = include_str!("../../data/published/stochastic.csv");
@@ -487,7 +552,8 @@ pub fn judge(
             let (n1, n2) = (ours.n as f64, published.samples as f64);
             // Pooled variance: robust when we ran few samples (their spread says little).
             let pooled = (n1 * ours.std * ours.std + n2 * s2 * s2) / (n1 + n2);
-            let bound = Z99 * (pooled * (1.0 / n1 + 1.0 / n2)).sqrt();
+            let df = (ours.n + published.samples).saturating_sub(2);
+            let bound = t99(df) * (pooled * (1.0 / n1 + 1.0 / n2)).sqrt();
             within(difference, bound, exact_equal, "99 % two-sample")
         }
     }
@@ -522,6 +588,48 @@ pub struct Comparison {
     pub published_text: BTreeMap<String, String>,
 }
 
+/// The published samples behind a mean taken over the samples that reached an event (the
+/// paper's code averages the convergence action over the converged runs only): the published
+/// rate of that event times the samples (`docs/reproduction.md`). Counting all samples would
+/// make the statistical bound too narrow: Problem 12's ε-decay convergence action rests on the
+/// 4 converged runs of 100.
+///
+/// ```
+/// use std::collections::BTreeMap;
+/// use truecost::experiments::published::{conditional_samples, PublishedValue};
+/// use truecost::value::parse_rational;
+/// let v = |t: &str| PublishedValue { text: t.into(), value: parse_rational(t).unwrap(),
+///     std: None, samples: 100, source: 0 };
+/// let row = BTreeMap::from([("convergence_rate".to_string(), v("0.04")),
+///     ("mean_actions_converged".to_string(), v("346250.0"))]);
+/// assert_eq!(conditional_samples("mean_actions_converged", &row["mean_actions_converged"], &row).samples, 4);
+/// assert_eq!(conditional_samples("mean_actions", &row["mean_actions_converged"], &row).samples, 100);
+/// ```
+pub fn conditional_samples(
+    metric: &str,
+    value: &PublishedValue,
+    row: &BTreeMap<String, PublishedValue>,
+) -> PublishedValue {
+    let event = match metric {
+        "mean_actions_converged" => "convergence_rate",
+        "mean_actions_initial_within" | "mean_time_initial_within_s" => "initial_within_rate",
+        _ => return value.clone(),
+    };
+    let Some(rate) = row.get(event) else {
+        return value.clone();
+    };
+    let reached = (rate.value.clone() * Rational::from_integer(value.samples.into()))
+        .round()
+        .to_integer();
+    let samples = u64::try_from(reached)
+        .unwrap_or(value.samples)
+        .clamp(1, value.samples);
+    PublishedValue {
+        samples,
+        ..value.clone()
+    }
+}
+
 /// Compares one row: every published metric against `ours(metric)`; `kind(metric)` decides
 /// the rule. Metrics we do not measure at all (`kind` is `None`) are left out.
 pub fn compare_row(
@@ -534,6 +642,7 @@ pub fn compare_row(
     for (metric, value) in published {
         let Some(k) = kind(metric) else { continue };
         let o = ours(metric);
+        let value = &conditional_samples(metric, value, published);
         c.published.insert(metric.clone(), value.approx());
         c.published_text.insert(metric.clone(), value.text.clone());
         c.ours.insert(metric.clone(), o.as_ref().map(|o| o.mean));

@@ -39,6 +39,7 @@ use super::deterministic::stream;
 use super::published::{self, Comparison, DataError, Kind, Observations, Observed, Summary};
 use super::runs::{in_pool, RunError, RunSettings};
 use super::stats::{mean_of_present, mean_std};
+use crate::claims::shard::{self, Entry, Part, ShardFile};
 use crate::learning::plan::{sample_rng, EpsilonSchedule, Plan, Probability, ProbabilityError};
 use crate::learning::q_learning::{Event, LearningError, Milestone};
 use crate::learning::stochastic_q::{
@@ -571,63 +572,118 @@ fn run_validated(
     settings: &Settings,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Report, ExperimentError> {
+    let prepared = prepare_all(settings)?;
+    let (samples, vi) = compute(&prepared, settings, progress, None)?;
+    Ok(assemble(
+        &prepared,
+        settings,
+        samples
+            .into_iter()
+            .map(|s| s.expect("the whole run runs every task"))
+            .collect(),
+        vi.into_iter()
+            .map(|v| v.expect("the whole run runs every VI"))
+            .collect(),
+    ))
+}
+
+fn prepare_all(settings: &Settings) -> Result<Vec<Prepared>, ExperimentError> {
     let pairs: Vec<(usize, usize)> = settings
         .problems
         .iter()
         .flat_map(|&p| (0..settings.gammas.len()).map(move |g| (p, g)))
         .collect();
-    let prepared: Vec<Prepared> = pairs
+    pairs
         .par_iter()
         .map(|&(p, g)| prepare(p, g, settings))
-        .collect::<Result<_, _>>()?;
+        .collect()
+}
+
+/// Every `(pair, learning row, sample)`, in report order.
+fn tasks(prepared: &[Prepared], settings: &Settings) -> Vec<(usize, usize, u32)> {
     let rows = learning_rows(settings);
-    // Every (pair, learning row, sample) in parallel.
-    let row_list = &rows;
-    let tasks: Vec<(usize, usize, u32)> = prepared
+    prepared
         .iter()
         .enumerate()
         .flat_map(|(i, pr)| {
-            row_list
-                .iter()
+            rows.iter()
                 .enumerate()
                 .filter(move |(_, t)| t.0 == pr.gamma)
                 .flat_map(move |(row, _)| (0..settings.samples).map(move |k| (i, row, k)))
         })
-        .collect();
-    let results: Vec<Option<Sample>> = tasks
+        .collect()
+}
+
+/// Every learning task's sample (`None`: another shard's; `Some(None)`: not run, the goal is
+/// unreachable) and every pair's two VI runs (`None`: another shard's). `part` selects a
+/// shard's share (issue 12, item 4): task `t` when `part.owns(t)`, pair `i`'s VIs when
+/// `part.owns(i)`.
+#[allow(clippy::type_complexity)]
+fn compute(
+    prepared: &[Prepared],
+    settings: &Settings,
+    progress: &(dyn Fn(u64) + Sync),
+    part: Option<Part>,
+) -> Result<(Vec<Option<Option<Sample>>>, Vec<Option<[ViMeasured; 2]>>), ExperimentError> {
+    let rows = learning_rows(settings);
+    let tasks = tasks(prepared, settings);
+    let results: Vec<Option<Option<Sample>>> = tasks
         .par_iter()
-        .map(|&(i, row, k)| -> Result<Option<Sample>, ExperimentError> {
-            let pr = &prepared[i];
-            let out = if pr.reachable {
-                let (_, r, e) = rows[row];
-                let config = StochasticQConfig {
-                    episodes: settings.episodes,
-                    max_steps: settings.max_steps,
-                    rate: settings.rhos[r].rate,
-                    epsilon: settings.epsilons[e].schedule.clone(),
-                    initial_value: 0.0,
+        .enumerate()
+        .map(
+            |(t, &(i, row, k))| -> Result<Option<Option<Sample>>, ExperimentError> {
+                if part.is_some_and(|p| !p.owns(t as u64)) {
+                    return Ok(None);
+                }
+                let pr = &prepared[i];
+                let out = if pr.reachable {
+                    let (_, r, e) = rows[row];
+                    let config = StochasticQConfig {
+                        episodes: settings.episodes,
+                        max_steps: settings.max_steps,
+                        rate: settings.rhos[r].rate,
+                        epsilon: settings.epsilons[e].schedule.clone(),
+                        initial_value: 0.0,
+                    };
+                    Some(learn_sample(pr, &config, settings.seed, row, k)?)
+                } else {
+                    None
                 };
-                Some(learn_sample(pr, &config, settings.seed, row, k)?)
-            } else {
-                None
-            };
-            progress(1);
-            Ok(out)
-        })
+                progress(1);
+                Ok(Some(out))
+            },
+        )
         .collect::<Result<_, _>>()?;
-    let vi: Vec<[RowSummary; 2]> = prepared
+    let vi: Vec<Option<[ViMeasured; 2]>> = prepared
         .par_iter()
-        .map(|pr| -> Result<[RowSummary; 2], ExperimentError> {
-            let a = vi_row(pr, Schedule::Asynchronous, settings)?;
-            progress(1);
-            let s = vi_row(pr, Schedule::Synchronous, settings)?;
-            progress(1);
-            Ok([a, s])
-        })
+        .enumerate()
+        .map(
+            |(i, pr)| -> Result<Option<[ViMeasured; 2]>, ExperimentError> {
+                if part.is_some_and(|p| !p.owns(i as u64)) {
+                    return Ok(None);
+                }
+                let a = vi_measure(pr, Schedule::Asynchronous, settings)?;
+                progress(1);
+                let s = vi_measure(pr, Schedule::Synchronous, settings)?;
+                progress(1);
+                Ok(Some([a, s]))
+            },
+        )
         .collect::<Result<_, _>>()?;
+    Ok((results, vi))
+}
+
+/// The report from every task's sample (in [`tasks`] order) and every pair's VI runs.
+fn assemble(
+    prepared: &[Prepared],
+    settings: &Settings,
+    results: Vec<Option<Sample>>,
+    vi: Vec<[ViMeasured; 2]>,
+) -> Report {
+    let rows = learning_rows(settings);
     let mut out = Vec::new();
     let mut next = results.into_iter();
-    for (i, pr) in prepared.iter().enumerate() {
+    for (pr, [a, s]) in prepared.iter().zip(vi) {
         for &(g, r, e) in rows.iter().filter(|(g, _, _)| *g == pr.gamma) {
             debug_assert_eq!(g, pr.gamma);
             let samples: Vec<Sample> = (0..settings.samples)
@@ -635,9 +691,10 @@ fn run_validated(
                 .collect();
             out.push(summarise(pr, r, e, &samples, settings));
         }
-        out.extend(vi[i].iter().cloned());
+        out.push(vi_summary(pr, Schedule::Asynchronous, a, settings));
+        out.push(vi_summary(pr, Schedule::Synchronous, s, settings));
     }
-    Ok(Report {
+    Report {
         noise: settings.noise,
         tolerance: settings.tolerance,
         model: settings.model(),
@@ -649,7 +706,7 @@ fn run_validated(
         gammas: settings.gammas.iter().map(gamma_text).collect(),
         rows: out,
         against_published: None,
-    })
+    }
 }
 
 fn empty_row(pr: &Prepared, algorithm: &'static str, settings: &Settings) -> RowSummary {
@@ -835,17 +892,21 @@ pub fn against_published(report: &mut Report, settings: &Settings) -> Result<Sum
     Ok(summary)
 }
 
-fn vi_row(
+/// A VI run's measurements (the timed region's output).
+#[derive(Clone, Debug, PartialEq)]
+struct ViMeasured {
+    cost_to_go: Vec<f64>,
+    sweeps: u64,
+    reference_counted: u64,
+    converged: bool,
+    time_s: f64,
+}
+
+fn vi_measure(
     pr: &Prepared,
     schedule: Schedule,
     settings: &Settings,
-) -> Result<RowSummary, ExperimentError> {
-    let name = match schedule {
-        Schedule::Asynchronous => "stochastic-async-vi",
-        Schedule::Synchronous => "stochastic-vi",
-    };
-    let mut row = empty_row(pr, name, settings);
-    row.samples = 1;
+) -> Result<ViMeasured, ExperimentError> {
     let options = ViOptions::reference(schedule);
     let (run, time_s) = match settings.tolerance {
         Tolerance::Relative => {
@@ -861,10 +922,32 @@ fn vi_row(
             (run, watch.seconds())
         }
     };
+    Ok(ViMeasured {
+        cost_to_go: run.cost_to_go,
+        sweeps: run.sweeps,
+        reference_counted: run.reference_counted,
+        converged: run.converged,
+        time_s,
+    })
+}
+
+fn vi_summary(
+    pr: &Prepared,
+    schedule: Schedule,
+    run: ViMeasured,
+    settings: &Settings,
+) -> RowSummary {
+    let name = match schedule {
+        Schedule::Asynchronous => "stochastic-async-vi",
+        Schedule::Synchronous => "stochastic-vi",
+    };
+    let mut row = empty_row(pr, name, settings);
+    row.samples = 1;
+    let time_s = run.time_s;
     let v = &run.cost_to_go;
     if v.len() != pr.problem.states() {
         row.note = Some("not run: the reference grid differs from the exact grid".into());
-        return Ok(row);
+        return row;
     }
     let x1 = pr.problem.initial();
     let tracked: Vec<usize> = (0..v.len()).filter(|&x| pr.target.is_tracked(x)).collect();
@@ -890,7 +973,7 @@ fn vi_row(
     if !pr.reachable {
         row.note =
             Some("the goal is unreachable from x1 (G*(x1) = inf): nothing to converge to".into());
-        return Ok(row);
+        return row;
     }
     row.convergence_rate = Some(if all_within { 1.0 } else { 0.0 });
     row.observed
@@ -911,7 +994,7 @@ fn vi_row(
             run.sweeps
         ));
     }
-    Ok(row)
+    row
 }
 
 /// `γ` as exact decimal text when it has a finite decimal expansion (as every `γ` given as
@@ -940,4 +1023,273 @@ pub fn gamma_text(gamma: &Predictability) -> String {
         scaled *= Rational::from_integer(10.into());
     }
     gamma.to_string()
+}
+
+/// The format tag of a shard file of `reproduce stochastic`.
+pub const SHARD_FORMAT: &str = "truecost-reproduce-stochastic-shard/1";
+
+/// A learning sample as a shard records it: floats as their bits (exact), the error as `n/d`.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct SampleRecord {
+    time_s: u64,
+    actions: u64,
+    episodes: u32,
+    converged_at: Option<u64>,
+    initial_at: Option<u64>,
+    initial_episode: Option<u32>,
+    initial_time_s: Option<u64>,
+    goal_at: Option<u64>,
+    goal_time_s: Option<u64>,
+    value_initial: u64,
+    max_error: String,
+    path_states: u64,
+    reached_goal: bool,
+    path_optimal: bool,
+}
+
+impl SampleRecord {
+    fn of(s: &Sample) -> Self {
+        SampleRecord {
+            time_s: s.time_s.to_bits(),
+            actions: s.actions,
+            episodes: s.episodes,
+            converged_at: s.converged_at,
+            initial_at: s.initial_at,
+            initial_episode: s.initial_episode,
+            initial_time_s: s.initial_time_s.map(f64::to_bits),
+            goal_at: s.goal_at,
+            goal_time_s: s.goal_time_s.map(f64::to_bits),
+            value_initial: s.value_initial.to_bits(),
+            max_error: s.max_error.to_string(),
+            path_states: s.path_states,
+            reached_goal: s.reached_goal,
+            path_optimal: s.path_optimal,
+        }
+    }
+
+    fn sample(self) -> Option<Sample> {
+        Some(Sample {
+            time_s: f64::from_bits(self.time_s),
+            actions: self.actions,
+            episodes: self.episodes,
+            converged_at: self.converged_at,
+            initial_at: self.initial_at,
+            initial_episode: self.initial_episode,
+            initial_time_s: self.initial_time_s.map(f64::from_bits),
+            goal_at: self.goal_at,
+            goal_time_s: self.goal_time_s.map(f64::from_bits),
+            value_initial: f64::from_bits(self.value_initial),
+            max_error: self.max_error.parse().ok()?,
+            path_states: self.path_states,
+            reached_goal: self.reached_goal,
+            path_optimal: self.path_optimal,
+        })
+    }
+}
+
+/// A VI run as a shard records it (floats as bits).
+#[derive(serde::Serialize, serde::Deserialize)]
+struct ViRecord {
+    cost_to_go: Vec<u64>,
+    sweeps: u64,
+    reference_counted: u64,
+    converged: bool,
+    time_s: u64,
+}
+
+impl ViRecord {
+    fn of(m: &ViMeasured) -> Self {
+        ViRecord {
+            cost_to_go: m.cost_to_go.iter().map(|v| v.to_bits()).collect(),
+            sweeps: m.sweeps,
+            reference_counted: m.reference_counted,
+            converged: m.converged,
+            time_s: m.time_s.to_bits(),
+        }
+    }
+
+    fn measured(self) -> ViMeasured {
+        ViMeasured {
+            cost_to_go: self.cost_to_go.into_iter().map(f64::from_bits).collect(),
+            sweeps: self.sweeps,
+            reference_counted: self.reference_counted,
+            converged: self.converged,
+            time_s: f64::from_bits(self.time_s),
+        }
+    }
+}
+
+/// The settings a shard shares with the other shards of its run (threads aside), and the build.
+fn fingerprint(settings: &Settings) -> serde_json::Value {
+    serde_json::json!({
+        "tool": format!("truecost {}", env!("CARGO_PKG_VERSION")),
+        "commit": option_env!("TRUECOST_GIT_COMMIT").unwrap_or("unknown"),
+        "problems": settings.problems,
+        "gammas": settings.gammas.iter().map(|g| g.value().to_string()).collect::<Vec<_>>(),
+        "rhos": settings.rhos.iter().map(|r| r.text.clone()).collect::<Vec<_>>(),
+        "epsilons": settings.epsilons.iter().map(|e| e.text.clone()).collect::<Vec<_>>(),
+        "samples": settings.samples,
+        "seed": settings.seed,
+        "noise": settings.noise.name(),
+        "tolerance": settings.tolerance.name(),
+        "episodes": settings.episodes,
+        "max_steps": settings.max_steps,
+    })
+}
+
+/// The number of runs shard `part` performs (for its progress bar).
+pub fn shard_runs(settings: &Settings, part: Part) -> u64 {
+    let pairs = settings.problems.len() as u64 * settings.gammas.len() as u64;
+    let tasks = pairs * learning_rows(settings).len() as u64 / settings.gammas.len().max(1) as u64
+        * u64::from(settings.samples);
+    (0..tasks).filter(|&t| part.owns(t)).count() as u64
+        + 2 * (0..pairs).filter(|&i| part.owns(i)).count() as u64
+}
+
+/// `reproduce stochastic --shard K/N` (issue 12, item 4): runs the learning sample runs `t`
+/// (every `(problem, γ, row, sample)` in report order) with `t mod N = K − 1` and the two VI
+/// runs of the `(problem, γ)` pairs `i` with `i mod N = K − 1`, and returns the shard file's
+/// text. [`merge`] combines the N files into the report of [`run`].
+///
+/// ```
+/// use truecost::claims::shard::Part;
+/// use truecost::experiments::stochastic::{merge, run, run_shard, Settings, RateSpec, EpsilonSpec};
+/// use truecost::stochastic::Predictability;
+/// let settings = Settings { problems: vec![16], gammas: vec![Predictability::parse("0.9").unwrap()],
+///     rhos: vec![RateSpec::parse("0.5").unwrap()], epsilons: vec![EpsilonSpec::parse("1").unwrap()],
+///     samples: 3, episodes: 20, max_steps: 200, ..Settings::default() };
+/// let files: Vec<(String, String)> = (1..=2)
+///     .map(|k| (format!("{k}"), run_shard(&settings, Part::parse(&format!("{k}/2")).unwrap(), &|_| {}).unwrap()))
+///     .collect();
+/// let (merged, _) = merge(&files).unwrap();
+/// let whole = run(&settings, &|_| {}).unwrap();
+/// for (a, b) in merged.rows.iter().zip(&whole.rows) {
+///     assert_eq!((a.mean_actions, &a.max_error), (b.mean_actions, &b.max_error));
+/// }
+/// ```
+pub fn run_shard(
+    settings: &Settings,
+    part: Part,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<String, ExperimentError> {
+    settings.validate()?;
+    let watch = Stopwatch::start();
+    let (samples, vi) = in_pool(settings.threads, || -> Result<_, ExperimentError> {
+        let prepared = prepare_all(settings)?;
+        compute(&prepared, settings, progress, Some(part))
+    })??;
+    let mut entries = Vec::new();
+    for (t, r) in samples.iter().enumerate() {
+        entries.push(Entry {
+            site: format!("sample run {t}"),
+            value: r.as_ref().map(|s| {
+                serde_json::to_string(&s.as_ref().map(SampleRecord::of)).expect("serialisable")
+            }),
+        });
+    }
+    for (i, v) in vi.iter().enumerate() {
+        entries.push(Entry {
+            site: format!("vi runs {i}"),
+            value: v.as_ref().map(|[a, s]| {
+                serde_json::to_string(&[ViRecord::of(a), ViRecord::of(s)]).expect("serialisable")
+            }),
+        });
+    }
+    Ok(ShardFile {
+        part,
+        fingerprint: fingerprint(settings),
+        entries,
+        seconds: watch.seconds(),
+    }
+    .to_json(SHARD_FORMAT))
+}
+
+/// `reproduce merge` of stochastic shard files `(name, text)` (issue 12, item 4): the report
+/// of [`run`] with the settings the shards ran (every shard present once, all of one run and
+/// build). The problems are prepared again (their exact optima solved: no clock); no sample
+/// or VI is rerun.
+pub fn merge(files: &[(String, String)]) -> Result<(Report, Settings), String> {
+    let read = files
+        .iter()
+        .map(|(name, text)| {
+            ShardFile::from_json(text, SHARD_FORMAT, name).map(|f| (name.clone(), f))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let shards = shard::complete_set(read)?;
+    let fp = &shards[0].fingerprint;
+    let bad = |what: &str| format!("the shards' fingerprint has no valid {what}");
+    let texts = |key: &str| -> Result<Vec<String>, String> {
+        serde_json::from_value(fp[key].clone()).map_err(|_| bad(key))
+    };
+    let settings = Settings {
+        problems: serde_json::from_value(fp["problems"].clone()).map_err(|_| bad("problems"))?,
+        gammas: texts("gammas")?
+            .iter()
+            .map(|g| Predictability::parse(g).map_err(|_| bad("gammas")))
+            .collect::<Result<_, _>>()?,
+        rhos: texts("rhos")?
+            .iter()
+            .map(|r| RateSpec::parse(r).map_err(|_| bad("rhos")))
+            .collect::<Result<_, _>>()?,
+        epsilons: texts("epsilons")?
+            .iter()
+            .map(|e| EpsilonSpec::parse(e).map_err(|_| bad("epsilons")))
+            .collect::<Result<_, _>>()?,
+        samples: serde_json::from_value(fp["samples"].clone()).map_err(|_| bad("samples"))?,
+        seed: serde_json::from_value(fp["seed"].clone()).map_err(|_| bad("seed"))?,
+        noise: clap::ValueEnum::from_str(fp["noise"].as_str().unwrap_or(""), false)
+            .map_err(|_| bad("noise"))?,
+        tolerance: clap::ValueEnum::from_str(fp["tolerance"].as_str().unwrap_or(""), false)
+            .map_err(|_| bad("tolerance"))?,
+        episodes: serde_json::from_value(fp["episodes"].clone()).map_err(|_| bad("episodes"))?,
+        max_steps: serde_json::from_value(fp["max_steps"].clone()).map_err(|_| bad("max_steps"))?,
+        threads: None,
+    };
+    if fingerprint(&settings) != *fp {
+        return Err(format!(
+            "the shards were made by {} (commit {}) with other settings than they state, or by another build: merge with the same build",
+            fp["tool"], fp["commit"]
+        ));
+    }
+    settings.validate().map_err(|e| e.to_string())?;
+    let prepared = in_pool(None, || prepare_all(&settings))
+        .map_err(|e| e.to_string())?
+        .map_err(|e| e.to_string())?;
+    let count = tasks(&prepared, &settings).len();
+    if shards[0].entries.len() != count + prepared.len() {
+        return Err(format!(
+            "the shards record {} sites, these settings have {}",
+            shards[0].entries.len(),
+            count + prepared.len()
+        ));
+    }
+    let owner = |j: usize| -> Result<&str, String> {
+        let site = &shards[0].entries[j].site;
+        let mut present = shards.iter().filter_map(|s| s.entries[j].value.as_deref());
+        match (present.next(), present.next()) {
+            (Some(v), None) => Ok(v),
+            (None, _) => Err(format!("site '{site}': no shard ran it")),
+            (Some(_), Some(_)) => Err(format!("site '{site}': run by two shards")),
+        }
+    };
+    let malformed = |j: usize| format!("site '{}': malformed value", shards[0].entries[j].site);
+    let samples = (0..count)
+        .map(|j| {
+            let record: Option<SampleRecord> =
+                serde_json::from_str(owner(j)?).map_err(|_| malformed(j))?;
+            match record {
+                None => Ok(None),
+                Some(r) => r.sample().map(Some).ok_or_else(|| malformed(j)),
+            }
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    let vi = (0..prepared.len())
+        .map(|i| {
+            let j = count + i;
+            let [a, s]: [ViRecord; 2] =
+                serde_json::from_str(owner(j)?).map_err(|_| malformed(j))?;
+            Ok([a.measured(), s.measured()])
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    Ok((assemble(&prepared, &settings, samples, vi), settings))
 }

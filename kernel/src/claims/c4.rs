@@ -32,6 +32,7 @@ pub trait ToInstance {
 
 /// One end of an interval of bonuses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum End {
     /// Unbounded (`-∞` below, `+∞` above).
     Unbounded,
@@ -43,6 +44,7 @@ pub enum End {
 
 /// A convex set of rationals `{M : lo ≤/< M ≤/< hi}`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Interval {
     /// Lower end.
     pub lo: End,
@@ -383,6 +385,7 @@ impl Instance {
 
 /// The three sets of bonuses for one choice of `π*` (one value of `S*`).
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BonusSets {
     /// `L*`.
     pub optimal_cost: i64,

@@ -16,6 +16,7 @@ use std::fmt;
 /// assert!(Q::new(1, 3) < Q::new(1, 2));
 /// ```
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Q {
     n: i128,
     d: i128,

@@ -237,6 +237,7 @@ impl QProblem {
 
 /// A fair update order made of rounds; in each round every updatable pair is updated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Order {
     /// Pairs in index order, every round.
     Cyclic,

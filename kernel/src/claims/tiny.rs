@@ -15,6 +15,7 @@ pub const MAX_DEGREE: usize = 3;
 
 /// One move `x → to` with integer stage cost `cost`.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TinyMove {
     /// `f(x, u)`.
     pub to: u8,
@@ -25,6 +26,7 @@ pub struct TinyMove {
 /// A tiny deterministic problem: states `0..n`, `x1 = 0`, goal `n − 1` (with the termination
 /// action of SPEC §1 in addition to its moves).
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Tiny {
     /// `|X|`.
     pub n: u8,

@@ -350,6 +350,21 @@ pub fn parse_numeral(s: &str) -> Option<Rational> {
 /// assert_eq!(solve(&o, 10_000), Answer::Unsat);
 /// ```
 pub fn solve(ob: &Obligation, timeout_ms: u32) -> Answer {
+    let a = solve_reusing(ob, timeout_ms);
+    // A model that is replayed (and may be printed) must not depend on what this thread's
+    // Z3 context solved before — the report would then depend on thread scheduling, and a
+    // shard (issue 12, item 4) would see another model than the whole run: re-solve a
+    // satisfiable obligation in a fresh context.
+    if matches!(a, Answer::Sat(_)) && ob.role != Role::Hypotheses {
+        return z3::with_z3_config(&z3::Config::new(), || {
+            let solver = fresh_solver(ob.logic.name(), timeout_ms);
+            answer(&solver, ob)
+        });
+    }
+    a
+}
+
+fn solve_reusing(ob: &Obligation, timeout_ms: u32) -> Answer {
     // Linear obligations reuse one solver per thread and logic (push, assert, check, pop):
     // creating a Z3 solver costs tens of milliseconds, solving a small linear obligation well
     // under one. Nonlinear ones get a fresh solver, so that Z3 chooses its complete nonlinear
@@ -703,9 +718,95 @@ pub struct Outcome {
 /// Default per-obligation timeout (milliseconds).
 pub const TIMEOUT_MS: u32 = 60_000;
 
+/// An answer as a shard records it (issue 12, item 4): rationals as `n/d` text.
+#[derive(serde::Serialize, serde::Deserialize)]
+enum AnswerRecord {
+    Unsat,
+    Sat(Option<Vec<(String, String)>>),
+    Unknown(String),
+}
+
+/// One obligation's result as a shard records it.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct SolvedRecord {
+    answer: AnswerRecord,
+    seconds: f64,
+}
+
+impl SolvedRecord {
+    fn of(s: &Solved) -> SolvedRecord {
+        SolvedRecord {
+            answer: match &s.answer {
+                Answer::Unsat => AnswerRecord::Unsat,
+                Answer::Sat(m) => AnswerRecord::Sat(m.as_ref().map(|m| {
+                    m.values
+                        .iter()
+                        .map(|(n, v)| (n.clone(), v.to_string()))
+                        .collect()
+                })),
+                Answer::Unknown(why) => AnswerRecord::Unknown(why.clone()),
+            },
+            seconds: s.seconds,
+        }
+    }
+
+    fn solved(self, obligation: Obligation) -> Solved {
+        let answer = match self.answer {
+            AnswerRecord::Unsat => Answer::Unsat,
+            AnswerRecord::Unknown(why) => Answer::Unknown(why),
+            AnswerRecord::Sat(values) => Answer::Sat(values.and_then(|values| {
+                let values: Option<Vec<(String, Rational)>> = values
+                    .into_iter()
+                    .map(|(n, v)| Rational::from_str(&v).ok().map(|v| (n, v)))
+                    .collect();
+                // An unreadable value reads as a non-rational model: it cannot replay.
+                values.map(|values| Model { values })
+            })),
+        };
+        Solved {
+            obligation,
+            answer,
+            seconds: self.seconds,
+        }
+    }
+}
+
+/// [`discharge`] under sharding (issue 12, item 4): each obligation is a unit of the run,
+/// solved by the shard that owns it and read from its record on merge.
+fn discharge_sharded(claim: &str, obligations: Vec<Obligation>, timeout_ms: u32) -> Vec<Solved> {
+    let sites: Vec<String> = (0..obligations.len())
+        .map(|j| format!("smt {claim} obligation {j}"))
+        .collect();
+    let records = super::shard::units(
+        &sites,
+        |wanted| {
+            let mine: Vec<Obligation> = obligations
+                .iter()
+                .zip(wanted)
+                .filter(|(_, &w)| w)
+                .map(|(o, _)| o.clone())
+                .collect();
+            let mut solved = discharge(mine, timeout_ms).into_iter();
+            wanted
+                .iter()
+                .map(|&w| w.then(|| SolvedRecord::of(&solved.next().expect("one answer each"))))
+                .collect()
+        },
+        || SolvedRecord {
+            answer: AnswerRecord::Unknown("solved by another shard".into()),
+            seconds: 0.0,
+        },
+    );
+    records
+        .into_iter()
+        .zip(obligations)
+        .map(|(r, o)| r.solved(o))
+        .collect()
+}
+
 /// Solves a claim's obligations, replays its models, and decides the SMT verdict.
 pub fn run(enc: Encoding, timeout_ms: u32) -> Outcome {
-    let solved = discharge(enc.obligations, timeout_ms);
+    let solved = discharge_sharded(enc.claim, enc.obligations, timeout_ms);
     let summary = Summary::of(&solved);
     let mut notes = Vec::new();
     let mut counterexample = None;

@@ -1,0 +1,625 @@
+//! Sharding the claims engines over many machines (issue 12, item 4).
+//!
+//! `truecost verify --shard K/N` runs the same control flow as the whole run, but every
+//! expensive *site* does only the K-th part of its work and records what it computed in a
+//! [`Ledger`]:
+//!
+//! * an exhaustive enumeration ([`super::enumerate`]) visits the labelled indices `i` with
+//!   `i mod N = K − 1` and records its partial accumulator — counts, maxima and the
+//!   candidate minimal counterexamples *with their minimality keys*;
+//! * a unit of work that cannot be split without changing its result (one proptest run:
+//!   proptest stops at its first failure and shrinks it; one SMT obligation) is owned by one
+//!   shard, the `u`-th unit of the run by shard `u mod N + 1`, and recorded there.
+//!
+//! `truecost verify merge` replays the same control flow with every site answered from the
+//! shards' ledgers: an enumeration gets the merge (the accumulator's own associative and
+//! commutative `merge`) of its N partial accumulators, a unit gets the value its owner
+//! recorded. The claims are then derived from exactly the values the whole run derives them
+//! from, so the merged report is the whole run's, byte for byte (times aside).
+//!
+//! Shards of different runs are refused (a fingerprint of the scope, the claim filter, the
+//! options and the tool), so are a missing, duplicated or foreign shard, a file whose
+//! checksum does not match its content, and shards that disagree on the sites they ran.
+
+use std::cell::RefCell;
+use std::fmt;
+
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+use serde_json::{json, Value};
+
+/// The largest number of shards accepted (`N` of `--shard K/N`).
+pub const MAX_SHARDS: u32 = 4096;
+
+/// The format tag of a shard file of `truecost verify`.
+pub const VERIFY_FORMAT: &str = "truecost-verify-shard/1";
+
+/// The part of the work a shard does: shard `k` (1-based) of `n`.
+///
+/// ```
+/// use truecost::claims::shard::Part;
+/// let p = Part::parse("2/3").unwrap();
+/// assert_eq!((p.k(), p.n()), (2, 3));
+/// assert!(p.owns(1) && p.owns(4) && !p.owns(0));
+/// assert!(Part::parse("0/3").is_err() && Part::parse("4/3").is_err());
+/// assert!(Part::parse("1/5000").is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Part {
+    k: u32,
+    n: u32,
+}
+
+impl Part {
+    /// Parses `K/N` with `1 ≤ K ≤ N ≤` [`MAX_SHARDS`].
+    pub fn parse(text: &str) -> Result<Part, String> {
+        let bad = || {
+            format!(
+                "--shard '{}': expected K/N with 1 <= K <= N <= {MAX_SHARDS} (e.g. 2/8)",
+                crate::echo::one_line(text)
+            )
+        };
+        let (k, n) = text.split_once('/').ok_or_else(bad)?;
+        let k: u32 = k.trim().parse().map_err(|_| bad())?;
+        let n: u32 = n.trim().parse().map_err(|_| bad())?;
+        if k == 0 || k > n || n > MAX_SHARDS {
+            return Err(bad());
+        }
+        Ok(Part { k, n })
+    }
+
+    /// `K` (1-based).
+    pub fn k(self) -> u32 {
+        self.k
+    }
+
+    /// `N`.
+    pub fn n(self) -> u32 {
+        self.n
+    }
+
+    /// Whether item `i` of a site belongs to this shard (`i mod N = K − 1`).
+    pub fn owns(self, i: u64) -> bool {
+        i % u64::from(self.n) == u64::from(self.k - 1)
+    }
+}
+
+impl fmt::Display for Part {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}/{}", self.k, self.n)
+    }
+}
+
+/// One recorded site: its name (what it ran) and its value as JSON text (kept as text so
+/// 128-bit integers survive exactly).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Entry {
+    /// `enumerate <family>`, `proptest C1`, `smt C1 obligation 3`, …
+    pub site: String,
+    /// The recorded value (`None`: a unit another shard owns).
+    pub value: Option<String>,
+}
+
+/// A shard's partial result: the fingerprint of the run and every site's value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShardFile {
+    /// Which shard.
+    pub part: Part,
+    /// What run this is a shard of (compared on merge).
+    pub fingerprint: Value,
+    /// The sites, in the order the run met them.
+    pub entries: Vec<Entry>,
+    /// Wall-clock seconds of the shard (informative; never compared).
+    pub seconds: f64,
+}
+
+fn checksum(entries: &[Entry]) -> String {
+    // FNV-1a over the sites and values: detects a truncated or edited file.
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for e in entries {
+        for b in e
+            .site
+            .bytes()
+            .chain([0u8])
+            .chain(e.value.as_deref().unwrap_or("\u{1}").bytes())
+            .chain([0u8])
+        {
+            h ^= u64::from(b);
+            h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    format!("{h:016x}")
+}
+
+impl ShardFile {
+    /// The file's JSON text.
+    pub fn to_json(&self, format: &str) -> String {
+        let entries: Vec<Value> = self
+            .entries
+            .iter()
+            .map(|e| json!({"site": e.site, "value": e.value}))
+            .collect();
+        let mut s = serde_json::to_string_pretty(&json!({
+            "format": format,
+            "shard": self.part.to_string(),
+            "fingerprint": self.fingerprint,
+            "seconds": self.seconds,
+            "checksum": checksum(&self.entries),
+            "entries": entries,
+        }))
+        .expect("serialisable");
+        s.push('\n');
+        s
+    }
+
+    /// Reads a shard file's text (`name` names it in errors).
+    pub fn from_json(text: &str, format: &str, name: &str) -> Result<ShardFile, String> {
+        let v: Value = serde_json::from_str(text)
+            .map_err(|e| format!("{name}: not a shard file (invalid JSON: {e})"))?;
+        if v["format"].as_str() != Some(format) {
+            return Err(format!(
+                "{name}: not a shard file of this command (format is not {format})"
+            ));
+        }
+        let part =
+            Part::parse(v["shard"].as_str().unwrap_or("")).map_err(|e| format!("{name}: {e}"))?;
+        let mut entries = Vec::new();
+        for e in v["entries"]
+            .as_array()
+            .ok_or_else(|| format!("{name}: no entries"))?
+        {
+            let site = e["site"]
+                .as_str()
+                .ok_or_else(|| format!("{name}: an entry without a site"))?;
+            let value = match &e["value"] {
+                Value::Null => None,
+                Value::String(s) => Some(s.clone()),
+                _ => return Err(format!("{name}: entry '{site}' has a malformed value")),
+            };
+            entries.push(Entry {
+                site: site.to_string(),
+                value,
+            });
+        }
+        if v["checksum"].as_str() != Some(checksum(&entries).as_str()) {
+            return Err(format!(
+                "{name}: the checksum does not match the entries (a truncated or edited file)"
+            ));
+        }
+        Ok(ShardFile {
+            part,
+            fingerprint: v["fingerprint"].clone(),
+            entries,
+            seconds: v["seconds"].as_f64().unwrap_or(0.0),
+        })
+    }
+}
+
+/// Checks that `files` are exactly the shards `1/N … N/N` of one run (same fingerprint, each
+/// once) and returns them ordered by `K`. `names[i]` names `files[i]` in errors.
+pub fn complete_set(mut files: Vec<(String, ShardFile)>) -> Result<Vec<ShardFile>, String> {
+    let Some((first_name, first)) = files.first() else {
+        return Err("merge needs the shard files (none given)".into());
+    };
+    let n = first.part.n();
+    let fingerprint = first.fingerprint.clone();
+    let first_name = first_name.clone();
+    for (name, f) in &files {
+        if f.part.n() != n {
+            return Err(format!(
+                "{name} is shard {} but {first_name} is shard {}: shards of different splits",
+                f.part, first.part
+            ));
+        }
+        if f.fingerprint != fingerprint {
+            return Err(format!(
+                "{name} is a shard of a different run than {first_name} (fingerprints differ: {} vs {})",
+                f.fingerprint, fingerprint
+            ));
+        }
+    }
+    files.sort_by_key(|(_, f)| f.part.k());
+    for w in files.windows(2) {
+        if w[0].1.part.k() == w[1].1.part.k() {
+            return Err(format!(
+                "shard {} given twice ({} and {})",
+                w[0].1.part, w[0].0, w[1].0
+            ));
+        }
+    }
+    let present: Vec<u32> = files.iter().map(|(_, f)| f.part.k()).collect();
+    if let Some(missing) = (1..=n).find(|k| !present.contains(k)) {
+        return Err(format!(
+            "shard {missing}/{n} is missing ({} of {n} given)",
+            files.len()
+        ));
+    }
+    let sites: Vec<&str> = files[0].1.entries.iter().map(|e| e.site.as_str()).collect();
+    for (name, f) in &files[1..] {
+        let other: Vec<&str> = f.entries.iter().map(|e| e.site.as_str()).collect();
+        if other != sites {
+            return Err(format!(
+                "{name} ran different sites than {} (shards of different builds?)",
+                files[0].0
+            ));
+        }
+    }
+    Ok(files.into_iter().map(|(_, f)| f).collect())
+}
+
+enum Mode {
+    Shard { part: Part, entries: Vec<Entry> },
+    Merge { shards: Vec<ShardFile>, next: usize },
+}
+
+struct Ledger {
+    mode: Mode,
+    /// Units met so far (the `u` of "unit `u` is owned by shard `u mod N + 1`").
+    units: u64,
+    /// The first problem met while merging (reported after the run).
+    error: Option<String>,
+}
+
+thread_local! {
+    static LEDGER: RefCell<Option<Ledger>> = const { RefCell::new(None) };
+}
+
+/// Runs `f` as shard `part`: returns its value and the recorded entries. The ledger is bound
+/// to the calling thread: the engines consult it from the thread that runs the claims.
+pub fn record_shard<T>(part: Part, f: impl FnOnce() -> T) -> (T, Vec<Entry>) {
+    let previous = LEDGER.with(|l| {
+        l.borrow_mut().replace(Ledger {
+            mode: Mode::Shard {
+                part,
+                entries: Vec::new(),
+            },
+            units: 0,
+            error: None,
+        })
+    });
+    let value = f();
+    let ledger = LEDGER.with(|l| std::mem::replace(&mut *l.borrow_mut(), previous));
+    match ledger.map(|l| l.mode) {
+        Some(Mode::Shard { entries, .. }) => (value, entries),
+        _ => unreachable!("the shard ledger was replaced while running"),
+    }
+}
+
+/// Runs `f` with every site answered from `shards` (a [`complete_set`]). Fails if the run met
+/// a site the shards did not record, or left some unread.
+pub fn replay<T>(shards: Vec<ShardFile>, f: impl FnOnce() -> T) -> Result<T, String> {
+    let expected = shards.first().map_or(0, |s| s.entries.len());
+    let previous = LEDGER.with(|l| {
+        l.borrow_mut().replace(Ledger {
+            mode: Mode::Merge { shards, next: 0 },
+            units: 0,
+            error: None,
+        })
+    });
+    let value = f();
+    let ledger = LEDGER
+        .with(|l| std::mem::replace(&mut *l.borrow_mut(), previous))
+        .expect("the merge ledger");
+    if let Some(e) = ledger.error {
+        return Err(e);
+    }
+    match ledger.mode {
+        Mode::Merge { next, .. } if next == expected => Ok(value),
+        Mode::Merge { next, .. } => Err(format!(
+            "the merge read {next} of the shards' {expected} sites (shards of a different build?)"
+        )),
+        Mode::Shard { .. } => unreachable!("the merge ledger was replaced while running"),
+    }
+}
+
+fn decode<T: DeserializeOwned>(site: &str, text: &str) -> Result<T, String> {
+    serde_json::from_str(text).map_err(|e| format!("site '{site}': malformed value ({e})"))
+}
+
+fn encode<T: Serialize>(value: &T) -> String {
+    serde_json::to_string(value).expect("a site's value is serialisable")
+}
+
+/// Takes the next merge entry (all shards' values), checking its site.
+fn next_merged(l: &mut Ledger, site: &str) -> Option<Vec<Option<String>>> {
+    let Mode::Merge { shards, next } = &mut l.mode else {
+        return None;
+    };
+    let j = *next;
+    *next += 1;
+    let values: Option<Vec<Option<String>>> = shards
+        .iter()
+        .map(|s| {
+            s.entries
+                .get(j)
+                .filter(|e| e.site == site)
+                .map(|e| e.value.clone())
+        })
+        .collect();
+    if values.is_none() && l.error.is_none() {
+        l.error = Some(format!(
+            "the merge met site '{site}' where the shards recorded another (shards of a different build?)"
+        ));
+    }
+    values
+}
+
+/// A splittable site (an enumeration): `compute(part)` does the part of the work `part` owns
+/// (`None`: all of it), and `combine` is associative and commutative.
+///
+/// Whole run: `compute(None)`. Shard: `compute(Some(part))`, recorded. Merge: the `combine` of
+/// every shard's recorded value (`compute` is not called); `empty()` if a value is unreadable
+/// (the merge then fails with the reason).
+pub fn split<T: Serialize + DeserializeOwned>(
+    site: &str,
+    compute: impl FnOnce(Option<Part>) -> T,
+    combine: impl Fn(T, T) -> T,
+    empty: impl Fn() -> T,
+) -> T {
+    enum Plan {
+        Whole,
+        Shard(Part),
+        Merged(Vec<Option<String>>),
+        Broken,
+    }
+    let plan = LEDGER.with(|l| match l.borrow_mut().as_mut() {
+        None => Plan::Whole,
+        Some(Ledger {
+            mode: Mode::Shard { part, .. },
+            ..
+        }) => Plan::Shard(*part),
+        Some(ledger) => next_merged(ledger, site).map_or(Plan::Broken, Plan::Merged),
+    });
+    match plan {
+        Plan::Whole => compute(None),
+        Plan::Shard(part) => {
+            let v = compute(Some(part));
+            push(site, Some(encode(&v)));
+            v
+        }
+        Plan::Merged(values) => {
+            let mut acc: Option<T> = None;
+            for text in values {
+                let Some(text) = text else {
+                    fail(format!("site '{site}': a shard recorded no value"));
+                    return empty();
+                };
+                match decode::<T>(site, &text) {
+                    Ok(v) => {
+                        acc = Some(match acc {
+                            Some(a) => combine(a, v),
+                            None => v,
+                        })
+                    }
+                    Err(e) => {
+                        fail(e);
+                        return empty();
+                    }
+                }
+            }
+            acc.unwrap_or_else(empty)
+        }
+        Plan::Broken => empty(),
+    }
+}
+
+/// An indivisible unit of work (one proptest run): owned by one shard.
+///
+/// Whole run: `compute()`. Shard: `compute()` if this shard owns the unit (recorded), else
+/// `placeholder()` (recorded as absent). Merge: the owner's recorded value.
+pub fn unit<T: Serialize + DeserializeOwned>(
+    site: &str,
+    compute: impl FnOnce() -> T,
+    placeholder: impl Fn() -> T,
+) -> T {
+    let mut compute = Some(compute);
+    units(
+        &[site.to_string()],
+        |wanted| {
+            wanted
+                .iter()
+                .map(|&w| if w { compute.take().map(|c| c()) } else { None })
+                .collect()
+        },
+        placeholder,
+    )
+    .pop()
+    .expect("one unit")
+}
+
+/// A batch of indivisible units (the SMT obligations of a claim), unit `u` of the run owned by
+/// shard `u mod N + 1`. `compute(wanted)` computes the units marked `true` (in parallel if it
+/// likes) and returns `Some` for each of them; the batch's value is every unit's value, in
+/// order — recorded by the owners under `verify --shard`, read from them under `verify merge`.
+pub fn units<T: Serialize + DeserializeOwned>(
+    sites: &[String],
+    compute: impl FnOnce(&[bool]) -> Vec<Option<T>>,
+    placeholder: impl Fn() -> T,
+) -> Vec<T> {
+    enum Plan {
+        Whole,
+        Shard(Vec<bool>),
+        Merged(Vec<Option<Vec<Option<String>>>>),
+    }
+    let plan = LEDGER.with(|l| match l.borrow_mut().as_mut() {
+        None => Plan::Whole,
+        Some(ledger) => {
+            let first = ledger.units;
+            ledger.units += sites.len() as u64;
+            match &ledger.mode {
+                Mode::Shard { part, .. } => {
+                    let part = *part;
+                    Plan::Shard((first..ledger.units).map(|u| part.owns(u)).collect())
+                }
+                Mode::Merge { .. } => {
+                    Plan::Merged(sites.iter().map(|site| next_merged(ledger, site)).collect())
+                }
+            }
+        }
+    });
+    match plan {
+        Plan::Whole => compute(&vec![true; sites.len()])
+            .into_iter()
+            .map(|v| v.expect("a wanted unit is computed"))
+            .collect(),
+        Plan::Shard(wanted) => {
+            let values = compute(&wanted);
+            sites
+                .iter()
+                .zip(values)
+                .map(|(site, v)| match v {
+                    Some(v) => {
+                        push(site, Some(encode(&v)));
+                        v
+                    }
+                    None => {
+                        push(site, None);
+                        placeholder()
+                    }
+                })
+                .collect()
+        }
+        Plan::Merged(values) => sites
+            .iter()
+            .zip(values)
+            .map(|(site, values)| {
+                let Some(values) = values else {
+                    return placeholder();
+                };
+                let mut present = values.into_iter().flatten();
+                match (present.next(), present.next()) {
+                    (Some(text), None) => decode::<T>(site, &text).unwrap_or_else(|e| {
+                        fail(e);
+                        placeholder()
+                    }),
+                    (None, _) => {
+                        fail(format!("site '{site}': no shard ran it"));
+                        placeholder()
+                    }
+                    (Some(_), Some(_)) => {
+                        fail(format!("site '{site}': run by two shards"));
+                        placeholder()
+                    }
+                }
+            })
+            .collect(),
+    }
+}
+
+fn push(site: &str, value: Option<String>) {
+    LEDGER.with(|l| {
+        if let Some(Ledger {
+            mode: Mode::Shard { entries, .. },
+            ..
+        }) = l.borrow_mut().as_mut()
+        {
+            entries.push(Entry {
+                site: site.to_string(),
+                value,
+            });
+        }
+    });
+}
+
+fn fail(message: String) {
+    LEDGER.with(|l| {
+        if let Some(ledger) = l.borrow_mut().as_mut() {
+            ledger.error.get_or_insert(message);
+        }
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sum_of_owned(part: Option<Part>) -> u64 {
+        (0..100u64)
+            .filter(|&i| part.is_none_or(|p| p.owns(i)))
+            .sum()
+    }
+
+    fn run_sites() -> (u64, String, String) {
+        let total = split("sum", sum_of_owned, |a, b| a + b, || 0);
+        let first = unit("first", || "one".to_string(), String::new);
+        let second = unit("second", || "two".to_string(), String::new);
+        (total, first, second)
+    }
+
+    /// Three shards split the sum 0+…+99 = 4950 and own one unit each at most; the merge
+    /// answers every site as the whole run does.
+    #[test]
+    fn three_shards_merge_to_the_whole_run() {
+        let whole = run_sites();
+        assert_eq!(whole, (4950, "one".into(), "two".into()));
+        let mut files = Vec::new();
+        for k in 1..=3 {
+            let part = Part::parse(&format!("{k}/3")).unwrap();
+            let (partial, entries) = record_shard(part, run_sites);
+            assert!(partial.0 < 4950);
+            files.push((
+                format!("shard{k}"),
+                ShardFile {
+                    part,
+                    fingerprint: json!({"run": 1}),
+                    entries,
+                    seconds: 0.0,
+                },
+            ));
+        }
+        // Unit 0 is shard 1's, unit 1 shard 2's: shard 3 ran neither.
+        assert_eq!(files[2].1.entries[1].value, None);
+        let text: Vec<String> = files.iter().map(|(_, f)| f.to_json("t/1")).collect();
+        let read: Vec<(String, ShardFile)> = text
+            .iter()
+            .enumerate()
+            .map(|(i, t)| {
+                (
+                    format!("f{i}"),
+                    ShardFile::from_json(t, "t/1", "f").unwrap(),
+                )
+            })
+            .collect();
+        let merged = replay(complete_set(read).unwrap(), run_sites).unwrap();
+        assert_eq!(merged, whole);
+    }
+
+    #[test]
+    fn missing_duplicate_and_foreign_shards_are_refused() {
+        let file = |k: u32, n: u32, run: u32| {
+            (
+                format!("s{k}-{run}"),
+                ShardFile {
+                    part: Part { k, n },
+                    fingerprint: json!({ "run": run }),
+                    entries: vec![],
+                    seconds: 0.0,
+                },
+            )
+        };
+        let e = complete_set(vec![file(1, 3, 0), file(3, 3, 0)]).unwrap_err();
+        assert!(e.contains("shard 2/3 is missing"), "{e}");
+        let e = complete_set(vec![file(1, 2, 0), file(1, 2, 0), file(2, 2, 0)]).unwrap_err();
+        assert!(e.contains("given twice"), "{e}");
+        let e = complete_set(vec![file(1, 2, 0), file(2, 2, 1)]).unwrap_err();
+        assert!(e.contains("different run"), "{e}");
+        let e = complete_set(vec![file(1, 2, 0), file(2, 3, 0)]).unwrap_err();
+        assert!(e.contains("different splits"), "{e}");
+    }
+
+    #[test]
+    fn an_edited_file_fails_its_checksum() {
+        let f = ShardFile {
+            part: Part { k: 1, n: 1 },
+            fingerprint: json!({}),
+            entries: vec![Entry {
+                site: "sum".into(),
+                value: Some("12".into()),
+            }],
+            seconds: 0.0,
+        };
+        let text = f.to_json("t/1").replace("\"12\"", "\"13\"");
+        let e = ShardFile::from_json(&text, "t/1", "x.json").unwrap_err();
+        assert!(e.contains("checksum"), "{e}");
+    }
+}

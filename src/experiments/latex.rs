@@ -224,7 +224,7 @@ fn label(row: &RowSummary) -> String {
 /// let t = latex::deterministic(&report, false);
 /// // Published 28 actions for model-free Dijkstra on Problem 16, ours 28: exact.
 /// assert!(t.contains("Model-free Dijkstra & mean\\_actions & 28.0 & 28 & exact \\\\"));
-/// assert!(!t.contains("machine"));
+/// assert!(!t.contains("machine (ours"));
 /// ```
 pub fn deterministic(report: &Report, with_times: bool) -> String {
     let mut s = String::new();

@@ -134,6 +134,7 @@ pub fn solve(args: &SolveArgs, file: Option<ProblemFile>) -> Result<String, Stri
         None => exact_report(
             &prepared,
             opt.as_ref().expect("exact mode has itself as twin"),
+            args.format == ReportFormat::Json,
         ),
         Some(schedule) => vi_report(args, &prepared, opt.as_ref(), schedule, tolerance)?,
     };
@@ -331,7 +332,9 @@ fn policy_columns(
         .unzip()
 }
 
-fn exact_report(prepared: &Prepared, opt: &Optimum) -> Report {
+/// The report of `--algorithm exact`; every state's exact value only when printed (`all`: JSON),
+/// as reducing and printing 10⁴ fractions of 10⁴ digits each is the bulk of a large run.
+fn exact_report(prepared: &Prepared, opt: &Optimum, all: bool) -> Report {
     let problem = &prepared.problem;
     let (noise, noise_description, gamma) = noise_fields(problem);
     let g = opt.cost_to_go(problem.initial());
@@ -351,7 +354,11 @@ fn exact_report(prepared: &Prepared, opt: &Optimum) -> Report {
         optimum: Some(optimum_summary(problem, opt, "this problem")),
         value_iteration: None,
         iterations: opt.stats.exact_iterations as u64,
-        cost_to_go: opt.cost_to_go_all().iter().map(|v| v.to_string()).collect(),
+        cost_to_go: if all {
+            opt.cost_to_go_all().iter().map(|v| v.to_string()).collect()
+        } else {
+            Vec::new()
+        },
         policy,
         policy_action,
     }

@@ -18,9 +18,10 @@
 //!    in big integers. The answer is therefore exact whatever happened before; lifting goes on
 //!    (up to the Hadamard bound, after which reconstruction is guaranteed) until it holds.
 
+use dashu_base::{DivRem, Gcd, SquareRoot, UnsignedAbs};
+use dashu_int::{IBig, UBig};
 use num_bigint::BigInt;
-use num_integer::Integer;
-use num_traits::{One, Signed, Zero};
+use num_traits::{One, Zero};
 
 /// A square sparse integer system `A·z = r`.
 #[derive(Clone, Debug, Default)]
@@ -400,52 +401,183 @@ fn primes() -> impl Iterator<Item = u64> {
     })
 }
 
-/// Rational reconstruction: `a/b ≡ t (mod m)` with `|a| ≤ bound`, `0 < b ≤ bound`, if any.
-fn reconstruct(t: &BigInt, m: &BigInt, bound: &BigInt) -> Option<(BigInt, BigInt)> {
-    let (mut r0, mut r1) = (m.clone(), t.mod_floor(m));
-    let (mut s0, mut s1) = (BigInt::zero(), BigInt::one());
+/// Rational reconstruction: `a/b ≡ t (mod m)` with `|a| ≤ bound`, `0 < b ≤ bound`, if any
+/// (`0 ≤ t < m`; half-way extended Euclid).
+fn reconstruct(t: &UBig, m: &UBig, bound: &UBig) -> Option<(IBig, UBig)> {
+    let (mut r0, mut r1) = (m.clone(), t.clone());
+    let (mut s0, mut s1) = (IBig::ZERO, IBig::ONE);
     while &r1 > bound {
-        let (q, r) = r0.div_rem(&r1);
+        let (q, r) = (&r0).div_rem(&r1);
         r0 = std::mem::replace(&mut r1, r);
-        let s = &s0 - &q * &s1;
+        let s = &s0 - IBig::from(q) * &s1;
         s0 = std::mem::replace(&mut s1, s);
     }
-    if s1.is_zero() {
+    if s1 == IBig::ZERO {
         return None;
     }
-    if s1.is_negative() {
-        s1 = -s1;
-        r1 = -r1;
-    }
-    (&s1 <= bound && r1.gcd(&s1).is_one()).then_some((r1, s1))
+    let (sign, b) = s1.into_parts();
+    let a = IBig::from_parts(sign, r1);
+    (&b <= bound && (&a).unsigned_abs().gcd(&b) == UBig::ONE).then_some((a, b))
 }
 
-/// Vector reconstruction with a common denominator (`x_i mod m`, symmetric residues).
-fn reconstruct_vector(x: &[BigInt], m: &BigInt) -> Option<(Vec<BigInt>, BigInt)> {
-    let bound = (m >> 1u32).sqrt();
-    let half = m >> 1u32;
-    let mut d = BigInt::one();
-    let mut out: Vec<BigInt> = Vec::with_capacity(x.len());
-    for xi in x {
-        let mut t = (&d * xi).mod_floor(m);
-        if t > half {
-            t -= m;
-        }
-        if t.abs() <= bound {
-            out.push(t);
-            continue;
-        }
-        let (a, b) = reconstruct(&t, m, &bound)?;
-        d *= &b;
-        if d > bound {
-            return None;
-        }
-        for o in &mut out {
-            *o *= &b;
-        }
-        out.push(a);
+/// `t mod m` as the symmetric residue in `(−m/2, m/2]`.
+fn symmetric(t: UBig, m: &UBig, half: &UBig) -> IBig {
+    if &t > half {
+        IBig::from(t) - IBig::from(m.clone())
+    } else {
+        IBig::from(t)
     }
-    Some((out, d))
+}
+
+/// The lifted digits: `digits[k][j]` is the `k`-th base-`p²` digit of unknown `j` (two lifting
+/// steps packed per `u64`), and the powers `(p²)^(2^i)` for divide-and-conquer conversion.
+struct Digits {
+    rows: Vec<Vec<u64>>,
+    base: u64,
+    powers: Vec<UBig>,
+}
+
+impl Digits {
+    /// `Σ_k digits[k][j]·(p²)^k` by divide and conquer (quasi-linear, unlike Horner's rule).
+    fn value(&self, j: usize) -> UBig {
+        let column: Vec<u64> = self.rows.iter().map(|row| row[j]).collect();
+        self.convert(&column)
+    }
+
+    fn convert(&self, digits: &[u64]) -> UBig {
+        if digits.len() <= 16 {
+            let mut acc = UBig::ZERO;
+            for &d in digits.iter().rev() {
+                acc = acc * self.base + d;
+            }
+            return acc;
+        }
+        let level = (usize::BITS - 1 - (digits.len() - 1).leading_zeros()) as usize;
+        let h = 1usize << level;
+        self.convert(&digits[..h]) + self.convert(&digits[h..]) * &self.powers[level]
+    }
+
+    /// Makes `powers` long enough for the current number of digits.
+    fn extend_powers(&mut self) {
+        if self.powers.is_empty() {
+            self.powers.push(UBig::from(self.base));
+        }
+        while (1usize << self.powers.len()) < self.rows.len() {
+            let last = self.powers.last().expect("non-empty");
+            let square = last * last;
+            self.powers.push(square);
+        }
+    }
+}
+
+/// Converts a `dashu` integer to a `num-bigint` one (linear time).
+fn to_num(x: &IBig) -> BigInt {
+    let (sign, magnitude) = x.clone().into_parts();
+    let magnitude = num_bigint::BigUint::from_bytes_le(&magnitude.to_le_bytes());
+    if sign == dashu_base::Sign::Negative {
+        -BigInt::from(magnitude)
+    } else {
+        BigInt::from(magnitude)
+    }
+}
+
+/// `n/d` in lowest terms (`d > 0`), reduced with `dashu`'s Lehmer gcd: on numbers of tens of
+/// thousands of digits it is hundreds of times faster than `num-bigint`'s binary gcd, which
+/// made printing the exact values of a 50×50 grid take longer than computing them.
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use truecost::stochastic::linear::reduced;
+/// assert_eq!(reduced(&BigInt::from(-6), &BigInt::from(4)).to_string(), "-3/2");
+/// ```
+pub fn reduced(n: &BigInt, d: &BigInt) -> crate::value::Rational {
+    assert!(
+        d > &BigInt::zero(),
+        "reduced: the denominator must be positive"
+    );
+    let to_ubig = |x: &BigInt| UBig::from_le_bytes(&x.magnitude().to_bytes_le());
+    let (un, ud) = (to_ubig(n), to_ubig(d));
+    let g = (&un).gcd(&ud);
+    let back = |x: UBig| BigInt::from(num_bigint::BigUint::from_bytes_le(&x.to_le_bytes()));
+    let (rn, rd) = if g == UBig::ONE {
+        (n.clone(), d.clone())
+    } else {
+        let rn = back(un / &g);
+        (if n < &BigInt::zero() { -rn } else { rn }, back(ud / &g))
+    };
+    crate::value::Rational::new_raw(rn, rd)
+}
+
+/// One reconstruction attempt after `steps` lifting steps: rational reconstruction of a few
+/// probe unknowns gives a common denominator `d`; every numerator is then `d·x mod p^steps`
+/// (symmetric), reconstructing again where that is too large; finally `A·N = d·r` is checked
+/// exactly. `None` if any stage fails (more lifting is needed).
+fn attempt(
+    system: &SparseSystem,
+    digits: &mut Digits,
+    p: u64,
+    steps: usize,
+) -> Option<(Vec<BigInt>, BigInt)> {
+    use rayon::prelude::*;
+    let n = system.len();
+    digits.extend_powers();
+    let m = UBig::from(p).pow(steps);
+    let half = &m >> 1usize;
+    let bound = half.sqrt();
+    let digits = &*digits;
+    let mut d = UBig::ONE;
+    let residue = |j: usize, d: &UBig| -> UBig { (d * digits.value(j)) % &m };
+    let widen = |j: usize, d: &mut UBig| -> Option<()> {
+        let t = residue(j, d);
+        let small = symmetric(t.clone(), &m, &half).unsigned_abs() <= bound;
+        if !small {
+            let (_, b) = reconstruct(&t, &m, &bound)?;
+            *d *= b;
+            if *d > bound {
+                return None;
+            }
+        }
+        Some(())
+    };
+    let mut probes = vec![0, n / 2, n - 1];
+    probes.dedup();
+    for &j in &probes {
+        widen(j, &mut d)?;
+    }
+    // Every numerator with this denominator, in parallel; widen sequentially where needed.
+    let mut numerators: Vec<Option<IBig>> = (0..n)
+        .into_par_iter()
+        .map(|j| {
+            let t = symmetric(residue(j, &d), &m, &half);
+            ((&t).unsigned_abs() <= bound).then_some(t)
+        })
+        .collect();
+    let failed: Vec<usize> = (0..n).filter(|&j| numerators[j].is_none()).collect();
+    if !failed.is_empty() {
+        for &j in &failed {
+            widen(j, &mut d)?;
+        }
+        numerators = (0..n)
+            .into_par_iter()
+            .map(|j| {
+                let t = symmetric(residue(j, &d), &m, &half);
+                ((&t).unsigned_abs() <= bound).then_some(t)
+            })
+            .collect();
+    }
+    let numerators: Vec<IBig> = numerators.into_iter().collect::<Option<_>>()?;
+    let d = IBig::from(d);
+    let satisfied = (0..n).into_par_iter().all(|i| {
+        let mut lhs = IBig::ZERO;
+        for (c, v) in system.row(i) {
+            lhs += &numerators[c] * IBig::from(v);
+        }
+        lhs == &d * IBig::from(system.rhs[i])
+    });
+    if !satisfied {
+        return None;
+    }
+    Some((numerators.par_iter().map(to_num).collect(), to_num(&d)))
 }
 
 /// Bits after which the reconstruction of the exact solution is guaranteed: with `H` the
@@ -466,6 +598,16 @@ fn hadamard_bits(system: &SparseSystem) -> u64 {
     (2.0 * (bits + rhs.log2() + (system.len() as f64 + 1.0).log2()) + 8.0).ceil() as u64
 }
 
+/// Progress of an exact solve, reported after every lifting step (for a progress bar).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LiftProgress {
+    /// Lifting steps done so far.
+    pub steps: usize,
+    /// The steps expected (an `f64` estimate of `2·log_p(|det A|·max|z|)`; reconstruction is
+    /// first tried there).
+    pub expected: usize,
+}
+
 /// Solves `A·z = r` exactly (module docs). The result satisfies `A·N = d·r` exactly.
 ///
 /// ```
@@ -480,6 +622,14 @@ fn hadamard_bits(system: &SparseSystem) -> u64 {
 /// assert_eq!(&z.numerators[1] * BigInt::from(8), &z.denominator * BigInt::from(7));
 /// ```
 pub fn solve_exact(system: &SparseSystem) -> Result<ExactSolution, LinearError> {
+    solve_exact_with(system, &mut |_| {})
+}
+
+/// [`solve_exact`], calling `progress` after every lifting step.
+pub fn solve_exact_with(
+    system: &SparseSystem,
+    progress: &mut dyn FnMut(LiftProgress),
+) -> Result<ExactSolution, LinearError> {
     let n = system.len();
     if n == 0 {
         return Ok(ExactSolution {
@@ -491,11 +641,22 @@ pub fn solve_exact(system: &SparseSystem) -> Result<ExactSolution, LinearError> 
     let ordering = BandOrdering::new(system);
     check_band(n, &ordering)?;
     let max_bits = hadamard_bits(system);
+    // Where reconstruction should first succeed: Cramer's rule gives the common denominator
+    // |det A| and numerators |det A|·|z_i|; reconstruction needs p^K > 2·max(N, D)². Both are
+    // estimated in f64 (a schedule only: every answer is verified exactly).
+    let (z, log2_det) = solve_f64_ordered(system, &ordering);
+    let log2_max = z.iter().map(|v| v.abs()).fold(1.0f64, f64::max).log2();
+    let expected_bits = if log2_det.is_finite() && log2_max.is_finite() {
+        (2.0 * (log2_det + log2_max) + 2.0).max(0.0)
+    } else {
+        max_bits as f64
+    };
     for p in primes().take(8) {
         let Some(lu) = ModularLu::factor(system, &ordering, p) else {
             continue;
         };
-        if let Some(solution) = lift(system, &ordering, &lu, max_bits)? {
+        let expected = (expected_bits / (p as f64).log2()).ceil() as usize + 1;
+        if let Some(solution) = lift(system, &ordering, &lu, max_bits, expected, progress)? {
             return Ok(solution);
         }
     }
@@ -509,17 +670,25 @@ fn lift(
     ordering: &BandOrdering,
     lu: &ModularLu,
     max_bits: u64,
+    expected: usize,
+    progress: &mut dyn FnMut(LiftProgress),
 ) -> Result<Option<ExactSolution>, LinearError> {
     let n = system.len();
     let p = lu.p;
     let pi = p as i128;
     let bits_per_step = (p as f64).log2();
     let max_steps = (max_bits as f64 / bits_per_step).ceil() as usize + 2;
+    let expected = expected.min(max_steps);
     let mut residual: Vec<i128> = system.rhs.clone();
-    // Digits in original coordinates, two steps packed per u64 (base p²).
-    let mut digits: Vec<Vec<u64>> = Vec::new();
+    let mut digits = Digits {
+        rows: Vec::new(),
+        base: p * p,
+        powers: Vec::new(),
+    };
     let mut y = vec![0u64; n];
-    let mut next_try = 4usize;
+    // Tries: geometric below the expected count (a smaller denominator shows up early), at
+    // the expected count, then every 2% more.
+    let mut next_try = 4usize.min(expected);
     let mut steps = 0usize;
     while steps < max_steps {
         for new in 0..n {
@@ -537,39 +706,29 @@ fn lift(
             *r = s.div_euclid(pi);
         }
         if steps.is_multiple_of(2) {
-            digits.push((0..n).map(|j| y[ordering.position[j]]).collect());
+            digits
+                .rows
+                .push((0..n).map(|j| y[ordering.position[j]]).collect());
         } else {
-            let last = digits.last_mut().expect("pushed at the even step");
+            let last = digits.rows.last_mut().expect("pushed at the even step");
             for (j, d) in last.iter_mut().enumerate() {
                 *d += y[ordering.position[j]] * p;
             }
         }
         steps += 1;
+        progress(LiftProgress { steps, expected });
         if steps == next_try || steps == max_steps {
-            next_try = (next_try * 3).div_ceil(2).max(next_try + 2);
-            // x = Σ digit_k (p²)^k by Horner, m = p^steps.
-            let base = BigInt::from(p) * BigInt::from(p);
-            let mut m = BigInt::one();
-            for _ in 0..steps {
-                m *= p;
-            }
-            let x: Vec<BigInt> = (0..n)
-                .map(|j| {
-                    let mut acc = BigInt::zero();
-                    for digit in digits.iter().rev() {
-                        acc = acc * &base + BigInt::from(digit[j]);
-                    }
-                    acc
-                })
-                .collect();
-            if let Some((numerators, denominator)) = reconstruct_vector(&x, &m) {
-                if system.satisfied_by(&numerators, &denominator) {
-                    return Ok(Some(ExactSolution {
-                        numerators,
-                        denominator,
-                        lifting_steps: steps,
-                    }));
-                }
+            next_try = if steps < expected {
+                ((steps * 3).div_ceil(2)).max(steps + 2).min(expected)
+            } else {
+                steps + (steps / 50).max(2)
+            };
+            if let Some((numerators, denominator)) = attempt(system, &mut digits, p, steps) {
+                return Ok(Some(ExactSolution {
+                    numerators,
+                    denominator,
+                    lifting_steps: steps,
+                }));
             }
         }
     }
@@ -581,15 +740,17 @@ fn lift(
 pub fn solve_f64(system: &SparseSystem) -> Result<Vec<f64>, LinearError> {
     let ordering = BandOrdering::new(system);
     check_band(system.len(), &ordering)?;
-    Ok(solve_f64_ordered(system, &ordering))
+    Ok(solve_f64_ordered(system, &ordering).0)
 }
 
-/// [`solve_f64`] with a precomputed ordering.
-fn solve_f64_ordered(system: &SparseSystem, ordering: &BandOrdering) -> Vec<f64> {
+/// [`solve_f64`] with a precomputed ordering; also `log2 |det A|` from the pivots.
+fn solve_f64_ordered(system: &SparseSystem, ordering: &BandOrdering) -> (Vec<f64>, f64) {
     let mut band = Band::new(system, ordering, |v| v as f64, |a, b| a + b);
     let n = band.n;
+    let mut log2_det = 0.0;
     for k in 0..n {
         let pivot = band.data[band.index(k, k)];
+        log2_det += pivot.abs().log2();
         let last_row = (k + band.lower).min(n.saturating_sub(1));
         let last_col = (k + band.upper).min(n.saturating_sub(1));
         for i in k + 1..=last_row {
@@ -625,5 +786,8 @@ fn solve_f64_ordered(system: &SparseSystem, ordering: &BandOrdering) -> Vec<f64>
         }
         y[i] = acc / band.data[band.index(i, i)];
     }
-    (0..n).map(|old| y[ordering.position[old]]).collect()
+    (
+        (0..n).map(|old| y[ordering.position[old]]).collect(),
+        log2_det,
+    )
 }

@@ -77,15 +77,17 @@ impl Optimum {
     /// `G*(x)`, exact (`+∞` where no policy reaches a goal with probability 1).
     pub fn cost_to_go(&self, x: usize) -> Extended {
         match &self.numerators[x] {
-            Some(n) => Extended::Finite(Rational::new(n.clone(), self.denominator.clone())),
+            Some(n) => Extended::Finite(super::linear::reduced(n, &self.denominator)),
             None => Extended::Infinite,
         }
     }
 
     /// `G*` for every state (reduced once, then cached).
     pub fn cost_to_go_all(&self) -> &[Extended] {
+        use rayon::prelude::*;
         self.reduced.get_or_init(|| {
             (0..self.numerators.len())
+                .into_par_iter()
                 .map(|x| self.cost_to_go(x))
                 .collect()
         })
@@ -114,9 +116,9 @@ impl Optimum {
     pub fn q_value(&self, problem: &StochasticProblem, action: usize) -> Extended {
         let x = problem.state_of(action);
         match self.scaled_q(problem, action) {
-            Some(k) => Extended::Finite(Rational::new(
-                k,
-                &self.denominator * BigInt::from(problem.denominator(x)),
+            Some(k) => Extended::Finite(super::linear::reduced(
+                &k,
+                &(&self.denominator * BigInt::from(problem.denominator(x))),
             )),
             None => Extended::Infinite,
         }

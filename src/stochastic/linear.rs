@@ -18,7 +18,7 @@
 //!    in big integers. The answer is therefore exact whatever happened before; lifting goes on
 //!    (up to the Hadamard bound, after which reconstruction is guaranteed) until it holds.
 
-use dashu_base::{DivRem, Gcd, SquareRoot, UnsignedAbs};
+use dashu_base::{BitTest, DivRem, Gcd, SquareRoot, UnsignedAbs};
 use dashu_int::{IBig, UBig};
 use num_bigint::BigInt;
 use num_traits::{One, Zero};
@@ -440,7 +440,12 @@ struct Digits {
 impl Digits {
     /// `Σ_k digits[k][j]·(p²)^k` by divide and conquer (quasi-linear, unlike Horner's rule).
     fn value(&self, j: usize) -> UBig {
-        let column: Vec<u64> = self.rows.iter().map(|row| row[j]).collect();
+        self.prefix(j, self.rows.len())
+    }
+
+    /// The value of the first `rows` packed digits of unknown `j` (that is, modulo `p^(2·rows)`).
+    fn prefix(&self, j: usize, rows: usize) -> UBig {
+        let column: Vec<u64> = self.rows[..rows].iter().map(|row| row[j]).collect();
         self.convert(&column)
     }
 
@@ -508,15 +513,148 @@ pub fn reduced(n: &BigInt, d: &BigInt) -> crate::value::Rational {
     crate::value::Rational::new_raw(rn, rd)
 }
 
-/// One reconstruction attempt after `steps` lifting steps: rational reconstruction of a few
-/// probe unknowns gives a common denominator `d`; every numerator is then `d·x mod p^steps`
-/// (symmetric), reconstructing again where that is too large; finally `A·N = d·r` is checked
-/// exactly. `None` if any stage fails (more lifting is needed).
+/// Barrett reduction modulo a fixed `m`: two multiplications instead of a long division
+/// (which is quadratic in `dashu` at these sizes and dominated the conversion of 10⁴ numerators).
+struct Barrett {
+    m: UBig,
+    k: usize,
+    mu: UBig,
+}
+
+impl Barrett {
+    fn new(m: &UBig) -> Self {
+        let k = m.bit_len();
+        Barrett {
+            m: m.clone(),
+            k,
+            mu: (UBig::ONE << (2 * k)) / m,
+        }
+    }
+
+    /// `t mod m` for `0 ≤ t < m²` (Barrett: the estimated quotient is short by at most 2).
+    fn reduce(&self, t: UBig) -> UBig {
+        let q = ((&t >> (self.k - 1)) * &self.mu) >> (self.k + 1);
+        let mut r = t - q * &self.m;
+        while r >= self.m {
+            r -= &self.m;
+        }
+        r
+    }
+}
+
+/// How to recover the numerators from a few of them: `seeds` are computed from the digits;
+/// then each step `(i, j)` solves row `i` of `A·N = d·r` for `N_j`, all its other unknowns
+/// being known by then. Computed from the sparsity pattern alone (greedy: a row with a single
+/// unknown is used as soon as there is one; otherwise the next unknown in band order becomes a
+/// seed).
+struct PeelPlan {
+    seeds: Vec<usize>,
+    steps: Vec<(usize, usize)>,
+}
+
+impl PeelPlan {
+    fn new(system: &SparseSystem, ordering: &BandOrdering) -> Self {
+        let n = system.len();
+        let mut rows_of = vec![Vec::new(); n];
+        let mut unknown = vec![0usize; n];
+        for i in 0..n {
+            for (j, v) in system.row(i) {
+                if v != 0 {
+                    rows_of[j].push(i);
+                    unknown[i] += 1;
+                }
+            }
+        }
+        let mut known = vec![false; n];
+        let mut queue: Vec<usize> = Vec::new();
+        let (mut seeds, mut steps) = (Vec::new(), Vec::new());
+        let mut learn = |j: usize, known: &mut [bool], queue: &mut Vec<usize>| {
+            known[j] = true;
+            for &i in &rows_of[j] {
+                unknown[i] -= 1;
+                if unknown[i] == 1 {
+                    queue.push(i);
+                }
+            }
+        };
+        let mut next = 0;
+        let mut count = 0;
+        while count < n {
+            if let Some(i) = queue.pop() {
+                let Some(j) = system
+                    .row(i)
+                    .find(|&(j, v)| v != 0 && !known[j])
+                    .map(|(j, _)| j)
+                else {
+                    continue;
+                };
+                steps.push((i, j));
+                learn(j, &mut known, &mut queue);
+                count += 1;
+            } else {
+                while known[ordering.order[next]] {
+                    next += 1;
+                }
+                let j = ordering.order[next];
+                seeds.push(j);
+                learn(j, &mut known, &mut queue);
+                count += 1;
+            }
+        }
+        PeelPlan { seeds, steps }
+    }
+
+    /// The numerators from the seeds' values; `None` if a division is not exact (the seeds or
+    /// `d` are wrong).
+    fn propagate(
+        &self,
+        system: &SparseSystem,
+        seeds: Vec<(usize, IBig)>,
+        d: &IBig,
+    ) -> Option<Vec<IBig>> {
+        let mut value: Vec<Option<IBig>> = vec![None; system.len()];
+        for (j, v) in seeds {
+            value[j] = Some(v);
+        }
+        for &(i, j) in &self.steps {
+            let mut rest = d * IBig::from(system.rhs[i]);
+            let mut coefficient = 0i64;
+            for (c, v) in system.row(i) {
+                if c == j {
+                    coefficient = v;
+                } else if v != 0 {
+                    rest -= value[c].as_ref().expect("known by the plan") * IBig::from(v);
+                }
+            }
+            let (q, r) = rest.div_rem(IBig::from(coefficient));
+            if r != IBig::ZERO {
+                return None;
+            }
+            value[j] = Some(q);
+        }
+        value.into_iter().collect()
+    }
+}
+
+/// One reconstruction attempt after `steps` lifting steps (`None`: more lifting is needed).
+///
+/// 1. Rational reconstruction of a few probe unknowns modulo `m = p^steps` gives a candidate
+///    common denominator `d`.
+/// 2. Fast path: the numerators `N = d·z` need only `p^K' > 2·max|N|` (about half the digits):
+///    with `K'` from `d` and the `f64` estimate `log2_max` of `max|z|`, `N_i` is the symmetric
+///    residue of `d·x_i mod p^K'`, computed this way only for the seeds of a [`PeelPlan`];
+///    every other numerator follows from one equation of `A·N = d·r` by an exact division by
+///    a word (a grid needs about one seed per level of the band ordering). Accepted only if
+///    `A·N = d·r` holds exactly.
+/// 3. Otherwise every numerator modulo `m`, widening `d` by a further reconstruction where a
+///    residue is not small, and the same exact check.
 fn attempt(
     system: &SparseSystem,
     digits: &mut Digits,
     p: u64,
     steps: usize,
+    log2_max: f64,
+    plan: &PeelPlan,
 ) -> Option<(Vec<BigInt>, BigInt)> {
     use rayon::prelude::*;
     let n = system.len();
@@ -544,40 +682,63 @@ fn attempt(
     for &j in &probes {
         widen(j, &mut d)?;
     }
-    // Every numerator with this denominator, in parallel; widen sequentially where needed.
-    let mut numerators: Vec<Option<IBig>> = (0..n)
-        .into_par_iter()
-        .map(|j| {
-            let t = symmetric(residue(j, &d), &m, &half);
-            ((&t).unsigned_abs() <= bound).then_some(t)
+    let check = |numerators: &[IBig], d: &UBig| -> bool {
+        let d = IBig::from(d.clone());
+        (0..n).into_par_iter().all(|i| {
+            let mut lhs = IBig::ZERO;
+            for (c, v) in system.row(i) {
+                lhs += &numerators[c] * IBig::from(v);
+            }
+            lhs == &d * IBig::from(system.rhs[i])
         })
-        .collect();
+    };
+    let finish = |numerators: Vec<IBig>, d: &UBig| {
+        (
+            numerators.par_iter().map(to_num).collect(),
+            to_num(&IBig::from(d.clone())),
+        )
+    };
+    // 2. Fast path on a prefix of the digits (an even number of steps: whole packed digits).
+    let needed_bits = d.bit_len() as f64 + log2_max.max(0.0) + 16.0;
+    let rows = ((needed_bits / (p as f64).log2() / 2.0).ceil() as usize).max(1);
+    if log2_max.is_finite() && 2 * rows < steps {
+        let m = UBig::from(p).pow(2 * rows);
+        let half = &m >> 1usize;
+        let barrett = Barrett::new(&m);
+        let seeds: Vec<(usize, IBig)> = plan
+            .seeds
+            .par_iter()
+            .map(|&j| {
+                let t = barrett.reduce(&d * digits.prefix(j, rows));
+                (j, symmetric(t, &m, &half))
+            })
+            .collect();
+        if let Some(numerators) = plan.propagate(system, seeds, &IBig::from(d.clone())) {
+            if check(&numerators, &d) {
+                return Some(finish(numerators, &d));
+            }
+        }
+    }
+    // 3. Every numerator modulo m, widening d where needed.
+    let all = |d: &UBig| -> Vec<Option<IBig>> {
+        (0..n)
+            .into_par_iter()
+            .map(|j| {
+                let t = symmetric(residue(j, d), &m, &half);
+                ((&t).unsigned_abs() <= bound).then_some(t)
+            })
+            .collect()
+    };
+    let mut numerators = all(&d);
     let failed: Vec<usize> = (0..n).filter(|&j| numerators[j].is_none()).collect();
     if !failed.is_empty() {
         for &j in &failed {
             widen(j, &mut d)?;
         }
-        numerators = (0..n)
-            .into_par_iter()
-            .map(|j| {
-                let t = symmetric(residue(j, &d), &m, &half);
-                ((&t).unsigned_abs() <= bound).then_some(t)
-            })
-            .collect();
+        numerators = all(&d);
     }
     let numerators: Vec<IBig> = numerators.into_iter().collect::<Option<_>>()?;
-    let d = IBig::from(d);
-    let satisfied = (0..n).into_par_iter().all(|i| {
-        let mut lhs = IBig::ZERO;
-        for (c, v) in system.row(i) {
-            lhs += &numerators[c] * IBig::from(v);
-        }
-        lhs == &d * IBig::from(system.rhs[i])
-    });
-    if !satisfied {
-        return None;
-    }
-    Some((numerators.par_iter().map(to_num).collect(), to_num(&d)))
+    check(&numerators, &d).then(|| finish(numerators, &d))
 }
 
 /// Bits after which the reconstruction of the exact solution is guaranteed: with `H` the
@@ -656,11 +817,26 @@ pub fn solve_exact_with(
             continue;
         };
         let expected = (expected_bits / (p as f64).log2()).ceil() as usize + 1;
-        if let Some(solution) = lift(system, &ordering, &lu, max_bits, expected, progress)? {
+        let schedule = Schedule {
+            max_bits,
+            expected,
+            log2_max,
+        };
+        if let Some(solution) = lift(system, &ordering, &lu, &schedule, progress)? {
             return Ok(solution);
         }
     }
     Err(LinearError::Singular)
+}
+
+/// When to try reconstruction (all `f64` estimates; answers are verified exactly).
+struct Schedule {
+    /// The Hadamard bound: reconstruction is guaranteed after this many bits.
+    max_bits: u64,
+    /// The lifting steps expected from `log2 |det A|`.
+    expected: usize,
+    /// `log2 max |z_i|`.
+    log2_max: f64,
 }
 
 /// Dixon lifting with one prime; `None` if the bound was reached without a verified solution
@@ -669,10 +845,14 @@ fn lift(
     system: &SparseSystem,
     ordering: &BandOrdering,
     lu: &ModularLu,
-    max_bits: u64,
-    expected: usize,
+    schedule: &Schedule,
     progress: &mut dyn FnMut(LiftProgress),
 ) -> Result<Option<ExactSolution>, LinearError> {
+    let Schedule {
+        max_bits,
+        expected,
+        log2_max,
+    } = *schedule;
     let n = system.len();
     let p = lu.p;
     let pi = p as i128;
@@ -686,6 +866,7 @@ fn lift(
         powers: Vec::new(),
     };
     let mut y = vec![0u64; n];
+    let plan = PeelPlan::new(system, ordering);
     // Tries: geometric below the expected count (a smaller denominator shows up early), at
     // the expected count, then every 2% more.
     let mut next_try = 4usize.min(expected);
@@ -723,7 +904,9 @@ fn lift(
             } else {
                 steps + (steps / 50).max(2)
             };
-            if let Some((numerators, denominator)) = attempt(system, &mut digits, p, steps) {
+            if let Some((numerators, denominator)) =
+                attempt(system, &mut digits, p, steps, log2_max, &plan)
+            {
                 return Ok(Some(ExactSolution {
                     numerators,
                     denominator,

@@ -301,6 +301,8 @@ impl<T: Copy + Default> Band<T> {
 /// inverses kept separately).
 struct ModularLu {
     band: Band<u64>,
+    /// `p − entry` for every band entry (`L` below the diagonal, `U` above), as `u32`.
+    negated: Vec<u32>,
     inverse_pivot: Vec<u64>,
     p: u64,
 }
@@ -359,34 +361,64 @@ impl ModularLu {
                 }
             }
         }
+        let negated = band.data.iter().map(|&v| ((p - v) % p) as u32).collect();
         Some(ModularLu {
-            band,
+            band: Band {
+                data: Vec::new(),
+                ..band
+            },
+            negated,
             inverse_pivot,
             p,
         })
     }
 
-    /// Solves `LU·y = b` in place (reordered coordinates).
+    /// Solves `LU·y = b` in place (reordered coordinates; entries of `y` below `p`).
     fn solve(&self, y: &mut [u64]) {
         let (n, p, lower, upper) = (self.band.n, self.p, self.band.lower, self.band.upper);
+        let width = lower + upper + 1;
+        let neg = &self.negated;
         for i in 0..n {
             let first = i.saturating_sub(lower);
-            let base = self.band.index(i, first);
-            let mut acc: u128 = y[i] as u128;
-            for (off, j) in (first..i).enumerate() {
-                acc += (p - self.band.data[base + off]) as u128 * y[j] as u128;
-            }
+            let base = i * width + (first + lower - i);
+            let acc = y[i] as u128 + dot(&neg[base..base + (i - first)], &y[first..i]);
             y[i] = (acc % p as u128) as u64;
         }
         for i in (0..n).rev() {
             let last = (i + upper).min(n - 1);
-            let base = self.band.index(i, i);
-            let mut acc: u128 = y[i] as u128;
-            for (off, j) in (i + 1..=last).enumerate() {
-                acc += (p - self.band.data[base + 1 + off]) as u128 * y[j] as u128;
-            }
+            let base = i * width + lower + 1;
+            let acc = y[i] as u128 + dot(&neg[base..base + (last - i)], &y[i + 1..=last]);
             y[i] = ((acc % p as u128) as u64) * self.inverse_pivot[i] % p;
         }
+    }
+}
+
+/// `Σ a_k·b_k` for entries below 2³¹: products below 2⁶², summed four at a time in `u64`
+/// (below 2⁶⁴) and only then in `u128`, so the compiler can use 32×32→64 multiplies.
+#[inline]
+fn dot(a: &[u32], b: &[u64]) -> u128 {
+    let mut total = 0u128;
+    let (ac, bc) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ar, br) = (ac.remainder(), bc.remainder());
+    for (x, y) in ac.zip(bc) {
+        let s = x[0] as u64 * (y[0] as u32) as u64
+            + x[1] as u64 * (y[1] as u32) as u64
+            + x[2] as u64 * (y[2] as u32) as u64
+            + x[3] as u64 * (y[3] as u32) as u64;
+        total += s as u128;
+    }
+    for (&x, &y) in ar.iter().zip(br) {
+        total += (x as u64 * y) as u128;
+    }
+    total
+}
+
+/// `r mod p` in `[0, p)`, on 64 bits when `r` fits (the usual case after a few lifting steps).
+#[inline]
+fn rem_p(r: i128, p: u64) -> u64 {
+    match i64::try_from(r) {
+        Ok(r) => r.rem_euclid(p as i64) as u64,
+        Err(_) => r.rem_euclid(p as i128) as u64,
     }
 }
 
@@ -873,7 +905,7 @@ fn lift(
     let mut steps = 0usize;
     while steps < max_steps {
         for new in 0..n {
-            y[new] = residual[ordering.order[new]].rem_euclid(pi) as u64;
+            y[new] = rem_p(residual[ordering.order[new]], p);
         }
         lu.solve(&mut y);
         // r ← (r − A·z)/p, exact by construction.
@@ -884,7 +916,10 @@ fn lift(
                 s = s.checked_sub(v as i128 * z).ok_or(LinearError::TooLarge)?;
             }
             debug_assert_eq!(s.rem_euclid(pi), 0);
-            *r = s.div_euclid(pi);
+            *r = match i64::try_from(s) {
+                Ok(s) => (s / p as i64) as i128, // exact division
+                Err(_) => s / pi,
+            };
         }
         if steps.is_multiple_of(2) {
             digits

@@ -15,6 +15,7 @@
 //! * [`linear`] — the exact sparse linear solver (Dixon p-adic lifting, rational reconstruction,
 //!   exact verification) and its `f64` twin.
 //! * [`policy_iteration`] — the exact optimum `G*`, `Q*` and an optimal policy.
+//! * [`scale`] — the `--max-memory` budget of the exact optimum (sizes parsed exactly).
 //! * [`value_iteration`] — stochastic VI and asynchronous VI, exact and `f64`, with an explicit
 //!   stopping rule and the reference code's counting rule (SPEC §7).
 //!
@@ -34,6 +35,7 @@ pub mod noise;
 pub mod policy_iteration;
 pub mod problem;
 pub mod properness;
+pub mod scale;
 pub mod value_iteration;
 
 pub use noise::{NoiseModel, Predictability};

@@ -823,6 +823,14 @@ pub fn solve_exact_with(
     system: &SparseSystem,
     progress: &mut dyn FnMut(LiftProgress),
 ) -> Result<ExactSolution, LinearError> {
+    solve_exact_general(system, progress, true)
+}
+
+fn solve_exact_general(
+    system: &SparseSystem,
+    progress: &mut dyn FnMut(LiftProgress),
+    fast_path: bool,
+) -> Result<ExactSolution, LinearError> {
     let n = system.len();
     if n == 0 {
         return Ok(ExactSolution {
@@ -853,6 +861,7 @@ pub fn solve_exact_with(
             max_bits,
             expected,
             log2_max,
+            fast_path,
         };
         if let Some(solution) = lift(system, &ordering, &lu, &schedule, progress)? {
             return Ok(solution);
@@ -869,6 +878,9 @@ struct Schedule {
     expected: usize,
     /// `log2 max |z_i|`.
     log2_max: f64,
+    /// Whether numerators may come from a prefix of the digits and the peel plan (always,
+    /// except in the tests of the general path).
+    fast_path: bool,
 }
 
 /// Dixon lifting with one prime; `None` if the bound was reached without a verified solution
@@ -884,6 +896,7 @@ fn lift(
         max_bits,
         expected,
         log2_max,
+        ..
     } = *schedule;
     let n = system.len();
     let p = lu.p;
@@ -939,8 +952,9 @@ fn lift(
             } else {
                 steps + (steps / 50).max(2)
             };
+            let estimate = if schedule.fast_path { log2_max } else { f64::NAN };
             if let Some((numerators, denominator)) =
-                attempt(system, &mut digits, p, steps, log2_max, &plan)
+                attempt(system, &mut digits, p, steps, estimate, &plan)
             {
                 return Ok(Some(ExactSolution {
                     numerators,
@@ -1008,4 +1022,112 @@ fn solve_f64_ordered(system: &SparseSystem, ordering: &BandOrdering) -> (Vec<f64
         (0..n).map(|old| y[ordering.position[old]]).collect(),
         log2_det,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// A random sparse system shaped like policy evaluation: `s·z_i − Σ w·z_j = r_i` with
+    /// `Σ w < s` on random neighbours.
+    fn random_system(n: usize, seed: u64) -> SparseSystem {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let mut s = SparseSystem::new();
+        for i in 0..n {
+            let diag = 50 + (rng.next_u32() % 400) as i64;
+            let mut entries = vec![(i, diag)];
+            let mut budget = diag - 1;
+            for _ in 0..4 {
+                let j = (rng.next_u32() as usize) % n;
+                let w = 1 + (rng.next_u32() as i64) % (budget / 4).max(1);
+                if budget - w < 0 {
+                    break;
+                }
+                budget -= w;
+                entries.push((j, -w));
+            }
+            let rhs = (rng.next_u32() % 1000) as i128 - 300;
+            s.push_row(&entries, rhs).unwrap();
+        }
+        s
+    }
+
+    #[test]
+    fn fast_and_general_paths_give_the_same_verified_solution() {
+        for (n, seed) in [(1, 0), (7, 1), (40, 2), (150, 3)] {
+            let system = random_system(n, seed);
+            let fast = solve_exact(&system).unwrap();
+            let general = solve_exact_general(&system, &mut |_| {}, false).unwrap();
+            assert!(system.satisfied_by(&fast.numerators, &fast.denominator));
+            assert!(system.satisfied_by(&general.numerators, &general.denominator));
+            // The same rationals: N_f/d_f = N_g/d_g.
+            for (a, b) in fast.numerators.iter().zip(&general.numerators) {
+                assert_eq!(a * &general.denominator, b * &fast.denominator, "n = {n}");
+            }
+        }
+    }
+
+    #[test]
+    fn barrett_reduction_agrees_with_division() {
+        let mut rng = ChaCha8Rng::seed_from_u64(9);
+        for words in [1usize, 3, 40] {
+            let words_of = |rng: &mut ChaCha8Rng, k: usize| -> UBig {
+                let w: Vec<u64> = (0..k).map(|_| rng.next_u64()).collect();
+                UBig::from_le_bytes(&w.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<_>>())
+            };
+            let m = words_of(&mut rng, words) + UBig::from(3u8);
+            let b = Barrett::new(&m);
+            for _ in 0..50 {
+                let t = words_of(&mut rng, 2 * words) % (&m * &m);
+                assert_eq!(b.reduce(t.clone()), t % &m);
+            }
+            assert_eq!(b.reduce(&m * &m - UBig::ONE), (&m * &m - UBig::ONE) % &m);
+        }
+    }
+
+    #[test]
+    fn the_peel_plan_recovers_every_numerator_from_its_seeds() {
+        // A 6×6 grid pattern: seeds about one per band level, not one per unknown.
+        let side = 6;
+        let mut system = SparseSystem::new();
+        for i in 0..side * side {
+            let (r, c) = (i / side, i % side);
+            let mut e = vec![(i, 10)];
+            for (dr, dc) in [(-1i64, 0i64), (0, -1), (0, 1), (1, 0)] {
+                let (rr, cc) = (r as i64 + dr, c as i64 + dc);
+                if (0..side as i64).contains(&rr) && (0..side as i64).contains(&cc) {
+                    e.push(((rr * side as i64 + cc) as usize, -2));
+                }
+            }
+            system.push_row(&e, 1 + (i % 3) as i128).unwrap();
+        }
+        let ordering = BandOrdering::new(&system);
+        let plan = PeelPlan::new(&system, &ordering);
+        assert!(plan.seeds.len() < side * side / 2, "{} seeds", plan.seeds.len());
+        assert_eq!(plan.seeds.len() + plan.steps.len(), side * side);
+        let exact = solve_exact(&system).unwrap();
+        let to_ibig = |x: &BigInt| IBig::from_le_bytes(&x.to_signed_bytes_le());
+        let seeds = plan
+            .seeds
+            .iter()
+            .map(|&j| (j, to_ibig(&exact.numerators[j])))
+            .collect();
+        let d = to_ibig(&exact.denominator);
+        let got = plan.propagate(&system, seeds, &d).unwrap();
+        let want: Vec<IBig> = exact.numerators.iter().map(to_ibig).collect();
+        assert_eq!(got, want);
+        // A wrong seed is caught by an inexact division (or, failing that, the final check).
+        let mut bad: Vec<(usize, IBig)> = plan
+            .seeds
+            .iter()
+            .map(|&j| (j, to_ibig(&exact.numerators[j])))
+            .collect();
+        bad[0].1 += IBig::ONE;
+        match plan.propagate(&system, bad, &d) {
+            None => {}
+            Some(v) => assert!(!system.satisfied_by(&v.iter().map(to_num).collect::<Vec<_>>(), &exact.denominator)),
+        }
+    }
 }

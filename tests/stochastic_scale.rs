@@ -17,8 +17,7 @@ use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
 use truecost::value::{Extended, Rational};
 
 fn noisy(p: &Problem, noise: NoiseModel, gamma: &str) -> StochasticProblem {
-    StochasticProblem::from_deterministic(p, noise, &Predictability::parse(gamma).unwrap())
-        .unwrap()
+    StochasticProblem::from_deterministic(p, noise, &Predictability::parse(gamma).unwrap()).unwrap()
 }
 
 fn int(n: i64) -> Rational {
@@ -54,11 +53,17 @@ fn benchmark_grid_is_a_seeded_four_neighbour_grid_with_costs_one_to_four() {
         let got: Vec<usize> = p.moves(x).iter().map(|m| m.successor).collect();
         assert_eq!(got, expected, "state {x}");
         for m in p.moves(x) {
-            let k = (1..=4).find(|&k| m.cost == int(k)).expect("a cost in 1..=4");
+            let k = (1..=4)
+                .find(|&k| m.cost == int(k))
+                .expect("a cost in 1..=4");
             seen[k as usize] = true;
         }
     }
-    assert_eq!(seen, [false, true, true, true, true], "every cost 1–4 occurs");
+    assert_eq!(
+        seen,
+        [false, true, true, true, true],
+        "every cost 1–4 occurs"
+    );
     // Deterministic from the seed; another seed gives other costs.
     assert_eq!(cost_grid(rows, cols, 11).unwrap(), p);
     assert_ne!(cost_grid(rows, cols, 12).unwrap(), p);
@@ -181,10 +186,17 @@ fn exact_optimum_equals_exhaustive_brute_force_on_small_grids() {
             .map(|x| values.iter().map(|v| v[x].clone()).min().unwrap())
             .collect();
         // Some policy attains the minimum everywhere at once (an SSP has a uniformly optimal one).
-        assert!(values.iter().any(|v| *v == best), "{rows}x{cols} seed {seed}");
+        assert!(
+            values.iter().any(|v| *v == best),
+            "{rows}x{cols} seed {seed}"
+        );
         let o = optimum(&s).unwrap();
         for x in 0..n {
-            assert_eq!(finite(&o.cost_to_go(x)), best[x], "G*({x}), {rows}x{cols} seed {seed}");
+            assert_eq!(
+                finite(&o.cost_to_go(x)),
+                best[x],
+                "G*({x}), {rows}x{cols} seed {seed}"
+            );
             for a in s.actions(x).filter(|_| !s.is_goal(x)) {
                 assert_eq!(
                     o.is_optimal_action(&s, a),
@@ -204,7 +216,11 @@ fn exact_optimum_equals_exhaustive_brute_force_on_small_grids() {
             fixed[x] = usize::MAX;
         }
         assert!(policies.contains(&fixed), "the reported policy is a policy");
-        assert_eq!(oracle_evaluate(&s, &fixed), best, "the reported policy is optimal");
+        assert_eq!(
+            oracle_evaluate(&s, &fixed),
+            best,
+            "the reported policy is optimal"
+        );
     }
 }
 
@@ -256,7 +272,10 @@ fn warm_start_leaves_one_exact_evaluation_and_progress_reports_it() {
     .unwrap();
     assert!(o.stats.exact_iterations <= 2, "{:?}", o.stats);
     assert_eq!(exact, o.stats.exact_iterations);
-    assert!(float > o.stats.float_iterations, "one more f64 evaluation than switches");
+    assert!(
+        float > o.stats.float_iterations,
+        "one more f64 evaluation than switches"
+    );
     assert!(last_lift > 0 && o.stats.lifting_steps >= last_lift);
     // The same numbers with or without a progress callback.
     assert_eq!(optimum(&s).unwrap().cost_to_go_all(), o.cost_to_go_all());
@@ -275,7 +294,17 @@ fn memory_sizes_parse_exactly() {
     assert_eq!(parse_size("2T").unwrap(), 2 * 1024u64.pow(4));
     assert_eq!(parse_size("3000000").unwrap(), 3_000_000);
     for bad in [
-        "", "G", "0", "1023K", "-1G", "1e9", "1.2.3G", "4X", "4 G B", "1.", "99999999999T",
+        "",
+        "G",
+        "0",
+        "1023K",
+        "-1G",
+        "1e9",
+        "1.2.3G",
+        "4X",
+        "4 G B",
+        "1.",
+        "99999999999T",
     ] {
         assert!(parse_size(bad).is_err(), "{bad:?}");
     }
@@ -285,13 +314,20 @@ fn memory_sizes_parse_exactly() {
 fn memory_estimate_grows_with_the_grid_and_with_json() {
     let small = noisy(&cost_grid(10, 10, 0).unwrap(), NoiseModel::Paper, "0.99");
     let large = noisy(&cost_grid(20, 20, 0).unwrap(), NoiseModel::Paper, "0.99");
-    let (a, b) = (memory_estimate(&small, false), memory_estimate(&large, false));
+    let (a, b) = (
+        memory_estimate(&small, false),
+        memory_estimate(&large, false),
+    );
     assert_eq!((a.unknowns, b.unknowns), (99, 399));
     assert!(b.bytes > a.bytes);
     assert!(memory_estimate(&large, true).bytes > b.bytes);
     // The lifting estimate is an upper estimate of what the solve used.
     let o = optimum(&large).unwrap();
-    assert!(b.lifting_steps >= o.stats.lifting_steps, "{b:?} {:?}", o.stats);
+    assert!(
+        b.lifting_steps >= o.stats.lifting_steps,
+        "{b:?} {:?}",
+        o.stats
+    );
 }
 
 fn grid_file(dir: &tempfile::TempDir, side: usize) -> String {
@@ -305,7 +341,15 @@ fn grid_file(dir: &tempfile::TempDir, side: usize) -> String {
 fn max_memory_refuses_before_any_work_in_one_line() {
     let dir = tempfile::tempdir().unwrap();
     let f = grid_file(&dir, 10);
-    let base = ["solve", "--file", &f, "--gamma", "0.99", "--algorithm", "exact"];
+    let base = [
+        "solve",
+        "--file",
+        &f,
+        "--gamma",
+        "0.99",
+        "--algorithm",
+        "exact",
+    ];
     let with = |extra: &[&str]| -> Vec<String> {
         base.iter().chain(extra).map(|s| s.to_string()).collect()
     };
@@ -319,18 +363,38 @@ fn max_memory_refuses_before_any_work_in_one_line() {
     }
     // Within the budget (and the default budget) it runs; nothing on stderr off a terminal.
     for extra in [&["--max-memory", "1G"][..], &[], &["--quiet"]] {
-        let out = truecost().args(with(extra)).assert().success().get_output().clone();
-        assert!(out.stderr.is_empty(), "{}", String::from_utf8_lossy(&out.stderr));
+        let out = truecost()
+            .args(with(extra))
+            .assert()
+            .success()
+            .get_output()
+            .clone();
+        assert!(
+            out.stderr.is_empty(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         assert!(String::from_utf8(out.stdout).unwrap().contains("G*(x1)"));
     }
     // A deterministic run refuses the stochastic-only options.
     let err = fails(
-        &["solve", "--file", &f, "--algorithm", "dijkstra", "--max-memory", "1G"],
+        &[
+            "solve",
+            "--file",
+            &f,
+            "--algorithm",
+            "dijkstra",
+            "--max-memory",
+            "1G",
+        ],
         1,
     );
     assert!(err.contains("apply to the stochastic model"), "{err}");
     let err = fails(&with(&["--exact-error"]), 1);
-    assert!(err.contains("--exact-error applies to --algorithm vi"), "{err}");
+    assert!(
+        err.contains("--exact-error applies to --algorithm vi"),
+        "{err}"
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -343,7 +407,14 @@ fn f64_value_iteration_measures_exactly_only_when_asked() {
     for algorithm in ["vi", "async-vi"] {
         let args = |extra: &[&'static str]| -> Vec<String> {
             [
-                "solve", "--file", &f, "--gamma", "0.9", "--algorithm", algorithm, "--format",
+                "solve",
+                "--file",
+                &f,
+                "--gamma",
+                "0.9",
+                "--algorithm",
+                algorithm,
+                "--format",
                 "json",
             ]
             .iter()
@@ -362,14 +433,25 @@ fn f64_value_iteration_measures_exactly_only_when_asked() {
         assert!(plain["value_iteration"]["suboptimal_policy_states"].is_null());
         assert!(plain["cost_to_go_initial"].is_f64());
         let measured = run(&["--arithmetic", "f64", "--exact-error"]);
-        assert!(measured["optimum"]["cost_to_go_initial"].is_string(), "{algorithm}");
+        assert!(
+            measured["optimum"]["cost_to_go_initial"].is_string(),
+            "{algorithm}"
+        );
         assert!(measured["value_iteration"]["max_error"].is_string());
         assert!(measured["value_iteration"]["error_initial"].is_string());
         // The f64 run itself is the same either way.
         assert_eq!(plain["cost_to_go"], measured["cost_to_go"]);
         // Its exact optimum is the one `--algorithm exact` reports.
         let exact = json(&[
-            "solve", "--file", &f, "--gamma", "0.9", "--algorithm", "exact", "--format", "json",
+            "solve",
+            "--file",
+            &f,
+            "--gamma",
+            "0.9",
+            "--algorithm",
+            "exact",
+            "--format",
+            "json",
         ]);
         assert_eq!(
             measured["optimum"]["cost_to_go_initial"],

@@ -56,7 +56,7 @@ pub struct ScaleArgs {
     /// Memory budget of the exact optimum, e.g. 4G, 512M, 1.5G (K, M, G, T: powers of 1024;
     /// a bare number is bytes). The peak is estimated before any work and a larger estimate
     /// is refused [default: 4G].
-    #[arg(long, value_name = "SIZE")]
+    #[arg(long, value_name = "SIZE", allow_hyphen_values = true)]
     pub max_memory: Option<String>,
     /// No progress bar on stderr (it is also hidden when stderr is not a terminal).
     #[arg(long)]

@@ -596,11 +596,11 @@ impl PeelPlan {
         let n = system.len();
         let mut rows_of = vec![Vec::new(); n];
         let mut unknown = vec![0usize; n];
-        for i in 0..n {
+        for (i, count) in unknown.iter_mut().enumerate() {
             for (j, v) in system.row(i) {
                 if v != 0 {
                     rows_of[j].push(i);
-                    unknown[i] += 1;
+                    *count += 1;
                 }
             }
         }

@@ -534,9 +534,9 @@ pub fn memory_estimate(problem: &StochasticProblem, all_values: bool) -> MemoryE
     let n = problem.states();
     let mut of = vec![None; n];
     let mut states = Vec::new();
-    for x in 0..n {
+    for (x, index) in of.iter_mut().enumerate() {
         if !problem.is_goal(x) && !problem.actions(x).is_empty() {
-            of[x] = Some(states.len());
+            *index = Some(states.len());
             states.push(x);
         }
     }

@@ -101,7 +101,7 @@ fn checked_optimum(
         let bar = ProgressBar::with_draw_target(Some(1), ProgressDrawTarget::stderr());
         bar.set_style(
             ProgressStyle::with_template(
-                "{spinner} {msg} [{bar:30}] {pos}/{len} lifting steps, {elapsed}",
+                "{spinner} {msg} [{bar:20}] {pos}/{len} lifting steps {elapsed}",
             )
             .expect("a valid template")
             .progress_chars("=> "),

@@ -4,6 +4,11 @@
 //!   policy iteration with exact rational solves. Target: ≤ 5 s at γ = 0.999.
 //! * `exact_optimum_table/<noise>` — all 16 paper problems × γ ∈ {0.999, 0.99, 0.9, 0.7, 0.5}
 //!   for one noise model. Target: both noise models together ≤ 5 minutes.
+//! * `exact_optimum_grid/<side>x<side>` — the exact optimum of a seeded benchmark grid (issue 12,
+//!   item 3: `truecost export --grid`, costs 1–4, paper noise, γ = 0.99), mid-size (30×30, 900
+//!   states); the 100×100 case is timed with the CLI (README, "Large models").
+//! * `stochastic_vi/f64_grid/<schedule>` — `f64` VI on the 100×100 benchmark grid to the
+//!   tolerance 1e-9 (no exact `G*`: that is `--exact-error`'s job).
 //! * `stochastic_vi/reference/<schedule>/<γ>` — the reference code's stochastic VI on Problem 10
 //!   (reference noise, `f64`, full graph, to the 0.1 tolerance).
 //! * `stochastic_vi/exact/<schedule>/<γ>` — exact stochastic VI from below on Problem 10 (paper
@@ -15,10 +20,11 @@ use std::time::Duration;
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use truecost::problems::{StepCost, PAPER_PROBLEMS};
+use truecost::stochastic::benchmark::cost_grid;
 use truecost::stochastic::grid::{exact_grid, reference_grid};
 use truecost::stochastic::policy_iteration::optimum;
 use truecost::stochastic::value_iteration::{
-    value_iteration_exact, value_iteration_f64, Schedule, ViOptions,
+    value_iteration_exact, value_iteration_f64, FloatModel, Schedule, ViOptions,
 };
 use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
 use truecost::value::parse_rational;
@@ -69,6 +75,39 @@ fn exact_optimum_table(c: &mut Criterion) {
     group.finish();
 }
 
+fn exact_optimum_grid(c: &mut Criterion) {
+    let mut group = c.benchmark_group("exact_optimum_grid");
+    group.sample_size(10);
+    let side = 30;
+    let grid = cost_grid(side, side, 0).expect("a valid size");
+    let problem = StochasticProblem::from_deterministic(&grid, NoiseModel::Paper, &gamma("0.99"))
+        .expect("a valid gamma");
+    group.bench_function(format!("{side}x{side}"), |b| {
+        b.iter(|| optimum(black_box(&problem)).expect("solvable"))
+    });
+    group.finish();
+}
+
+fn f64_vi_grid(c: &mut Criterion) {
+    let mut group = c.benchmark_group("stochastic_vi");
+    group.sample_size(10);
+    let grid = cost_grid(100, 100, 0).expect("a valid size");
+    let problem = StochasticProblem::from_deterministic(&grid, NoiseModel::Paper, &gamma("0.99"))
+        .expect("a valid gamma");
+    let float = FloatModel::nearest(&problem);
+    for (name, schedule) in [
+        ("async", Schedule::Asynchronous),
+        ("sync", Schedule::Synchronous),
+    ] {
+        let options = ViOptions::from_below(schedule, parse_rational("1e-9").expect("1e-9"), 5000)
+            .expect("valid options");
+        group.bench_function(format!("f64_grid/{name}"), |b| {
+            b.iter(|| value_iteration_f64(black_box(&problem), &float, &options))
+        });
+    }
+    group.finish();
+}
+
 fn stochastic_vi(c: &mut Criterion) {
     let mut group = c.benchmark_group("stochastic_vi");
     group.sample_size(10);
@@ -94,5 +133,12 @@ fn stochastic_vi(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, exact_optimum, exact_optimum_table, stochastic_vi);
+criterion_group!(
+    benches,
+    exact_optimum,
+    exact_optimum_table,
+    exact_optimum_grid,
+    f64_vi_grid,
+    stochastic_vi
+);
 criterion_main!(benches);

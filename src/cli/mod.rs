@@ -137,6 +137,8 @@ struct SolveArgs {
     /// Stochastic VI in exact mode: exact rationals or f64 [default: exact].
     #[arg(long, value_enum)]
     arithmetic: Option<stochastic::Arithmetic>,
+    #[command(flatten)]
+    scale: stochastic::ScaleArgs,
 }
 
 /// Runs the command line and maps every failure to a one-line message.
@@ -263,6 +265,7 @@ fn solve(args: &SolveArgs) -> Result<String, String> {
     let Some(algorithm) = stochastic::deterministic_algorithm(args, loaded.as_ref()) else {
         return stochastic::solve(args, loaded);
     };
+    stochastic::refuse_scale_options(&args.scale)?;
     let (report, source) = match (loaded, args.problem, args.mode) {
         (Some(ProblemFile::Deterministic(problem)), _, _) => {
             let path = args.file.as_deref().expect("a file was read");

@@ -3,7 +3,10 @@
 
 use std::fmt::Write;
 
-use clap::ValueEnum;
+use std::io::IsTerminal;
+
+use clap::{Args, ValueEnum};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
 use serde_json::{json, Value};
 
@@ -13,8 +16,11 @@ use truecost::planning::{Algorithm, Mode};
 use truecost::problems::StepCost;
 use truecost::stochastic::file::ProblemFile;
 use truecost::stochastic::grid::{exact_grid, exact_twin, reference_grid};
-use truecost::stochastic::policy_iteration::{optimum, Distance, Optimum};
+use truecost::stochastic::policy_iteration::{
+    memory_estimate, optimum_with, Distance, Optimum, Progress,
+};
 use truecost::stochastic::problem::Provenance;
+use truecost::stochastic::scale::{format_bytes, parse_size, DEFAULT_MAX_MEMORY};
 use truecost::stochastic::value_iteration::{
     value_iteration_exact, value_iteration_f64, FloatModel, Schedule, ViOptions, ViRun,
 };
@@ -42,6 +48,87 @@ pub enum Arithmetic {
     Exact,
     /// `f64` (the exact problem's numbers rounded).
     F64,
+}
+
+/// Options for large stochastic models (issue 12, item 3).
+#[derive(Args, Debug, Default)]
+pub struct ScaleArgs {
+    /// Memory budget of the exact optimum, e.g. 4G, 512M, 1.5G (K, M, G, T: powers of 1024;
+    /// a bare number is bytes). The peak is estimated before any work and a larger estimate
+    /// is refused [default: 4G].
+    #[arg(long, value_name = "SIZE", allow_hyphen_values = true)]
+    pub max_memory: Option<String>,
+    /// No progress bar on stderr (it is also hidden when stderr is not a terminal).
+    #[arg(long)]
+    pub quiet: bool,
+    /// Stochastic VI with --arithmetic f64: also compute the exact optimum G* and report the
+    /// exact error of the stopped values (without it, f64 VI computes no exact value).
+    #[arg(long)]
+    pub exact_error: bool,
+}
+
+/// Refuses the stochastic-only options in a deterministic run.
+pub fn refuse_scale_options(scale: &ScaleArgs) -> Result<(), String> {
+    if scale.max_memory.is_some() || scale.exact_error {
+        return Err("--max-memory and --exact-error apply to the stochastic model (give --gamma, or a file with outcomes)".into());
+    }
+    Ok(())
+}
+
+/// The exact optimum with a progress bar (evaluations, lifting steps) on stderr, after the
+/// memory estimate has been checked against the budget.
+fn checked_optimum(
+    problem: &StochasticProblem,
+    budget: u64,
+    all_values: bool,
+    quiet: bool,
+) -> Result<Optimum, String> {
+    let estimate = memory_estimate(problem, all_values);
+    if estimate.bytes > budget {
+        return Err(format!(
+            "the exact optimum needs an estimated {} of memory ({} unknowns, band width {}, up to {} lifting steps{}), above the budget --max-memory {}; raise --max-memory, or use --algorithm vi --arithmetic f64",
+            format_bytes(estimate.bytes),
+            estimate.unknowns,
+            estimate.band_width,
+            estimate.lifting_steps,
+            if all_values { ", every exact value printed as JSON" } else { "" },
+            format_bytes(budget),
+        ));
+    }
+    let bar = if quiet || !std::io::stderr().is_terminal() {
+        ProgressBar::hidden()
+    } else {
+        let bar = ProgressBar::with_draw_target(Some(1), ProgressDrawTarget::stderr());
+        bar.set_style(
+            ProgressStyle::with_template(
+                "{spinner} {msg} [{bar:20}] {pos}/{len} lifting steps {elapsed}",
+            )
+            .expect("a valid template")
+            .progress_chars("=> "),
+        );
+        bar
+    };
+    let mut exact = 0;
+    let result = optimum_with(problem, &mut |event| match event {
+        Progress::FloatEvaluation { round } => {
+            bar.set_message(format!("f64 warm start, evaluation {round}"));
+            bar.tick();
+        }
+        Progress::ExactEvaluation { evaluation } => {
+            exact = evaluation;
+            bar.set_position(0);
+            bar.set_message(format!("exact evaluation {evaluation}"));
+        }
+        Progress::Lifting(l) => {
+            if l.steps == 1 || l.steps % 16 == 0 {
+                bar.set_length(l.expected.max(l.steps) as u64);
+                bar.set_position(l.steps as u64);
+                bar.set_message(format!("exact evaluation {exact}"));
+            }
+        }
+    });
+    bar.finish_and_clear();
+    result.map_err(|e| e.to_string())
 }
 
 /// Digits of the decimal expansions printed next to exact values.
@@ -125,15 +212,31 @@ pub fn solve(args: &SolveArgs, file: Option<ProblemFile>) -> Result<String, Stri
     if args.max_sweeps == Some(0) {
         return Err("--max-sweeps must be at least 1".into());
     }
+    let budget = match &args.scale.max_memory {
+        Some(text) => parse_size(text).map_err(|e| e.to_string())?,
+        None => DEFAULT_MAX_MEMORY,
+    };
+    if schedule.is_none() && args.scale.exact_error {
+        return Err("--exact-error applies to --algorithm vi and async-vi (the exact optimum is exact already)".into());
+    }
     let prepared = prepare(args, file, noise, &gamma)?;
-    let opt = match &prepared.twin {
-        Some(t) => Some(optimum(t).map_err(|e| e.to_string())?),
-        None => None,
+    // f64 VI in exact mode measures nothing exactly unless asked (issue 12: 10⁴ states take
+    // seconds in f64, the exact optimum much longer); the reference mode always compares with
+    // its exact twin (the published comparison, 400 states).
+    let wants_optimum = schedule.is_none()
+        || prepared.float.is_some()
+        || args.arithmetic != Some(Arithmetic::F64)
+        || args.scale.exact_error;
+    let all_values = schedule.is_none() && args.format == ReportFormat::Json;
+    let opt = match (&prepared.twin, wants_optimum) {
+        (Some(t), true) => Some(checked_optimum(t, budget, all_values, args.scale.quiet)?),
+        _ => None,
     };
     let report = match schedule {
         None => exact_report(
             &prepared,
             opt.as_ref().expect("exact mode has itself as twin"),
+            args.format == ReportFormat::Json,
         ),
         Some(schedule) => vi_report(args, &prepared, opt.as_ref(), schedule, tolerance)?,
     };
@@ -331,7 +434,9 @@ fn policy_columns(
         .unzip()
 }
 
-fn exact_report(prepared: &Prepared, opt: &Optimum) -> Report {
+/// The report of `--algorithm exact`; every state's exact value only when printed (`all`: JSON),
+/// as reducing and printing 10⁴ fractions of 10⁴ digits each is the bulk of a large run.
+fn exact_report(prepared: &Prepared, opt: &Optimum, all: bool) -> Report {
     let problem = &prepared.problem;
     let (noise, noise_description, gamma) = noise_fields(problem);
     let g = opt.cost_to_go(problem.initial());
@@ -351,7 +456,11 @@ fn exact_report(prepared: &Prepared, opt: &Optimum) -> Report {
         optimum: Some(optimum_summary(problem, opt, "this problem")),
         value_iteration: None,
         iterations: opt.stats.exact_iterations as u64,
-        cost_to_go: opt.cost_to_go_all().iter().map(|v| v.to_string()).collect(),
+        cost_to_go: if all {
+            opt.cost_to_go_all().iter().map(|v| v.to_string()).collect()
+        } else {
+            Vec::new()
+        },
         policy,
         policy_action,
     }

@@ -7,6 +7,7 @@
 //! * [`problem`] — [`StochasticProblem`]: per state an ordered action list, each action a stage
 //!   cost and a list of outcomes with exact probabilities (and `f64` cumulative thresholds for
 //!   samplers such as a Q-learner).
+//! * [`benchmark`] — the seeded cost-grid files of the scale benchmarks (issue 12, item 3).
 //! * [`file`] — stochastic extensions of the JSON problem file.
 //! * [`grid`] — the paper's grid problems in the stochastic model, exact and as its code runs them.
 //! * [`properness`] — which states can reach a goal with probability 1 (finite `G*`), which
@@ -14,6 +15,7 @@
 //! * [`linear`] — the exact sparse linear solver (Dixon p-adic lifting, rational reconstruction,
 //!   exact verification) and its `f64` twin.
 //! * [`policy_iteration`] — the exact optimum `G*`, `Q*` and an optimal policy.
+//! * [`scale`] — the `--max-memory` budget of the exact optimum (sizes parsed exactly).
 //! * [`value_iteration`] — stochastic VI and asynchronous VI, exact and `f64`, with an explicit
 //!   stopping rule and the reference code's counting rule (SPEC §7).
 //!
@@ -25,6 +27,7 @@
 //!   `+∞` at `x` — even around a zero-cost cycle. `G*(x)` is the least expected cost over the
 //!   policies that reach a goal with probability 1 from `x` (*proper* at `x`), `+∞` if none.
 
+pub mod benchmark;
 pub mod file;
 pub mod grid;
 pub mod linear;
@@ -32,6 +35,7 @@ pub mod noise;
 pub mod policy_iteration;
 pub mod problem;
 pub mod properness;
+pub mod scale;
 pub mod value_iteration;
 
 pub use noise::{NoiseModel, Predictability};

@@ -31,7 +31,9 @@
 use num_bigint::BigInt;
 use num_traits::{ToPrimitive, Zero};
 
-use super::linear::{solve_exact, solve_f64, LinearError, SparseSystem};
+use super::linear::{
+    solve_exact, solve_exact_with, solve_f64, BandOrdering, LiftProgress, LinearError, SparseSystem,
+};
 use super::properness::{analyse, is_proper, Properness};
 use super::{StochasticError, StochasticProblem};
 use crate::model::{Decision, ExactGraph, Move, Problem};
@@ -77,15 +79,17 @@ impl Optimum {
     /// `G*(x)`, exact (`+∞` where no policy reaches a goal with probability 1).
     pub fn cost_to_go(&self, x: usize) -> Extended {
         match &self.numerators[x] {
-            Some(n) => Extended::Finite(Rational::new(n.clone(), self.denominator.clone())),
+            Some(n) => Extended::Finite(super::linear::reduced(n, &self.denominator)),
             None => Extended::Infinite,
         }
     }
 
     /// `G*` for every state (reduced once, then cached).
     pub fn cost_to_go_all(&self) -> &[Extended] {
+        use rayon::prelude::*;
         self.reduced.get_or_init(|| {
             (0..self.numerators.len())
+                .into_par_iter()
                 .map(|x| self.cost_to_go(x))
                 .collect()
         })
@@ -114,9 +118,9 @@ impl Optimum {
     pub fn q_value(&self, problem: &StochasticProblem, action: usize) -> Extended {
         let x = problem.state_of(action);
         match self.scaled_q(problem, action) {
-            Some(k) => Extended::Finite(Rational::new(
-                k,
-                &self.denominator * BigInt::from(problem.denominator(x)),
+            Some(k) => Extended::Finite(super::linear::reduced(
+                &k,
+                &(&self.denominator * BigInt::from(problem.denominator(x))),
             )),
             None => Extended::Infinite,
         }
@@ -255,6 +259,45 @@ impl Optimum {
 /// assert_eq!(o.cost_to_go(0).to_string(), "10/9"); // G = 1 + 0.1 G
 /// ```
 pub fn optimum(problem: &StochasticProblem) -> Result<Optimum, StochasticError> {
+    optimum_with(problem, &mut |_| {})
+}
+
+/// What [`optimum_with`] is doing, for a progress display (issue 12, item 3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Progress {
+    /// An `f64` policy evaluation of the warm start begins (its round, from 1).
+    FloatEvaluation {
+        /// The round.
+        round: usize,
+    },
+    /// An exact policy evaluation begins (its number, from 1).
+    ExactEvaluation {
+        /// The evaluation.
+        evaluation: usize,
+    },
+    /// A Dixon lifting step of the current exact evaluation is done.
+    Lifting(LiftProgress),
+}
+
+/// [`optimum`], calling `progress` as it goes (evaluations and lifting steps). The result does
+/// not depend on `progress`.
+///
+/// ```
+/// use truecost::model::{Move, Problem};
+/// use truecost::stochastic::policy_iteration::{optimum_with, Progress};
+/// use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
+/// use truecost::value::parse_rational;
+/// let one = parse_rational("1").unwrap();
+/// let p = Problem::new(vec![vec![Move { successor: 1, cost: one }], vec![]], 0, vec![1]).unwrap();
+/// let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::parse("0.9").unwrap()).unwrap();
+/// let mut exact = 0;
+/// let o = optimum_with(&s, &mut |e| if let Progress::ExactEvaluation { .. } = e { exact += 1 }).unwrap();
+/// assert_eq!((exact, o.stats.exact_iterations), (1, 1));
+/// ```
+pub fn optimum_with(
+    problem: &StochasticProblem,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Optimum, StochasticError> {
     let properness = analyse(problem);
     let (mut policy, initial_policy) = initial_policy(problem, &properness);
     let index = Unknowns::new(problem, &properness.finite);
@@ -267,7 +310,8 @@ pub fn optimum(problem: &StochasticProblem) -> Result<Optimum, StochasticError> 
     let scaled_costs = scaled_costs(problem)?;
 
     // 2. f64 warm start.
-    for _ in 0..100 {
+    for round in 1..=100 {
+        progress(Progress::FloatEvaluation { round });
         let system = build_system(problem, &index, &policy, &scaled_costs)?;
         let z = solve_f64(&system).map_err(linear_error)?;
         let value = |y: usize| index.of[y].map_or(0.0, |i| z[i]);
@@ -305,8 +349,12 @@ pub fn optimum(problem: &StochasticProblem) -> Result<Optimum, StochasticError> 
 
     // 3. Exact policy iteration.
     loop {
+        progress(Progress::ExactEvaluation {
+            evaluation: stats.exact_iterations + 1,
+        });
         let system = build_system(problem, &index, &policy, &scaled_costs)?;
-        let z = solve_exact(&system).map_err(linear_error)?;
+        let z = solve_exact_with(&system, &mut |l| progress(Progress::Lifting(l)))
+            .map_err(linear_error)?;
         stats.exact_iterations += 1;
         stats.lifting_steps += z.lifting_steps;
         let numerator = |y: usize| index.of[y].map(|i| &z.numerators[i]);
@@ -441,6 +489,117 @@ pub fn evaluate(
             }
         })
         .collect())
+}
+
+/// The estimated peak memory of [`optimum`] on a problem, computed from its structure alone
+/// before any work (issue 12, item 3: `--max-memory`).
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct MemoryEstimate {
+    /// Estimated peak bytes.
+    pub bytes: u64,
+    /// Unknowns of the linear systems (at most: non-goal states with an action).
+    pub unknowns: usize,
+    /// Band width `lower + upper + 1` after the reverse Cuthill–McKee ordering of the pattern
+    /// of every action's outcomes.
+    pub band_width: usize,
+    /// Lifting steps from the Hadamard bound (an upper estimate; a 100×100 grid needs 94%).
+    pub lifting_steps: usize,
+}
+
+/// Bytes per unknown besides its numbers (indices, policy, problem, vectors of the warm start).
+const PER_UNKNOWN: u64 = 1024;
+
+/// The process itself (code, allocator, the parsed problem file's leftovers): 16 MiB, measured
+/// as the peak of the smallest runs.
+const BASE_BYTES: u64 = 16 << 20;
+
+/// Estimates the peak memory of [`optimum`] (see [`MemoryEstimate`]); with `all_values`, also
+/// the reduced exact value of every state and its decimal text, as `solve --format json`
+/// prints them. The parts: the problem, two band matrices (`u32`/`u64` modular and `f64`
+/// warm-start LU), the lifted digits (4 bytes per unknown and step), the numerators (three
+/// copies at the peak, each of half the lifted bits).
+///
+/// ```
+/// use truecost::stochastic::benchmark::cost_grid;
+/// use truecost::stochastic::policy_iteration::memory_estimate;
+/// use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
+/// let grid = cost_grid(10, 10, 0).unwrap();
+/// let s = StochasticProblem::from_deterministic(&grid, NoiseModel::Paper, &Predictability::parse("0.99").unwrap()).unwrap();
+/// let e = memory_estimate(&s, false);
+/// assert_eq!(e.unknowns, 99);
+/// assert!(e.bytes > 16 << 20 && e.bytes < 32 << 20, "{e:?}");
+/// assert!(memory_estimate(&s, true).bytes > e.bytes);
+/// ```
+pub fn memory_estimate(problem: &StochasticProblem, all_values: bool) -> MemoryEstimate {
+    let n = problem.states();
+    let mut of = vec![None; n];
+    let mut states = Vec::new();
+    for (x, index) in of.iter_mut().enumerate() {
+        if !problem.is_goal(x) && !problem.actions(x).is_empty() {
+            *index = Some(states.len());
+            states.push(x);
+        }
+    }
+    // The union pattern of every action (any policy's system is a sub-pattern), and per row the
+    // largest squared norm over the actions, for the Hadamard bound.
+    let mut pattern = SparseSystem::new();
+    let mut bits = 0.0f64;
+    let mut max_rhs = 1.0f64;
+    let mut entries: Vec<(usize, i64)> = Vec::new();
+    for (i, &x) in states.iter().enumerate() {
+        let s = problem.denominator(x) as f64;
+        entries.clear();
+        entries.push((i, 1));
+        let mut norm2 = 1.0f64;
+        for a in problem.actions(x) {
+            let mut row = vec![(i, s)];
+            for (o, &w) in problem.outcomes(a).iter().zip(problem.weights(a)) {
+                if let Some(j) = of[o.successor] {
+                    entries.push((j, 1));
+                    match row.iter_mut().find(|(c, _)| *c == j) {
+                        Some(e) => e.1 -= w as f64,
+                        None => row.push((j, -(w as f64))),
+                    }
+                }
+            }
+            norm2 = norm2.max(row.iter().map(|(_, v)| v * v).sum());
+            let cost = (problem.cost(a)
+                * Rational::from_integer(problem.cost_denominator().clone()))
+            .to_f64()
+            .unwrap_or(f64::MAX);
+            max_rhs = max_rhs.max(cost * s);
+        }
+        bits += 0.5 * norm2.log2();
+        entries.sort_unstable();
+        entries.dedup();
+        let _ = pattern.push_row(&entries, 0);
+    }
+    let unknowns = states.len();
+    let ordering = BandOrdering::new(&pattern);
+    let (lower, upper) = ordering.bandwidths();
+    let band_width = lower + upper + 1;
+    let lifted_bits = 2.0 * (bits + max_rhs.log2() + (unknowns as f64 + 1.0).log2()) + 8.0;
+    let lifting_steps = (lifted_bits / 31.0).ceil() as usize + 2;
+    let u = unknowns as u64;
+    let number_bytes = (lifted_bits / 16.0).ceil() as u64 + 32;
+    let mut bytes = BASE_BYTES
+        + problem.outcome_total() as u64 * 48
+        + problem.action_total() as u64 * 96
+        + u * PER_UNKNOWN
+        + u * band_width as u64 * (8 + 4 + 8)
+        + u * lifting_steps as u64 * 4
+        + 3 * u * number_bytes;
+    if all_values {
+        // Reduced fractions (numerator and denominator) and their decimal text, twice (the
+        // strings and the JSON document).
+        bytes += u * number_bytes * 2 + 4 * u * (number_bytes as f64 * 2.41) as u64;
+    }
+    MemoryEstimate {
+        bytes,
+        unknowns,
+        band_width,
+        lifting_steps,
+    }
 }
 
 fn linear_error(e: LinearError) -> StochasticError {

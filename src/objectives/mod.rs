@@ -26,6 +26,7 @@
 //! truecost and number of steps of the policy it reports (`+∞` if that policy is improper).
 //! With an initial distribution (Taxi), values at "the initial state" are expectations over it.
 
+pub mod parametric;
 pub mod report;
 
 pub use report::facts;
@@ -238,7 +239,7 @@ impl Model {
         Extended::Finite(sum)
     }
 
-    fn at_initial_rational(&self, values: &[Rational]) -> Rational {
+    pub(crate) fn at_initial_rational(&self, values: &[Rational]) -> Rational {
         self.initial
             .iter()
             .map(|(x, p)| &values[*x] * p)
@@ -338,7 +339,7 @@ impl Model {
 
     /// The discounted objective by the killed-process construction (module docs).
     #[allow(clippy::type_complexity)]
-    fn discounted(
+    pub(crate) fn discounted(
         &self,
         alpha: &Rational,
     ) -> Result<(Vec<Extended>, Vec<Option<usize>>, Vec<bool>), ObjectiveError> {
@@ -418,7 +419,7 @@ fn listed(successor: StateId, probability: Rational) -> Outcome {
 /// A problem on the same states with other goals and actions: `action(a)` gives the new form of
 /// the original action `a` (or `None` to drop it); new goals get no actions. Returns the
 /// problem and, per new action, the original action id.
-fn derive(
+pub(crate) fn derive(
     problem: &StochasticProblem,
     goals: Vec<StateId>,
     mut action: impl FnMut(usize) -> Option<StochasticAction>,

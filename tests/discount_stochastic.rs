@@ -1,37 +1,373 @@
-//! Issue 11, item 3: `discount` on stochastic problems.
-use truecost::envs::EnvSpec;
-use truecost::objectives::{parametric::discount_breakpoints, Model};
+//! Issue 11, item 3: `discount` on stochastic problems — the exact breakpoints where the
+//! discount-optimal policies change, checked against independent means: brute force over all
+//! stationary deterministic policies (each evaluated by its own exact Gaussian elimination at
+//! rational α's) on small stochastic files, and Bellman-optimality checks by a separate linear
+//! solve on FrozenLake 4x4.
 
-#[test]
-fn scratch_frozenlake() {
-    let spec = std::env::var("SPEC").unwrap_or("frozenlake".into());
-    let env = EnvSpec::parse(&spec).unwrap().build().unwrap();
-    let m = Model::from_environment(&env).unwrap();
-    let t = std::time::Instant::now();
-    let d = discount_breakpoints(&m).unwrap();
-    eprintln!(
-        "{:?} probes {} degree {} bps {}",
-        t.elapsed(),
-        d.probes,
-        d.degree,
-        d.breakpoints.len()
-    );
-    for (i, iv) in d.intervals.iter().enumerate() {
-        eprintln!(
-            "interval {i}: sample {} success {:?} tc {} {}",
-            iv.sample,
-            iv.achievement.success,
-            iv.achievement.truecost_min,
-            iv.achievement.truecost_max
-        );
-        if i < d.breakpoints.len() {
-            let b = &d.breakpoints[i];
-            eprintln!(
-                "  bp {} touch {} ties {:?}",
-                b.at.decimal(8),
-                b.touch,
-                b.ties
-            );
+use num_bigint::BigInt;
+use num_traits::{One, Zero};
+
+use truecost::envs::EnvSpec;
+use truecost::objectives::parametric::{discount_breakpoints, DiscountAnalysis};
+use truecost::objectives::roots::Root;
+use truecost::objectives::Model;
+use truecost::stochastic::file::{from_json, ProblemFile};
+use truecost::value::{Extended, Rational};
+
+fn q(s: &str) -> Rational {
+    s.parse().unwrap()
+}
+
+/// Solves `A z = b` exactly (Gaussian elimination with pivot search), `None` if singular.
+fn gauss(mut a: Vec<Vec<Rational>>, mut b: Vec<Rational>) -> Option<Vec<Rational>> {
+    let n = b.len();
+    for c in 0..n {
+        let p = (c..n).find(|&r| !a[r][c].is_zero())?;
+        a.swap(c, p);
+        b.swap(c, p);
+        for r in 0..n {
+            if r != c && !a[r][c].is_zero() {
+                let f = &a[r][c] / &a[c][c];
+                for k in c..n {
+                    let t = &f * &a[c][k];
+                    a[r][k] -= t;
+                }
+                let t = &f * &b[c];
+                b[r] -= t;
+            }
         }
     }
+    Some((0..n).map(|i| &b[i] / &a[i][i]).collect())
+}
+
+/// `x = base + α M x` on the running states for a policy (`choice[x]` a global action id).
+fn discounted_values(m: &Model, choice: &[Option<usize>], alpha: &Rational) -> Vec<Rational> {
+    let p = &m.problem;
+    let n = p.states();
+    let mut a = vec![vec![Rational::zero(); n]; n];
+    let mut b = vec![Rational::zero(); n];
+    for x in 0..n {
+        a[x][x] = Rational::one();
+        if m.terminal[x] {
+            continue;
+        }
+        let u = choice[x].unwrap();
+        b[x] = m.reward[u].clone();
+        for o in p.outcomes(u) {
+            if !m.terminal[o.successor] {
+                a[x][o.successor] -= alpha * &o.probability;
+            }
+        }
+    }
+    gauss(a, b).expect("I - αP is invertible for α < 1")
+}
+
+/// Probability of reaching a goal, and expected truecost (`None` = +∞), from the initial
+/// distribution, for a policy: states that cannot reach a goal under it get 0 / +∞.
+fn success_and_cost(m: &Model, choice: &[Option<usize>]) -> (Rational, Option<Rational>) {
+    let p = &m.problem;
+    let n = p.states();
+    // States that reach a goal with positive probability under the policy.
+    let mut reach: Vec<bool> = (0..n).map(|x| p.is_goal(x)).collect();
+    loop {
+        let mut changed = false;
+        for x in 0..n {
+            if !reach[x] && !m.terminal[x] {
+                if let Some(u) = choice[x] {
+                    if p.outcomes(u).iter().any(|o| reach[o.successor]) {
+                        reach[x] = true;
+                        changed = true;
+                    }
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let mut a = vec![vec![Rational::zero(); n]; n];
+    let mut b = vec![Rational::zero(); n];
+    for x in 0..n {
+        a[x][x] = Rational::one();
+        if p.is_goal(x) {
+            b[x] = Rational::one();
+        } else if reach[x] {
+            for o in p.outcomes(choice[x].unwrap()) {
+                a[x][o.successor] -= &o.probability;
+            }
+        }
+    }
+    let s = gauss(a, b).unwrap();
+    let success: Rational = m.initial.iter().map(|(x, w)| &s[*x] * w).sum();
+    if success != Rational::one() {
+        return (success, None);
+    }
+    let mut a = vec![vec![Rational::zero(); n]; n];
+    let mut b = vec![Rational::zero(); n];
+    for x in 0..n {
+        a[x][x] = Rational::one();
+        if !p.is_goal(x) && reach[x] {
+            let u = choice[x].unwrap();
+            b[x] = p.cost(u).clone();
+            for o in p.outcomes(u) {
+                a[x][o.successor] -= &o.probability;
+            }
+        }
+    }
+    let c = gauss(a, b).unwrap();
+    (
+        success,
+        Some(m.initial.iter().map(|(x, w)| &c[*x] * w).sum()),
+    )
+}
+
+/// Every stationary deterministic policy.
+fn all_policies(m: &Model) -> Vec<Vec<Option<usize>>> {
+    let p = &m.problem;
+    let mut out = vec![vec![None; p.states()]];
+    for x in 0..p.states() {
+        if m.terminal[x] {
+            continue;
+        }
+        out = out
+            .into_iter()
+            .flat_map(|pol| {
+                p.actions(x).map(move |a| {
+                    let mut q = pol.clone();
+                    q[x] = Some(a);
+                    q
+                })
+            })
+            .collect();
+    }
+    out
+}
+
+/// Brute force at `α`: the optimal action indices per state, and success/truecost bounds
+/// over the optimal policies.
+struct Brute {
+    optimal: Vec<Vec<usize>>,
+    success: (Rational, Rational),
+    truecost: (Extended, Extended),
+}
+
+fn brute(m: &Model, policies: &[Vec<Option<usize>>], alpha: &Rational) -> Brute {
+    let p = &m.problem;
+    let values: Vec<Vec<Rational>> = policies
+        .iter()
+        .map(|pol| discounted_values(m, pol, alpha))
+        .collect();
+    let n = p.states();
+    let best: Vec<Rational> = (0..n)
+        .map(|x| values.iter().map(|v| v[x].clone()).max().unwrap())
+        .collect();
+    // A policy is optimal iff its values are the best everywhere.
+    let optimal_policies: Vec<usize> = (0..policies.len()).filter(|&i| values[i] == best).collect();
+    let mut optimal = vec![Vec::new(); n];
+    for x in 0..n {
+        if m.terminal[x] {
+            continue;
+        }
+        for a in p.actions(x) {
+            if optimal_policies.iter().any(|&i| policies[i][x] == Some(a)) {
+                optimal[x].push(a - p.actions(x).start);
+            }
+        }
+    }
+    let outcomes: Vec<(Rational, Option<Rational>)> = optimal_policies
+        .iter()
+        .map(|&i| success_and_cost(m, &policies[i]))
+        .collect();
+    let ext = |c: &Option<Rational>| c.clone().map_or(Extended::Infinite, Extended::Finite);
+    Brute {
+        optimal,
+        success: (
+            outcomes.iter().map(|o| o.0.clone()).min().unwrap(),
+            outcomes.iter().map(|o| o.0.clone()).max().unwrap(),
+        ),
+        truecost: (
+            outcomes.iter().map(|o| ext(&o.1)).min().unwrap(),
+            outcomes.iter().map(|o| ext(&o.1)).max().unwrap(),
+        ),
+    }
+}
+
+/// Where a rational α falls: `Ok(i)` interval `i`, `Err(k)` breakpoint `k`.
+fn locate(d: &DiscountAnalysis, alpha: &Rational) -> Result<usize, usize> {
+    for (k, b) in d.breakpoints.iter().enumerate() {
+        match b.at.cmp_rational(alpha) {
+            std::cmp::Ordering::Greater => return Ok(k),
+            std::cmp::Ordering::Equal => return Err(k),
+            std::cmp::Ordering::Less => {}
+        }
+    }
+    Ok(d.breakpoints.len())
+}
+
+fn tiny() -> Rational {
+    Rational::new(BigInt::one(), BigInt::from(10).pow(31))
+}
+
+/// Checks the analysis against brute force at many rational α's: a grid of 1/64ths, every
+/// interval's sample, and points within 1e-31 outside every breakpoint's bracket refined to
+/// at most 1e-30 (so the change is located to that width).
+fn check_against_brute_force(m: &Model) -> DiscountAnalysis {
+    let d = discount_breakpoints(m).unwrap();
+    assert_eq!(d.intervals.len(), d.breakpoints.len() + 1);
+    let policies = all_policies(m);
+    let mut points: Vec<Rational> = (1..64)
+        .map(|k| Rational::new(k.into(), 64.into()))
+        .collect();
+    points.extend(d.intervals.iter().map(|i| i.sample.clone()));
+    for b in &d.breakpoints {
+        let mut r: Root = b.at.clone();
+        r.refine_to(&Rational::new(BigInt::one(), BigInt::from(10).pow(30)));
+        assert!(&r.hi - &r.lo <= Rational::new(BigInt::one(), BigInt::from(10).pow(30)));
+        points.push(&r.lo - tiny());
+        points.push(&r.hi + tiny());
+        if let Some(exact) = r.as_rational() {
+            points.push(exact.clone());
+        }
+    }
+    for alpha in &points {
+        let bf = brute(m, &policies, alpha);
+        match locate(&d, alpha) {
+            Ok(i) => {
+                let iv = &d.intervals[i];
+                assert_eq!(iv.optimal, bf.optimal, "optimal actions at alpha = {alpha}");
+                assert_eq!(
+                    (&iv.achievement.success.min, &iv.achievement.success.max),
+                    (&bf.success.0, &bf.success.1),
+                    "success at alpha = {alpha}"
+                );
+                assert_eq!(
+                    (&iv.achievement.truecost_min, &iv.achievement.truecost_max),
+                    (&bf.truecost.0, &bf.truecost.1),
+                    "truecost at alpha = {alpha}"
+                );
+                // The reported policy is one of the optimal ones.
+                for (x, a) in iv.policy.iter().enumerate() {
+                    if let Some(a) = a {
+                        assert!(bf.optimal[x].contains(a));
+                    }
+                }
+            }
+            Err(k) => {
+                let b = &d.breakpoints[k];
+                assert_eq!(
+                    (&b.achievement.success.min, &b.achievement.success.max),
+                    (&bf.success.0, &bf.success.1)
+                );
+                for (x, actions) in &b.ties {
+                    assert_eq!(actions, &bf.optimal[*x], "ties at the rational breakpoint");
+                }
+            }
+        }
+    }
+    // Consecutive intervals differ unless the breakpoint is a tie at that point only.
+    for (k, b) in d.breakpoints.iter().enumerate() {
+        assert_eq!(
+            b.touch,
+            d.intervals[k].optimal == d.intervals[k + 1].optimal,
+            "breakpoint {k}"
+        );
+        assert!(
+            !b.ties.is_empty(),
+            "a breakpoint changes some state's optimal actions"
+        );
+    }
+    d
+}
+
+fn model(text: &str) -> Model {
+    match from_json(text).unwrap() {
+        ProblemFile::Stochastic(p) => Model::from_problem(*p, "test".into()),
+        ProblemFile::Deterministic(_) => panic!("a stochastic file"),
+    }
+}
+
+#[test]
+fn gamble_or_detour_has_one_rational_breakpoint_at_five_sixths() {
+    // Safe: 1 then 3; gamble: 1, then the goal or a trap loop costing 1 forever (1/2 each).
+    let m = model(
+        r#"{"initial":0,"goals":[3],"actions":[
+        [{"to":1,"cost":"1"},{"cost":"1","outcomes":[{"to":3,"p":"1/2"},{"to":2,"p":"1/2"}]}],
+        [{"to":3,"cost":"3"}],
+        [{"to":2,"cost":"1"}],
+        []]}"#,
+    );
+    let d = check_against_brute_force(&m);
+    assert_eq!(d.breakpoints.len(), 1);
+    assert_eq!(d.breakpoints[0].at.as_rational(), Some(&q("5/6")));
+    assert_eq!(d.intervals[0].achievement.success.max, q("1/2"));
+    assert_eq!(
+        d.intervals[1].achievement.truecost_min,
+        Extended::Finite(q("4"))
+    );
+    // At 5/6 both are optimal: success from 1/2 to 1.
+    let b = &d.breakpoints[0];
+    assert_eq!(
+        (
+            b.achievement.success.min.clone(),
+            b.achievement.success.max.clone()
+        ),
+        (q("1/2"), q("1"))
+    );
+    assert_eq!(b.ties, vec![(0, vec![0, 1])]);
+}
+
+/// A small pseudo-random stochastic problem: `n` states (the last is the goal), two actions
+/// per state, costs from {0, 1, 2, 5}, two outcomes with probabilities from a small set.
+fn random_file(seed: u64, n: usize) -> String {
+    let mut s = seed.wrapping_mul(0x2545_F491_4F6C_DD1D) | 1;
+    let mut next = |k: u64| {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        s % k
+    };
+    let probs = ["1/2", "1/3", "1/4", "3/4", "2/3", "1/5"];
+    let costs = ["0", "1", "2", "5"];
+    let mut states = Vec::new();
+    for _ in 0..n - 1 {
+        let mut actions = Vec::new();
+        for _ in 0..2 {
+            let cost = costs[next(4) as usize];
+            let (a, b) = (next(n as u64), next(n as u64));
+            if next(3) == 0 || a == b {
+                actions.push(format!(r#"{{"to":{a},"cost":"{cost}"}}"#));
+            } else {
+                let p = probs[next(6) as usize];
+                let rest = Rational::one() - q(p);
+                actions.push(format!(
+                    r#"{{"cost":"{cost}","outcomes":[{{"to":{a},"p":"{p}"}},{{"to":{b},"p":"{rest}"}}]}}"#
+                ));
+            }
+        }
+        states.push(format!("[{}]", actions.join(",")));
+    }
+    states.push("[]".into());
+    format!(
+        r#"{{"initial":0,"goals":[{}],"actions":[{}]}}"#,
+        n - 1,
+        states.join(",")
+    )
+}
+
+#[test]
+fn random_small_stochastic_problems_agree_with_brute_force() {
+    let mut with_breakpoints = 0;
+    for seed in 1..=40u64 {
+        let n = 3 + (seed % 3) as usize;
+        let m = model(&random_file(seed, n));
+        let d = check_against_brute_force(&m);
+        if !d.breakpoints.is_empty() {
+            with_breakpoints += 1;
+        }
+    }
+    // The family is not trivial: many problems have breakpoints.
+    assert!(
+        with_breakpoints >= 10,
+        "{with_breakpoints} problems with breakpoints"
+    );
 }

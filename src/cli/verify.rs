@@ -53,6 +53,10 @@ pub struct VerifyArgs {
     /// With --claim C4: the exact bonus set of this paper problem.
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
+    /// With --claim C4: the exact bonus set of a deterministic Gymnasium benchmark
+    /// (frozenlake:slippery=false, cliffwalking, taxi).
+    #[arg(long, value_name = "SPEC", conflicts_with_all = ["problem", "file"])]
+    env: Option<String>,
     /// Write every SMT obligation as a standard SMT-LIB 2.6 file (with Z3's answer as
     /// `:status`) under this directory, with an index (index.tsv), for cvc5 or Yices to
     /// re-check. The directory must be empty or not exist.
@@ -69,6 +73,9 @@ pub struct VerifyArgs {
 
 /// Runs `verify`.
 pub fn verify(args: &VerifyArgs) -> Result<String, String> {
+    if let Some(spec) = &args.env {
+        return bonus_env(spec, args);
+    }
     if args.file.is_some() || args.problem.is_some() {
         if args.claim.as_deref() != Some("C4") {
             return Err(
@@ -119,6 +126,19 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
         VerifyFormat::Markdown => report::markdown(&r, with_times),
         VerifyFormat::Latex => report::latex(&r),
     })
+}
+
+/// `verify --claim C4 --env SPEC` (issue 11, item 1): the bonus set of a deterministic
+/// environment; a stochastic one is refused with the reason.
+fn bonus_env(spec: &str, args: &VerifyArgs) -> Result<String, String> {
+    if args.claim.as_deref() != Some("C4") {
+        return Err("--env goes with --claim C4 (the exact bonus set of one problem)".into());
+    }
+    let model = truecost::objectives::Source::Env(spec.to_string()).load()?;
+    let problem = model
+        .deterministic_problem()
+        .map_err(|e| format!("C4 is stated for deterministic problems: {e}"))?;
+    bonus(&problem, args.format)
 }
 
 fn unscale(q: Q, d: &BigInt) -> String {

@@ -28,6 +28,7 @@
 
 pub mod parametric;
 pub mod report;
+pub mod roots;
 
 pub use report::facts;
 
@@ -716,5 +717,55 @@ impl Model {
                 .collect(),
         }]);
         StochasticProblem::new(actions, n, p.goals().to_vec())
+    }
+}
+
+impl Model {
+    /// The model as a deterministic planning problem (SPEC §1) for the claims stated on one
+    /// (C4, `verify --claim C4 --env SPEC`; issue 11, item 1): every action must have a single
+    /// outcome and the initial state must be a single state; goals keep no action (their
+    /// termination), traps their zero-cost self-loop. Refusals are one line naming why.
+    ///
+    /// ```
+    /// use truecost::envs::EnvSpec;
+    /// use truecost::objectives::Model;
+    /// let m = Model::from_environment(&EnvSpec::parse("frozenlake:slippery=false").unwrap().build().unwrap()).unwrap();
+    /// let p = m.deterministic_problem().unwrap();
+    /// assert_eq!((p.states(), p.initial(), p.moves(0).len()), (16, 0, 4));
+    /// let s = Model::from_environment(&EnvSpec::parse("frozenlake").unwrap().build().unwrap()).unwrap();
+    /// assert!(s.deterministic_problem().unwrap_err().contains("stochastic"));
+    /// ```
+    pub fn deterministic_problem(&self) -> Result<crate::model::Problem, String> {
+        let p = &self.problem;
+        if self.initial.len() > 1 {
+            return Err(format!(
+                "{} draws its initial state from {} states; this needs a single initial state x1",
+                self.name,
+                self.initial.len()
+            ));
+        }
+        let mut moves = Vec::with_capacity(p.states());
+        for x in 0..p.states() {
+            let mut list = Vec::new();
+            for a in p.actions(x) {
+                match p.outcomes(a) {
+                    [o] => list.push(crate::model::Move {
+                        successor: o.successor,
+                        cost: p.cost(a).clone(),
+                    }),
+                    many => {
+                        return Err(format!(
+                            "{} is stochastic (state {x}, action {} has {} outcomes); this needs a deterministic problem",
+                            self.name,
+                            a - p.actions(x).start,
+                            many.len()
+                        ))
+                    }
+                }
+            }
+            moves.push(list);
+        }
+        crate::model::Problem::new(moves, self.initial[0].0, p.goals().to_vec())
+            .map_err(|e| e.to_string())
     }
 }

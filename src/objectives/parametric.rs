@@ -45,11 +45,11 @@
 use std::cmp::Ordering;
 
 use num_bigint::BigInt;
-use num_traits::{One, Zero};
+use num_traits::{One, Signed, Zero};
 
+use super::roots::{between, roots_in_unit_interval, Root};
 use super::{derive, max_reach, min_reach, Bounds, Model, ObjectiveError};
-use crate::claims::discount::Point;
-use crate::claims::poly::{between, isolate_roots, Algebraic, Poly};
+use crate::claims::poly::Poly;
 use crate::model::StateId;
 use crate::stochastic::policy_iteration::{evaluate, optimum};
 use crate::stochastic::StochasticAction;
@@ -103,10 +103,10 @@ pub struct Achievement {
 /// An open interval between consecutive breakpoints, with its optimal policies.
 #[derive(Clone, Debug)]
 pub struct Interval {
-    /// Lower end (0 or a breakpoint).
-    pub lo: Point,
-    /// Upper end (a breakpoint or 1).
-    pub hi: Point,
+    /// Lower end: a breakpoint, or `None` for 0.
+    pub lo: Option<Root>,
+    /// Upper end: a breakpoint, or `None` for 1.
+    pub hi: Option<Root>,
     /// A rational strictly inside.
     pub sample: Rational,
     /// An optimal policy on the whole interval: per state its action index in `U(x)`
@@ -123,7 +123,7 @@ pub struct Interval {
 #[derive(Clone, Debug)]
 pub struct Breakpoint {
     /// The exact point (algebraic number with a rational bracket).
-    pub at: Algebraic,
+    pub at: Root,
     /// The optimal sets just left and just right are the same: the change is a tie at this
     /// point only.
     pub touch: bool,
@@ -151,39 +151,38 @@ pub struct DiscountAnalysis {
 
 /// A policy's discounted values as rational functions `N_x / D` (module docs, step 1).
 struct PolicyValues {
-    d: Poly,
-    /// Per state (zero where the episode is over).
-    n: Vec<Poly>,
+    /// Integer coefficients, constant first.
+    d: Vec<BigInt>,
+    /// Per state (empty where the episode is over).
+    n: Vec<Vec<BigInt>>,
     degree: usize,
 }
 
-fn rat(n: i64) -> Rational {
-    Rational::from_integer(BigInt::from(n))
-}
-
-/// The connection polynomial `C` (`C[0] = 1`) of the shortest linear recurrence of `s`.
-fn berlekamp_massey(s: &[Rational]) -> Vec<Rational> {
-    let mut c = vec![Rational::one()];
-    let mut b = vec![Rational::one()];
+/// A positive multiple (`C[0] > 0`) of the connection polynomial of the shortest linear
+/// recurrence of the integer sequence `s` (Berlekamp–Massey without division: each update is
+/// scaled by the previous discrepancy, the content removed).
+fn berlekamp_massey(s: &[BigInt]) -> Vec<BigInt> {
+    let mut c = vec![BigInt::one()];
+    let mut b = vec![BigInt::one()];
     let (mut l, mut m) = (0usize, 1usize);
-    let mut last = Rational::one();
+    let mut last = BigInt::one();
     for n in 0..s.len() {
-        let mut d = s[n].clone();
-        for i in 1..=l.min(c.len() - 1) {
-            d += &c[i] * &s[n - i];
+        let mut d = BigInt::zero();
+        for (i, ci) in c.iter().enumerate().take(l + 1) {
+            d += ci * &s[n - i];
         }
         if d.is_zero() {
             m += 1;
             continue;
         }
-        let f = &d / &last;
-        let mut next = c.clone();
+        let mut next: Vec<BigInt> = c.iter().map(|x| x * &last).collect();
         if next.len() < b.len() + m {
-            next.resize(b.len() + m, Rational::zero());
+            next.resize(b.len() + m, BigInt::zero());
         }
         for (i, bi) in b.iter().enumerate() {
-            next[i + m] -= &f * bi;
+            next[i + m] -= &d * bi;
         }
+        let next = content_free(next);
         if 2 * l <= n {
             b = std::mem::replace(&mut c, next);
             l = n + 1 - l;
@@ -194,8 +193,21 @@ fn berlekamp_massey(s: &[Rational]) -> Vec<Rational> {
             m += 1;
         }
     }
-    c.resize(l + 1, Rational::zero());
+    c.resize(l + 1, BigInt::zero());
+    if c[0].is_negative() {
+        c.iter_mut().for_each(|x| *x = -&*x);
+    }
     c
+}
+
+/// Divided by the (positive) gcd of the entries.
+fn content_free(p: Vec<BigInt>) -> Vec<BigInt> {
+    use num_integer::Integer;
+    let g = p.iter().fold(BigInt::zero(), |g, c| g.gcd(c));
+    if g.is_zero() || g.is_one() {
+        return p;
+    }
+    p.into_iter().map(|c| c / &g).collect()
 }
 
 fn policy_values(
@@ -204,22 +216,47 @@ fn policy_values(
     index: &[Option<usize>],
     policy: &[Option<usize>],
 ) -> Result<PolicyValues, ParametricError> {
+    use num_integer::Integer;
     let p = &model.problem;
     let m = running.len();
     let action = |i: usize| policy[running[i]].expect("a policy acts where the episode runs");
-    let mut krylov: Vec<Vec<Rational>> = Vec::with_capacity(2 * m + 1);
-    krylov.push((0..m).map(|i| model.reward[action(i)].clone()).collect());
+    // Integer scaling: e_k = R·Q^k·c_k with R, Q the lcm of the reward and probability
+    // denominators, so that e_{k+1} = (Q·P) e_k in integers.
+    let (mut big_r, mut big_q) = (BigInt::one(), BigInt::one());
+    for i in 0..m {
+        let a = action(i);
+        big_r = big_r.lcm(model.reward[a].denom());
+        for o in p.outcomes(a) {
+            big_q = big_q.lcm(o.probability.denom());
+        }
+    }
+    let int = |r: Rational| -> BigInt {
+        debug_assert!(r.is_integer());
+        r.to_integer()
+    };
+    let r_scale = Rational::from_integer(big_r.clone());
+    let q_scale = Rational::from_integer(big_q.clone());
+    let rows: Vec<Vec<(usize, BigInt)>> = (0..m)
+        .map(|i| {
+            p.outcomes(action(i))
+                .iter()
+                .filter_map(|o| index[o.successor].map(|j| (j, int(&o.probability * &q_scale))))
+                .collect()
+        })
+        .collect();
+    let mut krylov: Vec<Vec<BigInt>> = Vec::with_capacity(2 * m + 1);
+    krylov.push(
+        (0..m)
+            .map(|i| int(&model.reward[action(i)] * &r_scale))
+            .collect(),
+    );
     for k in 0..2 * m {
         let prev = &krylov[k];
-        let next: Vec<Rational> = (0..m)
-            .map(|i| {
-                let mut acc = Rational::zero();
-                for o in p.outcomes(action(i)) {
-                    if let Some(j) = index[o.successor] {
-                        acc += &o.probability * &prev[j];
-                    }
-                }
-                acc
+        let next: Vec<BigInt> = rows
+            .iter()
+            .map(|row| {
+                row.iter()
+                    .fold(BigInt::zero(), |acc, (j, w)| acc + w * &prev[*j])
             })
             .collect();
         krylov.push(next);
@@ -228,49 +265,58 @@ fn policy_values(
     for attempt in 0..PROJECTIONS {
         // Deterministic pseudo-random small weights (the first projection is all ones).
         let mut seed: u64 = 0x9E37_79B9 ^ attempt as u64;
-        let u: Vec<Rational> = (0..m)
+        let u: Vec<BigInt> = (0..m)
             .map(|_| {
                 if attempt == 0 {
-                    return Rational::one();
+                    return BigInt::one();
                 }
                 seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
-                rat(((seed >> 33) % 997) as i64 + 1)
+                BigInt::from((seed >> 33) % 997 + 1)
             })
             .collect();
-        let s: Vec<Rational> = krylov[..2 * m]
+        let s: Vec<BigInt> = krylov[..2 * m]
             .iter()
             .map(|c| {
                 c.iter()
                     .zip(&u)
-                    .fold(Rational::zero(), |acc, (x, w)| acc + x * w)
+                    .fold(BigInt::zero(), |acc, (x, w)| acc + x * w)
             })
             .collect();
+        // The recurrence of e in integers (a positive multiple: D(0) > 0 is kept).
         let d = berlekamp_massey(&s);
         let l = d.len() - 1;
-        // Verification on the vectors: Σ_j d_j c_{L−j} = 0.
         let verified = (0..m).all(|i| {
             d.iter()
                 .enumerate()
-                .fold(Rational::zero(), |acc, (j, dj)| {
-                    acc + dj * &krylov[l - j][i]
-                })
+                .fold(BigInt::zero(), |acc, (j, dj)| acc + dj * &krylov[l - j][i])
                 .is_zero()
         });
         if !verified {
             continue;
         }
-        let mut n = vec![Poly::zero(); p.states()];
+        // Back to α: coefficient k of D_e(α/Q), of N_e(α/Q)/R, times R·Q^L.
+        let powers: Vec<BigInt> = (0..=l)
+            .scan(BigInt::one(), |acc, _| {
+                let v = acc.clone();
+                *acc *= &big_q;
+                Some(v)
+            })
+            .collect();
+        let to_poly = |c: Vec<BigInt>| -> Vec<BigInt> {
+            c.into_iter()
+                .enumerate()
+                .map(|(k, x)| x * &powers[l - k])
+                .collect()
+        };
+        let mut n = vec![Vec::new(); p.states()];
         for (i, &x) in running.iter().enumerate() {
             let coefficients = (0..l)
-                .map(|k| (0..=k).fold(Rational::zero(), |acc, j| acc + &d[j] * &krylov[k - j][i]))
+                .map(|k| (0..=k).fold(BigInt::zero(), |acc, j| acc + &d[j] * &krylov[k - j][i]))
                 .collect();
-            n[x] = Poly::new(coefficients);
+            n[x] = to_poly(coefficients);
         }
-        return Ok(PolicyValues {
-            d: Poly::new(d),
-            n,
-            degree: l,
-        });
+        let d = to_poly(d.into_iter().map(|x| x * &big_r).collect());
+        return Ok(PolicyValues { d, n, degree: l });
     }
     Err(ParametricError::Annihilator(PROJECTIONS))
 }
@@ -279,8 +325,7 @@ fn policy_values(
 struct Advantage {
     /// Global action id.
     action: usize,
-    poly: Poly,
-    roots: Vec<Algebraic>,
+    roots: Vec<Root>,
     /// `signs[i]`: the sign on the gap before `roots[i]` (`signs[roots.len()]`: after the last).
     signs: Vec<Ordering>,
 }
@@ -288,28 +333,28 @@ struct Advantage {
 /// The maximal closed interval around a probe where its optimal policy stays optimal.
 struct Region {
     /// `None`: reaches 0.
-    lo: Option<Algebraic>,
+    lo: Option<Root>,
     /// `None`: reaches 1.
-    hi: Option<Algebraic>,
+    hi: Option<Root>,
     /// Global action ids, `None` where the episode is over.
     policy: Vec<Option<usize>>,
     /// Actions tied with the policy's on all of `(0, 1)` (`A ≡ 0`).
     persistent: Vec<usize>,
     advantages: Vec<Advantage>,
     /// Points inside where some advantage touches 0.
-    touches: Vec<Algebraic>,
+    touches: Vec<Root>,
 }
 
-fn zero_point() -> Algebraic {
-    Algebraic::from_rational(Rational::zero())
+fn zero_point() -> Root {
+    Root::rational(Rational::zero())
 }
 
-fn one_point() -> Algebraic {
-    Algebraic::from_rational(Rational::one())
+fn one_point() -> Root {
+    Root::rational(Rational::one())
 }
 
 impl Region {
-    fn contains(&self, a: &Algebraic) -> bool {
+    fn contains(&self, a: &Root) -> bool {
         self.lo
             .as_ref()
             .is_none_or(|l| l.compare(a) != Ordering::Greater)
@@ -331,7 +376,7 @@ impl Region {
 
     /// Per global action: optimal at the point `at`, or on an open interval of the region free
     /// of breakpoints (`at = None`). Actions where the episode is over count as optimal.
-    fn optimal(&self, model: &Model, at: Option<&Algebraic>) -> Vec<bool> {
+    fn optimal(&self, model: &Model, at: Option<&Root>) -> Vec<bool> {
         let p = &model.problem;
         let mut allowed = vec![false; p.action_total()];
         for x in 0..p.states() {
@@ -345,7 +390,7 @@ impl Region {
         }
         if let Some(b) = at {
             for adv in &self.advantages {
-                if b.sign_of(&adv.poly) == Ordering::Equal {
+                if adv.roots.iter().any(|r| r.compare(b) == Ordering::Equal) {
                     allowed[adv.action] = true;
                 }
             }
@@ -355,7 +400,7 @@ impl Region {
 }
 
 /// The sign of `f` on the gap of `(0, 1)` between consecutive roots (`None`: 0 or 1).
-fn gap_sign(f: &Poly, lo: Option<&Algebraic>, hi: Option<&Algebraic>) -> Ordering {
+fn gap_sign(f: &Poly, lo: Option<&Root>, hi: Option<&Root>) -> Ordering {
     let lo = lo.cloned().unwrap_or_else(zero_point);
     let hi = hi.cloned().unwrap_or_else(one_point);
     f.sign_at(&between(&lo, &hi))
@@ -372,9 +417,12 @@ fn probe(
 ) -> Result<Option<Region>, ParametricError> {
     let p = &model.problem;
     let (_, policy, _) = model.discounted(t)?;
+    let t0 = std::time::Instant::now();
     let values = policy_values(model, running, index, &policy)?;
+    eprintln!("PROF values {:?}", t0.elapsed());
+    let mut troots = std::time::Duration::ZERO;
+    let mut tsign = std::time::Duration::ZERO;
     *degree = (*degree).max(values.degree);
-    let alpha = Poly::monomial(1);
     let mut persistent = Vec::new();
     let mut advantages = Vec::new();
     for &x in running {
@@ -382,15 +430,30 @@ fn probe(
             if Some(a) == policy[x] {
                 continue;
             }
-            let mut future = Poly::zero();
+            // A = r_a D + α Σ p N_y − N_x, times the lcm of the denominators.
+            let mut scale = model.reward[a].denom().clone();
             for o in p.outcomes(a) {
-                future = future.add(&values.n[o.successor].scale(&o.probability));
+                scale = num_integer::Integer::lcm(&scale, o.probability.denom());
             }
-            let poly = values
-                .d
-                .scale(&model.reward[a])
-                .add(&alpha.mul(&future))
-                .sub(&values.n[x]);
+            let times = |q: &Rational| (q * Rational::from_integer(scale.clone())).to_integer();
+            let len = values.d.len().max(values.n[x].len() + 2);
+            let mut c = vec![BigInt::zero(); len];
+            let ra = times(&model.reward[a]);
+            if !ra.is_zero() {
+                for (k, dk) in values.d.iter().enumerate() {
+                    c[k] += &ra * dk;
+                }
+            }
+            for o in p.outcomes(a) {
+                let w = times(&o.probability);
+                for (k, nk) in values.n[o.successor].iter().enumerate() {
+                    c[k + 1] += &w * nk;
+                }
+            }
+            for (k, nk) in values.n[x].iter().enumerate() {
+                c[k] -= &scale * nk;
+            }
+            let poly = Poly::new(c.into_iter().map(Rational::from_integer).collect());
             if poly.is_zero() {
                 persistent.push(a);
                 continue;
@@ -404,24 +467,31 @@ fn probe(
                 }
                 Ordering::Less => {}
             }
-            let roots = isolate_roots(&poly, &Rational::zero(), &Rational::one());
+            let t1 = std::time::Instant::now();
+            let roots = roots_in_unit_interval(&poly);
+            troots += t1.elapsed();
+            let t1 = std::time::Instant::now();
             let mut signs = Vec::with_capacity(roots.len() + 1);
             for i in 0..=roots.len() {
                 let lo = i.checked_sub(1).map(|j| &roots[j]);
                 signs.push(gap_sign(&poly, lo, roots.get(i)));
             }
+            tsign += t1.elapsed();
             advantages.push(Advantage {
                 action: a,
-                poly,
                 roots,
                 signs,
             });
         }
     }
+    eprintln!(
+        "PROF all {:?} roots {troots:?} signs {tsign:?}",
+        t0.elapsed()
+    );
     // The region's ends and the touching points.
-    let mut lo: Option<Algebraic> = None;
-    let mut hi: Option<Algebraic> = None;
-    let mut touches: Vec<Algebraic> = Vec::new();
+    let mut lo: Option<Root> = None;
+    let mut hi: Option<Root> = None;
+    let mut touches: Vec<Root> = Vec::new();
     for adv in &advantages {
         let g = adv
             .roots
@@ -481,14 +551,13 @@ fn probe(
 }
 
 /// Rationals strictly between `l` and `r` (`None`: 0, 1), the first ones close to `l`.
-fn probe_points(l: Option<&Algebraic>, r: Option<&Algebraic>) -> impl Iterator<Item = Rational> {
+fn probe_points(l: Option<&Root>, r: Option<&Root>) -> impl Iterator<Item = Rational> {
     let la = l.cloned().unwrap_or_else(zero_point);
     let ra = r.cloned().unwrap_or_else(one_point);
     let mid = between(&la, &ra);
     let mut la = la;
-    let seq = la.poly.sturm();
     while la.hi >= mid {
-        la.halve_with(&seq);
+        la.halve();
     }
     let base = la.hi;
     [40u32, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16]
@@ -630,7 +699,7 @@ pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, Parametri
     }
     let mut degree = 0;
     let mut regions: Vec<Region> = Vec::new();
-    let mut gaps: Vec<(Option<Algebraic>, Option<Algebraic>)> = vec![(None, None)];
+    let mut gaps: Vec<(Option<Root>, Option<Root>)> = vec![(None, None)];
     let mut probes = 0;
     while let Some((l, r)) = gaps.pop() {
         if regions.len() >= MAX_REGIONS {
@@ -662,7 +731,7 @@ pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, Parametri
         regions.push(region);
     }
     // Breakpoints: region ends and touching points, sorted, distinct.
-    let mut points: Vec<Algebraic> = Vec::new();
+    let mut points: Vec<Root> = Vec::new();
     for region in &regions {
         points.extend(region.lo.iter().cloned());
         points.extend(region.hi.iter().cloned());
@@ -704,8 +773,8 @@ pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, Parametri
             })
             .collect();
         intervals.push(Interval {
-            lo: lo.map_or(Point::Zero, Point::Root),
-            hi: hi.map_or(Point::One, Point::Root),
+            lo,
+            hi,
             sample,
             policy,
             optimal: indices(&allowed),

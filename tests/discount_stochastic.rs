@@ -282,7 +282,15 @@ fn check_against_brute_force(m: &Model) -> DiscountAnalysis {
 fn model(text: &str) -> Model {
     match from_json(text).unwrap() {
         ProblemFile::Stochastic(p) => Model::from_problem(*p, "test".into()),
-        ProblemFile::Deterministic(_) => panic!("a stochastic file"),
+        ProblemFile::Deterministic(d) => Model::from_problem(
+            truecost::stochastic::StochasticProblem::from_deterministic(
+                &d,
+                truecost::stochastic::NoiseModel::Paper,
+                &truecost::stochastic::Predictability::one(),
+            )
+            .unwrap(),
+            "test".into(),
+        ),
     }
 }
 

@@ -47,7 +47,7 @@ use std::cmp::Ordering;
 use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 
-use super::roots::{between, roots_in_unit_interval, Root};
+use super::roots::{between, roots_in_unit_interval, simplest_between, Root};
 use super::{derive, max_reach, min_reach, Bounds, Model, ObjectiveError};
 use crate::claims::poly::Poly;
 use crate::model::StateId;
@@ -417,11 +417,7 @@ fn probe(
 ) -> Result<Option<Region>, ParametricError> {
     let p = &model.problem;
     let (_, policy, _) = model.discounted(t)?;
-    let t0 = std::time::Instant::now();
     let values = policy_values(model, running, index, &policy)?;
-    eprintln!("PROF values {:?}", t0.elapsed());
-    let mut troots = std::time::Duration::ZERO;
-    let mut tsign = std::time::Duration::ZERO;
     *degree = (*degree).max(values.degree);
     let mut persistent = Vec::new();
     let mut advantages = Vec::new();
@@ -467,16 +463,12 @@ fn probe(
                 }
                 Ordering::Less => {}
             }
-            let t1 = std::time::Instant::now();
             let roots = roots_in_unit_interval(&poly);
-            troots += t1.elapsed();
-            let t1 = std::time::Instant::now();
             let mut signs = Vec::with_capacity(roots.len() + 1);
             for i in 0..=roots.len() {
                 let lo = i.checked_sub(1).map(|j| &roots[j]);
                 signs.push(gap_sign(&poly, lo, roots.get(i)));
             }
-            tsign += t1.elapsed();
             advantages.push(Advantage {
                 action: a,
                 roots,
@@ -484,10 +476,6 @@ fn probe(
             });
         }
     }
-    eprintln!(
-        "PROF all {:?} roots {troots:?} signs {tsign:?}",
-        t0.elapsed()
-    );
     // The region's ends and the touching points.
     let mut lo: Option<Root> = None;
     let mut hi: Option<Root> = None;
@@ -550,7 +538,8 @@ fn probe(
     Ok(Some(region))
 }
 
-/// Rationals strictly between `l` and `r` (`None`: 0, 1), the first ones close to `l`.
+/// Rationals strictly between `l` and `r` (`None`: 0, 1), the first ones close to `l`, each
+/// the simplest rational of a sub-interval (small denominators keep the exact solves small).
 fn probe_points(l: Option<&Root>, r: Option<&Root>) -> impl Iterator<Item = Rational> {
     let la = l.cloned().unwrap_or_else(zero_point);
     let ra = r.cloned().unwrap_or_else(one_point);
@@ -560,9 +549,13 @@ fn probe_points(l: Option<&Root>, r: Option<&Root>) -> impl Iterator<Item = Rati
         la.halve();
     }
     let base = la.hi;
-    [40u32, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16]
+    let delta = &mid - &base;
+    [24u32, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16]
         .into_iter()
-        .map(move |k| &base + (&mid - &base) / Rational::from_integer(BigInt::one() << k))
+        .map(move |k| {
+            let at = |k: u32| &base + &delta / Rational::from_integer(BigInt::one() << k);
+            simplest_between(&at(k + 1), &at(k))
+        })
 }
 
 /// The success probability and truecost `{min, max}` of the policies using only the allowed

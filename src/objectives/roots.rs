@@ -215,16 +215,50 @@ pub fn roots_in_unit_interval(f: &Poly) -> Vec<Root> {
             continue; // a deflated rational root met again (multiple root)
         }
         let sign_lo = shared.poly.sign_at(&lo);
-        roots.push(Root {
+        let mut root = Root {
             poly: shared.clone(),
             lo,
             hi,
             exact: false,
             sign_lo,
-        });
+        };
+        // A rational root is recognised when it is the simplest rational of a narrow bracket
+        // (checked exactly; otherwise the bracket stays as it is).
+        root.refine_to(&Rational::new(BigInt::one(), BigInt::one() << 80u32));
+        if !root.exact {
+            let r = simplest_between(&root.lo, &root.hi);
+            if shared.poly.eval(&r).is_zero() {
+                root = Root::rational(r);
+            }
+        }
+        roots.push(root);
     }
     roots.sort_by(|a, b| a.lo.cmp(&b.lo));
     roots
+}
+
+/// The rational with the least denominator in the open interval `(lo, hi)`, `0 ≤ lo < hi`
+/// (continued fractions).
+///
+/// ```
+/// use truecost::objectives::roots::simplest_between;
+/// assert_eq!(simplest_between(&"0.3".parse().unwrap(), &"0.34".parse().unwrap()), "1/3".parse().unwrap());
+/// assert_eq!(simplest_between(&"0".parse().unwrap(), &"0.3".parse().unwrap()), "1/4".parse().unwrap());
+/// ```
+pub fn simplest_between(lo: &Rational, hi: &Rational) -> Rational {
+    let fl = lo.floor();
+    let next = &fl + Rational::one();
+    if &next < hi {
+        return next;
+    }
+    // fl ≤ lo < hi ≤ fl + 1.
+    if lo == &fl {
+        let inv = Rational::one() / (hi - &fl);
+        return fl + Rational::one() / (inv.floor() + Rational::one());
+    }
+    let a = Rational::one() / (hi - &fl);
+    let b = Rational::one() / (lo - &fl);
+    fl + Rational::one() / simplest_between(&a, &b)
 }
 
 /// `gcd(a, b)` modulo `m` has positive degree (`None` if `m` divides a leading coefficient).

@@ -379,3 +379,163 @@ fn random_small_stochastic_problems_agree_with_brute_force() {
         "{with_breakpoints} problems with breakpoints"
     );
 }
+
+/// Whether the policy (global action ids) is discount-optimal at `α`: no action improves on
+/// its values (Bellman's optimality condition), checked with a separate exact solve.
+fn bellman_optimal(m: &Model, choice: &[Option<usize>], alpha: &Rational) -> bool {
+    let p = &m.problem;
+    let v = discounted_values(m, choice, alpha);
+    (0..p.states()).filter(|&x| !m.terminal[x]).all(|x| {
+        p.actions(x).all(|a| {
+            let mut qa = m.reward[a].clone();
+            for o in p.outcomes(a) {
+                if !m.terminal[o.successor] {
+                    qa += alpha * &o.probability * &v[o.successor];
+                }
+            }
+            qa <= v[x]
+        })
+    })
+}
+
+#[test]
+fn frozenlake_4x4_intervals_check_by_separate_solves() {
+    let env = EnvSpec::parse("frozenlake").unwrap().build().unwrap();
+    let m = Model::from_environment(&env).unwrap();
+    let d = discount_breakpoints(&m).unwrap();
+    assert!(!d.breakpoints.is_empty());
+    let p = &m.problem;
+    let global = |policy: &[Option<usize>]| -> Vec<Option<usize>> {
+        policy
+            .iter()
+            .enumerate()
+            .map(|(x, a)| a.map(|a| a + p.actions(x).start))
+            .collect()
+    };
+    let width = Rational::new(BigInt::one(), BigInt::from(10).pow(30));
+    for (i, iv) in d.intervals.iter().enumerate() {
+        let pol = global(&iv.policy);
+        // Optimal at the sample and just inside both ends (brackets of at most 1e-30).
+        let mut points = vec![iv.sample.clone()];
+        if let Some(lo) = &iv.lo {
+            let mut r = lo.clone();
+            r.refine_to(&width);
+            points.push(&r.hi + tiny());
+        }
+        if let Some(hi) = &iv.hi {
+            let mut r = hi.clone();
+            r.refine_to(&width);
+            points.push(&r.lo - tiny());
+        }
+        for a in &points {
+            assert!(bellman_optimal(&m, &pol, a), "interval {i} at {a}");
+        }
+        // Its success probability by a separate solve; one value over the optimal policies.
+        let (success, cost) = success_and_cost(&m, &pol);
+        assert_eq!(iv.achievement.success.min, success);
+        assert_eq!(iv.achievement.success.max, success);
+        assert_eq!(
+            cost, None,
+            "FrozenLake 4x4 slippery: no policy reaches the goal surely"
+        );
+        // The policy stops being optimal past the next breakpoint (a genuine change).
+        if let Some(next) = d.intervals.get(i + 1) {
+            if !d.breakpoints[i].touch {
+                assert!(!bellman_optimal(&m, &pol, &next.sample));
+            }
+        }
+    }
+    // Near α = 1 the discount-optimal policies reach the goal as often as possible: the
+    // reach objective's optimum (a separate exact computation) ...
+    let reach = m.solve(&truecost::objectives::Objective::Reach).unwrap();
+    let last = d.intervals.last().unwrap();
+    assert_eq!(
+        Extended::Finite(last.achievement.success.max.clone()),
+        reach.value_initial
+    );
+    // ... while for small α they give up success probability (Proposition 3 on FrozenLake).
+    assert!(d.intervals[0].achievement.success.max < last.achievement.success.min);
+}
+
+mod common;
+
+#[test]
+fn discount_env_on_the_command_line() {
+    use common::cli::{fails_one_line, json, stdout};
+    let v = json(&["discount", "--env", "frozenlake", "--format", "json"]);
+    let bps = v["breakpoints"].as_array().unwrap();
+    let ivs = v["intervals"].as_array().unwrap();
+    assert_eq!(ivs.len(), bps.len() + 1);
+    assert!(!bps.is_empty());
+    for b in bps {
+        // Every irrational breakpoint comes with its polynomial and a bracket ≤ 1e-30.
+        let lo: Rational = b["bracket"][0].as_str().unwrap().parse().unwrap();
+        let hi: Rational = b["bracket"][1].as_str().unwrap().parse().unwrap();
+        assert!(&hi - &lo <= Rational::new(BigInt::one(), BigInt::from(10).pow(30)));
+        assert!(b["exact"].is_string() || b["polynomial"].is_string());
+        assert!(!b["ties"].as_array().unwrap().is_empty());
+    }
+    assert_eq!(ivs.last().unwrap()["success_probability"], "14/17");
+    assert_eq!(ivs[0]["lo"], "0");
+    let md = stdout(&["discount", "--env", "frozenlake", "--format", "markdown"]);
+    assert_eq!(
+        md.lines().filter(|l| l.starts_with("| (")).count(),
+        ivs.len()
+    );
+    let tex = stdout(&["discount", "--env", "frozenlake", "--format", "latex"]);
+    assert!(tex.contains("\\begin{tabular}") && tex.contains("0.823529411765"));
+    let text = stdout(&["discount", "--env", "frozenlake"]);
+    assert!(text.contains("breakpoint 1: alpha = 0."));
+    // A stochastic problem file takes the same path.
+    let dir = std::env::temp_dir().join(format!("truecost-d11-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("gamble.json");
+    std::fs::write(
+        &f,
+        r#"{"initial":0,"goals":[3],"actions":[
+        [{"to":1,"cost":"1"},{"cost":"1","outcomes":[{"to":3,"p":"1/2"},{"to":2,"p":"1/2"}]}],
+        [{"to":3,"cost":"3"}],[{"to":2,"cost":"1"}],[]]}"#,
+    )
+    .unwrap();
+    let v = json(&[
+        "discount",
+        "--file",
+        f.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    assert_eq!(v["breakpoints"][0]["alpha"], "5/6");
+    // Refusals: one line each.
+    let e = fails_one_line(&["discount", "--env", "taxi"]);
+    assert!(e.contains("at most 160"), "{e}");
+    // --env with --problem: a usage error (exit 2).
+    let e = common::cli::fails(&["discount", "--env", "frozenlake", "--problem", "3"], 2);
+    assert!(e.contains("cannot be used with"), "{e}");
+    let e = fails_one_line(&[
+        "verify",
+        "--claim",
+        "C4",
+        "--env",
+        "cliffwalking:slippery=true",
+    ]);
+    assert!(e.contains("stochastic"), "{e}");
+    let e = fails_one_line(&["verify", "--claim", "C4", "--env", "taxi"]);
+    assert!(e.contains("single initial state"), "{e}");
+    let out = stdout(&[
+        "verify",
+        "--claim",
+        "C4",
+        "--env",
+        "frozenlake:slippery=false",
+    ]);
+    assert!(out.contains("L* = 6"), "{out}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn decimal_with_no_digits_prints_no_point() {
+    use truecost::claims::poly::decimal;
+    assert_eq!(decimal(&q("7/2"), 0), "3");
+    assert_eq!(decimal(&q("-7/2"), 0), "-4"); // truncation is towards -inf (floor)
+    assert_eq!(decimal(&q("7/2"), 1), "3.5");
+}

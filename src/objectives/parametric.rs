@@ -47,7 +47,7 @@ use std::cmp::Ordering;
 use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 
-use super::roots::{between, roots_in_unit_interval, simplest_between, Root};
+use super::roots::{between, integer_sign, roots_in_unit_interval, simplest_between, Root};
 use super::{derive, max_reach, min_reach, Bounds, Model, ObjectiveError};
 use crate::claims::poly::Poly;
 use crate::model::StateId;
@@ -399,11 +399,12 @@ impl Region {
     }
 }
 
-/// The sign of `f` on the gap of `(0, 1)` between consecutive roots (`None`: 0 or 1).
-fn gap_sign(f: &Poly, lo: Option<&Root>, hi: Option<&Root>) -> Ordering {
+/// The sign of `f` (integer form) on the gap of `(0, 1)` between consecutive roots (`None`: 0
+/// or 1).
+fn gap_sign(f: &[BigInt], lo: Option<&Root>, hi: Option<&Root>) -> Ordering {
     let lo = lo.cloned().unwrap_or_else(zero_point);
     let hi = hi.cloned().unwrap_or_else(one_point);
-    f.sign_at(&between(&lo, &hi))
+    integer_sign(f, &between(&lo, &hi))
 }
 
 /// The probe at the rational `t`: `None` if `t` is a root of some non-zero advantage (then the
@@ -419,13 +420,23 @@ fn probe(
     let (_, policy, _) = model.discounted(t)?;
     let values = policy_values(model, running, index, &policy)?;
     *degree = (*degree).max(values.degree);
-    let mut persistent = Vec::new();
-    let mut advantages = Vec::new();
-    for &x in running {
-        for a in p.actions(x) {
-            if Some(a) == policy[x] {
-                continue;
-            }
+    // The advantages of every other action, their roots and signs (in parallel: each is
+    // independent).
+    let pairs: Vec<(StateId, usize)> = running
+        .iter()
+        .flat_map(|&x| p.actions(x).map(move |a| (x, a)))
+        .filter(|&(x, a)| Some(a) != policy[x])
+        .collect();
+    enum Found {
+        Persistent(usize),
+        Advantage(Advantage),
+        AtRoot,
+        Positive,
+    }
+    use rayon::prelude::*;
+    let found: Vec<Found> = pairs
+        .par_iter()
+        .map(|&(x, a)| {
             // A = r_a D + α Σ p N_y − N_x, times the lcm of the denominators.
             let mut scale = model.reward[a].denom().clone();
             for o in p.outcomes(a) {
@@ -449,31 +460,40 @@ fn probe(
             for (k, nk) in values.n[x].iter().enumerate() {
                 c[k] -= &scale * nk;
             }
-            let poly = Poly::new(c.into_iter().map(Rational::from_integer).collect());
-            if poly.is_zero() {
-                persistent.push(a);
-                continue;
+            if c.iter().all(Zero::is_zero) {
+                return Found::Persistent(a);
             }
-            match poly.sign_at(t) {
-                Ordering::Equal => return Ok(None),
-                Ordering::Greater => {
-                    return Err(ParametricError::Internal(format!(
-                        "the policy optimal at alpha = {t} has a positive advantage there"
-                    )))
-                }
+            match integer_sign(&c, t) {
+                Ordering::Equal => return Found::AtRoot,
+                Ordering::Greater => return Found::Positive,
                 Ordering::Less => {}
             }
+            let poly = Poly::new(c.iter().cloned().map(Rational::from_integer).collect());
             let roots = roots_in_unit_interval(&poly);
             let mut signs = Vec::with_capacity(roots.len() + 1);
             for i in 0..=roots.len() {
                 let lo = i.checked_sub(1).map(|j| &roots[j]);
-                signs.push(gap_sign(&poly, lo, roots.get(i)));
+                signs.push(gap_sign(&c, lo, roots.get(i)));
             }
-            advantages.push(Advantage {
+            Found::Advantage(Advantage {
                 action: a,
                 roots,
                 signs,
-            });
+            })
+        })
+        .collect();
+    let mut persistent = Vec::new();
+    let mut advantages = Vec::new();
+    for f in found {
+        match f {
+            Found::Persistent(a) => persistent.push(a),
+            Found::Advantage(adv) => advantages.push(adv),
+            Found::AtRoot => return Ok(None),
+            Found::Positive => {
+                return Err(ParametricError::Internal(format!(
+                    "the policy optimal at alpha = {t} has a positive advantage there"
+                )))
+            }
         }
     }
     // The region's ends and the touching points.
@@ -732,6 +752,9 @@ pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, Parametri
     }
     points.sort_by(|a, b| a.compare(b));
     points.dedup_by(|a, b| a.compare(b) == Ordering::Equal);
+    for b in &mut points {
+        b.recognise_rational();
+    }
     let indices = |allowed: &[bool]| -> Vec<Vec<usize>> {
         (0..p.states())
             .map(|x| {

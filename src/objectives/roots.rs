@@ -41,6 +41,24 @@ impl RootPoly {
         let ints = integer_form(&poly);
         Arc::new(RootPoly { poly, ints })
     }
+
+    /// The sign of the polynomial at `x`, in integer arithmetic.
+    fn sign(&self, x: &Rational) -> Ordering {
+        integer_sign(&self.ints, x)
+    }
+}
+
+/// The sign at `x = n/m` of the integer polynomial `a` (constant first): the sign of
+/// `Σ a_i n^i m^(d−i)` (homogeneous Horner; `m > 0`), no rational normalisation.
+pub fn integer_sign(a: &[BigInt], x: &Rational) -> Ordering {
+    let (n, m) = (x.numer(), x.denom());
+    let mut acc = BigInt::zero();
+    let mut mpow = BigInt::one();
+    for c in a.iter().rev() {
+        acc = acc * n + c * &mpow;
+        mpow *= m;
+    }
+    acc.sign().cmp(&num_bigint::Sign::NoSign)
 }
 
 /// A real algebraic number in `(0, 1)` (module docs).
@@ -59,7 +77,7 @@ pub struct Root {
 }
 
 /// `p` scaled to integer coefficients with gcd 1, the sign kept.
-fn integer_form(p: &Poly) -> Vec<BigInt> {
+pub fn integer_form(p: &Poly) -> Vec<BigInt> {
     let mut l = BigInt::one();
     for c in p.coefficients() {
         l = l.lcm(c.denom());
@@ -172,13 +190,16 @@ fn isolate(p: &[BigInt]) -> Isolation {
 /// ```
 pub fn roots_in_unit_interval(f: &Poly) -> Vec<Root> {
     assert!(!f.is_zero(), "roots of the zero polynomial");
-    let mut p = f.clone();
-    let x = Poly::monomial(1);
+    // Divide out x (drop the zero low coefficients) and x − 1 (while the coefficients sum to 0).
+    let low = f.coefficients().iter().take_while(|c| c.is_zero()).count();
+    let mut p = Poly::new(f.coefficients()[low..].to_vec());
     let x1 = Poly::from_i64(&[-1, 1]);
-    while p.coefficients().first().is_some_and(Zero::is_zero) {
-        p = p.div_rem(&x).0;
-    }
-    while p.eval(&Rational::one()).is_zero() {
+    while p
+        .coefficients()
+        .iter()
+        .fold(Rational::zero(), |s, c| s + c)
+        .is_zero()
+    {
         p = p.div_rem(&x1).0;
     }
     let mut exact: Vec<Rational> = Vec::new();
@@ -214,23 +235,14 @@ pub fn roots_in_unit_interval(f: &Poly) -> Vec<Root> {
         {
             continue; // a deflated rational root met again (multiple root)
         }
-        let sign_lo = shared.poly.sign_at(&lo);
-        let mut root = Root {
+        let sign_lo = shared.sign(&lo);
+        let root = Root {
             poly: shared.clone(),
             lo,
             hi,
             exact: false,
             sign_lo,
         };
-        // A rational root is recognised when it is the simplest rational of a narrow bracket
-        // (checked exactly; otherwise the bracket stays as it is).
-        root.refine_to(&Rational::new(BigInt::one(), BigInt::one() << 80u32));
-        if !root.exact {
-            let r = simplest_between(&root.lo, &root.hi);
-            if shared.poly.eval(&r).is_zero() {
-                root = Root::rational(r);
-            }
-        }
         roots.push(root);
     }
     roots.sort_by(|a, b| a.lo.cmp(&b.lo));
@@ -389,6 +401,18 @@ impl Root {
         }
     }
 
+    /// Makes the root exact if it is a rational: the simplest rational of a bracket narrowed to
+    /// `2^-100` is tried (exactly); otherwise the bracket is left narrowed.
+    pub fn recognise_rational(&mut self) {
+        self.refine_to(&Rational::new(BigInt::one(), BigInt::one() << 100u32));
+        if !self.exact {
+            let r = simplest_between(&self.lo, &self.hi);
+            if self.poly.poly.eval(&r).is_zero() {
+                *self = Root::rational(r);
+            }
+        }
+    }
+
     /// The value if it is rational and known to be (exact roots).
     pub fn as_rational(&self) -> Option<&Rational> {
         self.exact.then_some(&self.lo)
@@ -405,7 +429,7 @@ impl Root {
 
     /// Narrows the bracket at a rational `x` inside it.
     fn cut(&mut self, x: Rational) {
-        match self.poly.poly.sign_at(&x) {
+        match self.poly.sign(&x) {
             Ordering::Equal => {
                 self.lo = x.clone();
                 self.hi = x;
@@ -517,7 +541,7 @@ pub fn between(a: &Root, b: &Root) -> Rational {
             // A point of (b.lo, b): the sign there is the sign at b.lo.
             loop {
                 let mid = (&b.lo + &b.hi) / &two;
-                if b.poly.poly.sign_at(&mid) == b.sign_lo {
+                if b.poly.sign(&mid) == b.sign_lo {
                     return mid;
                 }
                 b.hi = mid;
@@ -527,7 +551,7 @@ pub fn between(a: &Root, b: &Root) -> Rational {
             // A point of (a, a.hi): the sign there is the opposite of the sign at a.lo.
             loop {
                 let mid = (&a.lo + &a.hi) / &two;
-                let s = a.poly.poly.sign_at(&mid);
+                let s = a.poly.sign(&mid);
                 if s != a.sign_lo && s != Ordering::Equal {
                     return mid;
                 }

@@ -3,10 +3,13 @@
 //! `objectives/<env>/<objective>` — one exact solve ([`Model::solve`]: the optimum and the
 //! success-probability bounds, truecost and steps of the reported policy) per objective on
 //! every environment. Target: each ≤ 1 s. Models are built outside the timed loop.
+//! `discount/<env>` — the exact discount breakpoints (`truecost discount --env`). Target for
+//! FrozenLake 8x8: ≤ 30 s on 2 cores.
 //! Run with `cargo bench --bench envs -- --warm-up-time 1 --measurement-time 3`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use truecost::envs::EnvSpec;
+use truecost::objectives::parametric::discount_breakpoints;
 use truecost::objectives::{Model, Objective};
 use truecost::value::parse_rational;
 
@@ -40,5 +43,22 @@ fn objectives(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, objectives);
+/// `discount/<env>`: the exact breakpoints of the discount-optimal policies (issue 11, items 3
+/// and 7: FrozenLake 8x8 ≤ 30 s on 2 cores).
+fn discount(c: &mut Criterion) {
+    let mut group = c.benchmark_group("discount");
+    group.sample_size(10);
+    for spec in ["frozenlake", "frozenlake:map=8x8"] {
+        let env = EnvSpec::parse(spec)
+            .and_then(|s| s.build())
+            .expect("a valid spec");
+        let model = Model::from_environment(&env).expect("a valid environment");
+        group.bench_function(spec, |b| {
+            b.iter(|| discount_breakpoints(black_box(&model)).expect("within the bounds"))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, objectives, discount);
 criterion_main!(benches);

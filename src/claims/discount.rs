@@ -17,7 +17,7 @@ use std::cmp::Ordering;
 
 use num_traits::{One, Signed, Zero};
 
-use super::poly::{count_roots, isolate_roots, Algebraic, Poly};
+use super::poly::{isolate_roots, Algebraic, Poly};
 use crate::model::Problem;
 use crate::value::Rational;
 
@@ -216,24 +216,6 @@ fn member_rational(t: &Trajectories, a: &Rational) -> bool {
     }
 }
 
-/// Sign of `f` at the algebraic number `b`.
-fn sign_at(f: &Poly, b: &Algebraic) -> Ordering {
-    if f.is_zero() {
-        return Ordering::Equal;
-    }
-    let g = f.gcd(&b.poly);
-    if g.degree().unwrap_or(0) > 0 && count_roots(&g.sturm(), &b.lo, &b.hi) >= 1 {
-        return Ordering::Equal;
-    }
-    let seq = f.squarefree().sturm();
-    let mut c = b.clone();
-    while count_roots(&seq, &c.lo, &c.hi) > 0 || f.eval(&c.hi).is_zero() {
-        let w = &c.hi - &c.lo;
-        c.refine_to(&(w / Rational::from_integer(2.into())));
-    }
-    f.sign_at(&c.hi)
-}
-
 fn member_algebraic(t: &Trajectories, b: &Algebraic) -> bool {
     if t.lassos.is_empty() {
         return false;
@@ -241,7 +223,7 @@ fn member_algebraic(t: &Trajectories, b: &Algebraic) -> bool {
     t.lassos.iter().any(|(nl, dl)| {
         t.paths.iter().all(|(np, dp)| {
             // sign(V_l − V_p) = sign(N_l D_p − N_p D_l) since D > 0 on (0,1).
-            sign_at(&nl.mul(dp).sub(&np.mul(dl)), b) != Ordering::Greater
+            b.sign_of(&nl.mul(dp).sub(&np.mul(dl))) != Ordering::Greater
         })
     })
 }

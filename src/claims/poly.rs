@@ -272,6 +272,60 @@ impl Algebraic {
         }
     }
 
+    /// The rational `q` as an algebraic number (the root of `x − q` in `(q − 1, q]`).
+    ///
+    /// ```
+    /// use truecost::claims::poly::Algebraic;
+    /// let h = Algebraic::from_rational("1/2".parse().unwrap());
+    /// assert_eq!(h.as_rational(), Some("1/2".parse().unwrap()));
+    /// ```
+    pub fn from_rational(q: Rational) -> Algebraic {
+        Algebraic {
+            poly: Poly::new(vec![-q.clone(), Rational::one()]),
+            lo: &q - Rational::one(),
+            hi: q,
+        }
+    }
+
+    /// Halves the bracket once, given the Sturm sequence of [`Self::poly`] (callers that refine
+    /// often compute it once).
+    pub fn halve_with(&mut self, seq: &[Poly]) {
+        let mid = (&self.lo + &self.hi) / r(2);
+        if count_roots(seq, &self.lo, &mid) == 1 {
+            self.hi = mid;
+        } else {
+            self.lo = mid;
+        }
+    }
+
+    /// The sign of the polynomial `f` at this number, exactly: `Equal` iff `f` vanishes here
+    /// (a common root of `f` and [`Self::poly`] in the bracket), else the sign at a rational
+    /// point of a bracket refined until it holds no root of `f`.
+    ///
+    /// ```
+    /// use truecost::claims::poly::{isolate_roots, Poly};
+    /// use std::cmp::Ordering;
+    /// let sqrt2 = isolate_roots(&Poly::from_i64(&[-2, 0, 1]), &"0".parse().unwrap(), &"2".parse().unwrap()).remove(0);
+    /// assert_eq!(sqrt2.sign_of(&Poly::from_i64(&[-2, 0, 1])), Ordering::Equal);
+    /// assert_eq!(sqrt2.sign_of(&Poly::from_i64(&[-3, 2])), Ordering::Less); // 2√2 − 3 < 0
+    /// ```
+    pub fn sign_of(&self, f: &Poly) -> Ordering {
+        if f.is_zero() {
+            return Ordering::Equal;
+        }
+        let g = f.gcd(&self.poly);
+        if g.degree().unwrap_or(0) > 0 && count_roots(&g.sturm(), &self.lo, &self.hi) >= 1 {
+            return Ordering::Equal;
+        }
+        let seq = f.squarefree().sturm();
+        let own = self.poly.sturm();
+        let mut c = self.clone();
+        while count_roots(&seq, &c.lo, &c.hi) > 0 || f.eval(&c.hi).is_zero() {
+            c.halve_with(&own);
+        }
+        f.sign_at(&c.hi)
+    }
+
     /// Whether the number is exactly the rational `hi` (the bracket's closed end).
     pub fn is_rational(&self) -> bool {
         self.poly.eval(&self.hi).is_zero()
@@ -341,7 +395,14 @@ impl Algebraic {
     }
 }
 
-/// `x` in decimal, truncated to `digits` digits after the point.
+/// `x` in decimal, truncated to `digits` digits after the point (no point when `digits` is 0).
+///
+/// ```
+/// use truecost::claims::poly::decimal;
+/// use truecost::value::parse_rational;
+/// assert_eq!(decimal(&parse_rational("7/2").unwrap(), 0), "3");
+/// assert_eq!(decimal(&parse_rational("7/2").unwrap(), 2), "3.50");
+/// ```
 pub fn decimal(x: &Rational, digits: usize) -> String {
     let scale = num_traits::pow(BigInt::from(10), digits);
     let scaled = (x * Rational::from_integer(scale.clone()))
@@ -351,6 +412,9 @@ pub fn decimal(x: &Rational, digits: usize) -> String {
     let a = scaled.abs();
     let int = &a / &scale;
     let frac = &a % &scale;
+    if digits == 0 {
+        return format!("{}{int}", if neg { "-" } else { "" });
+    }
     format!(
         "{}{}.{:0>width$}",
         if neg { "-" } else { "" },
@@ -358,6 +422,25 @@ pub fn decimal(x: &Rational, digits: usize) -> String {
         frac.to_string(),
         width = digits
     )
+}
+
+/// A rational strictly between the algebraic numbers `a < b` (brackets refined as needed).
+///
+/// ```
+/// use truecost::claims::poly::{between, Algebraic};
+/// let a = Algebraic::from_rational("1/3".parse().unwrap());
+/// let b = Algebraic::from_rational("1/2".parse().unwrap());
+/// let t = between(&a, &b);
+/// assert!(t > "1/3".parse().unwrap() && t < "1/2".parse().unwrap());
+/// ```
+pub fn between(a: &Algebraic, b: &Algebraic) -> Rational {
+    let (mut a, mut b) = (a.clone(), b.clone());
+    let (sa, sb) = (a.poly.sturm(), b.poly.sturm());
+    while a.hi >= b.lo {
+        a.halve_with(&sa);
+        b.halve_with(&sb);
+    }
+    (&a.hi + &b.lo) / r(2)
 }
 
 /// Every real root of `p` (non-zero) in the open interval `(lo, hi)`, in increasing order,

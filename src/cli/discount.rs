@@ -1,56 +1,76 @@
-//! `truecost discount`: the exact set of discount factors for which a discount-optimal policy
-//! fails to reach the goal (issue 5, item 6).
+//! `truecost discount`: for a deterministic problem (a paper grid or a deterministic file), the
+//! exact set of discount factors for which a discount-optimal policy fails to reach the goal
+//! (issue 5, item 6); for an environment (`--env`) or a stochastic problem file, the exact
+//! breakpoints where the discount-optimal policies change, with the success probability and
+//! truecost of each interval's optimal policies (issue 11, item 3).
 
 use std::path::PathBuf;
 
 use clap::Args;
 use serde_json::json;
 
-use truecost::claims::discount::{discount_set, point_text, set_text};
-use truecost::model::file;
+use truecost::claims::discount::{discount_set, point_text, set_text, DiscountSet};
+use truecost::objectives::parametric::discount_breakpoints;
+use truecost::objectives::report::{
+    discount_json, discount_latex, discount_markdown, discount_text,
+};
+use truecost::objectives::{Model, Source};
 use truecost::problems::{GridLayout, StepCost};
+use truecost::stochastic::file::{read, ProblemFile};
 
-use super::ReportFormat;
+use super::compare::CompareFormat;
+use super::env::{pretty, EnvArg};
 
 /// Arguments of `discount`.
 #[derive(Args, Debug)]
-#[command(group(clap::ArgGroup::new("source").required(true).args(["problem", "file"])))]
+#[command(group(clap::ArgGroup::new("source").required(true).args(["problem", "file", "env"])))]
 pub struct DiscountArgs {
+    #[command(flatten)]
+    env: EnvArg,
     /// One of the paper's problems, 0 to 18.
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
-    /// A problem file.
+    /// A problem file (deterministic or stochastic).
     #[arg(long, value_name = "FILE")]
     file: Option<PathBuf>,
     /// Stage cost of a grid move (paper problems only) [default: unit].
     #[arg(long, value_enum)]
     step_cost: Option<StepCost>,
     /// Output format.
-    #[arg(long, value_enum, default_value_t = ReportFormat::Text)]
-    format: ReportFormat,
+    #[arg(long, value_enum, default_value_t = CompareFormat::Text)]
+    format: CompareFormat,
 }
 
 /// Runs `discount`.
 pub fn discount(args: &DiscountArgs) -> Result<String, String> {
-    let (problem, source) = match (&args.file, args.problem) {
-        (Some(_), _) if args.step_cost.is_some() => {
-            return Err("--step-cost applies to the paper's problems (--problem N)".into())
-        }
-        (Some(path), _) => (
-            file::read(path).map_err(|e| e.to_string())?,
-            format!("file {}", path.display()),
-        ),
-        (None, Some(id)) => (
+    if args.env.env.is_some() && (args.problem.is_some() || args.file.is_some()) {
+        return Err("give one of --env, --problem and --file".into());
+    }
+    if args.step_cost.is_some() && args.problem.is_none() {
+        return Err("--step-cost applies to the paper's problems (--problem N)".into());
+    }
+    let (problem, source) = match (&args.env.env, &args.file, args.problem) {
+        (Some(spec), _, _) => return breakpoints(Source::Env(spec.clone()).load()?, args.format),
+        (None, Some(path), _) => match read(path).map_err(|e| e.to_string())? {
+            ProblemFile::Deterministic(p) => (p, format!("file {}", path.display())),
+            ProblemFile::Stochastic(p) => {
+                return breakpoints(
+                    Model::from_problem(*p, format!("file {}", path.display())),
+                    args.format,
+                )
+            }
+        },
+        (None, None, Some(id)) => (
             GridLayout::exact(id)
                 .map_err(|e| e.to_string())?
                 .to_problem(args.step_cost.unwrap_or_default()),
             format!("paper problem {id}"),
         ),
-        (None, None) => return Err("give --problem N or --file FILE".into()),
+        (None, None, None) => return Err("give --problem N, --file FILE or --env SPEC".into()),
     };
     let set = discount_set(&problem, 20_000).map_err(|e| e.to_string())?;
     Ok(match args.format {
-        ReportFormat::Json => {
+        CompareFormat::Json => {
             let pieces: Vec<_> = set
                 .pieces
                 .iter()
@@ -61,20 +81,42 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
                     })
                 })
                 .collect();
-            let mut s = serde_json::to_string_pretty(&json!({
+            pretty(&json!({
                 "problem": source,
                 "set": set_text(&set),
                 "pieces": pieces,
                 "method": set.method,
             }))
-            .expect("serialisable");
-            s.push('\n');
-            s
         }
-        ReportFormat::Text => format!(
+        CompareFormat::Text => format!(
             "problem  {source}\nalpha in (0,1) where a discount-optimal policy fails to reach the goal from x1:\n  {}\nmethod   {}\n",
             set_text(&set),
             set.method
         ),
+        CompareFormat::Markdown => format!(
+            "**{source}**: alpha in (0,1) where a discount-optimal policy fails to reach the goal from x1\n\n| set | method |\n|---|---|\n| {} | {} |\n",
+            set_text(&set),
+            set.method
+        ),
+        CompareFormat::Latex => latex_set(&source, &set),
+    })
+}
+
+fn latex_set(source: &str, set: &DiscountSet) -> String {
+    format!(
+        "% {source}: alpha in (0,1) where a discount-optimal policy fails to reach the goal from x1\n\\begin{{tabular}}{{ll}}\n\\hline\nset & method \\\\\n\\hline\n{} & {} \\\\\n\\hline\n\\end{{tabular}}\n",
+        set_text(set).replace('U', "$\\cup$"),
+        set.method
+    )
+}
+
+/// The parametric analysis of a stochastic model (issue 11, item 3).
+fn breakpoints(model: Model, format: CompareFormat) -> Result<String, String> {
+    let d = discount_breakpoints(&model).map_err(|e| e.to_string())?;
+    Ok(match format {
+        CompareFormat::Text => discount_text(&model, &d),
+        CompareFormat::Json => pretty(&discount_json(&model, &d)),
+        CompareFormat::Markdown => discount_markdown(&model, &d),
+        CompareFormat::Latex => discount_latex(&model, &d),
     })
 }

@@ -42,6 +42,44 @@ pub struct ObjectiveArgs {
     pub alpha: Option<String>,
 }
 
+/// `--env | --problem | --file` with the options of a paper problem or a deterministic file
+/// (flattened into `compare`).
+#[derive(Args, Debug, Clone, Default)]
+pub struct ModelArgs {
+    #[command(flatten)]
+    pub env: EnvArg,
+    /// One of the paper's problems, 0 to 18.
+    #[arg(long, value_name = "N")]
+    pub problem: Option<usize>,
+    /// A problem file.
+    #[arg(long, value_name = "FILE")]
+    pub file: Option<std::path::PathBuf>,
+    /// Stage cost of a grid move (paper problems only) [default: unit].
+    #[arg(long, value_enum)]
+    pub step_cost: Option<StepCost>,
+    /// Predictability gamma in (0, 1] for --problem and deterministic --file.
+    #[arg(long, value_name = "G")]
+    pub gamma: Option<String>,
+    /// How 1 - gamma is spread [default: paper].
+    #[arg(long, value_enum)]
+    pub noise: Option<NoiseModel>,
+}
+
+impl ModelArgs {
+    /// Builds the model the options name (one line on error).
+    pub fn load(&self) -> Result<Model, String> {
+        source(
+            &self.env,
+            self.problem,
+            self.file.as_deref(),
+            self.step_cost,
+            self.gamma.as_deref(),
+            self.noise,
+        )?
+        .load()
+    }
+}
+
 /// The source of a model from the usual options.
 pub fn source(
     env: &EnvArg,
@@ -109,14 +147,14 @@ pub fn solve(args: &super::SolveArgs) -> Result<String, String> {
         ObjectiveName::Discounted => "discounted",
     };
     let objective = parse_objective(name, args.objective.alpha.as_deref())?;
-    let model = source(
-        &args.env,
-        args.problem,
-        args.file.as_deref(),
-        args.step_cost,
-        args.gamma.as_deref(),
-        args.noise,
-    )?
+    let model = ModelArgs {
+        env: args.env.clone(),
+        problem: args.problem,
+        file: args.file.clone(),
+        step_cost: args.step_cost,
+        gamma: args.gamma.clone(),
+        noise: args.noise,
+    }
     .load()?;
     let solution = model.solve(&objective).map_err(|e| e.to_string())?;
     Ok(match args.format {

@@ -36,7 +36,7 @@ pub struct VerifyArgs {
     command: Option<VerifyCommand>,
     /// Run shard K of N (1 <= K <= N <= 4096) and write its partial report (a JSON shard
     /// file) to stdout; `verify merge` combines the N files into the whole run's report.
-    #[arg(long, value_name = "K/N", conflicts_with_all = ["counterexamples", "smt_out", "file", "problem", "format", "no_times"])]
+    #[arg(long, value_name = "K/N", conflicts_with_all = ["counterexamples", "smt_out", "file", "problem", "env", "format", "no_times"])]
     shard: Option<String>,
     /// Check one claim only (C1, C1-corrected, C2, C3, C3-example, C4, C4-corrected; C1 also
     /// selects C1-corrected, and so on).
@@ -61,6 +61,10 @@ pub struct VerifyArgs {
     /// With --claim C4: the exact bonus set of this paper problem.
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
+    /// With --claim C4: the exact bonus set of a deterministic Gymnasium benchmark
+    /// (frozenlake:slippery=false, cliffwalking, taxi).
+    #[arg(long, value_name = "SPEC", conflicts_with_all = ["problem", "file"])]
+    env: Option<String>,
     /// Write every SMT obligation as a standard SMT-LIB 2.6 file (with Z3's answer as
     /// `:status`) under this directory, with an index (index.tsv), for cvc5 or Yices to
     /// re-check. The directory must be empty or not exist.
@@ -161,6 +165,9 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
     if let Some(part) = &args.shard {
         return shard(args, part);
     }
+    if let Some(spec) = &args.env {
+        return bonus_env(spec, args);
+    }
     if args.file.is_some() || args.problem.is_some() {
         if args.claim.as_deref() != Some("C4") {
             return Err(
@@ -211,6 +218,19 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
         VerifyFormat::Markdown => report::markdown(&r, with_times),
         VerifyFormat::Latex => report::latex(&r),
     })
+}
+
+/// `verify --claim C4 --env SPEC` (issue 11, item 1): the bonus set of a deterministic
+/// environment; a stochastic one is refused with the reason.
+fn bonus_env(spec: &str, args: &VerifyArgs) -> Result<String, String> {
+    if args.claim.as_deref() != Some("C4") {
+        return Err("--env goes with --claim C4 (the exact bonus set of one problem)".into());
+    }
+    let model = truecost::objectives::Source::Env(spec.to_string()).load()?;
+    let problem = model
+        .deterministic_problem()
+        .map_err(|e| format!("C4 is stated for deterministic problems: {e}"))?;
+    bonus(&problem, args.format)
 }
 
 fn unscale(q: Q, d: &BigInt) -> String {

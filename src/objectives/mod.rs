@@ -26,7 +26,9 @@
 //! truecost and number of steps of the policy it reports (`+∞` if that policy is improper).
 //! With an initial distribution (Taxi), values at "the initial state" are expectations over it.
 
+pub mod parametric;
 pub mod report;
+pub mod roots;
 
 pub use report::facts;
 
@@ -238,7 +240,7 @@ impl Model {
         Extended::Finite(sum)
     }
 
-    fn at_initial_rational(&self, values: &[Rational]) -> Rational {
+    pub(crate) fn at_initial_rational(&self, values: &[Rational]) -> Rational {
         self.initial
             .iter()
             .map(|(x, p)| &values[*x] * p)
@@ -338,7 +340,7 @@ impl Model {
 
     /// The discounted objective by the killed-process construction (module docs).
     #[allow(clippy::type_complexity)]
-    fn discounted(
+    pub(crate) fn discounted(
         &self,
         alpha: &Rational,
     ) -> Result<(Vec<Extended>, Vec<Option<usize>>, Vec<bool>), ObjectiveError> {
@@ -418,7 +420,7 @@ fn listed(successor: StateId, probability: Rational) -> Outcome {
 /// A problem on the same states with other goals and actions: `action(a)` gives the new form of
 /// the original action `a` (or `None` to drop it); new goals get no actions. Returns the
 /// problem and, per new action, the original action id.
-fn derive(
+pub(crate) fn derive(
     problem: &StochasticProblem,
     goals: Vec<StateId>,
     mut action: impl FnMut(usize) -> Option<StochasticAction>,
@@ -715,5 +717,55 @@ impl Model {
                 .collect(),
         }]);
         StochasticProblem::new(actions, n, p.goals().to_vec())
+    }
+}
+
+impl Model {
+    /// The model as a deterministic planning problem (SPEC §1) for the claims stated on one
+    /// (C4, `verify --claim C4 --env SPEC`; issue 11, item 1): every action must have a single
+    /// outcome and the initial state must be a single state; goals keep no action (their
+    /// termination), traps their zero-cost self-loop. Refusals are one line naming why.
+    ///
+    /// ```
+    /// use truecost::envs::EnvSpec;
+    /// use truecost::objectives::Model;
+    /// let m = Model::from_environment(&EnvSpec::parse("frozenlake:slippery=false").unwrap().build().unwrap()).unwrap();
+    /// let p = m.deterministic_problem().unwrap();
+    /// assert_eq!((p.states(), p.initial(), p.moves(0).len()), (16, 0, 4));
+    /// let s = Model::from_environment(&EnvSpec::parse("frozenlake").unwrap().build().unwrap()).unwrap();
+    /// assert!(s.deterministic_problem().unwrap_err().contains("stochastic"));
+    /// ```
+    pub fn deterministic_problem(&self) -> Result<crate::model::Problem, String> {
+        let p = &self.problem;
+        if self.initial.len() > 1 {
+            return Err(format!(
+                "{} draws its initial state from {} states; this needs a single initial state x1",
+                self.name,
+                self.initial.len()
+            ));
+        }
+        let mut moves = Vec::with_capacity(p.states());
+        for x in 0..p.states() {
+            let mut list = Vec::new();
+            for a in p.actions(x) {
+                match p.outcomes(a) {
+                    [o] => list.push(crate::model::Move {
+                        successor: o.successor,
+                        cost: p.cost(a).clone(),
+                    }),
+                    many => {
+                        return Err(format!(
+                            "{} is stochastic (state {x}, action {} has {} outcomes); this needs a deterministic problem",
+                            self.name,
+                            a - p.actions(x).start,
+                            many.len()
+                        ))
+                    }
+                }
+            }
+            moves.push(list);
+        }
+        crate::model::Problem::new(moves, self.initial[0].0, p.goals().to_vec())
+            .map_err(|e| e.to_string())
     }
 }

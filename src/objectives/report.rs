@@ -337,3 +337,256 @@ pub fn facts(model: &Model) -> Result<Value, ObjectiveError> {
         "reach_probability_initial_decimal": decimal(&reach.value_initial, DIGITS),
     }))
 }
+
+/// A breakpoint's exact description (issue 11, item 3): a rational, or the unique root of a
+/// primitive integer polynomial in a rational bracket of width at most `2^-100 < 1e-30`,
+/// with 30 decimals.
+pub struct PointText {
+    /// 30 digits after the point (truncated), or the exact rational.
+    pub decimal: String,
+    /// `p/q` if the point is rational.
+    pub exact: Option<String>,
+    /// The polynomial (for an irrational point).
+    pub polynomial: Option<String>,
+    /// Its degree.
+    pub degree: usize,
+    /// The bracket's ends (`lo < α < hi`; both equal the point if rational).
+    pub bracket: (String, String),
+}
+
+/// The text of a breakpoint (refined to a bracket of width at most `2^-100`).
+pub fn point_text(r: &super::roots::Root) -> PointText {
+    let mut r = r.clone();
+    r.refine_to(&Rational::new(
+        num_bigint::BigInt::from(1),
+        num_bigint::BigInt::from(1) << 100u32,
+    ));
+    let rat = |x: &Rational| crate::claims::discount::rat(x);
+    PointText {
+        decimal: r.decimal(30),
+        exact: r.as_rational().map(rat),
+        polynomial: (!r.exact).then(|| r.polynomial().to_string()),
+        degree: if r.exact {
+            1
+        } else {
+            r.polynomial().degree().unwrap_or(0)
+        },
+        bracket: (rat(&r.lo), rat(&r.hi)),
+    }
+}
+
+fn achievement_json(a: &super::parametric::Achievement) -> Value {
+    json!({
+        "success_probability": success_json(&a.success),
+        "success_probability_decimal": success_text(&a.success),
+        "truecost": if a.truecost_min == a.truecost_max {
+            json!(exact(&a.truecost_min))
+        } else {
+            json!({"min": exact(&a.truecost_min), "max": exact(&a.truecost_max)})
+        },
+    })
+}
+
+fn end_json(r: Option<&super::roots::Root>, none: &str) -> Value {
+    match r {
+        None => json!(none),
+        Some(r) => {
+            let t = point_text(r);
+            json!(t.exact.unwrap_or(t.decimal))
+        }
+    }
+}
+
+/// `discount --env|--file` as JSON: every breakpoint exactly (polynomial and bracket), every
+/// interval with a rational sample point, an optimal policy, the success probability and
+/// truecost of its optimal policies (issue 11, item 3).
+pub fn discount_json(model: &Model, d: &super::parametric::DiscountAnalysis) -> Value {
+    json!({
+        "source": model.name,
+        "rewards": model.reward_source,
+        "initial_states": model.initial.len(),
+        "method": discount_method(d),
+        "breakpoints": d.breakpoints.iter().map(|b| {
+            let t = point_text(&b.at);
+            let mut v = json!({
+                "alpha": t.exact.clone().unwrap_or(t.decimal.clone()),
+                "alpha_decimal": t.decimal,
+                "exact": t.exact,
+                "polynomial": t.polynomial,
+                "bracket": [t.bracket.0, t.bracket.1],
+                "touch": b.touch,
+                "ties": b.ties.iter().map(|(x, a)| json!({"state": x, "optimal_actions": a})).collect::<Vec<_>>(),
+            });
+            merge(&mut v, achievement_json(&b.achievement));
+            v
+        }).collect::<Vec<_>>(),
+        "intervals": d.intervals.iter().map(|i| {
+            let mut v = json!({
+                "lo": end_json(i.lo.as_ref(), "0"),
+                "hi": end_json(i.hi.as_ref(), "1"),
+                "sample_alpha": i.sample.to_string(),
+                "policy": i.policy,
+                "optimal_actions": i.optimal,
+            });
+            merge(&mut v, achievement_json(&i.achievement));
+            v
+        }).collect::<Vec<_>>(),
+    })
+}
+
+fn merge(v: &mut Value, extra: Value) {
+    if let (Some(o), Value::Object(e)) = (v.as_object_mut(), extra) {
+        o.extend(e);
+    }
+}
+
+/// How the breakpoints were obtained, in one line.
+pub fn discount_method(d: &super::parametric::DiscountAnalysis) -> String {
+    format!(
+        "exact parametric policy analysis: {} probes (exact policy iteration at rational alpha), {} states where the episode runs, value denominators of degree <= {}; roots isolated exactly (Descartes bisection), brackets <= 2^-100",
+        d.probes, d.running_states, d.degree
+    )
+}
+
+fn truecost_text(a: &super::parametric::Achievement) -> String {
+    if a.truecost_min == a.truecost_max {
+        decimal(&a.truecost_min, DIGITS)
+    } else {
+        format!(
+            "{} to {}",
+            decimal(&a.truecost_min, DIGITS),
+            decimal(&a.truecost_max, DIGITS)
+        )
+    }
+}
+
+fn short_point(r: Option<&super::roots::Root>, none: &str) -> String {
+    match r {
+        None => none.into(),
+        Some(r) => {
+            let t = point_text(r);
+            t.exact
+                .unwrap_or_else(|| format!("{}...", &t.decimal[..t.decimal.len().min(14)]))
+        }
+    }
+}
+
+fn ties_text(b: &super::parametric::Breakpoint) -> String {
+    b.ties
+        .iter()
+        .map(|(x, a)| {
+            format!(
+                "state {x}: {{{}}}",
+                a.iter()
+                    .map(ToString::to_string)
+                    .collect::<Vec<_>>()
+                    .join(",")
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// `discount --env|--file` as text.
+pub fn discount_text(model: &Model, d: &super::parametric::DiscountAnalysis) -> String {
+    let mut out = format!(
+        "source       {}\nrewards      {} (discounted, maximised)\nmethod       {}\nbreakpoints  {} (alpha in (0,1) where the set of discount-optimal policies changes)\n",
+        model.name,
+        model.reward_source,
+        discount_method(d),
+        d.breakpoints.len()
+    );
+    for (k, i) in d.intervals.iter().enumerate() {
+        out.push_str(&format!(
+            "alpha in ({}, {}): success probability {}, truecost {}\n",
+            short_point(i.lo.as_ref(), "0"),
+            short_point(i.hi.as_ref(), "1"),
+            success_text(&i.achievement.success),
+            truecost_text(&i.achievement)
+        ));
+        if let Some(b) = d.breakpoints.get(k) {
+            let t = point_text(&b.at);
+            let what = match (&t.exact, &t.polynomial) {
+                (Some(q), _) => format!("alpha = {q} exactly"),
+                (None, Some(p)) if p.len() <= 120 => format!(
+                    "alpha = {}... (the root of {p} in ({}, {}))",
+                    t.decimal, t.bracket.0, t.bracket.1
+                ),
+                _ => format!(
+                    "alpha = {}... (the root of a degree-{} polynomial in ({}, {}); see --format json)",
+                    t.decimal, t.degree, t.bracket.0, t.bracket.1
+                ),
+            };
+            out.push_str(&format!(
+                "  breakpoint {}: {what}\n    {}: {}\n    at the breakpoint: success probability {}, truecost {}\n",
+                k + 1,
+                if b.touch { "tie at this point only (same optimal policies on both sides)" } else { "optimal actions at the point where they change" },
+                ties_text(b),
+                success_text(&b.achievement.success),
+                truecost_text(&b.achievement)
+            ));
+        }
+    }
+    out
+}
+
+fn discount_rows(d: &super::parametric::DiscountAnalysis) -> Vec<[String; 3]> {
+    let mut rows = Vec::new();
+    for (k, i) in d.intervals.iter().enumerate() {
+        rows.push([
+            format!(
+                "({}, {})",
+                short_point(i.lo.as_ref(), "0"),
+                short_point(i.hi.as_ref(), "1")
+            ),
+            success_text(&i.achievement.success),
+            truecost_text(&i.achievement),
+        ]);
+        if let Some(b) = d.breakpoints.get(k) {
+            rows.push([
+                format!("= {}", short_point(Some(&b.at), "")),
+                success_text(&b.achievement.success),
+                truecost_text(&b.achievement),
+            ]);
+        }
+    }
+    rows
+}
+
+const DISCOUNT_HEADER: [&str; 3] = ["alpha", "success probability", "truecost"];
+
+/// `discount --env|--file` as a Markdown table (intervals and breakpoints in order).
+pub fn discount_markdown(model: &Model, d: &super::parametric::DiscountAnalysis) -> String {
+    let mut out = format!(
+        "**{}** ({}, discounted): {} breakpoints\n\n| {} |\n|---|---|---|\n",
+        model.name,
+        model.reward_source,
+        d.breakpoints.len(),
+        DISCOUNT_HEADER.join(" | ")
+    );
+    for row in discount_rows(d) {
+        out.push_str(&format!("| {} |\n", row.join(" | ")));
+    }
+    out
+}
+
+/// `discount --env|--file` as a LaTeX tabular.
+pub fn discount_latex(model: &Model, d: &super::parametric::DiscountAnalysis) -> String {
+    let esc = |s: &str| {
+        s.replace('_', "\\_")
+            .replace("inf", "$\\infty$")
+            .replace(" to ", "--")
+    };
+    let mut out = format!(
+        "% {} ({}, discounted): {} breakpoints\n\\begin{{tabular}}{{lrr}}\n\\hline\n$\\alpha$ & success probability & truecost \\\\\n\\hline\n",
+        model.name,
+        model.reward_source,
+        d.breakpoints.len()
+    );
+    for row in discount_rows(d) {
+        let row: Vec<String> = row.iter().map(|c| esc(c)).collect();
+        out.push_str(&format!("{} \\\\\n", row.join(" & ")));
+    }
+    out.push_str("\\hline\n\\end{tabular}\n");
+    out
+}

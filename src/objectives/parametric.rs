@@ -1,0 +1,827 @@
+//! The discount question on stochastic problems (issue 11, item 3): the exact breakpoints
+//! `α ∈ (0, 1)` where the set of discount-optimal policies changes, and for every interval
+//! between them (and at every breakpoint) the success probability and truecost of its optimal
+//! policies — the parametric policy analysis of PRISM/Storm's parametric engine, done exactly.
+//!
+//! **Design.** The discounted objective is the one of [`super::Model`]: maximise
+//! `V_α(x) = r(x, u) + α Σ p(y | x, u) V_α(y)`, `V = 0` where the episode is over.
+//!
+//! 1. *A policy's value is a rational function of `α`.* For a stationary policy `π` with reward
+//!    vector `r` and transition matrix `P` on the running states, `V = Σ_k α^k P^k r`. The
+//!    Krylov vectors `c_k = P^k r` are computed exactly for `k < 2m` (`m` running states);
+//!    Berlekamp–Massey on a projection `u·c_k` gives a polynomial `D(α) = Σ_{j≤L} d_j α^j`,
+//!    `d_0 = 1`, which is then **verified** on the vectors: `Σ_j d_j c_{L−j} = 0` exactly
+//!    (so `q(P) r = 0` for `q(t) = t^L D(1/t)`, hence `Σ_j d_j c_{k−j} = 0` for every `k ≥ L`).
+//!    Then `N = D·V` is a polynomial vector of degree `< L`, read off the first `L` terms. A
+//!    failed verification tries another projection. `D` has no root in `(0, 1)` (its roots are
+//!    `1/λ` for eigenvalues `λ` of a substochastic matrix, `|λ| ≤ 1`) and `D(0) = 1`, so `D > 0`
+//!    on `(0, 1)`.
+//! 2. *Optimality region of a policy.* The advantage of action `a` at `x` over `π`,
+//!    `Q_a − V_x`, has the sign of the polynomial `A = r_a D + α Σ_y p_a(y) N_y − N_x` on
+//!    `(0, 1)`. `π` is optimal exactly where every `A ≤ 0`; the optimal actions there are the
+//!    policy's and those with `A = 0`. The roots of every non-zero `A` in `(0, 1)` are isolated
+//!    exactly (Sturm sequences, [`crate::claims::poly`]) and the sign of `A` on each gap between
+//!    them is evaluated at a rational point, so the maximal interval `[β_L, β_R]` around a point
+//!    where `π` is optimal is exact, and so are the points inside where some `A` touches 0
+//!    without changing sign (a tie at a single `α`: the optimal set changes there too).
+//! 3. *Covering `(0, 1)`.* A probe at a rational `t` computes the optimal policy at `t` by exact
+//!    policy iteration ([`super::Model::solve`]'s killed-process construction) and its region; a
+//!    probe at a root of some `A` is retried at another point. Gaps not yet covered are probed
+//!    next, first just right of their left end, so consecutive regions usually meet exactly at
+//!    a breakpoint. Each probe covers a maximal region of a new policy, so the loop ends.
+//! 4. *The answer.* The breakpoints are the region ends inside `(0, 1)` and the touching
+//!    points, sorted and deduplicated as algebraic numbers. On each open interval between
+//!    breakpoints the optimal set is the region's policy plus the actions with `A ≡ 0`; at a
+//!    breakpoint it is the policy plus the actions with `A(β) = 0` (decided exactly). For each,
+//!    the success probability `{min, max}` over the optimal policies
+//!    ([`super::max_reach`]/[`super::min_reach`] restricted to the optimal actions) and their
+//!    truecost `{min, max}` (least: exact SSP optimum restricted to them; greatest: `+∞` if one
+//!    of them fails with positive probability, else exact policy iteration maximising the cost,
+//!    all restricted policies being proper) at the initial distribution.
+//!
+//! Effort is bounded while running: [`MAX_RUNNING_STATES`] bounds the degree of every
+//! rational function, [`MAX_REGIONS`] the number of probes; each refusal names its bound.
+
+use std::cmp::Ordering;
+
+use num_bigint::BigInt;
+use num_traits::{One, Signed, Zero};
+
+use super::roots::{between, integer_sign, roots_in_unit_interval, simplest_between, Root};
+use super::{derive, max_reach, min_reach, Bounds, Model, ObjectiveError};
+use crate::claims::poly::Poly;
+use crate::model::StateId;
+use crate::stochastic::policy_iteration::{evaluate, optimum};
+use crate::stochastic::StochasticAction;
+use crate::value::{Extended, Rational};
+
+/// The most states where the episode runs: a policy's values are rational functions of `α`
+/// of degree at most this, and so are the advantages whose roots are isolated.
+pub const MAX_RUNNING_STATES: usize = 160;
+
+/// The most probes (regions of optimal policies) the covering of `(0, 1)` may take.
+pub const MAX_REGIONS: usize = 2_000;
+
+/// Why the parametric analysis refused or failed. One line each.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ParametricError {
+    /// Too many running states: the degree bound.
+    #[error("the problem has {states} states where the episode runs; the exact parametric analysis handles at most {bound} (its rational functions of alpha have degree up to that number)")]
+    Degree {
+        /// Running states.
+        states: usize,
+        /// [`MAX_RUNNING_STATES`].
+        bound: usize,
+    },
+    /// Too many regions: the piece bound.
+    #[error("the discount-optimal policy changes more than {0} times on (0,1): beyond the bound of the exact parametric analysis")]
+    Pieces(usize),
+    /// No verified annihilating polynomial (never expected; reported rather than guessed).
+    #[error("the exact parametric analysis found no verified denominator for a policy's values after {0} projections")]
+    Annihilator(usize),
+    /// An exact solve refused (sizes, denominators).
+    #[error("{0}")]
+    Objective(#[from] ObjectiveError),
+    /// An internal consistency check failed (a truecost bug, reported rather than hidden).
+    #[error("internal check failed: {0}")]
+    Internal(String),
+}
+
+/// What the optimal policies of a piece achieve from the initial distribution.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Achievement {
+    /// Success probability over the optimal policies.
+    pub success: Bounds,
+    /// Least expected truecost over the optimal policies (`+∞` if none reaches the goal with
+    /// probability 1).
+    pub truecost_min: Extended,
+    /// Greatest expected truecost over the optimal policies (`+∞` if one fails with positive
+    /// probability).
+    pub truecost_max: Extended,
+}
+
+/// An open interval between consecutive breakpoints, with its optimal policies.
+#[derive(Clone, Debug)]
+pub struct Interval {
+    /// Lower end: a breakpoint, or `None` for 0.
+    pub lo: Option<Root>,
+    /// Upper end: a breakpoint, or `None` for 1.
+    pub hi: Option<Root>,
+    /// A rational strictly inside.
+    pub sample: Rational,
+    /// An optimal policy on the whole interval: per state its action index in `U(x)`
+    /// (Gymnasium's action number for environments), `None` where the episode is over.
+    pub policy: Vec<Option<usize>>,
+    /// Per state, the optimal actions on the interval (indices in `U(x)`; empty where the
+    /// episode is over).
+    pub optimal: Vec<Vec<usize>>,
+    /// Success and truecost of the optimal policies.
+    pub achievement: Achievement,
+}
+
+/// A breakpoint: an `α` where the set of optimal actions changes.
+#[derive(Clone, Debug)]
+pub struct Breakpoint {
+    /// The exact point (algebraic number with a rational bracket).
+    pub at: Root,
+    /// The optimal sets just left and just right are the same: the change is a tie at this
+    /// point only.
+    pub touch: bool,
+    /// The states whose optimal actions at the point differ from those of a neighbouring
+    /// interval, with the optimal actions at the point (indices in `U(x)`): the ties.
+    pub ties: Vec<(StateId, Vec<usize>)>,
+    /// Success and truecost of the policies optimal at the point.
+    pub achievement: Achievement,
+}
+
+/// The answer of [`discount_breakpoints`].
+#[derive(Clone, Debug)]
+pub struct DiscountAnalysis {
+    /// The breakpoints in increasing order.
+    pub breakpoints: Vec<Breakpoint>,
+    /// The intervals, in increasing order (one more than the breakpoints).
+    pub intervals: Vec<Interval>,
+    /// Probes made (exact policy iterations at rational `α`).
+    pub probes: usize,
+    /// The largest degree `L` of a policy-value denominator met.
+    pub degree: usize,
+    /// States where the episode runs.
+    pub running_states: usize,
+}
+
+/// A policy's discounted values as rational functions `N_x / D` (module docs, step 1).
+struct PolicyValues {
+    /// Integer coefficients, constant first.
+    d: Vec<BigInt>,
+    /// Per state (empty where the episode is over).
+    n: Vec<Vec<BigInt>>,
+    degree: usize,
+}
+
+/// A positive multiple (`C[0] > 0`) of the connection polynomial of the shortest linear
+/// recurrence of the integer sequence `s` (Berlekamp–Massey without division: each update is
+/// scaled by the previous discrepancy, the content removed).
+fn berlekamp_massey(s: &[BigInt]) -> Vec<BigInt> {
+    let mut c = vec![BigInt::one()];
+    let mut b = vec![BigInt::one()];
+    let (mut l, mut m) = (0usize, 1usize);
+    let mut last = BigInt::one();
+    for n in 0..s.len() {
+        let mut d = BigInt::zero();
+        for (i, ci) in c.iter().enumerate().take(l + 1) {
+            d += ci * &s[n - i];
+        }
+        if d.is_zero() {
+            m += 1;
+            continue;
+        }
+        let mut next: Vec<BigInt> = c.iter().map(|x| x * &last).collect();
+        if next.len() < b.len() + m {
+            next.resize(b.len() + m, BigInt::zero());
+        }
+        for (i, bi) in b.iter().enumerate() {
+            next[i + m] -= &d * bi;
+        }
+        let next = content_free(next);
+        if 2 * l <= n {
+            b = std::mem::replace(&mut c, next);
+            l = n + 1 - l;
+            last = d;
+            m = 1;
+        } else {
+            c = next;
+            m += 1;
+        }
+    }
+    c.resize(l + 1, BigInt::zero());
+    if c[0].is_negative() {
+        c.iter_mut().for_each(|x| *x = -&*x);
+    }
+    c
+}
+
+/// Divided by the (positive) gcd of the entries.
+fn content_free(p: Vec<BigInt>) -> Vec<BigInt> {
+    use num_integer::Integer;
+    let g = p.iter().fold(BigInt::zero(), |g, c| g.gcd(c));
+    if g.is_zero() || g.is_one() {
+        return p;
+    }
+    p.into_iter().map(|c| c / &g).collect()
+}
+
+fn policy_values(
+    model: &Model,
+    running: &[StateId],
+    index: &[Option<usize>],
+    policy: &[Option<usize>],
+) -> Result<PolicyValues, ParametricError> {
+    use num_integer::Integer;
+    let p = &model.problem;
+    let m = running.len();
+    let action = |i: usize| policy[running[i]].expect("a policy acts where the episode runs");
+    // Integer scaling: e_k = R·Q^k·c_k with R, Q the lcm of the reward and probability
+    // denominators, so that e_{k+1} = (Q·P) e_k in integers.
+    let (mut big_r, mut big_q) = (BigInt::one(), BigInt::one());
+    for i in 0..m {
+        let a = action(i);
+        big_r = big_r.lcm(model.reward[a].denom());
+        for o in p.outcomes(a) {
+            big_q = big_q.lcm(o.probability.denom());
+        }
+    }
+    let int = |r: Rational| -> BigInt {
+        debug_assert!(r.is_integer());
+        r.to_integer()
+    };
+    let r_scale = Rational::from_integer(big_r.clone());
+    let q_scale = Rational::from_integer(big_q.clone());
+    let rows: Vec<Vec<(usize, BigInt)>> = (0..m)
+        .map(|i| {
+            p.outcomes(action(i))
+                .iter()
+                .filter_map(|o| index[o.successor].map(|j| (j, int(&o.probability * &q_scale))))
+                .collect()
+        })
+        .collect();
+    let mut krylov: Vec<Vec<BigInt>> = Vec::with_capacity(2 * m + 1);
+    krylov.push(
+        (0..m)
+            .map(|i| int(&model.reward[action(i)] * &r_scale))
+            .collect(),
+    );
+    for k in 0..2 * m {
+        let prev = &krylov[k];
+        let next: Vec<BigInt> = rows
+            .iter()
+            .map(|row| {
+                row.iter()
+                    .fold(BigInt::zero(), |acc, (j, w)| acc + w * &prev[*j])
+            })
+            .collect();
+        krylov.push(next);
+    }
+    const PROJECTIONS: usize = 4;
+    for attempt in 0..PROJECTIONS {
+        // Deterministic pseudo-random small weights (the first projection is all ones).
+        let mut seed: u64 = 0x9E37_79B9 ^ attempt as u64;
+        let u: Vec<BigInt> = (0..m)
+            .map(|_| {
+                if attempt == 0 {
+                    return BigInt::one();
+                }
+                seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+                BigInt::from((seed >> 33) % 997 + 1)
+            })
+            .collect();
+        let s: Vec<BigInt> = krylov[..2 * m]
+            .iter()
+            .map(|c| {
+                c.iter()
+                    .zip(&u)
+                    .fold(BigInt::zero(), |acc, (x, w)| acc + x * w)
+            })
+            .collect();
+        // The recurrence of e in integers (a positive multiple: D(0) > 0 is kept).
+        let d = berlekamp_massey(&s);
+        let l = d.len() - 1;
+        let verified = (0..m).all(|i| {
+            d.iter()
+                .enumerate()
+                .fold(BigInt::zero(), |acc, (j, dj)| acc + dj * &krylov[l - j][i])
+                .is_zero()
+        });
+        if !verified {
+            continue;
+        }
+        // Back to α: coefficient k of D_e(α/Q), of N_e(α/Q)/R, times R·Q^L.
+        let powers: Vec<BigInt> = (0..=l)
+            .scan(BigInt::one(), |acc, _| {
+                let v = acc.clone();
+                *acc *= &big_q;
+                Some(v)
+            })
+            .collect();
+        let to_poly = |c: Vec<BigInt>| -> Vec<BigInt> {
+            c.into_iter()
+                .enumerate()
+                .map(|(k, x)| x * &powers[l - k])
+                .collect()
+        };
+        let mut n = vec![Vec::new(); p.states()];
+        for (i, &x) in running.iter().enumerate() {
+            let coefficients = (0..l)
+                .map(|k| (0..=k).fold(BigInt::zero(), |acc, j| acc + &d[j] * &krylov[k - j][i]))
+                .collect();
+            n[x] = to_poly(coefficients);
+        }
+        let d = to_poly(d.into_iter().map(|x| x * &big_r).collect());
+        return Ok(PolicyValues { d, n, degree: l });
+    }
+    Err(ParametricError::Annihilator(PROJECTIONS))
+}
+
+/// A non-zero advantage polynomial with its roots in `(0, 1)` and its sign on each gap.
+struct Advantage {
+    /// Global action id.
+    action: usize,
+    roots: Vec<Root>,
+    /// `signs[i]`: the sign on the gap before `roots[i]` (`signs[roots.len()]`: after the last).
+    signs: Vec<Ordering>,
+}
+
+/// The maximal closed interval around a probe where its optimal policy stays optimal.
+struct Region {
+    /// `None`: reaches 0.
+    lo: Option<Root>,
+    /// `None`: reaches 1.
+    hi: Option<Root>,
+    /// Global action ids, `None` where the episode is over.
+    policy: Vec<Option<usize>>,
+    /// Actions tied with the policy's on all of `(0, 1)` (`A ≡ 0`).
+    persistent: Vec<usize>,
+    advantages: Vec<Advantage>,
+    /// Points inside where some advantage touches 0.
+    touches: Vec<Root>,
+}
+
+fn zero_point() -> Root {
+    Root::rational(Rational::zero())
+}
+
+fn one_point() -> Root {
+    Root::rational(Rational::one())
+}
+
+impl Region {
+    fn contains(&self, a: &Root) -> bool {
+        self.lo
+            .as_ref()
+            .is_none_or(|l| l.compare(a) != Ordering::Greater)
+            && self
+                .hi
+                .as_ref()
+                .is_none_or(|h| h.compare(a) != Ordering::Less)
+    }
+
+    fn contains_rational(&self, t: &Rational) -> bool {
+        self.lo
+            .as_ref()
+            .is_none_or(|l| l.cmp_rational(t) == Ordering::Less)
+            && self
+                .hi
+                .as_ref()
+                .is_none_or(|h| h.cmp_rational(t) == Ordering::Greater)
+    }
+
+    /// Per global action: optimal at the point `at`, or on an open interval of the region free
+    /// of breakpoints (`at = None`). Actions where the episode is over count as optimal.
+    fn optimal(&self, model: &Model, at: Option<&Root>) -> Vec<bool> {
+        let p = &model.problem;
+        let mut allowed = vec![false; p.action_total()];
+        for x in 0..p.states() {
+            match self.policy[x] {
+                Some(a) => allowed[a] = true,
+                None => p.actions(x).for_each(|a| allowed[a] = true),
+            }
+        }
+        for &a in &self.persistent {
+            allowed[a] = true;
+        }
+        if let Some(b) = at {
+            for adv in &self.advantages {
+                if adv.roots.iter().any(|r| r.compare(b) == Ordering::Equal) {
+                    allowed[adv.action] = true;
+                }
+            }
+        }
+        allowed
+    }
+}
+
+/// The sign of `f` (integer form) on the gap of `(0, 1)` between consecutive roots (`None`: 0
+/// or 1).
+fn gap_sign(f: &[BigInt], lo: Option<&Root>, hi: Option<&Root>) -> Ordering {
+    let lo = lo.cloned().unwrap_or_else(zero_point);
+    let hi = hi.cloned().unwrap_or_else(one_point);
+    integer_sign(f, &between(&lo, &hi))
+}
+
+/// The probe at the rational `t`: `None` if `t` is a root of some non-zero advantage (then the
+/// caller probes elsewhere).
+fn probe(
+    model: &Model,
+    running: &[StateId],
+    index: &[Option<usize>],
+    t: &Rational,
+    degree: &mut usize,
+) -> Result<Option<Region>, ParametricError> {
+    let p = &model.problem;
+    let (_, policy, _) = model.discounted(t)?;
+    let values = policy_values(model, running, index, &policy)?;
+    *degree = (*degree).max(values.degree);
+    // The advantages of every other action, their roots and signs (in parallel: each is
+    // independent).
+    let pairs: Vec<(StateId, usize)> = running
+        .iter()
+        .flat_map(|&x| p.actions(x).map(move |a| (x, a)))
+        .filter(|&(x, a)| Some(a) != policy[x])
+        .collect();
+    enum Found {
+        Persistent(usize),
+        Advantage(Advantage),
+        AtRoot,
+        Positive,
+    }
+    use rayon::prelude::*;
+    let found: Vec<Found> = pairs
+        .par_iter()
+        .map(|&(x, a)| {
+            // A = r_a D + α Σ p N_y − N_x, times the lcm of the denominators.
+            let mut scale = model.reward[a].denom().clone();
+            for o in p.outcomes(a) {
+                scale = num_integer::Integer::lcm(&scale, o.probability.denom());
+            }
+            let times = |q: &Rational| (q * Rational::from_integer(scale.clone())).to_integer();
+            let len = values.d.len().max(values.n[x].len() + 2);
+            let mut c = vec![BigInt::zero(); len];
+            let ra = times(&model.reward[a]);
+            if !ra.is_zero() {
+                for (k, dk) in values.d.iter().enumerate() {
+                    c[k] += &ra * dk;
+                }
+            }
+            for o in p.outcomes(a) {
+                let w = times(&o.probability);
+                for (k, nk) in values.n[o.successor].iter().enumerate() {
+                    c[k + 1] += &w * nk;
+                }
+            }
+            for (k, nk) in values.n[x].iter().enumerate() {
+                c[k] -= &scale * nk;
+            }
+            if c.iter().all(Zero::is_zero) {
+                return Found::Persistent(a);
+            }
+            match integer_sign(&c, t) {
+                Ordering::Equal => return Found::AtRoot,
+                Ordering::Greater => return Found::Positive,
+                Ordering::Less => {}
+            }
+            let poly = Poly::new(c.iter().cloned().map(Rational::from_integer).collect());
+            let roots = roots_in_unit_interval(&poly);
+            let mut signs = Vec::with_capacity(roots.len() + 1);
+            for i in 0..=roots.len() {
+                let lo = i.checked_sub(1).map(|j| &roots[j]);
+                signs.push(gap_sign(&c, lo, roots.get(i)));
+            }
+            Found::Advantage(Advantage {
+                action: a,
+                roots,
+                signs,
+            })
+        })
+        .collect();
+    let mut persistent = Vec::new();
+    let mut advantages = Vec::new();
+    for f in found {
+        match f {
+            Found::Persistent(a) => persistent.push(a),
+            Found::Advantage(adv) => advantages.push(adv),
+            Found::AtRoot => return Ok(None),
+            Found::Positive => {
+                return Err(ParametricError::Internal(format!(
+                    "the policy optimal at alpha = {t} has a positive advantage there"
+                )))
+            }
+        }
+    }
+    // The region's ends and the touching points.
+    let mut lo: Option<Root> = None;
+    let mut hi: Option<Root> = None;
+    let mut touches: Vec<Root> = Vec::new();
+    for adv in &advantages {
+        let g = adv
+            .roots
+            .iter()
+            .filter(|r| r.cmp_rational(t) == Ordering::Less)
+            .count();
+        // Right: the first root after which the advantage is positive.
+        let mut j = g;
+        while j < adv.roots.len() && adv.signs[j + 1] != Ordering::Greater {
+            touches.push(adv.roots[j].clone());
+            j += 1;
+        }
+        if j < adv.roots.len() {
+            let r = &adv.roots[j];
+            if hi.as_ref().is_none_or(|h| r.compare(h) == Ordering::Less) {
+                hi = Some(r.clone());
+            }
+        }
+        // Left: the last root before which it is positive.
+        let mut j = g;
+        while j > 0 && adv.signs[j - 1] != Ordering::Greater {
+            touches.push(adv.roots[j - 1].clone());
+            j -= 1;
+        }
+        if j > 0 {
+            let r = &adv.roots[j - 1];
+            if lo
+                .as_ref()
+                .is_none_or(|l| r.compare(l) == Ordering::Greater)
+            {
+                lo = Some(r.clone());
+            }
+        }
+    }
+    let mut region = Region {
+        lo,
+        hi,
+        policy,
+        persistent,
+        advantages,
+        touches: Vec::new(),
+    };
+    region.touches = touches
+        .into_iter()
+        .filter(|r| {
+            region
+                .lo
+                .as_ref()
+                .is_none_or(|l| r.compare(l) == Ordering::Greater)
+                && region
+                    .hi
+                    .as_ref()
+                    .is_none_or(|h| r.compare(h) == Ordering::Less)
+        })
+        .collect();
+    Ok(Some(region))
+}
+
+/// Rationals strictly between `l` and `r` (`None`: 0, 1), the first ones close to `l`, each
+/// the simplest rational of a sub-interval (small denominators keep the exact solves small).
+fn probe_points(l: Option<&Root>, r: Option<&Root>) -> impl Iterator<Item = Rational> {
+    let la = l.cloned().unwrap_or_else(zero_point);
+    let ra = r.cloned().unwrap_or_else(one_point);
+    let mid = between(&la, &ra);
+    let mut la = la;
+    while la.hi >= mid {
+        la.halve();
+    }
+    let base = la.hi;
+    let delta = &mid - &base;
+    [24u32, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16]
+        .into_iter()
+        .map(move |k| {
+            let at = |k: u32| &base + &delta / Rational::from_integer(BigInt::one() << k);
+            simplest_between(&at(k + 1), &at(k))
+        })
+}
+
+/// The success probability and truecost `{min, max}` of the policies using only the allowed
+/// actions, from the initial distribution (module docs, step 4).
+fn achievement(model: &Model, allowed: &[bool]) -> Result<Achievement, ParametricError> {
+    let p = &model.problem;
+    let allow = |a: usize| allowed[a];
+    let (max, _) = max_reach(p, &allow).map_err(ObjectiveError::from)?;
+    let min = min_reach(p, &allow).map_err(ObjectiveError::from)?;
+    let success = Bounds {
+        min: model.at_initial_rational(&min),
+        max: model.at_initial_rational(&max),
+    };
+    let (restricted, origin) = derive(p, p.goals().to_vec(), |a| {
+        allowed[a].then(|| StochasticAction {
+            cost: p.cost(a).clone(),
+            outcomes: p.outcomes(a).to_vec(),
+        })
+    })
+    .map_err(ObjectiveError::from)?;
+    let least = optimum(&restricted).map_err(ObjectiveError::from)?;
+    let truecost_min = model.at_initial(least.cost_to_go_all());
+    let truecost_max = if success.min < Rational::one() {
+        Extended::Infinite
+    } else {
+        let start: Vec<Option<usize>> = least
+            .policy_actions()
+            .iter()
+            .map(|a| a.map(|a| origin[a]))
+            .collect();
+        most_truecost(model, allowed, start)?
+    };
+    Ok(Achievement {
+        success,
+        truecost_min,
+        truecost_max,
+    })
+}
+
+/// The greatest expected truecost over the allowed policies when all of them reach a goal with
+/// probability 1 from the initial distribution: exact policy iteration maximising the cost on
+/// the states reachable from the initial ones (every allowed policy is proper there).
+fn most_truecost(
+    model: &Model,
+    allowed: &[bool],
+    mut policy: Vec<Option<usize>>,
+) -> Result<Extended, ParametricError> {
+    let p = &model.problem;
+    let n = p.states();
+    let mut reach = vec![false; n];
+    let mut stack: Vec<StateId> = model.initial.iter().map(|(x, _)| *x).collect();
+    for &x in &stack {
+        reach[x] = true;
+    }
+    while let Some(x) = stack.pop() {
+        if p.is_goal(x) {
+            continue;
+        }
+        for a in p.actions(x).filter(|&a| allowed[a]) {
+            for o in p.outcomes(a) {
+                if !reach[o.successor] {
+                    reach[o.successor] = true;
+                    stack.push(o.successor);
+                }
+            }
+        }
+    }
+    loop {
+        let v = evaluate(p, &policy).map_err(ObjectiveError::from)?;
+        let q = |a: usize| -> Option<Rational> {
+            let mut s = p.cost(a).clone();
+            for o in p.outcomes(a) {
+                s += &o.probability * v[o.successor].finite()?;
+            }
+            Some(s)
+        };
+        let mut changed = false;
+        for x in (0..n).filter(|&x| reach[x] && !p.is_goal(x)) {
+            let Some(mut best) = policy[x].and_then(q) else {
+                continue;
+            };
+            for a in p.actions(x).filter(|&a| allowed[a]) {
+                if let Some(qa) = q(a) {
+                    if qa > best {
+                        best = qa;
+                        policy[x] = Some(a);
+                        changed = true;
+                    }
+                }
+            }
+        }
+        if !changed {
+            return Ok(model.at_initial(&v));
+        }
+    }
+}
+
+/// The exact breakpoints `α ∈ (0, 1)` where the set of discount-optimal policies changes, and
+/// for every interval between them and every breakpoint the success probability and truecost
+/// of the optimal policies (issue 11, item 3; the paper's Proposition 3 on any stochastic
+/// problem). Method in the module docs.
+///
+/// ```
+/// use truecost::objectives::{parametric::discount_breakpoints, Model};
+/// use truecost::stochastic::file::{from_json, ProblemFile};
+/// // At 0: a safe detour (cost 1, then 3 to the goal) or a gamble (cost 1: goal with 1/2,
+/// // else a trap loop costing 1 forever).
+/// let text = r#"{"initial":0,"goals":[3],"actions":[
+///   [{"to":1,"cost":"1"},{"cost":"1","outcomes":[{"to":3,"p":"1/2"},{"to":2,"p":"1/2"}]}],
+///   [{"to":3,"cost":"3"}],
+///   [{"to":2,"cost":"1"}],
+///   []]}"#;
+/// let ProblemFile::Stochastic(p) = from_json(text).unwrap() else { panic!() };
+/// let m = Model::from_problem(*p, "example".into());
+/// let d = discount_breakpoints(&m).unwrap();
+/// // Rewards: safe -1 - 3a; gamble -1 - (a/2)/(1-a); equal iff 1/(2(1-a)) = 3, a = 5/6.
+/// assert_eq!(d.breakpoints.len(), 1);
+/// assert_eq!(d.breakpoints[0].at.as_rational(), Some("5/6".parse().unwrap()));
+/// assert_eq!(d.intervals[0].achievement.success.min.to_string(), "1/2"); // gamble below 5/6
+/// assert_eq!(d.intervals[1].achievement.success.min.to_string(), "1");
+/// ```
+pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, ParametricError> {
+    let p = &model.problem;
+    let running: Vec<StateId> = (0..p.states()).filter(|&x| !model.terminal[x]).collect();
+    if running.len() > MAX_RUNNING_STATES {
+        return Err(ParametricError::Degree {
+            states: running.len(),
+            bound: MAX_RUNNING_STATES,
+        });
+    }
+    let mut index = vec![None; p.states()];
+    for (i, &x) in running.iter().enumerate() {
+        index[x] = Some(i);
+    }
+    let mut degree = 0;
+    let mut regions: Vec<Region> = Vec::new();
+    let mut gaps: Vec<(Option<Root>, Option<Root>)> = vec![(None, None)];
+    let mut probes = 0;
+    while let Some((l, r)) = gaps.pop() {
+        if regions.len() >= MAX_REGIONS {
+            return Err(ParametricError::Pieces(MAX_REGIONS));
+        }
+        let mut found = None;
+        for t in probe_points(l.as_ref(), r.as_ref()) {
+            probes += 1;
+            if let Some(region) = probe(model, &running, &index, &t, &mut degree)? {
+                found = Some(region);
+                break;
+            }
+        }
+        let region = found.ok_or_else(|| {
+            ParametricError::Internal("every probe point of a gap was a breakpoint".into())
+        })?;
+        if let Some(lo) = &region.lo {
+            if l.as_ref()
+                .is_none_or(|l| lo.compare(l) == Ordering::Greater)
+            {
+                gaps.push((l.clone(), Some(lo.clone())));
+            }
+        }
+        if let Some(hi) = &region.hi {
+            if r.as_ref().is_none_or(|r| hi.compare(r) == Ordering::Less) {
+                gaps.push((Some(hi.clone()), r.clone()));
+            }
+        }
+        regions.push(region);
+    }
+    // Breakpoints: region ends and touching points, sorted, distinct.
+    let mut points: Vec<Root> = Vec::new();
+    for region in &regions {
+        points.extend(region.lo.iter().cloned());
+        points.extend(region.hi.iter().cloned());
+        points.extend(region.touches.iter().cloned());
+    }
+    points.sort_by(|a, b| a.compare(b));
+    points.dedup_by(|a, b| a.compare(b) == Ordering::Equal);
+    for b in &mut points {
+        b.recognise_rational();
+    }
+    let indices = |allowed: &[bool]| -> Vec<Vec<usize>> {
+        (0..p.states())
+            .map(|x| {
+                if model.terminal[x] {
+                    return Vec::new();
+                }
+                p.actions(x)
+                    .filter(|&a| allowed[a])
+                    .map(|a| a - p.actions(x).start)
+                    .collect()
+            })
+            .collect()
+    };
+    let mut intervals = Vec::with_capacity(points.len() + 1);
+    for i in 0..=points.len() {
+        let lo = i.checked_sub(1).map(|j| points[j].clone());
+        let hi = points.get(i).cloned();
+        let sample = between(
+            lo.as_ref().unwrap_or(&zero_point()),
+            hi.as_ref().unwrap_or(&one_point()),
+        );
+        let region = regions
+            .iter()
+            .find(|g| g.contains_rational(&sample))
+            .expect("the regions cover (0,1)");
+        let allowed = region.optimal(model, None);
+        let policy = (0..p.states())
+            .map(|x| {
+                region.policy[x]
+                    .filter(|_| !model.terminal[x])
+                    .map(|a| a - p.actions(x).start)
+            })
+            .collect();
+        intervals.push(Interval {
+            lo,
+            hi,
+            sample,
+            policy,
+            optimal: indices(&allowed),
+            achievement: achievement(model, &allowed)?,
+        });
+    }
+    let mut breakpoints = Vec::with_capacity(points.len());
+    for (i, b) in points.iter().enumerate() {
+        let region = regions
+            .iter()
+            .find(|g| g.contains(b))
+            .expect("the regions cover (0,1)");
+        let allowed = region.optimal(model, Some(b));
+        let at = indices(&allowed);
+        let (left, right) = (&intervals[i].optimal, &intervals[i + 1].optimal);
+        let ties = (0..p.states())
+            .filter(|&x| at[x] != left[x] || at[x] != right[x])
+            .map(|x| (x, at[x].clone()))
+            .collect();
+        breakpoints.push(Breakpoint {
+            at: b.clone(),
+            touch: left == right,
+            ties,
+            achievement: achievement(model, &allowed)?,
+        });
+    }
+    Ok(DiscountAnalysis {
+        breakpoints,
+        intervals,
+        probes,
+        degree,
+        running_states: running.len(),
+    })
+}

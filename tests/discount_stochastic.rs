@@ -25,12 +25,12 @@ fn gauss(mut a: Vec<Vec<Rational>>, mut b: Vec<Rational>) -> Option<Vec<Rational
         let p = (c..n).find(|&r| !a[r][c].is_zero())?;
         a.swap(c, p);
         b.swap(c, p);
+        let pivot = a[c].clone();
         for r in 0..n {
             if r != c && !a[r][c].is_zero() {
-                let f = &a[r][c] / &a[c][c];
-                for k in c..n {
-                    let t = &f * &a[c][k];
-                    a[r][k] -= t;
+                let f = &a[r][c] / &pivot[c];
+                for (ark, pk) in a[r].iter_mut().zip(&pivot).skip(c) {
+                    *ark -= &f * pk;
                 }
                 let t = &f * &b[c];
                 b[r] -= t;

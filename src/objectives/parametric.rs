@@ -20,11 +20,12 @@
 //!    `Q_a − V_x`, has the sign of the polynomial `A = r_a D + α Σ_y p_a(y) N_y − N_x` on
 //!    `(0, 1)`. `π` is optimal exactly where every `A ≤ 0`; the optimal actions there are the
 //!    policy's and those with `A = 0`. The roots of every non-zero `A` in `(0, 1)` are isolated
-//!    exactly (Sturm sequences, [`crate::claims::poly`]) and the sign of `A` on each gap between
-//!    them is evaluated at a rational point, so the maximal interval `[β_L, β_R]` around a point
+//!    exactly (Descartes' rule with bisection, [`super::roots`]) and the sign of `A` on each gap
+//!    between them is evaluated at a rational point, so the maximal interval `[β_L, β_R]` around a point
 //!    where `π` is optimal is exact, and so are the points inside where some `A` touches 0
 //!    without changing sign (a tie at a single `α`: the optimal set changes there too).
-//! 3. *Covering `(0, 1)`.* A probe at a rational `t` computes the optimal policy at `t` by exact
+//! 3. *Covering `(0, 1)`.* A probe at a rational `t` (the simplest rational of a small
+//!    interval, so the exact solves stay small) computes the optimal policy at `t` by exact
 //!    policy iteration ([`super::Model::solve`]'s killed-process construction) and its region; a
 //!    probe at a root of some `A` is retried at another point. Gaps not yet covered are probed
 //!    next, first just right of their left end, so consecutive regions usually meet exactly at

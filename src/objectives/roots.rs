@@ -184,9 +184,12 @@ fn isolate(p: &[BigInt]) -> Isolation {
 ///     .mul(&Poly::from_i64(&[0, 1])).mul(&Poly::from_i64(&[-1, 1]));
 /// let r = roots_in_unit_interval(&f);
 /// assert_eq!(r.len(), 3);
-/// assert!(r[0].exact && r[0].lo == "1/2".parse().unwrap());
-/// assert!(!r[1].exact && r[1].lo < "2/3".parse().unwrap());
-/// assert!(r[2].lo > "2/3".parse().unwrap() && r[2].hi < "3/4".parse().unwrap());
+/// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+/// assert!(r[0].exact && r[0].lo == q("1/2"));
+/// // 2/3, then √2/2: each bracket contains its root.
+/// assert!(r[1].lo <= q("2/3") && q("2/3") <= r[1].hi);
+/// let two = q("2");
+/// assert!(&r[2].lo * &r[2].lo * &two < q("1") && &r[2].hi * &r[2].hi * &two > q("1"));
 /// ```
 pub fn roots_in_unit_interval(f: &Poly) -> Vec<Root> {
     assert!(!f.is_zero(), "roots of the zero polynomial");
@@ -254,8 +257,9 @@ pub fn roots_in_unit_interval(f: &Poly) -> Vec<Root> {
 ///
 /// ```
 /// use truecost::objectives::roots::simplest_between;
-/// assert_eq!(simplest_between(&"0.3".parse().unwrap(), &"0.34".parse().unwrap()), "1/3".parse().unwrap());
-/// assert_eq!(simplest_between(&"0".parse().unwrap(), &"0.3".parse().unwrap()), "1/4".parse().unwrap());
+/// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+/// assert_eq!(simplest_between(&q("3/10"), &q("17/50")), q("1/3"));
+/// assert_eq!(simplest_between(&q("0"), &q("3/10")), q("1/4"));
 /// ```
 pub fn simplest_between(lo: &Rational, hi: &Rational) -> Rational {
     let fl = lo.floor();

@@ -323,39 +323,19 @@ pub fn run_shard(
 /// same scope, claims, options and build). Verdicts, case counts and counterexamples are the
 /// whole run's; the engines' times are the merge's own (render without times).
 pub fn merge(files: &[(String, String)]) -> Result<Report, String> {
-    let read = files
-        .iter()
-        .map(|(name, text)| {
-            ShardFile::from_json(text, shard::VERIFY_FORMAT, name).map(|f| (name.clone(), f))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let shards = shard::complete_set(read)?;
-    let fp = shards[0].fingerprint.clone();
-    let bad = |what: &str| format!("the shards' fingerprint has no valid {what}");
-    let scope = match fp["scope"].as_str() {
-        Some("smoke") => Scope::Smoke,
-        Some("quick") => Scope::Quick,
-        Some("full") => Scope::Full,
-        _ => return Err(bad("scope")),
+    let shards = shard::read_complete_set(files, shard::VERIFY_FORMAT)?;
+    let fp = shard::Fingerprint(&shards[0].fingerprint);
+    let scope = match fp.text("scope") {
+        "smoke" => Scope::Smoke,
+        "quick" => Scope::Quick,
+        "full" => Scope::Full,
+        _ => return Err(fp.bad("scope")),
     };
-    let only = match &fp["claim"] {
-        serde_json::Value::Null => None,
-        serde_json::Value::String(c) => Some(c.clone()),
-        _ => return Err(bad("claim")),
-    };
+    let only: Option<String> = fp.field("claim")?;
     let options = Options {
-        smt: fp["smt"].as_bool().ok_or_else(|| bad("smt flag"))?,
-        smt_timeout_ms: fp["smt_timeout_ms"]
-            .as_u64()
-            .and_then(|t| u32::try_from(t).ok())
-            .ok_or_else(|| bad("smt timeout"))?,
+        smt: fp.field("smt")?,
+        smt_timeout_ms: fp.field("smt_timeout_ms")?,
     };
-    let mine = fingerprint(scope, only.as_deref(), &options);
-    if mine != fp {
-        return Err(format!(
-            "the shards were made by {} (commit {}), this is {} (commit {}): merge with the same build",
-            fp["tool"], fp["commit"], mine["tool"], mine["commit"]
-        ));
-    }
+    fp.confirm(&fingerprint(scope, only.as_deref(), &options))?;
     shard::replay(shards, || run(scope, only.as_deref(), &options))?
 }

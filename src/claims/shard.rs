@@ -247,6 +247,65 @@ pub fn complete_set(mut files: Vec<(String, ShardFile)>) -> Result<Vec<ShardFile
     Ok(files.into_iter().map(|(_, f)| f).collect())
 }
 
+/// Reads the shard files `(name, text)` of one command (`format`) and checks that they are the
+/// complete set of one run ([`complete_set`]): the first step of every `merge`.
+pub fn read_complete_set(
+    files: &[(String, String)],
+    format: &str,
+) -> Result<Vec<ShardFile>, String> {
+    let read = files
+        .iter()
+        .map(|(name, text)| ShardFile::from_json(text, format, name).map(|f| (name.clone(), f)))
+        .collect::<Result<Vec<_>, _>>()?;
+    complete_set(read)
+}
+
+/// The fingerprint a set of shards carries, read back on merge: typed fields, each malformed
+/// one refused with the same message, and the final check that the settings read back
+/// reproduce it (same build, nothing edited).
+///
+/// ```
+/// use truecost::claims::shard::Fingerprint;
+/// let v = serde_json::json!({"seed": 7, "tool": "truecost 0.1.0", "commit": "abc"});
+/// let fp = Fingerprint(&v);
+/// assert_eq!(fp.field::<u64>("seed").unwrap(), 7);
+/// assert!(fp.field::<u64>("samples").unwrap_err().contains("samples"));
+/// assert!(fp.confirm(&v).is_ok());
+/// let other = serde_json::json!({"seed": 8, "tool": "truecost 0.1.0", "commit": "abc"});
+/// assert!(fp.confirm(&other).unwrap_err().contains("same build"));
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct Fingerprint<'a>(pub &'a Value);
+
+impl Fingerprint<'_> {
+    /// The refusal of a malformed field `what`.
+    pub fn bad(&self, what: &str) -> String {
+        format!("the shards' fingerprint has no valid {what}")
+    }
+
+    /// Field `key`, deserialised.
+    pub fn field<T: DeserializeOwned>(&self, key: &str) -> Result<T, String> {
+        serde_json::from_value(self.0[key].clone()).map_err(|_| self.bad(key))
+    }
+
+    /// Field `key` as text (`""` when it is not a string; the caller's parse then refuses it).
+    pub fn text(&self, key: &str) -> &str {
+        self.0[key].as_str().unwrap_or("")
+    }
+
+    /// Refuses unless `recomputed` — the fingerprint of the settings read back, made by this
+    /// build — equals the shards' own.
+    pub fn confirm(&self, recomputed: &Value) -> Result<(), String> {
+        if recomputed == self.0 {
+            return Ok(());
+        }
+        Err(format!(
+            "the shards were made by {} (commit {}), this is {} (commit {}), or they state other settings than they ran: merge with the same build",
+            self.0["tool"], self.0["commit"], recomputed["tool"], recomputed["commit"]
+        ))
+    }
+}
+
 enum Mode {
     Shard { part: Part, entries: Vec<Entry> },
     Merge { shards: Vec<ShardFile>, next: usize },

@@ -1161,33 +1161,20 @@ fn encode<T: Serialize>(value: &T) -> String {
 /// run and build). The problems are prepared again (compiled, their oracle solved: no clock);
 /// no sample is rerun.
 pub fn merge(files: &[(String, String)]) -> Result<(Report, Settings), String> {
-    let read = files
-        .iter()
-        .map(|(name, text)| {
-            ShardFile::from_json(text, SHARD_FORMAT, name).map(|f| (name.clone(), f))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let shards = shard::complete_set(read)?;
-    let fp = &shards[0].fingerprint;
-    let bad = |what: &str| format!("the shards' fingerprint has no valid {what}");
+    let shards = shard::read_complete_set(files, SHARD_FORMAT)?;
+    let fp = shard::Fingerprint(&shards[0].fingerprint);
     let settings = Settings {
-        problems: serde_json::from_value(fp["problems"].clone()).map_err(|_| bad("problems"))?,
-        samples: serde_json::from_value(fp["samples"].clone()).map_err(|_| bad("samples"))?,
-        seed: serde_json::from_value(fp["seed"].clone()).map_err(|_| bad("seed"))?,
-        mode: clap::ValueEnum::from_str(fp["mode"].as_str().unwrap_or(""), false)
-            .map_err(|_| bad("mode"))?,
-        step_cost: clap::ValueEnum::from_str(fp["step_cost"].as_str().unwrap_or(""), false)
-            .map_err(|_| bad("step cost"))?,
-        episodes: serde_json::from_value(fp["episodes"].clone()).map_err(|_| bad("episodes"))?,
-        max_steps: serde_json::from_value(fp["max_steps"].clone()).map_err(|_| bad("max_steps"))?,
+        problems: fp.field("problems")?,
+        samples: fp.field("samples")?,
+        seed: fp.field("seed")?,
+        mode: clap::ValueEnum::from_str(fp.text("mode"), false).map_err(|_| fp.bad("mode"))?,
+        step_cost: clap::ValueEnum::from_str(fp.text("step_cost"), false)
+            .map_err(|_| fp.bad("step cost"))?,
+        episodes: fp.field("episodes")?,
+        max_steps: fp.field("max_steps")?,
         threads: None,
     };
-    if fingerprint(&settings) != *fp {
-        return Err(format!(
-            "the shards were made by {} (commit {}) with other settings than they state, or by another build: merge with the same build",
-            fp["tool"], fp["commit"]
-        ));
-    }
+    fp.confirm(&fingerprint(&settings))?;
     settings.validate().map_err(|e| e.to_string())?;
     let runs = in_pool(None, || prepare_all(&settings))
         .map_err(|e| e.to_string())?

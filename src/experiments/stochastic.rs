@@ -1209,48 +1209,33 @@ pub fn run_shard(
 /// build). The problems are prepared again (their exact optima solved: no clock); no sample
 /// or VI is rerun.
 pub fn merge(files: &[(String, String)]) -> Result<(Report, Settings), String> {
-    let read = files
-        .iter()
-        .map(|(name, text)| {
-            ShardFile::from_json(text, SHARD_FORMAT, name).map(|f| (name.clone(), f))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let shards = shard::complete_set(read)?;
-    let fp = &shards[0].fingerprint;
-    let bad = |what: &str| format!("the shards' fingerprint has no valid {what}");
-    let texts = |key: &str| -> Result<Vec<String>, String> {
-        serde_json::from_value(fp[key].clone()).map_err(|_| bad(key))
-    };
+    let shards = shard::read_complete_set(files, SHARD_FORMAT)?;
+    let fp = shard::Fingerprint(&shards[0].fingerprint);
+    let texts = |key: &str| fp.field::<Vec<String>>(key);
     let settings = Settings {
-        problems: serde_json::from_value(fp["problems"].clone()).map_err(|_| bad("problems"))?,
+        problems: fp.field("problems")?,
         gammas: texts("gammas")?
             .iter()
-            .map(|g| Predictability::parse(g).map_err(|_| bad("gammas")))
+            .map(|g| Predictability::parse(g).map_err(|_| fp.bad("gammas")))
             .collect::<Result<_, _>>()?,
         rhos: texts("rhos")?
             .iter()
-            .map(|r| RateSpec::parse(r).map_err(|_| bad("rhos")))
+            .map(|r| RateSpec::parse(r).map_err(|_| fp.bad("rhos")))
             .collect::<Result<_, _>>()?,
         epsilons: texts("epsilons")?
             .iter()
-            .map(|e| EpsilonSpec::parse(e).map_err(|_| bad("epsilons")))
+            .map(|e| EpsilonSpec::parse(e).map_err(|_| fp.bad("epsilons")))
             .collect::<Result<_, _>>()?,
-        samples: serde_json::from_value(fp["samples"].clone()).map_err(|_| bad("samples"))?,
-        seed: serde_json::from_value(fp["seed"].clone()).map_err(|_| bad("seed"))?,
-        noise: clap::ValueEnum::from_str(fp["noise"].as_str().unwrap_or(""), false)
-            .map_err(|_| bad("noise"))?,
-        tolerance: clap::ValueEnum::from_str(fp["tolerance"].as_str().unwrap_or(""), false)
-            .map_err(|_| bad("tolerance"))?,
-        episodes: serde_json::from_value(fp["episodes"].clone()).map_err(|_| bad("episodes"))?,
-        max_steps: serde_json::from_value(fp["max_steps"].clone()).map_err(|_| bad("max_steps"))?,
+        samples: fp.field("samples")?,
+        seed: fp.field("seed")?,
+        noise: clap::ValueEnum::from_str(fp.text("noise"), false).map_err(|_| fp.bad("noise"))?,
+        tolerance: clap::ValueEnum::from_str(fp.text("tolerance"), false)
+            .map_err(|_| fp.bad("tolerance"))?,
+        episodes: fp.field("episodes")?,
+        max_steps: fp.field("max_steps")?,
         threads: None,
     };
-    if fingerprint(&settings) != *fp {
-        return Err(format!(
-            "the shards were made by {} (commit {}) with other settings than they state, or by another build: merge with the same build",
-            fp["tool"], fp["commit"]
-        ));
-    }
+    fp.confirm(&fingerprint(&settings))?;
     settings.validate().map_err(|e| e.to_string())?;
     let prepared = in_pool(None, || prepare_all(&settings))
         .map_err(|e| e.to_string())?

@@ -1015,7 +1015,7 @@ fn comparison_csv_cells(c: Option<&Comparison>, metrics: &[String]) -> String {
                 .unwrap_or_default();
             let verdict = c
                 .and_then(|c| c.agreement.get(m))
-                .map_or(String::new(), verdict_text);
+                .map_or(String::new(), Verdict::to_string);
             format!(",{},{}", quote(&published), quote(&verdict))
         })
         .collect()
@@ -1026,39 +1026,6 @@ fn summary_csv(summary: Option<&Summary>) -> String {
     summary.map_or(String::new(), |s| {
         s.lines().iter().map(|l| format!("# {l}\n")).collect()
     })
-}
-
-/// A verdict in words, with its numbers.
-fn verdict_text(v: &Verdict) -> String {
-    let times = |x: Option<f64>| x.map_or("–".into(), |x| format!("{x:.1}×"));
-    match v {
-        Verdict::Exact => "exact".into(),
-        Verdict::Consistent { difference, bound } => {
-            format!("consistent (|Δ| {difference:.4} ≤ {bound:.4})")
-        }
-        Verdict::Differs { difference, reason } => format!(
-            "differs (Δ {}; {reason})",
-            difference.map_or("–".into(), |d| format!("{d:+.4}"))
-        ),
-        Verdict::Machine {
-            ratio,
-            relative_published,
-            relative_ours,
-        } => {
-            let mut t = format!(
-                "machine (ours/published {})",
-                ratio.map_or("–".into(), |r| format!("{r:.3}"))
-            );
-            if relative_published.is_some() || relative_ours.is_some() {
-                t += &format!(
-                    "; ÷ model-free Dijkstra: published {}, ours {}",
-                    times(*relative_published),
-                    times(*relative_ours)
-                );
-            }
-            t
-        }
-    }
 }
 
 const COMPARISON_HEADER: [&str; 5] = ["row", "metric", "published", "ours", "verdict"];
@@ -1081,7 +1048,7 @@ fn comparison_table<'a>(
                     .copied()
                     .flatten()
                     .map_or("–".into(), |o| format!("{o}")),
-                verdict_text(verdict),
+                verdict.to_string(),
             ]);
         }
     }

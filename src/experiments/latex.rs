@@ -62,38 +62,9 @@ pub fn tex(s: &str) -> String {
     out
 }
 
-/// A verdict with its numbers (as the text and Markdown tables give it).
+/// A verdict with its numbers (as the text and Markdown tables give it), escaped.
 fn verdict(v: &Verdict) -> String {
-    let times = |x: Option<f64>| x.map_or("–".into(), |x| format!("{x:.1}×"));
-    let text = match v {
-        Verdict::Exact => "exact".into(),
-        Verdict::Consistent { difference, bound } => {
-            format!("consistent (|Δ| {difference:.4} ≤ {bound:.4})")
-        }
-        Verdict::Differs { difference, reason } => format!(
-            "differs (Δ {}; {reason})",
-            difference.map_or("–".into(), |d| format!("{d:+.4}"))
-        ),
-        Verdict::Machine {
-            ratio,
-            relative_published,
-            relative_ours,
-        } => {
-            let mut t = format!(
-                "machine (ours/published {})",
-                ratio.map_or("–".into(), |r| format!("{r:.3}"))
-            );
-            if relative_published.is_some() || relative_ours.is_some() {
-                t += &format!(
-                    "; ÷ model-free Dijkstra: published {}, ours {}",
-                    times(*relative_published),
-                    times(*relative_ours)
-                );
-            }
-            t
-        }
-    };
-    tex(&text)
+    tex(&v.to_string())
 }
 
 fn number(x: Option<f64>, digits: usize) -> String {

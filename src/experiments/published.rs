@@ -482,6 +482,52 @@ impl Verdict {
     }
 }
 
+/// The verdict in words, with its numbers — as every report format prints it.
+///
+/// ```
+/// use truecost::experiments::published::Verdict;
+/// let v = Verdict::Consistent { difference: 0.01, bound: 0.12 };
+/// assert_eq!(v.to_string(), "consistent (|Δ| 0.0100 ≤ 0.1200)");
+/// let m = Verdict::Machine { ratio: Some(0.5), relative_published: Some(135.0), relative_ours: None };
+/// assert_eq!(m.to_string(), "machine (ours/published 0.500); ÷ model-free Dijkstra: published 135.0×, ours –");
+/// ```
+impl std::fmt::Display for Verdict {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let times = |x: Option<f64>| x.map_or("–".into(), |x| format!("{x:.1}×"));
+        match self {
+            Verdict::Exact => write!(f, "exact"),
+            Verdict::Consistent { difference, bound } => {
+                write!(f, "consistent (|Δ| {difference:.4} ≤ {bound:.4})")
+            }
+            Verdict::Differs { difference, reason } => write!(
+                f,
+                "differs (Δ {}; {reason})",
+                difference.map_or("–".into(), |d| format!("{d:+.4}"))
+            ),
+            Verdict::Machine {
+                ratio,
+                relative_published,
+                relative_ours,
+            } => {
+                write!(
+                    f,
+                    "machine (ours/published {})",
+                    ratio.map_or("–".into(), |r| format!("{r:.3}"))
+                )?;
+                if relative_published.is_some() || relative_ours.is_some() {
+                    write!(
+                        f,
+                        "; ÷ model-free Dijkstra: published {}, ours {}",
+                        times(*relative_published),
+                        times(*relative_ours)
+                    )?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
 /// Judges one non-time metric (see the module documentation). `exact_comparable`: the row is a
 /// pure function of the settings, and the settings are the published ones.
 ///

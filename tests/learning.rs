@@ -5,6 +5,7 @@
 mod common;
 
 use common::{bellman_ford, exact, huge_problem, small_problem, Ext, Q};
+use num_bigint::BigInt;
 use num_traits::Zero;
 use proptest::prelude::*;
 use rand::RngExt;
@@ -15,7 +16,7 @@ use truecost::learning::q_learning::{
     Event, LearningError, Milestone, QLearner, QLearningConfig, Rules,
 };
 use truecost::model::{ExactGraph, Graph, Problem};
-use truecost::value::{parse_rational, Units};
+use truecost::value::{parse_rational, Rational, Units};
 
 /// π = 3.243F6A88… in hexadecimal: the first 128 hexadecimal digits after the point (public
 /// knowledge, e.g. the initial Blowfish P-array and S-boxes are these digits).
@@ -106,6 +107,49 @@ fn linear_decay_reaches_one_tenth_at_the_last_episode() {
     assert_eq!(at(0), (1, 1));
     assert_eq!(at(999), (1, 10));
     assert_eq!(at(333), (7, 10)); // 1 − 0.9·333/999
+    assert!(s.validate(1000).is_ok());
+}
+
+/// The reference mode's ε-decay is the paper's code's: expected values printed by CPython 3.11
+/// running the code's loop (`epsilon_delta = (epsilon - 0.1) / episodes`, then
+/// `epsilon = max(0.1, epsilon - epsilon_delta)` after each episode) and
+/// `math.ceil(eps * 2**53)`, the count of `random.random()` values below `eps`.
+#[test]
+fn code_decay_is_the_paper_codes_f64_schedule_and_python_coin() {
+    let s = EpsilonSchedule::CodeDecay {
+        start: Probability::ONE,
+    };
+    let exact = |p: Probability| p.to_rational();
+    let over_2_53 = |n: u64| Rational::new(BigInt::from(n), BigInt::from(1u64 << 53));
+    assert_eq!(s.at(0, 1000).unwrap(), Probability::ONE);
+    // Episode 999 of 1000: ε = 0.10089999999998849 (0x1.9d495182a95f3p-4), not 0.1.
+    assert_eq!(
+        exact(s.at(999, 1000).unwrap()),
+        over_2_53(908_826_404_803_263)
+    );
+    // Episode 500: ε = 0.549999999999994.
+    assert_eq!(
+        exact(s.at(500, 1000).unwrap()),
+        over_2_53(4_953_959_590_107_492)
+    );
+    // The sequence a learner reads is the same as `at`.
+    let mut run = s.episodes(1000);
+    for k in 0..1000 {
+        assert_eq!(
+            run.next_episode().unwrap(),
+            s.at(k, 1000).unwrap(),
+            "episode {k}"
+        );
+    }
+    // Three episodes: 1.0, 0.7, 0.39999999999999997, then the floor 0.1 (the f64 0.1's coin).
+    let short: Vec<Rational> = {
+        let mut r = s.episodes(3);
+        (0..5).map(|_| exact(r.next_episode().unwrap())).collect()
+    };
+    assert_eq!(short[1], over_2_53(6_305_039_478_318_694)); // ⌈0.7·2^53⌉
+    assert_eq!(short[2], over_2_53(3_602_879_701_896_397)); // ⌈0.39999999999999997·2^53⌉
+    assert_eq!(short[3], over_2_53(900_719_925_474_100)); // ⌈0.1·2^53⌉
+    assert_eq!(short[4], short[3]);
     assert!(s.validate(1000).is_ok());
 }
 

@@ -40,7 +40,9 @@ use super::published::{self, Comparison, DataError, Kind, Observations, Observed
 use super::runs::{in_pool, RunSettings};
 use super::stats::{mean_of_present, mean_std};
 use crate::claims::shard::{self, Entry, Part, ShardFile};
-use crate::learning::plan::{sample_rng, EpsilonSchedule, PiStream, Plan, Probability};
+use crate::learning::plan::{
+    python_coin, sample_rng, EpsilonSchedule, PiStream, Plan, Probability,
+};
 use crate::learning::q_learning::{
     Event, LearningError, LearningValue, Milestone, Outcome, QLearner, QLearningConfig, Rules,
 };
@@ -165,8 +167,18 @@ impl Row {
             .map_err(LearningError::from)
         };
         let epsilon = match *self {
-            Row::QLearning { epsilon, .. } => EpsilonSchedule::Constant(probability(epsilon)?),
-            Row::EpsilonDecay { start } => EpsilonSchedule::decay_to_one_tenth(probability(start)?),
+            // The paper's code flips `random.random() < ε` with ε a float literal (SPEC §7).
+            Row::QLearning { epsilon, .. } => EpsilonSchedule::Constant(match rules {
+                Rules::Exact => probability(epsilon)?,
+                Rules::Reference => python_coin(epsilon.0 as f64 / epsilon.1 as f64),
+            }),
+            // The text decays linearly to 0.1; the paper's code by f64 steps (SPEC §7).
+            Row::EpsilonDecay { start } => match rules {
+                Rules::Exact => EpsilonSchedule::decay_to_one_tenth(probability(start)?),
+                Rules::Reference => EpsilonSchedule::CodeDecay {
+                    start: probability(start)?,
+                },
+            },
             Row::ModelFree(_) => return Ok(None),
         };
         Ok(Some(QLearningConfig {
@@ -246,7 +258,8 @@ impl Settings {
             ),
             Mode::Reference => "reference (paper code, SPEC §7): f64 Euclidean step costs on the \
                                 reference grid; checks every 1000 actions; iterations = 0-based \
-                                last episode index"
+                                last episode index; coins random() < ε with ε a float, ε-decay \
+                                by f64 steps of (ε0 − 0.1)/E"
                 .to_string(),
         }
     }

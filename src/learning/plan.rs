@@ -146,6 +146,78 @@ pub enum EpsilonSchedule {
         /// ε in the last episode (the paper's ε-decay row ends at 0.1).
         end: Probability,
     },
+    /// The paper's *code* (reference mode, SPEC §7): `ε ← max(0.1, ε − δ)` in `f64` after every
+    /// episode, from `ε = start`, with `δ = (start − 0.1)/E` — `q_learning_functions.py`'s
+    /// `epsilon_delta = (epsilon - epsilon_min) / episodes` and
+    /// `epsilon = max(epsilon_min, epsilon - epsilon_delta)`. So ε in episode `k` is about
+    /// `start − (start − 0.1)·k/E`: 0.1009 in the last of 1000 episodes, where [`Self::Linear`]
+    /// (the text) reaches 0.1. Each episode's coin is Python's `random.random() < ε`, whose
+    /// probability is exactly `⌈ε·2^53⌉/2^53` ([`python_coin`]).
+    CodeDecay {
+        /// ε in the first episode.
+        start: Probability,
+    },
+}
+
+/// The floor of the paper's code's ε-decay (`epsilon_min = 0.1`).
+const CODE_EPSILON_MIN: f64 = 0.1;
+
+/// The exact probability of Python's coin `random.random() < eps`: `random()` returns `n/2^53`
+/// with `n` uniform in `{0, …, 2^53 − 1}`, so the coin is true for the `⌈eps·2^53⌉` values of
+/// `n` below `eps·2^53` (a product that is exact in `f64`). `eps` is clamped to `[0, 1]`.
+///
+/// ```
+/// use truecost::learning::plan::python_coin;
+/// let p = python_coin(0.5);
+/// assert_eq!((p.numerator(), p.denominator()), (1, 2));
+/// let q = python_coin(0.1); // 0.1 is 0x3FB999999999999A: 2^53·0.1 = 900719925474099.25
+/// assert_eq!((q.numerator(), q.denominator()), (900719925474100, 1 << 53));
+/// assert_eq!(python_coin(1.0), truecost::learning::plan::Probability::ONE);
+/// ```
+pub fn python_coin(eps: f64) -> Probability {
+    const SCALE: u64 = 1 << 53;
+    let scaled = (eps.clamp(0.0, 1.0) * SCALE as f64).ceil() as u64;
+    let g = scaled.gcd(&SCALE);
+    Probability {
+        numerator: scaled / g,
+        denominator: SCALE / g,
+    }
+}
+
+/// The ε of the successive episodes of one run (what a learner reads at each episode's start).
+///
+/// ```
+/// use truecost::learning::plan::{EpsilonSchedule, Probability, python_coin};
+/// let mut e = EpsilonSchedule::CodeDecay { start: Probability::ONE }.episodes(1000);
+/// assert_eq!(e.next_episode().unwrap(), Probability::ONE);
+/// let second = e.next_episode().unwrap(); // 1 − 0.9/1000 in f64
+/// assert_eq!(second, python_coin(1.0 - 0.9 / 1000.0));
+/// ```
+#[derive(Clone, Debug)]
+pub struct Epsilons {
+    schedule: EpsilonSchedule,
+    episodes: u32,
+    next: u32,
+    /// The code's running `f64` ε ([`EpsilonSchedule::CodeDecay`] only).
+    code_epsilon: f64,
+    /// The code's `f64` decrement ([`EpsilonSchedule::CodeDecay`] only).
+    code_delta: f64,
+}
+
+impl Epsilons {
+    /// ε of the next episode (the first call gives episode 0's).
+    pub fn next_episode(&mut self) -> Result<Probability, ProbabilityError> {
+        let k = self.next;
+        self.next = self.next.saturating_add(1);
+        match &self.schedule {
+            EpsilonSchedule::CodeDecay { .. } => {
+                let p = python_coin(self.code_epsilon);
+                self.code_epsilon = CODE_EPSILON_MIN.max(self.code_epsilon - self.code_delta);
+                Ok(p)
+            }
+            other => other.at(k, self.episodes),
+        }
+    }
 }
 
 impl EpsilonSchedule {
@@ -157,6 +229,24 @@ impl EpsilonSchedule {
                 numerator: 1,
                 denominator: 10,
             },
+        }
+    }
+
+    /// The ε of the episodes of a run of `episodes` episodes, in order.
+    pub fn episodes(&self, episodes: u32) -> Epsilons {
+        let (code_epsilon, code_delta) = match self {
+            EpsilonSchedule::CodeDecay { start } => {
+                let s = start.to_f64();
+                (s, (s - CODE_EPSILON_MIN) / f64::from(episodes.max(1)))
+            }
+            _ => (0.0, 0.0),
+        };
+        Epsilons {
+            schedule: self.clone(),
+            episodes,
+            next: 0,
+            code_epsilon,
+            code_delta,
         }
     }
 
@@ -181,6 +271,14 @@ impl EpsilonSchedule {
                 let (s, e) = (start.to_rational(), end.to_rational());
                 let t = Rational::new(BigInt::from(k), BigInt::from(episodes - 1));
                 Probability::new("ε", &(&s + (e - &s) * t))
+            }
+            EpsilonSchedule::CodeDecay { .. } => {
+                let mut run = self.episodes(episodes);
+                let mut p = run.next_episode()?;
+                for _ in 0..k {
+                    p = run.next_episode()?;
+                }
+                Ok(p)
             }
         }
     }
@@ -209,7 +307,7 @@ impl EpsilonSchedule {
     pub fn start(&self) -> Probability {
         match self {
             EpsilonSchedule::Constant(p) => *p,
-            EpsilonSchedule::Linear { start, .. } => *start,
+            EpsilonSchedule::Linear { start, .. } | EpsilonSchedule::CodeDecay { start } => *start,
         }
     }
 }

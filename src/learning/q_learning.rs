@@ -53,7 +53,7 @@
 use num_traits::{One, Signed, ToPrimitive};
 use rand_chacha::ChaCha8Rng;
 
-use super::plan::{explore, EpsilonSchedule, Plan, Probability, ProbabilityError};
+use super::plan::{explore, EpsilonSchedule, Epsilons, Plan, Probability, ProbabilityError};
 use crate::model::Graph;
 use crate::value::{CostValue, Extended, Rational, Units};
 
@@ -265,7 +265,7 @@ pub struct QLearner<'a, V: LearningValue> {
     episodes: u32,
     max_steps: u32,
     rate: Option<f64>,
-    schedule: EpsilonSchedule,
+    schedule: Epsilons,
     rules: Rules,
     rng: ChaCha8Rng,
     plan: Plan<'a>,
@@ -399,7 +399,7 @@ impl<'a, V: LearningValue> QLearner<'a, V> {
             episodes: config.episodes,
             max_steps: config.max_steps,
             rate,
-            schedule: config.epsilon.clone(),
+            schedule: config.epsilon.episodes(config.episodes),
             rules: config.rules,
             rng,
             plan,
@@ -554,10 +554,7 @@ impl<'a, V: LearningValue> QLearner<'a, V> {
                 return Event::Finished;
             }
             if !self.in_episode {
-                self.epsilon = self
-                    .schedule
-                    .at(self.episodes_started, self.episodes)
-                    .expect("schedule validated");
+                self.epsilon = self.schedule.next_episode().expect("schedule validated");
                 self.episodes_started += 1;
                 self.state = self.initial;
                 self.step = 0;

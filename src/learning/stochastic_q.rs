@@ -54,7 +54,7 @@ use num_traits::{One, Signed, ToPrimitive};
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 
-use super::plan::{explore, EpsilonSchedule, Plan, Probability};
+use super::plan::{explore, EpsilonSchedule, Epsilons, Plan, Probability};
 use super::q_learning::{Event, LearningError, Milestone};
 use crate::stochastic::policy_iteration::Optimum;
 use crate::stochastic::StochasticProblem;
@@ -396,6 +396,7 @@ pub struct StochasticQLearner<'a> {
     config: StochasticQConfig,
     rng: ChaCha8Rng,
     plan: Plan<'a>,
+    epsilons: Epsilons,
     epsilon: Probability,
     actions: u64,
     episodes_started: u32,
@@ -518,6 +519,7 @@ impl<'a> StochasticQLearner<'a> {
             config: config.clone(),
             rng,
             plan,
+            epsilons: config.epsilon.episodes(config.episodes),
             epsilon: config.epsilon.start(),
             actions: 0,
             episodes_started: 0,
@@ -588,11 +590,7 @@ impl<'a> StochasticQLearner<'a> {
                 return Event::Finished;
             }
             if !self.in_episode {
-                self.epsilon = self
-                    .config
-                    .epsilon
-                    .at(self.episodes_started, self.config.episodes)
-                    .expect("schedule validated");
+                self.epsilon = self.epsilons.next_episode().expect("schedule validated");
                 self.episodes_started += 1;
                 self.state = self.initial;
                 self.step = 0;

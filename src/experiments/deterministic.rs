@@ -72,7 +72,9 @@ pub enum Row {
         /// Where exploring actions come from.
         plan: PlanKind,
     },
-    /// Q-learning with ε decaying linearly from `start` to 0.1 at the last episode.
+    /// Q-learning with ε decaying from `start` to 0.1: linearly to 0.1 at the last episode in
+    /// exact mode (the text), by the code's `f64` steps in reference mode
+    /// ([`EpsilonSchedule::CodeDecay`]).
     EpsilonDecay {
         /// ε in the first episode, `(numerator, denominator)`.
         start: (u64, u64),
@@ -1229,4 +1231,44 @@ pub fn merge(files: &[(String, String)]) -> Result<(Report, Settings), String> {
         .map(|j| serde_json::from_str::<Option<Sample>>(owner(j)?).map_err(|e| malformed(j, e)))
         .collect::<Result<Vec<_>, _>>()?;
     Ok((assemble(&runs, &settings, pi, results), settings))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each mode's ε-decay row runs its own schedule: the text's in exact mode, the code's in
+    /// reference mode; reference constant-ε rows flip the code's coin.
+    #[test]
+    fn each_mode_runs_its_own_epsilon_schedule() {
+        let settings = Settings::default();
+        let config = |row: Row, rules| row.learning_config(&settings, rules).unwrap().unwrap();
+        let decay = Row::EpsilonDecay { start: (1, 1) };
+        assert_eq!(
+            config(decay, Rules::Exact).epsilon,
+            EpsilonSchedule::decay_to_one_tenth(Probability::ONE)
+        );
+        assert_eq!(
+            config(decay, Rules::Reference).epsilon,
+            EpsilonSchedule::CodeDecay {
+                start: Probability::ONE
+            }
+        );
+        let nine_tenths = Row::QLearning {
+            epsilon: (9, 10),
+            plan: PlanKind::Random,
+        };
+        let EpsilonSchedule::Constant(exact) = config(nine_tenths, Rules::Exact).epsilon else {
+            panic!("constant ε expected");
+        };
+        assert_eq!((exact.numerator(), exact.denominator()), (9, 10));
+        let EpsilonSchedule::Constant(code) = config(nine_tenths, Rules::Reference).epsilon else {
+            panic!("constant ε expected");
+        };
+        // ⌈0.9·2^53⌉ = 8106479329266893 (0.9 as an f64 is 0.90000000000000002220…).
+        assert_eq!(
+            (code.numerator(), code.denominator()),
+            (8_106_479_329_266_893, 1 << 53)
+        );
+    }
 }

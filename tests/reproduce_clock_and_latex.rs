@@ -106,3 +106,50 @@ fn latex_shows_the_published_value_beside_ours_with_the_verdict() {
         insta::assert_snapshot!("reproduce_deterministic_reference_latex", t);
     });
 }
+
+/// The stochastic experiment's LaTeX (issue 13, item 3): Problem 10, γ = 0.999, ρ = ε = 0.9 and
+/// both value iterations under the reference code's noise and tolerance, two samples, against
+/// the published table; pinned without times by a reviewed snapshot.
+#[test]
+fn stochastic_latex_shows_the_published_value_beside_ours_with_the_verdict() {
+    use truecost::experiments::stochastic::{self as st, EpsilonSpec, RateSpec};
+    use truecost::stochastic::{NoiseModel, Predictability};
+    let settings = st::Settings {
+        problems: vec![10],
+        gammas: vec![Predictability::parse("0.999").unwrap()],
+        rhos: vec![RateSpec::parse("0.9").unwrap()],
+        epsilons: vec![EpsilonSpec::parse("0.9").unwrap()],
+        samples: 2,
+        noise: NoiseModel::Reference,
+        tolerance: truecost::learning::stochastic_q::Tolerance::Reference,
+        ..st::Settings::default()
+    };
+    let mut report = st::run(&settings, &|_| {}).unwrap();
+    st::against_published(&mut report, &settings).unwrap();
+    let t = latex::stochastic(&report, false);
+    // Published (example_10_stochastic_results_100_samples.csv): asynchronous VI 58 sweeps and
+    // 178292 actions, synchronous VI 94 and 288956 — counts, so `exact` in this model.
+    for line in [
+        "mean\\_iterations & 58.0 & 58 & exact \\\\",
+        "mean\\_actions & 178292.0 & 178292 & exact \\\\",
+        "mean\\_iterations & 94.0 & 94 & exact \\\\",
+        "mean\\_actions & 288956.0 & 288956 & exact \\\\",
+    ] {
+        assert!(t.contains(line), "{line} missing from\n{t}");
+    }
+    assert!(t.contains("\\subsection*{Reproduction summary}"));
+    assert!(!t.contains("machine (ours"));
+    let timed = latex::stochastic(&report, true);
+    assert!(timed.contains("machine (ours/published"));
+    assert_eq!(
+        t.matches("\\begin{longtable}").count(),
+        t.matches("\\end{longtable}").count()
+    );
+    for line in t.lines().filter(|l| !l.starts_with('%')) {
+        let unescaped = line.replace("\\$", "");
+        assert_eq!(unescaped.matches('$').count() % 2, 0, "{line}");
+    }
+    insta::with_settings!({snapshot_path => "../snapshots", prepend_module_to_snapshot => false}, {
+        insta::assert_snapshot!("reproduce_stochastic_reference_latex", t);
+    });
+}

@@ -404,6 +404,64 @@ pub struct Report {
     pub against_published: Option<Summary>,
 }
 
+impl RowSummary {
+    /// The row's name in the paper's words, as every rendering labels it.
+    ///
+    /// ```
+    /// use truecost::experiments::deterministic::{run, Settings};
+    /// let s = Settings { problems: vec![16], samples: 1, ..Settings::default() };
+    /// let labels: Vec<String> = run(&s, &|_| {}).unwrap().rows.iter().map(|r| r.label()).collect();
+    /// assert_eq!(labels[4], "Q-learning (ε=0.9)");
+    /// assert_eq!(labels[6], "Q-learning, π plan (ε=1)");
+    /// assert_eq!(labels[7], "Q-learning (ε-decay 1→0.1)");
+    /// assert_eq!(labels[8], "Model-free Dijkstra");
+    /// ```
+    pub fn label(&self) -> String {
+        let e = |x: Option<f64>, default: f64| format!("{}", x.unwrap_or(default));
+        match self.algorithm {
+            "q-learning" => format!("Q-learning (ε={})", e(self.epsilon, 0.0)),
+            "q-learning-pi" => format!("Q-learning, π plan (ε={})", e(self.epsilon, 1.0)),
+            "q-learning-epsilon-decay" => format!(
+                "Q-learning (ε-decay {}→{})",
+                e(self.epsilon, 1.0),
+                e(self.epsilon_final, 0.1)
+            ),
+            "model-free-dijkstra" => "Model-free Dijkstra".into(),
+            "model-free-async-vi" => "Model-free asynchronous VI".into(),
+            "model-free-vi" => "Model-free synchronous VI".into(),
+            other => other.into(),
+        }
+    }
+}
+
+impl Report {
+    /// The run's settings in one line, as every rendering's title gives them.
+    ///
+    /// ```
+    /// let r = truecost::experiments::deterministic::Report {
+    ///     mode: truecost::planning::Mode::Reference, model: String::new(), seed: 7, samples: 2,
+    ///     episodes: 1000, max_steps: 3000, problems: vec![16, 10], rows: vec![],
+    ///     against_published: None,
+    /// };
+    /// assert_eq!(r.settings(), "mode reference; seed 7; 2 samples per row; \
+    ///     1000 episodes × 3000 steps; problems 16,10");
+    /// ```
+    pub fn settings(&self) -> String {
+        format!(
+            "mode {}; seed {}; {} samples per row; {} episodes × {} steps; problems {}",
+            match self.mode {
+                Mode::Exact => "exact",
+                Mode::Reference => "reference",
+            },
+            self.seed,
+            self.samples,
+            self.episodes,
+            self.max_steps,
+            super::runs::comma_list(&self.problems)
+        )
+    }
+}
+
 /// A problem compiled for one mode, with the oracle values `G*` of the convergence checks.
 enum Prepared {
     /// The paper's text: the compiled exact graph with its optimum.

@@ -11,7 +11,6 @@ use std::fmt::Write as _;
 use super::deterministic::{Report, RowSummary};
 use super::published::{Comparison, Summary, Verdict, REPOSITORY};
 use super::stochastic;
-use crate::planning::Mode;
 
 /// Escapes text for LaTeX and sets the Greek letters and symbols our tables use in math mode.
 ///
@@ -164,24 +163,6 @@ fn summary(s: &mut String, summary: Option<&Summary>) {
     );
 }
 
-/// A deterministic row's label.
-fn label(row: &RowSummary) -> String {
-    let e = |x: Option<f64>, d: f64| format!("{}", x.unwrap_or(d));
-    tex(&match row.algorithm {
-        "q-learning" => format!("Q-learning (ε={})", e(row.epsilon, 0.0)),
-        "q-learning-pi" => format!("Q-learning, π plan (ε={})", e(row.epsilon, 1.0)),
-        "q-learning-epsilon-decay" => format!(
-            "Q-learning (ε-decay {}→{})",
-            e(row.epsilon, 1.0),
-            e(row.epsilon_final, 0.1)
-        ),
-        "model-free-dijkstra" => "Model-free Dijkstra".into(),
-        "model-free-async-vi" => "Model-free asynchronous VI".into(),
-        "model-free-vi" => "Model-free synchronous VI".into(),
-        other => other.into(),
-    })
-}
-
 /// `reproduce deterministic --format latex` (issue 13, item 3).
 ///
 /// ```
@@ -201,16 +182,8 @@ pub fn deterministic(report: &Report, with_times: bool) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "% truecost reproduce deterministic: mode {}; seed {}; {} samples per row; {} episodes x {} steps; problems {}",
-        match report.mode {
-            Mode::Exact => "exact",
-            Mode::Reference => "reference",
-        },
-        report.seed,
-        report.samples,
-        report.episodes,
-        report.max_steps,
-        report.problems.iter().map(|p| p.to_string()).collect::<Vec<_>>().join(",")
+        "% truecost reproduce deterministic: {}",
+        report.settings()
     );
     let _ = writeln!(s, "% model: {}", report.model);
     let _ = writeln!(s, "% needs \\usepackage{{booktabs,longtable}}");
@@ -234,7 +207,7 @@ pub fn deterministic(report: &Report, with_times: bool) -> String {
             .map(|r| {
                 if let Some(note) = &r.note {
                     return vec![
-                        label(r),
+                        tex(&r.label()),
                         format!(
                             "\\multicolumn{{{}}}{{l}}{{{}}}",
                             header.len() - 1,
@@ -248,7 +221,7 @@ pub fn deterministic(report: &Report, with_times: bool) -> String {
                     _ => "--".into(),
                 };
                 let mut c = vec![
-                    label(r),
+                    tex(&r.label()),
                     pm(r.mean_actions, r.std_actions, 1),
                     pm(r.mean_iterations, r.std_iterations, 2),
                     percent(r.convergence_rate),
@@ -265,7 +238,8 @@ pub fn deterministic(report: &Report, with_times: bool) -> String {
         longtable(&mut s, &columns, &header, &cells);
         comparison(
             &mut s,
-            rows.iter().map(|r| (label(r), r.comparison.as_ref())),
+            rows.iter()
+                .map(|r| (tex(&r.label()), r.comparison.as_ref())),
             with_times,
         );
     }
@@ -273,35 +247,10 @@ pub fn deterministic(report: &Report, with_times: bool) -> String {
     s
 }
 
-/// A stochastic row's label.
-fn stochastic_label(row: &stochastic::RowSummary) -> String {
-    tex(&match row.algorithm {
-        "q-learning" => format!(
-            "Q-learning (ρ={}, ε={})",
-            row.rho.as_deref().unwrap_or("?"),
-            row.epsilon.as_deref().unwrap_or("?")
-        ),
-        "stochastic-async-vi" => "Stochastic asynchronous VI".into(),
-        "stochastic-vi" => "Stochastic synchronous VI".into(),
-        other => other.into(),
-    })
-}
-
 /// `reproduce stochastic --format latex` (issue 13, item 3).
 pub fn stochastic(report: &stochastic::Report, with_times: bool) -> String {
     let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "% truecost reproduce stochastic: noise {}; tolerance {}; seed {}; {} samples per row; {} episodes x {} steps; problems {}; gammas {}",
-        report.noise.name(),
-        report.tolerance.name(),
-        report.seed,
-        report.samples,
-        report.episodes,
-        report.max_steps,
-        report.problems.iter().map(|p| p.to_string()).collect::<Vec<_>>().join(","),
-        report.gammas.join(",")
-    );
+    let _ = writeln!(s, "% truecost reproduce stochastic: {}", report.settings());
     let _ = writeln!(s, "% model: {}", report.model);
     let _ = writeln!(s, "% needs \\usepackage{{booktabs,longtable}}");
     let mut header = vec![
@@ -318,11 +267,7 @@ pub fn stochastic(report: &stochastic::Report, with_times: bool) -> String {
     let columns = format!("l{}", "r".repeat(header.len() - 1));
     for p in &report.problems {
         for g in &report.gammas {
-            let rows: Vec<&stochastic::RowSummary> = report
-                .rows
-                .iter()
-                .filter(|r| r.problem == *p && &r.gamma == g)
-                .collect();
+            let rows = report.rows_of(*p, g);
             let optimum = rows.first().map_or("--", |r| r.optimum_initial.as_str());
             let _ = writeln!(
                 s,
@@ -335,7 +280,7 @@ pub fn stochastic(report: &stochastic::Report, with_times: bool) -> String {
                 .map(|r| {
                     if r.samples == 0 || (r.note.is_some() && r.mean_actions.is_none()) {
                         return vec![
-                            stochastic_label(r),
+                            tex(&r.label()),
                             format!(
                                 "\\multicolumn{{{}}}{{l}}{{{}}}",
                                 header.len() - 1,
@@ -344,7 +289,7 @@ pub fn stochastic(report: &stochastic::Report, with_times: bool) -> String {
                         ];
                     }
                     let mut c = vec![
-                        stochastic_label(r),
+                        tex(&r.label()),
                         pm(r.mean_actions, r.std_actions, 1),
                         pm(r.mean_iterations, r.std_iterations, 2),
                         percent(r.convergence_rate),
@@ -362,7 +307,7 @@ pub fn stochastic(report: &stochastic::Report, with_times: bool) -> String {
             comparison(
                 &mut s,
                 rows.iter()
-                    .map(|r| (stochastic_label(r), r.comparison.as_ref())),
+                    .map(|r| (tex(&r.label()), r.comparison.as_ref())),
                 with_times,
             );
         }

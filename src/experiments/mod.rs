@@ -10,4 +10,5 @@ pub mod published;
 pub mod runs;
 pub mod stats;
 pub mod stochastic;
+pub mod tables;
 pub mod visits;

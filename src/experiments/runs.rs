@@ -141,3 +141,16 @@ pub fn in_pool<T: Send>(
             .install(work)),
     }
 }
+
+/// `1,2,3`: a list as the reports' titles print it.
+///
+/// ```
+/// assert_eq!(truecost::experiments::runs::comma_list(&[16, 10]), "16,10");
+/// ```
+pub fn comma_list(items: &[usize]) -> String {
+    items
+        .iter()
+        .map(|p| p.to_string())
+        .collect::<Vec<_>>()
+        .join(",")
+}

@@ -410,6 +410,47 @@ pub struct Report {
     pub against_published: Option<Summary>,
 }
 
+impl RowSummary {
+    /// The row's name in the paper's words, as every rendering labels it.
+    pub fn label(&self) -> String {
+        match self.algorithm {
+            "q-learning" => format!(
+                "Q-learning (ρ={}, ε={})",
+                self.rho.as_deref().unwrap_or("?"),
+                self.epsilon.as_deref().unwrap_or("?")
+            ),
+            "stochastic-async-vi" => "Stochastic asynchronous VI".into(),
+            "stochastic-vi" => "Stochastic synchronous VI".into(),
+            other => other.into(),
+        }
+    }
+}
+
+impl Report {
+    /// The rows of one problem at one `γ` (as given), in order: one table of a rendering.
+    pub fn rows_of(&self, problem: usize, gamma: &str) -> Vec<&RowSummary> {
+        self.rows
+            .iter()
+            .filter(|r| r.problem == problem && r.gamma == gamma)
+            .collect()
+    }
+
+    /// The run's settings in one line, as every rendering's title gives them.
+    pub fn settings(&self) -> String {
+        format!(
+            "noise {}; tolerance {}; seed {}; {} samples per row; {} episodes × {} steps; problems {}; gammas {}",
+            self.noise.name(),
+            self.tolerance.name(),
+            self.seed,
+            self.samples,
+            self.episodes,
+            self.max_steps,
+            super::runs::comma_list(&self.problems),
+            self.gammas.join(",")
+        )
+    }
+}
+
 /// A problem at one `γ`, with its exact optimum.
 struct Prepared {
     id: usize,

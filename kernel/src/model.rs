@@ -34,10 +34,9 @@ pub struct Graph<V, U = ()> {
     successor: Vec<u32>,
     cost: Vec<V>,
     rfirst: Vec<u32>,
-    /// For each reverse entry: the index of the forward edge it mirrors.
-    redge: Vec<u32>,
-    /// For each reverse entry: the source node of that edge.
-    rsource: Vec<u32>,
+    /// For each reverse entry: the source node of the forward edge it mirrors, and that
+    /// edge's index.
+    reverse: Vec<(u32, u32)>,
     is_goal: Vec<bool>,
     initial: u32,
     origin: Vec<StateId>,
@@ -67,10 +66,10 @@ impl<V: CostValue, U> Graph<V, U> {
         unit: U,
     ) -> Self {
         let n = adjacency.len();
-        assert!(n < u32::MAX as usize && initial < n && origin.len() == n);
         let mut first = Vec::with_capacity(n + 1);
-        let mut successor = Vec::new();
-        let mut cost = Vec::new();
+        let edges = adjacency.iter().map(Vec::len).sum();
+        let mut successor = Vec::with_capacity(edges);
+        let mut cost = Vec::with_capacity(edges);
         first.push(0u32);
         for list in adjacency {
             for (y, c) in list {
@@ -80,23 +79,60 @@ impl<V: CostValue, U> Graph<V, U> {
             }
             first.push(u32::try_from(successor.len()).expect("too many edges"));
         }
+        Self::from_csr(first, successor, cost, initial, goals, origin, unit)
+    }
+
+    /// Builds a graph from its compressed sparse rows: the moves of node `v` are
+    /// `successor[first[v]..first[v + 1]]` with costs `cost[first[v]..first[v + 1]]`, in order.
+    /// Otherwise as [`Graph::from_adjacency`] (same preconditions; additionally `first` starts
+    /// at 0, never decreases, ends at `successor.len() == cost.len()`).
+    ///
+    /// ```
+    /// use truecost_kernel::model::Graph;
+    /// // 0 -> 1 (cost 1), 1 -> 0 (cost 2)
+    /// let g = Graph::<f64>::from_csr(vec![0, 1, 2], vec![1, 0], vec![1.0, 2.0], 0, &[1],
+    ///     vec![0, 1], ());
+    /// assert_eq!(g.edges(1).collect::<Vec<_>>(), vec![(0, &2.0)]);
+    /// assert_eq!(g.in_edges(0).collect::<Vec<_>>(), vec![(1, &2.0)]);
+    /// ```
+    pub fn from_csr(
+        first: Vec<u32>,
+        successor: Vec<u32>,
+        cost: Vec<V>,
+        initial: usize,
+        goals: &[usize],
+        origin: Vec<StateId>,
+        unit: U,
+    ) -> Self {
+        assert!(!first.is_empty(), "first has one entry per node plus one");
+        let n = first.len() - 1;
+        assert!(n < u32::MAX as usize && initial < n && origin.len() == n);
+        assert!(
+            first[0] == 0
+                && first.windows(2).all(|w| w[0] <= w[1])
+                && first[n] as usize == successor.len()
+                && successor.len() == cost.len(),
+            "malformed compressed rows"
+        );
+        assert!(
+            successor.iter().all(|&y| (y as usize) < n),
+            "successor out of range"
+        );
         // Reverse CSR by counting sort; within a target, sources appear in forward-edge order.
-        let mut indeg = vec![0u32; n + 1];
+        let mut rfirst = vec![0u32; n + 1];
         for &y in &successor {
-            indeg[y as usize + 1] += 1;
+            rfirst[y as usize + 1] += 1;
         }
         for i in 0..n {
-            indeg[i + 1] += indeg[i];
+            rfirst[i + 1] += rfirst[i];
         }
-        let rfirst = indeg.clone();
-        let mut fill = indeg;
-        let mut redge = vec![0u32; successor.len()];
-        let mut rsource = vec![0u32; successor.len()];
-        for x in 0..n {
-            for e in first[x] as usize..first[x + 1] as usize {
-                let slot = &mut fill[successor[e] as usize];
-                redge[*slot as usize] = e as u32;
-                rsource[*slot as usize] = x as u32;
+        let mut fill = rfirst[..n].to_vec();
+        let mut reverse = vec![(0u32, 0u32); successor.len()];
+        for (x, bounds) in first.windows(2).enumerate() {
+            let (lo, hi) = (bounds[0] as usize, bounds[1] as usize);
+            for (e, &y) in (lo..hi).zip(&successor[lo..hi]) {
+                let slot = &mut fill[y as usize];
+                reverse[*slot as usize] = (x as u32, e as u32);
                 *slot += 1;
             }
         }
@@ -109,8 +145,7 @@ impl<V: CostValue, U> Graph<V, U> {
             successor,
             cost,
             rfirst,
-            redge,
-            rsource,
+            reverse,
             is_goal,
             initial: initial as u32,
             origin,
@@ -167,10 +202,30 @@ impl<V: CostValue, U> Graph<V, U> {
     #[inline]
     pub fn in_edges(&self, v: usize) -> impl Iterator<Item = (usize, &V)> + '_ {
         let range = self.rfirst[v] as usize..self.rfirst[v + 1] as usize;
-        self.redge[range.clone()]
+        self.reverse[range]
             .iter()
-            .zip(&self.rsource[range])
-            .map(move |(&e, &x)| (x as usize, &self.cost[e as usize]))
+            .map(move |&(x, e)| (x as usize, &self.cost[e as usize]))
+    }
+
+    /// The flat indices of `v`'s moves: move `k` of `v` is edge `edge_range(v).start + k` of
+    /// [`Graph::edge`]'s numbering (all moves of node 0 first, then node 1, ...).
+    #[inline]
+    pub fn edge_range(&self, v: usize) -> core::ops::Range<usize> {
+        self.first[v] as usize..self.first[v + 1] as usize
+    }
+
+    /// Edge `e` in the flat numbering of [`Graph::edge_range`]: `(successor, cost)`.
+    #[inline]
+    pub fn edge(&self, e: usize) -> (usize, &V) {
+        (self.successor[e] as usize, &self.cost[e])
+    }
+
+    /// The compressed sparse rows themselves: `(first, successor, cost)`, where the moves of
+    /// `v` are `successor[first[v]..first[v + 1]]` with their costs (for tight loops over
+    /// many nodes; [`Graph::edge`]'s numbering).
+    #[inline]
+    pub fn compressed_rows(&self) -> (&[u32], &[u32], &[V]) {
+        (&self.first, &self.successor, &self.cost)
     }
 
     /// Raw successor slice and cost slice of `v` (for tight inner loops).

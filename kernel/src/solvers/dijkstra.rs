@@ -5,11 +5,12 @@
 //! * [`from_initial`] — forwards from `x1`, stopping when a goal is popped: the paper's code
 //!   (SPEC §7). It gives `G*(x1)` and one optimal path.
 //!
-//! Both use a binary heap ordered by (distance, insertion counter). A popped entry whose node
+//! Both use a binary heap ordered by (distance, insertion counter); for value types with an
+//! order key (`Units`, `f64`) each entry is one machine integer. A popped entry whose node
 //! is already settled (stale) still counts as a pop; every neighbour examined from a settled
 //! node counts as a relaxation. Preconditions: costs `>= 0`.
 
-use std::cmp::Ordering;
+use std::cmp::{Ordering, Reverse};
 use std::collections::BinaryHeap;
 
 use super::{greedy_policy, Solution};
@@ -24,6 +25,22 @@ pub struct DijkstraCounts {
     /// Neighbours examined.
     pub relaxations: u64,
 }
+
+/// The search frontier: a priority queue of entries (distance, insertion counter, node) that
+/// pops the smallest (distance, counter). Counters are distinct, so the order is total and
+/// every implementation pops the same sequence.
+trait Frontier<V> {
+    /// An empty frontier with room for `capacity` entries.
+    fn with_capacity(capacity: usize) -> Self;
+    /// Inserts an entry.
+    fn push(&mut self, dist: &V, counter: u64, node: u32);
+    /// Removes the smallest entry and returns its node.
+    fn pop(&mut self) -> Option<u32>;
+}
+
+/// The frontier for any value type: a binary heap of entries compared with
+/// [`CostValue::compare`].
+struct Compared<V>(BinaryHeap<Entry<V>>);
 
 struct Entry<V> {
     dist: V,
@@ -52,6 +69,49 @@ impl<V: CostValue> Ord for Entry<V> {
     }
 }
 
+impl<V: CostValue> Frontier<V> for Compared<V> {
+    fn with_capacity(capacity: usize) -> Self {
+        Compared(BinaryHeap::with_capacity(capacity))
+    }
+    #[inline]
+    fn push(&mut self, dist: &V, counter: u64, node: u32) {
+        self.0.push(Entry {
+            dist: dist.clone(),
+            counter,
+            node,
+        });
+    }
+    #[inline]
+    fn pop(&mut self) -> Option<u32> {
+        self.0.pop().map(|entry| entry.node)
+    }
+}
+
+/// The frontier for value types with an [`CostValue::order_key`]: one `u128` per entry,
+/// `key · 2^64 + counter · 2^32 + node`, so that integer order is (distance, counter) order
+/// (the node never decides: counters are distinct). Needs counters below `2^32`.
+struct Keyed(BinaryHeap<Reverse<u128>>);
+
+impl<V: CostValue> Frontier<V> for Keyed {
+    fn with_capacity(capacity: usize) -> Self {
+        Keyed(BinaryHeap::with_capacity(capacity))
+    }
+    #[inline]
+    fn push(&mut self, dist: &V, counter: u64, node: u32) {
+        let key = dist
+            .order_key()
+            .expect("Keyed is used only with order keys");
+        debug_assert!(counter < 1 << 32);
+        self.0.push(Reverse(
+            u128::from(key) << 64 | u128::from(counter) << 32 | u128::from(node),
+        ));
+    }
+    #[inline]
+    fn pop(&mut self) -> Option<u32> {
+        self.0.pop().map(|Reverse(entry)| entry as u32)
+    }
+}
+
 /// Result of the core: distances, predecessor on the search tree, counts.
 struct Search<V> {
     dist: Vec<V>,
@@ -60,29 +120,46 @@ struct Search<V> {
     counts: DijkstraCounts,
 }
 
-/// The core. `neighbours(v, visit)` calls `visit(w, cost)` for every neighbour in order.
-fn run<V: CostValue>(
+/// The core. `neighbours(v)` lists `v`'s neighbours `(w, cost)` in order (the concrete
+/// iterator type lets the compiler inline the relaxation loop); `max_pushes` bounds the
+/// entries ever pushed (sources plus moves). Picks the [`Keyed`] frontier when the value type
+/// has order keys and the counters fit, [`Compared`] otherwise: both pop the same sequence.
+fn run<'g, V: CostValue, I: Iterator<Item = (usize, &'g V)>>(
     n: usize,
     sources: &[usize],
-    mut neighbours: impl FnMut(usize, &mut dyn FnMut(usize, &V)),
+    max_pushes: usize,
+    neighbours: impl Fn(usize) -> I,
+    is_target: impl Fn(usize) -> bool,
+) -> Search<V> {
+    if V::zero().order_key().is_some() && max_pushes < 1 << 32 {
+        search::<V, Keyed, I>(n, sources, neighbours, is_target)
+    } else {
+        search::<V, Compared<V>, I>(n, sources, neighbours, is_target)
+    }
+}
+
+/// Dijkstra over frontier `F`. When a node is popped for the first time its entry is the
+/// smallest of its entries, whose distance is the node's current `dist` (entries are pushed
+/// only when `dist` strictly decreases, and never after the node is settled); so the
+/// frontier only needs to return the node.
+fn search<'g, V: CostValue, F: Frontier<V>, I: Iterator<Item = (usize, &'g V)>>(
+    n: usize,
+    sources: &[usize],
+    neighbours: impl Fn(usize) -> I,
     is_target: impl Fn(usize) -> bool,
 ) -> Search<V> {
     let mut dist = vec![V::infinity(); n];
     let mut parent = vec![u32::MAX; n];
     let mut settled = vec![false; n];
-    let mut heap = BinaryHeap::new();
+    let mut heap = F::with_capacity(n);
     let mut counter = 0u64;
     let mut counts = DijkstraCounts::default();
     for &s in sources {
         dist[s] = V::zero();
-        heap.push(Entry {
-            dist: V::zero(),
-            counter,
-            node: s as u32,
-        });
+        heap.push(&V::zero(), counter, s as u32);
         counter += 1;
     }
-    while let Some(Entry { dist: d, node, .. }) = heap.pop() {
+    while let Some(node) = heap.pop() {
         counts.pops += 1;
         let v = node as usize;
         if settled[v] {
@@ -97,20 +174,21 @@ fn run<V: CostValue>(
                 counts,
             };
         }
-        neighbours(v, &mut |w, c| {
+        let d = dist[v].clone();
+        for (w, c) in neighbours(v) {
             counts.relaxations += 1;
+            // A settled neighbour is examined (counted) but can never improve.
+            if settled[w] {
+                continue;
+            }
             let nd = d.plus(c);
-            if !settled[w] && nd.compare(&dist[w]) == Ordering::Less {
-                dist[w] = nd.clone();
+            if nd.compare(&dist[w]) == Ordering::Less {
+                heap.push(&nd, counter, w as u32);
+                dist[w] = nd;
                 parent[w] = v as u32;
-                heap.push(Entry {
-                    dist: nd,
-                    counter,
-                    node: w as u32,
-                });
                 counter += 1;
             }
-        });
+        }
     }
     Search {
         dist,
@@ -134,11 +212,8 @@ pub fn to_goals<V: CostValue, U>(graph: &Graph<V, U>) -> Solution<V> {
     let search = run(
         graph.nodes(),
         &graph.goals(),
-        |v, visit| {
-            for (x, c) in graph.in_edges(v) {
-                visit(x, c);
-            }
-        },
+        graph.nodes() + graph.edge_count(),
+        |v| graph.in_edges(v),
         |_| false,
     );
     let policy = greedy_policy(graph, &search.dist);
@@ -175,11 +250,8 @@ pub fn from_initial<V: CostValue, U>(graph: &Graph<V, U>) -> ForwardSearch<V> {
     let search = run(
         graph.nodes(),
         &[graph.initial()],
-        |v, visit| {
-            for (y, c) in graph.edges(v) {
-                visit(y, c);
-            }
-        },
+        1 + graph.edge_count(),
+        |v| graph.edges(v),
         |v| graph.is_goal(v),
     );
     match search.reached_target {

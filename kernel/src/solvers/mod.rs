@@ -11,7 +11,6 @@ pub mod policy_evaluation;
 pub mod value_iteration;
 
 use std::cmp::Ordering;
-use std::collections::VecDeque;
 
 use crate::model::{Decision, Graph};
 use crate::value::CostValue;
@@ -56,19 +55,22 @@ pub fn greedy_policy<V: CostValue, U>(
             && c.plus(&cost_to_go[y]).compare(&cost_to_go[x]) == Ordering::Equal
     };
     // h: shortest number of optimal moves to a goal (backward BFS over tight edges).
+    // The queue is a vector read from `head` (every node enters at most once).
     let mut h = vec![u32::MAX; n];
-    let mut queue = VecDeque::new();
+    let mut queue: Vec<usize> = Vec::with_capacity(n);
     for (v, hv) in h.iter_mut().enumerate() {
         if graph.is_goal(v) {
             *hv = 0;
-            queue.push_back(v);
+            queue.push(v);
         }
     }
-    while let Some(y) = queue.pop_front() {
+    let mut head = 0;
+    while let Some(&y) = queue.get(head) {
+        head += 1;
         for (x, c) in graph.in_edges(y) {
             if h[x] == u32::MAX && tight(x, y, c) {
                 h[x] = h[y] + 1;
-                queue.push_back(x);
+                queue.push(x);
             }
         }
     }

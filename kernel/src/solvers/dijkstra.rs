@@ -14,7 +14,7 @@ use std::cmp::{Ordering, Reverse};
 use std::collections::BinaryHeap;
 
 use super::{greedy_policy, Solution};
-use crate::model::Graph;
+use crate::model::{Decision, Graph};
 use crate::value::CostValue;
 
 /// Work counted by a Dijkstra run.
@@ -216,13 +216,51 @@ pub fn to_goals<V: CostValue, U>(graph: &Graph<V, U>) -> Solution<V> {
         |v| graph.in_edges(v),
         |_| false,
     );
-    let policy = greedy_policy(graph, &search.dist);
+    let policy = if V::EXACT && all_costs_positive(graph) {
+        first_tight_moves(graph, &search.dist)
+    } else {
+        greedy_policy(graph, &search.dist)
+    };
     Solution {
         cost_to_go: search.dist,
         policy,
         iterations: search.counts.pops,
         actions: search.counts.relaxations,
     }
+}
+
+/// Whether every move costs more than 0.
+fn all_costs_positive<V: CostValue, U>(graph: &Graph<V, U>) -> bool {
+    let zero = V::zero();
+    graph
+        .compressed_rows()
+        .2
+        .iter()
+        .all(|c| c.compare(&zero) == Ordering::Greater)
+}
+
+/// [`greedy_policy`] for an **exact** cost-to-go `G*` that Dijkstra computed on a graph whose
+/// moves all cost more than 0, in one pass: the first move `x → y` in order with
+/// `l(x,u) + G*(y) = G*(x)`. The two agree: such a move has `G*(y) = G*(x) − l < G*(x)`, so
+/// it makes progress; and every non-goal `x` with finite `G*(x)` has one (its Dijkstra
+/// parent move, exact arithmetic), so following them strictly decreases `G*` and reaches a
+/// goal, i.e. `greedy_policy`'s `h(x)` is finite exactly where `G*(x)` is.
+fn first_tight_moves<V: CostValue, U>(graph: &Graph<V, U>, g: &[V]) -> Vec<Option<Decision>> {
+    (0..graph.nodes())
+        .map(|x| {
+            if graph.is_goal(x) {
+                return Some(Decision::Terminate);
+            }
+            if !g[x].is_finite() {
+                return None;
+            }
+            let (succ, cost) = graph.edge_slices(x);
+            succ.iter()
+                .zip(cost)
+                .position(|(&y, c)| c.plus(&g[y as usize]).compare(&g[x]) == Ordering::Equal)
+                .map(Decision::Move)
+        })
+        .collect()
 }
 
 /// Forward Dijkstra from `x1` that stops when a goal is popped (the paper's code, SPEC §7).
@@ -273,6 +311,43 @@ pub fn from_initial<V: CostValue, U>(graph: &Graph<V, U>) -> ForwardSearch<V> {
                 path,
                 counts: search.counts,
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::value::Units;
+
+    /// A small deterministic generator (xorshift64*), enough to draw test graphs.
+    struct Draw(u64);
+    impl Draw {
+        fn below(&mut self, n: u64) -> u64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) % n
+        }
+    }
+
+    #[test]
+    fn the_one_pass_policy_is_greedy_policy_on_positive_exact_costs() {
+        let mut draw = Draw(0x0123_4567_89AB_CDEF);
+        for case in 0..3000 {
+            let n = 1 + draw.below(10) as usize;
+            let mut adjacency: Vec<Vec<(usize, Units)>> = vec![Vec::new(); n];
+            for _ in 0..draw.below(4 * n as u64 + 1) {
+                let x = draw.below(n as u64) as usize;
+                let y = draw.below(n as u64) as usize;
+                // Few distinct costs: many ties between optimal moves.
+                adjacency[x].push((y, Units(1 + draw.below(3))));
+            }
+            let goals: Vec<usize> = (0..n).filter(|_| draw.below(4) == 0).collect();
+            let g = Graph::from_adjacency(adjacency, 0, &goals, (0..n).collect(), ());
+            assert!(all_costs_positive(&g));
+            let s = to_goals(&g);
+            assert_eq!(s.policy, greedy_policy(&g, &s.cost_to_go), "case {case}");
         }
     }
 }

@@ -22,6 +22,28 @@ pub enum Decision {
     Terminate,
 }
 
+/// The moves into each node of a [`Graph`] (from [`Graph::in_edges`]).
+#[derive(Clone, Debug)]
+pub struct InEdges<'g, V> {
+    rfirst: Vec<u32>,
+    /// For each reverse entry: the source node of the forward edge it mirrors, and that
+    /// edge's index.
+    reverse: Vec<(u32, u32)>,
+    cost: &'g [V],
+}
+
+impl<'g, V> InEdges<'g, V> {
+    /// The moves into `v`: `(source, cost)`, sources in forward-edge order.
+    #[inline]
+    pub fn of(&self, v: usize) -> impl Iterator<Item = (usize, &'g V)> + '_ {
+        let range = self.rfirst[v] as usize..self.rfirst[v + 1] as usize;
+        let cost = self.cost;
+        self.reverse[range]
+            .iter()
+            .map(move |&(x, e)| (x as usize, &cost[e as usize]))
+    }
+}
+
 /// A planning graph in compressed sparse row form, generic over the value type `V` and the
 /// type `U` of the exact value of one unit of `V` (`()` when nobody needs it).
 ///
@@ -33,10 +55,6 @@ pub struct Graph<V, U = ()> {
     first: Vec<u32>,
     successor: Vec<u32>,
     cost: Vec<V>,
-    rfirst: Vec<u32>,
-    /// For each reverse entry: the source node of the forward edge it mirrors, and that
-    /// edge's index.
-    reverse: Vec<(u32, u32)>,
     is_goal: Vec<bool>,
     initial: u32,
     origin: Vec<StateId>,
@@ -93,7 +111,7 @@ impl<V: CostValue, U> Graph<V, U> {
     /// let g = Graph::<f64>::from_csr(vec![0, 1, 2], vec![1, 0], vec![1.0, 2.0], 0, &[1],
     ///     vec![0, 1], ());
     /// assert_eq!(g.edges(1).collect::<Vec<_>>(), vec![(0, &2.0)]);
-    /// assert_eq!(g.in_edges(0).collect::<Vec<_>>(), vec![(1, &2.0)]);
+    /// assert_eq!(g.in_edges().of(0).collect::<Vec<_>>(), vec![(1, &2.0)]);
     /// ```
     pub fn from_csr(
         first: Vec<u32>,
@@ -107,35 +125,20 @@ impl<V: CostValue, U> Graph<V, U> {
         assert!(!first.is_empty(), "first has one entry per node plus one");
         let n = first.len() - 1;
         assert!(n < u32::MAX as usize && initial < n && origin.len() == n);
+        // Branch-free folds (they vectorise): the checks cost little next to the graph.
+        let rows_ordered = first.windows(2).fold(true, |ok, w| ok & (w[0] <= w[1]));
         assert!(
             first[0] == 0
-                && first.windows(2).all(|w| w[0] <= w[1])
+                && rows_ordered
                 && first[n] as usize == successor.len()
                 && successor.len() == cost.len(),
             "malformed compressed rows"
         );
+        let largest = successor.iter().fold(0, |m, &y| m.max(y));
         assert!(
-            successor.iter().all(|&y| (y as usize) < n),
+            successor.is_empty() || (largest as usize) < n,
             "successor out of range"
         );
-        // Reverse CSR by counting sort; within a target, sources appear in forward-edge order.
-        let mut rfirst = vec![0u32; n + 1];
-        for &y in &successor {
-            rfirst[y as usize + 1] += 1;
-        }
-        for i in 0..n {
-            rfirst[i + 1] += rfirst[i];
-        }
-        let mut fill = rfirst[..n].to_vec();
-        let mut reverse = vec![(0u32, 0u32); successor.len()];
-        for (x, bounds) in first.windows(2).enumerate() {
-            let (lo, hi) = (bounds[0] as usize, bounds[1] as usize);
-            for (e, &y) in (lo..hi).zip(&successor[lo..hi]) {
-                let slot = &mut fill[y as usize];
-                reverse[*slot as usize] = (x as u32, e as u32);
-                *slot += 1;
-            }
-        }
         let mut is_goal = vec![false; n];
         for &g in goals {
             is_goal[g] = true;
@@ -144,8 +147,6 @@ impl<V: CostValue, U> Graph<V, U> {
             first,
             successor,
             cost,
-            rfirst,
-            reverse,
             is_goal,
             initial: initial as u32,
             origin,
@@ -198,13 +199,43 @@ impl<V: CostValue, U> Graph<V, U> {
             .map(|(&y, c)| (y as usize, c))
     }
 
-    /// The moves into `v`: `(source, cost)`, sources in forward-edge order.
-    #[inline]
-    pub fn in_edges(&self, v: usize) -> impl Iterator<Item = (usize, &V)> + '_ {
-        let range = self.rfirst[v] as usize..self.rfirst[v + 1] as usize;
-        self.reverse[range]
-            .iter()
-            .map(move |&(x, e)| (x as usize, &self.cost[e as usize]))
+    /// The moves into every node (the reverse compressed rows), built now by a counting sort
+    /// over the moves: build it once and query it for many nodes.
+    ///
+    /// ```
+    /// use truecost_kernel::model::Graph;
+    /// // 0 -> 1 (cost 1), 2 -> 1 (cost 3), 1 -> 0 (cost 2)
+    /// let g = Graph::<f64>::from_adjacency(vec![vec![(1, 1.0)], vec![(0, 2.0)], vec![(1, 3.0)]],
+    ///     0, &[1], vec![0, 1, 2], ());
+    /// let incoming = g.in_edges();
+    /// assert_eq!(incoming.of(1).collect::<Vec<_>>(), vec![(0, &1.0), (2, &3.0)]);
+    /// assert_eq!(incoming.of(2).count(), 0);
+    /// ```
+    pub fn in_edges(&self) -> InEdges<'_, V> {
+        let n = self.nodes();
+        // Within a target, sources appear in forward-edge order.
+        let mut rfirst = vec![0u32; n + 1];
+        for &y in &self.successor {
+            rfirst[y as usize + 1] += 1;
+        }
+        for i in 0..n {
+            rfirst[i + 1] += rfirst[i];
+        }
+        let mut fill = rfirst[..n].to_vec();
+        let mut reverse = vec![(0u32, 0u32); self.successor.len()];
+        for (x, bounds) in self.first.windows(2).enumerate() {
+            let (lo, hi) = (bounds[0] as usize, bounds[1] as usize);
+            for (e, &y) in (lo..hi).zip(&self.successor[lo..hi]) {
+                let slot = &mut fill[y as usize];
+                reverse[*slot as usize] = (x as u32, e as u32);
+                *slot += 1;
+            }
+        }
+        InEdges {
+            rfirst,
+            reverse,
+            cost: &self.cost,
+        }
     }
 
     /// The flat indices of `v`'s moves: move `k` of `v` is edge `edge_range(v).start + k` of

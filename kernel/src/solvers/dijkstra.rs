@@ -13,7 +13,7 @@
 use std::cmp::{Ordering, Reverse};
 use std::collections::BinaryHeap;
 
-use super::{greedy_policy, Solution};
+use super::{greedy_policy_over, Solution};
 use crate::model::{Decision, Graph};
 use crate::value::CostValue;
 
@@ -209,17 +209,18 @@ fn search<'g, V: CostValue, F: Frontier<V>, I: Iterator<Item = (usize, &'g V)>>(
 /// assert_eq!(dijkstra::to_goals(&g).cost_to_go, vec![2.0, 1.0, 0.0]);
 /// ```
 pub fn to_goals<V: CostValue, U>(graph: &Graph<V, U>) -> Solution<V> {
+    let incoming = graph.in_edges();
     let search = run(
         graph.nodes(),
         &graph.goals(),
         graph.nodes() + graph.edge_count(),
-        |v| graph.in_edges(v),
+        |v| incoming.of(v),
         |_| false,
     );
     let policy = if V::EXACT && all_costs_positive(graph) {
         first_tight_moves(graph, &search.dist)
     } else {
-        greedy_policy(graph, &search.dist)
+        greedy_policy_over(graph, &incoming, &search.dist)
     };
     Solution {
         cost_to_go: search.dist,
@@ -347,7 +348,11 @@ mod tests {
             let g = Graph::from_adjacency(adjacency, 0, &goals, (0..n).collect(), ());
             assert!(all_costs_positive(&g));
             let s = to_goals(&g);
-            assert_eq!(s.policy, greedy_policy(&g, &s.cost_to_go), "case {case}");
+            assert_eq!(
+                s.policy,
+                crate::solvers::greedy_policy(&g, &s.cost_to_go),
+                "case {case}"
+            );
         }
     }
 }

@@ -12,7 +12,7 @@ pub mod value_iteration;
 
 use std::cmp::Ordering;
 
-use crate::model::{Decision, Graph};
+use crate::model::{Decision, Graph, InEdges};
 use crate::value::CostValue;
 
 /// The answer of a planner on a graph (node numbering of that graph).
@@ -49,6 +49,15 @@ pub fn greedy_policy<V: CostValue, U>(
     graph: &Graph<V, U>,
     cost_to_go: &[V],
 ) -> Vec<Option<Decision>> {
+    greedy_policy_over(graph, &graph.in_edges(), cost_to_go)
+}
+
+/// [`greedy_policy`] with the graph's moves into each node already built.
+pub(crate) fn greedy_policy_over<V: CostValue, U>(
+    graph: &Graph<V, U>,
+    incoming: &InEdges<'_, V>,
+    cost_to_go: &[V],
+) -> Vec<Option<Decision>> {
     let n = graph.nodes();
     let tight = |x: usize, y: usize, c: &V| {
         cost_to_go[x].is_finite()
@@ -67,7 +76,7 @@ pub fn greedy_policy<V: CostValue, U>(
     let mut head = 0;
     while let Some(&y) = queue.get(head) {
         head += 1;
-        for (x, c) in graph.in_edges(y) {
+        for (x, c) in incoming.of(y) {
             if h[x] == u32::MAX && tight(x, y, c) {
                 h[x] = h[y] + 1;
                 queue.push(x);

@@ -22,6 +22,61 @@ pub enum Decision {
     Terminate,
 }
 
+/// `Graph::partner` of a move without a reverse partner.
+pub(crate) const NO_PARTNER: u32 = u32::MAX;
+
+/// The reverse partner of every move ([`Graph::reverse_move`]) in `O(moves + nodes)`: the
+/// moves into `x` from `y` are contiguous in `x`'s reverse rows, in `y`'s order, so the
+/// `k`-th move `x → y` pairs with the `k`-th of them.
+fn reverse_partners(first: &[u32], successor: &[u32]) -> Vec<u32> {
+    let n = first.len() - 1;
+    // The moves into each node, `(source, move)` in forward order (counting sort).
+    let mut rfirst = vec![0u32; n + 1];
+    for &y in successor {
+        rfirst[y as usize + 1] += 1;
+    }
+    for i in 0..n {
+        rfirst[i + 1] += rfirst[i];
+    }
+    let mut fill = rfirst[..n].to_vec();
+    let mut incoming = vec![(0u32, 0u32); successor.len()];
+    for (x, bounds) in first.windows(2).enumerate() {
+        for e in bounds[0] as usize..bounds[1] as usize {
+            let slot = &mut fill[successor[e] as usize];
+            incoming[*slot as usize] = (x as u32, e as u32);
+            *slot += 1;
+        }
+    }
+    let mut partner = vec![NO_PARTNER; successor.len()];
+    // Per source `y` while `x` is handled: where its moves into `x` start, how many are used.
+    let mut group = vec![u32::MAX; n];
+    let mut used = vec![0u32; n];
+    for x in 0..n {
+        let ins = &incoming[rfirst[x] as usize..rfirst[x + 1] as usize];
+        for (i, &(y, _)) in ins.iter().enumerate().rev() {
+            group[y as usize] = i as u32;
+        }
+        for e in first[x] as usize..first[x + 1] as usize {
+            let y = successor[e] as usize;
+            if y == x || group[y] == u32::MAX {
+                continue;
+            }
+            let i = (group[y] + used[y]) as usize;
+            used[y] += 1;
+            if let Some(&(source, r)) = ins.get(i) {
+                if source as usize == y {
+                    partner[e] = r;
+                }
+            }
+        }
+        for &(y, _) in ins {
+            group[y as usize] = u32::MAX;
+            used[y as usize] = 0;
+        }
+    }
+    partner
+}
+
 /// The moves into each node of a [`Graph`] (from [`Graph::in_edges`]).
 #[derive(Clone, Debug)]
 pub struct InEdges<'g, V> {
@@ -55,6 +110,9 @@ pub struct Graph<V, U = ()> {
     first: Vec<u32>,
     successor: Vec<u32>,
     cost: Vec<V>,
+    /// Per move: the flat index of its reverse partner ([`Graph::reverse_move`]), or
+    /// `NO_PARTNER`.
+    partner: Vec<u32>,
     is_goal: Vec<bool>,
     initial: u32,
     origin: Vec<StateId>,
@@ -122,6 +180,42 @@ impl<V: CostValue, U> Graph<V, U> {
         origin: Vec<StateId>,
         unit: U,
     ) -> Self {
+        Self::check_rows(&first, &successor, &cost, initial, &origin);
+        let partner = reverse_partners(&first, &successor);
+        Self::assemble(
+            first, successor, cost, partner, initial, goals, origin, unit,
+        )
+    }
+
+    /// [`Graph::from_csr`] with the moves' reverse partners already known (exploration
+    /// records them as it discovers the moves). Precondition: `partner` is what
+    /// [`Graph::reverse_move`] defines for these rows (checked in debug builds).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn from_csr_paired(
+        first: Vec<u32>,
+        successor: Vec<u32>,
+        cost: Vec<V>,
+        partner: Vec<u32>,
+        initial: usize,
+        goals: &[usize],
+        origin: Vec<StateId>,
+        unit: U,
+    ) -> Self {
+        Self::check_rows(&first, &successor, &cost, initial, &origin);
+        debug_assert!(partner == reverse_partners(&first, &successor));
+        Self::assemble(
+            first, successor, cost, partner, initial, goals, origin, unit,
+        )
+    }
+
+    /// The preconditions of [`Graph::from_csr`] (panics otherwise).
+    fn check_rows(
+        first: &[u32],
+        successor: &[u32],
+        cost: &[V],
+        initial: usize,
+        origin: &[StateId],
+    ) {
         assert!(!first.is_empty(), "first has one entry per node plus one");
         let n = first.len() - 1;
         assert!(n < u32::MAX as usize && initial < n && origin.len() == n);
@@ -139,6 +233,20 @@ impl<V: CostValue, U> Graph<V, U> {
             successor.is_empty() || (largest as usize) < n,
             "successor out of range"
         );
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn assemble(
+        first: Vec<u32>,
+        successor: Vec<u32>,
+        cost: Vec<V>,
+        partner: Vec<u32>,
+        initial: usize,
+        goals: &[usize],
+        origin: Vec<StateId>,
+        unit: U,
+    ) -> Self {
+        let n = first.len() - 1;
         let mut is_goal = vec![false; n];
         for &g in goals {
             is_goal[g] = true;
@@ -147,6 +255,7 @@ impl<V: CostValue, U> Graph<V, U> {
             first,
             successor,
             cost,
+            partner,
             is_goal,
             initial: initial as u32,
             origin,
@@ -243,6 +352,24 @@ impl<V: CostValue, U> Graph<V, U> {
     #[inline]
     pub fn edge_range(&self, v: usize) -> core::ops::Range<usize> {
         self.first[v] as usize..self.first[v + 1] as usize
+    }
+
+    /// The reverse partner of move `e` (flat numbering), if it has one: the `k`-th move
+    /// `x → y` among `x`'s moves to `y` pairs with the `k`-th move `y → x` among `y`'s moves to
+    /// `x`; a self-loop and a move with no such reverse have none. The pairing is symmetric.
+    ///
+    /// ```
+    /// use truecost_kernel::model::Graph;
+    /// // 0 -> 1 twice, 1 -> 0 once, 1 -> 1
+    /// let g = Graph::<f64>::from_adjacency(vec![vec![(1, 1.0), (1, 2.0)], vec![(1, 0.0), (0, 1.0)]],
+    ///     0, &[1], vec![0, 1], ());
+    /// assert_eq!((g.reverse_move(0), g.reverse_move(3)), (Some(3), Some(0)));
+    /// assert_eq!((g.reverse_move(1), g.reverse_move(2)), (None, None));
+    /// ```
+    #[inline]
+    pub fn reverse_move(&self, e: usize) -> Option<usize> {
+        let r = self.partner[e];
+        (r != NO_PARTNER).then_some(r as usize)
     }
 
     /// Edge `e` in the flat numbering of [`Graph::edge_range`]: `(successor, cost)`.

@@ -14,7 +14,7 @@
 //! grids; on a directed problem the walk still discovers every move reachable from `x1`, but the
 //! steps back are an idealisation (they are free and uncounted, as in the paper's code).
 
-use crate::model::Graph;
+use crate::model::{Graph, NO_PARTNER};
 use crate::value::CostValue;
 
 /// The outcome of exploring from `x1`.
@@ -104,6 +104,11 @@ struct Walk<'g, V, U> {
     successor: Vec<u32>,
     /// Per slot: the move's cost (`V::zero()` until recorded); sized like `successor`.
     cost: Vec<V>,
+    /// Per slot: the slot of the move's reverse partner. Moves are paired as in the explored
+    /// graph, and the pairs keep their relative order in both rows (the `k`-th pair of `x` and
+    /// `y` is recorded before the `k + 1`-th: the scans of both rows are in order), so this is
+    /// the discovered graph's own pairing ([`Graph::reverse_move`]).
+    partner: Vec<u32>,
 }
 
 impl<'g, V: CostValue, U: Clone> Walk<'g, V, U> {
@@ -129,6 +134,7 @@ impl<'g, V: CostValue, U: Clone> Walk<'g, V, U> {
             first,
             successor: vec![0; m],
             cost: vec![V::zero(); m],
+            partner: vec![NO_PARTNER; m],
         }
     }
 
@@ -165,44 +171,25 @@ impl<'g, V: CostValue, U: Clone> Walk<'g, V, U> {
         if self.nodes[y].index == UNSEEN {
             self.appear(y);
         }
-        self.record(x, y, e);
-        if let Some(r) = self.reverse_partner(x, lo, e, y) {
+        let forward = self.record(x, y, e);
+        if let Some(r) = self.graph.reverse_move(e) {
             self.tried[r] = true;
-            self.record(y, x, r);
+            let backward = self.record(y, x, r);
+            self.partner[forward] = backward as u32;
+            self.partner[backward] = forward as u32;
         }
         Some(y as u32)
     }
 
     /// Records the explored graph's move `e`, from `x` to `y` (both discovered), in `x`'s
-    /// discovered row.
+    /// discovered row; returns its slot.
     #[inline]
-    fn record(&mut self, x: usize, y: usize, e: usize) {
+    fn record(&mut self, x: usize, y: usize, e: usize) -> usize {
         let s = self.nodes[x].fill as usize;
         self.nodes[x].fill += 1;
         self.successor[s] = self.nodes[y].index;
         self.cost[s] = self.weight[e].clone();
-    }
-
-    /// The flat index of the reverse partner of move `e` (`x → y`, the moves of `x` start at
-    /// `lo`), or `None` for a self-loop or a move without a reverse: the `k`-th move `x → y`
-    /// among `x`'s moves to `y` pairs with the `k`-th move `y → x` among `y`'s moves to `x`.
-    /// The pairing is symmetric.
-    #[inline]
-    fn reverse_partner(&self, x: usize, lo: usize, e: usize, y: usize) -> Option<usize> {
-        if x == y {
-            return None;
-        }
-        let rank = self.target[lo..e]
-            .iter()
-            .filter(|&&z| z as usize == y)
-            .count();
-        let (ylo, yhi) = (self.row[y] as usize, self.row[y + 1] as usize);
-        self.target[ylo..yhi]
-            .iter()
-            .enumerate()
-            .filter(|&(_, &z)| z as usize == x)
-            .nth(rank)
-            .map(|(j, _)| ylo + j)
+        s
     }
 
     /// The discovered graph and the counts.
@@ -215,12 +202,14 @@ impl<'g, V: CostValue, U: Clone> Walk<'g, V, U> {
             first,
             mut successor,
             mut cost,
+            mut partner,
             ..
         } = self;
         debug_assert!((0..order.len()).all(|i| nodes[order[i]].fill == first[i + 1]));
         let recorded = *first.last().expect("first is never empty") as usize;
         successor.truncate(recorded);
         cost.truncate(recorded);
+        partner.truncate(recorded);
         let goals: Vec<usize> = (0..order.len())
             .filter(|&i| graph.is_goal(order[i]))
             .collect();
@@ -230,10 +219,11 @@ impl<'g, V: CostValue, U: Clone> Walk<'g, V, U> {
             .map(|node| (node.index != UNSEEN).then_some(node.index as usize))
             .collect();
         Exploration {
-            graph: Graph::from_csr(
+            graph: Graph::from_csr_paired(
                 first,
                 successor,
                 cost,
+                partner,
                 0,
                 &goals,
                 origin,

@@ -1,8 +1,9 @@
 //! Benchmarks of the model-free planners on Problem 10 of the paper.
 //!
-//! Every benchmark times the whole model-free pipeline of SPEC §2: the depth-first exploration
-//! from `x1` followed by one planner on the discovered graph. Compiling the problem into a graph
-//! happens once, outside the timed loop.
+//! Every benchmark times exactly the timed region of the experiments' model-free rows,
+//! [`model_free_counts`] (SPEC §2 "model-free variants", issue 13 item 1): the depth-first
+//! exploration from `x1`, one planner on the discovered graph, and its path. Compiling the
+//! problem into a graph happens once, outside the timed loop.
 //!
 //! * `model_free/<planner>/exact` — unit step costs, exact `Units` values; Dijkstra backwards
 //!   from the goals, value iteration to its fixed point.
@@ -10,21 +11,34 @@
 //! * `model_free/<planner>/reference` — the reference mode of SPEC §7 (`f64`): forward
 //!   Dijkstra from `x1`, value iteration capped at 1000 sweeps.
 //!
-//! Issue targets: Dijkstra ≤ 100 µs, asynchronous VI ≤ 1.5 ms, synchronous VI ≤ 1.25 ms.
+//! Issue 12 item 5 targets ≥ 150× the paper's Python code measured on the same machine
+//! (`docs/speed.md`): model-free Dijkstra ≤ 15 µs, asynchronous VI ≤ 200 µs, synchronous VI
+//! ≤ 200 µs.
 //!
-//! Run with `cargo bench --bench planners`.
+//! Run with `cargo bench --bench planners`. For instruction counts, which the load of other
+//! processes does not change, set `TRUECOST_BENCH_ITERATIONS=N`: the binary then runs every
+//! pipeline `N` times without criterion and exits (`TRUECOST_BENCH_ONLY=dijkstra/reference`
+//! runs one of them), so that
+//! `valgrind --tool=callgrind target/release/deps/planners-… --bench` at two values of `N` gives
+//! the instructions of one run as a difference (`docs/speed.md`).
 
 use std::time::Duration;
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use truecost::model::{ExactGraph, Graph};
+use truecost::planning::{model_free_counts, Algorithm, Mode};
 use truecost::problems::{GridLayout, StepCost};
-use truecost::solvers::value_iteration::{value_iteration, Schedule};
-use truecost::solvers::{dijkstra, exploration::explore};
 use truecost::value::{CostValue, Units};
 
 /// The problem every benchmark runs on.
 const PROBLEM: usize = 10;
+
+/// The planners, with their benchmark names.
+const PLANNERS: [(&str, Algorithm); 3] = [
+    ("dijkstra", Algorithm::Dijkstra),
+    ("async_vi", Algorithm::AsyncVi),
+    ("sync_vi", Algorithm::Vi),
+];
 
 /// Problem 10 compiled exactly; the grid problems always fit the `Units` representation.
 fn exact_graph(step: StepCost) -> Graph<Units> {
@@ -42,77 +56,61 @@ fn reference_graph() -> Graph<f64> {
         .to_reference_graph()
 }
 
-/// Explore, then Dijkstra backwards from the goals (exact mode).
-fn explore_then_dijkstra_to_goals<V: CostValue>(graph: &Graph<V>) -> u64 {
-    let exploration = explore(graph);
-    let solution = dijkstra::to_goals(&exploration.graph);
-    black_box(&solution.cost_to_go);
-    exploration.actions + solution.actions
-}
-
-/// Explore, then forward Dijkstra from `x1` (reference mode).
-fn explore_then_dijkstra_from_initial<V: CostValue>(graph: &Graph<V>) -> u64 {
-    let exploration = explore(graph);
-    let search = dijkstra::from_initial(&exploration.graph);
-    black_box(&search.path);
-    exploration.actions + search.counts.relaxations
-}
-
-/// Explore, then value iteration with the given schedule and sweep cap.
-fn explore_then_vi<V: CostValue>(
-    graph: &Graph<V>,
-    schedule: Schedule,
-    max_sweeps: Option<u64>,
-) -> u64 {
-    let exploration = explore(graph);
-    let solution = value_iteration(&exploration.graph, schedule, max_sweeps);
-    black_box(&solution.cost_to_go);
-    exploration.actions + solution.actions
-}
-
 /// The three model-free pipelines of one mode.
-fn bench_mode<V: CostValue>(
-    c: &mut Criterion,
-    mode: &str,
-    graph: &Graph<V>,
-    dijkstra_pipeline: fn(&Graph<V>) -> u64,
-    max_sweeps: Option<u64>,
-) {
+fn bench_mode<V: CostValue>(c: &mut Criterion, name: &str, graph: &Graph<V>, mode: Mode) {
     let mut group = c.benchmark_group("model_free");
-    group.bench_function(format!("dijkstra/{mode}"), |b| {
-        b.iter(|| dijkstra_pipeline(black_box(graph)))
-    });
-    group.bench_function(format!("async_vi/{mode}"), |b| {
-        b.iter(|| explore_then_vi(black_box(graph), Schedule::Asynchronous, max_sweeps))
-    });
-    group.bench_function(format!("sync_vi/{mode}"), |b| {
-        b.iter(|| explore_then_vi(black_box(graph), Schedule::Synchronous, max_sweeps))
-    });
+    for (planner, algorithm) in PLANNERS {
+        group.bench_function(format!("{planner}/{name}"), |b| {
+            b.iter(|| model_free_counts(black_box(graph), algorithm, mode))
+        });
+    }
     group.finish();
 }
 
 fn model_free(c: &mut Criterion) {
-    bench_mode(
-        c,
-        "exact",
-        &exact_graph(StepCost::Unit),
-        explore_then_dijkstra_to_goals,
-        None,
-    );
-    bench_mode(
-        c,
-        "exact_euclidean",
-        &exact_graph(StepCost::Euclidean),
-        explore_then_dijkstra_to_goals,
-        None,
-    );
-    bench_mode(
-        c,
-        "reference",
-        &reference_graph(),
-        explore_then_dijkstra_from_initial,
-        Some(1000),
-    );
+    let unit = exact_graph(StepCost::Unit);
+    let euclidean = exact_graph(StepCost::Euclidean);
+    let reference = reference_graph();
+    if let Some(iterations) = fixed_iterations() {
+        // Instruction counting (callgrind): a fixed amount of work, no criterion.
+        let only = std::env::var("TRUECOST_BENCH_ONLY").ok();
+        let wanted = |planner: &str, name: &str| {
+            only.as_deref()
+                .is_none_or(|o| o == format!("{planner}/{name}"))
+        };
+        for (planner, algorithm) in PLANNERS {
+            for _ in 0..iterations {
+                if wanted(planner, "exact") {
+                    black_box(model_free_counts(black_box(&unit), algorithm, Mode::Exact));
+                }
+                if wanted(planner, "exact_euclidean") {
+                    black_box(model_free_counts(
+                        black_box(&euclidean),
+                        algorithm,
+                        Mode::Exact,
+                    ));
+                }
+                if wanted(planner, "reference") {
+                    black_box(model_free_counts(
+                        black_box(&reference),
+                        algorithm,
+                        Mode::Reference,
+                    ));
+                }
+            }
+        }
+        std::process::exit(0);
+    }
+    bench_mode(c, "exact", &unit, Mode::Exact);
+    bench_mode(c, "exact_euclidean", &euclidean, Mode::Exact);
+    bench_mode(c, "reference", &reference, Mode::Reference);
+}
+
+/// `TRUECOST_BENCH_ITERATIONS`, if set: run each pipeline this many times and exit.
+fn fixed_iterations() -> Option<u64> {
+    std::env::var("TRUECOST_BENCH_ITERATIONS")
+        .ok()
+        .map(|v| v.parse().expect("TRUECOST_BENCH_ITERATIONS is a count"))
 }
 
 criterion_group! {

@@ -22,6 +22,83 @@ pub enum Decision {
     Terminate,
 }
 
+/// `Graph::partner` of a move without a reverse partner.
+pub(crate) const NO_PARTNER: u32 = u32::MAX;
+
+/// The reverse partner of every move ([`Graph::reverse_move`]) in `O(moves + nodes)`: the
+/// moves into `x` from `y` are contiguous in `x`'s reverse rows, in `y`'s order, so the
+/// `k`-th move `x → y` pairs with the `k`-th of them.
+fn reverse_partners(first: &[u32], successor: &[u32]) -> Vec<u32> {
+    let n = first.len() - 1;
+    // The moves into each node, `(source, move)` in forward order (counting sort).
+    let mut rfirst = vec![0u32; n + 1];
+    for &y in successor {
+        rfirst[y as usize + 1] += 1;
+    }
+    for i in 0..n {
+        rfirst[i + 1] += rfirst[i];
+    }
+    let mut fill = rfirst[..n].to_vec();
+    let mut incoming = vec![(0u32, 0u32); successor.len()];
+    for (x, bounds) in first.windows(2).enumerate() {
+        for e in bounds[0] as usize..bounds[1] as usize {
+            let slot = &mut fill[successor[e] as usize];
+            incoming[*slot as usize] = (x as u32, e as u32);
+            *slot += 1;
+        }
+    }
+    let mut partner = vec![NO_PARTNER; successor.len()];
+    // Per source `y` while `x` is handled: where its moves into `x` start, how many are used.
+    let mut group = vec![u32::MAX; n];
+    let mut used = vec![0u32; n];
+    for x in 0..n {
+        let ins = &incoming[rfirst[x] as usize..rfirst[x + 1] as usize];
+        for (i, &(y, _)) in ins.iter().enumerate().rev() {
+            group[y as usize] = i as u32;
+        }
+        for e in first[x] as usize..first[x + 1] as usize {
+            let y = successor[e] as usize;
+            if y == x || group[y] == u32::MAX {
+                continue;
+            }
+            let i = (group[y] + used[y]) as usize;
+            used[y] += 1;
+            if let Some(&(source, r)) = ins.get(i) {
+                if source as usize == y {
+                    partner[e] = r;
+                }
+            }
+        }
+        for &(y, _) in ins {
+            group[y as usize] = u32::MAX;
+            used[y as usize] = 0;
+        }
+    }
+    partner
+}
+
+/// The moves into each node of a [`Graph`] (from [`Graph::in_edges`]).
+#[derive(Clone, Debug)]
+pub struct InEdges<'g, V> {
+    rfirst: Vec<u32>,
+    /// For each reverse entry: the source node of the forward edge it mirrors, and that
+    /// edge's index.
+    reverse: Vec<(u32, u32)>,
+    cost: &'g [V],
+}
+
+impl<'g, V> InEdges<'g, V> {
+    /// The moves into `v`: `(source, cost)`, sources in forward-edge order.
+    #[inline]
+    pub fn of(&self, v: usize) -> impl Iterator<Item = (usize, &'g V)> + '_ {
+        let range = self.rfirst[v] as usize..self.rfirst[v + 1] as usize;
+        let cost = self.cost;
+        self.reverse[range]
+            .iter()
+            .map(move |&(x, e)| (x as usize, &cost[e as usize]))
+    }
+}
+
 /// A planning graph in compressed sparse row form, generic over the value type `V` and the
 /// type `U` of the exact value of one unit of `V` (`()` when nobody needs it).
 ///
@@ -33,11 +110,9 @@ pub struct Graph<V, U = ()> {
     first: Vec<u32>,
     successor: Vec<u32>,
     cost: Vec<V>,
-    rfirst: Vec<u32>,
-    /// For each reverse entry: the index of the forward edge it mirrors.
-    redge: Vec<u32>,
-    /// For each reverse entry: the source node of that edge.
-    rsource: Vec<u32>,
+    /// Per move: the flat index of its reverse partner ([`Graph::reverse_move`]), or
+    /// `NO_PARTNER`.
+    partner: Vec<u32>,
     is_goal: Vec<bool>,
     initial: u32,
     origin: Vec<StateId>,
@@ -67,10 +142,10 @@ impl<V: CostValue, U> Graph<V, U> {
         unit: U,
     ) -> Self {
         let n = adjacency.len();
-        assert!(n < u32::MAX as usize && initial < n && origin.len() == n);
         let mut first = Vec::with_capacity(n + 1);
-        let mut successor = Vec::new();
-        let mut cost = Vec::new();
+        let edges = adjacency.iter().map(Vec::len).sum();
+        let mut successor = Vec::with_capacity(edges);
+        let mut cost = Vec::with_capacity(edges);
         first.push(0u32);
         for list in adjacency {
             for (y, c) in list {
@@ -80,26 +155,98 @@ impl<V: CostValue, U> Graph<V, U> {
             }
             first.push(u32::try_from(successor.len()).expect("too many edges"));
         }
-        // Reverse CSR by counting sort; within a target, sources appear in forward-edge order.
-        let mut indeg = vec![0u32; n + 1];
-        for &y in &successor {
-            indeg[y as usize + 1] += 1;
-        }
-        for i in 0..n {
-            indeg[i + 1] += indeg[i];
-        }
-        let rfirst = indeg.clone();
-        let mut fill = indeg;
-        let mut redge = vec![0u32; successor.len()];
-        let mut rsource = vec![0u32; successor.len()];
-        for x in 0..n {
-            for e in first[x] as usize..first[x + 1] as usize {
-                let slot = &mut fill[successor[e] as usize];
-                redge[*slot as usize] = e as u32;
-                rsource[*slot as usize] = x as u32;
-                *slot += 1;
-            }
-        }
+        Self::from_csr(first, successor, cost, initial, goals, origin, unit)
+    }
+
+    /// Builds a graph from its compressed sparse rows: the moves of node `v` are
+    /// `successor[first[v]..first[v + 1]]` with costs `cost[first[v]..first[v + 1]]`, in order.
+    /// Otherwise as [`Graph::from_adjacency`] (same preconditions; additionally `first` starts
+    /// at 0, never decreases, ends at `successor.len() == cost.len()`).
+    ///
+    /// ```
+    /// use truecost_kernel::model::Graph;
+    /// // 0 -> 1 (cost 1), 1 -> 0 (cost 2)
+    /// let g = Graph::<f64>::from_csr(vec![0, 1, 2], vec![1, 0], vec![1.0, 2.0], 0, &[1],
+    ///     vec![0, 1], ());
+    /// assert_eq!(g.edges(1).collect::<Vec<_>>(), vec![(0, &2.0)]);
+    /// assert_eq!(g.in_edges().of(0).collect::<Vec<_>>(), vec![(1, &2.0)]);
+    /// ```
+    pub fn from_csr(
+        first: Vec<u32>,
+        successor: Vec<u32>,
+        cost: Vec<V>,
+        initial: usize,
+        goals: &[usize],
+        origin: Vec<StateId>,
+        unit: U,
+    ) -> Self {
+        Self::check_rows(&first, &successor, &cost, initial, &origin);
+        let partner = reverse_partners(&first, &successor);
+        Self::assemble(
+            first, successor, cost, partner, initial, goals, origin, unit,
+        )
+    }
+
+    /// [`Graph::from_csr`] with the moves' reverse partners already known (exploration
+    /// records them as it discovers the moves). Precondition: `partner` is what
+    /// [`Graph::reverse_move`] defines for these rows (checked in debug builds).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn from_csr_paired(
+        first: Vec<u32>,
+        successor: Vec<u32>,
+        cost: Vec<V>,
+        partner: Vec<u32>,
+        initial: usize,
+        goals: &[usize],
+        origin: Vec<StateId>,
+        unit: U,
+    ) -> Self {
+        Self::check_rows(&first, &successor, &cost, initial, &origin);
+        debug_assert!(partner == reverse_partners(&first, &successor));
+        Self::assemble(
+            first, successor, cost, partner, initial, goals, origin, unit,
+        )
+    }
+
+    /// The preconditions of [`Graph::from_csr`] (panics otherwise).
+    fn check_rows(
+        first: &[u32],
+        successor: &[u32],
+        cost: &[V],
+        initial: usize,
+        origin: &[StateId],
+    ) {
+        assert!(!first.is_empty(), "first has one entry per node plus one");
+        let n = first.len() - 1;
+        assert!(n < u32::MAX as usize && initial < n && origin.len() == n);
+        // Branch-free folds (they vectorise): the checks cost little next to the graph.
+        let rows_ordered = first.windows(2).fold(true, |ok, w| ok & (w[0] <= w[1]));
+        assert!(
+            first[0] == 0
+                && rows_ordered
+                && first[n] as usize == successor.len()
+                && successor.len() == cost.len(),
+            "malformed compressed rows"
+        );
+        let largest = successor.iter().fold(0, |m, &y| m.max(y));
+        assert!(
+            successor.is_empty() || (largest as usize) < n,
+            "successor out of range"
+        );
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn assemble(
+        first: Vec<u32>,
+        successor: Vec<u32>,
+        cost: Vec<V>,
+        partner: Vec<u32>,
+        initial: usize,
+        goals: &[usize],
+        origin: Vec<StateId>,
+        unit: U,
+    ) -> Self {
+        let n = first.len() - 1;
         let mut is_goal = vec![false; n];
         for &g in goals {
             is_goal[g] = true;
@@ -108,9 +255,7 @@ impl<V: CostValue, U> Graph<V, U> {
             first,
             successor,
             cost,
-            rfirst,
-            redge,
-            rsource,
+            partner,
             is_goal,
             initial: initial as u32,
             origin,
@@ -163,14 +308,82 @@ impl<V: CostValue, U> Graph<V, U> {
             .map(|(&y, c)| (y as usize, c))
     }
 
-    /// The moves into `v`: `(source, cost)`, sources in forward-edge order.
+    /// The moves into every node (the reverse compressed rows), built now by a counting sort
+    /// over the moves: build it once and query it for many nodes.
+    ///
+    /// ```
+    /// use truecost_kernel::model::Graph;
+    /// // 0 -> 1 (cost 1), 2 -> 1 (cost 3), 1 -> 0 (cost 2)
+    /// let g = Graph::<f64>::from_adjacency(vec![vec![(1, 1.0)], vec![(0, 2.0)], vec![(1, 3.0)]],
+    ///     0, &[1], vec![0, 1, 2], ());
+    /// let incoming = g.in_edges();
+    /// assert_eq!(incoming.of(1).collect::<Vec<_>>(), vec![(0, &1.0), (2, &3.0)]);
+    /// assert_eq!(incoming.of(2).count(), 0);
+    /// ```
+    pub fn in_edges(&self) -> InEdges<'_, V> {
+        let n = self.nodes();
+        // Within a target, sources appear in forward-edge order.
+        let mut rfirst = vec![0u32; n + 1];
+        for &y in &self.successor {
+            rfirst[y as usize + 1] += 1;
+        }
+        for i in 0..n {
+            rfirst[i + 1] += rfirst[i];
+        }
+        let mut fill = rfirst[..n].to_vec();
+        let mut reverse = vec![(0u32, 0u32); self.successor.len()];
+        for (x, bounds) in self.first.windows(2).enumerate() {
+            let (lo, hi) = (bounds[0] as usize, bounds[1] as usize);
+            for (e, &y) in (lo..hi).zip(&self.successor[lo..hi]) {
+                let slot = &mut fill[y as usize];
+                reverse[*slot as usize] = (x as u32, e as u32);
+                *slot += 1;
+            }
+        }
+        InEdges {
+            rfirst,
+            reverse,
+            cost: &self.cost,
+        }
+    }
+
+    /// The flat indices of `v`'s moves: move `k` of `v` is edge `edge_range(v).start + k` of
+    /// [`Graph::edge`]'s numbering (all moves of node 0 first, then node 1, ...).
     #[inline]
-    pub fn in_edges(&self, v: usize) -> impl Iterator<Item = (usize, &V)> + '_ {
-        let range = self.rfirst[v] as usize..self.rfirst[v + 1] as usize;
-        self.redge[range.clone()]
-            .iter()
-            .zip(&self.rsource[range])
-            .map(move |(&e, &x)| (x as usize, &self.cost[e as usize]))
+    pub fn edge_range(&self, v: usize) -> core::ops::Range<usize> {
+        self.first[v] as usize..self.first[v + 1] as usize
+    }
+
+    /// The reverse partner of move `e` (flat numbering), if it has one: the `k`-th move
+    /// `x → y` among `x`'s moves to `y` pairs with the `k`-th move `y → x` among `y`'s moves to
+    /// `x`; a self-loop and a move with no such reverse have none. The pairing is symmetric.
+    ///
+    /// ```
+    /// use truecost_kernel::model::Graph;
+    /// // 0 -> 1 twice, 1 -> 0 once, 1 -> 1
+    /// let g = Graph::<f64>::from_adjacency(vec![vec![(1, 1.0), (1, 2.0)], vec![(1, 0.0), (0, 1.0)]],
+    ///     0, &[1], vec![0, 1], ());
+    /// assert_eq!((g.reverse_move(0), g.reverse_move(3)), (Some(3), Some(0)));
+    /// assert_eq!((g.reverse_move(1), g.reverse_move(2)), (None, None));
+    /// ```
+    #[inline]
+    pub fn reverse_move(&self, e: usize) -> Option<usize> {
+        let r = self.partner[e];
+        (r != NO_PARTNER).then_some(r as usize)
+    }
+
+    /// Edge `e` in the flat numbering of [`Graph::edge_range`]: `(successor, cost)`.
+    #[inline]
+    pub fn edge(&self, e: usize) -> (usize, &V) {
+        (self.successor[e] as usize, &self.cost[e])
+    }
+
+    /// The compressed sparse rows themselves: `(first, successor, cost)`, where the moves of
+    /// `v` are `successor[first[v]..first[v + 1]]` with their costs (for tight loops over
+    /// many nodes; [`Graph::edge`]'s numbering).
+    #[inline]
+    pub fn compressed_rows(&self) -> (&[u32], &[u32], &[V]) {
+        (&self.first, &self.successor, &self.cost)
     }
 
     /// Raw successor slice and cost slice of `v` (for tight inner loops).

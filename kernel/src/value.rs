@@ -28,6 +28,20 @@ pub trait CostValue: Clone + PartialEq + PartialOrd + fmt::Debug + Send + Sync +
     fn plus(&self, other: &Self) -> Self;
     /// The total order used by planners (`f64` values here are never NaN).
     fn compare(&self, other: &Self) -> Ordering;
+    /// An order-preserving image in `u64`, if the type has one: for all `a`, `b` with keys,
+    /// `a.order_key().cmp(&b.order_key()) == a.compare(b)`. Planners may then order by the
+    /// key (a machine integer) instead of calling [`CostValue::compare`]; a type returns
+    /// either `Some` for every value or `None` for every value. The default is `None`.
+    ///
+    /// ```
+    /// use truecost_kernel::value::{CostValue, Units};
+    /// assert!(Units(2).order_key() < Units(3).order_key());
+    /// assert!(0.5f64.order_key() < f64::INFINITY.order_key());
+    /// ```
+    #[inline]
+    fn order_key(&self) -> Option<u64> {
+        None
+    }
 }
 
 /// A count of the problem's cost unit `1/D`; `u64::MAX` stands for `+∞`.
@@ -78,6 +92,11 @@ impl CostValue for Units {
     fn compare(&self, other: &Self) -> Ordering {
         self.0.cmp(&other.0)
     }
+    /// The count itself (`+∞` is `u64::MAX`, above every finite count).
+    #[inline]
+    fn order_key(&self) -> Option<u64> {
+        Some(self.0)
+    }
 }
 
 /// `f64` is the value type of the reference mode only (SPEC §7). It is not exact.
@@ -102,5 +121,63 @@ impl CostValue for f64 {
     #[inline]
     fn compare(&self, other: &Self) -> Ordering {
         self.total_cmp(other)
+    }
+    /// The bits of `total_cmp`'s order, as an unsigned integer: negative values have all
+    /// bits but the sign flipped, non-negative ones the sign bit set, so that unsigned
+    /// comparison of the keys is `f64::total_cmp`.
+    #[inline]
+    fn order_key(&self) -> Option<u64> {
+        let bits = self.to_bits();
+        Some(if bits >> 63 == 1 {
+            !bits
+        } else {
+            bits | 1 << 63
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn order_keys_preserve_the_planners_order() {
+        let floats = [
+            f64::NEG_INFINITY,
+            -1e300,
+            -1.5,
+            -f64::MIN_POSITIVE,
+            -0.0,
+            0.0,
+            f64::MIN_POSITIVE / 2.0,
+            f64::MIN_POSITIVE,
+            0.1 + 0.2,
+            0.3,
+            42.105_263_157_894_73,
+            42.105_263_157_894_74,
+            1e300,
+            f64::INFINITY,
+        ];
+        for a in floats {
+            for b in floats {
+                assert_eq!(
+                    a.order_key().cmp(&b.order_key()),
+                    a.compare(&b),
+                    "{a} vs {b}"
+                );
+            }
+        }
+        let units = [
+            Units(0),
+            Units(1),
+            Units(41),
+            Units(u64::MAX - 1),
+            Units::infinity(),
+        ];
+        for a in units {
+            for b in units {
+                assert_eq!(a.order_key().cmp(&b.order_key()), a.compare(&b));
+            }
+        }
     }
 }

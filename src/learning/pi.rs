@@ -5,8 +5,9 @@
 //! base-4 digits. (SPEC §2 prints "3.1032 0333 1222 …"; its first group is not π's — see the
 //! test `spec_digits_are_not_pi`.)
 //!
-//! Method: the Chudnovsky series by binary splitting (both halves in parallel), an integer
-//! square root and one division, all exact on big integers (`malachite-nz`, whose FFT
+//! Method: the Chudnovsky series by binary splitting (both halves, and then their products,
+//! in parallel), an integer square root and one division (of `Q` and `T` cut to the precision
+//! needed), all exact on big integers (`malachite-nz`, whose FFT
 //! multiplication makes the 10^7-digit period a matter of seconds). The result is an
 //! integer `a` with `|π·2^B − a| ≤ 4`; digits are returned only when both ends of that
 //! enclosure agree on them, otherwise the precision is raised, so every digit returned is
@@ -18,6 +19,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use malachite_base::num::arithmetic::traits::{FloorSqrt, UnsignedAbs};
 use malachite_base::num::basic::traits::{One, Zero};
+use malachite_base::num::logic::traits::SignificantBits;
 use malachite_nz::integer::Integer;
 use malachite_nz::natural::Natural;
 
@@ -116,8 +118,20 @@ fn pi_scaled(bits: usize) -> Natural {
     );
     let q = split.q.unsigned_abs();
     let t = split.t.unsigned_abs();
+    // Q and T carry about 105 bits per term, more than twice the 47 the sum needs: drop the
+    // same `s` low bits of both, keeping `bits + 72` bits of the shorter. With
+    // `k = min(|Q|, |T|)` bits, `Q'·2^s ∈ (Q − 2^s, Q]` and `T'·2^s ∈ (T − 2^s, T]`, so
+    // `Q'/T'` is within a factor `1 ± 2^(s+2−k) = 1 ± 2^−(bits+70)` of `Q/T`; on a result
+    // below `4·2^bits` that moves it by less than `2^−66`.
+    let k = q.significant_bits().min(t.significant_bits());
+    let (q, t) = if k > bits as u64 + 80 {
+        let s = k - (bits as u64 + 72);
+        (q >> s, t >> s)
+    } else {
+        (q, t)
+    };
     // Error: ⌊√⌋ loses < 1, scaled by 426880·Q/T ≈ 0.0314; the division loses < 1; the tail
-    // beyond `terms` is < 2^-bits. Total < 2 ≤ 4.
+    // beyond `terms` is < 2^-bits; the truncation above < 2^-66. Total < 2 ≤ 4.
     (Natural::from(426880u32) * root * q) / t
 }
 
@@ -148,21 +162,42 @@ fn binary_split(a: u64, b: u64, need_p: bool) -> Split {
         return Split { p, q, t };
     }
     let m = (a + b) / 2;
-    let (left, right) = if b - a > 4096 {
-        rayon::join(|| binary_split(a, m, true), || binary_split(m, b, need_p))
-    } else {
-        (binary_split(a, m, true), binary_split(m, b, need_p))
-    };
-    Split {
-        p: if need_p {
-            &left.p * &right.p
-        } else {
-            Integer::ZERO
-        },
-        q: &left.q * &right.q,
-        t: &right.q * left.t + &left.p * right.t,
+    if b - a <= PARALLEL_TERMS {
+        let (left, right) = (binary_split(a, m, true), binary_split(m, b, need_p));
+        return Split {
+            p: if need_p {
+                &left.p * &right.p
+            } else {
+                Integer::ZERO
+            },
+            q: &left.q * &right.q,
+            t: &right.q * left.t + &left.p * right.t,
+        };
     }
+    // Large ranges: the halves side by side, then their (up to) four products side by side, so
+    // that the top of the tree, where few ranges are left, keeps both cores busy too.
+    let (left, right) = rayon::join(|| binary_split(a, m, true), || binary_split(m, b, need_p));
+    let ((p, q), (qt, pt)) = rayon::join(
+        || {
+            rayon::join(
+                || {
+                    if need_p {
+                        &left.p * &right.p
+                    } else {
+                        Integer::ZERO
+                    }
+                },
+                || &left.q * &right.q,
+            )
+        },
+        || rayon::join(|| &right.q * &left.t, || &left.p * &right.t),
+    );
+    Split { p, q, t: qt + pt }
 }
+
+/// Ranges of more terms than this are split in parallel (rayon tasks); smaller ones
+/// sequentially, where a task would cost more than it saves.
+const PARALLEL_TERMS: u64 = 4096;
 
 fn cache_file(count: usize) -> Option<PathBuf> {
     cache_dir().map(|d| d.join(format!("pi-base4-{count}.bin")))

@@ -5,15 +5,16 @@
 //! * [`from_initial`] — forwards from `x1`, stopping when a goal is popped: the paper's code
 //!   (SPEC §7). It gives `G*(x1)` and one optimal path.
 //!
-//! Both use a binary heap ordered by (distance, insertion counter). A popped entry whose node
+//! Both use a binary heap ordered by (distance, insertion counter); for value types with an
+//! order key (`Units`, `f64`) each entry is one machine integer. A popped entry whose node
 //! is already settled (stale) still counts as a pop; every neighbour examined from a settled
 //! node counts as a relaxation. Preconditions: costs `>= 0`.
 
-use std::cmp::Ordering;
+use std::cmp::{Ordering, Reverse};
 use std::collections::BinaryHeap;
 
-use super::{greedy_policy, Solution};
-use crate::model::Graph;
+use super::{greedy_policy_over, Solution};
+use crate::model::{Decision, Graph};
 use crate::value::CostValue;
 
 /// Work counted by a Dijkstra run.
@@ -24,6 +25,22 @@ pub struct DijkstraCounts {
     /// Neighbours examined.
     pub relaxations: u64,
 }
+
+/// The search frontier: a priority queue of entries (distance, insertion counter, node) that
+/// pops the smallest (distance, counter). Counters are distinct, so the order is total and
+/// every implementation pops the same sequence.
+trait Frontier<V> {
+    /// An empty frontier with room for `capacity` entries.
+    fn with_capacity(capacity: usize) -> Self;
+    /// Inserts an entry.
+    fn push(&mut self, dist: &V, counter: u64, node: u32);
+    /// Removes the smallest entry and returns its node.
+    fn pop(&mut self) -> Option<u32>;
+}
+
+/// The frontier for any value type: a binary heap of entries compared with
+/// [`CostValue::compare`].
+struct Compared<V>(BinaryHeap<Entry<V>>);
 
 struct Entry<V> {
     dist: V,
@@ -52,6 +69,49 @@ impl<V: CostValue> Ord for Entry<V> {
     }
 }
 
+impl<V: CostValue> Frontier<V> for Compared<V> {
+    fn with_capacity(capacity: usize) -> Self {
+        Compared(BinaryHeap::with_capacity(capacity))
+    }
+    #[inline]
+    fn push(&mut self, dist: &V, counter: u64, node: u32) {
+        self.0.push(Entry {
+            dist: dist.clone(),
+            counter,
+            node,
+        });
+    }
+    #[inline]
+    fn pop(&mut self) -> Option<u32> {
+        self.0.pop().map(|entry| entry.node)
+    }
+}
+
+/// The frontier for value types with an [`CostValue::order_key`]: one `u128` per entry,
+/// `key · 2^64 + counter · 2^32 + node`, so that integer order is (distance, counter) order
+/// (the node never decides: counters are distinct). Needs counters below `2^32`.
+struct Keyed(BinaryHeap<Reverse<u128>>);
+
+impl<V: CostValue> Frontier<V> for Keyed {
+    fn with_capacity(capacity: usize) -> Self {
+        Keyed(BinaryHeap::with_capacity(capacity))
+    }
+    #[inline]
+    fn push(&mut self, dist: &V, counter: u64, node: u32) {
+        let key = dist
+            .order_key()
+            .expect("Keyed is used only with order keys");
+        debug_assert!(counter < 1 << 32);
+        self.0.push(Reverse(
+            u128::from(key) << 64 | u128::from(counter) << 32 | u128::from(node),
+        ));
+    }
+    #[inline]
+    fn pop(&mut self) -> Option<u32> {
+        self.0.pop().map(|Reverse(entry)| entry as u32)
+    }
+}
+
 /// Result of the core: distances, predecessor on the search tree, counts.
 struct Search<V> {
     dist: Vec<V>,
@@ -60,29 +120,46 @@ struct Search<V> {
     counts: DijkstraCounts,
 }
 
-/// The core. `neighbours(v, visit)` calls `visit(w, cost)` for every neighbour in order.
-fn run<V: CostValue>(
+/// The core. `neighbours(v)` lists `v`'s neighbours `(w, cost)` in order (the concrete
+/// iterator type lets the compiler inline the relaxation loop); `max_pushes` bounds the
+/// entries ever pushed (sources plus moves). Picks the [`Keyed`] frontier when the value type
+/// has order keys and the counters fit, [`Compared`] otherwise: both pop the same sequence.
+fn run<'g, V: CostValue, I: Iterator<Item = (usize, &'g V)>>(
     n: usize,
     sources: &[usize],
-    mut neighbours: impl FnMut(usize, &mut dyn FnMut(usize, &V)),
+    max_pushes: usize,
+    neighbours: impl Fn(usize) -> I,
+    is_target: impl Fn(usize) -> bool,
+) -> Search<V> {
+    if V::zero().order_key().is_some() && max_pushes < 1 << 32 {
+        search::<V, Keyed, I>(n, sources, neighbours, is_target)
+    } else {
+        search::<V, Compared<V>, I>(n, sources, neighbours, is_target)
+    }
+}
+
+/// Dijkstra over frontier `F`. When a node is popped for the first time its entry is the
+/// smallest of its entries, whose distance is the node's current `dist` (entries are pushed
+/// only when `dist` strictly decreases, and never after the node is settled); so the
+/// frontier only needs to return the node.
+fn search<'g, V: CostValue, F: Frontier<V>, I: Iterator<Item = (usize, &'g V)>>(
+    n: usize,
+    sources: &[usize],
+    neighbours: impl Fn(usize) -> I,
     is_target: impl Fn(usize) -> bool,
 ) -> Search<V> {
     let mut dist = vec![V::infinity(); n];
     let mut parent = vec![u32::MAX; n];
     let mut settled = vec![false; n];
-    let mut heap = BinaryHeap::new();
+    let mut heap = F::with_capacity(n);
     let mut counter = 0u64;
     let mut counts = DijkstraCounts::default();
     for &s in sources {
         dist[s] = V::zero();
-        heap.push(Entry {
-            dist: V::zero(),
-            counter,
-            node: s as u32,
-        });
+        heap.push(&V::zero(), counter, s as u32);
         counter += 1;
     }
-    while let Some(Entry { dist: d, node, .. }) = heap.pop() {
+    while let Some(node) = heap.pop() {
         counts.pops += 1;
         let v = node as usize;
         if settled[v] {
@@ -97,20 +174,21 @@ fn run<V: CostValue>(
                 counts,
             };
         }
-        neighbours(v, &mut |w, c| {
+        let d = dist[v].clone();
+        for (w, c) in neighbours(v) {
             counts.relaxations += 1;
+            // A settled neighbour is examined (counted) but can never improve.
+            if settled[w] {
+                continue;
+            }
             let nd = d.plus(c);
-            if !settled[w] && nd.compare(&dist[w]) == Ordering::Less {
-                dist[w] = nd.clone();
+            if nd.compare(&dist[w]) == Ordering::Less {
+                heap.push(&nd, counter, w as u32);
+                dist[w] = nd;
                 parent[w] = v as u32;
-                heap.push(Entry {
-                    dist: nd,
-                    counter,
-                    node: w as u32,
-                });
                 counter += 1;
             }
-        });
+        }
     }
     Search {
         dist,
@@ -131,23 +209,59 @@ fn run<V: CostValue>(
 /// assert_eq!(dijkstra::to_goals(&g).cost_to_go, vec![2.0, 1.0, 0.0]);
 /// ```
 pub fn to_goals<V: CostValue, U>(graph: &Graph<V, U>) -> Solution<V> {
+    let incoming = graph.in_edges();
     let search = run(
         graph.nodes(),
         &graph.goals(),
-        |v, visit| {
-            for (x, c) in graph.in_edges(v) {
-                visit(x, c);
-            }
-        },
+        graph.nodes() + graph.edge_count(),
+        |v| incoming.of(v),
         |_| false,
     );
-    let policy = greedy_policy(graph, &search.dist);
+    let policy = if V::EXACT && all_costs_positive(graph) {
+        first_tight_moves(graph, &search.dist)
+    } else {
+        greedy_policy_over(graph, &incoming, &search.dist)
+    };
     Solution {
         cost_to_go: search.dist,
         policy,
         iterations: search.counts.pops,
         actions: search.counts.relaxations,
     }
+}
+
+/// Whether every move costs more than 0.
+fn all_costs_positive<V: CostValue, U>(graph: &Graph<V, U>) -> bool {
+    let zero = V::zero();
+    graph
+        .compressed_rows()
+        .2
+        .iter()
+        .all(|c| c.compare(&zero) == Ordering::Greater)
+}
+
+/// [`greedy_policy`] for an **exact** cost-to-go `G*` that Dijkstra computed on a graph whose
+/// moves all cost more than 0, in one pass: the first move `x → y` in order with
+/// `l(x,u) + G*(y) = G*(x)`. The two agree: such a move has `G*(y) = G*(x) − l < G*(x)`, so
+/// it makes progress; and every non-goal `x` with finite `G*(x)` has one (its Dijkstra
+/// parent move, exact arithmetic), so following them strictly decreases `G*` and reaches a
+/// goal, i.e. `greedy_policy`'s `h(x)` is finite exactly where `G*(x)` is.
+fn first_tight_moves<V: CostValue, U>(graph: &Graph<V, U>, g: &[V]) -> Vec<Option<Decision>> {
+    (0..graph.nodes())
+        .map(|x| {
+            if graph.is_goal(x) {
+                return Some(Decision::Terminate);
+            }
+            if !g[x].is_finite() {
+                return None;
+            }
+            let (succ, cost) = graph.edge_slices(x);
+            succ.iter()
+                .zip(cost)
+                .position(|(&y, c)| c.plus(&g[y as usize]).compare(&g[x]) == Ordering::Equal)
+                .map(Decision::Move)
+        })
+        .collect()
 }
 
 /// Forward Dijkstra from `x1` that stops when a goal is popped (the paper's code, SPEC §7).
@@ -175,11 +289,8 @@ pub fn from_initial<V: CostValue, U>(graph: &Graph<V, U>) -> ForwardSearch<V> {
     let search = run(
         graph.nodes(),
         &[graph.initial()],
-        |v, visit| {
-            for (y, c) in graph.edges(v) {
-                visit(y, c);
-            }
-        },
+        1 + graph.edge_count(),
+        |v| graph.edges(v),
         |v| graph.is_goal(v),
     );
     match search.reached_target {
@@ -201,6 +312,47 @@ pub fn from_initial<V: CostValue, U>(graph: &Graph<V, U>) -> ForwardSearch<V> {
                 path,
                 counts: search.counts,
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::value::Units;
+
+    /// A small deterministic generator (xorshift64*), enough to draw test graphs.
+    struct Draw(u64);
+    impl Draw {
+        fn below(&mut self, n: u64) -> u64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) % n
+        }
+    }
+
+    #[test]
+    fn the_one_pass_policy_is_greedy_policy_on_positive_exact_costs() {
+        let mut draw = Draw(0x0123_4567_89AB_CDEF);
+        for case in 0..3000 {
+            let n = 1 + draw.below(10) as usize;
+            let mut adjacency: Vec<Vec<(usize, Units)>> = vec![Vec::new(); n];
+            for _ in 0..draw.below(4 * n as u64 + 1) {
+                let x = draw.below(n as u64) as usize;
+                let y = draw.below(n as u64) as usize;
+                // Few distinct costs: many ties between optimal moves.
+                adjacency[x].push((y, Units(1 + draw.below(3))));
+            }
+            let goals: Vec<usize> = (0..n).filter(|_| draw.below(4) == 0).collect();
+            let g = Graph::from_adjacency(adjacency, 0, &goals, (0..n).collect(), ());
+            assert!(all_costs_positive(&g));
+            let s = to_goals(&g);
+            assert_eq!(
+                s.policy,
+                crate::solvers::greedy_policy(&g, &s.cost_to_go),
+                "case {case}"
+            );
         }
     }
 }

@@ -14,7 +14,7 @@
 //! grids; on a directed problem the walk still discovers every move reachable from `x1`, but the
 //! steps back are an idealisation (they are free and uncounted, as in the paper's code).
 
-use crate::model::Graph;
+use crate::model::{Graph, NO_PARTNER};
 use crate::value::CostValue;
 
 /// The outcome of exploring from `x1`.
@@ -44,105 +44,314 @@ pub struct Exploration<V, U = ()> {
 /// assert_eq!(e.index, vec![Some(0), Some(1), Some(2), None]);
 /// ```
 pub fn explore<V: CostValue, U: Clone>(graph: &Graph<V, U>) -> Exploration<V, U> {
-    let n = graph.nodes();
-    let mut tried = vec![false; graph.edge_count()];
-    let mut index: Vec<Option<usize>> = vec![None; n];
-    let mut order: Vec<usize> = Vec::new();
-    let mut discovered: Vec<Vec<(usize, V)>> = Vec::new();
-    let mut actions = 0u64;
-
+    let mut walk = Walk::new(graph);
     let start = graph.initial();
-    index[start] = Some(0);
-    order.push(start);
-    discovered.push(Vec::new());
-    let mut stack = vec![start];
-    // Per node: the offset of its first edge in the flat edge numbering.
-    let mut offset = Vec::with_capacity(n + 1);
-    offset.push(0usize);
-    for v in 0..n {
-        offset.push(offset[v] + graph.degree(v));
-    }
-    let partner = reverse_partners(graph, &offset);
-    // The moves before `cursor[x]` are all tried (tried marks are never removed), so resuming
-    // the scan there and counting `k + 1` inspections for the move at position `k` counts
-    // exactly what a scan from the first move would.
-    let mut cursor = vec![0usize; n];
+    walk.appear(start);
+    let mut stack: Vec<u32> = Vec::with_capacity(graph.nodes());
+    stack.push(start as u32);
     while let Some(&x) = stack.last() {
-        let (succ, cost) = graph.edge_slices(x);
-        let mut k = cursor[x];
-        while k < succ.len() && tried[offset[x] + k] {
-            k += 1;
-        }
-        cursor[x] = k;
-        let taken = if k < succ.len() {
-            actions += k as u64 + 1;
-            let e = offset[x] + k;
-            tried[e] = true;
-            if let Some(r) = partner[e] {
-                tried[r] = true;
-            }
-            Some((succ[k] as usize, cost[k].clone(), partner[e]))
-        } else {
-            actions += succ.len() as u64;
-            None
-        };
-        match taken {
-            Some((y, c, reverse)) => {
-                let iy = *index[y].get_or_insert_with(|| {
-                    order.push(y);
-                    discovered.push(Vec::new());
-                    order.len() - 1
-                });
-                let ix = index[x].expect("on the path");
-                discovered[ix].push((iy, c));
-                if let Some(r) = reverse {
-                    discovered[iy].push((ix, cost_of(graph, &offset, y, r)));
-                }
-                stack.push(y);
-            }
+        match walk.step(x as usize) {
+            Some(y) => stack.push(y),
             None => {
                 stack.pop();
             }
         }
     }
-    let goals: Vec<usize> = order
-        .iter()
-        .enumerate()
-        .filter(|(_, &v)| graph.is_goal(v))
-        .map(|(i, _)| i)
-        .collect();
-    let origin = order.iter().map(|&v| graph.origin(v)).collect();
-    Exploration {
-        graph: Graph::from_adjacency(discovered, 0, &goals, origin, graph.unit().clone()),
-        actions,
-        index,
-    }
+    walk.finish()
 }
 
-/// The flat edge index of each move's reverse partner (`None` for self-loops and moves without a
-/// reverse). The `k`-th move `x → y` among `x`'s moves to `y` pairs with the `k`-th move
-/// `y → x` among `y`'s moves to `x`.
-fn reverse_partners<V: CostValue, U>(graph: &Graph<V, U>, offset: &[usize]) -> Vec<Option<usize>> {
-    let mut partner = vec![None; graph.edge_count()];
-    for x in 0..graph.nodes() {
-        let (succ_x, _) = graph.edge_slices(x);
-        for (k, &y) in succ_x.iter().enumerate() {
-            if y as usize == x {
-                continue;
-            }
-            let rank = succ_x[..k].iter().filter(|&&z| z == y).count();
-            let (succ_y, _) = graph.edge_slices(y as usize);
-            partner[offset[x] + k] = succ_y
-                .iter()
-                .enumerate()
-                .filter(|(_, &z)| z as usize == x)
-                .nth(rank)
-                .map(|(j, _)| offset[y as usize] + j);
+/// The discovered index of a node not discovered (yet).
+const UNSEEN: u32 = u32::MAX;
+
+/// What the walk keeps per node of the explored graph.
+#[derive(Clone, Copy)]
+struct Node {
+    /// The node's discovered index, `UNSEEN` until it appears.
+    index: u32,
+    /// The first of its moves not yet seen tried (a flat edge index), once discovered. The
+    /// moves before it are all tried (tried marks are never removed), so resuming the scan
+    /// there, and counting from the node's first move, counts exactly what a scan from the
+    /// first move would.
+    cursor: u32,
+    /// The next free slot of its discovered row, once discovered.
+    fill: u32,
+}
+
+/// The state of the walk over the explored graph's compressed rows (`row`, `target`,
+/// `weight`: see [`Graph::compressed_rows`]).
+///
+/// The discovered graph is written in place, in compressed rows too. Every move out of a
+/// discovered node is eventually recorded at that node, exactly once (taken, or recorded as the
+/// reverse partner of a move taken into it), and no other move is: so discovered node `i` has
+/// exactly the degree of `order[i]`, and its row is reserved when it first appears.
+struct Walk<'g, V, U> {
+    graph: &'g Graph<V, U>,
+    row: &'g [u32],
+    target: &'g [u32],
+    weight: &'g [V],
+    /// Per move of the explored graph: tried yet?
+    tried: Vec<bool>,
+    /// Per node of the explored graph.
+    nodes: Vec<Node>,
+    /// Actions counted (moves inspected).
+    actions: u64,
+    /// Explored node of each discovered node, in order of first appearance.
+    order: Vec<usize>,
+    /// Discovered row starts, one more than `order`: row `i` is `first[i]..first[i + 1]`.
+    first: Vec<u32>,
+    /// Per slot: the discovered index of the move's target (`0` until recorded). Sized for
+    /// every move of the explored graph, truncated to the rows when the walk ends.
+    successor: Vec<u32>,
+    /// Per slot: the move's cost (`V::zero()` until recorded); sized like `successor`.
+    cost: Vec<V>,
+    /// Per slot: the slot of the move's reverse partner. Moves are paired as in the explored
+    /// graph, and the pairs keep their relative order in both rows (the `k`-th pair of `x` and
+    /// `y` is recorded before the `k + 1`-th: the scans of both rows are in order), so this is
+    /// the discovered graph's own pairing ([`Graph::reverse_move`]).
+    partner: Vec<u32>,
+}
+
+impl<'g, V: CostValue, U: Clone> Walk<'g, V, U> {
+    fn new(graph: &'g Graph<V, U>) -> Self {
+        let (row, target, weight) = graph.compressed_rows();
+        let (n, m) = (graph.nodes(), target.len());
+        let mut first = Vec::with_capacity(n + 1);
+        first.push(0);
+        let unseen = Node {
+            index: UNSEEN,
+            cursor: 0,
+            fill: 0,
+        };
+        Walk {
+            graph,
+            row,
+            target,
+            weight,
+            tried: vec![false; m],
+            nodes: vec![unseen; n],
+            actions: 0,
+            order: Vec::with_capacity(n),
+            first,
+            successor: vec![0; m],
+            cost: vec![V::zero(); m],
+            partner: vec![NO_PARTNER; m],
         }
     }
-    partner
+
+    /// Numbers `v` (first appearance) and reserves its row: one slot per move of `v`.
+    fn appear(&mut self, v: usize) {
+        let slots = *self.first.last().expect("first is never empty");
+        let (lo, hi) = (self.row[v], self.row[v + 1]);
+        self.nodes[v] = Node {
+            index: self.order.len() as u32,
+            cursor: lo,
+            fill: slots,
+        };
+        self.order.push(v);
+        self.first.push(slots + (hi - lo));
+    }
+
+    /// One step of the walk at discovered node `x`: takes the first untried move and returns
+    /// where it leads, or `None` when every move of `x` is tried (step back).
+    #[inline]
+    fn step(&mut self, x: usize) -> Option<u32> {
+        let (lo, hi) = (self.row[x] as usize, self.row[x + 1] as usize);
+        let mut e = self.nodes[x].cursor as usize;
+        while e < hi && self.tried[e] {
+            e += 1;
+        }
+        self.nodes[x].cursor = e as u32;
+        if e == hi {
+            self.actions += (hi - lo) as u64;
+            return None;
+        }
+        self.actions += (e - lo + 1) as u64;
+        self.tried[e] = true;
+        let y = self.target[e] as usize;
+        if self.nodes[y].index == UNSEEN {
+            self.appear(y);
+        }
+        let forward = self.record(x, y, e);
+        if let Some(r) = self.graph.reverse_move(e) {
+            self.tried[r] = true;
+            let backward = self.record(y, x, r);
+            self.partner[forward] = backward as u32;
+            self.partner[backward] = forward as u32;
+        }
+        Some(y as u32)
+    }
+
+    /// Records the explored graph's move `e`, from `x` to `y` (both discovered), in `x`'s
+    /// discovered row; returns its slot.
+    #[inline]
+    fn record(&mut self, x: usize, y: usize, e: usize) -> usize {
+        let s = self.nodes[x].fill as usize;
+        self.nodes[x].fill += 1;
+        self.successor[s] = self.nodes[y].index;
+        self.cost[s] = self.weight[e].clone();
+        s
+    }
+
+    /// The discovered graph and the counts.
+    fn finish(self) -> Exploration<V, U> {
+        let Walk {
+            graph,
+            actions,
+            nodes,
+            order,
+            first,
+            mut successor,
+            mut cost,
+            mut partner,
+            ..
+        } = self;
+        debug_assert!((0..order.len()).all(|i| nodes[order[i]].fill == first[i + 1]));
+        let recorded = *first.last().expect("first is never empty") as usize;
+        successor.truncate(recorded);
+        cost.truncate(recorded);
+        partner.truncate(recorded);
+        let goals: Vec<usize> = (0..order.len())
+            .filter(|&i| graph.is_goal(order[i]))
+            .collect();
+        let origin = order.iter().map(|&v| graph.origin(v)).collect();
+        let index = nodes
+            .iter()
+            .map(|node| (node.index != UNSEEN).then_some(node.index as usize))
+            .collect();
+        Exploration {
+            graph: Graph::from_csr_paired(
+                first,
+                successor,
+                cost,
+                partner,
+                0,
+                &goals,
+                origin,
+                graph.unit().clone(),
+            ),
+            actions,
+            index,
+        }
+    }
 }
 
-fn cost_of<V: CostValue, U>(graph: &Graph<V, U>, offset: &[usize], y: usize, e: usize) -> V {
-    graph.edge_slices(y).1[e - offset[y]].clone()
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Per-node move lists `(successor, cost)`.
+    type Adjacency = Vec<Vec<(usize, f64)>>;
+
+    /// The walk of SPEC §7 written as literally as possible, as an oracle for [`explore`]:
+    /// every scan starts at the first move, the reverse partner is searched for by its rank,
+    /// and the discovered graph is grown as per-node lists.
+    fn literal_walk(graph: &Graph<f64>) -> (u64, Vec<Option<usize>>, Adjacency) {
+        let n = graph.nodes();
+        let moves = |x: usize| graph.edges(x).map(|(y, c)| (y, *c)).collect::<Vec<_>>();
+        let partner = |x: usize, k: usize| -> Option<usize> {
+            let mx = moves(x);
+            let y = mx[k].0;
+            if y == x {
+                return None;
+            }
+            let rank = mx[..k].iter().filter(|m| m.0 == y).count();
+            moves(y)
+                .iter()
+                .enumerate()
+                .filter(|(_, m)| m.0 == x)
+                .nth(rank)
+                .map(|(j, _)| j)
+        };
+        let mut tried: Vec<Vec<bool>> = (0..n).map(|x| vec![false; graph.degree(x)]).collect();
+        let mut index = vec![None; n];
+        let mut lists: Vec<Vec<(usize, f64)>> = vec![Vec::new()];
+        let mut order = vec![graph.initial()];
+        index[graph.initial()] = Some(0);
+        let mut stack = vec![graph.initial()];
+        let mut actions = 0u64;
+        while let Some(&x) = stack.last() {
+            let mut taken = None;
+            for (k, &done) in tried[x].iter().enumerate() {
+                actions += 1;
+                if !done {
+                    taken = Some(k);
+                    break;
+                }
+            }
+            let Some(k) = taken else {
+                stack.pop();
+                continue;
+            };
+            let (y, c) = moves(x)[k];
+            tried[x][k] = true;
+            if index[y].is_none() {
+                index[y] = Some(order.len());
+                order.push(y);
+                lists.push(Vec::new());
+            }
+            let (ix, iy) = (index[x].unwrap(), index[y].unwrap());
+            lists[ix].push((iy, c));
+            if let Some(j) = partner(x, k) {
+                tried[y][j] = true;
+                lists[iy].push((ix, moves(y)[j].1));
+            }
+            stack.push(y);
+        }
+        (actions, index, lists)
+    }
+
+    /// A small deterministic generator (xorshift64*), enough to draw test graphs.
+    struct Draw(u64);
+    impl Draw {
+        fn below(&mut self, n: u64) -> u64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) % n
+        }
+    }
+
+    #[test]
+    fn explore_matches_the_literal_walk_on_random_graphs() {
+        let mut draw = Draw(0x9E37_79B9_7F4A_7C15);
+        for case in 0..2000 {
+            let n = 1 + draw.below(9) as usize;
+            // Undirected (both directions of every edge), directed, or mixed; multi-edges and
+            // self-loops included.
+            let symmetric = draw.below(3);
+            let mut adjacency: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
+            for _ in 0..draw.below(3 * n as u64 + 1) {
+                let x = draw.below(n as u64) as usize;
+                let y = draw.below(n as u64) as usize;
+                let c = draw.below(5) as f64;
+                adjacency[x].push((y, c));
+                if symmetric == 0 || (symmetric == 2 && draw.below(2) == 0) {
+                    adjacency[y].push((x, c + 0.5));
+                }
+            }
+            // Shuffle each node's move order.
+            for list in &mut adjacency {
+                for i in (1..list.len()).rev() {
+                    list.swap(i, draw.below(i as u64 + 1) as usize);
+                }
+            }
+            let initial = draw.below(n as u64) as usize;
+            let goals: Vec<usize> = (0..n).filter(|_| draw.below(3) == 0).collect();
+            let origin: Vec<usize> = (0..n).map(|v| 100 + v).collect();
+            let g = Graph::from_adjacency(adjacency, initial, &goals, origin, ());
+            let e = explore(&g);
+            let (actions, index, lists) = literal_walk(&g);
+            assert_eq!(e.actions, actions, "case {case}: actions");
+            assert_eq!(e.index, index, "case {case}: index");
+            assert_eq!(e.graph.nodes(), lists.len(), "case {case}: nodes");
+            for (i, list) in lists.iter().enumerate() {
+                let got: Vec<(usize, f64)> = e.graph.edges(i).map(|(y, c)| (y, *c)).collect();
+                assert_eq!(&got, list, "case {case}: moves of discovered node {i}");
+                let v = index.iter().position(|&j| j == Some(i)).unwrap();
+                assert_eq!(e.graph.origin(i), 100 + v, "case {case}: origin");
+                assert_eq!(e.graph.is_goal(i), goals.contains(&v), "case {case}: goal");
+            }
+            assert_eq!(e.graph.initial(), 0);
+        }
+    }
 }

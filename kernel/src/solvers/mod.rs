@@ -11,9 +11,8 @@ pub mod policy_evaluation;
 pub mod value_iteration;
 
 use std::cmp::Ordering;
-use std::collections::VecDeque;
 
-use crate::model::{Decision, Graph};
+use crate::model::{Decision, Graph, InEdges};
 use crate::value::CostValue;
 
 /// The answer of a planner on a graph (node numbering of that graph).
@@ -50,25 +49,37 @@ pub fn greedy_policy<V: CostValue, U>(
     graph: &Graph<V, U>,
     cost_to_go: &[V],
 ) -> Vec<Option<Decision>> {
+    greedy_policy_over(graph, &graph.in_edges(), cost_to_go)
+}
+
+/// [`greedy_policy`] with the graph's moves into each node already built.
+pub(crate) fn greedy_policy_over<V: CostValue, U>(
+    graph: &Graph<V, U>,
+    incoming: &InEdges<'_, V>,
+    cost_to_go: &[V],
+) -> Vec<Option<Decision>> {
     let n = graph.nodes();
     let tight = |x: usize, y: usize, c: &V| {
         cost_to_go[x].is_finite()
             && c.plus(&cost_to_go[y]).compare(&cost_to_go[x]) == Ordering::Equal
     };
     // h: shortest number of optimal moves to a goal (backward BFS over tight edges).
+    // The queue is a vector read from `head` (every node enters at most once).
     let mut h = vec![u32::MAX; n];
-    let mut queue = VecDeque::new();
+    let mut queue: Vec<usize> = Vec::with_capacity(n);
     for (v, hv) in h.iter_mut().enumerate() {
         if graph.is_goal(v) {
             *hv = 0;
-            queue.push_back(v);
+            queue.push(v);
         }
     }
-    while let Some(y) = queue.pop_front() {
-        for (x, c) in graph.in_edges(y) {
+    let mut head = 0;
+    while let Some(&y) = queue.get(head) {
+        head += 1;
+        for (x, c) in incoming.of(y) {
             if h[x] == u32::MAX && tight(x, y, c) {
                 h[x] = h[y] + 1;
-                queue.push_back(x);
+                queue.push(x);
             }
         }
     }

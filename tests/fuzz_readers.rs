@@ -456,6 +456,26 @@ fn corpus_files_are_read() {
     );
 }
 
+/// A case `generated_tiny_files` found (a token inserted into a probability): the stochastic
+/// reader's error echoed `11e10000/2` in full, 10 049 characters. Numbers in errors are now
+/// shortened (`≈5.5e10000`); so are a negative cost and a probability sum.
+#[test]
+fn huge_numbers_in_reader_errors_are_shortened() {
+    let probability = r#"{"format": "truecost-stochastic/1", "states": 1, "initial": 0, "goals": [0],
+ "actions": [[{"to": 0, "cost": "0"}, {"cost":"0","outcomes":[{"to":0,"p":"11e10000/2"},{"to":0,"p":"1/2"}]}]]}"#;
+    let cost = r#"{"initial":0,"goals":[1],"actions":[[{"cost":"-1e5000","outcomes":[{"to":1,"p":"1"}]}],[]]}"#;
+    let sum = r#"{"initial":0,"goals":[1],"actions":[[{"cost":"1","outcomes":[{"to":1,"p":"1e-5000"},{"to":0,"p":"1/2"}]}],[]]}"#;
+    for text in [probability, cost, sum] {
+        let Err(e) = sfile::from_json(text) else {
+            panic!("refused: {text}")
+        };
+        let message = e.to_string();
+        assert!(message.chars().count() <= 200, "{message}");
+        assert!(message.contains('≈'), "{message}");
+        read_everything(text).unwrap();
+    }
+}
+
 /// Guards the stochastic oracle itself on a hand-solved file: from 0, the action costs 1 and
 /// reaches the goal with probability 1/2 (else stays): `G = 1 + G/2`, so `G = 2`.
 #[test]

@@ -19,7 +19,7 @@ use num_traits::{One, Signed, ToPrimitive, Zero};
 
 use super::{NoiseModel, Predictability, StochasticError};
 use crate::model::{ModelError, Problem, StateId};
-use crate::value::{Extended, Rational};
+use crate::value::Rational;
 
 /// What an outcome stands for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
@@ -255,7 +255,7 @@ impl StochasticProblem {
                     return Err(ModelError::NegativeCost {
                         state: x,
                         action: a,
-                        cost: Extended::Finite(action.cost).to_string(),
+                        cost: super::short_text(&action.cost),
                     }
                     .into());
                 }
@@ -280,7 +280,7 @@ impl StochasticProblem {
                         return Err(StochasticError::ProbabilityRange {
                             state: x,
                             action: a,
-                            probability: Extended::Finite(o.probability.clone()).to_string(),
+                            probability: super::short_text(&o.probability),
                         });
                     }
                     sum += &o.probability;
@@ -290,7 +290,7 @@ impl StochasticProblem {
                     return Err(StochasticError::ProbabilitySum {
                         state: x,
                         action: a,
-                        sum: Extended::Finite(sum).to_string(),
+                        sum: super::short_text(&sum),
                     });
                 }
                 s.cost_denominator = s.cost_denominator.lcm(action.cost.denom());

@@ -526,20 +526,48 @@ fn chain_values(
 }
 
 /// An optimal policy of a deterministic model at the rational discount `t`: exact policy
-/// iteration (Howard), each policy evaluated along its successor chains, an action replaced
-/// only by a strictly better one (so the loop ends: every step strictly improves the values).
+/// iteration, each policy evaluated along its successor chains, with in-place (Gauss–Seidel)
+/// improvement in order of distance to where the episode ends (so that improvements travel
+/// back along shortest chains in one sweep). An action is replaced only by a strictly better
+/// one against the current values `w`; `w` only grows, and `w ≤ T_π′ w` gives `v_π′ ≥ w ≥ v_π`
+/// with a strict gain where an action changed, so no policy repeats and the loop ends. A
+/// sweep without change leaves `w = v_π` with no improving action: `π` is optimal (Bellman).
 fn deterministic_optimum(model: &Model, running: &[StateId], t: &Rational) -> Vec<Option<usize>> {
     let p = &model.problem;
     let n = p.states();
+    // Sweep order: breadth-first backwards from the ended states, the rest after.
+    let mut predecessors: Vec<Vec<StateId>> = vec![Vec::new(); n];
+    for &x in running {
+        for a in p.actions(x) {
+            predecessors[successor(model, a)].push(x);
+        }
+    }
+    let mut seen: Vec<bool> = model.terminal.clone();
+    let mut order: Vec<StateId> = Vec::with_capacity(running.len());
+    let mut frontier: Vec<StateId> = (0..n).filter(|&x| model.terminal[x]).collect();
+    while !frontier.is_empty() {
+        let mut next = Vec::new();
+        for y in frontier {
+            for &x in &predecessors[y] {
+                if !seen[x] {
+                    seen[x] = true;
+                    order.push(x);
+                    next.push(x);
+                }
+            }
+        }
+        frontier = next;
+    }
+    order.extend(running.iter().copied().filter(|&x| !seen[x]));
     let mut policy: Vec<Option<usize>> = (0..n)
         .map(|x| (!model.terminal[x]).then(|| p.actions(x).start))
         .collect();
     loop {
         // Evaluation at t along the chains.
-        let mut v = vec![Rational::zero(); n];
+        let mut w = vec![Rational::zero(); n];
         for (x, cycle) in chains(model, running, &policy) {
             let a = policy[x].expect("acts");
-            v[x] = match cycle {
+            w[x] = match cycle {
                 Some(cycle) => {
                     let mut sum = Rational::zero();
                     let mut power = Rational::one();
@@ -549,21 +577,22 @@ fn deterministic_optimum(model: &Model, running: &[StateId], t: &Rational) -> Ve
                     }
                     sum / (Rational::one() - power)
                 }
-                None => &model.reward[a] + t * &v[successor(model, a)],
+                None => &model.reward[a] + t * &w[successor(model, a)],
             };
         }
         let mut changed = false;
-        for &x in running {
-            let q = |a: usize| &model.reward[a] + t * &v[successor(model, a)];
-            let mut best = q(policy[x].expect("acts"));
+        for &x in &order {
+            let q = |w: &[Rational], a: usize| &model.reward[a] + t * &w[successor(model, a)];
+            let mut best = q(&w, policy[x].expect("acts"));
             for a in p.actions(x) {
-                let qa = q(a);
+                let qa = q(&w, a);
                 if qa > best {
                     best = qa;
                     policy[x] = Some(a);
                     changed = true;
                 }
             }
+            w[x] = best;
         }
         if !changed {
             return policy;

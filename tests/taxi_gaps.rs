@@ -886,3 +886,189 @@ fn render_env_taxi_on_the_command_line() {
         2,
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// verify --claim C4 --env taxi --initial STATE: the violated-cycle search.
+
+use truecost::claims::c4::{bonus_analysis, BonusError, End, Instance};
+use truecost::claims::c4_cycles::bonus_sets_by_cycles;
+use truecost::claims::exact::Q;
+
+/// A random small instance: `n` states, the last a goal, 1..=3 moves each (costs 0..=4).
+fn random_instance(seed: u64, n: usize) -> Instance {
+    let mut g = Lcg(seed);
+    let moves = (0..n)
+        .map(|x| {
+            if x + 1 == n {
+                return Vec::new();
+            }
+            let k = 1 + g.below(3) as usize;
+            (0..k)
+                .map(|_| (g.below(n as u64) as usize, g.below(5) as i64))
+                .collect()
+        })
+        .collect();
+    Instance {
+        initial: 0,
+        is_goal: (0..n).map(|x| x + 1 == n).collect(),
+        moves,
+    }
+}
+
+/// The violated-cycle search gives the policy-enumeration oracle's exact sets wherever the
+/// oracle runs (same `L*`, same `S*` values, same intervals).
+#[test]
+fn violated_cycle_search_agrees_with_the_enumeration_oracle() {
+    let mut compared = 0;
+    let mut bounded = 0;
+    for seed in 0..300 {
+        let inst = random_instance(seed, 3 + (seed % 4) as usize);
+        let oracle = match bonus_analysis(&inst, 1 << 16) {
+            Ok(Some(sets)) => sets,
+            Ok(None) => {
+                assert_eq!(bonus_sets_by_cycles(&inst).unwrap(), None, "seed {seed}");
+                continue;
+            }
+            Err(BonusError::Internal(e)) => panic!("{e}"),
+            Err(_) => continue,
+        };
+        let Ok(Some(cycles)) = bonus_sets_by_cycles(&inst) else {
+            // Refused: a reachable dead end or a zero-cost cycle on the optimal paths.
+            continue;
+        };
+        let mut a: Vec<_> = oracle
+            .iter()
+            .map(|s| (s.optimal_cost, s.optimal_states, s.exact))
+            .collect();
+        let mut b: Vec<_> = cycles
+            .iter()
+            .map(|s| (s.optimal_cost, s.optimal_states, s.exact))
+            .collect();
+        a.sort_by_key(|t| t.1);
+        b.sort_by_key(|t| t.1);
+        assert_eq!(a.len(), b.len(), "seed {seed}");
+        for ((la, sa, ea), (lb, sb, eb)) in a.iter().zip(&b) {
+            assert_eq!((la, sa), (lb, sb), "seed {seed}");
+            assert!(ea.same_set(eb), "seed {seed}: oracle {ea}, cycles {eb}");
+            bounded += usize::from(!ea.empty && ea.lo != End::Unbounded);
+        }
+        for (o, c) in oracle.iter().zip(&cycles) {
+            assert_eq!(o.least_mean_cycle, c.least_mean_cycle, "seed {seed}");
+        }
+        compared += 1;
+    }
+    assert!(compared >= 100, "{compared}");
+    assert!(bounded >= 5, "{bounded}");
+}
+
+/// Taxi, from several initial states. Independently: every action costs at least 1 and the
+/// shortest path is also the one with the fewest states (unit costs), so no goal path has a
+/// line of slope above 1/S*; every other goal path has `L ≥ L* + (S − S*)`, crossing `π*`'s at
+/// `M ≥ S* − L* = 1`; a goal-avoiding cycle has mean at least 1, bounding at
+/// `S*·1 − L* = 1`. So the set is all of `M < 0`, with `L*` the breadth-first distance,
+/// `S* = L* + 1` and `Lav(Ĉ) = 1` (moving back and forth).
+#[test]
+fn c4_on_taxi_initial_states() {
+    let env = taxi_env();
+    let m = Model::from_environment(&env).unwrap();
+    let dist = taxi_distances(&env);
+    for (x1, _) in env.initial.iter().step_by(37) {
+        let p = m.deterministic_problem_from(Some(*x1)).unwrap();
+        let (inst, d) = Instance::from_problem(&p).unwrap();
+        assert_eq!(d, BigInt::one());
+        let sets = bonus_sets_by_cycles(&inst).unwrap().unwrap();
+        let l = i64::from(dist[*x1].unwrap());
+        assert_eq!(sets.len(), 1);
+        assert_eq!((sets[0].optimal_cost, sets[0].optimal_states), (l, l + 1));
+        assert_eq!(sets[0].least_mean_cycle, Some(Q::int(1)));
+        assert_eq!(
+            (sets[0].exact.lo, sets[0].exact.hi, sets[0].exact.empty),
+            (End::Unbounded, End::Open(Q::ZERO), false)
+        );
+    }
+}
+
+#[test]
+fn verify_c4_env_taxi_on_the_command_line() {
+    use common::cli::{fails, fails_one_line, json, stdout};
+    let x1 = taxi::encode(3, 1, 2, 0).to_string();
+    assert_eq!(x1, "328");
+    let text = stdout(&["verify", "--claim", "C4", "--env", "taxi", "--initial", &x1]);
+    assert!(text.starts_with("x1 = state 328\n"), "{text}");
+    assert!(text.contains("L* = 10, S* = 11, Lav(C^) = 1"), "{text}");
+    assert!(text.contains("(-inf, 0)"), "{text}");
+    assert!(text.contains("M = -20: in the set"), "{text}");
+    let v = json(&[
+        "verify",
+        "--claim",
+        "C4",
+        "--env",
+        "taxi",
+        "--initial",
+        &x1,
+        "--format",
+        "json",
+    ]);
+    assert_eq!(v["bonus_sets"][0]["exact"], "(-inf, 0)");
+    assert_eq!(v["bonus_sets"][0]["terminal_bonus_in_set"], true);
+    assert_eq!(v["terminal_bonus"], "-20");
+    assert!(v["bonus_sets"][0]["printed"].is_null());
+    // Refusals: one line naming the option, the range, the ended episode; usage errors exit 2.
+    let e = fails_one_line(&["verify", "--claim", "C4", "--env", "taxi"]);
+    assert!(e.contains("--initial STATE"), "{e}");
+    let e = fails_one_line(&[
+        "verify",
+        "--claim",
+        "C4",
+        "--env",
+        "taxi",
+        "--initial",
+        "500",
+    ]);
+    assert!(e.contains("0 to 499"), "{e}");
+    let goal = taxi::encode(0, 0, 1, 1).to_string();
+    let e = fails_one_line(&[
+        "verify",
+        "--claim",
+        "C4",
+        "--env",
+        "taxi",
+        "--initial",
+        &goal,
+    ]);
+    assert!(e.contains("ended"), "{e}");
+    let e = fails_one_line(&[
+        "verify",
+        "--claim",
+        "C4",
+        "--problem",
+        "3",
+        "--initial",
+        "5",
+    ]);
+    assert!(e.contains("--env"), "{e}");
+    fails(
+        &[
+            "verify",
+            "--claim",
+            "C4",
+            "--env",
+            "taxi",
+            "--initial",
+            "x\u{7}",
+        ],
+        2,
+    );
+    // A small environment still takes the enumeration oracle, from a chosen x1.
+    let out = stdout(&[
+        "verify",
+        "--claim",
+        "C4",
+        "--env",
+        "frozenlake:slippery=false",
+        "--initial",
+        "14",
+    ]);
+    assert!(out.contains("exact (oracle)"), "{out}");
+    assert!(out.contains("L* = 1,"), "{out}");
+}

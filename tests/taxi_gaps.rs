@@ -156,7 +156,7 @@ fn brute_optimal(m: &Model, alpha: &Rational) -> (Vec<Rational>, Vec<Vec<usize>>
         .map(|x| all.iter().map(|v| v[x].clone()).max().unwrap())
         .collect();
     assert!(
-        all.iter().any(|v| *v == best),
+        all.contains(&best),
         "one policy attains the pointwise maximum"
     );
     let optimal = (0..n)
@@ -705,9 +705,9 @@ fn taxi_policy_overlay_follows_shortest_paths_in_every_slice() {
                 assert!((marks[0].at.0 - centre.0).abs() < 1e-9);
                 assert!((marks[0].at.1 - centre.1).abs() < 5.0);
                 // Every other cell moves one step closer to the delivery.
-                for cell in 0..25 {
+                for (cell, target) in next.iter().enumerate() {
                     let x = slice.state(cell / 5, cell % 5);
-                    match next[cell] {
+                    match *target {
                         Some(target) => {
                             let y = slice.state(target / 5, target % 5);
                             assert_eq!(dist[y].unwrap() + 1, dist[x].unwrap(), "{x} -> {y}");

@@ -772,11 +772,13 @@ impl Model {
                 ))
             }
             Some(x) => x,
-            None if self.initial.len() > 1 => return Err(format!(
+            None if self.initial.len() > 1 => {
+                return Err(format!(
                 "{} draws its initial state from {} states; this needs a single initial state x1",
                 self.name,
                 self.initial.len()
-            )),
+            ))
+            }
             None => self.initial[0].0,
         };
         let mut moves = Vec::with_capacity(p.states());

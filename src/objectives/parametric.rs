@@ -16,7 +16,8 @@
 //!    failed verification tries another projection. `D` has no root in `(0, 1)` (its roots are
 //!    `1/λ` for eigenvalues `λ` of a substochastic matrix, `|λ| ≤ 1`) and `D(0) = 1`, so `D > 0`
 //!    on `(0, 1)`.
-//! 1′. *Deterministic models* (every action where the episode runs has one outcome: Taxi,
+//!
+//!    **1′.** *Deterministic models* (every action where the episode runs has one outcome: Taxi,
 //!    CliffWalking, FrozenLake unslippery, single-outcome files). A stationary policy follows
 //!    one successor chain from each state: a path to where the episode ends, or a lasso. Its
 //!    value is written down along the chain — on a cycle `c_0 … c_{k−1}`,
@@ -28,8 +29,9 @@
 //!    [`MAX_CHAIN_DEGREE`] bounds the chains met, checked while running.
 //! 2. *Optimality region of a policy.* The advantage of action `a` at `x` over `π`,
 //!    `Q_a − V_x`, has the sign of the polynomial `A = r_a D + α Σ_y p_a(y) N_y − N_x` on
-//!    `(0, 1)` (with several denominators: `Q_a − V_x` times their product). `π` is optimal exactly where every `A ≤ 0`; the optimal actions there are the
-//!    policy's and those with `A = 0`. The roots of every non-zero `A` in `(0, 1)` are isolated
+//!    `(0, 1)` (with several denominators: `Q_a − V_x` times their product). `π` is optimal
+//!    exactly where every `A ≤ 0`; the optimal actions there are the policy's and those with
+//!    `A = 0`. The roots of every non-zero `A` in `(0, 1)` are isolated
 //!    exactly (Descartes' rule with bisection, [`super::roots`]) and the sign of `A` on each gap
 //!    between them is evaluated at a rational point, so the maximal interval `[β_L, β_R]` around a point
 //!    where `π` is optimal is exact, and so are the points inside where some `A` touches 0

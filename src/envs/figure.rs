@@ -42,7 +42,7 @@ impl TaxiSlice {
     /// ```
     /// use truecost::envs::figure::TaxiSlice;
     /// let s = TaxiSlice::new(4, 1).unwrap();
-    /// assert_eq!(s.state(0, 4), 4 * 100 + 4 * 4 + 1);
+    /// assert_eq!(s.state(0, 4), ((0 * 5 + 4) * 5 + 4) * 4 + 1); // Gymnasium's encode(0, 4, 4, 1) = 97
     /// assert!(TaxiSlice::new(2, 2).unwrap_err().contains("ended"));
     /// ```
     pub fn new(passenger: usize, destination: usize) -> Result<TaxiSlice, String> {

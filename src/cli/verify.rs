@@ -249,7 +249,7 @@ fn bonus_env(spec: &str, args: &VerifyArgs) -> Result<String, String> {
     let problem = model
         .deterministic_problem_from(args.initial)
         .map_err(|e| format!("C4 is stated for deterministic problems: {e}"))?;
-    let mut out = bonus(&problem, args.format, model.terminal_bonus.as_ref())?;
+    let mut out = bonus(&problem, args.format, Some(model.terminal_bonus.as_ref()))?;
     if args.initial.is_some() && args.format != VerifyFormat::Json {
         out = format!("x1 = state {}\n{out}", problem.initial());
     }
@@ -365,20 +365,26 @@ fn bonus_by_cycles(
     })
 }
 
+/// The bonus sets of one problem. With `environment` (`--env`: the environment's own bonus, if
+/// it has one), a problem beyond the enumeration oracle's bounds is answered by the
+/// violated-cycle search; files and paper problems keep the oracle's refusal.
 fn bonus(
     problem: &Problem,
     format: VerifyFormat,
-    terminal_bonus: Option<&truecost::value::Rational>,
+    environment: Option<Option<&truecost::value::Rational>>,
 ) -> Result<String, String> {
     use truecost::claims::c4::BonusError;
     let (inst, d) = Instance::from_problem(problem)?;
-    let sets = match bonus_analysis(&inst, 1 << 22) {
-        Err(
-            e @ (BonusError::TooManyPolicies { .. }
-            | BonusError::SearchTooLong { .. }
-            | BonusError::TooManyStates { .. }),
+    let sets = match (bonus_analysis(&inst, 1 << 22), environment) {
+        (
+            Err(
+                e @ (BonusError::TooManyPolicies { .. }
+                | BonusError::SearchTooLong { .. }
+                | BonusError::TooManyStates { .. }),
+            ),
+            Some(terminal_bonus),
         ) => return bonus_by_cycles(&inst, &d, format, &e.to_string(), terminal_bonus),
-        other => other.map_err(|e| e.to_string())?,
+        (other, _) => other.map_err(|e| e.to_string())?,
     }
     .ok_or("no goal is reachable from x1: there is no single-shot path and no bonus set")?;
     let rows: Vec<_> = sets

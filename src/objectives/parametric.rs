@@ -1131,3 +1131,80 @@ pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, Parametri
         deterministic,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::stochastic::{Outcome, OutcomeKind, StochasticProblem};
+
+    fn det(cost: i64, to: usize) -> StochasticAction {
+        StochasticAction {
+            cost: Rational::from_integer(cost.into()),
+            outcomes: vec![Outcome {
+                successor: to,
+                probability: Rational::one(),
+                kind: OutcomeKind::Listed,
+            }],
+        }
+    }
+
+    fn eval(p: &[BigInt], a: &Rational) -> Rational {
+        p.iter().rev().fold(Rational::zero(), |acc, c| {
+            acc * a + Rational::from_integer(c.clone())
+        })
+    }
+
+    /// A lasso and a path: 0 → 1 → 2 → 1 (costs 1, 2, 3) and 3 → goal 4 (cost 5). By hand at
+    /// α = 1/3 (rewards are the negated costs): on the cycle, `V_1 = −(2 + 3α)/(1 − α²)`,
+    /// `V_2 = −(3 + 2α)/(1 − α²)`, `V_0 = −1 + α V_1`; off it `V_3 = −5`.
+    #[test]
+    fn chain_values_of_a_lasso_and_a_path() {
+        let actions = vec![
+            vec![det(1, 1)],
+            vec![det(2, 2)],
+            vec![det(3, 1)],
+            vec![det(5, 4)],
+            vec![],
+        ];
+        let m = Model::from_problem(
+            StochasticProblem::new(actions, 0, vec![4]).unwrap(),
+            "lasso".into(),
+        );
+        let running = [0, 1, 2, 3];
+        let policy: Vec<Option<usize>> = (0..5)
+            .map(|x| (x < 4).then(|| m.problem.actions(x).start))
+            .collect();
+        let v = chain_values(&m, &running, &policy).unwrap();
+        let a = Rational::new(1.into(), 3.into());
+        let value = |x: usize| eval(&v.n[x], &a) / eval(&v.dens[v.den_of[x]], &a);
+        let q = |n: i64, d: i64| Rational::new(n.into(), d.into());
+        let one_minus = Rational::one() - &a * &a; // 8/9
+        let v1 = -(q(2, 1) + q(3, 1) * &a) / &one_minus;
+        let v2 = -(q(3, 1) + q(2, 1) * &a) / &one_minus;
+        assert_eq!(value(1), v1);
+        assert_eq!(value(2), v2);
+        assert_eq!(value(0), q(-1, 1) + &a * &v1);
+        assert_eq!(value(3), q(-5, 1));
+        // Degrees: the cycle's denominator 1 − α², the path's 1.
+        assert_eq!(v.degree, 2);
+        assert_eq!(v.dens[v.den_of[3]].len(), 1);
+        // The optimum at 1/3 of a choice: at 0 also a direct move to the goal costing 10
+        // (−10 against −1 + V_1/3 ≈ −3.08: the lasso is better at α = 1/3).
+        let mut actions = vec![
+            vec![det(1, 1), det(10, 4)],
+            vec![det(2, 2)],
+            vec![det(3, 1)],
+            vec![det(5, 4)],
+            vec![],
+        ];
+        let m2 = Model::from_problem(
+            StochasticProblem::new(std::mem::take(&mut actions), 0, vec![4]).unwrap(),
+            "choice".into(),
+        );
+        let best = deterministic_optimum(&m2, &running, &a);
+        assert_eq!(best[0], Some(m2.problem.actions(0).start));
+        // Near α = 1 the lasso costs about 2.5 per step forever: the goal is better.
+        let best = deterministic_optimum(&m2, &running, &Rational::new(99.into(), 100.into()));
+        assert_eq!(best[0], Some(m2.problem.actions(0).start + 1));
+    }
+}

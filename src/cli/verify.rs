@@ -36,7 +36,7 @@ pub struct VerifyArgs {
     command: Option<VerifyCommand>,
     /// Run shard K of N (1 <= K <= N <= 4096) and write its partial report (a JSON shard
     /// file) to stdout; `verify merge` combines the N files into the whole run's report.
-    #[arg(long, value_name = "K/N", conflicts_with_all = ["counterexamples", "smt_out", "file", "problem", "env", "format", "no_times"])]
+    #[arg(long, value_name = "K/N", conflicts_with_all = ["counterexamples", "smt_out", "file", "problem", "env", "initial", "format", "no_times"])]
     shard: Option<String>,
     /// Check one claim only (C1, C1-corrected, C2, C3, C3-example, C4, C4-corrected; C1 also
     /// selects C1-corrected, and so on).

@@ -324,7 +324,16 @@ fn render_env_writes_svg_and_png() {
         png.to_str().unwrap(),
     ]);
     assert!(std::fs::metadata(&png).unwrap().len() > 1000);
-    fails_one_line(&["render", "--env", "taxi", "--out", svg]);
+    // Taxi's policy needs a slice (tests/taxi_gaps.rs draws them).
+    fails_one_line(&[
+        "render",
+        "--env",
+        "taxi",
+        "--overlay",
+        "policy",
+        "--out",
+        svg,
+    ]);
     fails_one_line(&[
         "render",
         "--env",

@@ -22,6 +22,7 @@ pub mod c1;
 pub mod c2;
 pub mod c3;
 pub mod c4;
+pub mod c4_cycles;
 pub mod discount;
 pub mod exact;
 pub mod harnesses;

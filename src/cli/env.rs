@@ -200,29 +200,105 @@ pub fn pretty(v: &serde_json::Value) -> String {
     s
 }
 
-/// `render --env SPEC [--objective O --alpha A] --overlay none|values|policy --out F`
-/// (issue 11, item 5).
+/// Taxi's passenger place for `render --env taxi --passenger P`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PassengerPlace {
+    /// Waiting at depot R (0, 0).
+    R,
+    /// Waiting at depot G (0, 4).
+    G,
+    /// Waiting at depot Y (4, 0).
+    Y,
+    /// Waiting at depot B (4, 3).
+    B,
+    /// In the taxi.
+    Taxi,
+}
+
+/// Taxi's destination for `render --env taxi --destination D`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Depot {
+    /// Depot R (0, 0).
+    R,
+    /// Depot G (0, 4).
+    G,
+    /// Depot Y (4, 0).
+    Y,
+    /// Depot B (4, 3).
+    B,
+}
+
+/// `--passenger` and `--destination` of `render --env taxi`: which 25 of the 500 states.
+#[derive(Args, Debug, Clone, Default)]
+pub struct TaxiSliceArgs {
+    /// With --env taxi: draw the 25 states (one per taxi cell) where the passenger is waiting
+    /// at this depot (r, g, y, b) or is in the taxi (taxi); goes with --destination.
+    #[arg(long, value_enum, ignore_case = true, value_name = "R|G|Y|B|TAXI")]
+    pub passenger: Option<PassengerPlace>,
+    /// With --env taxi: the destination depot of the slice drawn (r, g, y, b), marked as the
+    /// goal; goes with --passenger.
+    #[arg(long, value_enum, ignore_case = true, value_name = "R|G|Y|B")]
+    pub destination: Option<Depot>,
+}
+
+/// `render --env SPEC [--objective O --alpha A] [--passenger P --destination D]
+/// --overlay none|values|policy --out F` (issue 11, item 5). Every option is checked before
+/// anything is solved.
 pub fn render(
     spec: &str,
     objective: &ObjectiveArgs,
+    slice: &TaxiSliceArgs,
     overlay: super::render::OverlayKind,
     width: u32,
     height: u32,
     out: &std::path::Path,
 ) -> Result<String, String> {
     use super::render::OverlayKind;
-    use truecost::envs::figure::{policy_overlay, scene, value_overlay};
+    use truecost::envs::figure::{
+        policy_overlay, scene, taxi_policy_overlay, taxi_scene, taxi_value_overlay, value_overlay,
+        TaxiSlice,
+    };
     use truecost::figures::render::{draw, Overlay};
     let env = truecost::envs::EnvSpec::parse(spec)
         .and_then(|s| s.build())
         .map_err(|e| e.to_string())?;
-    let mut scene = scene(&env).map_err(|e| e.to_string())?;
+    let slice = match (slice.passenger, slice.destination) {
+        (None, None) => None,
+        (Some(p), Some(d)) => Some(TaxiSlice::new(p as usize, d as usize)?),
+        _ => {
+            return Err(
+                "--passenger and --destination go together: they choose the Taxi slice to draw"
+                    .into(),
+            )
+        }
+    };
+    let is_taxi = env.layout == truecost::envs::Layout::Taxi;
+    if slice.is_some() && !is_taxi {
+        return Err(format!(
+            "--passenger and --destination choose a slice of taxi; {} is drawn whole",
+            env.spec
+        ));
+    }
+    if !matches!(
+        overlay,
+        OverlayKind::None | OverlayKind::Values | OverlayKind::Policy
+    ) {
+        return Err("render --env draws --overlay none, values or policy".into());
+    }
+    if is_taxi && slice.is_none() && overlay != OverlayKind::None {
+        return Err(truecost::envs::figure::NotDrawable.to_string());
+    }
     let name = match objective.objective.unwrap_or(ObjectiveName::Truecost) {
         ObjectiveName::Truecost => "truecost",
         ObjectiveName::Reach => "reach",
         ObjectiveName::Discounted => "discounted",
     };
     let objective = parse_objective(name, objective.alpha.as_deref())?;
+    let mut scene = if is_taxi {
+        taxi_scene(&env, slice.as_ref())
+    } else {
+        scene(&env).map_err(|e| e.to_string())?
+    };
     let overlay = match overlay {
         OverlayKind::None => Overlay::None,
         OverlayKind::Values | OverlayKind::Policy => {
@@ -236,22 +312,36 @@ pub fn render(
             } else {
                 format!("{} to {}", p(&s.success.min), p(&s.success.max))
             };
+            let over = match model.initial.len() {
+                1 => String::new(),
+                k => format!(" (expectation over the {k} initial states)"),
+            };
             scene.caption = format!(
-                "{}; {} objective, exact; initial value {}; success probability {success}",
+                "{}; {} objective, exact; initial value {}{over}; success probability {success}",
                 scene.caption,
                 name,
                 truecost::stochastic::decimal(&s.value_initial, 6)
             );
-            if overlay == OverlayKind::Values {
-                value_overlay(&s)
-            } else {
-                scene
-                    .caption
-                    .push_str(" (an action aimed at the border is not drawn)");
-                policy_overlay(&env, &model, &s)
+            match (overlay, &slice) {
+                (OverlayKind::Values, Some(slice)) => taxi_value_overlay(&s, slice),
+                (OverlayKind::Values, None) => value_overlay(&s),
+                (_, Some(slice)) => {
+                    scene.caption.push_str(
+                        "; arrows: the policy's moves, marks: its pick-up and drop-off (a move into a wall or the border is not drawn)",
+                    );
+                    let (overlay, marks) = taxi_policy_overlay(&model, &s, slice);
+                    scene.marks.extend(marks);
+                    overlay
+                }
+                (_, None) => {
+                    scene
+                        .caption
+                        .push_str(" (an action aimed at the border is not drawn)");
+                    policy_overlay(&env, &model, &s)
+                }
             }
         }
-        _ => return Err("render --env draws --overlay none, values or policy".into()),
+        _ => unreachable!("refused above"),
     };
     let canvas = draw(&scene, &overlay, width, height).map_err(|e| e.to_string())?;
     canvas.save(out).map_err(|e| e.to_string())?;

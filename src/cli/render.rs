@@ -44,6 +44,8 @@ pub struct RenderArgs {
     env: super::env::EnvArg,
     #[command(flatten)]
     objective: super::env::ObjectiveArgs,
+    #[command(flatten)]
+    slice: super::env::TaxiSliceArgs,
     /// One of the paper's problems, 0 to 18.
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
@@ -166,13 +168,29 @@ fn check_output(args: &RenderArgs) -> Result<(), String> {
 /// Runs the command; returns the message printed on success.
 pub fn run(args: &RenderArgs) -> Result<String, String> {
     if let Some(spec) = &args.env.env {
+        VisitsRun::from_args(args)?;
+        check_output(args)?;
+        if args.gamma.is_some()
+            || args.noise.is_some()
+            || args.step_cost.is_some()
+            || args.mode != Mode::Exact
+        {
+            return Err("--gamma, --noise, --step-cost and --mode apply to --problem and --file; an environment has its own transitions and costs".into());
+        }
         return super::env::render(
             spec,
             &args.objective,
+            &args.slice,
             args.overlay,
             args.width,
             args.height,
             &args.out,
+        );
+    }
+    if args.slice.passenger.is_some() || args.slice.destination.is_some() {
+        return Err(
+            "--passenger and --destination choose the Taxi slice to draw: they go with --env taxi"
+                .into(),
         );
     }
     let visits_run = VisitsRun::from_args(args)?;

@@ -36,7 +36,7 @@ pub struct VerifyArgs {
     command: Option<VerifyCommand>,
     /// Run shard K of N (1 <= K <= N <= 4096) and write its partial report (a JSON shard
     /// file) to stdout; `verify merge` combines the N files into the whole run's report.
-    #[arg(long, value_name = "K/N", conflicts_with_all = ["counterexamples", "smt_out", "file", "problem", "env", "format", "no_times"])]
+    #[arg(long, value_name = "K/N", conflicts_with_all = ["counterexamples", "smt_out", "file", "problem", "env", "initial", "format", "no_times"])]
     shard: Option<String>,
     /// Check one claim only (C1, C1-corrected, C2, C3, C3-example, C4, C4-corrected; C1 also
     /// selects C1-corrected, and so on).
@@ -65,6 +65,12 @@ pub struct VerifyArgs {
     /// (frozenlake:slippery=false, cliffwalking, taxi).
     #[arg(long, value_name = "SPEC", conflicts_with_all = ["problem", "file"])]
     env: Option<String>,
+    /// With --claim C4 --env SPEC: the initial state x1 (a state number of the environment;
+    /// required for taxi, whose episodes start from 300 states: state
+    /// ((row*5 + col)*5 + passenger)*4 + destination, e.g. 328 = taxi at (3, 1), passenger at
+    /// Y, destination R).
+    #[arg(long, value_name = "STATE", allow_negative_numbers = true)]
+    initial: Option<usize>,
     /// Write every SMT obligation as a standard SMT-LIB 2.6 file (with Z3's answer as
     /// `:status`) under this directory, with an index (index.tsv), for cvc5 or Yices to
     /// re-check. The directory must be empty or not exist.
@@ -168,6 +174,11 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
     if let Some(spec) = &args.env {
         return bonus_env(spec, args);
     }
+    if args.initial.is_some() {
+        return Err(
+            "--initial chooses x1 of an environment: it goes with --claim C4 --env SPEC".into(),
+        );
+    }
     if args.file.is_some() || args.problem.is_some() {
         if args.claim.as_deref() != Some("C4") {
             return Err(
@@ -181,7 +192,7 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
                 .to_problem(StepCost::Unit),
             _ => unreachable!(),
         };
-        return bonus(&problem, args.format);
+        return bonus(&problem, args.format, None);
     }
     let with_times = !args.no_times;
     if let Some(dir) = &args.smt_out {
@@ -227,10 +238,22 @@ fn bonus_env(spec: &str, args: &VerifyArgs) -> Result<String, String> {
         return Err("--env goes with --claim C4 (the exact bonus set of one problem)".into());
     }
     let model = truecost::objectives::Source::Env(spec.to_string()).load()?;
+    if model.initial.len() > 1 && args.initial.is_none() {
+        return Err(format!(
+            "C4 is stated for a single initial state x1; {} draws it from {} states: choose one with --initial STATE (e.g. --initial {})",
+            model.name,
+            model.initial.len(),
+            model.initial[0].0
+        ));
+    }
     let problem = model
-        .deterministic_problem()
+        .deterministic_problem_from(args.initial)
         .map_err(|e| format!("C4 is stated for deterministic problems: {e}"))?;
-    bonus(&problem, args.format)
+    let mut out = bonus(&problem, args.format, Some(model.terminal_bonus.as_ref()))?;
+    if args.initial.is_some() && args.format != VerifyFormat::Json {
+        out = format!("x1 = state {}\n{out}", problem.initial());
+    }
+    Ok(out)
 }
 
 fn unscale(q: Q, d: &BigInt) -> String {
@@ -255,11 +278,115 @@ fn interval_text(i: &Interval, d: &BigInt) -> String {
     format!("{lo}, {hi}")
 }
 
-fn bonus(problem: &Problem, format: VerifyFormat) -> Result<String, String> {
-    let (inst, d) = Instance::from_problem(problem)?;
-    let sets = bonus_analysis(&inst, 1 << 22)
-        .map_err(|e| e.to_string())?
+/// Whether the bonus `m` (unscaled) lies in the interval of scaled bonuses (scale `d`).
+fn holds(i: &Interval, m: &truecost::value::Rational, d: &BigInt) -> bool {
+    let scaled = m * truecost::value::Rational::from_integer(d.clone());
+    let end = |q: Q| q.to_rational();
+    !i.empty
+        && match i.lo {
+            End::Unbounded => true,
+            End::Closed(a) => scaled >= end(a),
+            End::Open(a) => scaled > end(a),
+        }
+        && match i.hi {
+            End::Unbounded => true,
+            End::Closed(b) => scaled <= end(b),
+            End::Open(b) => scaled < end(b),
+        }
+}
+
+/// The bonus sets by the violated-cycle search (`claims::c4_cycles`), when the enumeration
+/// oracle refuses the problem's size: the exact set only (the printed and corrected formulas
+/// need every simple goal path).
+fn bonus_by_cycles(
+    inst: &Instance,
+    d: &BigInt,
+    format: VerifyFormat,
+    refusal: &str,
+    terminal_bonus: Option<&truecost::value::Rational>,
+) -> Result<String, String> {
+    let sets = truecost::claims::c4_cycles::bonus_sets_by_cycles(inst)?
         .ok_or("no goal is reachable from x1: there is no single-shot path and no bonus set")?;
+    let method = format!("exact violated-cycle search (Bellman-Ford, claims::c4_cycles); the enumeration oracle refuses: {refusal}; the printed and corrected formulas need every simple goal path and are not evaluated");
+    let rows: Vec<_> = sets
+        .iter()
+        .map(|s| {
+            json!({
+                "optimal_cost": unscale(Q::int(s.optimal_cost as i128), d),
+                "optimal_states": s.optimal_states,
+                "least_mean_cycle": s.least_mean_cycle.map(|q| unscale(q, d)),
+                "exact": interval_text(&s.exact, d),
+                "bellman_ford_runs": s.steps,
+                "printed": null,
+                "corrected": null,
+                "terminal_bonus_in_set": terminal_bonus.map(|m| holds(&s.exact, m, d)),
+            })
+        })
+        .collect();
+    Ok(match format {
+        VerifyFormat::Json => {
+            let mut s = serde_json::to_string_pretty(&json!({
+                "bonus_sets": rows,
+                "method": method,
+                "terminal_bonus": terminal_bonus.map(|m| m.to_string()),
+            }))
+            .expect("serialisable");
+            s.push('\n');
+            s
+        }
+        _ => {
+            let mut s = format!(
+                "Exact set of bonuses M < 0 for which pi* is average-cost optimal (C4), per optimal path length S*\nmethod: {method}\n"
+            );
+            for (r, set) in rows.iter().zip(&sets) {
+                let _ = writeln!(
+                    s,
+                    "L* = {}, S* = {}, Lav(C^) = {}\n  exact (violated cycles, {} Bellman-Ford runs): {}",
+                    r["optimal_cost"].as_str().unwrap_or(""),
+                    r["optimal_states"],
+                    r["least_mean_cycle"].as_str().unwrap_or("none (+inf)"),
+                    r["bellman_ford_runs"],
+                    r["exact"].as_str().unwrap_or(""),
+                );
+                if let Some(m) = terminal_bonus {
+                    let _ = writeln!(
+                        s,
+                        "  the environment's own bonus M = {m}: {}",
+                        if holds(&set.exact, m, d) {
+                            "in the set (pi* is average-cost optimal)"
+                        } else {
+                            "not in the set"
+                        }
+                    );
+                }
+            }
+            s
+        }
+    })
+}
+
+/// The bonus sets of one problem. With `environment` (`--env`: the environment's own bonus, if
+/// it has one), a problem beyond the enumeration oracle's bounds is answered by the
+/// violated-cycle search; files and paper problems keep the oracle's refusal.
+fn bonus(
+    problem: &Problem,
+    format: VerifyFormat,
+    environment: Option<Option<&truecost::value::Rational>>,
+) -> Result<String, String> {
+    use truecost::claims::c4::BonusError;
+    let (inst, d) = Instance::from_problem(problem)?;
+    let sets = match (bonus_analysis(&inst, 1 << 22), environment) {
+        (
+            Err(
+                e @ (BonusError::TooManyPolicies { .. }
+                | BonusError::SearchTooLong { .. }
+                | BonusError::TooManyStates { .. }),
+            ),
+            Some(terminal_bonus),
+        ) => return bonus_by_cycles(&inst, &d, format, &e.to_string(), terminal_bonus),
+        (other, _) => other.map_err(|e| e.to_string())?,
+    }
+    .ok_or("no goal is reachable from x1: there is no single-shot path and no bonus set")?;
     let rows: Vec<_> = sets
         .iter()
         .map(|s| {

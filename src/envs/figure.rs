@@ -2,9 +2,15 @@
 //! FrozenLake's holes and CliffWalking's cliff as discs, the start and the goal — with a
 //! policy (the intended cell of each chosen action) or a value overlay drawn by
 //! [`crate::figures::render::draw`].
+//!
+//! Taxi's 500 states are 25 taxi cells × 5 passenger places × 4 destinations: one figure draws
+//! the 5×5 map (its walls, the depots R, G, Y, B) and one *slice* ([`TaxiSlice`]: the
+//! passenger's place and the destination fixed, the 25 taxi cells varying), the destination
+//! marked as the goal; the policy overlay marks pick-up and drop-off actions in their cells
+//! ([`taxi_scene`], [`taxi_policy_overlay`], [`taxi_value_overlay`]).
 
-use super::{cliffwalking, Environment, Layout};
-use crate::figures::render::{Overlay, Scene};
+use super::{cliffwalking, taxi, Environment, Layout};
+use crate::figures::render::{Mark, Overlay, Scene};
 use crate::objectives::{Model, Solution};
 use crate::problems::geometry::Disc;
 
@@ -13,16 +19,236 @@ const CELL: i64 = 10;
 
 /// Why an environment cannot be drawn.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("render --env draws frozenlake and cliffwalking; taxi's 500 states (taxi, passenger, destination) do not fit one 5x5 map")]
+#[error("taxi's 500 states do not fit one 5x5 map: draw one slice of 25 with --passenger R|G|Y|B|taxi and --destination R|G|Y|B")]
 pub struct NotDrawable;
 
-/// The scene of a FrozenLake or CliffWalking map.
+/// The depot names of Taxi's four locations, in Gymnasium's numbering.
+pub const DEPOTS: [&str; 4] = ["R", "G", "Y", "B"];
+
+/// One slice of Taxi's states: the passenger's place (0..=3 at depot R, G, Y, B; 4 in the
+/// taxi) and the destination (0..=3) fixed, the 25 taxi cells varying.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TaxiSlice {
+    /// 0..=3: waiting at a depot; 4: in the taxi.
+    pub passenger: usize,
+    /// 0..=3: a depot.
+    pub destination: usize,
+}
+
+impl TaxiSlice {
+    /// The slice, refused (one line) when the passenger is already at the destination: those
+    /// 25 states are where the episode has ended (Taxi's goals), there is no policy to draw.
+    ///
+    /// ```
+    /// use truecost::envs::figure::TaxiSlice;
+    /// let s = TaxiSlice::new(4, 1).unwrap();
+    /// assert_eq!(s.state(0, 4), ((0 * 5 + 4) * 5 + 4) * 4 + 1); // Gymnasium's encode(0, 4, 4, 1) = 97
+    /// assert!(TaxiSlice::new(2, 2).unwrap_err().contains("ended"));
+    /// ```
+    pub fn new(passenger: usize, destination: usize) -> Result<TaxiSlice, String> {
+        if passenger > 4 || destination > 3 {
+            return Err(format!(
+                "taxi slice: passenger {passenger} (0..=4) or destination {destination} (0..=3) out of range"
+            ));
+        }
+        if passenger == destination {
+            return Err(format!(
+                "taxi slice: the passenger is at the destination {}: those 25 states are where the episode has ended (Taxi's goals); choose another --passenger or --destination",
+                DEPOTS[destination]
+            ));
+        }
+        Ok(TaxiSlice {
+            passenger,
+            destination,
+        })
+    }
+
+    /// The Taxi state of the taxi at `(row, col)` in this slice (Gymnasium's `encode`).
+    pub fn state(&self, row: usize, col: usize) -> usize {
+        taxi::encode(row, col, self.passenger, self.destination)
+    }
+
+    /// The 25 states of the slice, cell by cell (row-major from the top).
+    pub fn states(&self) -> Vec<usize> {
+        (0..25).map(|c| self.state(c / 5, c % 5)).collect()
+    }
+
+    /// What the slice is, in words.
+    pub fn describe(&self) -> String {
+        let passenger = match self.passenger {
+            4 => "in the taxi".to_string(),
+            p => format!("waiting at {}", DEPOTS[p]),
+        };
+        format!(
+            "passenger {passenger}, destination {}",
+            DEPOTS[self.destination]
+        )
+    }
+}
+
+/// The world centre of the cell `(row, col)` of an `nrow`-row map (row 0 on top).
+fn cell_centre(nrow: usize, row: usize, col: usize) -> (f64, f64) {
+    (
+        (CELL * col as i64 + CELL / 2) as f64,
+        (CELL * (nrow - 1 - row) as i64 + CELL / 2) as f64,
+    )
+}
+
+/// The scene of Taxi's 5×5 map (issue 11, item 5): 25 cells (the taxi's position, scene state
+/// `row·5 + col`), a grey segment between neighbouring cells not separated by a wall, the six
+/// walls of Gymnasium's `MAP`, the depots R, G, Y, B; with a slice, the destination as the
+/// goal and a `passenger` mark at the passenger's depot (if waiting). No `x1` is marked: the
+/// initial state is drawn uniformly from 300 states.
+///
+/// ```
+/// use truecost::envs::{figure::{taxi_scene, TaxiSlice}, EnvSpec};
+/// let env = EnvSpec::parse("taxi").unwrap().build().unwrap();
+/// let s = taxi_scene(&env, Some(&TaxiSlice::new(0, 1).unwrap()));
+/// assert_eq!((s.positions.len(), s.walls.len(), s.moves.len(), s.goals.clone()), (25, 6, 34, vec![4]));
+/// assert_eq!(s.marks.iter().filter(|m| m.class == "depot").count(), 4);
+/// ```
+pub fn taxi_scene(env: &Environment, slice: Option<&TaxiSlice>) -> Scene {
+    let n = 5;
+    let positions = (0..n * n).map(|s| cell_centre(n, s / n, s % n)).collect();
+    let mut moves = Vec::new();
+    let mut walls = Vec::new();
+    for r in 0..n {
+        for c in 0..n {
+            let s = r * n + c;
+            if c + 1 < n {
+                if taxi::open_east(r, c) {
+                    moves.push((s, s + 1));
+                } else {
+                    let x = (CELL * (c as i64 + 1)) as f64;
+                    let y0 = (CELL * (n - 1 - r) as i64) as f64;
+                    walls.push(((x, y0), (x, y0 + CELL as f64)));
+                }
+            }
+            if r + 1 < n {
+                moves.push((s, s + n));
+            }
+        }
+    }
+    let offset = CELL as f64 * 0.3;
+    let mut marks: Vec<Mark> = taxi::LOCATIONS
+        .iter()
+        .zip(DEPOTS)
+        .map(|(&(r, c), name)| {
+            let (x, y) = cell_centre(n, r, c);
+            Mark {
+                class: "depot",
+                at: (x - offset, y + offset),
+                text: name.to_string(),
+                size: 18.0,
+            }
+        })
+        .collect();
+    let mut goals = Vec::new();
+    let caption = match slice {
+        Some(slice) => {
+            let (r, c) = taxi::LOCATIONS[slice.destination];
+            goals.push(r * n + c);
+            if slice.passenger < 4 {
+                let (r, c) = taxi::LOCATIONS[slice.passenger];
+                let (x, y) = cell_centre(n, r, c);
+                marks.push(Mark {
+                    class: "passenger",
+                    at: (x, y - offset),
+                    text: "passenger".into(),
+                    size: 11.0,
+                });
+            }
+            format!(
+                "5x5 map, walls thick, depots R G Y B; slice: {} (25 of the 500 states, one per taxi cell)",
+                slice.describe()
+            )
+        }
+        None => "5x5 map, walls thick, depots R G Y B".to_string(),
+    };
+    Scene {
+        title: format!("{} ({})", env.spec, env.gymnasium_id),
+        caption,
+        positions,
+        extent: ((CELL * n as i64) as f64, (CELL * n as i64) as f64),
+        obstacles: Vec::new(),
+        moves,
+        initial: None,
+        goals,
+        walls,
+        marks,
+    }
+}
+
+/// The policy overlay of a Taxi slice: an arrow from each cell to the cell its move aims at
+/// (none for a move into a wall or the border), and a `pickup` / `dropoff` mark in the cells
+/// where the policy picks up or drops off (returned as marks to add to the scene).
+///
+/// ```
+/// use truecost::envs::{figure::{taxi_policy_overlay, TaxiSlice}, EnvSpec};
+/// use truecost::figures::render::Overlay;
+/// use truecost::objectives::{Model, Objective};
+/// let env = EnvSpec::parse("taxi").unwrap().build().unwrap();
+/// let m = Model::from_environment(&env).unwrap();
+/// let s = m.solve(&Objective::Truecost).unwrap();
+/// // Passenger in the taxi, destination G (0, 4): drop off at G only.
+/// let (Overlay::Policy(next), marks) = taxi_policy_overlay(&m, &s, &TaxiSlice::new(4, 1).unwrap()) else { panic!() };
+/// assert_eq!(marks.iter().map(|m| m.class).collect::<Vec<_>>(), vec!["dropoff"]);
+/// assert_eq!(next.iter().filter(|n| n.is_some()).count(), 24); // every other cell moves
+/// ```
+pub fn taxi_policy_overlay(model: &Model, s: &Solution, slice: &TaxiSlice) -> (Overlay, Vec<Mark>) {
+    let n = 5;
+    let mut next = Vec::with_capacity(n * n);
+    let mut marks = Vec::new();
+    for cell in 0..n * n {
+        let (r, c) = (cell / n, cell % n);
+        let x = slice.state(r, c);
+        let Some(a) = s.policy[x].map(|a| a - model.problem.actions(x).start) else {
+            next.push(None);
+            continue;
+        };
+        let (mut nr, mut nc) = (r, c);
+        match a {
+            0 => nr = (r + 1).min(n - 1),
+            1 => nr = r.saturating_sub(1),
+            2 if taxi::open_east(r, c) => nc = (c + 1).min(n - 1),
+            3 if taxi::open_west(r, c) => nc = c.saturating_sub(1),
+            4 | 5 => {
+                let (px, py) = cell_centre(n, r, c);
+                marks.push(Mark {
+                    class: if a == 4 { "pickup" } else { "dropoff" },
+                    at: (px, py + CELL as f64 * 0.25),
+                    text: if a == 4 { "pick up" } else { "drop off" }.into(),
+                    size: 12.0,
+                });
+            }
+            _ => {}
+        }
+        let target = nr * n + nc;
+        next.push((target != cell).then_some(target));
+    }
+    (Overlay::Policy(next), marks)
+}
+
+/// The value overlay of a Taxi slice: the objective's exact values at its 25 states (coloured
+/// as `f64`), labelled with the objective.
+pub fn taxi_value_overlay(s: &Solution, slice: &TaxiSlice) -> Overlay {
+    Overlay::Values {
+        values: slice
+            .states()
+            .iter()
+            .map(|&x| s.values[x].finite().map(|_| s.values[x].to_f64()))
+            .collect(),
+        label: format!("{} (exact)", s.objective.name()),
+    }
+}
+
+/// The scene of a FrozenLake or CliffWalking map (Taxi: [`taxi_scene`] of a slice).
 ///
 /// ```
 /// use truecost::envs::{figure::scene, EnvSpec};
 /// let env = EnvSpec::parse("frozenlake").unwrap().build().unwrap();
 /// let s = scene(&env).unwrap();
-/// assert_eq!((s.positions.len(), s.obstacles.len(), s.moves.len(), s.initial, s.goals.clone()), (16, 4, 24, 0, vec![15]));
+/// assert_eq!((s.positions.len(), s.obstacles.len(), s.moves.len(), s.initial, s.goals.clone()), (16, 4, 24, Some(0), vec![15]));
 /// ```
 pub fn scene(env: &Environment) -> Result<Scene, NotDrawable> {
     let (nrow, ncol) = env.shape;
@@ -70,8 +296,10 @@ pub fn scene(env: &Environment) -> Result<Scene, NotDrawable> {
         extent: ((CELL * ncol as i64) as f64, (CELL * nrow as i64) as f64),
         obstacles,
         moves,
-        initial: env.initial[0].0,
+        initial: Some(env.initial[0].0),
         goals: env.goals.clone(),
+        walls: Vec::new(),
+        marks: Vec::new(),
     })
 }
 

@@ -47,8 +47,10 @@ pub fn grid_scene(layout: &GridLayout, mode: Mode) -> Scene {
         extent: (800.0, 800.0),
         obstacles: layout.scenario.obstacles.clone(),
         moves,
-        initial: layout.initial,
+        initial: Some(layout.initial),
         goals: vec![layout.goal],
+        walls: Vec::new(),
+        marks: Vec::new(),
     }
 }
 
@@ -105,8 +107,10 @@ fn circle_scene(
         extent: (100.0, 100.0),
         obstacles: Vec::new(),
         moves: undirected_pairs(edges),
-        initial,
+        initial: Some(initial),
         goals: goals.to_vec(),
+        walls: Vec::new(),
+        marks: Vec::new(),
     }
 }
 

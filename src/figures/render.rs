@@ -19,10 +19,27 @@ pub struct Scene {
     pub obstacles: Vec<Disc>,
     /// Allowed moves, each unordered pair once.
     pub moves: Vec<(usize, usize)>,
-    /// `x1`.
-    pub initial: usize,
+    /// `x1` (`None`: no single initial state to mark, e.g. a Taxi slice).
+    pub initial: Option<usize>,
     /// Goals.
     pub goals: Vec<usize>,
+    /// Wall segments in world coordinates (a map's walls; drawn thick and dark).
+    pub walls: Vec<((f64, f64), (f64, f64))>,
+    /// Text marks in world coordinates (depot letters, pick-up and drop-off marks).
+    pub marks: Vec<Mark>,
+}
+
+/// A text mark on a figure: its SVG class, world position and text.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mark {
+    /// The SVG class (`depot`, `passenger`, `pickup`, `dropoff`, …).
+    pub class: &'static str,
+    /// Where, in world coordinates (the text is centred there).
+    pub at: (f64, f64),
+    /// The text.
+    pub text: String,
+    /// Font size in pixels.
+    pub size: f64,
 }
 
 /// An overlay and its data.
@@ -59,7 +76,7 @@ const DARK: Rgb = (40, 40, 40);
 /// use truecost::figures::render::{draw, Overlay, Scene};
 /// let scene = Scene { title: "t".into(), caption: "c".into(),
 ///     positions: vec![(0.0, 0.0), (1.0, 0.0)], extent: (1.0, 1.0), obstacles: vec![],
-///     moves: vec![(0, 1)], initial: 0, goals: vec![1] };
+///     moves: vec![(0, 1)], initial: Some(0), goals: vec![1], walls: vec![], marks: vec![] };
 /// let canvas = draw(&scene, &Overlay::Path(vec![0, 1]), 400, 400).unwrap();
 /// assert_eq!(canvas.of_class("move").count(), 1);
 /// assert_eq!(canvas.of_class("path").count(), 1);
@@ -132,6 +149,15 @@ pub fn draw(
             &format!("{}", max as u64),
         );
     }
+    for &(a, b) in &scene.walls {
+        shapes.push(Shape::Line {
+            class: "wall",
+            a: to_px(a),
+            b: to_px(b),
+            color: DARK,
+            width: 5.0,
+        });
+    }
     for v in 0..scene.positions.len() {
         shapes.push(Shape::Circle {
             class: "node",
@@ -157,7 +183,19 @@ pub fn draw(
         }
         _ => {}
     }
-    for (v, class, color, label) in std::iter::once((scene.initial, "start", (26, 152, 80), "x1"))
+    for m in &scene.marks {
+        shapes.push(Shape::Text {
+            class: m.class,
+            at: to_px(m.at),
+            text: m.text.clone(),
+            size: m.size,
+            centre: true,
+        });
+    }
+    for (v, class, color, label) in scene
+        .initial
+        .map(|x| (x, "start", (26, 152, 80), "x1"))
+        .into_iter()
         .chain(
             scene
                 .goals

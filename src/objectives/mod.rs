@@ -736,14 +736,51 @@ impl Model {
     /// assert!(s.deterministic_problem().unwrap_err().contains("stochastic"));
     /// ```
     pub fn deterministic_problem(&self) -> Result<crate::model::Problem, String> {
+        self.deterministic_problem_from(None)
+    }
+
+    /// [`Self::deterministic_problem`] with the initial state `x1` chosen (`Some(x)`: any state
+    /// where the episode runs, e.g. one of Taxi's 300 initial states; `None`: the model's own,
+    /// which must be a single state).
+    ///
+    /// ```
+    /// use truecost::envs::{taxi, EnvSpec};
+    /// use truecost::objectives::Model;
+    /// let m = Model::from_environment(&EnvSpec::parse("taxi").unwrap().build().unwrap()).unwrap();
+    /// let x1 = taxi::encode(4, 4, 0, 1); // taxi at (4, 4), passenger at R, destination G
+    /// assert_eq!(m.deterministic_problem_from(Some(x1)).unwrap().initial(), x1);
+    /// assert!(m.deterministic_problem_from(Some(taxi::encode(0, 0, 1, 1))).unwrap_err().contains("ended"));
+    /// assert!(m.deterministic_problem_from(Some(500)).is_err());
+    /// ```
+    pub fn deterministic_problem_from(
+        &self,
+        initial: Option<StateId>,
+    ) -> Result<crate::model::Problem, String> {
         let p = &self.problem;
-        if self.initial.len() > 1 {
-            return Err(format!(
+        let x1 = match initial {
+            Some(x) if x >= p.states() => {
+                return Err(format!(
+                    "initial state {x}: {} has states 0 to {}",
+                    self.name,
+                    p.states() - 1
+                ))
+            }
+            Some(x) if self.terminal[x] => {
+                return Err(format!(
+                    "initial state {x}: the episode has ended there (a goal or a trap of {})",
+                    self.name
+                ))
+            }
+            Some(x) => x,
+            None if self.initial.len() > 1 => {
+                return Err(format!(
                 "{} draws its initial state from {} states; this needs a single initial state x1",
                 self.name,
                 self.initial.len()
-            ));
-        }
+            ))
+            }
+            None => self.initial[0].0,
+        };
         let mut moves = Vec::with_capacity(p.states());
         for x in 0..p.states() {
             let mut list = Vec::new();
@@ -765,7 +802,6 @@ impl Model {
             }
             moves.push(list);
         }
-        crate::model::Problem::new(moves, self.initial[0].0, p.goals().to_vec())
-            .map_err(|e| e.to_string())
+        crate::model::Problem::new(moves, x1, p.goals().to_vec()).map_err(|e| e.to_string())
     }
 }

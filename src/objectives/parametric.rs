@@ -16,10 +16,22 @@
 //!    failed verification tries another projection. `D` has no root in `(0, 1)` (its roots are
 //!    `1/λ` for eigenvalues `λ` of a substochastic matrix, `|λ| ≤ 1`) and `D(0) = 1`, so `D > 0`
 //!    on `(0, 1)`.
+//!
+//!    **1′.** *Deterministic models* (every action where the episode runs has one outcome: Taxi,
+//!    CliffWalking, FrozenLake unslippery, single-outcome files). A stationary policy follows
+//!    one successor chain from each state: a path to where the episode ends, or a lasso. Its
+//!    value is written down along the chain — on a cycle `c_0 … c_{k−1}`,
+//!    `V = Σ_{j<k} α^j r(c_j) / (1 − α^k)`; elsewhere `V_x = r_x + α V_{f(x)}` over the
+//!    successor's denominator (`1` at the end of a path) — so its degree is the chain's length,
+//!    not the number of states, and the states of one policy have different denominators
+//!    (each positive on `(0, 1)`). The optimal policy at a probe is found by exact policy
+//!    iteration evaluated along the same chains. [`MAX_RUNNING_STATES`] does not apply;
+//!    [`MAX_CHAIN_DEGREE`] bounds the chains met, checked while running.
 //! 2. *Optimality region of a policy.* The advantage of action `a` at `x` over `π`,
 //!    `Q_a − V_x`, has the sign of the polynomial `A = r_a D + α Σ_y p_a(y) N_y − N_x` on
-//!    `(0, 1)`. `π` is optimal exactly where every `A ≤ 0`; the optimal actions there are the
-//!    policy's and those with `A = 0`. The roots of every non-zero `A` in `(0, 1)` are isolated
+//!    `(0, 1)` (with several denominators: `Q_a − V_x` times their product). `π` is optimal
+//!    exactly where every `A ≤ 0`; the optimal actions there are the policy's and those with
+//!    `A = 0`. The roots of every non-zero `A` in `(0, 1)` are isolated
 //!    exactly (Descartes' rule with bisection, [`super::roots`]) and the sign of `A` on each gap
 //!    between them is evaluated at a rational point, so the maximal interval `[β_L, β_R]` around a point
 //!    where `π` is optimal is exact, and so are the points inside where some `A` touches 0
@@ -41,7 +53,8 @@
 //!    all restricted policies being proper) at the initial distribution.
 //!
 //! Effort is bounded while running: [`MAX_RUNNING_STATES`] bounds the degree of every
-//! rational function, [`MAX_REGIONS`] the number of probes; each refusal names its bound.
+//! rational function of a stochastic model, [`MAX_CHAIN_DEGREE`] that of a deterministic one,
+//! [`MAX_REGIONS`] the number of probes; each refusal names its bound.
 
 use std::cmp::Ordering;
 
@@ -60,6 +73,11 @@ use crate::value::{Extended, Rational};
 /// of degree at most this, and so are the advantages whose roots are isolated.
 pub const MAX_RUNNING_STATES: usize = 160;
 
+/// The deterministic path's degree bound: the longest successor chain (steps to where the
+/// episode ends, or to and around a cycle) of a policy met while covering `(0, 1)`; checked
+/// while running.
+pub const MAX_CHAIN_DEGREE: usize = 200;
+
 /// The most probes (regions of optimal policies) the covering of `(0, 1)` may take.
 pub const MAX_REGIONS: usize = 2_000;
 
@@ -67,11 +85,19 @@ pub const MAX_REGIONS: usize = 2_000;
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum ParametricError {
     /// Too many running states: the degree bound.
-    #[error("the problem has {states} states where the episode runs; the exact parametric analysis handles at most {bound} (its rational functions of alpha have degree up to that number)")]
+    #[error("the stochastic problem has {states} states where the episode runs; the exact parametric analysis of stochastic problems handles at most {bound} (its rational functions of alpha have degree up to that number)")]
     Degree {
         /// Running states.
         states: usize,
         /// [`MAX_RUNNING_STATES`].
+        bound: usize,
+    },
+    /// A deterministic policy's successor chain longer than [`MAX_CHAIN_DEGREE`].
+    #[error("a policy's successor chain gives its discounted value a degree-{degree} rational function of alpha; the exact parametric analysis of deterministic problems handles degree at most {bound}")]
+    ChainDegree {
+        /// The degree met.
+        degree: usize,
+        /// [`MAX_CHAIN_DEGREE`].
         bound: usize,
     },
     /// Too many regions: the piece bound.
@@ -148,12 +174,18 @@ pub struct DiscountAnalysis {
     pub degree: usize,
     /// States where the episode runs.
     pub running_states: usize,
+    /// Whether the deterministic path (successor chains, module docs step 1′) was taken.
+    pub deterministic: bool,
 }
 
-/// A policy's discounted values as rational functions `N_x / D` (module docs, step 1).
+/// A policy's discounted values as rational functions `N_x / D_x` (module docs, step 1; the
+/// deterministic path of step 1′ gives each state the denominator of its own successor chain).
 struct PolicyValues {
-    /// Integer coefficients, constant first.
-    d: Vec<BigInt>,
+    /// The distinct denominators, integer coefficients, constant first; each positive on
+    /// `(0, 1)`.
+    dens: Vec<Vec<BigInt>>,
+    /// Per state: the index of its denominator in `dens` (unused where the episode is over).
+    den_of: Vec<usize>,
     /// Per state (empty where the episode is over).
     n: Vec<Vec<BigInt>>,
     degree: usize,
@@ -317,9 +349,257 @@ fn policy_values(
             n[x] = to_poly(coefficients);
         }
         let d = to_poly(d.into_iter().map(|x| x * &big_r).collect());
-        return Ok(PolicyValues { d, n, degree: l });
+        return Ok(PolicyValues {
+            dens: vec![d],
+            den_of: vec![0; p.states()],
+            n,
+            degree: l,
+        });
     }
     Err(ParametricError::Annihilator(PROJECTIONS))
+}
+
+/// The product of two integer polynomials (constant first).
+fn poly_mul(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
+    if a.is_empty() || b.is_empty() {
+        return Vec::new();
+    }
+    let mut c = vec![BigInt::zero(); a.len() + b.len() - 1];
+    for (i, x) in a.iter().enumerate() {
+        if x.is_zero() {
+            continue;
+        }
+        for (j, y) in b.iter().enumerate() {
+            c[i + j] += x * y;
+        }
+    }
+    c
+}
+
+/// `acc += w · α^shift · f`.
+fn poly_add_scaled(acc: &mut Vec<BigInt>, f: &[BigInt], w: &BigInt, shift: usize) {
+    if acc.len() < f.len() + shift {
+        acc.resize(f.len() + shift, BigInt::zero());
+    }
+    for (k, fk) in f.iter().enumerate() {
+        acc[k + shift] += w * fk;
+    }
+}
+
+/// Whether every action where the episode runs has a single outcome (probability 1): the
+/// model is deterministic and takes the successor-chain path (module docs, step 1′).
+pub fn is_deterministic(model: &Model) -> bool {
+    let p = &model.problem;
+    (0..p.states())
+        .filter(|&x| !model.terminal[x])
+        .all(|x| p.actions(x).all(|a| p.outcomes(a).len() == 1))
+}
+
+/// The single successor of a deterministic action.
+fn successor(model: &Model, a: usize) -> StateId {
+    model.problem.outcomes(a)[0].successor
+}
+
+/// The running states of a deterministic policy in an order where every state comes after its
+/// successor, unless the successor is on the same cycle: per state `Some(cycle)` for the
+/// states on a cycle (the cycle in successor order, starting at the state), `None` for the
+/// others (module docs, step 1′). Each state is visited once: `O(|X|)`.
+fn chains(
+    model: &Model,
+    running: &[StateId],
+    policy: &[Option<usize>],
+) -> Vec<(StateId, Option<Vec<StateId>>)> {
+    let n = model.problem.states();
+    let next = |x: StateId| {
+        successor(
+            model,
+            policy[x].expect("a policy acts where the episode runs"),
+        )
+    };
+    // 0 unvisited, 1 on the current walk, 2 done.
+    let mut mark = vec![0u8; n];
+    let mut order = Vec::with_capacity(running.len());
+    for &x in running {
+        let mut walk = Vec::new();
+        let mut y = x;
+        while !model.terminal[y] && mark[y] == 0 {
+            mark[y] = 1;
+            walk.push(y);
+            y = next(y);
+        }
+        if !model.terminal[y] && mark[y] == 1 {
+            let start = walk.iter().position(|&z| z == y).expect("on the walk");
+            let cycle: Vec<StateId> = walk[start..].to_vec();
+            for (i, &z) in cycle.iter().enumerate() {
+                let mut rotated = cycle[i..].to_vec();
+                rotated.extend_from_slice(&cycle[..i]);
+                order.push((z, Some(rotated)));
+                mark[z] = 2;
+            }
+            walk.truncate(start);
+        }
+        for &z in walk.iter().rev() {
+            mark[z] = 2;
+            order.push((z, None));
+        }
+    }
+    order
+}
+
+/// A deterministic policy's discounted values as rational functions, by following each
+/// state's successor chain (module docs, step 1′): a state on a cycle `c_0 … c_{k−1}` has
+/// `V = Σ_{j<k} α^j r(c_j) / (1 − α^k)`; any other state `V_x = r_x + α V_{f(x)}` with its
+/// successor's denominator (`1` when the chain ends where the episode is over). Refuses when
+/// a degree exceeds [`MAX_CHAIN_DEGREE`].
+fn chain_values(
+    model: &Model,
+    running: &[StateId],
+    policy: &[Option<usize>],
+) -> Result<PolicyValues, ParametricError> {
+    use num_integer::Integer;
+    let n = model.problem.states();
+    let action = |x: StateId| policy[x].expect("a policy acts where the episode runs");
+    let mut big_r = BigInt::one();
+    for &x in running {
+        big_r = big_r.lcm(model.reward[action(x)].denom());
+    }
+    let r_scale = Rational::from_integer(big_r.clone());
+    let reward = |x: StateId| -> BigInt { (&model.reward[action(x)] * &r_scale).to_integer() };
+    // `unscaled[k]`: the denominator without the factor R (1, or 1 − α^k).
+    let mut unscaled: Vec<Vec<BigInt>> = vec![vec![BigInt::one()]];
+    let mut den_of = vec![0; n];
+    let mut num: Vec<Vec<BigInt>> = vec![Vec::new(); n];
+    let mut degree = 0;
+    let too_long = |degree: usize| {
+        (degree > MAX_CHAIN_DEGREE).then_some(ParametricError::ChainDegree {
+            degree,
+            bound: MAX_CHAIN_DEGREE,
+        })
+    };
+    for (x, cycle) in chains(model, running, policy) {
+        match cycle {
+            Some(cycle) => {
+                let k = cycle.len();
+                if let Some(e) = too_long(k) {
+                    return Err(e);
+                }
+                let mut d = vec![BigInt::zero(); k + 1];
+                d[0] = BigInt::one();
+                d[k] = -BigInt::one();
+                let index = match unscaled.iter().position(|u| *u == d) {
+                    Some(i) => i,
+                    None => {
+                        unscaled.push(d);
+                        unscaled.len() - 1
+                    }
+                };
+                den_of[x] = index;
+                num[x] = cycle.iter().map(|&c| reward(c)).collect();
+                degree = degree.max(k);
+            }
+            None => {
+                let y = successor(model, action(x));
+                let k = if model.terminal[y] { 0 } else { den_of[y] };
+                let mut nx: Vec<BigInt> = Vec::new();
+                poly_add_scaled(&mut nx, &unscaled[k], &reward(x), 0);
+                if !model.terminal[y] {
+                    poly_add_scaled(&mut nx, &num[y], &BigInt::one(), 1);
+                }
+                let deg = nx.len().saturating_sub(1).max(unscaled[k].len() - 1);
+                if let Some(e) = too_long(deg) {
+                    return Err(e);
+                }
+                degree = degree.max(deg);
+                den_of[x] = k;
+                num[x] = nx;
+            }
+        }
+    }
+    let dens = unscaled
+        .into_iter()
+        .map(|u| u.into_iter().map(|c| c * &big_r).collect())
+        .collect();
+    Ok(PolicyValues {
+        dens,
+        den_of,
+        n: num,
+        degree,
+    })
+}
+
+/// An optimal policy of a deterministic model at the rational discount `t`: exact policy
+/// iteration, each policy evaluated along its successor chains, with in-place (Gauss–Seidel)
+/// improvement in order of distance to where the episode ends (so that improvements travel
+/// back along shortest chains in one sweep). An action is replaced only by a strictly better
+/// one against the current values `w`; `w` only grows, and `w ≤ T_π′ w` gives `v_π′ ≥ w ≥ v_π`
+/// with a strict gain where an action changed, so no policy repeats and the loop ends. A
+/// sweep without change leaves `w = v_π` with no improving action: `π` is optimal (Bellman).
+fn deterministic_optimum(model: &Model, running: &[StateId], t: &Rational) -> Vec<Option<usize>> {
+    let p = &model.problem;
+    let n = p.states();
+    // Sweep order: breadth-first backwards from the ended states, the rest after.
+    let mut predecessors: Vec<Vec<StateId>> = vec![Vec::new(); n];
+    for &x in running {
+        for a in p.actions(x) {
+            predecessors[successor(model, a)].push(x);
+        }
+    }
+    let mut seen: Vec<bool> = model.terminal.clone();
+    let mut order: Vec<StateId> = Vec::with_capacity(running.len());
+    let mut frontier: Vec<StateId> = (0..n).filter(|&x| model.terminal[x]).collect();
+    while !frontier.is_empty() {
+        let mut next = Vec::new();
+        for y in frontier {
+            for &x in &predecessors[y] {
+                if !seen[x] {
+                    seen[x] = true;
+                    order.push(x);
+                    next.push(x);
+                }
+            }
+        }
+        frontier = next;
+    }
+    order.extend(running.iter().copied().filter(|&x| !seen[x]));
+    let mut policy: Vec<Option<usize>> = (0..n)
+        .map(|x| (!model.terminal[x]).then(|| p.actions(x).start))
+        .collect();
+    loop {
+        // Evaluation at t along the chains.
+        let mut w = vec![Rational::zero(); n];
+        for (x, cycle) in chains(model, running, &policy) {
+            let a = policy[x].expect("acts");
+            w[x] = match cycle {
+                Some(cycle) => {
+                    let mut sum = Rational::zero();
+                    let mut power = Rational::one();
+                    for &c in &cycle {
+                        sum += &power * &model.reward[policy[c].expect("acts")];
+                        power *= t;
+                    }
+                    sum / (Rational::one() - power)
+                }
+                None => &model.reward[a] + t * &w[successor(model, a)],
+            };
+        }
+        let mut changed = false;
+        for &x in &order {
+            let q = |w: &[Rational], a: usize| &model.reward[a] + t * &w[successor(model, a)];
+            let mut best = q(&w, policy[x].expect("acts"));
+            for a in p.actions(x) {
+                let qa = q(&w, a);
+                if qa > best {
+                    best = qa;
+                    policy[x] = Some(a);
+                    changed = true;
+                }
+            }
+            w[x] = best;
+        }
+        if !changed {
+            return policy;
+        }
+    }
 }
 
 /// A non-zero advantage polynomial with its roots in `(0, 1)` and its sign on each gap.
@@ -416,10 +696,18 @@ fn probe(
     index: &[Option<usize>],
     t: &Rational,
     degree: &mut usize,
+    deterministic: bool,
 ) -> Result<Option<Region>, ParametricError> {
     let p = &model.problem;
-    let (_, policy, _) = model.discounted(t)?;
-    let values = policy_values(model, running, index, &policy)?;
+    let (policy, values) = if deterministic {
+        let policy = deterministic_optimum(model, running, t);
+        let values = chain_values(model, running, &policy)?;
+        (policy, values)
+    } else {
+        let (_, policy, _) = model.discounted(t)?;
+        let values = policy_values(model, running, index, &policy)?;
+        (policy, values)
+    };
     *degree = (*degree).max(values.degree);
     // The advantages of every other action, their roots and signs (in parallel: each is
     // independent).
@@ -444,23 +732,38 @@ fn probe(
                 scale = num_integer::Integer::lcm(&scale, o.probability.denom());
             }
             let times = |q: &Rational| (q * Rational::from_integer(scale.clone())).to_integer();
-            let len = values.d.len().max(values.n[x].len() + 2);
-            let mut c = vec![BigInt::zero(); len];
+            // With several denominators (the deterministic path), times their product: every
+            // denominator is positive on (0, 1), so the sign is kept.
+            let mut involved = vec![values.den_of[x]];
+            for o in p.outcomes(a) {
+                let k = values.den_of[o.successor];
+                if !model.terminal[o.successor] && !involved.contains(&k) {
+                    involved.push(k);
+                }
+            }
+            let product = |skip: Option<usize>| -> Vec<BigInt> {
+                involved
+                    .iter()
+                    .filter(|&&k| Some(k) != skip)
+                    .fold(vec![BigInt::one()], |acc, &k| {
+                        poly_mul(&acc, &values.dens[k])
+                    })
+            };
+            let mut c: Vec<BigInt> = Vec::new();
             let ra = times(&model.reward[a]);
             if !ra.is_zero() {
-                for (k, dk) in values.d.iter().enumerate() {
-                    c[k] += &ra * dk;
-                }
+                poly_add_scaled(&mut c, &product(None), &ra, 0);
             }
             for o in p.outcomes(a) {
-                let w = times(&o.probability);
-                for (k, nk) in values.n[o.successor].iter().enumerate() {
-                    c[k + 1] += &w * nk;
+                if model.terminal[o.successor] {
+                    continue;
                 }
+                let w = times(&o.probability);
+                let rest = product(Some(values.den_of[o.successor]));
+                poly_add_scaled(&mut c, &poly_mul(&values.n[o.successor], &rest), &w, 1);
             }
-            for (k, nk) in values.n[x].iter().enumerate() {
-                c[k] -= &scale * nk;
-            }
+            let rest = product(Some(values.den_of[x]));
+            poly_add_scaled(&mut c, &poly_mul(&values.n[x], &rest), &-&scale, 0);
             if c.iter().all(Zero::is_zero) {
                 return Found::Persistent(a);
             }
@@ -701,7 +1004,8 @@ fn most_truecost(
 pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, ParametricError> {
     let p = &model.problem;
     let running: Vec<StateId> = (0..p.states()).filter(|&x| !model.terminal[x]).collect();
-    if running.len() > MAX_RUNNING_STATES {
+    let deterministic = is_deterministic(model);
+    if !deterministic && running.len() > MAX_RUNNING_STATES {
         return Err(ParametricError::Degree {
             states: running.len(),
             bound: MAX_RUNNING_STATES,
@@ -722,7 +1026,7 @@ pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, Parametri
         let mut found = None;
         for t in probe_points(l.as_ref(), r.as_ref()) {
             probes += 1;
-            if let Some(region) = probe(model, &running, &index, &t, &mut degree)? {
+            if let Some(region) = probe(model, &running, &index, &t, &mut degree, deterministic)? {
                 found = Some(region);
                 break;
             }
@@ -824,5 +1128,83 @@ pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, Parametri
         probes,
         degree,
         running_states: running.len(),
+        deterministic,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::stochastic::{Outcome, OutcomeKind, StochasticProblem};
+
+    fn det(cost: i64, to: usize) -> StochasticAction {
+        StochasticAction {
+            cost: Rational::from_integer(cost.into()),
+            outcomes: vec![Outcome {
+                successor: to,
+                probability: Rational::one(),
+                kind: OutcomeKind::Listed,
+            }],
+        }
+    }
+
+    fn eval(p: &[BigInt], a: &Rational) -> Rational {
+        p.iter().rev().fold(Rational::zero(), |acc, c| {
+            acc * a + Rational::from_integer(c.clone())
+        })
+    }
+
+    /// A lasso and a path: 0 → 1 → 2 → 1 (costs 1, 2, 3) and 3 → goal 4 (cost 5). By hand at
+    /// α = 1/3 (rewards are the negated costs): on the cycle, `V_1 = −(2 + 3α)/(1 − α²)`,
+    /// `V_2 = −(3 + 2α)/(1 − α²)`, `V_0 = −1 + α V_1`; off it `V_3 = −5`.
+    #[test]
+    fn chain_values_of_a_lasso_and_a_path() {
+        let actions = vec![
+            vec![det(1, 1)],
+            vec![det(2, 2)],
+            vec![det(3, 1)],
+            vec![det(5, 4)],
+            vec![],
+        ];
+        let m = Model::from_problem(
+            StochasticProblem::new(actions, 0, vec![4]).unwrap(),
+            "lasso".into(),
+        );
+        let running = [0, 1, 2, 3];
+        let policy: Vec<Option<usize>> = (0..5)
+            .map(|x| (x < 4).then(|| m.problem.actions(x).start))
+            .collect();
+        let v = chain_values(&m, &running, &policy).unwrap();
+        let a = Rational::new(1.into(), 3.into());
+        let value = |x: usize| eval(&v.n[x], &a) / eval(&v.dens[v.den_of[x]], &a);
+        let q = |n: i64, d: i64| Rational::new(n.into(), d.into());
+        let one_minus = Rational::one() - &a * &a; // 8/9
+        let v1 = -(q(2, 1) + q(3, 1) * &a) / &one_minus;
+        let v2 = -(q(3, 1) + q(2, 1) * &a) / &one_minus;
+        assert_eq!(value(1), v1);
+        assert_eq!(value(2), v2);
+        assert_eq!(value(0), q(-1, 1) + &a * &v1);
+        assert_eq!(value(3), q(-5, 1));
+        // Degrees: the cycle's denominator 1 − α², the path's 1.
+        assert_eq!(v.degree, 2);
+        assert_eq!(v.dens[v.den_of[3]].len(), 1);
+        // The optimum at 1/3 of a choice: at 0 also a direct move to the goal costing 10
+        // (−10 against −1 + V_1/3 ≈ −3.08: the lasso is better at α = 1/3).
+        let mut actions = vec![
+            vec![det(1, 1), det(10, 4)],
+            vec![det(2, 2)],
+            vec![det(3, 1)],
+            vec![det(5, 4)],
+            vec![],
+        ];
+        let m2 = Model::from_problem(
+            StochasticProblem::new(std::mem::take(&mut actions), 0, vec![4]).unwrap(),
+            "choice".into(),
+        );
+        let best = deterministic_optimum(&m2, &running, &a);
+        assert_eq!(best[0], Some(m2.problem.actions(0).start));
+        // Near α = 1 the lasso costs about 2.5 per step forever: the goal is better.
+        let best = deterministic_optimum(&m2, &running, &Rational::new(99.into(), 100.into()));
+        assert_eq!(best[0], Some(m2.problem.actions(0).start + 1));
+    }
 }

@@ -442,6 +442,12 @@ fn merge(v: &mut Value, extra: Value) {
 
 /// How the breakpoints were obtained, in one line.
 pub fn discount_method(d: &super::parametric::DiscountAnalysis) -> String {
+    if d.deterministic {
+        return format!(
+            "exact parametric policy analysis, deterministic: {} probes (exact policy iteration at rational alpha), {} states where the episode runs, values along successor chains of degree <= {}; roots isolated exactly (Descartes bisection), brackets <= 2^-100",
+            d.probes, d.running_states, d.degree
+        );
+    }
     format!(
         "exact parametric policy analysis: {} probes (exact policy iteration at rational alpha), {} states where the episode runs, value denominators of degree <= {}; roots isolated exactly (Descartes bisection), brackets <= 2^-100",
         d.probes, d.running_states, d.degree

@@ -228,6 +228,7 @@ pub fn roots_in_unit_interval(f: &Poly) -> Vec<Root> {
     let mut roots: Vec<Root> = Vec::new();
     exact.sort();
     exact.dedup();
+    let exact_values = exact.clone();
     for r in exact {
         roots.push(Root::rational(r));
     }
@@ -239,13 +240,25 @@ pub fn roots_in_unit_interval(f: &Poly) -> Vec<Root> {
             continue; // a deflated rational root met again (multiple root)
         }
         let sign_lo = shared.sign(&lo);
-        let root = Root {
+        let mut root = Root {
             poly: shared.clone(),
             lo,
             hi,
             exact: false,
             sign_lo,
         };
+        // An exact root divided out earlier may lie inside this bracket (it is no root of the
+        // deflated polynomial): narrow the bracket past it, so that sorting by the lower ends
+        // sorts by value (otherwise consecutive roots could come in the wrong order, and
+        // `between` would never separate them).
+        while let Some(e) = exact_values.iter().find(|e| root.lo < **e && **e < root.hi) {
+            if root.exact {
+                break;
+            }
+            // Cut at the exact root itself: it is not a root of `p`, so the bracket shrinks
+            // to one side of it (an end equal to an exact root sorts correctly).
+            root.cut(e.clone());
+        }
         roots.push(root);
     }
     roots.sort_by(|a, b| a.lo.cmp(&b.lo));

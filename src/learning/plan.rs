@@ -171,7 +171,8 @@ const CODE_EPSILON_MIN: f64 = 0.1;
 /// let p = python_coin(0.5);
 /// assert_eq!((p.numerator(), p.denominator()), (1, 2));
 /// let q = python_coin(0.1); // 0.1 is 0x3FB999999999999A: 2^53·0.1 = 900719925474099.25
-/// assert_eq!((q.numerator(), q.denominator()), (900719925474100, 1 << 53));
+/// // ⌈…⌉ = 900719925474100 over 2^53, in lowest terms:
+/// assert_eq!((q.numerator(), q.denominator()), (225179981368525, 1 << 51));
 /// assert_eq!(python_coin(1.0), truecost::learning::plan::Probability::ONE);
 /// ```
 pub fn python_coin(eps: f64) -> Probability {

@@ -369,16 +369,7 @@ fn c3_example_threshold_by_the_deterministic_path() {
 fn made_stochastic(m: &Model) -> Model {
     let p = &m.problem;
     let n = p.states();
-    let mut actions: Vec<Vec<StochasticAction>> = (0..n)
-        .map(|x| {
-            p.actions(x)
-                .map(|a| StochasticAction {
-                    cost: p.cost(a).clone(),
-                    outcomes: p.outcomes(a).to_vec(),
-                })
-                .collect()
-        })
-        .collect();
+    let mut actions = p.action_lists();
     let goal = p.goals()[0];
     actions.push(vec![StochasticAction {
         cost: int(1),

@@ -698,16 +698,7 @@ impl Model {
         }
         let p = &self.problem;
         let n = p.states();
-        let mut actions: Vec<Vec<StochasticAction>> = (0..n)
-            .map(|x| {
-                p.actions(x)
-                    .map(|a| StochasticAction {
-                        cost: p.cost(a).clone(),
-                        outcomes: p.outcomes(a).to_vec(),
-                    })
-                    .collect()
-            })
-            .collect();
+        let mut actions = p.action_lists();
         actions.push(vec![StochasticAction {
             cost: Rational::zero(),
             outcomes: self

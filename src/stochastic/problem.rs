@@ -382,6 +382,31 @@ impl StochasticProblem {
         &self.outcomes[self.outcome_first[action]..self.outcome_first[action + 1]]
     }
 
+    /// Every state's actions as [`StochasticAction`]s, in order: what [`Self::new`] takes, so a
+    /// problem can be rebuilt with states or actions added.
+    ///
+    /// ```
+    /// use truecost::stochastic::StochasticProblem;
+    /// use truecost::stochastic::file::{from_json, ProblemFile};
+    /// let text = r#"{"initial":0,"goals":[1],"actions":[[{"cost":"1","outcomes":[{"to":1,"p":"1/2"},{"to":0,"p":"1/2"}]}],[]]}"#;
+    /// let ProblemFile::Stochastic(p) = from_json(text).unwrap() else { unreachable!() };
+    /// let again = StochasticProblem::new(p.action_lists(), p.initial(), p.goals().to_vec()).unwrap();
+    /// assert_eq!(again.action_lists(), p.action_lists());
+    /// assert_eq!(p.action_lists()[0][0].outcomes.len(), 2);
+    /// ```
+    pub fn action_lists(&self) -> Vec<Vec<StochasticAction>> {
+        (0..self.states())
+            .map(|x| {
+                self.actions(x)
+                    .map(|a| StochasticAction {
+                        cost: self.cost(a).clone(),
+                        outcomes: self.outcomes(a).to_vec(),
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
     /// The positions of an action's outcomes in the problem-wide outcome numbering (for
     /// per-outcome data kept outside the problem, e.g. `f64` probabilities).
     pub fn outcome_range(&self, action: usize) -> Range<usize> {

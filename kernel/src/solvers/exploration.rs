@@ -300,16 +300,7 @@ mod tests {
         (actions, index, lists)
     }
 
-    /// A small deterministic generator (xorshift64*), enough to draw test graphs.
-    struct Draw(u64);
-    impl Draw {
-        fn below(&mut self, n: u64) -> u64 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) % n
-        }
-    }
+    use crate::solvers::test_draw::Draw;
 
     #[test]
     fn explore_matches_the_literal_walk_on_random_graphs() {

@@ -10,6 +10,20 @@ pub mod exploration;
 pub mod policy_evaluation;
 pub mod value_iteration;
 
+/// A small deterministic generator (xorshift64*), enough to draw the solvers' test graphs.
+#[cfg(test)]
+pub(crate) mod test_draw {
+    pub(crate) struct Draw(pub(crate) u64);
+    impl Draw {
+        pub(crate) fn below(&mut self, n: u64) -> u64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) % n
+        }
+    }
+}
+
 use std::cmp::Ordering;
 
 use crate::model::{Decision, Graph, InEdges};

@@ -21,7 +21,7 @@ use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 use proptest::prelude::*;
 use proptest::test_runner::Config;
-use truecost::claims::c4::{bonus_sets, witness, End, Instance, Interval};
+use truecost::claims::c4::{bonus_sets, contains_unscaled, witness, End, Instance, Interval};
 use truecost::claims::exact::{ipow, Ext, Frac, FracExt, Q};
 use truecost::claims::oracle::{
     evaluate, evaluate_fast, goal_avoiding_arcs, karp_minimum_mean_cycle, optimal_cost_to_go,
@@ -1035,4 +1035,45 @@ fn printed_inequality_is_the_sign_of_the_polynomial_on_a_grid() {
         "one root in (0, 1)"
     );
     assert_eq!(Algebraic::clone(&star).compare(&star), Ordering::Equal);
+}
+
+/// `contains_unscaled` (the environment's own bonus against a scaled set, `verify --claim C4
+/// --env`) against `Interval::contains` on the scaled value, for every kind of end, three scales
+/// and a grid of quarters through every end point; and beyond `Q`'s range.
+#[test]
+fn unscaled_membership_agrees_with_scaled_membership() {
+    let ends = |v: i128| [End::Unbounded, End::Closed(Q::int(v)), End::Open(Q::int(v))];
+    let mut checked = 0;
+    for lo_v in -4..=0 {
+        for hi_v in lo_v..=1 {
+            for lo in ends(lo_v) {
+                for hi in ends(hi_v) {
+                    for empty in [false, true] {
+                        let i = Interval { lo, hi, empty };
+                        for scale in [1i64, 2, 3] {
+                            for quarter in -24..=8 {
+                                let m = Rational::new(quarter.into(), 4.into());
+                                let scaled = Q::new(quarter as i128 * scale as i128, 4);
+                                assert_eq!(
+                                    contains_unscaled(&i, &m, &BigInt::from(scale)),
+                                    i.contains(scaled),
+                                    "{i:?}, m = {m}, scale {scale}"
+                                );
+                                checked += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(checked > 10_000);
+    let below = Interval {
+        lo: End::Unbounded,
+        hi: End::Open(Q::int(0)),
+        empty: false,
+    };
+    let huge = parse_rational("-1e40").unwrap();
+    assert!(contains_unscaled(&below, &huge, &BigInt::from(7)));
+    assert!(!contains_unscaled(&below, &-huge, &BigInt::from(7)));
 }

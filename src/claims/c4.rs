@@ -35,6 +35,39 @@ use super::{enumerate, keep_min, min_of, ClaimResult, Counterexample, EngineRun,
 use crate::model::Problem;
 use crate::value::{to_common_scale, Rational};
 
+/// Whether the bonus `m`, in the problem's own units, lies in `interval`, a set of bonuses
+/// scaled by `scale` (as [`Instance::from_problem`] scales costs to integers): `m·scale ∈
+/// interval`, decided on exact rationals, since `m` may lie beyond [`Q`]'s range.
+///
+/// ```
+/// use truecost::claims::c4::{contains_unscaled, End, Interval};
+/// use truecost::claims::exact::Q;
+/// use truecost::value::parse_rational;
+/// // Scaled set [-6, 0) with scale 3: unscaled [-2, 0).
+/// let i = Interval { lo: End::Closed(Q::int(-6)), hi: End::Open(Q::int(0)), empty: false };
+/// let three = num_bigint::BigInt::from(3);
+/// let m = |t: &str| parse_rational(t).unwrap();
+/// assert!(contains_unscaled(&i, &m("-2"), &three));
+/// assert!(contains_unscaled(&i, &m("-1/1000"), &three));
+/// assert!(!contains_unscaled(&i, &m("0"), &three));
+/// assert!(!contains_unscaled(&i, &m("-2.001"), &three));
+/// ```
+pub fn contains_unscaled(interval: &Interval, m: &Rational, scale: &BigInt) -> bool {
+    let scaled = m * Rational::from_integer(scale.clone());
+    let end = |q: Q| q.to_rational();
+    !interval.empty
+        && match interval.lo {
+            End::Unbounded => true,
+            End::Closed(a) => scaled >= end(a),
+            End::Open(a) => scaled > end(a),
+        }
+        && match interval.hi {
+            End::Unbounded => true,
+            End::Closed(b) => scaled <= end(b),
+            End::Open(b) => scaled < end(b),
+        }
+}
+
 /// The statement of C4 as printed.
 pub const STATEMENT: &str = "C4 (as printed): with bonus M < 0 paid at the reset to x1 (one stage), pi* (the optimal \
 single-shot path: S* states, cost L*) is average-cost optimal iff a <= M <= min{b, S*.Lav(C^) - L*}, where \

@@ -8,7 +8,7 @@ use clap::{Args, Subcommand, ValueEnum};
 use num_bigint::BigInt;
 use serde_json::json;
 
-use truecost::claims::c4::{bonus_analysis, End, Instance, Interval};
+use truecost::claims::c4::{bonus_analysis, contains_unscaled, End, Instance, Interval};
 use truecost::claims::exact::Q;
 use truecost::claims::{report, Scope};
 use truecost::model::{file, Problem};
@@ -278,23 +278,6 @@ fn interval_text(i: &Interval, d: &BigInt) -> String {
     format!("{lo}, {hi}")
 }
 
-/// Whether the bonus `m` (unscaled) lies in the interval of scaled bonuses (scale `d`).
-fn holds(i: &Interval, m: &truecost::value::Rational, d: &BigInt) -> bool {
-    let scaled = m * truecost::value::Rational::from_integer(d.clone());
-    let end = |q: Q| q.to_rational();
-    !i.empty
-        && match i.lo {
-            End::Unbounded => true,
-            End::Closed(a) => scaled >= end(a),
-            End::Open(a) => scaled > end(a),
-        }
-        && match i.hi {
-            End::Unbounded => true,
-            End::Closed(b) => scaled <= end(b),
-            End::Open(b) => scaled < end(b),
-        }
-}
-
 /// The bonus sets by the violated-cycle search (`claims::c4_cycles`), when the enumeration
 /// oracle refuses the problem's size: the exact set only (the printed and corrected formulas
 /// need every simple goal path).
@@ -319,7 +302,7 @@ fn bonus_by_cycles(
                 "bellman_ford_runs": s.steps,
                 "printed": null,
                 "corrected": null,
-                "terminal_bonus_in_set": terminal_bonus.map(|m| holds(&s.exact, m, d)),
+                "terminal_bonus_in_set": terminal_bonus.map(|m| contains_unscaled(&s.exact, m, d)),
             })
         })
         .collect();
@@ -352,7 +335,7 @@ fn bonus_by_cycles(
                     let _ = writeln!(
                         s,
                         "  the environment's own bonus M = {m}: {}",
-                        if holds(&set.exact, m, d) {
+                        if contains_unscaled(&set.exact, m, d) {
                             "in the set (pi* is average-cost optimal)"
                         } else {
                             "not in the set"

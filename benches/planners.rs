@@ -20,13 +20,15 @@
 //! pipeline `N` times without criterion and exits (`TRUECOST_BENCH_ONLY=dijkstra/reference`
 //! runs one of them), so that
 //! `valgrind --tool=callgrind target/release/deps/planners-… --bench` at two values of `N` gives
-//! the instructions of one run as a difference (`docs/speed.md`).
+//! the instructions of one run as a difference (`docs/speed.md`). With
+//! `TRUECOST_BENCH_REPORT=1` as well, each call is timed on its own and the median and minimum
+//! per row are printed: the Rust half of the side-by-side rounds of `docs/speed.md`.
 
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use truecost::model::{ExactGraph, Graph};
-use truecost::planning::{model_free_counts, Algorithm, Mode};
+use truecost::planning::{model_free_counts, Algorithm, Mode, PlanCounts};
 use truecost::problems::{GridLayout, StepCost};
 use truecost::value::{CostValue, Units};
 
@@ -78,24 +80,39 @@ fn model_free(c: &mut Criterion) {
             only.as_deref()
                 .is_none_or(|o| o == format!("{planner}/{name}"))
         };
+        // With TRUECOST_BENCH_REPORT set, every call is timed on its own (as the paper's
+        // `find_path` times each call) and the median and minimum are printed per row, for
+        // side-by-side rounds with the Python code (docs/speed.md).
+        let report = std::env::var_os("TRUECOST_BENCH_REPORT").is_some();
+        let graphs: [(&str, &dyn Fn(Algorithm) -> PlanCounts); 3] = [
+            ("exact", &|a| {
+                model_free_counts(black_box(&unit), a, Mode::Exact)
+            }),
+            ("exact_euclidean", &|a| {
+                model_free_counts(black_box(&euclidean), a, Mode::Exact)
+            }),
+            ("reference", &|a| {
+                model_free_counts(black_box(&reference), a, Mode::Reference)
+            }),
+        ];
         for (planner, algorithm) in PLANNERS {
-            for _ in 0..iterations {
-                if wanted(planner, "exact") {
-                    black_box(model_free_counts(black_box(&unit), algorithm, Mode::Exact));
+            for (name, run) in graphs {
+                if !wanted(planner, name) {
+                    continue;
                 }
-                if wanted(planner, "exact_euclidean") {
-                    black_box(model_free_counts(
-                        black_box(&euclidean),
-                        algorithm,
-                        Mode::Exact,
-                    ));
+                let mut times = Vec::with_capacity(iterations as usize);
+                for _ in 0..iterations {
+                    let start = Instant::now();
+                    black_box(run(algorithm));
+                    times.push(start.elapsed());
                 }
-                if wanted(planner, "reference") {
-                    black_box(model_free_counts(
-                        black_box(&reference),
-                        algorithm,
-                        Mode::Reference,
-                    ));
+                if report && !times.is_empty() {
+                    times.sort();
+                    println!(
+                        "model_free/{planner}/{name}: median {:.2} µs, min {:.2} µs over {iterations} calls",
+                        times[times.len() / 2].as_secs_f64() * 1e6,
+                        times[0].as_secs_f64() * 1e6,
+                    );
                 }
             }
         }

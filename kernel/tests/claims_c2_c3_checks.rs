@@ -207,3 +207,17 @@ fn c3_oracle_finds_a_goal_avoiding_optimal_policy_exactly_when_one_exists() {
     }
     assert!(yes > 20 && no > 20, "{yes} yes, {no} no");
 }
+
+#[test]
+fn c3_oracle_counts_a_goal_avoiding_policy_tied_with_an_earlier_optimum() {
+    // 0: [→1 (2), →0 (1)], goal 1. At α = 1/2 the first policy (to the goal) costs 2 and the
+    // second (the loop) 1/(1 − 1/2) = 2: tied, and the later one avoids the goal.
+    let t = Tiny::from_lists(&[vec![(1, 2), (0, 1)], vec![]]);
+    assert!(optimal_policy_avoids_goal(&t, Q::new(1, 2)));
+    assert!(avoids_by_brute_force(&t, Q::new(1, 2)));
+    // At α = 9/10 the loop costs 10 > 2: the optimum reaches the goal.
+    assert!(!optimal_policy_avoids_goal(&t, Q::new(9, 10)));
+    // The same with the moves swapped: the avoiding policy comes first.
+    let t = Tiny::from_lists(&[vec![(0, 1), (1, 2)], vec![]]);
+    assert!(optimal_policy_avoids_goal(&t, Q::new(1, 2)));
+}

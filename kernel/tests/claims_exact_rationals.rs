@@ -3,9 +3,9 @@
 //! every overflow panics, and `Frac` compares by value (unnormalised), `ipow`/`pow` are powers.
 //!
 //! Why: the claims oracles are exercised mostly by `truecost`'s suite; the kernel's own tests
-//! pinned these operations by a doctest only. Expected values:
-//! by hand, and on a grid of small fractions the cross-multiplication identities
-//! (`a/b + c/d = (ad + cb)/bd`, …) checked with plain `i128` arithmetic written here.
+//! pinned these operations by a doctest only. Expected values: by hand, and on a grid of small
+//! fractions the cross-multiplication identities (`a/b + c/d = (ad + cb)/bd`, …) checked with
+//! plain `i128` arithmetic written here.
 
 use std::cmp::Ordering;
 
@@ -158,4 +158,22 @@ fn dividing_by_zero_panics() {
 #[should_panic(expected = "zero denominator")]
 fn a_zero_denominator_panics() {
     let _ = Q::new(1, 0);
+}
+
+/// Only with the `bignum` feature (which `truecost` enables; `cargo test --workspace` unifies
+/// it into this crate's build).
+#[cfg(feature = "bignum")]
+#[test]
+fn to_rational_keeps_the_normalised_value() {
+    use num_bigint::BigInt;
+    let r = Q::new(6, -8).to_rational();
+    assert_eq!(
+        (r.numer(), r.denom()),
+        (&BigInt::from(-3), &BigInt::from(4))
+    );
+    let r = Q::int(i128::MAX).to_rational();
+    assert_eq!(
+        (r.numer(), r.denom()),
+        (&BigInt::from(i128::MAX), &BigInt::from(1))
+    );
 }

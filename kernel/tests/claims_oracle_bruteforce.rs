@@ -20,18 +20,8 @@ use truecost_kernel::claims::oracle::{
 };
 use truecost_kernel::claims::tiny::{Tiny, MAX_STATES};
 
-/// splitmix64.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn below(&mut self, n: u64) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        (z ^ (z >> 31)) % n
-    }
-}
+mod support;
+use support::SplitMix;
 
 /// A random tiny problem: 1 to `max_states` states, 0 to 3 moves each, costs 0 to 3.
 fn random_tiny(draw: &mut SplitMix, max_states: u64) -> Tiny {

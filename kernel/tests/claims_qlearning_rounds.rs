@@ -10,6 +10,9 @@
 use truecost_kernel::claims::qlearning::{run, Order, Pair, QProblem, Run, Terminal, Values};
 use truecost_kernel::claims::tiny::Tiny;
 
+mod support;
+use support::SplitMix;
+
 /// 0 → 1 (2), 0 → 2 (1), 1 → 2 (3), goal 2 with a move 2 → 0 (1).
 fn small() -> Tiny {
     Tiny::from_lists(&[vec![(1, 2), (2, 1)], vec![(2, 3)], vec![(0, 1)]])
@@ -119,19 +122,6 @@ fn simulate(q: &QProblem, q0: &Values, sequence: &[usize], max_rounds: u64) -> R
         history.push(v);
     }
     Run::NotWithin(max_rounds)
-}
-
-/// splitmix64.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn below(&mut self, n: u64) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        (z ^ (z >> 31)) % n
-    }
 }
 
 /// Fewest optimal moves to the goal, by breadth-first search backwards over tight moves.

@@ -7,8 +7,8 @@
 //! overflow guard, both `is_finite`s and the default `order_key` untested by the kernel's own
 //! tests. Expected values are the definitions (`u64::MAX` is `+∞`).
 
-use std::cmp::Ordering;
-
+mod support;
+use support::NoKey;
 use truecost_kernel::value::{CostValue, Units};
 
 #[test]
@@ -53,33 +53,11 @@ fn a_wrapping_units_sum_panics() {
     let _ = Units(u64::MAX - 1).plus(&Units(5));
 }
 
-/// A value type that keeps the trait's default `order_key`.
-#[derive(Clone, Debug, PartialEq, PartialOrd)]
-struct Plain(u32);
-
-impl CostValue for Plain {
-    const EXACT: bool = true;
-    fn zero() -> Self {
-        Plain(0)
-    }
-    fn infinity() -> Self {
-        Plain(u32::MAX)
-    }
-    fn is_finite(&self) -> bool {
-        self.0 != u32::MAX
-    }
-    fn plus(&self, other: &Self) -> Self {
-        Plain(self.0.saturating_add(other.0))
-    }
-    fn compare(&self, other: &Self) -> Ordering {
-        self.0.cmp(&other.0)
-    }
-}
-
 #[test]
 fn a_value_type_without_keys_has_none() {
-    assert_eq!(Plain(0).order_key(), None);
-    assert_eq!(Plain(5).order_key(), None);
-    assert_eq!(Plain::infinity().order_key(), None);
+    // support::NoKey keeps the trait's default `order_key`.
+    assert_eq!(NoKey(0).order_key(), None);
+    assert_eq!(NoKey(5).order_key(), None);
+    assert_eq!(NoKey::infinity().order_key(), None);
     assert_eq!(Units(5).order_key(), Some(5));
 }

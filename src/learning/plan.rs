@@ -20,7 +20,7 @@ use std::sync::Arc;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_traits::{One, Signed, ToPrimitive};
-use rand::{RngExt, SeedableRng};
+use rand::{Rng, RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use crate::value::Rational;
@@ -128,9 +128,25 @@ impl Probability {
         } else if self.numerator == self.denominator {
             true
         } else {
-            rng.random_range(0..self.denominator) < self.numerator
+            below(rng, self.denominator) < self.numerator
         }
     }
+}
+
+/// `rng.random_range(0..range)` for `u64`, `0 < range`, drawing the same words and returning the
+/// same value as `rand`'s `UniformInt::<u64>::sample_single` (Canon's method with one extra
+/// draw when the first is ambiguous), written out so that the learning loop inlines it: the
+/// coin of every Q-learning action goes through here. The test
+/// `below_is_rands_random_range` pins the equality for the locked `rand` version.
+#[inline(always)]
+fn below(rng: &mut ChaCha8Rng, range: u64) -> u64 {
+    let wide = u128::from(rng.next_u64()) * u128::from(range);
+    let (mut result, low) = ((wide >> 64) as u64, wide as u64);
+    if low > range.wrapping_neg() {
+        let next = (u128::from(rng.next_u64()) * u128::from(range)) >> 64;
+        result += u64::from(low.checked_add(next as u64).is_none());
+    }
+    result
 }
 
 /// How ε varies over the episodes of a run (SPEC §2, "optional ε-decay").
@@ -469,5 +485,86 @@ pub(crate) fn explore(plan: &mut Plan<'_>, rng: &mut ChaCha8Rng, actions: usize)
     match plan {
         Plan::Random => rng.random_range(0..actions as u32) as usize,
         Plan::Pi(stream) => stream.next_action(actions),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `below` is `rand`'s `random_range(0..range)` for `u64`: the same values and the same
+    /// words drawn, over ranges where the first draw is rarely, often (about half the time:
+    /// `2^63 + 1`) and never ambiguous, and the ends `1` and `u64::MAX`.
+    #[test]
+    fn below_is_rands_random_range() {
+        let mut ranges = vec![
+            1,
+            2,
+            3,
+            7,
+            9,
+            10,
+            100,
+            1000,
+            (1 << 32) - 1,
+            1 << 32,
+            (1 << 32) + 1,
+        ];
+        ranges.extend([
+            1 << 63,
+            (1 << 63) + 1,
+            (1 << 63) + (1 << 62),
+            u64::MAX - 1,
+            u64::MAX,
+        ]);
+        let mut seeds = sample_rng(99, 0);
+        ranges.extend(
+            (0..20)
+                .map(|_| seeds.next_u64() >> (seeds.next_u64() % 64))
+                .filter(|&r| r > 0),
+        );
+        let mut second_draws = 0;
+        for (k, &range) in ranges.iter().enumerate() {
+            let mut ours = sample_rng(k as u64, 3);
+            let mut theirs = sample_rng(k as u64, 3);
+            for _ in 0..5000 {
+                let before = ours.get_word_pos();
+                assert_eq!(
+                    below(&mut ours, range),
+                    theirs.random_range(0..range),
+                    "range {range}"
+                );
+                assert_eq!(ours.get_word_pos(), theirs.get_word_pos(), "range {range}");
+                if ours.get_word_pos() - before == 4 {
+                    second_draws += 1;
+                }
+            }
+            assert_eq!(ours.next_u64(), theirs.next_u64());
+        }
+        // The ambiguous case was exercised (about 2500 times for each range near 2^63).
+        assert!(second_draws > 5000, "{second_draws}");
+    }
+
+    /// The coin draws nothing at `p ∈ {0, 1}` and is `random_range(0..q) < p` otherwise.
+    #[test]
+    fn flip_is_a_draw_below_the_numerator() {
+        let half = Probability::new("p", &Rational::new(1.into(), 2.into())).unwrap();
+        let nine_tenths = Probability::new("p", &Rational::new(9.into(), 10.into())).unwrap();
+        for p in [half, nine_tenths] {
+            let (mut ours, mut theirs) = (sample_rng(5, 1), sample_rng(5, 1));
+            let flips: Vec<bool> = (0..2000).map(|_| p.flip(&mut ours)).collect();
+            let expected: Vec<bool> = (0..2000)
+                .map(|_| theirs.random_range(0..p.denominator()) < p.numerator())
+                .collect();
+            assert_eq!(flips, expected);
+            let heads = flips.iter().filter(|&&f| f).count() as u64;
+            // 2000·p ± 5 standard deviations at most
+            let mean = 2000 * p.numerator() / p.denominator();
+            assert!(heads.abs_diff(mean) < 120, "{heads} heads for {p:?}");
+        }
+        let mut rng = sample_rng(5, 1);
+        let zero = Probability::new("p", &Rational::from_integer(0.into())).unwrap();
+        assert!(!zero.flip(&mut rng) && Probability::ONE.flip(&mut rng));
+        assert_eq!(rng.get_word_pos(), 0);
     }
 }

@@ -599,6 +599,9 @@ impl<'a, V: LearningValue> QLearner<'a, V> {
         let mut initial_optimal_at = self.initial_optimal_at;
         let mut goal_discovered_at = self.goal_discovered_at;
         let mut pending = self.pending;
+        // Actions left until the reference rules' next check (a countdown instead of a division
+        // per action): the check runs when `actions` reaches a multiple of the interval.
+        let mut until_check = REFERENCE_CHECK_INTERVAL - actions % REFERENCE_CHECK_INTERVAL;
         let mut ended = false;
         while step < max_steps {
             let lo = first[s] as usize;
@@ -648,7 +651,9 @@ impl<'a, V: LearningValue> QLearner<'a, V> {
             step += 1;
             observer.update(s, a, &old, &q[e], v);
             if reference {
-                if actions.is_multiple_of(REFERENCE_CHECK_INTERVAL) {
+                until_check -= 1;
+                if until_check == 0 {
+                    until_check = REFERENCE_CHECK_INTERVAL;
                     if optimal_count == tracked_total {
                         if converged_at.is_none() {
                             pending |= PENDING_CONVERGED;

@@ -314,8 +314,8 @@ pub fn run(q: &QProblem, q0: &Values, order: Order, max_rounds: u64) -> Run {
     Run::NotWithin(max_rounds)
 }
 
-/// The verdict of exploring **every** fair order (each round: any sequence of updates in which
-/// every updatable pair occurs at least once).
+/// The verdict of exploring **every** fair order (each round: a sequence of updates that ends
+/// as soon as every updatable pair has occurred in it at least once).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AllOrders {
     /// Under every fair order `Q̂ = Q*` after at most this many rounds (and the bound is attained
@@ -340,7 +340,8 @@ fn key(v: &Values, p: usize) -> u128 {
 ///
 /// The round-end values form a finite graph (each edge: one round, all its update sequences);
 /// convergence under every fair order holds iff no cycle avoids `Q*`, and the longest path to
-/// `Q*` is the worst-case number of rounds. At most 8 pairs; values must stay in `-128..128`.
+/// `Q*` is the worst-case number of rounds. At most 16 pairs (the key packs one byte a pair into a
+/// `u128`); values must stay in `-128..128`.
 pub fn all_orders(q: &QProblem, q0: &Values, limit: usize) -> AllOrders {
     let p = q.len();
     assert!(p <= 16);

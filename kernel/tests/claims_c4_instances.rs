@@ -682,3 +682,25 @@ fn bonus_sets_by_hand() {
     assert_eq!(set.exact.to_string(), "[-8, 0)");
     assert_eq!(printed.to_string(), "[-2/9, 0)");
 }
+
+/// Each refusal names its bound in one line (`verify --claim C4` prints it).
+#[test]
+fn bonus_error_messages_name_their_bounds() {
+    let policies = BonusError::TooManyPolicies { limit: 5 }.to_string();
+    assert!(
+        policies.starts_with("more than 5 stationary policies"),
+        "{policies}"
+    );
+    let steps = BonusError::SearchTooLong { steps: 7 }.to_string();
+    assert!(steps.contains("more than 7 steps"), "{steps}");
+    let states = BonusError::TooManyStates { states: 1025 }.to_string();
+    assert!(
+        states.starts_with("1025 states") && states.ends_with(&MAX_BONUS_STATES.to_string()),
+        "{states}"
+    );
+    let internal = BonusError::Internal("Karp disagrees".into()).to_string();
+    assert_eq!(internal, "internal error: Karp disagrees");
+    for message in [policies, steps, states, internal] {
+        assert!(!message.contains('\n'), "{message}");
+    }
+}

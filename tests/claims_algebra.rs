@@ -1,10 +1,11 @@
 //! The exact algebra the claims rely on (issue 14, item 2), each piece against a brute force
 //! that shares no code with it:
 //!
-//! * C4's intervals of bonuses (`c4::Interval`, `End`, `witness`): membership, emptiness and set
-//!   equality against the conjunction of the half-lines that built them, decided on a grid of
-//!   rationals around every end point; and `c4::bonus_sets` against the minimum mean cycle of the
-//!   reset graph, found by walking every simple cycle (written here, not the library's).
+//! * C4's bonus sets (`c4::bonus_sets`) against the minimum mean cycle of the reset graph, found
+//!   by walking every simple cycle (written here, not the library's). The interval algebra
+//!   itself (`c4::Interval`, `End`, `witness`) is tested in the kernel
+//!   (`kernel/tests/claims_c4_intervals.rs`, where its tests moved so that the kernel-only
+//!   mutation cycle sees them).
 //! * Enumeration (`oracle`): simple cycles, simple goal paths, policies and trajectories against
 //!   enumeration of node sequences and step-by-step simulation; Karp's minimum mean cycle against
 //!   the brute-force cycles; every functional against a simulated stage sequence.
@@ -21,7 +22,7 @@ use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 use proptest::prelude::*;
 use proptest::test_runner::Config;
-use truecost::claims::c4::{bonus_sets, contains_unscaled, witness, End, Instance, Interval};
+use truecost::claims::c4::{bonus_sets, contains_unscaled, End, Instance, Interval};
 use truecost::claims::exact::{ipow, Ext, Frac, FracExt, Q};
 use truecost::claims::oracle::{
     evaluate, evaluate_fast, goal_avoiding_arcs, karp_minimum_mean_cycle, optimal_cost_to_go,
@@ -52,38 +53,6 @@ fn q_to_big(q: Q) -> Rational {
     bq(q.numer() as i64, q.denom() as i64)
 }
 
-// ---------------------------------------------------------------------------------------------
-// C4's intervals
-// ---------------------------------------------------------------------------------------------
-
-/// A half-line constraint on the bonus `M`: the brute-force meaning of an interval.
-#[derive(Clone, Copy, Debug)]
-enum Half {
-    Ge(Q),
-    Gt(Q),
-    Le(Q),
-    Lt(Q),
-}
-
-fn holds(c: Half, m: Q) -> bool {
-    match c {
-        Half::Ge(a) => m >= a,
-        Half::Gt(a) => m > a,
-        Half::Le(b) => m <= b,
-        Half::Lt(b) => m < b,
-    }
-}
-
-fn member(cs: &[Half], m: Q) -> bool {
-    cs.iter().all(|&c| holds(c, m))
-}
-
-fn point(c: Half) -> Q {
-    match c {
-        Half::Ge(a) | Half::Gt(a) | Half::Le(a) | Half::Lt(a) => a,
-    }
-}
-
 /// Every end point, the midpoints between consecutive ones, points just beside each (`±1/1000`)
 /// and points far out: a convex set whose ends are among the points is decided by this grid.
 fn grid(points: &[Q]) -> Vec<Q> {
@@ -104,189 +73,6 @@ fn grid(points: &[Q]) -> Vec<Q> {
     g.sort();
     g.dedup();
     g
-}
-
-fn small_q() -> impl Strategy<Value = Q> {
-    (-8i128..=8, 1i128..=4).prop_map(|(n, d)| Q::new(n, d))
-}
-
-/// A starting interval (any kind of end, non-empty) with its constraints, then a sequence of
-/// `at_least` (`true`) / `at_most` (`false`) operations.
-fn interval_case() -> impl Strategy<Value = (Interval, Vec<Half>, Vec<(bool, Q)>)> {
-    let end = prop_oneof![
-        Just(None),
-        small_q().prop_map(|q| Some((true, q))),
-        small_q().prop_map(|q| Some((false, q))),
-    ];
-    (
-        end.clone(),
-        end,
-        prop::collection::vec((any::<bool>(), small_q()), 0..6),
-    )
-        .prop_filter_map("a non-empty start", |(lo, hi, ops)| {
-            let mut cs = Vec::new();
-            let lo_end = match lo {
-                None => End::Unbounded,
-                Some((true, a)) => {
-                    cs.push(Half::Ge(a));
-                    End::Closed(a)
-                }
-                Some((false, a)) => {
-                    cs.push(Half::Gt(a));
-                    End::Open(a)
-                }
-            };
-            let hi_end = match hi {
-                None => End::Unbounded,
-                Some((true, b)) => {
-                    cs.push(Half::Le(b));
-                    End::Closed(b)
-                }
-                Some((false, b)) => {
-                    cs.push(Half::Lt(b));
-                    End::Open(b)
-                }
-            };
-            let pts: Vec<Q> = cs.iter().map(|&c| point(c)).collect();
-            if !grid(&pts).into_iter().any(|m| member(&cs, m)) {
-                return None;
-            }
-            let iv = Interval {
-                lo: lo_end,
-                hi: hi_end,
-                empty: false,
-            };
-            Some((iv, cs, ops))
-        })
-}
-
-fn apply(iv: &mut Interval, cs: &mut Vec<Half>, ops: &[(bool, Q)]) {
-    for &(least, q) in ops {
-        if least {
-            iv.at_least(q);
-            cs.push(Half::Ge(q));
-        } else {
-            iv.at_most(q);
-            cs.push(Half::Le(q));
-        }
-    }
-}
-
-proptest! {
-    #![proptest_config(config(2000))]
-
-    /// Membership and emptiness after every operation equal the conjunction of the half-lines.
-    #[test]
-    fn interval_membership_is_the_intersection_of_half_lines((start, cs0, ops) in interval_case()) {
-        let mut iv = start;
-        let mut cs = cs0.clone();
-        let mut pts: Vec<Q> = cs0.iter().map(|&c| point(c)).collect();
-        pts.extend(ops.iter().map(|o| o.1));
-        let g = grid(&pts);
-        for k in 0..ops.len() {
-            apply(&mut iv, &mut cs, &ops[k..k + 1]);
-            for &m in &g {
-                prop_assert_eq!(iv.contains(m), member(&cs, m), "{} at {} after {:?}", iv, m, &ops[..=k]);
-            }
-            prop_assert_eq!(iv.empty, !g.iter().any(|&m| member(&cs, m)), "{}", iv);
-        }
-    }
-
-    /// `same_set` is set equality; `witness` finds a negative bonus in the symmetric difference
-    /// exactly when one exists.
-    #[test]
-    fn interval_equality_and_witness((a0, ca0, oa) in interval_case(), (b0, cb0, ob) in interval_case()) {
-        let (mut a, mut ca) = (a0, ca0);
-        let (mut b, mut cb) = (b0, cb0);
-        apply(&mut a, &mut ca, &oa);
-        apply(&mut b, &mut cb, &ob);
-        let pts: Vec<Q> = ca.iter().chain(&cb).map(|&c| point(c)).collect();
-        let g = grid(&pts);
-        let equal = g.iter().all(|&m| member(&ca, m) == member(&cb, m));
-        prop_assert_eq!(a.same_set(&b), equal, "{} vs {}", a, b);
-        prop_assert!(a.same_set(&a));
-        // The witness looks at M < 0 only: intersect both with M < 0 first, as C4 does.
-        let neg = |iv: &Interval, cs: &[Half]| {
-            let mut iv = *iv;
-            let mut cs = cs.to_vec();
-            let n = Interval::negative();
-            if let End::Open(z) = n.hi {
-                // `negative()` is M < 0.
-                prop_assert_eq!(z, Q::ZERO);
-            } else {
-                prop_assert!(false, "negative() is not M < 0");
-            }
-            prop_assert_eq!(n.lo, End::Unbounded);
-            prop_assert!(!n.empty);
-            iv.at_most(Q::ZERO);
-            cs.push(Half::Le(Q::ZERO));
-            // Removing 0 itself is the open end of negative(); `contains` decides it below.
-            Ok((iv, cs))
-        };
-        let (an, can) = neg(&a, &ca)?;
-        let (bn, cbn) = neg(&b, &cb)?;
-        let differs = g.iter().any(|&m| m < Q::ZERO && member(&can, m) != member(&cbn, m));
-        match witness(&an, &bn) {
-            Some(m) => {
-                prop_assert!(m < Q::ZERO);
-                prop_assert_ne!(member(&can, m), member(&cbn, m), "witness {} of {} vs {}", m, an, bn);
-            }
-            None => prop_assert!(!differs, "no witness for {} vs {}", an, bn),
-        }
-    }
-}
-
-#[test]
-fn interval_ends_by_hand() {
-    let neg = Interval::negative();
-    assert_eq!(neg.to_string(), "(-inf, 0)");
-    assert!(neg.contains(Q::new(-1, 1000)) && !neg.contains(Q::ZERO));
-    let mut iv = Interval::negative();
-    iv.at_least(Q::new(-3, 2));
-    assert_eq!(iv.to_string(), "[-3/2, 0)");
-    iv.at_least(Q::int(-2)); // a smaller lower bound changes nothing
-    assert_eq!(iv.to_string(), "[-3/2, 0)");
-    iv.at_least(Q::int(-1)); // a larger one replaces it
-    assert_eq!(iv.to_string(), "[-1, 0)");
-    iv.at_most(Q::int(-1));
-    assert_eq!(iv.to_string(), "[-1, -1]");
-    assert!(iv.contains(Q::int(-1)) && !iv.empty);
-    iv.at_most(Q::new(-3, 2));
-    assert!(iv.empty);
-    assert_eq!(iv.to_string(), "empty");
-    assert!(!iv.contains(Q::int(-1)));
-    // An open end at the same point is kept open; a closed bound there changes nothing.
-    let mut open = Interval {
-        lo: End::Open(Q::int(-2)),
-        hi: End::Unbounded,
-        empty: false,
-    };
-    open.at_least(Q::int(-2));
-    assert_eq!(open.to_string(), "(-2, +inf)");
-    open.at_most(Q::int(-2));
-    assert!(open.empty);
-    let mut top = Interval::negative();
-    top.at_most(Q::ZERO);
-    assert_eq!(top.to_string(), "(-inf, 0)");
-    top.at_least(Q::ZERO);
-    assert!(top.empty);
-    // Equal sets, different building orders; two empty sets are equal.
-    let mut a = Interval::negative();
-    a.at_most(Q::int(-1));
-    a.at_least(Q::int(-4));
-    let mut b = Interval::negative();
-    b.at_least(Q::int(-4));
-    b.at_most(Q::int(-1));
-    b.at_most(Q::int(-1));
-    assert!(a.same_set(&b) && a == b);
-    assert_eq!(witness(&a, &b), None);
-    let mut c = a;
-    c.at_most(Q::int(-5));
-    let mut d = b;
-    d.at_least(Q::int(0));
-    assert!(c.same_set(&d));
-    assert!(!c.same_set(&a));
-    assert!(witness(&c, &a).is_some_and(|m| a.contains(m)));
 }
 
 // ---------------------------------------------------------------------------------------------

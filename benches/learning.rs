@@ -8,9 +8,14 @@
 //!
 //! One iteration builds the Q-table and runs to the end (the run stops early when it converges,
 //! as the paper's does); compiling the problem and its optimum happen once, outside the timing.
-//! Run with `cargo bench --bench learning`.
+//! Run with `cargo bench --bench learning`. As in `benches/planners.rs`,
+//! `TRUECOST_BENCH_ITERATIONS=N` runs every row `N` times without criterion and exits
+//! (`TRUECOST_BENCH_ONLY=eps_0.9/reference` runs one row): the instructions of one run are the
+//! difference of two callgrind totals at two values of `N` (`docs/speed.md`). With
+//! `TRUECOST_BENCH_REPORT=1` as well, each run is timed on its own and the median, the minimum
+//! and the time per action are printed: the Rust half of the side-by-side rounds.
 
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use truecost::learning::plan::{sample_rng, EpsilonSchedule, Plan, Probability};
@@ -54,11 +59,7 @@ fn q_learning(c: &mut Criterion) {
         value_iteration(&reference, Schedule::Asynchronous, Some(1000)).cost_to_go;
     let exact = exact_graph();
     let exact_optimum = dijkstra::to_goals(&exact).cost_to_go;
-    let mut group = c.benchmark_group("q_learning");
-    group
-        .sample_size(30)
-        .measurement_time(Duration::from_secs(5));
-    for (name, epsilon) in [("eps_0", "0"), ("eps_0.9", "0.9")] {
+    let rows = [("eps_0", "0"), ("eps_0.9", "0.9")].map(|(name, epsilon)| {
         let epsilon = EpsilonSchedule::Constant(
             Probability::new("ε", &parse_rational(epsilon).unwrap()).unwrap(),
         );
@@ -67,14 +68,66 @@ fn q_learning(c: &mut Criterion) {
             rules: Rules::Reference,
             ..exact_config.clone()
         };
+        (name, exact_config, reference_config)
+    });
+    if let Some(iterations) = fixed_iterations() {
+        let only = std::env::var("TRUECOST_BENCH_ONLY").ok();
+        let report = std::env::var_os("TRUECOST_BENCH_REPORT").is_some();
+        for (name, exact_config, reference_config) in &rows {
+            let runs: [(&str, &dyn Fn() -> u64); 2] = [
+                ("reference", &|| {
+                    run(black_box(&reference), &reference_optimum, reference_config)
+                }),
+                ("exact", &|| {
+                    run(black_box(&exact), &exact_optimum, exact_config)
+                }),
+            ];
+            for (mode, run) in runs {
+                let row = format!("{name}/{mode}");
+                if only.as_deref().is_some_and(|o| o != row) {
+                    continue;
+                }
+                let mut times = Vec::with_capacity(iterations as usize);
+                let mut actions = 0;
+                for _ in 0..iterations {
+                    let start = Instant::now();
+                    actions = black_box(run());
+                    times.push(start.elapsed());
+                }
+                if report && !times.is_empty() {
+                    times.sort();
+                    let median = times[times.len() / 2].as_secs_f64();
+                    println!(
+                        "q_learning/{row}: median {:.3} ms, min {:.3} ms over {iterations} runs, {actions} actions, {:.1} ns per action",
+                        median * 1e3,
+                        times[0].as_secs_f64() * 1e3,
+                        median * 1e9 / actions as f64,
+                    );
+                }
+            }
+        }
+        std::process::exit(0);
+    }
+    let mut group = c.benchmark_group("q_learning");
+    group
+        .sample_size(30)
+        .measurement_time(Duration::from_secs(5));
+    for (name, exact_config, reference_config) in &rows {
         group.bench_function(format!("{name}/reference"), |b| {
-            b.iter(|| run(black_box(&reference), &reference_optimum, &reference_config))
+            b.iter(|| run(black_box(&reference), &reference_optimum, reference_config))
         });
         group.bench_function(format!("{name}/exact"), |b| {
-            b.iter(|| run(black_box(&exact), &exact_optimum, &exact_config))
+            b.iter(|| run(black_box(&exact), &exact_optimum, exact_config))
         });
     }
     group.finish();
+}
+
+/// `TRUECOST_BENCH_ITERATIONS`, if set: run each row this many times and exit.
+fn fixed_iterations() -> Option<u64> {
+    std::env::var("TRUECOST_BENCH_ITERATIONS")
+        .ok()
+        .map(|v| v.parse().expect("TRUECOST_BENCH_ITERATIONS is a count"))
 }
 
 criterion_group!(benches, q_learning);

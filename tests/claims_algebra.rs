@@ -18,6 +18,9 @@
 
 use std::cmp::Ordering;
 
+#[path = "../kernel/tests/support/mod.rs"]
+mod support; // the kernel tests' grid of rationals (`support::rational_grid`)
+
 use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 use proptest::prelude::*;
@@ -52,29 +55,6 @@ fn bq(n: i64, d: i64) -> Rational {
 fn q_to_big(q: Q) -> Rational {
     bq(q.numer() as i64, q.denom() as i64)
 }
-
-/// Every end point, the midpoints between consecutive ones, points just beside each (`±1/1000`)
-/// and points far out: a convex set whose ends are among the points is decided by this grid.
-fn grid(points: &[Q]) -> Vec<Q> {
-    let mut pts: Vec<Q> = points.to_vec();
-    pts.push(Q::ZERO);
-    pts.sort();
-    pts.dedup();
-    let mut g = pts.clone();
-    for w in pts.windows(2) {
-        g.push((w[0] + w[1]) * Q::new(1, 2));
-    }
-    for &p in &pts {
-        g.push(p - Q::new(1, 1000));
-        g.push(p + Q::new(1, 1000));
-    }
-    g.push(pts[0] - Q::int(100));
-    g.push(pts[pts.len() - 1] + Q::int(100));
-    g.sort();
-    g.dedup();
-    g
-}
-
 // ---------------------------------------------------------------------------------------------
 // C4's bonus sets against the reset graph's minimum mean cycle
 // ---------------------------------------------------------------------------------------------
@@ -183,7 +163,7 @@ proptest! {
                 }
             }
             pts.extend([Q::int(-1), Q::new(-1, 3), Q::int(-7)]);
-            for m in grid(&pts).into_iter().filter(|m| *m < Q::ZERO) {
+            for m in support::rational_grid(&pts).into_iter().filter(|m| *m < Q::ZERO) {
                 let mb = q_to_big(m);
                 let mut arcs: Vec<(usize, usize, Rational)> = Vec::new();
                 for x in 0..n {

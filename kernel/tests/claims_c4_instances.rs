@@ -237,21 +237,9 @@ fn brute_least_mean(inst: &Instance) -> Option<Q> {
 /// Grid of bonuses: every point given, midpoints, `±1/1000` beside each, far out; negatives only.
 fn negative_grid(points: &[Q]) -> Vec<Q> {
     let mut pts: Vec<Q> = points.to_vec();
-    pts.extend([Q::ZERO, Q::int(-1), Q::new(-1, 3), Q::int(-7)]);
-    pts.sort();
-    pts.dedup();
-    let mut g = pts.clone();
-    for w in pts.windows(2) {
-        g.push((w[0] + w[1]) * Q::new(1, 2));
-    }
-    for &p in &pts {
-        g.push(p - Q::new(1, 1000));
-        g.push(p + Q::new(1, 1000));
-    }
-    g.push(pts[0] - Q::int(100));
+    pts.extend([Q::int(-1), Q::new(-1, 3), Q::int(-7)]);
+    let mut g = support::rational_grid(&pts);
     g.retain(|m| *m < Q::ZERO);
-    g.sort();
-    g.dedup();
     g
 }
 

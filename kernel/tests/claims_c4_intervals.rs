@@ -12,7 +12,7 @@
 
 mod support;
 
-use support::SplitMix;
+use support::{rational_grid as grid, SplitMix};
 use truecost_kernel::claims::c4::{witness, End, Interval};
 use truecost_kernel::claims::exact::Q;
 
@@ -42,26 +42,6 @@ fn point(c: Half) -> Q {
     match c {
         Half::Ge(a) | Half::Gt(a) | Half::Le(a) | Half::Lt(a) => a,
     }
-}
-
-fn grid(points: &[Q]) -> Vec<Q> {
-    let mut pts: Vec<Q> = points.to_vec();
-    pts.push(Q::ZERO);
-    pts.sort();
-    pts.dedup();
-    let mut g = pts.clone();
-    for w in pts.windows(2) {
-        g.push((w[0] + w[1]) * Q::new(1, 2));
-    }
-    for &p in &pts {
-        g.push(p - Q::new(1, 1000));
-        g.push(p + Q::new(1, 1000));
-    }
-    g.push(pts[0] - Q::int(100));
-    g.push(pts[pts.len() - 1] + Q::int(100));
-    g.sort();
-    g.dedup();
-    g
 }
 
 fn small_q(draw: &mut SplitMix) -> Q {

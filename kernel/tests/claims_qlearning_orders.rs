@@ -30,7 +30,7 @@ use truecost_kernel::claims::qlearning::{
 use truecost_kernel::claims::tiny::{Tiny, MAX_STATES};
 
 mod support;
-use support::SplitMix;
+use support::{random_tiny, SplitMix};
 
 const GAMMA: u64 = 0x9E37_79B9_7F4A_7C15;
 
@@ -232,18 +232,6 @@ fn random_orders_replay_the_splitmix_stream() {
         }
     }
     assert!(checked > 60, "{checked}");
-}
-
-fn random_tiny(draw: &mut SplitMix) -> Tiny {
-    let n = 2 + draw.below(3) as usize;
-    let lists: Vec<Vec<(u8, u8)>> = (0..n)
-        .map(|_| {
-            (0..1 + draw.below(2))
-                .map(|_| (draw.below(n as u64) as u8, draw.below(3) as u8))
-                .collect()
-        })
-        .collect();
-    Tiny::from_lists(&lists)
 }
 
 fn random_q0(draw: &mut SplitMix, pairs: usize) -> Values {

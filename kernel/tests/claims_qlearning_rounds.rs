@@ -150,15 +150,8 @@ fn rounds_match_the_literal_simulation_under_each_order() {
     let mut draw = SplitMix(41);
     let mut converged = 0;
     for _ in 0..400 {
-        let n = 2 + draw.below(3) as usize;
-        let lists: Vec<Vec<(u8, u8)>> = (0..n)
-            .map(|_| {
-                (0..1 + draw.below(2))
-                    .map(|_| (draw.below(n as u64) as u8, draw.below(3) as u8))
-                    .collect()
-            })
-            .collect();
-        let t = Tiny::from_lists(&lists);
+        let t = support::random_tiny(&mut draw);
+        let n = t.states();
         for terminal in [Terminal::Updated, Terminal::HeldAtZero] {
             let q = QProblem::new(&t, terminal);
             assert_eq!(

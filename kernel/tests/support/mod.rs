@@ -5,6 +5,8 @@
 
 use std::cmp::Ordering;
 
+use truecost_kernel::claims::exact::Q;
+use truecost_kernel::claims::tiny::Tiny;
 use truecost_kernel::model::Graph;
 use truecost_kernel::value::{CostValue, Units};
 
@@ -163,4 +165,42 @@ pub fn finite<V: CostValue>(values: &[V], raw: impl Fn(&V) -> u64) -> Vec<Option
         .iter()
         .map(|v| v.is_finite().then(|| raw(v)))
         .collect()
+}
+
+/// Every end point given and 0, the midpoints between consecutive ones, points just beside each
+/// (`±1/1000`) and points far out (`∓100`): a convex set of rationals whose ends are among the
+/// points is decided by its members on this grid (shared by the C4 interval and instance tests
+/// and `tests/claims_algebra.rs`).
+pub fn rational_grid(points: &[Q]) -> Vec<Q> {
+    let mut pts: Vec<Q> = points.to_vec();
+    pts.push(Q::ZERO);
+    pts.sort();
+    pts.dedup();
+    let mut g = pts.clone();
+    for w in pts.windows(2) {
+        g.push((w[0] + w[1]) * Q::new(1, 2));
+    }
+    for &p in &pts {
+        g.push(p - Q::new(1, 1000));
+        g.push(p + Q::new(1, 1000));
+    }
+    g.push(pts[0] - Q::int(100));
+    g.push(pts[pts.len() - 1] + Q::int(100));
+    g.sort();
+    g.dedup();
+    g
+}
+
+/// A random tiny problem of 2–4 states, each with one or two moves of cost 0–2 to any state
+/// (the family of the Q-learning round tests).
+pub fn random_tiny(draw: &mut SplitMix) -> Tiny {
+    let n = 2 + draw.below(3) as usize;
+    let lists: Vec<Vec<(u8, u8)>> = (0..n)
+        .map(|_| {
+            (0..1 + draw.below(2))
+                .map(|_| (draw.below(n as u64) as u8, draw.below(3) as u8))
+                .collect()
+        })
+        .collect();
+    Tiny::from_lists(&lists)
 }

@@ -98,6 +98,39 @@ fn probabilities_are_exact_and_validated() {
 }
 
 #[test]
+fn probabilities_print_as_their_nearest_f64() {
+    let p = |t: &str| Probability::new("ε", &parse_rational(t).unwrap()).unwrap();
+    assert_eq!(p("0.9").to_f64(), 0.9);
+    assert_eq!(p("1/3").to_f64(), 1.0 / 3.0);
+    assert_eq!(Probability::ZERO.to_f64(), 0.0);
+}
+
+#[test]
+fn plans_are_named_in_reports() {
+    assert_eq!(Plan::Random.name(), "random");
+    let mut stream = PiStream::new();
+    assert_eq!(Plan::Pi(&mut stream).name(), "pi");
+}
+
+/// A linear decay's ε_k have denominators dividing `lcm(q_start, q_end)·(E − 1)`, which must
+/// stay at most 2^63: with `q_start = 2^32` and `q_end = 2` that is `2^32·(E − 1)`, exactly
+/// 2^63 at `E = 2^31 + 1` (accepted) and above it at `E = 2^31 + 2` (refused).
+#[test]
+fn decay_schedules_are_refused_exactly_above_a_denominator_of_2_pow_63() {
+    let p = |t: &str| Probability::new("ε", &parse_rational(t).unwrap()).unwrap();
+    let schedule = EpsilonSchedule::Linear {
+        start: p("1/4294967296"),
+        end: p("1/2"),
+    };
+    assert!(schedule.validate((1 << 31) + 1).is_ok());
+    assert!(schedule.validate((1 << 31) + 2).is_err());
+    assert!(schedule.validate(2).is_ok());
+    assert!(EpsilonSchedule::Constant(p("1/4294967296"))
+        .validate(u32::MAX)
+        .is_ok());
+}
+
+#[test]
 fn linear_decay_reaches_one_tenth_at_the_last_episode() {
     let s = EpsilonSchedule::decay_to_one_tenth(Probability::ONE);
     let at = |k| {

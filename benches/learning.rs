@@ -15,7 +15,9 @@
 //! `TRUECOST_BENCH_REPORT=1` as well, each run is timed on its own and the median, the minimum
 //! and the time per action are printed: the Rust half of the side-by-side rounds.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+mod support;
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use truecost::learning::plan::{sample_rng, EpsilonSchedule, Plan, Probability};
@@ -70,9 +72,7 @@ fn q_learning(c: &mut Criterion) {
         };
         (name, exact_config, reference_config)
     });
-    if let Some(iterations) = fixed_iterations() {
-        let only = std::env::var("TRUECOST_BENCH_ONLY").ok();
-        let report = std::env::var_os("TRUECOST_BENCH_REPORT").is_some();
+    if let Some(iterations) = support::fixed_iterations() {
         for (name, exact_config, reference_config) in &rows {
             let runs: [(&str, &dyn Fn() -> u64); 2] = [
                 ("reference", &|| {
@@ -84,23 +84,16 @@ fn q_learning(c: &mut Criterion) {
             ];
             for (mode, run) in runs {
                 let row = format!("{name}/{mode}");
-                if only.as_deref().is_some_and(|o| o != row) {
+                if !support::wanted(&row) {
                     continue;
                 }
-                let mut times = Vec::with_capacity(iterations as usize);
-                let mut actions = 0;
-                for _ in 0..iterations {
-                    let start = Instant::now();
-                    actions = black_box(run());
-                    times.push(start.elapsed());
-                }
-                if report && !times.is_empty() {
-                    times.sort();
-                    let median = times[times.len() / 2].as_secs_f64();
+                if let (Some(actions), Some((median, min))) = support::timed_calls(iterations, run)
+                {
+                    let median = median.as_secs_f64();
                     println!(
                         "q_learning/{row}: median {:.3} ms, min {:.3} ms over {iterations} runs, {actions} actions, {:.1} ns per action",
                         median * 1e3,
-                        times[0].as_secs_f64() * 1e3,
+                        min.as_secs_f64() * 1e3,
                         median * 1e9 / actions as f64,
                     );
                 }
@@ -121,13 +114,6 @@ fn q_learning(c: &mut Criterion) {
         });
     }
     group.finish();
-}
-
-/// `TRUECOST_BENCH_ITERATIONS`, if set: run each row this many times and exit.
-fn fixed_iterations() -> Option<u64> {
-    std::env::var("TRUECOST_BENCH_ITERATIONS")
-        .ok()
-        .map(|v| v.parse().expect("TRUECOST_BENCH_ITERATIONS is a count"))
 }
 
 criterion_group!(benches, q_learning);

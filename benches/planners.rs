@@ -24,7 +24,9 @@
 //! `TRUECOST_BENCH_REPORT=1` as well, each call is timed on its own and the median and minimum
 //! per row are printed: the Rust half of the side-by-side rounds of `docs/speed.md`.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
+
+mod support;
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use truecost::model::{ExactGraph, Graph};
@@ -73,17 +75,8 @@ fn model_free(c: &mut Criterion) {
     let unit = exact_graph(StepCost::Unit);
     let euclidean = exact_graph(StepCost::Euclidean);
     let reference = reference_graph();
-    if let Some(iterations) = fixed_iterations() {
+    if let Some(iterations) = support::fixed_iterations() {
         // Instruction counting (callgrind): a fixed amount of work, no criterion.
-        let only = std::env::var("TRUECOST_BENCH_ONLY").ok();
-        let wanted = |planner: &str, name: &str| {
-            only.as_deref()
-                .is_none_or(|o| o == format!("{planner}/{name}"))
-        };
-        // With TRUECOST_BENCH_REPORT set, every call is timed on its own (as the paper's
-        // `find_path` times each call) and the median and minimum are printed per row, for
-        // side-by-side rounds with the Python code (docs/speed.md).
-        let report = std::env::var_os("TRUECOST_BENCH_REPORT").is_some();
         let graphs: [(&str, &dyn Fn(Algorithm) -> PlanCounts); 3] = [
             ("exact", &|a| {
                 model_free_counts(black_box(&unit), a, Mode::Exact)
@@ -97,21 +90,16 @@ fn model_free(c: &mut Criterion) {
         ];
         for (planner, algorithm) in PLANNERS {
             for (name, run) in graphs {
-                if !wanted(planner, name) {
+                if !support::wanted(&format!("{planner}/{name}")) {
                     continue;
                 }
-                let mut times = Vec::with_capacity(iterations as usize);
-                for _ in 0..iterations {
-                    let start = Instant::now();
-                    black_box(run(algorithm));
-                    times.push(start.elapsed());
-                }
-                if report && !times.is_empty() {
-                    times.sort();
+                if let (_, Some((median, min))) =
+                    support::timed_calls(iterations, || run(algorithm))
+                {
                     println!(
                         "model_free/{planner}/{name}: median {:.2} µs, min {:.2} µs over {iterations} calls",
-                        times[times.len() / 2].as_secs_f64() * 1e6,
-                        times[0].as_secs_f64() * 1e6,
+                        median.as_secs_f64() * 1e6,
+                        min.as_secs_f64() * 1e6,
                     );
                 }
             }
@@ -121,13 +109,6 @@ fn model_free(c: &mut Criterion) {
     bench_mode(c, "exact", &unit, Mode::Exact);
     bench_mode(c, "exact_euclidean", &euclidean, Mode::Exact);
     bench_mode(c, "reference", &reference, Mode::Reference);
-}
-
-/// `TRUECOST_BENCH_ITERATIONS`, if set: run each pipeline this many times and exit.
-fn fixed_iterations() -> Option<u64> {
-    std::env::var("TRUECOST_BENCH_ITERATIONS")
-        .ok()
-        .map(|v| v.parse().expect("TRUECOST_BENCH_ITERATIONS is a count"))
 }
 
 criterion_group! {

@@ -112,6 +112,19 @@ fn plans_are_named_in_reports() {
     assert_eq!(Plan::Pi(&mut stream).name(), "pi");
 }
 
+/// A stream reads past the prefix computed so far in the process: the digit after it is
+/// computed on demand and equals the one a longer prefix gives.
+#[test]
+fn a_stream_reads_past_the_cached_prefix() {
+    let held = pi_digits(1).len();
+    assert!(held + 2 < PI_STREAM_PERIOD as usize);
+    let mut s = PiStream::new();
+    let read: Vec<u8> = (0..held + 2).map(|_| s.next_digit()).collect();
+    let longer = pi_digits(held + 1);
+    assert_eq!(read[0], 3);
+    assert_eq!(read[1..], longer[..held + 1]);
+}
+
 /// A linear decay's ε_k have denominators dividing `lcm(q_start, q_end)·(E − 1)`, which must
 /// stay at most 2^63: with `q_start = 2^32` and `q_end = 2` that is `2^32·(E − 1)`, exactly
 /// 2^63 at `E = 2^31 + 1` (accepted) and above it at `E = 2^31 + 2` (refused).

@@ -6,8 +6,9 @@
 //! test `spec_digits_are_not_pi`.)
 //!
 //! Method: the Chudnovsky series by binary splitting (both halves, and then their products,
-//! in parallel), an integer square root and one division (of `Q` and `T` cut to the precision
-//! needed), all exact on big integers (`malachite-nz`, whose FFT
+//! in parallel; the last merge multiplies operands cut to the precision needed, with a proven
+//! bound on the error), one division of `Q` by `T` side by side with an integer square root,
+//! and one product, all on big integers (`malachite-nz`, whose FFT
 //! multiplication makes the 10^7-digit period a matter of seconds). The result is an
 //! integer `a` with `|π·2^B − a| ≤ 4`; digits are returned only when both ends of that
 //! enclosure agree on them, otherwise the precision is raised, so every digit returned is
@@ -107,32 +108,116 @@ fn base4_fraction(v: &Natural, count: usize) -> Vec<u8> {
 }
 
 /// An integer within 4 of `π·2^bits`: `π = 426880·√10005·Q/T` (Chudnovsky).
+///
+/// `Q/T` comes cut to `bits + 80` bits ([`series_ratio`]); then `u = ⌊Q'·2^(bits+32)/T'⌋` and
+/// `r = ⌊√10005·2^bits⌋` are computed side by side, and the result is
+/// `⌊426880·r·u / 2^(bits+32)⌋`. Error: `r` loses < 1, scaled by `426880·Q/T ≈ 0.0314`; `u`
+/// loses < 1, scaled by `426880·√10005/2^32 < 0.01`; the ratio's cut (relative `2^−(bits+74)`)
+/// moves a result below `4·2^bits` by less than `2^−72`; the tail of the series beyond `terms`
+/// is below `2^−bits`; the last floor loses < 1. Total < 2 ≤ 4.
 fn pi_scaled(bits: usize) -> Natural {
     // Each term adds log2(151931373056000) ≈ 47.11 bits; two spare terms bound the tail far
     // below one unit.
     let terms = (bits as u64) / 47 + 2;
-    // The series and ⌊√10005·2^bits⌋ are independent: compute them side by side.
-    let (split, root) = rayon::join(
-        || binary_split(0, terms, false),
+    let bits = bits as u64;
+    let (q, t) = series_ratio(terms, bits + 80);
+    // The division runs on one core: the square root takes the other.
+    let (u, root) = rayon::join(
+        || q.shifted(bits + 32) / t.shifted(0),
         || (Natural::from(10005u32) << (2 * bits)).floor_sqrt(),
     );
-    let q = split.q.unsigned_abs();
-    let t = split.t.unsigned_abs();
-    // Q and T carry about 105 bits per term, more than twice the 47 the sum needs: drop the
-    // same `s` low bits of both, keeping `bits + 72` bits of the shorter. With
-    // `k = min(|Q|, |T|)` bits, `Q'·2^s ∈ (Q − 2^s, Q]` and `T'·2^s ∈ (T − 2^s, T]`, so
-    // `Q'/T'` is within a factor `1 ± 2^(s+2−k) = 1 ± 2^−(bits+70)` of `Q/T`; on a result
-    // below `4·2^bits` that moves it by less than `2^−66`.
-    let k = q.significant_bits().min(t.significant_bits());
-    let (q, t) = if k > bits as u64 + 80 {
-        let s = k - (bits as u64 + 72);
-        (q >> s, t >> s)
+    // root·u as two half products side by side.
+    let h = u.significant_bits() / 2;
+    let low = &u & ((Natural::ONE << h) - Natural::ONE);
+    let (high, low) = rayon::join(|| &root * (u >> h), || &root * low);
+    (Natural::from(426880u32) * ((high << h) + low)) >> (bits + 32)
+}
+
+/// A positive number `m·2^e` held as mantissa and exponent.
+struct Scaled {
+    m: Natural,
+    e: u64,
+}
+
+impl Scaled {
+    /// `m·2^(e + by)` as an integer.
+    fn shifted(&self, by: u64) -> Natural {
+        &self.m << (self.e + by)
+    }
+}
+
+/// `x` cut to its `keep` most significant bits: `(x', e)` with `x'·2^e ∈ (x − 2^e, x]`
+/// (`>>` on an `Integer` rounds toward −∞), so `|x'·2^e − x| < 2^(1−keep)·|x|`.
+fn top(x: &Integer, keep: u64) -> (Integer, u64) {
+    let b = x.significant_bits();
+    if b > keep {
+        (x >> (b - keep), b - keep)
     } else {
-        (q, t)
+        (x.clone(), 0)
+    }
+}
+
+/// `Q(0, terms)` and `T(0, terms)` of the series, each as `m·2^e` with `m` at most `k` bits,
+/// such that `Q'/T' = (Q/T)·(1 + ε)`, `|ε| < 2^(6−k)`; the common power of two is removed
+/// from both exponents (the smaller one is 0).
+///
+/// The two halves are split exactly; the last merge, `Q = Q_L·Q_R` and
+/// `T = Q_R·T_L + P_L·T_R`, multiplies operands cut to `k` bits ([`top`]), since Q and T
+/// carry about 105 bits a term where the ratio needs 47, and cuts `P_L·T_R`, smaller than
+/// `Q_R·T_L` by a factor `2^d` (about 47 bits a term of the right half), to `k − d` bits.
+/// With `δ = 2^(1−k)`: each cut product is within `3δ` of its value (relative); the cut sum
+/// within `7δ·|Q_R·T_L| ≤ 14δ·|T|` (as `|T| ≥ |Q_R·T_L|/2` when `d ≥ 2`); cutting both results
+/// to `k` bits again adds `δ` each; so `|ε| < (1 + 4δ)/(1 − 15δ) − 1 < 20δ < 2^(6−k)`.
+fn series_ratio(terms: u64, k: u64) -> (Scaled, Scaled) {
+    let m = terms / 2;
+    let (left, right) = rayon::join(
+        || binary_split(0, m, true),
+        || binary_split(m, terms, false),
+    );
+    // log2|Q_R·T_L| ≥ b(Q_R) + b(T_L) − 2 and log2|P_L·T_R| < b(P_L) + b(T_R).
+    let d = (right.q.significant_bits() + left.t.significant_bits())
+        .saturating_sub(2 + left.p.significant_bits() + right.t.significant_bits());
+    let (q, t, eq, et) = if d < 2 {
+        // Not reached for the series (d ≈ 47·(terms − m)); kept exact for safety.
+        let q = &left.q * &right.q;
+        let t = &right.q * &left.t + &left.p * &right.t;
+        (q, t, 0, 0)
+    } else {
+        let k2 = k.saturating_sub(d).max(64);
+        let cut_product = |x: &Integer, y: &Integer, keep: u64| {
+            let ((x, ex), (y, ey)) = (top(x, keep), top(y, keep));
+            (x * y, ex + ey)
+        };
+        let ((q, eq), ((a, ea), (b, eb))) = rayon::join(
+            || cut_product(&left.q, &right.q, k),
+            || {
+                rayon::join(
+                    || cut_product(&right.q, &left.t, k),
+                    || cut_product(&left.p, &right.t, k2),
+                )
+            },
+        );
+        // T' = a + b·2^(eb − ea) at the exponent ea (the right shift, if any, loses < 2^ea).
+        let t = if eb >= ea {
+            a + (b << (eb - ea))
+        } else {
+            a + (b >> (ea - eb))
+        };
+        (q, t, eq, ea)
     };
-    // Error: ⌊√⌋ loses < 1, scaled by 426880·Q/T ≈ 0.0314; the division loses < 1; the tail
-    // beyond `terms` is < 2^-bits; the truncation above < 2^-66. Total < 2 ≤ 4.
-    (Natural::from(426880u32) * root * q) / t
+    let ((q, cq), (t, ct)) = (top(&q, k), top(&t, k));
+    let (eq, et) = (eq + cq, et + ct);
+    let low = eq.min(et);
+    (
+        Scaled {
+            m: q.unsigned_abs(),
+            e: eq - low,
+        },
+        Scaled {
+            m: t.unsigned_abs(),
+            e: et - low,
+        },
+    )
 }
 
 struct Split {
@@ -266,6 +351,28 @@ mod tests {
         let long = compute(20_000);
         for n in [1, 2, 3, 31, 32, 33, 1000, 4097] {
             assert_eq!(compute(n), long[..n], "n = {n}");
+        }
+    }
+
+    /// `⌊426880·⌊√10005·2^bits⌋·Q/T⌋` with `Q` and `T` exact: the formula with no cut, which
+    /// is within `1.04` below `π·2^bits`, as `pi_scaled` is within `1.05`.
+    fn pi_scaled_uncut(bits: usize) -> Natural {
+        let s = binary_split(0, (bits as u64) / 47 + 2, false);
+        let root = (Natural::from(10005u32) << (2 * bits)).floor_sqrt();
+        (Natural::from(426880u32) * root * s.q.unsigned_abs()) / s.t.unsigned_abs()
+    }
+
+    #[test]
+    fn the_cut_ratio_agrees_with_the_uncut_formula() {
+        let sizes = (1..400)
+            .map(|i| 3 * i)
+            .chain([4_999, 5_000, 65_536, 200_001]);
+        for bits in sizes {
+            let (a, b) = (
+                Integer::from(pi_scaled(bits)),
+                Integer::from(pi_scaled_uncut(bits)),
+            );
+            assert!((a - b).unsigned_abs() <= 2u32, "bits = {bits}");
         }
     }
 

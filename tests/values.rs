@@ -12,7 +12,8 @@ use truecost::model::{ExactGraph, Problem, RenderValue};
 use truecost::solvers::dijkstra;
 use truecost::solvers::value_iteration::{value_iteration, Schedule};
 use truecost::value::{
-    in_unit_interval_open_closed, parse_rational, CostValue, ExactValue, Extended, Units,
+    in_unit_interval_open_closed, parse_rational, CostValue, ExactValue, Extended,
+    ParseRationalReason, Units, MAX_NUMBER_TEXT,
 };
 
 fn p(text: &str) -> Q {
@@ -357,4 +358,18 @@ fn representation_with_coprime_denominators() {
     let (repr, values) = solve0(&p3);
     assert_eq!(repr, "big-rational");
     assert_eq!(values, vec![Some(frac(1, 4_194_304)); 3]);
+}
+
+/// The length limit on a number's text is `MAX_NUMBER_TEXT` bytes after trimming: a text of
+/// exactly that length parses, one byte more is refused with its length named.
+#[test]
+fn number_texts_are_refused_exactly_above_the_length_limit() {
+    let at = "9".repeat(MAX_NUMBER_TEXT);
+    assert_eq!(p(&at), p(&at[1..]) * BigInt::from(10) + p("9"));
+    assert_eq!(p(&format!("  {at}\t")), p(&at));
+    let above = format!("{at}9");
+    assert_eq!(
+        parse_rational(&above).unwrap_err().reason,
+        ParseRationalReason::TooLong(MAX_NUMBER_TEXT + 1)
+    );
 }

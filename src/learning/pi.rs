@@ -149,12 +149,8 @@ impl Scaled {
 /// `x` cut to its `keep` most significant bits: `(x', e)` with `x'·2^e ∈ (x − 2^e, x]`
 /// (`>>` on an `Integer` rounds toward −∞), so `|x'·2^e − x| < 2^(1−keep)·|x|`.
 fn top(x: &Integer, keep: u64) -> (Integer, u64) {
-    let b = x.significant_bits();
-    if b > keep {
-        (x >> (b - keep), b - keep)
-    } else {
-        (x.clone(), 0)
-    }
+    let e = x.significant_bits().saturating_sub(keep);
+    (x >> e, e)
 }
 
 /// `Q(0, terms)` and `T(0, terms)` of the series, each as `m·2^e` with `m` at most `k` bits,
@@ -165,9 +161,10 @@ fn top(x: &Integer, keep: u64) -> (Integer, u64) {
 /// `T = Q_R·T_L + P_L·T_R`, multiplies operands cut to `k` bits ([`top`]), since Q and T
 /// carry about 105 bits a term where the ratio needs 47, and cuts `P_L·T_R`, smaller than
 /// `Q_R·T_L` by a factor `2^d` (about 47 bits a term of the right half), to `k − d` bits.
-/// With `δ = 2^(1−k)`: each cut product is within `3δ` of its value (relative); the cut sum
-/// within `7δ·|Q_R·T_L| ≤ 14δ·|T|` (as `|T| ≥ |Q_R·T_L|/2` when `d ≥ 2`); cutting both results
-/// to `k` bits again adds `δ` each; so `|ε| < (1 + 4δ)/(1 − 15δ) − 1 < 20δ < 2^(6−k)`.
+/// With `δ = 2^(1−k)`: each cut product is within `3δ` of its value (relative); their sum,
+/// aligned by left shifts only, within `6δ·|Q_R·T_L| ≤ 12δ·|T|` (as `|T| ≥ |Q_R·T_L|/2` when
+/// `d ≥ 2`, which the series always has: `d ≈ 47·(terms − m) ≥ 43`); cutting both results to `k`
+/// bits again adds `δ` each; so `|ε| < (1 + 4.01δ)/(1 − 13.01δ) − 1 < 18δ < 2^(6−k)`.
 fn series_ratio(terms: u64, k: u64) -> (Scaled, Scaled) {
     let m = terms / 2;
     let (left, right) = rayon::join(
@@ -177,34 +174,24 @@ fn series_ratio(terms: u64, k: u64) -> (Scaled, Scaled) {
     // log2|Q_R·T_L| ≥ b(Q_R) + b(T_L) − 2 and log2|P_L·T_R| < b(P_L) + b(T_R).
     let d = (right.q.significant_bits() + left.t.significant_bits())
         .saturating_sub(2 + left.p.significant_bits() + right.t.significant_bits());
-    let (q, t, eq, et) = if d < 2 {
-        // Not reached for the series (d ≈ 47·(terms − m)); kept exact for safety.
-        let q = &left.q * &right.q;
-        let t = &right.q * &left.t + &left.p * &right.t;
-        (q, t, 0, 0)
-    } else {
-        let k2 = k.saturating_sub(d).max(64);
-        let cut_product = |x: &Integer, y: &Integer, keep: u64| {
-            let ((x, ex), (y, ey)) = (top(x, keep), top(y, keep));
-            (x * y, ex + ey)
-        };
-        let ((q, eq), ((a, ea), (b, eb))) = rayon::join(
-            || cut_product(&left.q, &right.q, k),
-            || {
-                rayon::join(
-                    || cut_product(&right.q, &left.t, k),
-                    || cut_product(&left.p, &right.t, k2),
-                )
-            },
-        );
-        // T' = a + b·2^(eb − ea) at the exponent ea (the right shift, if any, loses < 2^ea).
-        let t = if eb >= ea {
-            a + (b << (eb - ea))
-        } else {
-            a + (b >> (ea - eb))
-        };
-        (q, t, eq, ea)
+    assert!(d >= 2, "π series: P_L·T_R is not below Q_R·T_L (d = {d})");
+    let k2 = k.saturating_sub(d).max(64);
+    let cut_product = |x: &Integer, y: &Integer, keep: u64| {
+        let ((x, ex), (y, ey)) = (top(x, keep), top(y, keep));
+        (x * y, ex + ey)
     };
+    let ((q, eq), ((a, ea), (b, eb))) = rayon::join(
+        || cut_product(&left.q, &right.q, k),
+        || {
+            rayon::join(
+                || cut_product(&right.q, &left.t, k),
+                || cut_product(&left.p, &right.t, k2),
+            )
+        },
+    );
+    // T' = a·2^(ea − et) + b·2^(eb − et) at the exponent et = min(ea, eb): exact.
+    let et = ea.min(eb);
+    let t = (a << (ea - et)) + (b << (eb - et));
     let ((q, cq), (t, ct)) = (top(&q, k), top(&t, k));
     let (eq, et) = (eq + cq, et + ct);
     let low = eq.min(et);

@@ -12,8 +12,8 @@ use truecost::model::{ExactGraph, Problem, RenderValue};
 use truecost::solvers::dijkstra;
 use truecost::solvers::value_iteration::{value_iteration, Schedule};
 use truecost::value::{
-    in_unit_interval_open_closed, parse_rational, CostValue, ExactValue, Extended,
-    ParseRationalReason, Units, MAX_NUMBER_TEXT,
+    in_unit_interval_open_closed, parse_rational, to_common_scale, CostValue, ExactValue, Extended,
+    ParseRationalReason, Units, MAX_EXPONENT, MAX_NUMBER_TEXT,
 };
 
 fn p(text: &str) -> Q {
@@ -372,4 +372,56 @@ fn number_texts_are_refused_exactly_above_the_length_limit() {
         parse_rational(&above).unwrap_err().reason,
         ParseRationalReason::TooLong(MAX_NUMBER_TEXT + 1)
     );
+}
+
+/// Exponents are limited to `|e| ≤ MAX_EXPONENT` (leading zeros aside): the limit itself parses,
+/// one more is refused, and so is an exponent too long for any integer type.
+#[test]
+fn exponents_are_refused_exactly_above_the_limit() {
+    let limit = MAX_EXPONENT;
+    let ten_to = |e: u64| Q::from_integer((0..e).fold(BigInt::one(), |a, _| a * 10));
+    assert_eq!(p(&format!("1e{limit}")), ten_to(limit));
+    assert_eq!(p(&format!("1e-{limit}")), ten_to(limit).recip());
+    assert_eq!(
+        p(&format!("2E+000{limit}")),
+        ten_to(limit) * BigInt::from(2)
+    );
+    for text in [
+        format!("1e{}", limit + 1),
+        format!("1e-{}", limit + 1),
+        format!("1e{}", "9".repeat(25)),
+        format!("1e0000{}", "9".repeat(6)),
+    ] {
+        assert_eq!(
+            parse_rational(&text).unwrap_err().reason,
+            ParseRationalReason::Exponent,
+            "{text}"
+        );
+    }
+}
+
+/// `to_common_scale` against a brute force: the scale is the least `n ≥ 1` that makes every
+/// value an integer, and each integer is its value times the scale.
+#[test]
+fn the_common_scale_is_the_least_common_denominator() {
+    let sets: [&[&str]; 5] = [
+        &[],
+        &["3"],
+        &["1/4", "-5/6", "2"],
+        &["7/9", "1/12", "-3/8", "0", "5/18"],
+        &["-1/7", "1/7", "22/7"],
+    ];
+    for set in sets {
+        let values: Vec<Q> = set.iter().map(|t| p(t)).collect();
+        let (d, ints) = to_common_scale(&values);
+        let least = (1..=1000)
+            .map(BigInt::from)
+            .find(|n| values.iter().all(|v| (v * n).is_integer()))
+            .unwrap();
+        assert_eq!(d, least, "{set:?}");
+        assert_eq!(ints.len(), values.len());
+        for (v, i) in values.iter().zip(&ints) {
+            assert_eq!(Q::from_integer(i.clone()), v * &d, "{set:?}");
+        }
+    }
 }

@@ -153,6 +153,12 @@ fn top(x: &Integer, keep: u64) -> (Integer, u64) {
     (x >> e, e)
 }
 
+/// `a·2^ea + b·2^eb` exactly, as `(s, e)` with `s·2^e` equal to it and `e = min(ea, eb)`.
+fn add_scaled(a: Integer, ea: u64, b: Integer, eb: u64) -> (Integer, u64) {
+    let e = ea.min(eb);
+    ((a << (ea - e)) + (b << (eb - e)), e)
+}
+
 /// `Q(0, terms)` and `T(0, terms)` of the series, each as `m·2^e` with `m` at most `k` bits,
 /// such that `Q'/T' = (Q/T)·(1 + ε)`, `|ε| < 2^(6−k)`; the common power of two is removed
 /// from both exponents (the smaller one is 0).
@@ -189,9 +195,7 @@ fn series_ratio(terms: u64, k: u64) -> (Scaled, Scaled) {
             )
         },
     );
-    // T' = a·2^(ea − et) + b·2^(eb − et) at the exponent et = min(ea, eb): exact.
-    let et = ea.min(eb);
-    let t = (a << (ea - et)) + (b << (eb - et));
+    let (t, et) = add_scaled(a, ea, b, eb);
     let ((q, cq), (t, ct)) = (top(&q, k), top(&t, k));
     let (eq, et) = (eq + cq, et + ct);
     let low = eq.min(et);
@@ -361,6 +365,16 @@ mod tests {
             );
             assert!((a - b).unsigned_abs() <= 2u32, "bits = {bits}");
         }
+    }
+
+    #[test]
+    fn scaled_sums_align_either_exponent() {
+        let i = Integer::from;
+        assert_eq!(add_scaled(i(3), 5, i(-1), 2), (i(23), 2));
+        assert_eq!(add_scaled(i(-1), 2, i(3), 5), (i(23), 2));
+        assert_eq!(add_scaled(i(7), 4, i(1), 4), (i(8), 4));
+        assert_eq!(top(&i(-45), 3), (i(-6), 3)); // −45 = 101101₂: ⌊−45/8⌋ = −6
+        assert_eq!(top(&i(45), 8), (i(45), 0));
     }
 
     #[test]

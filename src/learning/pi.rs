@@ -15,7 +15,7 @@
 //! proven. Digits are cached in the process and, for long prefixes, on disk (see
 //! [`cache_dir`]); a cache file is used only if its checksum and its first 64 digits verify.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 
 use malachite_base::num::arithmetic::traits::{FloorSqrt, UnsignedAbs};
@@ -47,7 +47,7 @@ pub fn digits(count: usize) -> Arc<Vec<u8>> {
     if held.len() < count {
         // Grow geometrically so that callers asking in chunks do not recompute often.
         let want = count.max(2 * held.len()).max(1 << 12);
-        *held = Arc::new(load_or_compute(want));
+        *held = Arc::new(load_or_compute(want, cache_dir()));
     }
     Arc::clone(&held)
 }
@@ -67,15 +67,16 @@ pub fn cache_dir() -> Option<PathBuf> {
 /// Prefixes at least this long are cached on disk.
 const DISK_CACHE_MIN: usize = 1 << 20;
 
-fn load_or_compute(count: usize) -> Vec<u8> {
-    if count >= DISK_CACHE_MIN {
-        if let Some(found) = load_cached(count) {
-            return found;
-        }
+/// `count` digits, read from (and after computing, written to) the cache folder `dir` when
+/// `count` is at least [`DISK_CACHE_MIN`].
+fn load_or_compute(count: usize, dir: Option<PathBuf>) -> Vec<u8> {
+    let dir = dir.filter(|_| count >= DISK_CACHE_MIN);
+    if let Some(found) = dir.as_deref().and_then(|d| load_cached(d, count)) {
+        return found;
     }
     let digits = compute(count);
-    if count >= DISK_CACHE_MIN {
-        store_cached(&digits);
+    if let Some(d) = &dir {
+        store_cached(d, &digits);
     }
     digits
 }
@@ -275,8 +276,8 @@ fn binary_split(a: u64, b: u64, need_p: bool) -> Split {
 /// sequentially, where a task would cost more than it saves.
 const PARALLEL_TERMS: u64 = 4096;
 
-fn cache_file(count: usize) -> Option<PathBuf> {
-    cache_dir().map(|d| d.join(format!("pi-base4-{count}.bin")))
+fn cache_file(dir: &Path, count: usize) -> PathBuf {
+    dir.join(format!("pi-base4-{count}.bin"))
 }
 
 /// FNV-1a over the digits: detects a damaged cache file.
@@ -297,9 +298,10 @@ pub fn known_prefix() -> Vec<u8> {
         .collect()
 }
 
-fn load_cached(count: usize) -> Option<Vec<u8>> {
-    // Any cached prefix at least as long will do; the exact-size file is the one we write.
-    let bytes = std::fs::read(cache_file(count)?).ok()?;
+/// The `count` digits cached in `dir`, if its file is there and verifies: its length, every
+/// digit below 4, the checksum in its first 8 bytes, and the known prefix.
+fn load_cached(dir: &Path, count: usize) -> Option<Vec<u8>> {
+    let bytes = std::fs::read(cache_file(dir, count)).ok()?;
     let (head, body) = bytes.split_at_checked(8)?;
     let digits: Vec<u8> = body.to_vec();
     let expected = u64::from_le_bytes(head.try_into().ok()?);
@@ -311,13 +313,11 @@ fn load_cached(count: usize) -> Option<Vec<u8>> {
         .then_some(digits)
 }
 
-fn store_cached(digits: &[u8]) {
-    let Some(path) = cache_file(digits.len()) else {
-        return;
-    };
-    if let Some(dir) = path.parent() {
-        let _ = std::fs::create_dir_all(dir);
-    }
+/// Writes `digits` with their checksum into `dir` (created if missing), through a temporary
+/// file and a rename so that a reader never sees a partial file. Failures only cost time.
+fn store_cached(dir: &Path, digits: &[u8]) {
+    let path = cache_file(dir, digits.len());
+    let _ = std::fs::create_dir_all(dir);
     let mut bytes = checksum(digits).to_le_bytes().to_vec();
     bytes.extend_from_slice(digits);
     let tmp = path.with_extension(format!("tmp{}", std::process::id()));
@@ -375,6 +375,66 @@ mod tests {
         assert_eq!(add_scaled(i(7), 4, i(1), 4), (i(8), 4));
         assert_eq!(top(&i(-45), 3), (i(-6), 3)); // −45 = 101101₂: ⌊−45/8⌋ = −6
         assert_eq!(top(&i(45), 8), (i(45), 0));
+    }
+
+    #[test]
+    fn the_checksum_is_fnv_1a() {
+        // The FNV-1a 64-bit test vectors of its authors: "" and "a".
+        assert_eq!(checksum(b""), 0xcbf29ce484222325);
+        assert_eq!(checksum(b"a"), 0xaf63dc4c8601ec8c);
+    }
+
+    #[test]
+    fn cache_files_are_used_only_when_they_verify() {
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path().join("nested").join("cache");
+        let digits = compute(1000);
+        store_cached(&dir, &digits);
+        assert_eq!(load_cached(&dir, 1000), Some(digits.clone()));
+        assert_eq!(load_cached(&dir, 999), None);
+        let file = cache_file(&dir, 1000);
+        let write = |body: &[u8], sum: u64| {
+            let mut bytes = sum.to_le_bytes().to_vec();
+            bytes.extend_from_slice(body);
+            std::fs::write(&file, bytes).unwrap();
+        };
+        let mut changed = digits.clone();
+        changed[500] ^= 1;
+        write(&changed, checksum(&digits)); // a damaged digit
+        assert_eq!(load_cached(&dir, 1000), None);
+        // A consistent file is accepted: its checksum and first 64 digits are what is checked.
+        write(&changed, checksum(&changed));
+        assert_eq!(load_cached(&dir, 1000), Some(changed.clone()));
+        let mut wrong_head = digits.clone();
+        wrong_head[3] ^= 1;
+        write(&wrong_head, checksum(&wrong_head)); // not π's first digits
+        assert_eq!(load_cached(&dir, 1000), None);
+        let mut big = digits.clone();
+        big[700] = 4;
+        write(&big, checksum(&big)); // not a base-4 digit
+        assert_eq!(load_cached(&dir, 1000), None);
+        write(&digits[..999], checksum(&digits[..999])); // too short for its name
+        assert_eq!(load_cached(&dir, 1000), None);
+        std::fs::write(&file, [1, 2, 3]).unwrap(); // no room for the checksum
+        assert_eq!(load_cached(&dir, 1000), None);
+    }
+
+    #[test]
+    fn only_long_prefixes_go_to_disk() {
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path().to_path_buf();
+        let short = load_or_compute(DISK_CACHE_MIN - 1, Some(dir.clone()));
+        assert_eq!(short.len(), DISK_CACHE_MIN - 1);
+        assert!(!cache_file(&dir, DISK_CACHE_MIN - 1).exists());
+        let long = load_or_compute(DISK_CACHE_MIN, Some(dir.clone()));
+        assert_eq!(long[..short.len()], short[..]);
+        assert_eq!(load_cached(&dir, DISK_CACHE_MIN), Some(long.clone()));
+        // A verified file is what a later call returns (here: one with a changed last digit).
+        let mut marked = long.clone();
+        *marked.last_mut().unwrap() ^= 1;
+        store_cached(&dir, &marked);
+        assert_eq!(load_or_compute(DISK_CACHE_MIN, Some(dir.clone())), marked);
+        assert_eq!(load_or_compute(DISK_CACHE_MIN, None), long);
     }
 
     #[test]

@@ -18,7 +18,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 
-use malachite_base::num::arithmetic::traits::{FloorSqrt, UnsignedAbs};
+use malachite_base::num::arithmetic::traits::{FloorSqrt, ModPowerOf2, UnsignedAbs};
 use malachite_base::num::basic::traits::{One, Zero};
 use malachite_base::num::logic::traits::SignificantBits;
 use malachite_nz::integer::Integer;
@@ -129,7 +129,7 @@ fn pi_scaled(bits: usize) -> Natural {
     );
     // root·u as two half products side by side.
     let h = u.significant_bits() / 2;
-    let low = &u & ((Natural::ONE << h) - Natural::ONE);
+    let low = (&u).mod_power_of_2(h);
     let (high, low) = rayon::join(|| &root * (u >> h), || &root * low);
     (Natural::from(426880u32) * ((high << h) + low)) >> (bits + 32)
 }

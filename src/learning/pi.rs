@@ -6,9 +6,10 @@
 //! test `spec_digits_are_not_pi`.)
 //!
 //! Method: the Chudnovsky series by binary splitting (both halves, and then their products,
-//! in parallel; the last merge multiplies operands cut to the precision needed, with a proven
-//! bound on the error), one division of `Q` by `T` side by side with an integer square root,
-//! and one product, all on big integers (`malachite-nz`, whose FFT
+//! in parallel; in ranges of up to 4096 terms the common factors of `P` and `Q` are divided out,
+//! found from prime factorisations by a sieve; the last merge multiplies operands cut to the
+//! precision needed, with a proven bound on the error), one division of `Q` by `T` side by side
+//! with an integer square root, and one product, all on big integers (`malachite-nz`, whose FFT
 //! multiplication makes the 10^7-digit period a matter of seconds). The result is an
 //! integer `a` with `|π·2^B − a| ≤ 4`; digits are returned only when both ends of that
 //! enclosure agree on them, otherwise the precision is raised, so every digit returned is
@@ -18,11 +19,14 @@
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 
-use malachite_base::num::arithmetic::traits::{FloorSqrt, ModPowerOf2, UnsignedAbs};
+use malachite_base::num::arithmetic::traits::{DivExact, FloorSqrt, ModPowerOf2, UnsignedAbs};
 use malachite_base::num::basic::traits::{One, Zero};
 use malachite_base::num::logic::traits::SignificantBits;
 use malachite_nz::integer::Integer;
 use malachite_nz::natural::Natural;
+
+mod factors;
+use factors::{Factors, Sieve};
 
 /// Hexadecimal digits of π after the point (public knowledge), for self-checks.
 pub const PI_HEX_FRACTION: &str =
@@ -174,9 +178,10 @@ fn add_scaled(a: Integer, ea: u64, b: Integer, eb: u64) -> (Integer, u64) {
 /// bits again adds `δ` each; so `|ε| < (1 + 4.01δ)/(1 − 13.01δ) − 1 < 18δ < 2^(6−k)`.
 fn series_ratio(terms: u64, k: u64) -> (Scaled, Scaled) {
     let m = terms / 2;
+    let sieve = Sieve::new(6 * terms);
     let (left, right) = rayon::join(
-        || binary_split(0, m, true),
-        || binary_split(m, terms, false),
+        || binary_split(&sieve, 0, m, true),
+        || binary_split(&sieve, m, terms, false),
     );
     // log2|Q_R·T_L| ≥ b(Q_R) + b(T_L) − 2 and log2|P_L·T_R| < b(P_L) + b(T_R).
     let d = (right.q.significant_bits() + left.t.significant_bits())
@@ -216,65 +221,123 @@ struct Split {
     p: Integer,
     q: Integer,
     t: Integer,
+    /// The factorisations of `|P|` and `Q`, kept only for ranges of at most
+    /// [`COMMON_FACTOR_TERMS`] terms (empty above).
+    fp: Factors,
+    fq: Factors,
 }
 
-/// Binary splitting of the Chudnovsky series over terms `[a, b)`. `need_p`: whether the
-/// caller uses `P` (only left halves do), which saves the largest products.
-fn binary_split(a: u64, b: u64, need_p: bool) -> Split {
+/// Binary splitting of the Chudnovsky series over terms `[a, b)`:
+/// `P = P_L·P_R`, `Q = Q_L·Q_R`, `T = Q_R·T_L + P_L·T_R`. `need_p`: whether the caller uses
+/// `P` (only left halves do), which saves the largest products.
+///
+/// In ranges of at most [`COMMON_FACTOR_TERMS`] terms, `g = gcd(P_L, Q_R)` (from the factor
+/// lists, `sieve`) is first divided out of `P_L` and `Q_R`. Then `g` divides `T` too, and the
+/// merge gives `P/g`, `Q/g`, `T/g`: every ratio the series reads (`P/Q`, `T/Q`) is unchanged,
+/// and the numbers are about a third smaller.
+fn binary_split(sieve: &Sieve, a: u64, b: u64, need_p: bool) -> Split {
+    let factored = b - a <= COMMON_FACTOR_TERMS;
     if b - a == 1 {
-        if a == 0 {
-            return Split {
-                p: Integer::ONE,
-                q: Integer::ONE,
-                t: Integer::from(13591409u64),
-            };
-        }
-        // (6a−5)(2a−1)(6a−1) < 72a³ fits in u128 for every a this module can be asked for.
-        let p =
-            Integer::from(u128::from(6 * a - 5) * u128::from(2 * a - 1) * u128::from(6 * a - 1));
-        let q = Integer::from(u128::from(a) * u128::from(a) * u128::from(a))
-            * Integer::from(10939058860032000u64);
-        let t = &p * Integer::from(13591409u128 + 545140134u128 * u128::from(a));
-        let t = if a % 2 == 1 { -t } else { t };
-        return Split { p, q, t };
+        return leaf(sieve, a, factored);
     }
     let m = (a + b) / 2;
-    if b - a <= PARALLEL_TERMS {
-        let (left, right) = (binary_split(a, m, true), binary_split(m, b, need_p));
+    let parallel = b - a > PARALLEL_TERMS;
+    let (mut left, mut right) = if parallel {
+        rayon::join(
+            || binary_split(sieve, a, m, true),
+            || binary_split(sieve, m, b, need_p),
+        )
+    } else {
+        (
+            binary_split(sieve, a, m, true),
+            binary_split(sieve, m, b, need_p),
+        )
+    };
+    let (mut fp, mut fq) = (Factors::default(), Factors::default());
+    if factored {
+        let g = left.fp.gcd(&right.fq);
+        if !g.is_one() {
+            let v = Integer::from(g.value());
+            left.p = (&left.p).div_exact(&v);
+            right.q = (&right.q).div_exact(&v);
+            left.fp = left.fp.over(&g);
+            right.fq = right.fq.over(&g);
+        }
+        fq = left.fq.times(&right.fq);
+        if need_p {
+            fp = left.fp.times(&right.fp);
+        }
+    }
+    let p = || {
+        if need_p {
+            &left.p * &right.p
+        } else {
+            Integer::ZERO
+        }
+    };
+    if !parallel {
         return Split {
-            p: if need_p {
-                &left.p * &right.p
-            } else {
-                Integer::ZERO
-            },
+            p: p(),
             q: &left.q * &right.q,
-            t: &right.q * left.t + &left.p * right.t,
+            t: &right.q * &left.t + &left.p * &right.t,
+            fp,
+            fq,
         };
     }
-    // Large ranges: the halves side by side, then their (up to) four products side by side, so
-    // that the top of the tree, where few ranges are left, keeps both cores busy too.
-    let (left, right) = rayon::join(|| binary_split(a, m, true), || binary_split(m, b, need_p));
+    // Large ranges: the (up to) four products side by side, so that the top of the tree, where
+    // few ranges are left, keeps both cores busy too.
     let ((p, q), (qt, pt)) = rayon::join(
-        || {
-            rayon::join(
-                || {
-                    if need_p {
-                        &left.p * &right.p
-                    } else {
-                        Integer::ZERO
-                    }
-                },
-                || &left.q * &right.q,
-            )
-        },
+        || rayon::join(p, || &left.q * &right.q),
         || rayon::join(|| &right.q * &left.t, || &left.p * &right.t),
     );
-    Split { p, q, t: qt + pt }
+    Split {
+        p,
+        q,
+        t: qt + pt,
+        fp,
+        fq,
+    }
+}
+
+/// The term `a` alone: `P = p(a)`, `Q = q(a)`, `T = ±p(a)·(13591409 + 545140134a)` (and
+/// `P = Q = 1` for `a = 0`), with their factorisations when `factored`.
+fn leaf(sieve: &Sieve, a: u64, factored: bool) -> Split {
+    if a == 0 {
+        return Split {
+            p: Integer::ONE,
+            q: Integer::ONE,
+            t: Integer::from(13591409u64),
+            fp: Factors::default(),
+            fq: Factors::default(),
+        };
+    }
+    // (6a−5)(2a−1)(6a−1) < 72a³ fits in u128 for every a this module can be asked for.
+    let p = Integer::from(u128::from(6 * a - 5) * u128::from(2 * a - 1) * u128::from(6 * a - 1));
+    let q = Integer::from(u128::from(a) * u128::from(a) * u128::from(a))
+        * Integer::from(10939058860032000u64);
+    let t = &p * Integer::from(13591409u128 + 545140134u128 * u128::from(a));
+    let t = if a % 2 == 1 { -t } else { t };
+    let (fp, fq) = if factored {
+        (
+            sieve
+                .factor(6 * a - 5, 1)
+                .times(&sieve.factor(2 * a - 1, 1))
+                .times(&sieve.factor(6 * a - 1, 1)),
+            Factors::q_constant().times(&sieve.factor(a, 3)),
+        )
+    } else {
+        (Factors::default(), Factors::default())
+    };
+    Split { p, q, t, fp, fq }
 }
 
 /// Ranges of more terms than this are split in parallel (rayon tasks); smaller ones
 /// sequentially, where a task would cost more than it saves.
 const PARALLEL_TERMS: u64 = 4096;
+
+/// Common factors are removed in ranges of at most this many terms. Higher up, the exact
+/// divisions by `g` cost more than the smaller products save (measured: docs/speed.md).
+const COMMON_FACTOR_TERMS: u64 = 4096;
 
 fn cache_file(dir: &Path, count: usize) -> PathBuf {
     dir.join(format!("pi-base4-{count}.bin"))
@@ -329,6 +392,7 @@ fn store_cached(dir: &Path, digits: &[u8]) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use malachite_base::num::arithmetic::traits::Pow;
 
     #[test]
     fn first_digits_are_the_hex_digits_of_pi() {
@@ -348,9 +412,64 @@ mod tests {
     /// `⌊426880·⌊√10005·2^bits⌋·Q/T⌋` with `Q` and `T` exact: the formula with no cut, which
     /// is within `1.04` below `π·2^bits`, as `pi_scaled` is within `1.05`.
     fn pi_scaled_uncut(bits: usize) -> Natural {
-        let s = binary_split(0, (bits as u64) / 47 + 2, false);
+        let (_, q, t) = plain_split(0, (bits as u64) / 47 + 2);
         let root = (Natural::from(10005u32) << (2 * bits)).floor_sqrt();
-        (Natural::from(426880u32) * root * s.q.unsigned_abs()) / s.t.unsigned_abs()
+        (Natural::from(426880u32) * root * q.unsigned_abs()) / t.unsigned_abs()
+    }
+
+    /// `(P, Q, T)` over `[a, b)` by the recurrence alone: no common factors removed, no
+    /// threads, leaves written from the series' definition. The oracle for [`binary_split`].
+    fn plain_split(a: u64, b: u64) -> (Integer, Integer, Integer) {
+        if b - a == 1 {
+            let i = |x: u64| Integer::from(x);
+            if a == 0 {
+                return (i(1), i(1), i(13591409));
+            }
+            let p = i(6 * a - 5) * i(2 * a - 1) * i(6 * a - 1);
+            let q = i(a).pow(3) * i(640320).pow(3) / i(24);
+            let sign = if a % 2 == 1 { i(0) - i(1) } else { i(1) };
+            let t = sign * &p * (i(13591409) + i(545140134) * i(a));
+            return (p, q, t);
+        }
+        let m = (a + b) / 2;
+        let ((pl, ql, tl), (pr, qr, tr)) = (plain_split(a, m), plain_split(m, b));
+        (&pl * pr, &ql * &qr, qr * tl + pl * tr)
+    }
+
+    #[test]
+    fn removing_common_factors_keeps_the_ratios_and_shrinks_the_numbers() {
+        let ranges = [
+            (0, 2),
+            (0, 3),
+            (1, 2),
+            (5, 17),
+            (0, 64),
+            (100, 131),
+            (0, 300),
+        ];
+        let long = [(0, COMMON_FACTOR_TERMS), (7, 2 * COMMON_FACTOR_TERMS + 9)];
+        for (a, b) in ranges.into_iter().chain(long) {
+            let sieve = Sieve::new(6 * b);
+            let s = binary_split(&sieve, a, b, true);
+            let (p, q, t) = plain_split(a, b);
+            // P/Q and T/Q unchanged: P·Q' = P'·Q and T·Q' = T'·Q.
+            assert_eq!(&p * &s.q, &s.p * &q, "P/Q over [{a}, {b})");
+            assert_eq!(&t * &s.q, &s.t * &q, "T/Q over [{a}, {b})");
+            // Q' divides Q (only common factors go), and something goes wherever a merge has a
+            // left half other than the term 0 (whose P is 1).
+            assert_eq!(&q % &s.q, 0u32, "[{a}, {b})");
+            if b - a >= 2 && (a, b) != (0, 2) {
+                assert!(s.q < q, "nothing removed over [{a}, {b})");
+            }
+            // The factor lists describe the numbers they travel with.
+            if b - a <= COMMON_FACTOR_TERMS {
+                assert_eq!(Integer::from(s.fp.value()), s.p, "[{a}, {b})");
+                assert_eq!(Integer::from(s.fq.value()), s.q, "[{a}, {b})");
+            }
+            // Without P (right halves), Q and T are the same.
+            let r = binary_split(&sieve, a, b, false);
+            assert_eq!((r.q, r.t), (s.q, s.t), "[{a}, {b})");
+        }
     }
 
     #[test]

@@ -364,6 +364,55 @@ fn fractional_learning_rates_run_on_f64_and_approach_the_optimum() {
     assert_eq!(o.converged_at, None);
 }
 
+#[test]
+fn fractional_learning_rates_blend_the_old_value_with_the_target() {
+    // Line 0 – 1 (goal), cost 3, ρ = 1/2, greedy, Q₀ = 0: each visit sets
+    // Q(0,→) ← (1 − ρ)·Q(0,→) + ρ·(3 + V(1)), so after k visits Q(0,→) = 3·(1 − 2^−k).
+    let g = Graph::<f64>::from_adjacency(
+        vec![vec![(1, 3.0)], vec![(0, 3.0)]],
+        0,
+        &[1],
+        vec![0, 1],
+        num_rational::BigRational::from_integer(1.into()),
+    );
+    for (episodes, want) in [(1, 1.5), (2, 2.25), (3, 2.625), (4, 2.8125)] {
+        let config = QLearningConfig {
+            episodes,
+            max_steps: 10,
+            learning_rate: parse_rational("1/2").unwrap(),
+            ..QLearningConfig::paper(EpsilonSchedule::Constant(Probability::ZERO))
+        };
+        let optimum = vec![3.0, 0.0];
+        let mut l =
+            QLearner::new(&g, &optimum, 0.0, &config, sample_rng(0, 0), Plan::Random).unwrap();
+        let o = l.run();
+        assert_eq!(o.actions, episodes as u64);
+        assert_eq!(l.q_values()[0], want, "after {episodes} visits");
+        assert_eq!(l.cost_to_go()[0], want, "V(0) after {episodes} visits");
+    }
+}
+
+#[test]
+fn tracked_states_are_those_reachable_from_x1_with_an_action() {
+    // 0 → {1, 3}, 1 (goal) → 0, 2 → 1 (not reachable from 0), 3 without actions.
+    let g = Graph::<f64>::from_adjacency(
+        vec![vec![(1, 1.0), (3, 1.0)], vec![(0, 1.0)], vec![(1, 1.0)], vec![]],
+        0,
+        &[1],
+        vec![0, 1, 2, 3],
+        num_rational::BigRational::from_integer(1.into()),
+    );
+    let config = QLearningConfig {
+        episodes: 1,
+        max_steps: 1,
+        ..QLearningConfig::paper(EpsilonSchedule::Constant(Probability::ZERO))
+    };
+    let optimum = vec![1.0, 0.0, 1.0, f64::INFINITY];
+    let l = QLearner::new(&g, &optimum, 0.0, &config, sample_rng(0, 0), Plan::Random).unwrap();
+    let tracked: Vec<bool> = (0..4).map(|x| l.is_tracked(x)).collect();
+    assert_eq!(tracked, [true, true, false, false]);
+}
+
 /// Runs Q-learning (ρ = 1, Q₀ = 0, the given ε over the random plan) on an exact problem and
 /// checks every update against the oracle.
 fn check_invariants(p: &Problem, epsilon: &str, seed: u64) -> Result<(), TestCaseError> {

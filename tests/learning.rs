@@ -396,7 +396,12 @@ fn fractional_learning_rates_blend_the_old_value_with_the_target() {
 fn tracked_states_are_those_reachable_from_x1_with_an_action() {
     // 0 → {1, 3}, 1 (goal) → 0, 2 → 1 (not reachable from 0), 3 without actions.
     let g = Graph::<f64>::from_adjacency(
-        vec![vec![(1, 1.0), (3, 1.0)], vec![(0, 1.0)], vec![(1, 1.0)], vec![]],
+        vec![
+            vec![(1, 1.0), (3, 1.0)],
+            vec![(0, 1.0)],
+            vec![(1, 1.0)],
+            vec![],
+        ],
         0,
         &[1],
         vec![0, 1, 2, 3],

@@ -99,18 +99,12 @@ impl Factors {
 
     /// The greatest common divisor (the smaller exponent of every common prime).
     pub(super) fn gcd(&self, other: &Factors) -> Factors {
-        let (a, b) = (&self.0, &other.0);
         let mut out = Vec::new();
-        let (mut i, mut j) = (0, 0);
-        while i < a.len() && j < b.len() {
-            match a[i].0.cmp(&b[j].0) {
-                std::cmp::Ordering::Less => i += 1,
-                std::cmp::Ordering::Greater => j += 1,
-                std::cmp::Ordering::Equal => {
-                    out.push((a[i].0, a[i].1.min(b[j].1)));
-                    i += 1;
-                    j += 1;
-                }
+        let mut rest = other.0.iter().peekable();
+        for &(p, e) in &self.0 {
+            while rest.next_if(|&&(q, _)| q < p).is_some() {}
+            if let Some(&(_, f)) = rest.next_if(|&&(q, _)| q == p) {
+                out.push((p, e.min(f)));
             }
         }
         Factors(out)

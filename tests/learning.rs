@@ -311,6 +311,88 @@ fn greedy_on_a_line_has_hand_derived_counts() {
 }
 
 #[test]
+fn the_count_at_target_falls_when_a_state_leaves_its_target() {
+    // 0 (x1): [→2 cost 10, →1 cost 1]; 1: [→2 cost 1]; 2 the goal (termination only). Q₀ = 2,
+    // greedy, ties to the first action; target (2, 3, 2). V starts at (2, 2, 2): two of three
+    // at target. Episode 1: Q(0,→2) = 10 + V(2) = 12, V(0) stays 2. Episode 2: Q(0,→1) =
+    // 1 + V(1) = 3, so V(0) = 3 leaves its target (one of three); Q(1,→2) = 1 + V(2) = 3 reaches
+    // it (two of three). Episodes 3–5: Q(0,→1) = 1 + V(1) = 4. V(0) never returns to 2, so the
+    // run never converges; a count that did not fall at action 2 would reach three.
+    let g = Graph::from_adjacency(
+        vec![
+            vec![(2, Units(10)), (1, Units(1))],
+            vec![(2, Units(1))],
+            vec![],
+        ],
+        0,
+        &[2],
+        vec![0, 1, 2],
+        num_rational::BigRational::from_integer(1.into()),
+    );
+    let target = vec![Units(2), Units(3), Units(2)];
+    let config = QLearningConfig {
+        episodes: 5,
+        max_steps: 10,
+        ..QLearningConfig::paper(EpsilonSchedule::Constant(Probability::ZERO))
+    };
+    let mut l = QLearner::new(
+        &g,
+        &target,
+        Units(2),
+        &config,
+        sample_rng(0, 0),
+        Plan::Random,
+    )
+    .unwrap();
+    let o = l.run();
+    assert_eq!((o.actions, o.episodes_run), (9, 5));
+    assert_eq!(l.cost_to_go(), &[Units(4), Units(3), Units(2)]);
+    assert!(!o.converged);
+    assert_eq!(o.converged_at, None);
+    // V(x1) was at its target before any action.
+    assert_eq!(o.initial_optimal_at, Some(0));
+}
+
+#[test]
+fn reference_rules_report_milestones_at_their_checks() {
+    // Line 0 – 1 (goal), Q₀ = 0, greedy: the goal is entered at action 1, and V = G* from then
+    // on, but the reference rules see it only at the check after action 1000 — where both the
+    // initial state's and the whole table's milestones are reported, in that order.
+    let g = line(2);
+    let optimum = vec![Units(1), Units(0)];
+    let config = QLearningConfig {
+        episodes: 5000,
+        max_steps: 10,
+        rules: Rules::Reference,
+        ..QLearningConfig::paper(EpsilonSchedule::Constant(Probability::ZERO))
+    };
+    let mut l = QLearner::new(
+        &g,
+        &optimum,
+        Units(0),
+        &config,
+        sample_rng(0, 0),
+        Plan::Random,
+    )
+    .unwrap();
+    let mut seen = Vec::new();
+    loop {
+        match l.advance() {
+            Event::Finished => break,
+            Event::Milestone(m) => seen.push((m, l.outcome().actions)),
+        }
+    }
+    assert_eq!(
+        seen,
+        [
+            (Milestone::GoalDiscovered, 1),
+            (Milestone::InitialOptimal, 1000),
+            (Milestone::Converged, 1000),
+        ]
+    );
+}
+
+#[test]
 fn reference_rules_check_only_every_thousand_actions() {
     // The same line, long enough that checks matter: 2 states, goal 1 — converges at the first
     // action under exact rules, but the reference checks first after action 1000.

@@ -354,6 +354,43 @@ fn the_count_at_target_falls_when_a_state_leaves_its_target() {
 }
 
 #[test]
+fn exact_rules_report_each_milestone_at_its_action() {
+    // The line of `greedy_on_a_line_has_hand_derived_counts`: the goal is entered by action 7,
+    // V(x1) = G*(x1) and V = G* everywhere after action 11 (the run then finishes the episode,
+    // action 15). `advance` returns at each milestone, so the action count it leaves is the
+    // milestone's own.
+    let g = line(4);
+    let optimum = vec![Units(3), Units(2), Units(1), Units(0)];
+    let config = QLearningConfig {
+        episodes: 10,
+        max_steps: 100,
+        ..QLearningConfig::paper(EpsilonSchedule::Constant(Probability::ZERO))
+    };
+    let mut l = QLearner::new(
+        &g,
+        &optimum,
+        Units(0),
+        &config,
+        sample_rng(0, 0),
+        Plan::Random,
+    )
+    .unwrap();
+    let mut seen = Vec::new();
+    while let Event::Milestone(m) = l.advance() {
+        seen.push((m, l.outcome().actions));
+    }
+    assert_eq!(
+        seen,
+        [
+            (Milestone::GoalDiscovered, 7),
+            (Milestone::InitialOptimal, 11),
+            (Milestone::Converged, 11),
+        ]
+    );
+    assert_eq!(l.outcome().actions, 15);
+}
+
+#[test]
 fn reference_rules_report_milestones_at_their_checks() {
     // Line 0 – 1 (goal), Q₀ = 0, greedy: the goal is entered at action 1, and V = G* from then
     // on, but the reference rules see it only at the check after action 1000 — where both the

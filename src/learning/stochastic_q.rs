@@ -113,7 +113,8 @@ impl Tolerance {
     }
 }
 
-/// The smallest `f64` `≥ r` (exact directed rounding).
+/// The smallest `f64` `≥ r` (exact directed rounding): `+∞` above the largest finite `f64`,
+/// `−f64::MAX` (not `−∞`) below the smallest.
 ///
 /// ```
 /// use truecost::learning::stochastic_q::{f64_at_least, f64_at_most};
@@ -123,7 +124,14 @@ impl Tolerance {
 /// assert_eq!(f64_at_least(&parse_rational("3").unwrap()), 3.0);
 /// ```
 pub fn f64_at_least(r: &Rational) -> f64 {
-    let mut f = r.to_f64().unwrap_or(f64::INFINITY);
+    // Start from a finite f64 (an out-of-range r converts to ±∞, and −∞ is never ≥ r):
+    // the loops below then step to the answer, +∞ included.
+    let nearest = r.to_f64().unwrap_or(if r.is_negative() {
+        f64::NEG_INFINITY
+    } else {
+        f64::INFINITY
+    });
+    let mut f = nearest.clamp(-f64::MAX, f64::MAX);
     while f.is_finite() && Rational::from_float(f).is_some_and(|x| &x < r) {
         f = next_up(f);
     }
@@ -147,7 +155,8 @@ fn next_down(f: f64) -> f64 {
     -next_up(-f)
 }
 
-/// The largest `f64` `≤ r` (exact directed rounding).
+/// The largest `f64` `≤ r` (exact directed rounding): `−∞` below the smallest finite `f64`,
+/// `f64::MAX` (not `+∞`) above the largest.
 pub fn f64_at_most(r: &Rational) -> f64 {
     -f64_at_least(&-r)
 }

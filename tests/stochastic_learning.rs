@@ -10,11 +10,12 @@ use truecost::experiments::stochastic::{self, EpsilonSpec, RateSpec, Settings};
 use truecost::learning::plan::{sample_rng, EpsilonSchedule, Plan, Probability};
 use truecost::learning::q_learning::{QLearner, QLearningConfig};
 use truecost::learning::stochastic_q::{
-    f64_at_least, f64_at_most, outcome_index, LearningRate, StochasticQConfig, StochasticQLearner,
-    Target, Tolerance,
+    f64_at_least, f64_at_most, outcome_index, LearningRate, RateError, StochasticQConfig,
+    StochasticQLearner, Target, Tolerance,
 };
 use truecost::model::Graph;
 use truecost::problems::{GridLayout, StepCost};
+use truecost::stochastic::file::{from_json, ProblemFile};
 use truecost::stochastic::grid::exact_grid;
 use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
 use truecost::value::{parse_rational, Extended, Rational};
@@ -184,6 +185,118 @@ fn target_interval_is_exact_at_its_ends() {
     );
     let r = Target::from_values(&p, &g, Tolerance::Reference);
     assert!(r.within(x, 8.0) && !r.within(x, 8.4) && r.within(x, -1.6) && !r.within(x, -1.7));
+}
+
+/// `outcome_index` selects the first outcome whose cumulative threshold exceeds `u`, and the
+/// last one when none does (`u` at or above the last threshold): never an index past the end.
+#[test]
+fn outcome_index_stays_within_the_outcomes() {
+    for (cumulative, u, expected) in [
+        (&[1.0][..], 0.0, 0),
+        (&[1.0][..], 1.0, 0),
+        (&[0.5, 1.0][..], 0.25, 0),
+        (&[0.5, 1.0][..], 0.5, 1),
+        (&[0.5, 1.0][..], 1.0, 1),
+        (&[0.5, 1.0][..], 7.0, 1),
+        (&[0.25, 0.5, 0.75][..], 0.75, 2),
+        (&[0.25, 0.5, 0.75][..], 0.9, 2),
+    ] {
+        assert_eq!(
+            outcome_index(cumulative, u),
+            expected,
+            "{cumulative:?} at {u}"
+        );
+    }
+}
+
+/// Directed rounding at the ends of the `f64` range: the largest finite `f64` is its own
+/// rounding in both directions (a first step up would leave the range), and a value above it
+/// rounds up to `+∞`.
+#[test]
+fn directed_rounding_at_the_largest_finite_f64() {
+    let max = Rational::from_float(f64::MAX).unwrap();
+    assert_eq!(f64_at_least(&max), f64::MAX);
+    assert_eq!(f64_at_most(&max), f64::MAX);
+    assert_eq!(f64_at_least(&-max.clone()), -f64::MAX);
+    assert_eq!(f64_at_most(&-max.clone()), -f64::MAX);
+    let above = &max * Rational::from_integer(2.into());
+    assert_eq!(f64_at_least(&above), f64::INFINITY);
+    assert_eq!(f64_at_most(&above), f64::MAX);
+}
+
+/// The states a target tracks are those reachable from `x1`, not goals, with an action and a
+/// finite `G*` — checked state by state on a hand-made file: 0 (initial) reaches 1 (goal) and 3;
+/// 2 has an action but nothing reaches it; 4 is reachable but has no finite value.
+#[test]
+fn a_target_tracks_reachable_non_goal_states_with_actions() {
+    let text = r#"{"format": "truecost-stochastic/1", "initial": 0, "goals": [1], "actions": [
+        [{"cost": "1", "outcomes": [{"to": 1, "p": "1/2"}, {"to": 3, "p": "1/4"}, {"to": 4, "p": "1/4"}]}],
+        [],
+        [{"cost": "1", "outcomes": [{"to": 1, "p": "1"}]}],
+        [{"cost": "1", "outcomes": [{"to": 1, "p": "1"}]}],
+        [{"cost": "1", "outcomes": [{"to": 4, "p": "1"}]}]]}"#;
+    let ProblemFile::Stochastic(p) = from_json(text).unwrap() else {
+        panic!("a stochastic file")
+    };
+    let one = Extended::Finite(Rational::from_integer(1.into()));
+    let g = vec![
+        one.clone(),
+        Extended::Finite(Rational::from_integer(0.into())),
+        one.clone(),
+        one,
+        Extended::Infinite,
+    ];
+    for tolerance in [Tolerance::Relative, Tolerance::Reference] {
+        let t = Target::from_values(&p, &g, tolerance);
+        let tracked: Vec<bool> = (0..5).map(|x| t.is_tracked(x)).collect();
+        assert_eq!(tracked, [true, false, false, true, false]);
+        assert_eq!(t.tracked_count(), 2);
+        assert_eq!(t.tolerance(), tolerance);
+        // Where G* = +∞ nothing is within tolerance, not even +∞.
+        assert!(!t.within(4, f64::INFINITY) && !t.within(4, 1.0));
+    }
+}
+
+/// Learning rates are checked on their exact value first (the error names the exact range),
+/// then on the `f64` the learner uses (the error says it rounds out of range); the ends of
+/// both ranges one by one.
+#[test]
+fn learning_rates_are_checked_exactly_then_in_f64() {
+    let q = |t: &str| parse_rational(t).unwrap();
+    let just_above_one = "1.000000000000000000000000000001"; // rounds to 1.0
+    assert_eq!(
+        LearningRate::constant(&q("1")),
+        Ok(LearningRate::Constant(1.0))
+    );
+    assert_eq!(
+        LearningRate::constant(&q("1/4")),
+        Ok(LearningRate::Constant(0.25))
+    );
+    for refused in ["0", "-1", "2", just_above_one] {
+        assert!(
+            matches!(LearningRate::constant(&q(refused)), Err(RateError::Rho(_))),
+            "rho = {refused}"
+        );
+    }
+    assert!(matches!(
+        LearningRate::constant(&q("1e-400")),
+        Err(RateError::Rounded { .. })
+    ));
+    assert_eq!(LearningRate::decay(&q("1")), Ok(LearningRate::Decay(1.0)));
+    assert_eq!(
+        LearningRate::decay(&q("3/4")),
+        Ok(LearningRate::Decay(0.75))
+    );
+    for refused in ["1/2", "0", "2", just_above_one] {
+        assert!(
+            matches!(LearningRate::decay(&q(refused)), Err(RateError::Omega(_))),
+            "omega = {refused}"
+        );
+    }
+    assert!(matches!(
+        LearningRate::decay(&q("0.50000000000000001")),
+        Err(RateError::Rounded { .. })
+    ));
 }
 
 fn small(threads: Option<usize>, seed: u64) -> Settings {
@@ -407,6 +520,170 @@ fn decaying_rate_learns_a_hand_solved_chain() {
     let flags = truecost::learning::stochastic_q::optimal_action_flags(&s, &exact);
     let sim = learner.simulate_greedy(Some(&flags));
     assert!(sim.reached_goal && sim.optimal_actions && sim.states >= 3);
+}
+
+/// `ρ = 1/n^ω` with `ω = 1` (the rate's own branch, `1/n`): `Q̂` is the running mean of the
+/// targets. On the chain 0 → 1 → 2 (goal), one outcome per action (γ = 1), greedy, `Q₀ = 0`,
+/// by hand: episode 1 sets `Q̂(0) = 1 + V(1) = 1` and `Q̂(1) = 1`; episode 2 sees the target
+/// `1 + V(1) = 2` at state 0 on its second visit, so `Q̂(0) = (1 − 1/2)·1 + (1/2)·2 = 3/2`
+/// (`ω = 0.8` gives the blend with `ρ = 2^−0.8` instead), and `Q̂(1)` stays 1.
+#[test]
+fn a_rate_of_one_over_n_averages_the_targets() {
+    use truecost::model::{Move, Problem};
+    let one = parse_rational("1").unwrap();
+    let step = |to| {
+        vec![Move {
+            successor: to,
+            cost: one.clone(),
+        }]
+    };
+    let problem = Problem::new(vec![step(1), step(2), vec![]], 0, vec![2]).unwrap();
+    let s =
+        StochasticProblem::from_deterministic(&problem, NoiseModel::Paper, &Predictability::one())
+            .unwrap();
+    let g = ["2", "1", "0"].map(|t| Extended::Finite(parse_rational(t).unwrap()));
+    let target = Target::from_values(&s, &g, Tolerance::Relative);
+    let rho = 2f64.powf(-0.8);
+    for (omega, expected) in [(1.0, 1.5), (0.8, (1.0 - rho) * 1.0 + rho * 2.0)] {
+        let config = StochasticQConfig {
+            episodes: 2,
+            max_steps: 10,
+            rate: LearningRate::Decay(omega),
+            epsilon: EpsilonSchedule::Constant(Probability::ZERO),
+            initial_value: 0.0,
+        };
+        let costs = vec![1.0; s.action_total()];
+        let mut learner =
+            StochasticQLearner::new(&s, &costs, &target, &config, sample_rng(0, 0), Plan::Random)
+                .unwrap();
+        let outcome = learner.run();
+        assert!(!outcome.converged, "V(0) = 3/2 is not within 10 % of 2");
+        assert_eq!(learner.q_values(), [expected, 1.0], "omega = {omega}");
+        assert_eq!(learner.cost_to_go()[..2], [expected, 1.0]);
+    }
+}
+
+/// Each milestone is reported by `advance` at the action that reached it, worked out by hand on
+/// the chain 0 → 1 → 2 (goal), γ = 1, ρ = 1, greedy, `Q₀ = 0`, `G* = (2, 1, 0)`: action 2
+/// enters the goal (and makes `V(1) = 1` exact); action 3, the first of episode 2, makes
+/// `V(0) = 1 + V(1) = 2`, which is `G*(x1)` and completes the tracked states at once; the run
+/// then finishes that episode (action 4).
+#[test]
+fn milestones_are_reported_at_the_action_that_reached_them() {
+    use truecost::learning::q_learning::{Event, Milestone};
+    use truecost::model::{Move, Problem};
+    let one = parse_rational("1").unwrap();
+    let step = |to| {
+        vec![Move {
+            successor: to,
+            cost: one.clone(),
+        }]
+    };
+    let problem = Problem::new(vec![step(1), step(2), vec![]], 0, vec![2]).unwrap();
+    let s =
+        StochasticProblem::from_deterministic(&problem, NoiseModel::Paper, &Predictability::one())
+            .unwrap();
+    let g = ["2", "1", "0"].map(|t| Extended::Finite(parse_rational(t).unwrap()));
+    let target = Target::from_values(&s, &g, Tolerance::Relative);
+    let config = StochasticQConfig {
+        episodes: 10,
+        max_steps: 10,
+        rate: LearningRate::Constant(1.0),
+        epsilon: EpsilonSchedule::Constant(Probability::ZERO),
+        initial_value: 0.0,
+    };
+    let costs = vec![1.0; s.action_total()];
+    let mut learner =
+        StochasticQLearner::new(&s, &costs, &target, &config, sample_rng(0, 0), Plan::Random)
+            .unwrap();
+    let mut events = Vec::new();
+    loop {
+        let event = learner.advance();
+        events.push((event, learner.outcome().actions));
+        if event == Event::Finished {
+            break;
+        }
+    }
+    assert_eq!(
+        events,
+        [
+            (Event::Milestone(Milestone::GoalDiscovered), 2),
+            (Event::Milestone(Milestone::InitialOptimal), 3),
+            (Event::Milestone(Milestone::Converged), 3),
+            (Event::Finished, 4),
+        ]
+    );
+    let outcome = learner.outcome();
+    assert_eq!(
+        (
+            outcome.goal_discovered_at,
+            outcome.initial_within_at,
+            outcome.converged_at
+        ),
+        (Some(2), Some(3), Some(3))
+    );
+    assert_eq!(
+        (outcome.initial_within_episode, outcome.episodes_run),
+        (Some(2), 2)
+    );
+    assert!(outcome.converged);
+}
+
+/// The greedy simulation draws a uniform number for an action with several outcomes and none
+/// for an action with one (as learning does): replayed by the test with its own generator and
+/// `StochasticProblem::sample` on a loop 0 → {1, 0}, 1 → 2 (one outcome), 2 → {3 (goal), 0},
+/// from a learner that has not run (`Q̂ = Q₀`, so the greedy action is each state's only one).
+#[test]
+fn the_greedy_simulation_draws_only_for_random_outcomes() {
+    let text = r#"{"format": "truecost-stochastic/1", "initial": 0, "goals": [3], "actions": [
+        [{"cost": "1", "outcomes": [{"to": 1, "p": "1/2"}, {"to": 0, "p": "1/2"}]}],
+        [{"cost": "1", "outcomes": [{"to": 2, "p": "1"}]}],
+        [{"cost": "1", "outcomes": [{"to": 3, "p": "1/2"}, {"to": 0, "p": "1/2"}]}],
+        []]}"#;
+    let ProblemFile::Stochastic(p) = from_json(text).unwrap() else {
+        panic!("a stochastic file")
+    };
+    let g = ["4", "3", "2", "0"].map(|t| Extended::Finite(parse_rational(t).unwrap()));
+    let target = Target::from_values(&p, &g, Tolerance::Relative);
+    let config = StochasticQConfig {
+        episodes: 1,
+        max_steps: 1,
+        rate: LearningRate::Constant(1.0),
+        epsilon: EpsilonSchedule::Constant(Probability::ZERO),
+        initial_value: 0.0,
+    };
+    let costs = vec![1.0; p.action_total()];
+    let mut lengths = Vec::new();
+    for seed in 0..16 {
+        let mut learner = StochasticQLearner::new(
+            &p,
+            &costs,
+            &target,
+            &config,
+            sample_rng(seed, 0),
+            Plan::Random,
+        )
+        .unwrap();
+        let sim = learner.simulate_greedy(None);
+        let mut rng = sample_rng(seed, 0);
+        let (mut x, mut states) = (0, 1u64);
+        while x != 3 {
+            let a = p.actions(x).start;
+            x = if p.outcomes(a).len() == 1 {
+                p.outcomes(a)[0].successor
+            } else {
+                p.sample(a, rng.random())
+            };
+            states += 1;
+        }
+        assert!(sim.reached_goal && !sim.optimal_actions);
+        assert_eq!(sim.states, states, "seed {seed}");
+        lengths.push(states);
+    }
+    // The replay is not trivial: the walks differ in length.
+    lengths.sort();
+    lengths.dedup();
+    assert!(lengths.len() >= 3, "{lengths:?}");
 }
 
 /// Problem 6 has no path: the learning rows are not run, the VI rows say why, nothing claims

@@ -777,7 +777,8 @@ fn printed_inequality_is_the_sign_of_the_polynomial_on_a_grid() {
     use truecost::claims::alpha::{alpha_star, printed_inequality, printed_polynomial};
     // 1/(1-a) < 1 + 2a + 3a^2 + 4a^3 + 5a^4  ⇔  5a^4 - a^3 - a^2 - a - 1 < 0 on (0, 1), by hand.
     let hand = Poly::from_i64(&[-1, -1, -1, -1, 5]);
-    assert_eq!(printed_polynomial().primitive(), hand);
+    // The sign matters (the inequality is `P < 0`), so no normalisation before comparing.
+    assert_eq!(printed_polynomial(), hand);
     let star = alpha_star().unwrap();
     for k in 1..1000i64 {
         let a = bq(k, 1000);
@@ -801,6 +802,65 @@ fn printed_inequality_is_the_sign_of_the_polynomial_on_a_grid() {
         "one root in (0, 1)"
     );
     assert_eq!(Algebraic::clone(&star).compare(&star), Ordering::Equal);
+    // The printed inequality is strict: at α = 0 both sides are 1 (the one point of [0, 1)
+    // where they are equal, since α* is irrational), and 1 < 1 is false.
+    assert!(!printed_inequality(&big(0)));
+}
+
+/// C3-example's refutation paths (`alpha::check_threshold`, which `alpha::check` runs with `α*`
+/// and the printed inequality): a bracket below `α*` (1/2) fails at its upper end, one above it
+/// (99/100) at its lower end, and a wrong inequality (`α < 1/2`) at exactly the grid points
+/// where it disagrees with `α < α*`; each refutation names what failed, and the true threshold
+/// and inequality verify all 101 cases.
+#[test]
+fn the_worked_example_refutes_a_wrong_threshold_or_a_wrong_inequality() {
+    use truecost::claims::alpha::{
+        alpha_star, check_threshold, printed_inequality, worked_example,
+    };
+    use truecost::claims::{ClaimResult, Verdict};
+    let t = worked_example();
+    let star = alpha_star().unwrap();
+    let failures = |r: &ClaimResult| r.engines.iter().map(|e| e.failures).sum::<u64>();
+    let ok = check_threshold(&t, &star, printed_inequality);
+    assert_eq!(
+        (ok.verdict, ok.cases, failures(&ok)),
+        (Verdict::Verified, 101, 0)
+    );
+    let upper = "at the upper end of the bracket an optimal policy avoids the goal";
+    let lower = "at the lower end of the bracket an optimal policy reaches the goal";
+    for (bracket, failing_end) in [(bq(1, 2), upper), (bq(99, 100), lower)] {
+        // The bracket (q − 1/1000, q] of the rational q.
+        let mut wrong_star = Algebraic::from_rational(bracket.clone());
+        wrong_star.refine_to(&bq(1, 1000));
+        assert!(wrong_star.lo > bq(1, 4) && wrong_star.hi == bracket);
+        let r = check_threshold(&t, &wrong_star, printed_inequality);
+        assert_eq!(
+            (r.verdict, r.cases, failures(&r)),
+            (Verdict::Refuted, 101, 1),
+            "{bracket}"
+        );
+        assert!(
+            r.notes.iter().any(|n| n == failing_end),
+            "{bracket}: {:?}",
+            r.notes
+        );
+        let other_end = if failing_end == upper { lower } else { upper };
+        assert!(!r.notes.iter().any(|n| n == other_end));
+        assert!(!r.notes.iter().any(|n| n.contains("fails at")));
+    }
+    let wrong: Vec<i64> = (1..100)
+        .filter(|&k| (k < 50) != (star.cmp_rational(&bq(k, 100)) == Ordering::Greater))
+        .collect();
+    assert!(wrong.len() > 10 && wrong[0] == 50, "{wrong:?}");
+    let r = check_threshold(&t, &star, |a: &Rational| a < &bq(1, 2));
+    assert_eq!((r.verdict, r.cases), (Verdict::Refuted, 101));
+    assert_eq!(failures(&r), wrong.len() as u64);
+    let listed: Vec<String> = wrong.iter().map(|k| k.to_string()).collect();
+    let expected = format!(
+        "the equivalence fails at alpha = k/100 for k in {}",
+        listed.join(",")
+    );
+    assert!(r.notes.contains(&expected), "{:?}", r.notes);
 }
 
 /// `contains_unscaled` (the environment's own bonus against a scaled set, `verify --claim C4

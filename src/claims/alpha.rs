@@ -34,11 +34,12 @@ pub fn worked_example() -> Tiny {
     Tiny::from_lists(&lists)
 }
 
-/// `P(α) = ((1 − α) Σ_{i=1..5} i α^{i−1} − 1) / α`, built from the printed inequality
-/// (multiplied by `1 − α > 0`; the factor `α > 0` removed).
+/// `P(α) = (1 − (1 − α) Σ_{i=1..5} i α^{i−1}) / α = 5α⁴ − α³ − α² − α − 1`, built from the
+/// printed inequality (multiplied by `1 − α > 0`; the factor `α > 0` removed): on `(0, 1)` the
+/// inequality holds exactly where `P(α) < 0`.
 ///
 /// ```
-/// assert_eq!(truecost::claims::alpha::printed_polynomial().primitive().to_string(), "5x^4 - x^3 - x^2 - x - 1");
+/// assert_eq!(truecost::claims::alpha::printed_polynomial().to_string(), "5x^4 - x^3 - x^2 - x - 1");
 /// ```
 pub fn printed_polynomial() -> Poly {
     let sum = Poly::from_i64(&[1, 2, 3, 4, 5]);
@@ -120,10 +121,6 @@ pub fn printed_inequality(alpha: &Rational) -> bool {
 /// goal, strictly above it reaches it; and the printed equivalence at `α = k/100`.
 pub fn check() -> (ClaimResult, Option<Algebraic>) {
     let started = std::time::Instant::now();
-    let t = worked_example();
-    let mut notes = Vec::new();
-    let mut failures = 0u64;
-    let mut cases = 0u64;
     let star = match alpha_star() {
         Ok(a) => a,
         Err(e) => {
@@ -143,9 +140,43 @@ pub fn check() -> (ClaimResult, Option<Algebraic>) {
             )
         }
     };
+    let mut result = check_threshold(&worked_example(), &star, printed_inequality);
+    for run in &mut result.engines {
+        run.seconds = started.elapsed().as_secs_f64();
+    }
+    (result, Some(star))
+}
+
+/// The exact-solve checks of [`check`] for a given bracket `star` of the threshold and a given
+/// form `printed` of the inequality: strictly below the bracket an optimal policy from 0 must
+/// avoid the goal, strictly above it reach it, and at `α = k/100`, `k = 1..99`, `printed(α)`
+/// must hold exactly where the optimal policies avoid the goal. [`check`] passes `α*` and
+/// [`printed_inequality`]; any failure makes the verdict `Refuted` with a note naming it.
+///
+/// ```
+/// use truecost::claims::alpha::{check_threshold, printed_inequality, worked_example};
+/// use truecost::claims::poly::Algebraic;
+/// use truecost::claims::Verdict;
+/// use truecost::value::Rational;
+/// // A bracket (1/2 − 2^-10, 1/2], below α* ≈ 0.92: at its upper end the optimal policy
+/// // still avoids the goal.
+/// let mut half = Algebraic::from_rational(Rational::new(1.into(), 2.into()));
+/// half.refine_to(&Rational::new(1.into(), 1024.into()));
+/// let r = check_threshold(&worked_example(), &half, printed_inequality);
+/// assert_eq!((r.verdict, r.cases), (Verdict::Refuted, 101));
+/// ```
+pub fn check_threshold(
+    t: &Tiny,
+    star: &Algebraic,
+    printed: impl Fn(&Rational) -> bool,
+) -> ClaimResult {
+    let started = std::time::Instant::now();
+    let mut notes = Vec::new();
+    let mut failures = 0u64;
+    let mut cases = 0u64;
     // Both sides of α*.
-    let (avoid_lo, _) = optimal_policies_from_initial(&t, &star.lo);
-    let (_, reach_hi) = optimal_policies_from_initial(&t, &star.hi);
+    let (avoid_lo, _) = optimal_policies_from_initial(t, &star.lo);
+    let (_, reach_hi) = optimal_policies_from_initial(t, &star.hi);
     cases += 2;
     if !avoid_lo {
         failures += 1;
@@ -159,10 +190,10 @@ pub fn check() -> (ClaimResult, Option<Algebraic>) {
     let mut grid_fail = Vec::new();
     for k in 1..100 {
         let a = Rational::new(BigInt::from(k), BigInt::from(100));
-        let (avoid, reach) = optimal_policies_from_initial(&t, &a);
+        let (avoid, reach) = optimal_policies_from_initial(t, &a);
         cases += 1;
-        let printed = printed_inequality(&a);
-        if !(printed && avoid || !printed && reach) {
+        let holds = printed(&a);
+        if !(holds && avoid || !holds && reach) {
             failures += 1;
             grid_fail.push(k.to_string());
         }
@@ -188,25 +219,22 @@ alpha = k/100, k = 1..99; the printed inequality is evaluated directly at each a
         Verdict::Refuted
     };
     let scope = "the worked example: 2 bracket ends of alpha* and 99 rationals k/100".to_string();
-    (
-        ClaimResult {
-            id: "C3-example".into(),
-            statement: STATEMENT.into(),
-            verdict,
+    ClaimResult {
+        id: "C3-example".into(),
+        statement: STATEMENT.into(),
+        verdict,
+        engine: "exact solve".into(),
+        scope: scope.clone(),
+        cases,
+        counterexample: None,
+        engines: vec![EngineRun {
             engine: "exact solve".into(),
-            scope: scope.clone(),
+            mode: "exhaustive".into(),
+            scope,
             cases,
-            counterexample: None,
-            engines: vec![EngineRun {
-                engine: "exact solve".into(),
-                mode: "exhaustive".into(),
-                scope,
-                cases,
-                failures,
-                seconds: started.elapsed().as_secs_f64(),
-            }],
-            notes,
-        },
-        Some(star),
-    )
+            failures,
+            seconds: started.elapsed().as_secs_f64(),
+        }],
+        notes,
+    }
 }

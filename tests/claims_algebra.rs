@@ -707,6 +707,53 @@ proptest! {
     }
 }
 
+/// `Algebraic::from_rational` brackets `q` as the root of `x − q` in `(q − 1, q]`, and
+/// `halve_with` halves a bracket exactly, keeping the one root inside (checked by squaring
+/// against √2 and by a Sturm count, twenty halvings from `(0, 2]`); `sign_of` needs both.
+#[test]
+fn rational_brackets_and_halving_by_hand() {
+    for q in [bq(1, 2), big(-3), bq(7, 3)] {
+        let a = Algebraic::from_rational(q.clone());
+        assert_eq!((a.lo.clone(), a.hi.clone()), (&q - big(1), q.clone()));
+        assert_eq!(value(&a.poly, &q), big(0));
+        assert_eq!(count_roots(&a.poly.sturm(), &a.lo, &a.hi), 1, "{q}");
+    }
+    let mut sqrt2 = isolate_roots(&Poly::from_i64(&[-2, 0, 1]), &big(0), &big(2))
+        .pop()
+        .unwrap();
+    let seq = sqrt2.poly.sturm();
+    let mut width = &sqrt2.hi - &sqrt2.lo;
+    for _ in 0..20 {
+        sqrt2.halve_with(&seq);
+        let w = &sqrt2.hi - &sqrt2.lo;
+        assert_eq!(w, &width / big(2));
+        width = w;
+        assert!(
+            &sqrt2.lo * &sqrt2.lo < big(2) && &sqrt2.hi * &sqrt2.hi > big(2),
+            "{sqrt2:?}"
+        );
+        assert_eq!(count_roots(&seq, &sqrt2.lo, &sqrt2.hi), 1);
+    }
+    // sign_of from the wide bracket (0, 2] of √2, which holds the roots 3/2 of 2x − 3 and 1 of
+    // x − 1, and whose closed end 2 is the root of x − 2: each needs halving first.
+    let wide = Algebraic {
+        poly: Poly::from_i64(&[-2, 0, 1]),
+        lo: big(0),
+        hi: big(2),
+    };
+    for (f, sign) in [
+        (Poly::from_i64(&[-3, 2]), Ordering::Less), // 2√2 − 3 < 0
+        (Poly::from_i64(&[3, -2]), Ordering::Greater), // 3 − 2√2 > 0
+        (Poly::from_i64(&[-1, 1]), Ordering::Greater), // √2 − 1 > 0
+        (Poly::from_i64(&[-2, 1]), Ordering::Less), // √2 − 2 < 0
+        (Poly::from_i64(&[-2, 0, 1]), Ordering::Equal),
+        (Poly::from_i64(&[10, -2, -5, 1]), Ordering::Equal), // (x² − 2)(x − 5)
+        (Poly::zero(), Ordering::Equal),
+    ] {
+        assert_eq!(wide.sign_of(&f), sign, "{f}");
+    }
+}
+
 #[test]
 fn algebraic_numbers_by_hand() {
     // ±√2 and ±√3: comparisons with rationals and with each other, decided exactly.

@@ -141,6 +141,7 @@ pub fn check() -> (ClaimResult, Option<Algebraic>) {
         }
     };
     let mut result = check_threshold(&worked_example(), &star, printed_inequality);
+    // The run's time includes isolating α*.
     for run in &mut result.engines {
         run.seconds = started.elapsed().as_secs_f64();
     }

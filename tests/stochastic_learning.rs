@@ -522,13 +522,9 @@ fn decaying_rate_learns_a_hand_solved_chain() {
     assert!(sim.reached_goal && sim.optimal_actions && sim.states >= 3);
 }
 
-/// `ρ = 1/n^ω` with `ω = 1` (the rate's own branch, `1/n`): `Q̂` is the running mean of the
-/// targets. On the chain 0 → 1 → 2 (goal), one outcome per action (γ = 1), greedy, `Q₀ = 0`,
-/// by hand: episode 1 sets `Q̂(0) = 1 + V(1) = 1` and `Q̂(1) = 1`; episode 2 sees the target
-/// `1 + V(1) = 2` at state 0 on its second visit, so `Q̂(0) = (1 − 1/2)·1 + (1/2)·2 = 3/2`
-/// (`ω = 0.8` gives the blend with `ρ = 2^−0.8` instead), and `Q̂(1)` stays 1.
-#[test]
-fn a_rate_of_one_over_n_averages_the_targets() {
+/// The chain 0 → 1 → 2 (goal) with unit costs, one outcome per action (γ = 1), and its
+/// target `G* = (2, 1, 0)` within 10 %.
+fn unit_chain() -> (StochasticProblem, Target) {
     use truecost::model::{Move, Problem};
     let one = parse_rational("1").unwrap();
     let step = |to| {
@@ -543,6 +539,17 @@ fn a_rate_of_one_over_n_averages_the_targets() {
             .unwrap();
     let g = ["2", "1", "0"].map(|t| Extended::Finite(parse_rational(t).unwrap()));
     let target = Target::from_values(&s, &g, Tolerance::Relative);
+    (s, target)
+}
+
+/// `ρ = 1/n^ω` with `ω = 1` (the rate's own branch, `1/n`): `Q̂` is the running mean of the
+/// targets. On the chain 0 → 1 → 2 (goal), one outcome per action (γ = 1), greedy, `Q₀ = 0`,
+/// by hand: episode 1 sets `Q̂(0) = 1 + V(1) = 1` and `Q̂(1) = 1`; episode 2 sees the target
+/// `1 + V(1) = 2` at state 0 on its second visit, so `Q̂(0) = (1 − 1/2)·1 + (1/2)·2 = 3/2`
+/// (`ω = 0.8` gives the blend with `ρ = 2^−0.8` instead), and `Q̂(1)` stays 1.
+#[test]
+fn a_rate_of_one_over_n_averages_the_targets() {
+    let (s, target) = unit_chain();
     let rho = 2f64.powf(-0.8);
     for (omega, expected) in [(1.0, 1.5), (0.8, (1.0 - rho) * 1.0 + rho * 2.0)] {
         let config = StochasticQConfig {
@@ -571,20 +578,7 @@ fn a_rate_of_one_over_n_averages_the_targets() {
 #[test]
 fn milestones_are_reported_at_the_action_that_reached_them() {
     use truecost::learning::q_learning::{Event, Milestone};
-    use truecost::model::{Move, Problem};
-    let one = parse_rational("1").unwrap();
-    let step = |to| {
-        vec![Move {
-            successor: to,
-            cost: one.clone(),
-        }]
-    };
-    let problem = Problem::new(vec![step(1), step(2), vec![]], 0, vec![2]).unwrap();
-    let s =
-        StochasticProblem::from_deterministic(&problem, NoiseModel::Paper, &Predictability::one())
-            .unwrap();
-    let g = ["2", "1", "0"].map(|t| Extended::Finite(parse_rational(t).unwrap()));
-    let target = Target::from_values(&s, &g, Tolerance::Relative);
+    let (s, target) = unit_chain();
     let config = StochasticQConfig {
         episodes: 10,
         max_steps: 10,

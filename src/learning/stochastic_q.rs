@@ -125,12 +125,8 @@ impl Tolerance {
 /// ```
 pub fn f64_at_least(r: &Rational) -> f64 {
     // Start from a finite f64 (an out-of-range r converts to ±∞, and −∞ is never ≥ r):
-    // the loops below then step to the answer, +∞ included.
-    let nearest = r.to_f64().unwrap_or(if r.is_negative() {
-        f64::NEG_INFINITY
-    } else {
-        f64::INFINITY
-    });
+    // the loops below then step to the answer, +∞ included. (`to_f64` is `None` only for NaN.)
+    let nearest = r.to_f64().expect("a rational converts to an f64 or ±∞");
     let mut f = nearest.clamp(-f64::MAX, f64::MAX);
     while f.is_finite() && Rational::from_float(f).is_some_and(|x| &x < r) {
         f = next_up(f);

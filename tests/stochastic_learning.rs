@@ -224,6 +224,14 @@ fn directed_rounding_at_the_largest_finite_f64() {
     assert_eq!(f64_at_most(&above), f64::MAX);
 }
 
+/// The problem of a `truecost-stochastic/1` file's text (a test's own file: it must parse).
+fn stochastic_file(text: &str) -> StochasticProblem {
+    let ProblemFile::Stochastic(p) = from_json(text).unwrap() else {
+        panic!("a stochastic file")
+    };
+    *p
+}
+
 /// The states a target tracks are those reachable from `x1`, not goals, with an action and a
 /// finite `G*` — checked state by state on a hand-made file: 0 (initial) reaches 1 (goal) and 3;
 /// 2 has an action but nothing reaches it; 4 is reachable but has no finite value.
@@ -235,9 +243,7 @@ fn a_target_tracks_reachable_non_goal_states_with_actions() {
         [{"cost": "1", "outcomes": [{"to": 1, "p": "1"}]}],
         [{"cost": "1", "outcomes": [{"to": 1, "p": "1"}]}],
         [{"cost": "1", "outcomes": [{"to": 4, "p": "1"}]}]]}"#;
-    let ProblemFile::Stochastic(p) = from_json(text).unwrap() else {
-        panic!("a stochastic file")
-    };
+    let p = stochastic_file(text);
     let one = Extended::Finite(Rational::from_integer(1.into()));
     let g = vec![
         one.clone(),
@@ -634,9 +640,7 @@ fn the_greedy_simulation_draws_only_for_random_outcomes() {
         [{"cost": "1", "outcomes": [{"to": 2, "p": "1"}]}],
         [{"cost": "1", "outcomes": [{"to": 3, "p": "1/2"}, {"to": 0, "p": "1/2"}]}],
         []]}"#;
-    let ProblemFile::Stochastic(p) = from_json(text).unwrap() else {
-        panic!("a stochastic file")
-    };
+    let p = stochastic_file(text);
     let g = ["4", "3", "2", "0"].map(|t| Extended::Finite(parse_rational(t).unwrap()));
     let target = Target::from_values(&p, &g, Tolerance::Relative);
     let config = StochasticQConfig {

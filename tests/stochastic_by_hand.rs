@@ -163,4 +163,10 @@ fn benchmark_grid_sizes_at_the_edges() {
     }
     assert!(parse_size("1").is_err());
     assert_eq!(parse_size("2").unwrap(), (2, 2));
+    // Memory sizes (`--max-memory`): a fraction longer than the integer part, and no integer
+    // part at all (refused, as `1.` is).
+    use truecost::stochastic::scale::parse_size as memory;
+    assert_eq!(memory("0.25G").unwrap(), 1 << 28);
+    assert_eq!(memory("1.125G").unwrap(), 9 << 27);
+    assert!(memory(".5G").is_err());
 }

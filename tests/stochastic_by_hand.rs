@@ -170,3 +170,30 @@ fn benchmark_grid_sizes_at_the_edges() {
     assert_eq!(memory("1.125G").unwrap(), 9 << 27);
     assert!(memory(".5G").is_err());
 }
+
+/// `memory_estimate` (`--max-memory`) against what `optimum` then does on the same problem: the
+/// same number of unknowns (every non-goal state of a cost grid has an action and a finite
+/// `G*`), and its lifting steps an upper estimate of each exact evaluation's.
+#[test]
+fn the_memory_estimate_bounds_what_the_optimum_then_does() {
+    use truecost::stochastic::benchmark::cost_grid;
+    use truecost::stochastic::policy_iteration::memory_estimate;
+    use truecost::stochastic::{NoiseModel, Predictability};
+    for (side, seed, gamma) in [(3, 0, "0.9"), (5, 1, "0.99"), (8, 2, "0.999")] {
+        let grid = cost_grid(side, side, seed).unwrap();
+        let gamma = Predictability::parse(gamma).unwrap();
+        let s = StochasticProblem::from_deterministic(&grid, NoiseModel::Paper, &gamma).unwrap();
+        let e = memory_estimate(&s, false);
+        let o = optimum(&s).unwrap();
+        assert_eq!(e.unknowns, side * side - 1);
+        assert_eq!(o.stats.unknowns, e.unknowns, "{side}");
+        assert_eq!(o.stats.finite_states, side * side, "{side}");
+        assert!(o.stats.exact_iterations >= 1);
+        assert!(
+            o.stats.lifting_steps <= e.lifting_steps * o.stats.exact_iterations,
+            "{side}: {:?} against {e:?}",
+            o.stats
+        );
+        assert!(memory_estimate(&s, true).bytes > e.bytes);
+    }
+}

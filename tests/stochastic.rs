@@ -201,6 +201,133 @@ fn out(to: usize, p: &str) -> Outcome {
 }
 
 // ---------------------------------------------------------------------------------------------
+// One small problem with a trap, solved by hand, against what the module reports beside `G*`:
+// the optimum's accessors, value iteration's work counts (checked against a count made here
+// from the problem's own lists) and the sampler's end points (issue 14: the mutants
+// `unreduced → Some((0, 0))`, `q_value`'s `d·s_x` → `d/s_x`, `suboptimal_states` without its
+// goal filter, `sweeps * per_sweep_terms` → `/`, `usable`'s `==` → `!=` and
+// `cumulative.len() - 1` → `+ 1` survived the value tests).
+
+fn action(cost: &str, outcomes: Vec<Outcome>) -> StochasticAction {
+    StochasticAction {
+        cost: q(cost),
+        outcomes,
+    }
+}
+
+/// State 0 has a safe action (to the goal 1 or back to 0) and an unsafe one (to the trap 2 with
+/// probability 1/2); state 3 reaches the goal through 0 with three outcomes. The trap 2 only
+/// loops, so `G*(2) = +∞` and the unsafe action must be neither backed up nor counted.
+fn with_an_unsafe_action() -> StochasticProblem {
+    StochasticProblem::new(
+        vec![
+            vec![
+                action("1", vec![out(1, "3/4"), out(0, "1/4")]),
+                action("1", vec![out(2, "1/2"), out(1, "1/2")]),
+            ],
+            vec![],
+            vec![action("1", vec![out(2, "1")])],
+            vec![action(
+                "2",
+                vec![out(0, "1/2"), out(3, "1/4"), out(1, "1/4")],
+            )],
+        ],
+        3,
+        vec![1],
+    )
+    .unwrap()
+}
+
+/// By hand: `G*(0) = 1 + G*(0)/4 = 4/3`; `G*(3) = 2 + G*(0)/2 + G*(3)/4`, so
+/// `G*(3) = (4/3)·(8/3) = 32/9`; `G*(1) = 0`; `G*(2) = +∞`. `Q*(0, to the trap) = +∞`.
+#[test]
+fn the_optimum_s_accessors_by_hand() {
+    let s = with_an_unsafe_action();
+    let o = optimum(&s).unwrap();
+    let want = [Some(q("4/3")), Some(q("0")), None, Some(q("32/9"))];
+    for (x, want) in want.iter().enumerate() {
+        let got = o
+            .unreduced(x)
+            .map(|(n, d)| Rational::new(n.clone(), d.clone()));
+        assert_eq!(&got, want, "state {x}");
+        let shown = want.clone().map_or(Extended::Infinite, Extended::Finite);
+        assert_eq!(o.cost_to_go_all()[x], shown, "state {x}");
+    }
+    let (safe, unsafe_, trap, only) = (0, 1, s.actions(2).start, s.actions(3).start);
+    assert_eq!(o.q_value(&s, safe), Extended::Finite(q("4/3")));
+    assert_eq!(o.q_value(&s, unsafe_), Extended::Infinite);
+    assert_eq!(o.q_value(&s, trap), Extended::Infinite);
+    assert_eq!(o.q_value(&s, only), Extended::Finite(q("32/9")));
+    assert!(o.is_optimal_action(&s, safe) && o.is_optimal_action(&s, only));
+    assert!(!o.is_optimal_action(&s, unsafe_));
+    // Goals are never counted; states with G* = +∞ neither; a finite state without an action is.
+    let all = vec![Some(safe), None, Some(trap), Some(only)];
+    assert_eq!(o.suboptimal_states(&s, &all), Vec::<usize>::new());
+    let bad = vec![Some(unsafe_), Some(0), None, Some(only)];
+    assert_eq!(o.suboptimal_states(&s, &bad), [0]);
+    let missing = vec![Some(safe), None, None, None];
+    assert_eq!(o.suboptimal_states(&s, &missing), [3]);
+}
+
+#[test]
+fn backups_and_outcome_terms_are_sweeps_times_the_safe_actions_of_the_finite_states() {
+    let s = with_an_unsafe_action();
+    let star = optimum(&s).unwrap();
+    let g = star.cost_to_go_all();
+    assert_eq!(g[2], Extended::Infinite);
+    // The count, by hand from the lists: swept = finite non-goal states; an action is safe when
+    // every outcome has finite G*.
+    let (mut backups, mut terms) = (0u64, 0u64);
+    for x in 0..s.states() {
+        if s.is_goal(x) || g[x] == Extended::Infinite {
+            continue;
+        }
+        for a in s.actions(x) {
+            let outcomes = s.outcomes(a);
+            if outcomes
+                .iter()
+                .all(|o| g[o.successor] != Extended::Infinite)
+            {
+                backups += 1;
+                terms += outcomes.len() as u64;
+            }
+        }
+    }
+    assert_eq!((backups, terms), (2, 5), "the hand count itself");
+    for schedule in [Schedule::Synchronous, Schedule::Asynchronous] {
+        let options = ViOptions::from_below(schedule, q("1/1000"), 10_000).unwrap();
+        let exact = value_iteration_exact(&s, &options);
+        assert!(exact.converged && exact.sweeps > 1, "{schedule:?}");
+        assert_eq!(exact.backups, exact.sweeps * backups, "{schedule:?}");
+        assert_eq!(exact.outcome_terms, exact.sweeps * terms, "{schedule:?}");
+        assert_eq!(exact.cost_to_go[2], Extended::Infinite);
+        let float = value_iteration_f64(&s, &FloatModel::nearest(&s), &options);
+        assert!(float.sweeps > 1, "{schedule:?}");
+        assert_eq!(float.backups, float.sweeps * backups, "{schedule:?}");
+        assert_eq!(float.outcome_terms, float.sweeps * terms, "{schedule:?}");
+    }
+}
+
+#[test]
+fn sampling_at_and_beyond_one_gives_the_last_outcome() {
+    let s = with_an_unsafe_action();
+    // Action 3 (state 3's only action): outcomes 0, 3, 1 with probabilities 1/2, 1/4, 1/4.
+    let a = s.actions(3).start;
+    for (u, successor) in [
+        (0.0, 0),
+        (0.49, 0),
+        (0.5, 3),
+        (0.74, 3),
+        (0.75, 1),
+        (0.999, 1),
+        (1.0, 1),
+        (1.5, 1),
+    ] {
+        assert_eq!(s.sample(a, u), successor, "u = {u}");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
 // The exact Bellman equation, checked with plain big-rational arithmetic (an oracle that shares
 // nothing with the solver but the problem).
 

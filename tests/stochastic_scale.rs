@@ -74,6 +74,27 @@ fn benchmark_grid_is_a_seeded_four_neighbour_grid_with_costs_one_to_four() {
     }
 }
 
+/// The benchmark grid's size limits: sides `1..=MAX_SIDE` and at least two states, both in the
+/// generator and in the `ROWSxCOLS` parser (`rows · cols < 2`, not `rows + cols < 2`).
+#[test]
+fn benchmark_grid_sizes_at_the_edges() {
+    use truecost::stochastic::benchmark::MAX_SIDE;
+    for (rows, cols) in [(1, 1), (0, 5), (5, 0), (MAX_SIDE + 1, 1), (1, MAX_SIDE + 1)] {
+        assert!(cost_grid(rows, cols, 0).is_err(), "{rows}x{cols}");
+        assert!(
+            parse_grid(&format!("{rows}x{cols}")).is_err(),
+            "{rows}x{cols}"
+        );
+    }
+    for (rows, cols) in [(1, 2), (2, 1), (1, MAX_SIDE), (3, 3)] {
+        let p = cost_grid(rows, cols, 0).unwrap();
+        assert_eq!(p.states(), rows * cols);
+        assert_eq!(parse_grid(&format!("{rows}x{cols}")).unwrap(), (rows, cols));
+    }
+    assert!(parse_grid("1").is_err());
+    assert_eq!(parse_grid("2").unwrap(), (2, 2));
+}
+
 #[test]
 fn export_grid_writes_the_generator_s_file() {
     let dir = tempfile::tempdir().unwrap();
@@ -290,6 +311,9 @@ fn memory_sizes_parse_exactly() {
     assert_eq!(parse_size("1024K").unwrap(), 1024 * 1024);
     assert_eq!(parse_size("2T").unwrap(), 2 * 1024u64.pow(4));
     assert_eq!(parse_size("3000000").unwrap(), 3_000_000);
+    // A fraction longer than the integer part.
+    assert_eq!(parse_size("0.25G").unwrap(), 1 << 28);
+    assert_eq!(parse_size("1.125G").unwrap(), 9 << 27);
     for bad in [
         "",
         "G",
@@ -301,6 +325,7 @@ fn memory_sizes_parse_exactly() {
         "4X",
         "4 G B",
         "1.",
+        ".5G",
         "99999999999T",
     ] {
         assert!(parse_size(bad).is_err(), "{bad:?}");
@@ -325,6 +350,28 @@ fn memory_estimate_grows_with_the_grid_and_with_json() {
         "{b:?} {:?}",
         o.stats
     );
+    // And against what `optimum` then does on smaller grids and other γ: the same unknowns
+    // (every non-goal state of a cost grid has an action and a finite `G*`), and the lifting
+    // estimate bounds each exact evaluation's steps.
+    for (side, seed, gamma) in [(3, 0, "0.9"), (5, 1, "0.99"), (8, 2, "0.999")] {
+        let s = noisy(
+            &cost_grid(side, side, seed).unwrap(),
+            NoiseModel::Paper,
+            gamma,
+        );
+        let e = memory_estimate(&s, false);
+        let o = optimum(&s).unwrap();
+        assert_eq!(e.unknowns, side * side - 1);
+        assert_eq!(o.stats.unknowns, e.unknowns, "{side}");
+        assert_eq!(o.stats.finite_states, side * side, "{side}");
+        assert!(o.stats.exact_iterations >= 1);
+        assert!(
+            o.stats.lifting_steps <= e.lifting_steps * o.stats.exact_iterations,
+            "{side}: {:?} against {e:?}",
+            o.stats
+        );
+        assert!(memory_estimate(&s, true).bytes > e.bytes);
+    }
 }
 
 fn grid_file(dir: &tempfile::TempDir, side: usize) -> String {

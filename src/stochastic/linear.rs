@@ -1080,6 +1080,38 @@ mod tests {
         }
     }
 
+    /// `solve_f64` (warm starts and schedules only) against the system's own rows and against
+    /// the exact solve (issue 14: the band LU's update and substitution mutants survived).
+    #[test]
+    fn the_f64_solve_has_a_small_residual_and_agrees_with_the_exact_solve() {
+        use num_traits::ToPrimitive;
+        for (n, seed) in [(1, 0), (2, 5), (7, 1), (40, 2), (150, 3)] {
+            let system = random_system(n, seed);
+            let z = solve_f64(&system).unwrap();
+            assert_eq!(z.len(), n);
+            // The residual, from the rows as pushed (not from the solver's band).
+            for i in 0..n {
+                let lhs: f64 = system.row(i).map(|(j, v)| v as f64 * z[j]).sum();
+                let scale: f64 = system.row(i).map(|(j, v)| (v as f64 * z[j]).abs()).sum();
+                let r = system.rhs[i] as f64;
+                assert!(
+                    (lhs - r).abs() <= 1e-9 * (scale + r.abs() + 1.0),
+                    "n = {n}, row {i}: {lhs} against {r}"
+                );
+            }
+            // And the exact solution, rounded.
+            let exact = solve_exact(&system).unwrap();
+            for (i, numerator) in exact.numerators.iter().enumerate() {
+                let want = reduced(numerator, &exact.denominator).to_f64().unwrap();
+                assert!(
+                    (z[i] - want).abs() <= 1e-9 * want.abs().max(1.0),
+                    "n = {n}, z[{i}] = {} against {want}",
+                    z[i]
+                );
+            }
+        }
+    }
+
     #[test]
     fn barrett_reduction_agrees_with_division() {
         let mut rng = ChaCha8Rng::seed_from_u64(9);

@@ -115,6 +115,30 @@ fn star_distinguishes_the_noise_models() {
     assert_eq!(listed, ["1/2", "1/8", "1/8", "1/4"]);
 }
 
+/// `split_f64` (the reference-mode float model, SPEC §7) is `split` computed in `f64`: each of
+/// its three probabilities is within a few units in the last place of the exact one, for both
+/// noise models and every number of moves the grids have (1 to 8).
+#[test]
+fn the_f64_split_is_the_exact_split_in_f64() {
+    let f = |r: &Rational| num_traits::ToPrimitive::to_f64(r).unwrap();
+    for text in ["0.5", "0.8", "0.9", "0.99", "0.999999", "1"] {
+        let g = gamma(text);
+        for model in [NoiseModel::Paper, NoiseModel::Reference] {
+            for k in 1..=8 {
+                let (c, o, st) = model.split(&g, k);
+                let (cf, of, sf) = model.split_f64(f(g.value()), k);
+                for (exact, float) in [(f(&c), cf), (f(&o), of), (f(&st), sf)] {
+                    assert!(
+                        (exact - float).abs() <= 1e-15,
+                        "{} γ={text} k={k}: {exact} against {float}",
+                        model.name()
+                    );
+                }
+            }
+        }
+    }
+}
+
 /// Paper problem 16 is a corridor 226 – 227 – … – 231 (goal), x1 = 227. With γ = 1/2 both
 /// models agree (every state has k ≤ 2 moves). Commanding "right": an interior state gives
 /// ¾·G(i) = 1 + ½·G(i+1) + ¼·G(i−1), the end 226 gives G(226) = 2 + G(227). Solving by hand
@@ -791,10 +815,15 @@ fn stochastic_files_round_trip_and_keep_their_optimum() {
         assert_eq!(o1, o2);
         assert_eq!(s.cost(a), back.cost(a));
     }
-    assert_eq!(
-        optimum(&s).unwrap().cost_to_go_all(),
-        optimum(&back).unwrap().cost_to_go_all()
-    );
+    let (direct, read) = (optimum(&s).unwrap(), optimum(&back).unwrap());
+    assert_eq!(direct.cost_to_go_all(), read.cost_to_go_all());
+    // Policy iteration starts from the deterministic optimum over the commanded moves when the
+    // problem has them (a noise model's), and from the attractor's policy when it does not (a
+    // file lists outcomes only).
+    assert_eq!(s.commanded(0), Some(p.neighbours[0][0]));
+    assert_eq!(back.commanded(0), None);
+    assert_eq!(direct.stats.initial_policy, "deterministic-optimum");
+    assert_eq!(read.stats.initial_policy, "attractor");
 }
 
 #[test]

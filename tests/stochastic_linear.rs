@@ -80,3 +80,226 @@ fn a_band_too_wide_is_refused_with_the_ordering_s_width() {
         })
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// The lifting schedule (module docs of linear.rs, `lift`): how many Dixon steps a solve takes.
+// Only the answer is verified inside the solver, so a change to the schedule would pass every
+// test of the answer; here the steps are held to what the documentation promises, with the
+// determinant computed exactly by Bareiss' elimination (independent of the solver).
+
+/// `|det A|` of a dense integer matrix by Bareiss' fraction-free elimination (exact).
+fn determinant(mut a: Vec<Vec<BigInt>>) -> BigInt {
+    let n = a.len();
+    let mut previous = BigInt::from(1);
+    let mut sign = 1;
+    for k in 0..n {
+        if a[k][k] == BigInt::from(0) {
+            let Some(r) = (k + 1..n).find(|&r| a[r][k] != BigInt::from(0)) else {
+                return BigInt::from(0);
+            };
+            a.swap(k, r);
+            sign = -sign;
+        }
+        for i in k + 1..n {
+            for j in k + 1..n {
+                a[i][j] = (&a[i][j] * &a[k][k] - &a[i][k] * &a[k][j]) / &previous;
+            }
+        }
+        previous = a[k][k].clone();
+    }
+    previous * sign
+}
+
+/// `log2 |x|` for a nonzero integer of any size (its top 64 bits in f64).
+fn log2(x: &BigInt) -> f64 {
+    let bits = x.bits();
+    let shift = bits.saturating_sub(64);
+    let top: BigInt = x.magnitude().clone().into();
+    let top = u64::try_from(top >> shift).unwrap();
+    (top as f64).log2() + shift as f64
+}
+
+/// A random system with a dominant diagonal (so `det A ≠ 0`), entries below `2^bits` in a band
+/// of half-width `w`, right-hand sides below `2^rhs_bits`; and its dense copy.
+fn random_banded(
+    rng: &mut rand_chacha::ChaCha8Rng,
+    n: usize,
+    w: usize,
+    bits: u32,
+    rhs_bits: u32,
+) -> (SparseSystem, Vec<Vec<BigInt>>) {
+    use rand::RngExt;
+    let mut s = SparseSystem::new();
+    let mut dense = vec![vec![BigInt::from(0); n]; n];
+    for (i, row) in dense.iter_mut().enumerate() {
+        let mut entries = Vec::new();
+        let mut off = 0i64;
+        for j in i.saturating_sub(w)..(i + w + 1).min(n) {
+            if j != i && rng.random_range(0..3) > 0 {
+                let v = rng.random_range(-(1i64 << bits) + 1..1i64 << bits);
+                off += v.abs();
+                entries.push((j, v));
+            }
+        }
+        entries.push((i, off + rng.random_range(1..1i64 << bits)));
+        for &(j, v) in &entries {
+            row[j] = BigInt::from(v);
+        }
+        let rhs = rng.random_range(-(1i128 << rhs_bits)..1i128 << rhs_bits);
+        s.push_row(&entries, rhs).unwrap();
+    }
+    (s, dense)
+}
+
+/// `k` copies of one random `s × s` block with a dominant diagonal on the diagonal of `A`
+/// (entries below `2^bits`), right-hand sides below `2^rhs_bits`: `|det A| = |det B|^k`, while
+/// the answer's denominator divides `det B`, so reconstruction succeeds long before the
+/// `expected` estimate (from `det A`) — the schedule's early tries.
+fn repeated_block(
+    rng: &mut rand_chacha::ChaCha8Rng,
+    k: usize,
+    s: usize,
+    bits: u32,
+    rhs_bits: u32,
+) -> (SparseSystem, Vec<Vec<BigInt>>) {
+    use rand::RngExt;
+    let block: Vec<Vec<i64>> = (0..s)
+        .map(|i| {
+            let mut row: Vec<i64> = (0..s)
+                .map(|_| rng.random_range(-(1i64 << bits) + 1..1i64 << bits))
+                .collect();
+            row[i] = row.iter().map(|v| v.abs()).sum::<i64>() + 1;
+            row
+        })
+        .collect();
+    let n = k * s;
+    let mut system = SparseSystem::new();
+    let mut dense = vec![vec![BigInt::from(0); n]; n];
+    for b in 0..k {
+        for (i, row) in block.iter().enumerate() {
+            let entries: Vec<(usize, i64)> = row
+                .iter()
+                .enumerate()
+                .map(|(j, &v)| (b * s + j, v))
+                .collect();
+            for &(j, v) in &entries {
+                dense[b * s + i][j] = BigInt::from(v);
+            }
+            let rhs = rng.random_range(-(1i128 << rhs_bits)..1i128 << rhs_bits);
+            system.push_row(&entries, rhs).unwrap();
+        }
+    }
+    (system, dense)
+}
+
+/// The lifting steps at which the documented schedule tries a reconstruction, up to `last`:
+/// 4 (or `expected` if fewer), then ×1.5 (at least +2) up to `expected`, then every 2 %
+/// (at least 2 steps).
+fn try_points(expected: usize, last: usize) -> Vec<usize> {
+    let mut points = vec![4.min(expected)];
+    loop {
+        let t = *points.last().unwrap();
+        let next = if t < expected {
+            (t * 3).div_ceil(2).max(t + 2).min(expected)
+        } else {
+            t + (t / 50).max(2)
+        };
+        if next > last {
+            return points;
+        }
+        points.push(next);
+    }
+}
+
+#[test]
+fn lifting_takes_the_steps_the_schedule_documents() {
+    use num_integer::Integer;
+    use rand::SeedableRng;
+    use truecost::stochastic::linear::solve_exact_with;
+    // Every prime the solver uses lies in (2^30, 2^31): log2 p ≈ 31 (the largest below
+    // 2^31 − 1 first).
+    let log2_p = 2_147_483_629f64.log2();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(14);
+    let mut cases = 0;
+    for (n, w, bits, rhs_bits) in [
+        (1, 0, 4, 8),
+        (3, 1, 6, 10),
+        (6, 2, 10, 20),
+        (10, 3, 16, 30),
+        (16, 4, 24, 40),
+        (24, 3, 30, 60),
+        (12, 11, 28, 90),
+        // Repeated blocks (n = 0 marks them; w is the block size, the copies are 8).
+        (0, 2, 8, 10),
+        (0, 3, 20, 20),
+        (0, 3, 28, 40),
+        (0, 4, 28, 60),
+        (0, 6, 30, 90),
+    ] {
+        for _ in 0..6 {
+            let (system, dense) = if n == 0 {
+                repeated_block(&mut rng, 8, w, bits, rhs_bits)
+            } else {
+                random_banded(&mut rng, n, w, bits, rhs_bits)
+            };
+            let mut seen = Vec::new();
+            let z = solve_exact_with(&system, &mut |l| seen.push(l)).unwrap();
+            let steps = z.lifting_steps;
+            let case = format!("n={n} w={w} bits={bits} rhs_bits={rhs_bits}: {steps} steps");
+            // Progress after every step, counting up, with one `expected` throughout.
+            assert_eq!(seen.len(), steps, "{case}");
+            assert!(
+                seen.iter().enumerate().all(|(i, l)| l.steps == i + 1),
+                "{case}"
+            );
+            let expected = seen[0].expected;
+            assert!(seen.iter().all(|l| l.expected == expected), "{case}");
+
+            // `expected` is `2·log_p(|det A|·max|z|)` (at least 1 for max|z|) plus two bits,
+            // rounded up, plus one step (f64 estimates: allow a boundary either way).
+            let det = determinant(dense);
+            let g = z
+                .numerators
+                .iter()
+                .fold(z.denominator.clone(), |g, v| g.gcd(v));
+            let d_reduced = &z.denominator / &g;
+            let n_max = z
+                .numerators
+                .iter()
+                .map(|v| (v / &g).magnitude().clone())
+                .max()
+                .unwrap();
+            let max_z = (log2(&BigInt::from(n_max.clone()).max(BigInt::from(1)))
+                - log2(&d_reduced))
+            .max(0.0);
+            let bits_expected = 2.0 * (log2(&det) + max_z) + 2.0;
+            let low = ((bits_expected - 1e-6) / log2_p).ceil() as usize + 1;
+            let high = ((bits_expected + 1e-6) / log2_p).ceil() as usize + 1;
+            assert!(
+                (low..=high).contains(&expected),
+                "{case}: expected {expected}, documented {low}..={high}"
+            );
+
+            // The steps are a try point of the schedule, …
+            assert!(
+                try_points(expected, steps).contains(&steps),
+                "{case}: not a try point of {expected}"
+            );
+            // … the returned denominator fits the reconstruction bound `d ≤ sqrt(p^K / 2)`, …
+            assert!(
+                2.0 * log2(&z.denominator) + 1.0 <= steps as f64 * log2_p,
+                "{case}: d too large"
+            );
+            // … and the solve stops at the first try point where reconstruction is certain
+            // (`p^K > 2·max(N, D)²` with the reduced answer's N and D) or earlier.
+            let need = 2.0 * log2(&BigInt::from(n_max).max(d_reduced.clone())) + 1.0;
+            let certain = try_points(expected, usize::MAX >> 1)
+                .into_iter()
+                .find(|&t| t as f64 * log2_p > need + 1e-6)
+                .unwrap();
+            assert!(steps <= certain, "{case}: certain at {certain}");
+            cases += 1;
+        }
+    }
+    assert_eq!(cases, 72);
+}

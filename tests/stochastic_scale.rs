@@ -280,8 +280,15 @@ fn warm_start_leaves_one_exact_evaluation_and_progress_reports_it() {
     let s = noisy(&cost_grid(20, 20, 0).unwrap(), NoiseModel::Paper, "0.99");
     let (mut exact, mut float, mut last_lift) = (0, 0, 0);
     let o = optimum_with(&s, &mut |e| match e {
-        Progress::ExactEvaluation { .. } => exact += 1,
-        Progress::FloatEvaluation { .. } => float += 1,
+        // Evaluations and rounds are numbered from 1, in order.
+        Progress::ExactEvaluation { evaluation } => {
+            exact += 1;
+            assert_eq!(evaluation, exact);
+        }
+        Progress::FloatEvaluation { round } => {
+            float += 1;
+            assert_eq!(round, float);
+        }
         Progress::Lifting(l) => {
             assert!(l.steps == last_lift + 1 || l.steps == 1, "steps count up");
             last_lift = l.steps;

@@ -24,6 +24,7 @@ use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use std::sync::Mutex;
 
 use truecost::stochastic::benchmark::cost_grid;
+use truecost::stochastic::linear::{BandOrdering, SparseSystem};
 use truecost::stochastic::policy_iteration::{memory_estimate, optimum};
 use truecost::stochastic::{decimal, NoiseModel, Predictability, StochasticProblem};
 
@@ -32,8 +33,13 @@ struct Counting;
 
 static LIVE: AtomicUsize = AtomicUsize::new(0);
 static PEAK: AtomicUsize = AtomicUsize::new(0);
-/// One measurement at a time (the tests of this binary run on parallel threads).
-static MEASURING: Mutex<()> = Mutex::new(());
+/// One test at a time: the tests of this binary run on parallel threads, and every
+/// allocation counts.
+static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
+
+fn exclusive() -> std::sync::MutexGuard<'static, ()> {
+    ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner())
+}
 
 // SAFETY: every call is forwarded unchanged to the system allocator; the counters only observe.
 unsafe impl GlobalAlloc for Counting {
@@ -69,7 +75,6 @@ fn measure(
 ) -> (u64, u64) {
     let grid = cost_grid(rows, cols, 1).unwrap();
     let gamma = Predictability::parse(gamma).unwrap();
-    let _one_at_a_time = MEASURING.lock().unwrap_or_else(|e| e.into_inner());
     let before = LIVE.load(Relaxed);
     PEAK.store(before, Relaxed);
     let problem = StochasticProblem::from_deterministic(&grid, noise, &gamma).unwrap();
@@ -90,6 +95,7 @@ fn measure(
 
 #[test]
 fn memory_estimate_brackets_the_measured_heap_peak() {
+    let _alone = exclusive();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .build()
@@ -122,9 +128,69 @@ fn memory_estimate_brackets_the_measured_heap_peak() {
 
 #[test]
 fn small_problems_fit_in_the_base() {
+    let _alone = exclusive();
     // Below a few hundred unknowns the solve's heap is a fraction of the 16 MiB base, and the
     // estimate stays close to it: a 5×5 grid's whole run is under 1 MiB.
     let (peak, estimate) = measure(5, 5, NoiseModel::Paper, "0.9", true);
     assert!(peak < 1 << 20, "{peak}");
     assert!((BASE..BASE + (1 << 20)).contains(&estimate), "{estimate}");
+}
+
+#[test]
+fn the_estimate_s_band_is_that_of_every_action_s_pattern() {
+    let _alone = exclusive();
+    // `band_width` is documented as `lower + upper + 1` of the band ordering of the pattern of
+    // every action's outcomes over the unknowns (non-goal states with an action): rebuild
+    // that pattern here from the problem's lists and order it.
+    for (rows, cols) in [
+        (2, 3),
+        (2, 300),
+        (3, 700),
+        (5, 5),
+        (7, 40),
+        (20, 20),
+        (30, 12),
+    ] {
+        for noise in [NoiseModel::Paper, NoiseModel::Reference] {
+            let grid = cost_grid(rows, cols, 3).unwrap();
+            let gamma = Predictability::parse("0.9").unwrap();
+            let problem = StochasticProblem::from_deterministic(&grid, noise, &gamma).unwrap();
+            let unknown: Vec<Option<usize>> = {
+                let mut next = 0;
+                (0..problem.states())
+                    .map(|x| {
+                        (!problem.is_goal(x) && !problem.actions(x).is_empty()).then(|| {
+                            next += 1;
+                            next - 1
+                        })
+                    })
+                    .collect()
+            };
+            let mut pattern = SparseSystem::new();
+            for x in 0..problem.states() {
+                let Some(i) = unknown[x] else { continue };
+                let mut row = vec![(i, 1)];
+                for a in problem.actions(x) {
+                    for o in problem.outcomes(a) {
+                        if let Some(j) = unknown[o.successor] {
+                            if !row.iter().any(|&(c, _)| c == j) {
+                                row.push((j, 1));
+                            }
+                        }
+                    }
+                }
+                pattern.push_row(&row, 0).unwrap();
+            }
+            let (lower, upper) = BandOrdering::new(&pattern).bandwidths();
+            let e = memory_estimate(&problem, false);
+            assert_eq!(e.unknowns, rows * cols - 1, "{rows}x{cols}");
+            assert_eq!(e.unknowns, pattern.len());
+            assert_eq!(
+                e.band_width,
+                lower + upper + 1,
+                "{rows}x{cols} {}",
+                noise.name()
+            );
+        }
+    }
 }

@@ -306,3 +306,86 @@ fn bonus_analysis_scales_costs_exactly_and_refuses_2_to_the_40() {
     let (inst, d) = Instance::from_problem(&problem(Rational::new(7.into(), 3.into()))).unwrap();
     assert_eq!((inst.moves[0].clone(), d), (vec![(1, 7)], 3.into()));
 }
+
+/// The SMT engine's bookkeeping (PROOFS.md: `proved` only with every trust check passing):
+/// which answer each role requires, and the summary's counts, for every role against every
+/// answer — a `true` for an unexpected answer would turn a failed trust check into a proof.
+#[test]
+fn smt_answers_are_as_expected_only_for_their_role_and_summaries_count_them() {
+    use truecost::claims::smt::{Answer, Logic, Obligation, Role, Solved, Summary};
+    let solved = |role: Role, answer: Answer, seconds: f64| Solved {
+        obligation: Obligation::new("C1", "lemma", "structure", role, Logic::QfLra),
+        answer,
+        seconds,
+    };
+    let unknown = || Answer::Unknown("timeout".into());
+    let roles = [
+        Role::Proof,
+        Role::Hypotheses,
+        Role::Dropped("H1".into()),
+        Role::Printed,
+    ];
+    // (role, unsat, sat, unknown) → as expected?
+    let table = [
+        (true, false, false),
+        (false, true, false),
+        (false, true, false),
+        (true, true, false),
+    ];
+    for (role, (unsat, sat, unk)) in roles.iter().zip(table) {
+        assert_eq!(
+            solved(role.clone(), Answer::Unsat, 0.0).as_expected(),
+            unsat,
+            "{role:?}"
+        );
+        assert_eq!(
+            solved(role.clone(), Answer::Sat(None), 0.0).as_expected(),
+            sat,
+            "{role:?}"
+        );
+        assert_eq!(
+            solved(role.clone(), unknown(), 0.0).as_expected(),
+            unk,
+            "{role:?}"
+        );
+    }
+
+    // A proof: two proofs unsat, two trust checks sat, one printed search sat.
+    let mut run = vec![
+        solved(Role::Proof, Answer::Unsat, 0.25),
+        solved(Role::Proof, Answer::Unsat, 0.5),
+        solved(Role::Hypotheses, Answer::Sat(None), 1.0),
+        solved(Role::Dropped("H1".into()), Answer::Sat(None), 2.0),
+        solved(Role::Printed, Answer::Sat(None), 4.0),
+    ];
+    let s = Summary::of(&run);
+    assert_eq!(
+        (
+            s.proofs,
+            s.proofs_unsat,
+            s.trust_checks,
+            s.trust_ok,
+            s.printed,
+            s.printed_sat,
+            s.unknown
+        ),
+        (2, 2, 2, 2, 1, 1, 0)
+    );
+    assert_eq!(s.seconds, 7.75);
+    assert!(s.proved());
+    // A trust check answered `unsat` (the hypotheses contradictory, or the dropped hypothesis
+    // not needed) is no proof, nor is an unknown answer or a proof obligation found `sat`.
+    run[3] = solved(Role::Dropped("H1".into()), Answer::Unsat, 2.0);
+    let s = Summary::of(&run);
+    assert_eq!((s.trust_checks, s.trust_ok), (2, 1));
+    assert!(!s.proved());
+    run[3] = solved(Role::Dropped("H1".into()), unknown(), 2.0);
+    let s = Summary::of(&run);
+    assert_eq!((s.trust_ok, s.unknown), (1, 1));
+    assert!(!s.proved());
+    run[3] = solved(Role::Dropped("H1".into()), Answer::Sat(None), 2.0);
+    run[1] = solved(Role::Proof, Answer::Sat(None), 0.5);
+    let s = Summary::of(&run);
+    assert_eq!((s.proofs, s.proofs_unsat), (2, 1));
+    assert!(!s.proved());
+}

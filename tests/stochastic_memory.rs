@@ -1,20 +1,23 @@
 //! `memory_estimate` (the estimate behind `solve --max-memory`, issue 12, item 3) against the
 //! heap actually used: this test binary counts every allocation (a global allocator around the
-//! system one) and records the peak of the live bytes while a problem is built, solved by
-//! `optimum`, and — for `all_values` — every exact value is reduced and printed as JSON text, as
+//! system one) and records the peak of the live bytes while a built problem is held and solved
+//! by `optimum`, and — for `all_values` — every exact value is reduced and printed as JSON text, as
 //! `solve --format json` does. The estimate's documented parts are a 16 MiB base for the process
 //! (code, allocator, the parsed file's leftovers: not heap allocated by the solve) plus the
 //! heap of the solve, so
 //!
 //! * the whole estimate must be at least the measured heap peak (`--max-memory` refuses before
 //!   a run that would exceed it, not after), and
-//! * the estimate without the base must be within a factor of the peak (`[0.75, 1.6]`, measured
-//!   0.93–1.29 on 2 Dec 2026) on problems large enough for the solve's own memory to dominate —
+//! * the estimate without the base must be within a factor of the peak (`[0.9, 2]`, measured
+//!   1.03–1.72 on 3 Dec 2026) on problems large enough for the solve's own memory to dominate —
 //!   an estimate far above would refuse runs that fit, far below would let runs past the limit.
+//!   (This test found the problem's own lists counted at 48 bytes an outcome where they hold
+//!   119–152: on a complete graph of 80 states the whole estimate was below the peak.)
 //!
 //! The shapes are chosen so that each part of the estimate dominates somewhere: square grids
 //! (a wide band, many lifting steps and long numerators), thin grids (band width 5–7, where the
-//! problem's outcomes and the per-unknown vectors weigh most), both noise models, γ from 0.5 to
+//! per-unknown vectors weigh more), complete graphs (every action with an outcome per state:
+//! the problem's own lists dominate), both noise models, γ from 0.5 to
 //! 0.999999 (few or many lifted bits), with and without the printed values. Everything runs in
 //! one test and on a rayon pool of two threads, so no other test's allocations and no machine's
 //! core count change the peak.
@@ -23,10 +26,12 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use std::sync::Mutex;
 
+use truecost::model::{Move, Problem};
 use truecost::stochastic::benchmark::cost_grid;
 use truecost::stochastic::linear::{BandOrdering, SparseSystem};
-use truecost::stochastic::policy_iteration::{memory_estimate, optimum};
+use truecost::stochastic::policy_iteration::{memory_estimate, optimum, problem_bytes};
 use truecost::stochastic::{decimal, NoiseModel, Predictability, StochasticProblem};
+use truecost::value::parse_rational;
 
 /// Counts live heap bytes and their peak.
 struct Counting;
@@ -46,7 +51,8 @@ unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         let p = unsafe { System.alloc(layout) };
         if !p.is_null() {
-            let live = LIVE.fetch_add(layout.size(), Relaxed) + layout.size();
+            let size = chunk(layout.size());
+            let live = LIVE.fetch_add(size, Relaxed) + size;
             PEAK.fetch_max(live, Relaxed);
         }
         p
@@ -54,8 +60,15 @@ unsafe impl GlobalAlloc for Counting {
 
     unsafe fn dealloc(&self, p: *mut u8, layout: Layout) {
         unsafe { System.dealloc(p, layout) };
-        LIVE.fetch_sub(layout.size(), Relaxed);
+        LIVE.fetch_sub(chunk(layout.size()), Relaxed);
     }
+}
+
+/// The memory an allocation of `size` bytes takes from glibc's malloc: a header of 8 bytes,
+/// rounded up to 16, at least 32 (the exact rationals' one-limb numbers are 8-byte requests
+/// that take 32).
+fn chunk(size: usize) -> usize {
+    (size + 8).next_multiple_of(16).max(32)
 }
 
 #[global_allocator]
@@ -64,20 +77,21 @@ static COUNTING: Counting = Counting;
 /// The process base of the estimate (the `BASE_BYTES` of its documentation: 16 MiB).
 const BASE: u64 = 16 << 20;
 
-/// The heap peak, above what was live before, of building the problem, solving it and (with
-/// `all_values`) printing every value as `solve --format json` does; and the estimate.
+/// The heap peak, above what was live before the problem was built, of solving it with
+/// `optimum` and (with `all_values`) printing every value as `solve --format json` does; and
+/// the estimate. The problem's own memory counts (it is held throughout the solve), the
+/// transient peak of building it does not (the estimate is made after building, as `solve`
+/// does before it refuses or starts).
 fn measure(
-    rows: usize,
-    cols: usize,
+    deterministic: &Problem,
     noise: NoiseModel,
     gamma: &str,
     all_values: bool,
 ) -> (u64, u64) {
-    let grid = cost_grid(rows, cols, 1).unwrap();
     let gamma = Predictability::parse(gamma).unwrap();
     let before = LIVE.load(Relaxed);
-    PEAK.store(before, Relaxed);
-    let problem = StochasticProblem::from_deterministic(&grid, noise, &gamma).unwrap();
+    let problem = StochasticProblem::from_deterministic(deterministic, noise, &gamma).unwrap();
+    PEAK.store(LIVE.load(Relaxed), Relaxed);
     let estimate = memory_estimate(&problem, all_values).bytes;
     let o = optimum(&problem).unwrap();
     if all_values {
@@ -93,6 +107,26 @@ fn measure(
     (peak, estimate)
 }
 
+/// The complete graph on `n` states (goal `n − 1`, costs 1–5): every state has `n − 1` moves,
+/// so every action has `n` outcomes and the problem's own lists outweigh the solve.
+fn complete(n: usize) -> Problem {
+    let moves = (0..n)
+        .map(|x| {
+            if x == n - 1 {
+                return Vec::new();
+            }
+            (0..n)
+                .filter(|&y| y != x)
+                .map(|y| Move {
+                    successor: y,
+                    cost: parse_rational(&(1 + (7 * x + 3 * y) % 5).to_string()).unwrap(),
+                })
+                .collect()
+        })
+        .collect();
+    Problem::new(moves, 0, vec![n - 1]).unwrap()
+}
+
 #[test]
 fn memory_estimate_brackets_the_measured_heap_peak() {
     let _alone = exclusive();
@@ -100,27 +134,93 @@ fn memory_estimate_brackets_the_measured_heap_peak() {
         .num_threads(2)
         .build()
         .unwrap();
-    let shapes: [(usize, usize, NoiseModel, &str); 7] = [
-        (20, 20, NoiseModel::Paper, "0.99"),
-        (30, 30, NoiseModel::Reference, "0.999"),
-        (40, 40, NoiseModel::Paper, "0.5"),
-        (20, 20, NoiseModel::Paper, "0.999999"),
-        (3, 700, NoiseModel::Paper, "0.5"),
-        (2, 1000, NoiseModel::Reference, "0.5"),
-        (2, 300, NoiseModel::Paper, "0.999"),
+    let grid = |rows, cols| {
+        (
+            format!("grid {rows}x{cols}"),
+            cost_grid(rows, cols, 1).unwrap(),
+        )
+    };
+    let shapes = [
+        (grid(20, 20), NoiseModel::Paper, "0.99"),
+        (grid(30, 30), NoiseModel::Reference, "0.999"),
+        (grid(40, 40), NoiseModel::Paper, "0.5"),
+        (grid(20, 20), NoiseModel::Paper, "0.999999"),
+        (grid(3, 700), NoiseModel::Paper, "0.5"),
+        (grid(2, 1000), NoiseModel::Reference, "0.5"),
+        (grid(2, 300), NoiseModel::Paper, "0.999"),
+        (
+            ("complete 30".into(), complete(30)),
+            NoiseModel::Paper,
+            "0.9",
+        ),
+        (
+            ("complete 60".into(), complete(60)),
+            NoiseModel::Reference,
+            "0.99",
+        ),
     ];
-    for (rows, cols, noise, gamma) in shapes {
+    for ((name, problem), noise, gamma) in &shapes {
         for all_values in [false, true] {
-            let (peak, estimate) = pool.install(|| measure(rows, cols, noise, gamma, all_values));
+            let (peak, estimate) = pool.install(|| measure(problem, *noise, gamma, all_values));
             let case = format!(
-                "{rows}x{cols} {} γ={gamma} all_values={all_values}: heap peak {peak} B, estimate {estimate} B",
+                "{name} {} γ={gamma} all_values={all_values}: heap peak {peak} B, estimate {estimate} B",
                 noise.name()
             );
             assert!(peak <= estimate, "{case}: the estimate is below the peak");
             let ratio = (estimate - BASE) as f64 / peak as f64;
             assert!(
-                (0.75..=1.6).contains(&ratio),
+                (0.9..=2.0).contains(&ratio),
                 "{case}: the solve's part of the estimate is {ratio:.2} × the peak"
+            );
+        }
+    }
+}
+
+/// A chain `0 → 1 → … → n − 1` (goal): one action of two outcomes (the move and stay) per
+/// state, where the actions weigh most against the outcomes.
+fn chain(n: usize) -> Problem {
+    let one = parse_rational("1").unwrap();
+    let moves = (0..n)
+        .map(|x| {
+            (x + 1 < n)
+                .then(|| Move {
+                    successor: x + 1,
+                    cost: one.clone(),
+                })
+                .into_iter()
+                .collect()
+        })
+        .collect();
+    Problem::new(moves, 0, vec![n - 1]).unwrap()
+}
+
+#[test]
+fn the_problem_s_part_bounds_what_the_problem_holds() {
+    let _alone = exclusive();
+    // What a built problem holds on the heap (live bytes after building, less before) against
+    // `problem_bytes`: never below, at most 1.5 times (measured 1.15–1.21 on 3 Dec 2026; before
+    // the problem gave back its lists' spare capacity, a 60×60 grid held 1.75 times what a
+    // 40×40 one holds per outcome).
+    let shapes = [
+        ("chain 5000", chain(5000)),
+        ("chain 300", chain(300)),
+        ("grid 40x40", cost_grid(40, 40, 1).unwrap()),
+        ("grid 60x60", cost_grid(60, 60, 1).unwrap()),
+        ("grid 3x700", cost_grid(3, 700, 1).unwrap()),
+        ("complete 40", complete(40)),
+    ];
+    let gamma = Predictability::parse("0.9").unwrap();
+    for (name, deterministic) in &shapes {
+        for noise in [NoiseModel::Paper, NoiseModel::Reference] {
+            let before = LIVE.load(Relaxed);
+            let problem =
+                StochasticProblem::from_deterministic(deterministic, noise, &gamma).unwrap();
+            let held = (LIVE.load(Relaxed) - before) as u64;
+            let part = problem_bytes(&problem);
+            assert!(
+                held <= part && part as f64 <= 1.5 * held as f64,
+                "{name} {}: holds {held} B, estimated {part} B",
+                noise.name()
             );
         }
     }
@@ -131,7 +231,7 @@ fn small_problems_fit_in_the_base() {
     let _alone = exclusive();
     // Below a few hundred unknowns the solve's heap is a fraction of the 16 MiB base, and the
     // estimate stays close to it: a 5×5 grid's whole run is under 1 MiB.
-    let (peak, estimate) = measure(5, 5, NoiseModel::Paper, "0.9", true);
+    let (peak, estimate) = measure(&cost_grid(5, 5, 1).unwrap(), NoiseModel::Paper, "0.9", true);
     assert!(peak < 1 << 20, "{peak}");
     assert!((BASE..BASE + (1 << 20)).contains(&estimate), "{estimate}");
 }

@@ -509,9 +509,37 @@ pub struct MemoryEstimate {
 /// Bytes per unknown besides its numbers (indices, policy, problem, vectors of the warm start).
 const PER_UNKNOWN: u64 = 1024;
 
+/// Bytes the problem holds per outcome: its exact probability (two one-limb integers in their
+/// own allocations, 32 bytes each from the allocator), weight, `f64` probability, cumulative
+/// probability and successor. Measured 114 on complete graphs (`tests/stochastic_memory.rs`,
+/// 3 Dec 2026, with the allocator's rounding); until then the estimate counted 48 and, with
+/// the problem's lists still holding their spare capacity, was below the measured peak on a
+/// complete graph of 80 states.
+const PER_OUTCOME: u64 = 128;
+
+/// Bytes the problem holds per action (its exact cost, ranges, state and commanded move) on
+/// top of its outcomes: measured about 100–120 on chains and grids.
+const PER_ACTION: u64 = 160;
+
 /// The process itself (code, allocator, the parsed problem file's leftovers): 16 MiB, measured
 /// as the peak of the smallest runs.
 const BASE_BYTES: u64 = 16 << 20;
+
+/// An upper estimate of the heap a built problem holds (its outcomes and actions with the
+/// lists' spare capacity): the first part of [`memory_estimate`].
+///
+/// ```
+/// use truecost::stochastic::benchmark::cost_grid;
+/// use truecost::stochastic::policy_iteration::problem_bytes;
+/// use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
+/// let grid = cost_grid(10, 10, 0).unwrap();
+/// let s = StochasticProblem::from_deterministic(&grid, NoiseModel::Paper, &Predictability::parse("0.9").unwrap()).unwrap();
+/// // More than 100 bytes an outcome (tests/stochastic_memory.rs measures what problems hold).
+/// assert!(problem_bytes(&s) > 100 * s.outcome_total() as u64);
+/// ```
+pub fn problem_bytes(problem: &StochasticProblem) -> u64 {
+    problem.outcome_total() as u64 * PER_OUTCOME + problem.action_total() as u64 * PER_ACTION
+}
 
 /// Estimates the peak memory of [`optimum`] (see [`MemoryEstimate`]); with `all_values`, also
 /// the reduced exact value of every state and its decimal text, as `solve --format json`
@@ -583,8 +611,7 @@ pub fn memory_estimate(problem: &StochasticProblem, all_values: bool) -> MemoryE
     let u = unknowns as u64;
     let number_bytes = (lifted_bits / 16.0).ceil() as u64 + 32;
     let mut bytes = BASE_BYTES
-        + problem.outcome_total() as u64 * 48
-        + problem.action_total() as u64 * 96
+        + problem_bytes(problem)
         + u * PER_UNKNOWN
         + u * band_width as u64 * (8 + 4 + 8)
         + u * lifting_steps as u64 * 4

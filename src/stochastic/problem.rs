@@ -324,6 +324,17 @@ impl StochasticProblem {
             }
             s.denominator.push(d);
         }
+        // The lists grew by doubling: give back their spare capacity (up to half of what a large
+        // problem holds), so a problem holds what `policy_iteration::problem_bytes` estimates.
+        s.action_first.shrink_to_fit();
+        s.action_state.shrink_to_fit();
+        s.cost.shrink_to_fit();
+        s.commanded.shrink_to_fit();
+        s.outcome_first.shrink_to_fit();
+        s.outcomes.shrink_to_fit();
+        s.weight.shrink_to_fit();
+        s.probability_f64.shrink_to_fit();
+        s.cumulative.shrink_to_fit();
         Ok(s)
     }
 

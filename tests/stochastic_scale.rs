@@ -334,6 +334,9 @@ fn memory_sizes_parse_exactly() {
         "1.",
         ".5G",
         "99999999999T",
+        // More than 30 digits are refused before any arithmetic, even when the value is fine.
+        "1048576.000000000000000000000000",
+        "0.000000000000000000000000000001T",
     ] {
         assert!(parse_size(bad).is_err(), "{bad:?}");
     }

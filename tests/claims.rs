@@ -389,3 +389,21 @@ fn smt_answers_are_as_expected_only_for_their_role_and_summaries_count_them() {
     assert_eq!((s.proofs, s.proofs_unsat), (2, 1));
     assert!(!s.proved());
 }
+
+/// Z3 prints Boolean model values as `true`/`false`; the replay reads them as 1 and 0 (the
+/// numerals' own forms are in `parse_numeral`'s documentation).
+#[test]
+fn smt_numerals_read_booleans_as_one_and_zero() {
+    use truecost::claims::smt::parse_numeral;
+    let int = |n: i64| Some(Rational::from_integer(n.into()));
+    assert_eq!(parse_numeral("true"), int(1));
+    assert_eq!(parse_numeral(" false "), int(0));
+    assert_eq!(parse_numeral("(- 3.0)"), int(-3));
+    assert_eq!(
+        parse_numeral("(/ 1.0 4.0)"),
+        Some(parse_rational("0.25").unwrap())
+    );
+    for bad in ["True", "(- true)x", "(/ 1.0)", "(/ 1.0 2.0 3.0)", "x"] {
+        assert_eq!(parse_numeral(bad), None, "{bad}");
+    }
+}

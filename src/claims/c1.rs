@@ -724,6 +724,17 @@ mod tests {
     use crate::claims::qlearning::{QProblem, Terminal};
     use crate::claims::tiny::Tiny;
 
+    /// The full scope checks every initial value the quick scope (CI's) checks, and more, for
+    /// C1 and for C1-corrected (the smoke scope is a different small set).
+    #[test]
+    fn the_full_scope_keeps_every_initial_value_of_the_quick_one() {
+        for values in [initial_values, corrected_values] {
+            let (quick, full) = (values(Scope::Quick), values(Scope::Full));
+            assert!(quick.iter().all(|v| full.contains(v)), "{quick:?} {full:?}");
+            assert!(full.len() > quick.len());
+        }
+    }
+
     /// Issue 10, item 5: the quick scope (CI) checks the `min(0, min Q₀)` term of `R`, which
     /// only a negative initial value exercises: on `0 → 0 (1), 0 → goal (1)` from `Q₀ = −2`,
     /// `R = max(R₁, ⌈(max Q* − (−2))/c⌉) = max(2, 4) = 4`, and the cyclic order needs all 4

@@ -407,3 +407,79 @@ fn smt_numerals_read_booleans_as_one_and_zero() {
         assert_eq!(parse_numeral(bad), None, "{bad}");
     }
 }
+
+/// `truecost learn`'s replay (`claims::replay`) under the orders whose schedule depends on
+/// more than the file's order: far-first sorts the pairs by `h` (the fewest moves of an
+/// optimal path from the successor), and random draws splitmix64 from the seed.
+fn replay_line(json: &str, order: truecost::claims::replay::ReplayOrder, rounds: u64) -> String {
+    use truecost::claims::qlearning::Terminal;
+    use truecost::claims::replay::{replay, InitialValues};
+    let p = truecost::model::file::from_json(json).unwrap();
+    let q0 = InitialValues::parse("0").unwrap();
+    replay(&p, &q0, order, Terminal::HeldAtZero, rounds)
+        .unwrap()
+        .verdict
+        .line()
+}
+
+#[test]
+fn far_first_replays_sort_by_the_successor_s_distance() {
+    use truecost::claims::replay::ReplayOrder;
+    // The chain 3 → 2 → 1 → 4 → 0 (goal), every move of cost 1: Q* = 4, 3, 2, 1 along it.
+    // h of the successors: pair 1→4: 1, 2→1: 2, 3→2: 3, 4→0: 0. Far-first updates 3→2, 2→1,
+    // 1→4, 4→0 in that order, always before what it reads: one step of information a round,
+    // four rounds from Q₀ = 0 (by hand: round ends (1,1,1,1), (2,2,2,1), (3,3,2,1), (4,3,2,1)).
+    // The file's order (1→4, 2→1, 3→2, 4→0) reads each value just after updating it: two
+    // rounds. An `h` computed by one sweep in state order stops before 1, 2 and 3 are known
+    // (their successors come later in the file), and sorting them by index would give three.
+    let chain = r#"{"initial": 3, "goals": [0], "actions": [[],
+        [{"to": 4, "cost": "1"}], [{"to": 1, "cost": "1"}], [{"to": 2, "cost": "1"}],
+        [{"to": 0, "cost": "1"}]]}"#;
+    assert_eq!(
+        replay_line(chain, ReplayOrder::FarFirst, 10),
+        "converged at round 4"
+    );
+    assert_eq!(
+        replay_line(chain, ReplayOrder::FarFirst, 3),
+        "not converged within 3 rounds"
+    );
+    assert_eq!(
+        replay_line(chain, ReplayOrder::Cyclic, 10),
+        "converged at round 2"
+    );
+}
+
+#[test]
+fn random_replays_draw_the_claims_engine_s_stream() {
+    use truecost::claims::replay::ReplayOrder;
+    // The same chains and seed as the kernel's `random_order_zero_by_hand`
+    // (kernel/tests/claims_qlearning_orders.rs), whose rounds are worked out by hand from
+    // splitmix64's published outputs: the replay must draw the same permutations.
+    let chain = |n: usize| {
+        let mut actions: Vec<String> = (0..n - 1)
+            .map(|x| format!(r#"[{{"to": {}, "cost": "1"}}]"#, x + 1))
+            .collect();
+        actions.push("[]".into());
+        format!(
+            r#"{{"initial": 0, "goals": [{}], "actions": [{}]}}"#,
+            n - 1,
+            actions.join(",")
+        )
+    };
+    assert_eq!(
+        replay_line(&chain(4), ReplayOrder::Random(0), 5),
+        "converged at round 1"
+    );
+    assert_eq!(
+        replay_line(&chain(4), ReplayOrder::Cyclic, 5),
+        "converged at round 3"
+    );
+    assert_eq!(
+        replay_line(&chain(5), ReplayOrder::Random(0), 3),
+        "not converged within 3 rounds"
+    );
+    assert_eq!(
+        replay_line(&chain(5), ReplayOrder::Random(0), 10),
+        "converged at round 4"
+    );
+}

@@ -375,3 +375,41 @@ goal-avoiding cycles on all {} problems",
     };
     (printed, corrected)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The accumulators of the parallel enumeration add their counts. Every count is checked
+    /// with both sides non-zero: a claim that holds has no failures on either side, so a
+    /// product instead of a sum would go unnoticed by the verdicts (`0 · 0 = 0 + 0`) until a
+    /// refutation reported a wrong count.
+    #[test]
+    fn merging_accumulators_adds_every_count() {
+        let acc = |k: u64| Acc {
+            cases: 3 * k,
+            no_path: 5 * k,
+            printed_cases: 7 * k,
+            printed_undefined: 11 * k,
+            printed_failures: 13 * k,
+            corrected_failures: 17 * k,
+            karp_checks: 19 * k,
+            internal: (k == 2).then(|| "second".to_string()),
+            ..Acc::default()
+        };
+        let m = merge(acc(1), acc(2));
+        assert_eq!(
+            (
+                m.cases,
+                m.no_path,
+                m.printed_cases,
+                m.printed_undefined,
+                m.printed_failures,
+                m.corrected_failures,
+                m.karp_checks
+            ),
+            (9, 15, 21, 33, 39, 51, 57)
+        );
+        assert_eq!(m.internal.as_deref(), Some("second"));
+    }
+}

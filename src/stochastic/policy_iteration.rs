@@ -525,8 +525,8 @@ const PER_ACTION: u64 = 160;
 /// as the peak of the smallest runs.
 const BASE_BYTES: u64 = 16 << 20;
 
-/// An upper estimate of the heap a built problem holds (its outcomes and actions with the
-/// lists' spare capacity): the first part of [`memory_estimate`].
+/// An upper estimate of the heap a built problem holds (its outcomes and actions; a built
+/// problem's lists keep no spare capacity): the first part of [`memory_estimate`].
 ///
 /// ```
 /// use truecost::stochastic::benchmark::cost_grid;

@@ -185,6 +185,7 @@ impl StochasticProblem {
             },
             e => e,
         })?;
+        commanded.shrink_to_fit();
         s.commanded = commanded;
         Ok(s)
     }

@@ -119,6 +119,27 @@ fn log2(x: &BigInt) -> f64 {
     (top as f64).log2() + shift as f64
 }
 
+/// The system with the given rows of `A` and right-hand sides below `2^rhs_bits` drawn in row
+/// order; and its dense copy (for the determinant).
+fn with_random_rhs(
+    rng: &mut rand_chacha::ChaCha8Rng,
+    rows: Vec<Vec<(usize, i64)>>,
+    rhs_bits: u32,
+) -> (SparseSystem, Vec<Vec<BigInt>>) {
+    use rand::RngExt;
+    let n = rows.len();
+    let mut system = SparseSystem::new();
+    let mut dense = vec![vec![BigInt::from(0); n]; n];
+    for (entries, dense_row) in rows.iter().zip(&mut dense) {
+        for &(j, v) in entries {
+            dense_row[j] = BigInt::from(v);
+        }
+        let rhs = rng.random_range(-(1i128 << rhs_bits)..1i128 << rhs_bits);
+        system.push_row(entries, rhs).unwrap();
+    }
+    (system, dense)
+}
+
 /// A random system with a dominant diagonal (so `det A ≠ 0`), entries below `2^bits` in a band
 /// of half-width `w`, right-hand sides below `2^rhs_bits`; and its dense copy.
 fn random_banded(
@@ -129,26 +150,22 @@ fn random_banded(
     rhs_bits: u32,
 ) -> (SparseSystem, Vec<Vec<BigInt>>) {
     use rand::RngExt;
-    let mut s = SparseSystem::new();
-    let mut dense = vec![vec![BigInt::from(0); n]; n];
-    for (i, row) in dense.iter_mut().enumerate() {
-        let mut entries = Vec::new();
-        let mut off = 0i64;
-        for j in i.saturating_sub(w)..(i + w + 1).min(n) {
-            if j != i && rng.random_range(0..3) > 0 {
-                let v = rng.random_range(-(1i64 << bits) + 1..1i64 << bits);
-                off += v.abs();
-                entries.push((j, v));
+    let rows = (0..n)
+        .map(|i| {
+            let mut entries = Vec::new();
+            let mut off = 0i64;
+            for j in i.saturating_sub(w)..(i + w + 1).min(n) {
+                if j != i && rng.random_range(0..3) > 0 {
+                    let v = rng.random_range(-(1i64 << bits) + 1..1i64 << bits);
+                    off += v.abs();
+                    entries.push((j, v));
+                }
             }
-        }
-        entries.push((i, off + rng.random_range(1..1i64 << bits)));
-        for &(j, v) in &entries {
-            row[j] = BigInt::from(v);
-        }
-        let rhs = rng.random_range(-(1i128 << rhs_bits)..1i128 << rhs_bits);
-        s.push_row(&entries, rhs).unwrap();
-    }
-    (s, dense)
+            entries.push((i, off + rng.random_range(1..1i64 << bits)));
+            entries
+        })
+        .collect();
+    with_random_rhs(rng, rows, rhs_bits)
 }
 
 /// `k` copies of one random `s × s` block with a dominant diagonal on the diagonal of `A`
@@ -172,24 +189,17 @@ fn repeated_block(
             row
         })
         .collect();
-    let n = k * s;
-    let mut system = SparseSystem::new();
-    let mut dense = vec![vec![BigInt::from(0); n]; n];
-    for b in 0..k {
-        for (i, row) in block.iter().enumerate() {
-            let entries: Vec<(usize, i64)> = row
-                .iter()
-                .enumerate()
-                .map(|(j, &v)| (b * s + j, v))
-                .collect();
-            for &(j, v) in &entries {
-                dense[b * s + i][j] = BigInt::from(v);
-            }
-            let rhs = rng.random_range(-(1i128 << rhs_bits)..1i128 << rhs_bits);
-            system.push_row(&entries, rhs).unwrap();
-        }
-    }
-    (system, dense)
+    let rows = (0..k)
+        .flat_map(|b| {
+            block.iter().map(move |row| {
+                row.iter()
+                    .enumerate()
+                    .map(|(j, &v)| (b * s + j, v))
+                    .collect()
+            })
+        })
+        .collect();
+    with_random_rhs(rng, rows, rhs_bits)
 }
 
 /// The lifting steps at which the documented schedule tries a reconstruction, up to `last`:

@@ -107,16 +107,16 @@ fn measure(
     (peak, estimate)
 }
 
-/// The complete graph on `n` states (goal `n − 1`, costs 1–5): every state has `n − 1` moves,
-/// so every action has `n` outcomes and the problem's own lists outweigh the solve.
-fn complete(n: usize) -> Problem {
+/// A problem on `n` states with goal `n − 1` (no moves) and the moves `x → successors(x)`
+/// elsewhere, costs 1–5.
+fn graph(n: usize, successors: impl Fn(usize) -> Vec<usize>) -> Problem {
     let moves = (0..n)
         .map(|x| {
             if x == n - 1 {
                 return Vec::new();
             }
-            (0..n)
-                .filter(|&y| y != x)
+            successors(x)
+                .into_iter()
                 .map(|y| Move {
                     successor: y,
                     cost: parse_rational(&(1 + (7 * x + 3 * y) % 5).to_string()).unwrap(),
@@ -125,6 +125,18 @@ fn complete(n: usize) -> Problem {
         })
         .collect();
     Problem::new(moves, 0, vec![n - 1]).unwrap()
+}
+
+/// The complete graph on `n` states: every state has `n − 1` moves, so every action has `n`
+/// outcomes and the problem's own lists outweigh the solve.
+fn complete(n: usize) -> Problem {
+    graph(n, |x| (0..n).filter(|&y| y != x).collect())
+}
+
+/// A chain `0 → 1 → … → n − 1`: one action of two outcomes (the move and stay) per state,
+/// where the actions weigh most against the outcomes.
+fn chain(n: usize) -> Problem {
+    graph(n, |x| vec![x + 1])
 }
 
 #[test]
@@ -176,30 +188,12 @@ fn memory_estimate_brackets_the_measured_heap_peak() {
     }
 }
 
-/// A chain `0 → 1 → … → n − 1` (goal): one action of two outcomes (the move and stay) per
-/// state, where the actions weigh most against the outcomes.
-fn chain(n: usize) -> Problem {
-    let one = parse_rational("1").unwrap();
-    let moves = (0..n)
-        .map(|x| {
-            (x + 1 < n)
-                .then(|| Move {
-                    successor: x + 1,
-                    cost: one.clone(),
-                })
-                .into_iter()
-                .collect()
-        })
-        .collect();
-    Problem::new(moves, 0, vec![n - 1]).unwrap()
-}
-
 #[test]
 fn the_problem_s_part_bounds_what_the_problem_holds() {
     let _alone = exclusive();
     // What a built problem holds on the heap (live bytes after building, less before) against
     // `problem_bytes`: never below, at most 1.5 times (measured 1.15–1.21 on 3 Dec 2026; before
-    // the problem gave back its lists' spare capacity, a 60×60 grid held 1.75 times what a
+    // the problem's lists were allocated at their final length, a 60×60 grid held 1.75 times what a
     // 40×40 one holds per outcome).
     let shapes = [
         ("chain 5000", chain(5000)),

@@ -506,7 +506,8 @@ pub struct MemoryEstimate {
     pub lifting_steps: usize,
 }
 
-/// Bytes per unknown besides its numbers (indices, policy, problem, vectors of the warm start).
+/// Bytes per unknown besides its numbers (indices, policy, the problem's per-state lists,
+/// vectors of the warm start); the problem's actions and outcomes are [`problem_bytes`].
 const PER_UNKNOWN: u64 = 1024;
 
 /// Bytes the problem holds per outcome: its exact probability (two one-limb integers in their

@@ -127,7 +127,8 @@ impl StochasticProblem {
         gamma: &Predictability,
     ) -> Result<Self, StochasticError> {
         let mut actions = Vec::with_capacity(problem.states());
-        let mut commanded = Vec::new();
+        let moves_total = (0..problem.states()).map(|x| problem.moves(x).len()).sum();
+        let mut commanded = Vec::with_capacity(moves_total);
         for x in 0..problem.states() {
             let moves = problem.moves(x);
             let k = moves.len();
@@ -185,7 +186,6 @@ impl StochasticProblem {
             },
             e => e,
         })?;
-        commanded.shrink_to_fit();
         s.commanded = commanded;
         Ok(s)
     }
@@ -231,19 +231,28 @@ impl StochasticProblem {
                 unique.push(g);
             }
         }
+        // Every list is allocated at its final length (no spare capacity from growing by
+        // doubling), so a problem holds what `policy_iteration::problem_bytes` estimates.
+        let action_total: usize = actions.iter().map(Vec::len).sum();
+        let outcome_total: usize = actions.iter().flatten().map(|a| a.outcomes.len()).sum();
+        let with_first = |len: usize| {
+            let mut v = vec![0];
+            v.reserve_exact(len);
+            v
+        };
         let mut s = StochasticProblem {
             initial,
             is_goal,
             goals: unique,
-            action_first: vec![0],
-            action_state: Vec::new(),
-            cost: Vec::new(),
-            commanded: Vec::new(),
-            outcome_first: vec![0],
-            outcomes: Vec::new(),
-            weight: Vec::new(),
-            probability_f64: Vec::new(),
-            cumulative: Vec::new(),
+            action_first: with_first(n),
+            action_state: Vec::with_capacity(action_total),
+            cost: Vec::with_capacity(action_total),
+            commanded: Vec::with_capacity(action_total),
+            outcome_first: with_first(action_total),
+            outcomes: Vec::with_capacity(outcome_total),
+            weight: Vec::with_capacity(outcome_total),
+            probability_f64: Vec::with_capacity(outcome_total),
+            cumulative: Vec::with_capacity(outcome_total),
             denominator: Vec::with_capacity(n),
             cost_denominator: BigInt::one(),
             provenance,
@@ -325,17 +334,6 @@ impl StochasticProblem {
             }
             s.denominator.push(d);
         }
-        // The lists grew by doubling: give back their spare capacity (up to half of what a large
-        // problem holds), so a problem holds what `policy_iteration::problem_bytes` estimates.
-        s.action_first.shrink_to_fit();
-        s.action_state.shrink_to_fit();
-        s.cost.shrink_to_fit();
-        s.commanded.shrink_to_fit();
-        s.outcome_first.shrink_to_fit();
-        s.outcomes.shrink_to_fit();
-        s.weight.shrink_to_fit();
-        s.probability_f64.shrink_to_fit();
-        s.cumulative.shrink_to_fit();
         Ok(s)
     }
 

@@ -410,14 +410,19 @@ pub fn bonus_sets_by_cycles(inst: &Instance) -> Result<Option<Vec<CycleBonusSet>
                 }
             }
         };
+        // Built by intersection, so that an empty pair of ends (`[0, 0)`: L* = 0 and a
+        // shorter zero-cost path beats π* at every M < 0) is the empty set.
+        let mut exact = Interval::negative();
+        if let End::Closed(b) = hi {
+            exact.at_most(b);
+        }
+        if let End::Closed(a) = lo {
+            exact.at_least(a);
+        }
         out.push(CycleBonusSet {
             optimal_cost: lstar,
             optimal_states: sstar,
-            exact: Interval {
-                lo,
-                hi,
-                empty: false,
-            },
+            exact,
             least_mean_cycle: lav,
             steps,
         });
@@ -462,5 +467,42 @@ mod tests {
             moves: vec![vec![(1, 1), (2, 3)], vec![], vec![]],
         };
         assert!(bonus_sets_by_cycles(&inst).unwrap_err().contains("no move"));
+    }
+
+    /// Two zero-cost goal paths: `0 → 2` (S = 2) and `0 → 1 → 2` (S = 3), so L* = 0 and both
+    /// lengths are optimal. With S* = 2, π*'s average M/2 is the least at every M < 0 (the
+    /// longer path's is M/3 > M/2): the set is all of M < 0. With S* = 3, the shorter path's
+    /// M/2 < M/3 at every M < 0: the set is empty (and says so, not `[0, 0)`).
+    #[test]
+    fn zero_cost_paths_of_two_lengths_leave_the_longer_an_empty_set() {
+        let inst = Instance {
+            initial: 0,
+            is_goal: vec![false, false, true],
+            moves: vec![vec![(2, 0), (1, 0)], vec![(2, 0)], vec![]],
+        };
+        let sets = bonus_sets_by_cycles(&inst).unwrap().unwrap();
+        let got: Vec<(i64, i64, bool, String)> = sets
+            .iter()
+            .map(|s| {
+                (
+                    s.optimal_cost,
+                    s.optimal_states,
+                    s.exact.empty,
+                    s.exact.to_string(),
+                )
+            })
+            .collect();
+        assert_eq!(
+            got,
+            [
+                (0, 2, false, "(-inf, 0)".to_string()),
+                (0, 3, true, "empty".to_string())
+            ]
+        );
+        assert!(sets[1].exact.same_set(&Interval {
+            lo: End::Unbounded,
+            hi: End::Unbounded,
+            empty: true
+        }));
     }
 }

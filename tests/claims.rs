@@ -483,3 +483,33 @@ fn random_replays_draw_the_claims_engine_s_stream() {
         "converged at round 4"
     );
 }
+
+/// `discount`'s breakpoint-work bound, `pairs² · (d + 1)³` with `d` the largest lasso degree
+/// plus the largest path degree, refuses before the search starts. `x1` has 60 self-loops
+/// (lassos `c/(1 − α)`: degree 1) and 100 moves to the goal (paths `g/1`: degree 0), costs all
+/// different, so `d = 1 + 0` and the work is `6000² · 2³ = 2.88·10⁸`, past the bound 2·10⁸
+/// (with the degrees' product, `d = 0`, it would be 3.6·10⁷ and the search would run: minutes).
+#[test]
+fn discount_breakpoint_work_counts_the_sum_of_the_degrees() {
+    use truecost::claims::discount::{DiscountError, MAX_PAIR_WORK};
+    use truecost::model::{Move, Problem};
+    let mut moves: Vec<Move> = (1..=60)
+        .map(|c: i64| Move {
+            successor: 0,
+            cost: Rational::from_integer(c.into()),
+        })
+        .collect();
+    moves.extend((1..=100).map(|g: i64| Move {
+        successor: 1,
+        cost: Rational::from_integer((1000 + g).into()),
+    }));
+    let problem = Problem::new(vec![moves, vec![]], 0, vec![1]).unwrap();
+    const { assert!(6000u64 * 6000 * 8 > MAX_PAIR_WORK && 6000u64 * 6000 <= MAX_PAIR_WORK) };
+    match discount_set(&problem, 10_000) {
+        Err(DiscountError::Effort { what, bound }) => {
+            assert_eq!(bound, MAX_PAIR_WORK);
+            assert!(what.contains("breakpoint work"), "{what}");
+        }
+        other => panic!("{other:?}"),
+    }
+}

@@ -132,3 +132,70 @@ fn files_parse_back_to_the_same_answers() {
     let solved = truecost::claims::smt::discharge(obligations, TIMEOUT_MS);
     assert_files_parse_back(&solved, &["QF_LRA", "QF_LIRA", "QF_NRA"]);
 }
+
+/// `Lasso::stage` by hand: a prefix of one move, then a cycle of three repeated for ever, so
+/// stage `k ≥ 1` is the cycle's move `(k − 1) mod 3` (a cycle whose length divides twice the
+/// prefix would not tell `k − 1` from `k + 1`); a terminating lasso's stages after its prefix
+/// are the termination stage.
+#[test]
+fn lasso_stages_by_hand() {
+    let l = c2::Lasso {
+        prefix: vec![(0, 0)],
+        cycle: vec![(1, 0), (2, 0), (3, 0)],
+        terminates: false,
+        visits_goal: false,
+    };
+    let stages: Vec<Option<c2::MoveId>> = (0..8).map(|k| l.stage(k)).collect();
+    let (a, b, c) = (Some((1, 0)), Some((2, 0)), Some((3, 0)));
+    assert_eq!(stages, [Some((0, 0)), a, b, c, a, b, c, a]);
+    let ends = c2::Lasso {
+        prefix: vec![(0, 1), (1, 1)],
+        cycle: vec![],
+        terminates: true,
+        visits_goal: true,
+    };
+    let stages: Vec<Option<c2::MoveId>> = (0..4).map(|k| ends.stage(k)).collect();
+    assert_eq!(stages, [Some((0, 1)), Some((1, 1)), None, None]);
+}
+
+/// The every-α obligation's replay reads `α` back and asks the oracle at that `α`: a model
+/// of the loop-or-goal structure at `α = 1/2` (where C2 holds) is answered by the oracle, not
+/// refused; an `α` whose denominator reaches 2^20 is refused as not fitting the oracle.
+#[test]
+fn the_every_alpha_replay_asks_the_oracle_at_the_models_alpha() {
+    use truecost::claims::smt::Model;
+    use truecost::value::Rational;
+    let enc = c2::encoding(Scope::Smoke);
+    let every_alpha = enc
+        .obligations
+        .iter()
+        .find(|o| {
+            o.structure == LOOP_OR_GOAL && o.role == Role::Proof && o.lemma.contains("every alpha")
+        })
+        .expect("the every-alpha obligation");
+    let model = |a: Rational| Model {
+        values: vec![
+            ("l1".into(), Rational::from_integer(1.into())),
+            ("l2".into(), Rational::from_integer(3.into())),
+            ("a".into(), a),
+        ],
+    };
+    let half = Rational::new(1.into(), 2.into());
+    match (enc.replay)(every_alpha, &model(half)) {
+        Replay::NotConfirmed(why) => assert!(
+            why.contains("the oracle finds argmin cost = argmax reward at alpha = 1/2"),
+            "{why}"
+        ),
+        other => panic!("{other:?}"),
+    }
+    let fine = Rational::new(1.into(), (1i64 << 20).into());
+    match (enc.replay)(every_alpha, &model(fine)) {
+        Replay::NotConfirmed(why) => assert_eq!(why, "alpha does not fit the oracle"),
+        other => panic!("{other:?}"),
+    }
+    let just_fits = Rational::new(1.into(), ((1i64 << 20) - 1).into());
+    match (enc.replay)(every_alpha, &model(just_fits)) {
+        Replay::NotConfirmed(why) => assert!(why.contains("the oracle finds"), "{why}"),
+        other => panic!("{other:?}"),
+    }
+}

@@ -158,3 +158,42 @@ fn files_parse_back_to_the_same_answers() {
     let solved = discharge(obligations, TIMEOUT_MS);
     assert_files_parse_back(&solved, &["QF_NRA"]);
 }
+
+/// The C3-example replay refuses a model whose `α` is outside `(0, 1)` (at either end, or
+/// beyond it) before asking the oracle, and answers one inside it.
+#[test]
+fn the_example_replay_refuses_an_alpha_outside_the_unit_interval() {
+    use truecost::claims::smt::Model;
+    const BELOW: &str = "threshold < 0: every discount-optimal policy from 0 avoids the goal";
+    let enc = c3::example_encoding(Scope::Smoke);
+    let o = enc
+        .obligations
+        .iter()
+        .find(|o| o.lemma == BELOW)
+        .expect("the below-threshold obligation");
+    let model = |a: Rational| Model {
+        values: vec![("a".into(), a)],
+    };
+    for (a, text) in [
+        (q(3, 2), "3/2"),
+        (q(-1, 2), "-1/2"),
+        (q(1, 1), "1"),
+        (q(0, 1), "0"),
+    ] {
+        match c3::example_replay(o, &model(a)) {
+            Replay::NotConfirmed(why) => {
+                assert_eq!(why, format!("alpha = {text} is not in (0,1)"))
+            }
+            other => panic!("alpha = {text}: {other:?}"),
+        }
+    }
+    // Inside: with no threshold coefficients in the model the polynomial is 0, so "below"
+    // (threshold < 0) is not met: the exact solve is asked and does not confirm.
+    match c3::example_replay(o, &model(q(1, 2))) {
+        Replay::NotConfirmed(why) => assert_eq!(
+            why,
+            format!("the exact solve at alpha = 1/2 does not confirm the failure of '{BELOW}'")
+        ),
+        other => panic!("{other:?}"),
+    }
+}

@@ -222,3 +222,28 @@ fn the_smtlib_files_parse_back_and_resolve_to_their_status() {
         assert!(line.ends_with(&format!("\t{status}")), "{line}");
     }
 }
+
+/// The printed obligation on `x1 = 0 → 1 → 2` and `0 → 2` (moves c0 0→1, c1 0→2, c2 1→2), by
+/// hand. Goal paths: `c1` (S = 2) and `c0 c2` (S = 3). For π* = `c0 c2` the printed `A(u)` of
+/// the shorter path `u = c1` divides by `L(u) = c1`, so its case assumes `c1 > 0`; for π* =
+/// `c1` the longer path's `L(u) = c0 + c2 > 0`. π*'s own cost is never assumed positive.
+/// Optimality: `(L* + M)/S* ≤ (L(u) + M)/S(u)` cross-multiplied; the printed interval:
+/// `M ≥ (1 − S(u)/S*)(S(u)L*/(S* L(u)) − 1)` for a shorter `u`, `M ≤` the same for a longer.
+#[test]
+fn the_printed_obligation_assumes_a_positive_cost_where_it_divides() {
+    let shape = Shape {
+        n: 3,
+        edges: vec![(0, 1), (0, 2), (1, 2)],
+    };
+    let ob = c4::obligation("C4", &shape, Formula::Printed, Role::Proof).expect("two goal paths");
+    let long = "(and (<= (+ c0 c2) c1) (> c1 0.0) (not (= \
+(and (<= (* 3.0 (+ (+ c0 c2) M)) (* 3.0 (+ (+ c0 c2) M))) (<= (* 2.0 (+ (+ c0 c2) M)) (* 3.0 (+ c1 M)))) \
+(and (< M 0.0) (<= (* (- 1.0 (/ 2.0 3.0)) (- (/ (* 2.0 (+ c0 c2)) (* 3.0 c1)) 1.0)) M)))))";
+    let short = "(and (<= c1 (+ c0 c2)) (> (+ c0 c2) 0.0) (not (= \
+(and (<= (* 3.0 (+ c1 M)) (* 2.0 (+ (+ c0 c2) M))) (<= (* 2.0 (+ c1 M)) (* 2.0 (+ c1 M)))) \
+(and (< M 0.0) (<= M (* (- 1.0 (/ 3.0 2.0)) (- (/ (* 3.0 c1) (* 2.0 (+ c0 c2))) 1.0)))))))";
+    let text = ob.smtlib(None);
+    let expected = format!("(assert (or {long} {short}))\n");
+    assert!(text.contains(&expected), "{expected}not in\n{text}");
+    assert!(text.contains("(set-logic QF_NRA)"));
+}

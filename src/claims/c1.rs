@@ -532,6 +532,30 @@ fn replay_command(
     )
 }
 
+/// The note for C1's smallest failure when it is not the headline counterexample (issue 10,
+/// item 4): the headline is the smallest failure with the termination pair at 0 and every
+/// `Q*` finite; a smaller one (the termination pair at 1, or a pair with `Q* = ∞`) is named
+/// too. `None` when the two are the same finding.
+fn termination_pair_note(headline: &Finding, smallest: &Finding) -> Option<String> {
+    if headline.t == smallest.t
+        && headline.q0 == smallest.q0
+        && headline.terminal_q0 == smallest.terminal_q0
+    {
+        return None;
+    }
+    let q = QProblem::new(&smallest.t, Terminal::Updated);
+    let mut q0 = smallest.q0;
+    if let Some(p) = (0..q.len()).find(|&p| q.pairs[p].terminal) {
+        q0[p] = smallest.terminal_q0;
+    }
+    Some(format!(
+        "also refuted at the goal's termination pair (a zero-cost self-loop updated by the same rule): {} ({}; initial values {})",
+        smallest.what,
+        smallest.t.describe(),
+        values_text(&q, &q0)
+    ))
+}
+
 /// Checks C1 as printed and C1-corrected in `scope`. Returns `(C1, C1-corrected)`.
 pub fn check(scope: Scope) -> (ClaimResult, ClaimResult) {
     let domain = initial_values(scope);
@@ -610,22 +634,9 @@ values under a periodic order)",
     };
     let mut printed = printed;
     if let (Some((_, headline)), Some((_, smallest))) = (&acc.printed_cycle_min, &acc.printed_min) {
-        if headline.t != smallest.t
-            || headline.q0 != smallest.q0
-            || headline.terminal_q0 != smallest.terminal_q0
-        {
-            let q = QProblem::new(&smallest.t, Terminal::Updated);
-            let mut q0 = smallest.q0;
-            if let Some(p) = (0..q.len()).find(|&p| q.pairs[p].terminal) {
-                q0[p] = smallest.terminal_q0;
-            }
-            printed.notes.push(format!(
-                "also refuted at the goal's termination pair (a zero-cost self-loop updated by the same rule): {} ({}; initial values {})",
-                smallest.what,
-                smallest.t.describe(),
-                values_text(&q, &q0)
-            ));
-        }
+        printed
+            .notes
+            .extend(termination_pair_note(headline, smallest));
     }
     let mut notes = vec![
         format!(
@@ -756,5 +767,61 @@ mod tests {
             crate::claims::qlearning::run(&q, &q0, Order::Cyclic, 10),
             Run::Converged(4)
         );
+    }
+
+    fn finding(t: &Tiny, q0: Values, terminal_q0: i64) -> Finding {
+        Finding {
+            t: *t,
+            q0,
+            terminal_q0,
+            what: "a failure".into(),
+            order: None,
+            rounds: 1,
+        }
+    }
+
+    /// The extra note names the smallest failure only when it is not the headline: the same
+    /// finding gives none, a different problem, initial values or termination-pair value one.
+    #[test]
+    fn the_termination_pair_note_only_for_a_different_smallest_failure() {
+        let a = Tiny::from_lists(&[vec![(0, 0), (1, 1)], vec![]]);
+        let b = Tiny::from_lists(&[vec![(0, 0), (1, 2)], vec![]]);
+        let zero = [0i64; crate::claims::qlearning::MAX_PAIRS];
+        let mut one = zero;
+        one[0] = 1;
+        let headline = finding(&a, zero, 0);
+        assert_eq!(termination_pair_note(&headline, &headline.clone()), None);
+        for other in [
+            finding(&b, zero, 0),
+            finding(&a, one, 0),
+            finding(&a, zero, 1),
+        ] {
+            let note = termination_pair_note(&headline, &other).expect("a different failure");
+            assert!(
+                note.starts_with("also refuted at the goal's termination pair")
+                    && note.contains(&other.t.describe()),
+                "{note}"
+            );
+        }
+    }
+
+    /// The smallest failure is the one with the smallest initial values (the sum of their
+    /// absolute values, the termination pair's included), not the first enumerated: on
+    /// `0 → 1 (1), 0 → goal (1), 1 → 1 (1)`, where state 1 never reaches the goal (so every
+    /// initial vector fails C1 as printed), with values from {−1, 0, 1, 3}, the first vector
+    /// enumerated is all −1 but the smallest is all 0 with the termination pair at 0.
+    #[test]
+    fn the_smallest_printed_failure_has_the_smallest_initial_values() {
+        let t = Tiny::from_lists(&[vec![(1, 1), (2, 1)], vec![(1, 1)], vec![]]);
+        let mut acc = Acc::default();
+        check_structure(&mut acc, &t, 0, &[-1, 0, 1, 3], &[0]);
+        let moves = QProblem::new(&t, Terminal::Updated).len() - 1;
+        let vectors = 4u64.pow(moves as u32);
+        assert_eq!(acc.printed_cases, 2 * vectors);
+        assert_eq!(acc.printed_failures, 2 * vectors);
+        assert!(acc.printed_cycle_min.is_none());
+        let (_, smallest) = acc.printed_min.expect("a failure");
+        assert_eq!(smallest.q0, [0i64; crate::claims::qlearning::MAX_PAIRS]);
+        assert_eq!(smallest.terminal_q0, 0);
     }
 }

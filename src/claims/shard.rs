@@ -681,4 +681,40 @@ mod tests {
         let e = ShardFile::from_json(&text, "t/1", "x.json").unwrap_err();
         assert!(e.contains("checksum"), "{e}");
     }
+
+    /// A merge that reads fewer sites than the shards recorded (a run of a different build
+    /// that stops early) is refused, naming how many it read; one that meets a site in another
+    /// place is refused too.
+    #[test]
+    fn a_merge_that_leaves_sites_unread_or_reads_another_is_refused() {
+        let part = Part::parse("1/1").unwrap();
+        let (_, entries) = record_shard(part, run_sites);
+        assert_eq!(entries.len(), 3);
+        let shards = || {
+            vec![ShardFile {
+                part,
+                fingerprint: json!({}),
+                entries: entries.clone(),
+                seconds: 0.0,
+            }]
+        };
+        let first_two = || {
+            let total = split("sum", sum_of_owned, |a, b| a + b, || 0);
+            let first = unit("first", || "one".to_string(), String::new);
+            (total, first)
+        };
+        let e = replay(shards(), first_two).unwrap_err();
+        assert_eq!(
+            e,
+            "the merge read 2 of the shards' 3 sites (shards of a different build?)"
+        );
+        let swapped = || {
+            let total = split("sum", sum_of_owned, |a, b| a + b, || 0);
+            let second = unit("second", || "two".to_string(), String::new);
+            (total, second)
+        };
+        let e = replay(shards(), swapped).unwrap_err();
+        assert!(e.contains("met site 'second'"), "{e}");
+        assert_eq!(replay(shards(), run_sites).unwrap(), run_sites());
+    }
 }

@@ -975,4 +975,51 @@ mod tests {
         assert_eq!(a, b);
         assert!(reachable_shape(&[vec![0], vec![]]).is_none());
     }
+
+    /// The formulas' intervals at exact costs, by hand, on `0 → 1 → 2` (c0, c2) and `0 → 2`
+    /// (c1) with costs 1, 5, 1: π* = `c0 c2` (L* = 2, S* = 3), the shorter `u = c1` (L = 5,
+    /// S = 2) bounds `M` from below, and there is no cycle.
+    #[test]
+    fn formula_intervals_at_exact_costs_by_hand() {
+        let shape = Shape {
+            n: 3,
+            edges: vec![(0, 1), (0, 2), (1, 2)],
+        };
+        let costs = [Q::int(1), Q::int(5), Q::int(1)];
+        let paths = shape.goal_paths();
+        let p = paths.iter().find(|w| w.len == 3).expect("the long path");
+        let at = |f: Formula| formula_interval(&shape, &costs, p, f).expect("defined");
+        // Planted: ((S* − 1) L(u) − (S(u) − 1) L*) / (S(u) − S*) = (2·5 − 1·2)/(−1) = −8.
+        let planted = at(Formula::Planted);
+        assert!(planted.contains(Q::int(-8)) && planted.contains(Q::new(-1, 2)));
+        assert!(!planted.contains(Q::new(-17, 2)) && !planted.contains(Q::ZERO));
+        // Corrected: (S* L(u) − S(u) L*) / (S(u) − S*) = (15 − 4)/(−1) = −11.
+        let corrected = at(Formula::Corrected);
+        assert!(corrected.contains(Q::int(-11)) && !corrected.contains(Q::new(-23, 2)));
+        // Printed: (1 − 2/3)(2·2/(3·5) − 1) = (1/3)(−11/15) = −11/45.
+        let printed = at(Formula::Printed);
+        assert!(printed.contains(Q::new(-11, 45)) && !printed.contains(Q::new(-12, 45)));
+        // A zero L(u) leaves the printed formula undefined.
+        let zero = [Q::int(1), Q::ZERO, Q::int(1)];
+        assert!(formula_interval(&shape, &zero, p, Formula::Printed).is_none());
+    }
+
+    /// A model's value is replayed only below 2^40 in numerator and denominator.
+    #[test]
+    fn model_values_fit_below_two_to_the_forty() {
+        let big = BigInt::from(1i64 << 40);
+        let one = BigInt::from(1);
+        assert!(to_q(&Rational::new(big.clone(), one.clone())).is_none());
+        assert!(to_q(&Rational::new(-big.clone(), one.clone())).is_none());
+        assert!(to_q(&Rational::new(one.clone(), big.clone())).is_none());
+        let below: BigInt = &big - 1;
+        assert_eq!(
+            to_q(&Rational::new(below.clone(), one.clone())),
+            Some(Q::int((1i128 << 40) - 1))
+        );
+        assert_eq!(
+            to_q(&Rational::new(one, below)),
+            Some(Q::new(1, (1i128 << 40) - 1))
+        );
+    }
 }

@@ -14,13 +14,17 @@ use truecost::claims::Scope;
 /// the goal (cost l2) and terminate.
 const LOOP_OR_GOAL: &str = "0: ->0 (l1), ->1 (l2); 1 (goal)";
 
-fn find<'a>(obligations: &'a [Obligation], structure: &str, role: &Role) -> &'a Obligation {
+/// The obligation of `structure` with `role` whose lemma contains `lemma`.
+fn find<'a>(
+    obligations: &'a [Obligation],
+    structure: &str,
+    role: &Role,
+    lemma: &str,
+) -> &'a Obligation {
     obligations
         .iter()
-        .find(|o| {
-            o.structure == structure && &o.role == role && o.lemma.contains("every functional")
-        })
-        .unwrap_or_else(|| panic!("no {role:?} obligation for {structure}"))
+        .find(|o| o.structure == structure && &o.role == role && o.lemma.contains(lemma))
+        .unwrap_or_else(|| panic!("no {role:?} obligation '{lemma}' for {structure}"))
 }
 
 #[test]
@@ -33,14 +37,24 @@ fn hand_checked_structure() {
     assert!(ls[1].terminates && ls[1].prefix.len() == 1);
 
     let enc = c2::encoding(Scope::Smoke);
-    let hyp = find(&enc.obligations, LOOP_OR_GOAL, &Role::Hypotheses);
+    let hyp = find(
+        &enc.obligations,
+        LOOP_OR_GOAL,
+        &Role::Hypotheses,
+        "every functional",
+    );
     let expected = "(set-info :smt-lib-version 2.6)\n(set-logic QF_LRA)\n\
 (set-info :source |truecost 0.1.0: C2 / argmin cost = argmax reward (r = -l), every functional / \
 0: ->0 (l1), ->1 (l2); 1 (goal) / hypotheses satisfiable|)\n\
 (declare-const l1 Real)\n(declare-const l2 Real)\n(assert (>= l1 0.0))\n(assert (>= l2 0.0))\n(check-sat)\n(exit)\n";
     assert_eq!(hyp.smtlib(None), expected);
 
-    let proof = find(&enc.obligations, LOOP_OR_GOAL, &Role::Proof);
+    let proof = find(
+        &enc.obligations,
+        LOOP_OR_GOAL,
+        &Role::Proof,
+        "every functional",
+    );
     let text = proof.smtlib(None);
     // Values derived by hand from the lassos. Total: looping is +inf iff l1 > 0, the goal
     // lasso costs l2. Discounted (1/2): looping costs l1/(1 - 1/2) = 2 l1, its reward is the
@@ -63,13 +77,7 @@ fn hand_checked_structure() {
 
     // Discounted for every real α: the loop costs l1/(1 − α) = N/D with N = D·0 + l1, the goal
     // lasso l2/1; the reward's numerators have the negated stages.
-    let every_alpha = enc
-        .obligations
-        .iter()
-        .find(|o| {
-            o.structure == LOOP_OR_GOAL && o.role == Role::Proof && o.lemma.contains("every alpha")
-        })
-        .expect("the every-alpha obligation");
+    let every_alpha = find(&enc.obligations, LOOP_OR_GOAL, &Role::Proof, "every alpha");
     let text = every_alpha.smtlib(None);
     assert!(text.contains("(set-logic QF_NRA)"));
     for fragment in [
@@ -166,13 +174,7 @@ fn the_every_alpha_replay_asks_the_oracle_at_the_models_alpha() {
     use truecost::claims::smt::Model;
     use truecost::value::Rational;
     let enc = c2::encoding(Scope::Smoke);
-    let every_alpha = enc
-        .obligations
-        .iter()
-        .find(|o| {
-            o.structure == LOOP_OR_GOAL && o.role == Role::Proof && o.lemma.contains("every alpha")
-        })
-        .expect("the every-alpha obligation");
+    let every_alpha = find(&enc.obligations, LOOP_OR_GOAL, &Role::Proof, "every alpha");
     let model = |a: Rational| Model {
         values: vec![
             ("l1".into(), Rational::from_integer(1.into())),

@@ -928,3 +928,30 @@ fn costs_beyond_the_exact_solvers_limits_are_refused_clearly() {
         format!("2{}", "0".repeat(25))
     );
 }
+
+/// `Optimum::distance` names the lowest-index state among those attaining the largest
+/// `|V − G*|` (its documentation), whatever the signs: on `0 → 1 (goal)` at cost 1 with
+/// γ = 1/2 (`G*(0) = 2`, `G*(1) = 0`), `V = (7/4, 1/4)` deviates by −1/4 and +1/4, and
+/// `V = G*` by 0 and 0: state 0 both times; `V = (2, 1/4)` makes state 1 the worst.
+#[test]
+fn distance_names_the_lowest_worst_state_on_ties() {
+    let p = Problem::new(moves(&[&[1], &[]]), 0, vec![1]).unwrap();
+    let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &gamma("0.5")).unwrap();
+    let o = optimum(&s).unwrap();
+    let at = |v0: &str, v1: &str| {
+        let (v0, v1) = (q(v0), q(v1));
+        o.distance(0, move |x| {
+            Some(if x == 0 { v0.clone() } else { v1.clone() })
+        })
+    };
+    let d = at("1.75", "0.25");
+    assert_eq!(
+        (d.worst_state, d.max_abs.clone(), d.compared),
+        (Some(0), q("0.25"), 2)
+    );
+    assert_eq!(d.initial, Some(q("-0.25")));
+    let d = at("2", "0");
+    assert_eq!((d.worst_state, d.max_abs.clone()), (Some(0), q("0")));
+    let d = at("2", "0.25");
+    assert_eq!((d.worst_state, d.max_abs), (Some(1), q("0.25")));
+}

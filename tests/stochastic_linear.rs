@@ -313,3 +313,67 @@ fn lifting_takes_the_steps_the_schedule_documents() {
     }
     assert_eq!(cases, 72);
 }
+
+/// `push_row`'s word-size limits at their edges: an entry, alone or summed from duplicates of
+/// its column, must be below 2^62 in magnitude; a right-hand side below 2^100; a column must
+/// fit 32 bits. Each case on a fresh system (a refused row is not to be used further).
+#[test]
+fn push_row_refuses_entries_from_2_to_the_62_and_right_hand_sides_from_2_to_the_100() {
+    let row = |entries: &[(usize, i64)], rhs: i128| SparseSystem::new().push_row(entries, rhs);
+    let edge = 1i64 << 62;
+    assert_eq!(row(&[(0, edge)], 0), Err(LinearError::TooLarge));
+    assert_eq!(row(&[(0, -edge)], 0), Err(LinearError::TooLarge));
+    assert_eq!(row(&[(0, edge - 1)], 0), Ok(()));
+    assert_eq!(row(&[(0, 1 - edge)], 0), Ok(()));
+    let half = 1i64 << 61;
+    assert_eq!(row(&[(0, half), (0, half)], 0), Err(LinearError::TooLarge));
+    assert_eq!(
+        row(&[(0, -half), (1, 1), (0, -half)], 0),
+        Err(LinearError::TooLarge)
+    );
+    // Duplicates are summed: (2^61 + 2^61 − 1)·z = 3·(2^62 − 1) gives z = 3.
+    let mut s = SparseSystem::new();
+    s.push_row(&[(0, half), (0, half - 1)], 3 * i128::from(edge - 1))
+        .unwrap();
+    let z = solve_exact(&s).unwrap();
+    assert_eq!(z.numerators[0].clone() / &z.denominator, BigInt::from(3));
+    assert_eq!(z.numerators[0].clone() % &z.denominator, BigInt::from(0));
+    let big = 1i128 << 100;
+    assert_eq!(row(&[(0, 1)], big), Err(LinearError::TooLarge));
+    assert_eq!(row(&[(0, 1)], -big), Err(LinearError::TooLarge));
+    assert_eq!(row(&[(0, 1)], big - 1), Ok(()));
+    assert_eq!(row(&[(0, 1)], 1 - big), Ok(()));
+    assert_eq!(row(&[(1 << 32, 1)], 0), Err(LinearError::TooLarge));
+    assert_eq!(row(&[((1 << 32) - 1, 1)], 0), Ok(()));
+}
+
+/// When the f64 estimate of the system is singular but the system is not, the schedule's
+/// `expected` falls back to the Hadamard bound (`hadamard_bits`, documented as
+/// `2·(Σ ½·log2 ‖row‖² + log2 max|r| + log2(n + 1)) + 8` bits, rows and right-hand sides as
+/// f64). The rows `(2^54 + 1, 2^54)` and `(2^54, 2^54 − 1)` have determinant −1 but all round
+/// to 2^54 in f64: ‖row‖² = 2^109 each, so `2·(109 + 0 + log2 3) + 8 = 229.2` gives 230 bits
+/// and `⌈230 / log2 p⌉ + 1 = 9` steps with p just below 2^31. The solution is still exact:
+/// `(1, −1)` for the right-hand sides `(1, 1)`.
+#[test]
+fn an_f64_singular_estimate_falls_back_to_the_hadamard_bound() {
+    use truecost::stochastic::linear::solve_exact_with;
+    let a = 1i64 << 54;
+    let mut s = SparseSystem::new();
+    s.push_row(&[(0, a + 1), (1, a)], 1).unwrap();
+    s.push_row(&[(0, a), (1, a - 1)], 1).unwrap();
+    let mut seen = Vec::new();
+    let z = solve_exact_with(&s, &mut |l| seen.push(l)).unwrap();
+    // (a+1)·x + a·y = 1 and a·x + (a−1)·y = 1: x = 1, y = −1.
+    assert_eq!(&z.numerators[0] / &z.denominator, BigInt::from(1));
+    assert_eq!(&z.numerators[1] / &z.denominator, BigInt::from(-1));
+    assert!(z.denominator == BigInt::from(1) || z.denominator == BigInt::from(-1));
+    let log2_p = 2_147_483_629f64.log2();
+    let bits = (2.0 * (109.0 + 3f64.log2()) + 8.0f64).ceil();
+    assert_eq!(bits, 230.0);
+    let expected = (bits / log2_p).ceil() as usize + 1;
+    assert_eq!(expected, 9);
+    assert!(
+        !seen.is_empty() && seen.iter().all(|l| l.expected == expected),
+        "{seen:?}"
+    );
+}

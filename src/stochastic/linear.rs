@@ -1041,6 +1041,39 @@ mod tests {
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
+    /// `hadamard_bits` by hand: `2·(Σ ½·log2 max(‖row‖², 1) + log2 max(max|r|, 1) +
+    /// log2(n + 1)) + 8`, rounded up. The identity of size 2 with right-hand sides 1:
+    /// `2·log2 3 + 8 = 11.17` gives 12; rows `(3, 4)` and `(0, 1)` with right-hand sides 8
+    /// and −2: `2·(log2 5 + 0 + 3 + log2 3) + 8 = 2·6.91 + 8 = 21.81` gives 22.
+    #[test]
+    fn hadamard_bits_by_hand() {
+        let mut s = SparseSystem::new();
+        s.push_row(&[(0, 1)], 1).unwrap();
+        s.push_row(&[(1, 1)], 1).unwrap();
+        assert_eq!(hadamard_bits(&s), 12);
+        let mut s = SparseSystem::new();
+        s.push_row(&[(0, 3), (1, 4)], 8).unwrap();
+        s.push_row(&[(1, 1)], -2).unwrap();
+        assert_eq!(hadamard_bits(&s), 22);
+    }
+
+    /// The symmetric residue of `t` modulo an odd `m` is in `(−m/2, m/2]`: with `m = 7` and
+    /// `half = 7 >> 1 = 3`, the residues 0..=3 stay, 4..=6 become −3..=−1 (3 stays 3: at
+    /// `t = half` the residue is `half`, not `half − m = −4`, which is outside the range).
+    #[test]
+    fn symmetric_residues_by_hand() {
+        let m = UBig::from(7u8);
+        let half = &m >> 1usize;
+        let got: Vec<IBig> = (0u8..7)
+            .map(|t| symmetric(UBig::from(t), &m, &half))
+            .collect();
+        let want: Vec<IBig> = [0, 1, 2, 3, -3, -2, -1]
+            .into_iter()
+            .map(IBig::from)
+            .collect();
+        assert_eq!(got, want);
+    }
+
     /// A random sparse system shaped like policy evaluation: `s·z_i − Σ w·z_j = r_i` with
     /// `Σ w < s` on random neighbours.
     fn random_system(n: usize, seed: u64) -> SparseSystem {

@@ -955,3 +955,50 @@ fn distance_names_the_lowest_worst_state_on_ties() {
     let d = at("2", "0.25");
     assert_eq!((d.worst_state, d.max_abs), (Some(1), q("0.25")));
 }
+
+/// Policy iteration's initial policy is the deterministic optimum over the commanded moves:
+/// where that optimum is not the attractor's choice, it saves the improvement rounds the
+/// attractor's policy needs. `0 → goal` costs 10, `0 → 1 → goal` costs 1 + 1; the
+/// attractor (reaching a goal in the fewest moves) takes the costly direct move. Fully
+/// predictable (γ = 1) and at γ = 0.9 the cheap detour is optimal from the start: no
+/// improvement round; the same problem read back from a file (outcomes only, so the
+/// attractor's policy) needs one.
+#[test]
+fn the_deterministic_optimum_start_needs_no_improvement_where_the_attractor_does() {
+    let p = Problem::new(
+        vec![
+            vec![
+                Move {
+                    successor: 2,
+                    cost: q("10"),
+                },
+                Move {
+                    successor: 1,
+                    cost: q("1"),
+                },
+            ],
+            vec![Move {
+                successor: 2,
+                cost: q("1"),
+            }],
+            vec![],
+        ],
+        0,
+        vec![2],
+    )
+    .unwrap();
+    for g in ["1", "0.9"] {
+        let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &gamma(g)).unwrap();
+        let o = optimum(&s).unwrap();
+        assert_eq!(o.stats.initial_policy, "deterministic-optimum");
+        assert_eq!(o.stats.float_iterations, 0, "gamma {g}");
+        let ProblemFile::Stochastic(back) = file::from_json(&file::to_json(&s, None)).unwrap()
+        else {
+            panic!("a stochastic file")
+        };
+        let r = optimum(&back).unwrap();
+        assert_eq!(r.stats.initial_policy, "attractor");
+        assert_eq!(r.stats.float_iterations, 1, "gamma {g}");
+        assert_eq!(o.cost_to_go_all(), r.cost_to_go_all());
+    }
+}

@@ -1002,3 +1002,54 @@ fn the_deterministic_optimum_start_needs_no_improvement_where_the_attractor_does
         assert_eq!(o.cost_to_go_all(), r.cost_to_go_all());
     }
 }
+
+/// Exact value iteration by hand on `0 → 1 (goal)` at cost 1 with γ = 1/2 (`G = 1 + G/2`:
+/// 1, 3/2, 7/4, 15/8, …, changes 1, 1/2, 1/4, 1/8), plus a state 2 with only a self-loop
+/// (`G* = +∞`). The stopping test `max change ≤ tolerance` is exact: with tolerance 3/8 the
+/// run stops after sweep 3 (change 1/4), with 1/4 also after sweep 3 (equality stops), with
+/// 1/5 after sweep 4; the reported last change is that sweep's change exactly. Only the
+/// finite non-goal states are swept: one backup a sweep, and state 2 stays `+∞`.
+#[test]
+fn exact_value_iteration_stops_by_its_tolerance_exactly() {
+    let p = Problem::new(moves(&[&[1], &[], &[2]]), 0, vec![1]).unwrap();
+    let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &gamma("0.5")).unwrap();
+    for (tol, sweeps, value, change) in [
+        ("3/8", 3, "7/4", "1/4"),
+        ("1/4", 3, "7/4", "1/4"),
+        ("1/5", 4, "15/8", "1/8"),
+        ("1/8", 4, "15/8", "1/8"),
+    ] {
+        let o = ViOptions::from_below(Schedule::Synchronous, q(tol), 100).unwrap();
+        let r = value_iteration_exact(&s, &o);
+        assert!(r.converged, "tolerance {tol}");
+        assert_eq!(r.sweeps, sweeps, "tolerance {tol}");
+        assert_eq!(
+            r.cost_to_go[0],
+            Extended::Finite(q(value)),
+            "tolerance {tol}"
+        );
+        assert_eq!(
+            r.last_change,
+            Extended::Finite(q(change)),
+            "tolerance {tol}"
+        );
+        assert_eq!(r.cost_to_go[2], Extended::Infinite);
+        assert_eq!(r.backups, sweeps, "tolerance {tol}");
+    }
+    // A goal with an action (files allow it) is not swept either: `0 → 1 (goal)` at cost 1
+    // with probability 1/2 (else stay), and the goal's move back to 0. G(0) = 1 + G(0)/2 as
+    // above; one backup a sweep, the goal stays 0.
+    let text = r#"{"initial": 0, "goals": [1], "actions": [
+        [ { "cost": "1", "outcomes": [ { "to": 1, "p": "1/2" }, { "to": 0, "p": "1/2" } ] } ],
+        [ { "to": 0, "cost": "1" } ] ]}"#;
+    let ProblemFile::Stochastic(s) = file::from_json(text).unwrap() else {
+        panic!("a stochastic file")
+    };
+    let o = ViOptions::from_below(Schedule::Synchronous, q("1/4"), 100).unwrap();
+    let r = value_iteration_exact(&s, &o);
+    assert_eq!((r.sweeps, r.backups), (3, 3));
+    assert_eq!(
+        r.cost_to_go,
+        [Extended::Finite(q("7/4")), Extended::Finite(q("0"))]
+    );
+}

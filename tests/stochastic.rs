@@ -1000,6 +1000,21 @@ fn the_deterministic_optimum_start_needs_no_improvement_where_the_attractor_does
         assert_eq!(r.stats.initial_policy, "attractor");
         assert_eq!(r.stats.float_iterations, 1, "gamma {g}");
         assert_eq!(o.cost_to_go_all(), r.cost_to_go_all());
+        // Value iteration's greedy policies (exact, and f64 on the nearest f64 model) take
+        // the cheap detour too: the first minimising action; the goal terminates.
+        use truecost::model::Decision;
+        let options = ViOptions::from_below(Schedule::Synchronous, q("1/1000"), 10_000).unwrap();
+        let greedy = [
+            Some(Decision::Move(1)),
+            Some(Decision::Move(0)),
+            Some(Decision::Terminate),
+        ];
+        let exact = value_iteration_exact(&s, &options);
+        assert!(exact.converged);
+        assert_eq!(exact.policy, greedy, "gamma {g}");
+        let float = value_iteration_f64(&s, &FloatModel::nearest(&s), &options);
+        assert!(float.converged);
+        assert_eq!(float.policy, greedy, "gamma {g}");
     }
 }
 

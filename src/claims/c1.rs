@@ -769,6 +769,47 @@ mod tests {
         );
     }
 
+    /// A failure's `rounds` is the first number of rounds after which it shows: for C1-corrected
+    /// without H2 (a cyclic run whose round-end values repeat), a run of exactly that many
+    /// rounds finds the repetition and one round fewer does not. On the smoke scope's
+    /// families, whose smallest such failure repeats from round `from` with period `p`.
+    #[test]
+    fn a_dropped_h2_failure_shows_after_its_rounds_and_not_before() {
+        let mut checked = 0;
+        for spec in specs(Scope::Smoke) {
+            let (acc, _) = enumerate(
+                &spec,
+                Acc::default,
+                |acc, t, i| {
+                    check_structure(
+                        acc,
+                        t,
+                        i,
+                        initial_values(Scope::Smoke),
+                        corrected_values(Scope::Smoke),
+                    )
+                },
+                merge,
+            );
+            let Some((_, f)) = acc.drop_h2 else { continue };
+            let held = QProblem::new(&f.t, Terminal::HeldAtZero);
+            let Run::Cycles(from, period) = run(&held, &f.q0, Order::Cyclic, f.rounds) else {
+                panic!(
+                    "{}: no repetition within {} rounds",
+                    f.t.describe(),
+                    f.rounds
+                )
+            };
+            assert_eq!(from + period, f.rounds);
+            assert!(matches!(
+                run(&held, &f.q0, Order::Cyclic, f.rounds - 1),
+                Run::NotWithin(_)
+            ));
+            checked += 1;
+        }
+        assert!(checked > 0);
+    }
+
     fn finding(t: &Tiny, q0: Values, terminal_q0: i64) -> Finding {
         Finding {
             t: *t,

@@ -63,7 +63,7 @@ struct Graph {
 }
 
 fn overflow() -> String {
-    "the exact bonus search overflowed 128-bit integers (costs too large)".into()
+    "the exact bonus search overflowed its 64- and 128-bit integers (costs too large)".into()
 }
 
 impl Graph {
@@ -450,6 +450,21 @@ mod tests {
         assert_eq!(
             (sets[0].exact.lo, sets[0].exact.hi, sets[0].exact.empty),
             (End::Unbounded, End::Closed(Q::int(-2)), false)
+        );
+    }
+
+    /// Costs whose sums leave 64 bits are refused, naming the overflow, not wrapped: two moves
+    /// of 2^62 make a goal path of 2^63.
+    #[test]
+    fn overflowing_costs_are_refused() {
+        let inst = Instance {
+            initial: 0,
+            is_goal: vec![false, false, true],
+            moves: vec![vec![(1, 1 << 62)], vec![(2, 1 << 62)], vec![]],
+        };
+        assert_eq!(
+            bonus_sets_by_cycles(&inst).unwrap_err(),
+            "the exact bonus search overflowed its 64- and 128-bit integers (costs too large)"
         );
     }
 

@@ -513,3 +513,19 @@ fn discount_breakpoint_work_counts_the_sum_of_the_degrees() {
         other => panic!("{other:?}"),
     }
 }
+
+/// A scope's name reads back to the scope (the merge of shards reads the scope from their
+/// fingerprint this way); other texts, other cases included, are no scope.
+#[test]
+fn scope_names_read_back() {
+    for s in [Scope::Smoke, Scope::Quick, Scope::Full] {
+        assert_eq!(Scope::from_name(s.name()), Some(s));
+    }
+    assert_eq!(
+        [Scope::Smoke, Scope::Quick, Scope::Full].map(Scope::name),
+        ["smoke", "quick", "full"]
+    );
+    for other in ["", "Quick", "quick ", "ful", "all"] {
+        assert_eq!(Scope::from_name(other), None, "{other:?}");
+    }
+}

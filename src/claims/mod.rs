@@ -64,6 +64,24 @@ impl Scope {
             Scope::Full => "full",
         }
     }
+
+    /// The scope of a name given by [`Scope::name`] (`None` for any other text).
+    ///
+    /// ```
+    /// use truecost::claims::Scope;
+    /// for s in [Scope::Smoke, Scope::Quick, Scope::Full] {
+    ///     assert_eq!(Scope::from_name(s.name()), Some(s));
+    /// }
+    /// assert_eq!(Scope::from_name("Quick"), None);
+    /// ```
+    pub fn from_name(name: &str) -> Option<Scope> {
+        match name {
+            "smoke" => Some(Scope::Smoke),
+            "quick" => Some(Scope::Quick),
+            "full" => Some(Scope::Full),
+            _ => None,
+        }
+    }
 }
 
 /// The verdict on a claim (issue 5, item 1).

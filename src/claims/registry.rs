@@ -325,12 +325,7 @@ pub fn run_shard(
 pub fn merge(files: &[(String, String)]) -> Result<Report, String> {
     let shards = shard::read_complete_set(files, shard::VERIFY_FORMAT)?;
     let fp = shard::Fingerprint(&shards[0].fingerprint);
-    let scope = match fp.text("scope") {
-        "smoke" => Scope::Smoke,
-        "quick" => Scope::Quick,
-        "full" => Scope::Full,
-        _ => return Err(fp.bad("scope")),
-    };
+    let scope = Scope::from_name(fp.text("scope")).ok_or_else(|| fp.bad("scope"))?;
     let only: Option<String> = fp.field("claim")?;
     let options = Options {
         smt: fp.field("smt")?,

@@ -973,6 +973,9 @@ mod tests {
         let a = reachable_shape(&[vec![1, 2], vec![3], vec![2], vec![]]).unwrap();
         let b = reachable_shape(&[vec![2, 1], vec![1], vec![3], vec![]]).unwrap();
         assert_eq!(a, b);
+        // The lexicographically least of the two labellings, by hand: the self-loop state
+        // labelled 1 gives (1,1) before the other labelling's (1,3).
+        assert_eq!(a.edges, [(0, 1), (0, 2), (1, 1), (2, 3)]);
         assert!(reachable_shape(&[vec![0], vec![]]).is_none());
     }
 

@@ -65,7 +65,8 @@ impl Scope {
         }
     }
 
-    /// The scope of a name given by [`Scope::name`] (`None` for any other text).
+    /// The scope of a name given by [`Scope::name`] (`None` for any other text), read as the
+    /// command line reads `--scope` (the `clap::ValueEnum` derive, case-sensitive).
     ///
     /// ```
     /// use truecost::claims::Scope;
@@ -75,12 +76,7 @@ impl Scope {
     /// assert_eq!(Scope::from_name("Quick"), None);
     /// ```
     pub fn from_name(name: &str) -> Option<Scope> {
-        match name {
-            "smoke" => Some(Scope::Smoke),
-            "quick" => Some(Scope::Quick),
-            "full" => Some(Scope::Full),
-            _ => None,
-        }
+        <Scope as clap::ValueEnum>::from_str(name, false).ok()
     }
 }
 

@@ -46,6 +46,28 @@ fn moves(list: &[&[usize]]) -> Vec<Vec<Move>> {
         .collect()
 }
 
+/// Moves `(successor, cost)` per state.
+fn weighted(list: &[&[(usize, &str)]]) -> Vec<Vec<Move>> {
+    list.iter()
+        .map(|succ| {
+            succ.iter()
+                .map(|&(y, c)| Move {
+                    successor: y,
+                    cost: q(c),
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The stochastic problem of a file's text (one that lists outcomes).
+fn stochastic_file(text: &str) -> StochasticProblem {
+    match file::from_json(text).unwrap() {
+        ProblemFile::Stochastic(s) => *s,
+        ProblemFile::Deterministic(_) => panic!("a stochastic file"),
+    }
+}
+
 fn strings(values: &[Extended]) -> Vec<String> {
     values.iter().map(|v| v.to_string()).collect()
 }
@@ -798,9 +820,7 @@ fn stochastic_files_round_trip_and_keep_their_optimum() {
     let det = p.to_problem(StepCost::Euclidean);
     let s = StochasticProblem::from_deterministic(&det, NoiseModel::Paper, &gamma("0.8")).unwrap();
     let text = file::to_json(&s, Some("problem 16"));
-    let ProblemFile::Stochastic(back) = file::from_json(&text).unwrap() else {
-        panic!("a stochastic file")
-    };
+    let back = stochastic_file(&text);
     for a in 0..s.action_total() {
         let o1: Vec<_> = s
             .outcomes(a)
@@ -913,16 +933,12 @@ fn huge_probability_denominators_are_refused_not_wrapped() {
 #[test]
 fn costs_beyond_the_exact_solvers_limits_are_refused_clearly() {
     let text = r#"{"initial":0,"goals":[1],"actions":[[{"cost":"1e40","outcomes":[{"to":1,"p":"1/2"},{"to":0,"p":"1/2"}]}],[]]}"#;
-    let ProblemFile::Stochastic(s) = file::from_json(text).unwrap() else {
-        panic!("a stochastic file")
-    };
+    let s = stochastic_file(text);
     let e = optimum(&s).unwrap_err().to_string();
     assert!(e.contains("exceed 2^100"), "{e}");
     // Just inside the limit the optimum is exact: G = c + G/2 ⇒ G = 2c.
     let text = text.replace("1e40", "1e25");
-    let ProblemFile::Stochastic(s) = file::from_json(&text).unwrap() else {
-        panic!("a stochastic file")
-    };
+    let s = stochastic_file(&text);
     assert_eq!(
         optimum(&s).unwrap().cost_to_go(0).to_string(),
         format!("2{}", "0".repeat(25))
@@ -966,23 +982,7 @@ fn distance_names_the_lowest_worst_state_on_ties() {
 #[test]
 fn the_deterministic_optimum_start_needs_no_improvement_where_the_attractor_does() {
     let p = Problem::new(
-        vec![
-            vec![
-                Move {
-                    successor: 2,
-                    cost: q("10"),
-                },
-                Move {
-                    successor: 1,
-                    cost: q("1"),
-                },
-            ],
-            vec![Move {
-                successor: 2,
-                cost: q("1"),
-            }],
-            vec![],
-        ],
+        weighted(&[&[(2, "10"), (1, "1")], &[(2, "1")], &[]]),
         0,
         vec![2],
     )
@@ -992,10 +992,7 @@ fn the_deterministic_optimum_start_needs_no_improvement_where_the_attractor_does
         let o = optimum(&s).unwrap();
         assert_eq!(o.stats.initial_policy, "deterministic-optimum");
         assert_eq!(o.stats.float_iterations, 0, "gamma {g}");
-        let ProblemFile::Stochastic(back) = file::from_json(&file::to_json(&s, None)).unwrap()
-        else {
-            panic!("a stochastic file")
-        };
+        let back = stochastic_file(&file::to_json(&s, None));
         let r = optimum(&back).unwrap();
         assert_eq!(r.stats.initial_policy, "attractor");
         assert_eq!(r.stats.float_iterations, 1, "gamma {g}");
@@ -1057,9 +1054,7 @@ fn exact_value_iteration_stops_by_its_tolerance_exactly() {
     let text = r#"{"initial": 0, "goals": [1], "actions": [
         [ { "cost": "1", "outcomes": [ { "to": 1, "p": "1/2" }, { "to": 0, "p": "1/2" } ] } ],
         [ { "to": 0, "cost": "1" } ] ]}"#;
-    let ProblemFile::Stochastic(s) = file::from_json(text).unwrap() else {
-        panic!("a stochastic file")
-    };
+    let s = stochastic_file(text);
     let o = ViOptions::from_below(Schedule::Synchronous, q("1/4"), 100).unwrap();
     let r = value_iteration_exact(&s, &o);
     assert_eq!((r.sweeps, r.backups), (3, 3));

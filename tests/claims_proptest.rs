@@ -98,3 +98,29 @@ mod discount_cross_check {
         }
     }
 }
+
+/// The engine runs exactly the number of cases it is given (proptest's own default is also
+/// 256, so the count above cannot tell), and reports that number.
+#[test]
+fn the_engine_runs_the_cases_it_is_given() {
+    for cases in [1, 37, 300] {
+        let r = sampled::c2(cases, None);
+        assert!(r.counterexample.is_none(), "{:?}", r.counterexample);
+        assert_eq!(r.cases, u64::from(cases));
+        assert!(r.scope.starts_with(&format!("{cases} ")), "{}", r.scope);
+    }
+}
+
+/// A failure's seed is persisted to the file the engine is given (and nowhere else), in
+/// proptest's `cc <seed>` format, so the committed regression files replay it first.
+#[test]
+fn a_failure_is_persisted_to_the_given_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("c1.txt");
+    let leaked: &'static str = Box::leak(path.to_str().unwrap().to_owned().into_boxed_str());
+    let r = sampled::c1_printed(CASES, Some(leaked));
+    assert!(r.counterexample.is_some());
+    let text = std::fs::read_to_string(&path).expect("the seed file is written");
+    assert!(text.lines().any(|l| l.starts_with("cc ")), "{text}");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+}

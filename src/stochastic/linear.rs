@@ -1074,6 +1074,20 @@ mod tests {
         assert_eq!(got, want);
     }
 
+    /// Rational reconstruction at its bound, by hand: modulo 101 with bound 3, `3/2 ≡ 3·51 = 153
+    /// ≡ 52` and `−3/2 ≡ 49`; Euclid's remainders of (101, 52) are 52, 49, 3 with cofactors
+    /// 1, −1, 2, so the search stops at the remainder 3 = the bound (`|a| ≤ bound` allows it).
+    /// 7 has none: `a ≡ 7·b` is 7, 14 or 21 for `b ≤ 3`, none of them within ±3.
+    #[test]
+    fn reconstruction_accepts_a_numerator_at_the_bound() {
+        let (m, bound) = (UBig::from(101u8), UBig::from(3u8));
+        let got = |t: u8| reconstruct(&UBig::from(t), &m, &bound);
+        assert_eq!(got(52), Some((IBig::from(3), UBig::from(2u8))));
+        assert_eq!(got(49), Some((IBig::from(-3), UBig::from(2u8))));
+        assert_eq!(got(3), Some((IBig::from(3), UBig::ONE)));
+        assert_eq!(got(7), None);
+    }
+
     /// A random sparse system shaped like policy evaluation: `s·z_i − Σ w·z_j = r_i` with
     /// `Σ w < s` on random neighbours.
     fn random_system(n: usize, seed: u64) -> SparseSystem {

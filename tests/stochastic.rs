@@ -862,6 +862,24 @@ fn bad_gamma_is_rejected_clearly() {
     assert!(Predictability::parse("1e-3").is_ok());
 }
 
+/// γ reads back as its exact value, only γ = 1 is the deterministic model, and each noise
+/// model's one-line description (in `solve` and `reproduce` reports) names it and its rule.
+#[test]
+fn predictability_and_noise_models_as_reported() {
+    let g = Predictability::parse("0.999").unwrap();
+    assert_eq!(g.to_string(), "999/1000");
+    assert_eq!(Predictability::parse("1.0").unwrap().to_string(), "1");
+    assert!(!g.is_deterministic());
+    assert!(!Predictability::parse("1e-3").unwrap().is_deterministic());
+    let paper = NoiseModel::Paper.describe();
+    let reference = NoiseModel::Reference.describe();
+    assert!(paper.starts_with("paper (text: "), "{paper}");
+    assert!(
+        reference.starts_with("reference (code: stay (1-gamma)/2"),
+        "{reference}"
+    );
+}
+
 #[test]
 fn bad_stochastic_files_are_rejected_clearly() {
     let cases = [

@@ -990,6 +990,49 @@ fn distance_names_the_lowest_worst_state_on_ties() {
     assert_eq!((d.worst_state, d.max_abs), (Some(1), q("0.25")));
 }
 
+/// `Optimum::distance` counts the states with finite `G*` whose `V` is not finite, apart
+/// from the compared ones: on `0 → 1 → 2 (goal)` at cost 1 with γ = 1 (`G* = 2, 1, 0`),
+/// `V = (+∞, 1, 0)` compares 2 states (1 and the goal) and counts 1 not finite; the initial
+/// state's difference is then unknown.
+#[test]
+fn distance_counts_the_values_that_are_not_finite() {
+    let p = Problem::new(moves(&[&[1], &[2], &[]]), 0, vec![2]).unwrap();
+    let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &gamma("1")).unwrap();
+    let o = optimum(&s).unwrap();
+    let d = o.distance(0, |x| (x > 0).then(|| q(["0", "1", "0"][x])));
+    assert_eq!((d.compared, d.not_finite, d.initial), (2, 1, None));
+    assert_eq!((d.worst_state, d.max_abs), (Some(1), q("0")));
+    let d = o.distance(0, |x| (x != 1).then(|| q(["2", "", "0"][x])));
+    assert_eq!((d.compared, d.not_finite, d.initial), (2, 1, Some(q("0"))));
+}
+
+/// The reported policy is canonical (module docs of `policy_iteration`): at each state the
+/// first action whose exact `Q*` equals `G*`. State 0 has three actions to the goal 1: cost
+/// 3 surely (`Q = 3`), cost 2 surely (`Q = 2`), and cost 1 reaching the goal with
+/// probability 1/2, else staying (`Q = 1 + Q/2 = 2`). The last two tie; the first of them is
+/// reported in either order.
+#[test]
+fn the_reported_policy_is_the_first_optimal_action() {
+    let (three, two) = (
+        r#"{"cost":"3","outcomes":[{"to":1,"p":"1"}]}"#,
+        r#"{"cost":"2","outcomes":[{"to":1,"p":"1"}]}"#,
+    );
+    let halves = r#"{"cost":"1","outcomes":[{"to":1,"p":"1/2"},{"to":0,"p":"1/2"}]}"#;
+    for (order, first) in [([three, two, halves], 1), ([three, halves, two], 1)] {
+        let text = format!(
+            r#"{{"initial":0,"goals":[1],"actions":[[{}],[]]}}"#,
+            order.join(",")
+        );
+        let o = optimum(&stochastic_file(&text)).unwrap();
+        assert_eq!(o.cost_to_go(0).to_string(), "2", "{text}");
+        assert_eq!(o.policy_actions(), [Some(first), None], "{text}");
+    }
+    // A different first optimal action when the sure one leads: order (2, 3, halves).
+    let text = format!(r#"{{"initial":0,"goals":[1],"actions":[[{two},{three},{halves}],[]]}}"#);
+    let o = optimum(&stochastic_file(&text)).unwrap();
+    assert_eq!(o.policy_actions(), [Some(0), None]);
+}
+
 /// Policy iteration's initial policy is the deterministic optimum over the commanded moves:
 /// where that optimum is not the attractor's choice, it saves the improvement rounds the
 /// attractor's policy needs. `0 → goal` costs 10, `0 → 1 → goal` costs 1 + 1; the
@@ -1030,6 +1073,49 @@ fn the_deterministic_optimum_start_needs_no_improvement_where_the_attractor_does
         let float = value_iteration_f64(&s, &FloatModel::nearest(&s), &options);
         assert!(float.converged);
         assert_eq!(float.policy, greedy, "gamma {g}");
+    }
+}
+
+/// The `f64` warm start does the improving, so that the exact phase evaluates once: read
+/// from a file (outcomes only), `0 → goal` at cost 5 against `0 → 1` at cost 1 and
+/// `1 → goal` at cost 0 starts from the attractor's direct move (`G = 5`); the warm start's
+/// first round sees `Q(detour) = 1 + G(1) = 1 < 5` and switches, its second changes nothing,
+/// and one exact evaluation confirms `G*(0) = 1`.
+#[test]
+fn the_warm_start_finds_the_improvement_before_the_exact_phase() {
+    let text = r#"{"initial":0,"goals":[2],"actions":[
+        [{"cost":"5","outcomes":[{"to":2,"p":"1"}]},{"cost":"1","outcomes":[{"to":1,"p":"1"}]}],
+        [{"cost":"0","outcomes":[{"to":2,"p":"1"}]}],
+        []]}"#;
+    let o = optimum(&stochastic_file(text)).unwrap();
+    assert_eq!(o.stats.initial_policy, "attractor");
+    assert_eq!((o.stats.float_iterations, o.stats.exact_iterations), (1, 1));
+    assert_eq!(strings(o.cost_to_go_all()), ["1", "0", "0"]);
+    assert_eq!(o.policy_actions(), [Some(1), Some(2), None]);
+}
+
+/// The warm start switches only on an improvement larger than 10⁻⁹ of the value (module
+/// docs of `policy_iteration`): against a direct move at cost 10⁶, a detour cheaper by 10⁻⁵
+/// (relatively 10⁻¹¹) is left to the exact phase, which switches (two exact evaluations);
+/// cheaper by 1 (relatively 10⁻⁶) the warm start takes it (one).
+#[test]
+fn the_warm_start_ignores_improvements_below_its_relative_margin() {
+    for (detour, float, exact) in [("999999.99999", 0, 2), ("999999", 1, 1)] {
+        let text = format!(
+            r#"{{"initial":0,"goals":[1],"actions":[
+            [{{"cost":"1000000","outcomes":[{{"to":1,"p":"1"}}]}},{{"cost":"{detour}","outcomes":[{{"to":2,"p":"1"}}]}}],
+            [],
+            [{{"cost":"0","outcomes":[{{"to":1,"p":"1"}}]}}]]}}"#
+        );
+        let o = optimum(&stochastic_file(&text)).unwrap();
+        assert_eq!(o.stats.initial_policy, "attractor");
+        assert_eq!(
+            (o.stats.float_iterations, o.stats.exact_iterations),
+            (float, exact),
+            "{detour}"
+        );
+        assert_eq!(o.cost_to_go(0), Extended::Finite(q(detour)));
+        assert_eq!(o.policy_actions()[0], Some(1));
     }
 }
 

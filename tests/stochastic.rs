@@ -645,13 +645,16 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
 
     /// G*(x) = min over every stationary policy proper at x of its exact cost (exhaustive), and
-    /// the reported policy attains it at every state.
+    /// the reported policy attains it at every state; the library's `evaluate` of every policy
+    /// equals the oracle's (fractional costs included).
     #[test]
     fn optimum_equals_exhaustive_brute_force(s in small_problem()) {
         let o = optimum(&s).unwrap();
         let mut best = vec![Extended::Infinite; s.states()];
         for p in all_policies(&s) {
-            for (x, v) in oracle_evaluate(&s, &p).into_iter().enumerate() {
+            let oracle = oracle_evaluate(&s, &p);
+            prop_assert_eq!(&evaluate(&s, &p).unwrap(), &oracle, "policy {:?}", p);
+            for (x, v) in oracle.into_iter().enumerate() {
                 if v < best[x] {
                     best[x] = v;
                 }

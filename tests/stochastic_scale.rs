@@ -321,6 +321,13 @@ fn memory_sizes_parse_exactly() {
     // A fraction longer than the integer part.
     assert_eq!(parse_size("0.25G").unwrap(), 1 << 28);
     assert_eq!(parse_size("1.125G").unwrap(), 9 << 27);
+    // At most 30 digits in all: 7 + 23 are read, 1 + 30 are refused (even where the value,
+    // here exactly 1 MiB, would be fine).
+    assert_eq!(
+        parse_size("1048576.00000000000000000000000").unwrap(),
+        1 << 20
+    );
+    assert!(parse_size("1.000000000000000000000000000000M").is_err());
     for bad in [
         "",
         "G",

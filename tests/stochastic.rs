@@ -1170,3 +1170,47 @@ fn exact_value_iteration_stops_by_its_tolerance_exactly() {
         [Extended::Finite(q("7/4")), Extended::Finite(q("0"))]
     );
 }
+
+/// Exact value iteration from a constant: `0 → 1 → 2 (goal)` at cost 1/2 a move (so values
+/// are kept over the cost denominator 2), every state starting at 10, one synchronous sweep
+/// with assignment: `G₁(0) = 1/2 + 10`, `G₁(1) = 1/2 + 0`, the largest change `10 − 1/2`.
+#[test]
+fn exact_value_iteration_starts_from_the_given_constant() {
+    use truecost::stochastic::value_iteration::{Initial, SweepSet, UpdateRule};
+    let text = r#"{"initial": 0, "goals": [2], "actions": [
+        [ { "cost": "1/2", "outcomes": [ { "to": 1, "p": "1" } ] } ],
+        [ { "cost": "1/2", "outcomes": [ { "to": 2, "p": "1" } ] } ], [] ]}"#;
+    let s = stochastic_file(text);
+    let o = ViOptions {
+        schedule: Schedule::Synchronous,
+        initial: Initial::Constant(BigInt::from(10)),
+        rule: UpdateRule::Assign,
+        sweep: SweepSet::All,
+        tolerance: q("0"),
+        max_sweeps: 1,
+    };
+    let r = value_iteration_exact(&s, &o);
+    assert_eq!((r.sweeps, r.converged), (1, false));
+    assert_eq!(strings(&r.cost_to_go), ["21/2", "1/2", "0"]);
+    assert_eq!(r.last_change, Extended::Finite(q("19/2")));
+}
+
+/// Both value iterations' greedy policies take the first of tied minimising actions (their
+/// documentation): state 0's actions to the goal cost 3, 1 and 1.
+#[test]
+fn value_iteration_s_greedy_policy_takes_the_first_of_tied_actions() {
+    use truecost::model::Decision;
+    let text = r#"{"initial": 0, "goals": [1], "actions": [
+        [ { "cost": "3", "outcomes": [ { "to": 1, "p": "1" } ] },
+          { "cost": "1", "outcomes": [ { "to": 1, "p": "1" } ] },
+          { "cost": "1", "outcomes": [ { "to": 1, "p": "1" } ] } ], [] ]}"#;
+    let s = stochastic_file(text);
+    let o = ViOptions::from_below(Schedule::Synchronous, q("0"), 10).unwrap();
+    let greedy = [Some(Decision::Move(1)), Some(Decision::Terminate)];
+    let exact = value_iteration_exact(&s, &o);
+    assert!(exact.converged);
+    assert_eq!(exact.policy, greedy);
+    let float = value_iteration_f64(&s, &FloatModel::nearest(&s), &o);
+    assert!(float.converged);
+    assert_eq!(float.policy, greedy);
+}

@@ -1169,6 +1169,9 @@ fn exact_value_iteration_stops_by_its_tolerance_exactly() {
         r.cost_to_go,
         [Extended::Finite(q("7/4")), Extended::Finite(q("0"))]
     );
+    // The f64 run sweeps the same states: one backup a sweep, 7/4 exactly in binary.
+    let r = value_iteration_f64(&s, &FloatModel::nearest(&s), &o);
+    assert_eq!((r.sweeps, r.backups, r.cost_to_go), (3, 3, vec![1.75, 0.0]));
 }
 
 /// Exact value iteration from a constant: `0 → 1 → 2 (goal)` at cost 1/2 a move (so values

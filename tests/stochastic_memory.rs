@@ -28,6 +28,7 @@ use std::sync::Mutex;
 
 use truecost::model::{Move, Problem};
 use truecost::stochastic::benchmark::cost_grid;
+use truecost::stochastic::file::{from_json, ProblemFile};
 use truecost::stochastic::linear::{BandOrdering, SparseSystem};
 use truecost::stochastic::policy_iteration::{memory_estimate, optimum, problem_bytes};
 use truecost::stochastic::{decimal, NoiseModel, Predictability, StochasticProblem};
@@ -287,4 +288,57 @@ fn the_estimate_s_band_is_that_of_every_action_s_pattern() {
             );
         }
     }
+}
+
+/// Every part of the estimate on a problem small enough to work by hand, each quantity an exact
+/// power of two where a logarithm is taken (the formula is `MemoryEstimate::lifted_bits`'s and
+/// `memory_estimate`'s documentation; the numbers below are worked from it, not from the code).
+///
+/// States 0, 1, 3 have actions, 2 is the goal; costs have denominator 2 (`B`), so the right-hand
+/// side of an action is `s · l · 2`:
+///
+/// | state (`s`) | action | outcomes | row of `s(I − P)` | `‖row‖²` | rhs |
+/// |---|---|---|---|---|---|
+/// | 0 (`s = 2`) | A, cost 3 | ½ → 1, ½ → 0 | `(0: 2 − 1, 1: −1)` | 2 | 12 |
+/// | | B, cost ½ | 1 → 2 | `(0: 2)` | 4 | 2 |
+/// | 1 (`s = 4`) | C, cost 4 | ½ → 1, ¼ → 0, ¼ → 2 | `(1: 4 − 2, 0: −1)` | 5 | 32 |
+/// | | D, cost 1 | 1 → 2 | `(1: 4)` | 16 | 8 |
+/// | 3 (`s = 2`) | E, cost 1 | ½ → 0, ½ → 0 (twice the same state) | `(3: 2, 0: −1 − 1)` | 8 | 4 |
+/// | | F, cost 1 | 1 → 2 | `(3: 2)` | 4 | 4 |
+///
+/// So `Σ ½ log₂ max ‖row‖² = ½(2 + 4 + 3) = 4.5`, `log₂ 32 = 5`, `log₂(3 + 1) = 2`: the lifted
+/// bits are `2(4.5 + 5 + 2) + 8 = 31`, the steps `⌈31/31⌉ + 2 = 3`, a number `⌈31/16⌉ + 32 =
+/// 34` bytes. The pattern couples 1–0 and 3–0, a path, which reverse Cuthill–McKee orders with
+/// one band on each side: width 3. The problem holds 10 outcomes and 6 actions (`128·10 +
+/// 160·6 = 2240` bytes), so the bytes are
+/// `16 MiB + 2240 + 3·1024 + 3·3·(8+4+8) + 3·3·4 + 3·3·34 = 16 MiB + 5834`, and with the values
+/// `+ 3·34·2 + 4·3·⌊34·2.41⌋ = + 204 + 972`.
+#[test]
+fn every_part_of_the_estimate_worked_by_hand() {
+    let _one = exclusive();
+    let text = r#"{"initial": 0, "goals": [2], "actions": [
+        [ { "cost": "3", "outcomes": [ { "to": 1, "p": "1/2" }, { "to": 0, "p": "1/2" } ] },
+          { "cost": "1/2", "outcomes": [ { "to": 2, "p": "1" } ] } ],
+        [ { "cost": "4", "outcomes": [ { "to": 1, "p": "1/2" }, { "to": 0, "p": "1/4" }, { "to": 2, "p": "1/4" } ] },
+          { "cost": "1", "outcomes": [ { "to": 2, "p": "1" } ] } ],
+        [],
+        [ { "cost": "1", "outcomes": [ { "to": 0, "p": "1/2" }, { "to": 0, "p": "1/2" } ] },
+          { "cost": "1", "outcomes": [ { "to": 2, "p": "1" } ] } ] ]}"#;
+    let ProblemFile::Stochastic(s) = from_json(text).unwrap() else {
+        panic!("a stochastic file")
+    };
+    assert_eq!((s.outcome_total(), s.action_total()), (10, 6));
+    assert_eq!(
+        (s.denominator(0), s.denominator(1), s.denominator(3)),
+        (2, 4, 2)
+    );
+    assert_eq!(problem_bytes(&s), 2240);
+    let e = memory_estimate(&s, false);
+    assert_eq!(
+        (e.unknowns, e.band_width, e.lifting_steps, e.lifted_bits),
+        (3, 3, 3, 31.0)
+    );
+    assert_eq!(e.bytes, (16 << 20) + 5834);
+    let with_values = memory_estimate(&s, true);
+    assert_eq!(with_values.bytes, (16 << 20) + 5834 + 204 + 972);
 }

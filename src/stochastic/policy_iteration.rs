@@ -493,7 +493,7 @@ pub fn evaluate(
 
 /// The estimated peak memory of [`optimum`] on a problem, computed from its structure alone
 /// before any work (issue 12, item 3: `--max-memory`).
-#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct MemoryEstimate {
     /// Estimated peak bytes.
     pub bytes: u64,
@@ -502,8 +502,16 @@ pub struct MemoryEstimate {
     /// Band width `lower + upper + 1` after the reverse Cuthill–McKee ordering of the pattern
     /// of every action's outcomes.
     pub band_width: usize,
-    /// Lifting steps from the Hadamard bound (an upper estimate; a 100×100 grid needs 94%).
+    /// Lifting steps from the Hadamard bound (an upper estimate; a 100×100 grid needs 94%):
+    /// `⌈lifted_bits / 31⌉ + 2`.
     pub lifting_steps: usize,
+    /// The bits of the lifted solution: `2·(Σᵢ ½·log₂ maxₐ ‖rowᵢ(a)‖² + log₂ max(1, maxₐ bₐ) +
+    /// log₂(n + 1)) + 8`, where `rowᵢ(a)` is the row of `s·(I − P)` of action `a` of the
+    /// `i`-th unknown (`s` its state's [`denominator`](StochasticProblem::denominator)), `bₐ
+    /// = s·l(x, a)·` [`cost_denominator`](StochasticProblem::cost_denominator) its right-hand
+    /// side and `n` the number of unknowns: Hadamard's bound on the determinant and the
+    /// numerators (Cramer's rule), both signs and a margin.
+    pub lifted_bits: f64,
 }
 
 /// Bytes per unknown besides its numbers (indices, policy, the problem's per-state lists,
@@ -546,7 +554,8 @@ pub fn problem_bytes(problem: &StochasticProblem) -> u64 {
 /// the reduced exact value of every state and its decimal text, as `solve --format json`
 /// prints them. The parts: the problem, two band matrices (`u32`/`u64` modular and `f64`
 /// warm-start LU), the lifted digits (4 bytes per unknown and step), the numerators (three
-/// copies at the peak, each of half the lifted bits).
+/// copies at the peak, each of `⌈lifted_bits / 16⌉ + 32` bytes, half the lifted bits and a
+/// header); with `all_values`, two more copies and four decimal texts (2.41 digits a byte).
 ///
 /// ```
 /// use truecost::stochastic::benchmark::cost_grid;
@@ -627,6 +636,7 @@ pub fn memory_estimate(problem: &StochasticProblem, all_values: bool) -> MemoryE
         unknowns,
         band_width,
         lifting_steps,
+        lifted_bits,
     }
 }
 

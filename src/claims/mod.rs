@@ -233,14 +233,16 @@ where
     )
 }
 
-/// Keeps the minimal `(key, value)`.
+/// Keeps the minimal `(key, value)`; of equal keys the first, as [`min_of`] does, so a
+/// counterexample found under several orders is reported under the first (`value` is computed
+/// only when kept).
 pub fn keep_min<K: Ord, T>(slot: &mut Option<(K, T)>, key: K, value: impl FnOnce() -> T) {
     if slot.as_ref().is_none_or(|(k, _)| key < *k) {
         *slot = Some((key, value()));
     }
 }
 
-/// Merges two optional minima.
+/// Merges two optional minima; of equal keys the first (`a`).
 pub fn min_of<K: Ord, T>(a: Option<(K, T)>, b: Option<(K, T)>) -> Option<(K, T)> {
     match (a, b) {
         (Some(x), Some(y)) => Some(if y.0 < x.0 { y } else { x }),
@@ -252,4 +254,41 @@ pub fn min_of<K: Ord, T>(a: Option<(K, T)>, b: Option<(K, T)>) -> Option<(K, T)>
 /// Runs the claims selected by `only` (all when `None`) in `scope`, every engine included.
 pub fn run(scope: Scope, only: Option<&str>) -> Result<report::Report, String> {
     registry::run(scope, only, &registry::Options::default())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `keep_min` against the definition: the least key wins, of equal keys the first, and a
+    /// value is computed only when kept; `min_of` picks the same on every pair.
+    #[test]
+    fn keep_min_keeps_the_first_least_key() {
+        let mut slot = None;
+        let mut computed = Vec::new();
+        for (key, name) in [
+            (3, "a"),
+            (2, "b"),
+            (2, "c"),
+            (5, "d"),
+            (2, "e"),
+            (1, "f"),
+            (1, "g"),
+        ] {
+            keep_min(&mut slot, key, || {
+                computed.push(name);
+                name
+            });
+            if name == "e" {
+                assert_eq!(slot, Some((2, "b")));
+            }
+        }
+        assert_eq!(slot, Some((1, "f")));
+        assert_eq!(computed, ["a", "b", "f"]);
+        assert_eq!(min_of(Some((2, "x")), Some((2, "y"))), Some((2, "x")));
+        assert_eq!(min_of(Some((3, "x")), Some((2, "y"))), Some((2, "y")));
+        assert_eq!(min_of(Some((2, "x")), Some((3, "y"))), Some((2, "x")));
+        assert_eq!(min_of(None, Some((3, "y"))), Some((3, "y")));
+        assert_eq!(min_of(Some((3, "x")), None::<(i32, &str)>), Some((3, "x")));
+    }
 }

@@ -66,6 +66,17 @@ fn specs(scope: Scope) -> Vec<FamilySpec> {
 
 /// Checks C2 in `scope`.
 pub fn check(scope: Scope) -> ClaimResult {
+    check_with(scope, check_problem)
+}
+
+/// [`check`] around a given per-problem comparison (`check_problem` in production): the
+/// enumeration, the tally of cases, comparisons and failures, the least failing problem and
+/// the verdict. C2 holds, so only a planted failure (the unit test below) reaches the failure
+/// path.
+fn check_with(
+    scope: Scope,
+    check_problem: impl Fn(&Tiny, &[Functional], usize) -> (Option<String>, u64) + Sync + Send,
+) -> ClaimResult {
     let fs = functionals();
     let starts = if scope == Scope::Full { usize::MAX } else { 1 };
     let started = std::time::Instant::now();
@@ -124,5 +135,52 @@ policy, {}; functionals: {}",
             "{} (problem, start state, functional) comparisons of argmin-cost and argmax-reward policy sets",
             acc.comparisons
         )],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Mutex;
+
+    /// The bookkeeping around the comparison, against a planted failure on every problem with
+    /// an odd number of moves: the verdict, the case, failure and comparison counts and the
+    /// reported problem are recomputed here from what the comparison saw.
+    #[test]
+    fn a_planted_failure_is_counted_and_its_least_problem_reported() {
+        let seen = Mutex::new(Vec::new());
+        let r = check_with(Scope::Smoke, |t, fs, starts| {
+            let (bad, comparisons) = check_problem(t, fs, starts);
+            assert_eq!(bad, None, "C2 holds on every problem");
+            let key = (t.states(), t.move_count(), t.cost_sum());
+            let fails = t.move_count() % 2 == 1;
+            seen.lock().unwrap().push((fails, key, comparisons));
+            (fails.then(|| format!("planted {key:?}")), comparisons)
+        });
+        let seen = seen.into_inner().unwrap();
+        let failures = seen.iter().filter(|s| s.0).count() as u64;
+        assert!(failures > 1 && failures < seen.len() as u64, "{failures}");
+        assert_eq!(r.verdict, Verdict::Refuted);
+        assert_eq!(r.cases, seen.len() as u64);
+        assert_eq!(
+            (r.engines[0].cases, r.engines[0].failures),
+            (r.cases, failures)
+        );
+        let comparisons: u64 = seen.iter().map(|s| s.2).sum();
+        assert!(
+            r.notes[0].starts_with(&format!("{comparisons} (problem, start state")),
+            "{}",
+            r.notes[0]
+        );
+        let least = seen.iter().filter(|s| s.0).map(|s| s.1).min().unwrap();
+        assert_eq!(
+            r.counterexample.unwrap().summary,
+            format!("C2 counterexample: planted {least:?}")
+        );
+        // Without the planted failure: verified, no counterexample, the same counts.
+        let r = check(Scope::Smoke);
+        assert_eq!(r.verdict, Verdict::Verified);
+        assert!(r.counterexample.is_none());
+        assert_eq!((r.cases, r.engines[0].failures), (seen.len() as u64, 0));
     }
 }

@@ -72,6 +72,16 @@ fn specs(scope: Scope) -> Vec<FamilySpec> {
 
 /// Checks C3 in `scope`.
 pub fn check(scope: Scope) -> ClaimResult {
+    check_with(scope, |t, alpha| {
+        certificate(t, alpha).is_some_and(|c| optimal_policy_avoids_goal(&c, alpha))
+    })
+}
+
+/// [`check`] around a given test of one structure at one `α` (in production: a certificate is
+/// constructed and checked): the enumeration, the hypotheses, the tally of cases, certificates
+/// and failures, the least failing structure and the verdict. Every certificate checks, so
+/// only a planted failure (the unit test below) reaches the failure path.
+fn check_with(scope: Scope, certified: impl Fn(&Tiny, Q) -> bool + Sync + Send) -> ClaimResult {
     let scope_alphas = scope_alphas(scope);
     let started = std::time::Instant::now();
     let mut acc = Acc::default();
@@ -88,8 +98,7 @@ pub fn check(scope: Scope) -> ClaimResult {
                 }
                 acc.cases += 1;
                 for &alpha in &scope_alphas {
-                    let ok = certificate(t, alpha)
-                        .is_some_and(|c| optimal_policy_avoids_goal(&c, alpha));
+                    let ok = certified(t, alpha);
                     acc.certificates += 1;
                     if !ok {
                         acc.failures += 1;
@@ -148,5 +157,65 @@ true cost is +inf",
             ),
             format!("{} structures fail the hypotheses and are not cases", acc.hypotheses_fail),
         ],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Mutex;
+
+    /// The bookkeeping around the certificates, against a planted failure at the second `α` of
+    /// every structure with an odd number of moves: the verdict (inconclusive: a missing
+    /// certificate refutes nothing), the counts and the reported structure are recomputed here
+    /// from the calls.
+    #[test]
+    fn a_planted_failure_is_counted_and_its_least_structure_reported() {
+        let alphas = scope_alphas(Scope::Smoke);
+        assert!(alphas.len() >= 2);
+        let seen = Mutex::new(Vec::new());
+        let r = check_with(Scope::Smoke, |t, alpha| {
+            let fails = alpha == alphas[1] && t.move_count() % 2 == 1;
+            let key = (t.states(), t.move_count(), t.cost_sum());
+            seen.lock().unwrap().push((fails, key, t.describe()));
+            !fails
+        });
+        let seen = seen.into_inner().unwrap();
+        let calls = seen.len() as u64;
+        let failures = seen.iter().filter(|s| s.0).count() as u64;
+        assert!(failures > 1 && failures < calls, "{failures} of {calls}");
+        assert_eq!(r.verdict, Verdict::Inconclusive);
+        assert_eq!(r.cases * alphas.len() as u64, calls);
+        assert_eq!(
+            (r.engines[0].cases, r.engines[0].failures),
+            (r.cases, failures)
+        );
+        assert!(
+            r.notes[0].starts_with(&format!("{calls} certificates")),
+            "{}",
+            r.notes[0]
+        );
+        let least = seen.iter().filter(|s| s.0).map(|s| s.1).min().unwrap();
+        let cx = r.counterexample.unwrap();
+        assert_eq!(
+            cx.summary,
+            format!("C3: no certificate found for alpha = {}", alphas[1])
+        );
+        assert!(
+            seen.iter()
+                .any(|s| s.0 && s.1 == least && s.2 == cx.problem),
+            "{}",
+            cx.problem
+        );
+        // Without the planted failure: verified, no counterexample, the same cases.
+        let r = check(Scope::Smoke);
+        assert_eq!(r.verdict, Verdict::Verified);
+        assert!(r.counterexample.is_none());
+        assert_eq!(
+            (r.cases * alphas.len() as u64, r.engines[0].failures),
+            (calls, 0)
+        );
+        let hypotheses: u64 = r.notes[1].split(' ').next().unwrap().parse().unwrap();
+        assert!(hypotheses > 0, "{}", r.notes[1]);
     }
 }

@@ -334,3 +334,91 @@ pub fn merge(files: &[(String, String)]) -> Result<Report, String> {
     fp.confirm(&fingerprint(scope, only.as_deref(), &options))?;
     shard::replay(shards, || run(scope, only.as_deref(), &options))?
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::claims::smt::Summary;
+
+    fn enumerated(verdict: Verdict) -> ClaimResult {
+        ClaimResult {
+            id: "C0".into(),
+            statement: String::new(),
+            verdict,
+            engine: "exhaustive enumeration".into(),
+            scope: "enumerated".into(),
+            cases: 7,
+            counterexample: None,
+            engines: vec![],
+            notes: vec![],
+        }
+    }
+
+    fn smt(verdict: SmtVerdict) -> Outcome {
+        Outcome {
+            claim: "C0",
+            scope: "symbolic".into(),
+            verdict,
+            summary: Summary {
+                proofs: 11,
+                proofs_unsat: 8,
+                trust_checks: 5,
+                trust_ok: 3,
+                printed: 0,
+                printed_sat: 0,
+                unknown: 0,
+                seconds: 0.5,
+            },
+            counterexample: None,
+            notes: vec!["an outcome note".into()],
+            solved: vec![],
+        }
+    }
+
+    /// How the SMT engine's verdict combines with the enumeration's (the doc comment of
+    /// `attach_smt`): `proved` over `verified`, a contradiction gives `inconclusive`, anything
+    /// else leaves the enumeration's verdict. Every pair, worked by hand.
+    #[test]
+    fn the_smt_verdict_combines_with_the_enumeration_s() {
+        use SmtVerdict as S;
+        use Verdict as V;
+        let all = [V::Verified, V::Refuted, V::Inconclusive];
+        for (smt_verdict, before) in [S::Proved, S::Refuted, S::Inconclusive]
+            .into_iter()
+            .flat_map(|s| all.map(|v| (s, v)))
+        {
+            let mut r = enumerated(before);
+            attach_smt(&mut r, &smt(smt_verdict));
+            let expected = match (smt_verdict, before) {
+                (S::Proved, V::Verified) => V::Proved,
+                (S::Proved, V::Refuted) | (S::Refuted, V::Verified) => V::Inconclusive,
+                (_, v) => v,
+            };
+            assert_eq!(r.verdict, expected, "{smt_verdict:?} with {before:?}");
+            let disagree = r.notes.iter().any(|n| n.contains("engines disagree"));
+            assert_eq!(
+                disagree,
+                expected == V::Inconclusive && before != V::Inconclusive,
+                "{smt_verdict:?} with {before:?}"
+            );
+            let e = &r.engines[0];
+            assert_eq!(e.engine, "smt (Z3)");
+            // 11 obligations, 8 unsat; 5 trust checks, 3 as required; a refutation counts
+            // its satisfiable printed searches, at least one.
+            let failures = if smt_verdict == S::Refuted { 1 } else { 3 + 2 };
+            assert_eq!((e.cases, e.failures), (11 + 5, failures));
+            if expected == V::Proved {
+                assert_eq!(
+                    (r.engine.as_str(), r.scope.as_str(), r.cases),
+                    ("smt (Z3)", "symbolic", 11)
+                );
+            } else {
+                assert_eq!(
+                    (r.engine.as_str(), r.scope.as_str(), r.cases),
+                    ("exhaustive enumeration", "enumerated", 7)
+                );
+            }
+            assert!(r.notes.iter().any(|n| n == "an outcome note"));
+        }
+    }
+}

@@ -7,13 +7,16 @@
 use num_bigint::BigInt;
 use num_traits::{One, Zero};
 use proptest::prelude::*;
+
+mod common;
+use common::stochastic_file;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use truecost::model::{ExactGraph, Move, Problem};
 use truecost::problems::{GridLayout, StepCost};
 use truecost::solvers::dijkstra;
-use truecost::stochastic::file::{self, ProblemFile};
+use truecost::stochastic::file;
 use truecost::stochastic::grid::{exact_grid, exact_twin, reference_grid};
 use truecost::stochastic::policy_iteration::{evaluate, optimum};
 use truecost::stochastic::value_iteration::{
@@ -58,14 +61,6 @@ fn weighted(list: &[&[(usize, &str)]]) -> Vec<Vec<Move>> {
                 .collect()
         })
         .collect()
-}
-
-/// The stochastic problem of a file's text (one that lists outcomes).
-fn stochastic_file(text: &str) -> StochasticProblem {
-    match file::from_json(text).unwrap() {
-        ProblemFile::Stochastic(s) => *s,
-        ProblemFile::Deterministic(_) => panic!("a stochastic file"),
-    }
 }
 
 fn strings(values: &[Extended]) -> Vec<String> {

@@ -5,6 +5,9 @@
 
 use num_traits::ToPrimitive;
 use proptest::prelude::*;
+
+mod common;
+use common::stochastic_file;
 use rand::RngExt;
 use truecost::experiments::stochastic::{self, EpsilonSpec, RateSpec, Settings};
 use truecost::learning::plan::{sample_rng, EpsilonSchedule, Plan, Probability};
@@ -15,7 +18,6 @@ use truecost::learning::stochastic_q::{
 };
 use truecost::model::Graph;
 use truecost::problems::{GridLayout, StepCost};
-use truecost::stochastic::file::{from_json, ProblemFile};
 use truecost::stochastic::grid::exact_grid;
 use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
 use truecost::value::{parse_rational, Extended, Rational};
@@ -222,14 +224,6 @@ fn directed_rounding_at_the_largest_finite_f64() {
     let above = &max * Rational::from_integer(2.into());
     assert_eq!(f64_at_least(&above), f64::INFINITY);
     assert_eq!(f64_at_most(&above), f64::MAX);
-}
-
-/// The problem of a `truecost-stochastic/1` file's text (a test's own file: it must parse).
-fn stochastic_file(text: &str) -> StochasticProblem {
-    let ProblemFile::Stochastic(p) = from_json(text).unwrap() else {
-        panic!("a stochastic file")
-    };
-    *p
 }
 
 /// The states a target tracks are those reachable from `x1`, not goals, with an action and a

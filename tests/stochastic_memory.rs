@@ -26,9 +26,11 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use std::sync::Mutex;
 
+mod common;
+use common::stochastic_file;
+
 use truecost::model::{Move, Problem};
 use truecost::stochastic::benchmark::cost_grid;
-use truecost::stochastic::file::{from_json, ProblemFile};
 use truecost::stochastic::linear::{BandOrdering, SparseSystem};
 use truecost::stochastic::policy_iteration::{memory_estimate, optimum, problem_bytes};
 use truecost::stochastic::{decimal, NoiseModel, Predictability, StochasticProblem};
@@ -324,9 +326,7 @@ fn every_part_of_the_estimate_worked_by_hand() {
         [],
         [ { "cost": "1", "outcomes": [ { "to": 0, "p": "1/2" }, { "to": 0, "p": "1/2" } ] },
           { "cost": "1", "outcomes": [ { "to": 2, "p": "1" } ] } ] ]}"#;
-    let ProblemFile::Stochastic(s) = from_json(text).unwrap() else {
-        panic!("a stochastic file")
-    };
+    let s = stochastic_file(text);
     assert_eq!((s.outcome_total(), s.action_total()), (10, 6));
     assert_eq!(
         (s.denominator(0), s.denominator(1), s.denominator(3)),

@@ -18,6 +18,15 @@ use truecost::value::ExactValue;
 /// Exact rational.
 pub type Q = BigRational;
 
+/// The problem of a `truecost-stochastic/1` file's text (a test's own file: it must parse).
+pub fn stochastic_file(text: &str) -> truecost::stochastic::StochasticProblem {
+    use truecost::stochastic::file::{from_json, ProblemFile};
+    let ProblemFile::Stochastic(p) = from_json(text).unwrap() else {
+        panic!("a stochastic file")
+    };
+    *p
+}
+
 /// An extended non-negative value of the oracles: `None` is `+∞`.
 pub type Ext = Option<Q>;
 

@@ -189,6 +189,37 @@ fn verify_c4_bonus_set_of_a_file() {
     assert_eq!(v["bonus_sets"][0]["exact"], "[-3/2, 0)");
 }
 
+/// `--claim` selects a claim and its corrected form by the prefix, or one claim by its full id:
+/// a corrected claim alone runs its check and reports it, and nothing else.
+#[test]
+fn verify_claim_selects_by_id_or_by_prefix() {
+    let ids = |claim: &str| -> Vec<String> {
+        let text = stdout(&[
+            "verify",
+            "--scope",
+            "smoke",
+            "--claim",
+            claim,
+            "--format",
+            "json",
+            "--no-times",
+            "--no-smt",
+        ]);
+        let v: Value = serde_json::from_str(&text).unwrap();
+        v["claims"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c["id"].as_str().unwrap().to_string())
+            .collect()
+    };
+    assert_eq!(ids("C1"), ["C1", "C1-corrected"]);
+    assert_eq!(ids("C1-corrected"), ["C1-corrected"]);
+    assert_eq!(ids("C4"), ["C4", "C4-corrected"]);
+    assert_eq!(ids("C4-corrected"), ["C4-corrected"]);
+    assert_eq!(ids("C3-example"), ["C3-example"]);
+}
+
 #[test]
 fn verify_bad_input() {
     let e = fails_one_line(&["verify", "--claim", "C9", "--scope", "smoke"]);

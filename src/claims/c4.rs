@@ -231,11 +231,23 @@ fn counterexample(f: &Finding, printed: bool) -> Counterexample {
 
 /// Checks C4 as printed and C4-corrected in `scope`. Returns `(C4, C4-corrected)`.
 pub fn check(scope: Scope) -> (ClaimResult, ClaimResult) {
+    check_with(scope, |_, s| s.corrected)
+}
+
+/// [`check`] around the corrected formula's set of `M` for one (problem, `S*`) case (in
+/// production: the kernel's [`BonusSets::corrected`]): the enumeration, the tallies, the least
+/// counterexamples and the verdicts. The corrected formula agrees with the oracle everywhere,
+/// so only a planted set (the unit test below) reaches C4-corrected's failure path.
+fn check_with(
+    scope: Scope,
+    corrected: impl Fn(&Tiny, &BonusSets) -> Interval + Sync + Send,
+) -> (ClaimResult, ClaimResult) {
     let started = std::time::Instant::now();
     let mut acc = Acc::default();
     let mut parts = Vec::new();
+    let mut structures = 0;
     for spec in specs(scope) {
-        let (a, _) = enumerate(
+        let (a, distinct) = enumerate(
             &spec,
             Acc::default,
             |acc, t, i| {
@@ -278,11 +290,15 @@ pub fn check(scope: Scope) -> (ClaimResult, ClaimResult) {
                             }
                         }
                     }
-                    if let Some(m) = witness(&s.corrected, &s.exact) {
+                    let set = corrected(t, &s);
+                    if let Some(m) = witness(&set, &s.exact) {
                         acc.corrected_failures += 1;
                         keep_min(&mut acc.corrected_min, key, || Finding {
                             t: *t,
-                            sets: s.clone(),
+                            sets: BonusSets {
+                                corrected: set,
+                                ..s.clone()
+                            },
                             m,
                         });
                     }
@@ -291,6 +307,7 @@ pub fn check(scope: Scope) -> (ClaimResult, ClaimResult) {
             merge,
         );
         acc = merge(acc, a);
+        structures += distinct;
         parts.push(spec.describe());
     }
     if let Some(e) = &acc.internal {
@@ -332,6 +349,10 @@ undefined (division by L(u) = 0) in {} more",
             "A(u) is dimensionless while M is a cost: multiplying every stage cost by 2 doubles the true thresholds but \
 leaves a and b unchanged"
                 .into(),
+            format!(
+                "{} more problems (of {structures} up to relabelling) have no goal reachable from x1 and are not cases",
+                acc.no_path
+            ),
         ]
         .into_iter()
         .chain(acc.printed_min_positive.as_ref().map(|(_, f)| {
@@ -379,6 +400,103 @@ goal-avoiding cycles on all {} problems",
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::sync::Mutex;
+
+    /// C4-corrected's bookkeeping against a planted corrected set on every problem with an
+    /// odd number of moves: a set that differs from the oracle's at `M = −1000` by
+    /// construction. The verdict, the cases (one per call: every (problem, `S*`) case), the
+    /// failures and the reported problem and sets are recomputed here from the calls; C4 as
+    /// printed is untouched by the plant, and the problems without a reachable goal add up
+    /// with the cases to the problems enumerated.
+    #[test]
+    fn a_planted_corrected_set_is_counted_and_its_least_case_reported() {
+        let far = Q::int(-1000);
+        let seen = Mutex::new(Vec::new());
+        let (printed, r) = check_with(Scope::Smoke, |t, s| {
+            let fails = t.move_count() % 2 == 1;
+            let set = match (fails, s.exact.contains(far)) {
+                (false, _) => s.corrected,
+                (true, true) => Interval {
+                    lo: End::Open(Q::int(-1)),
+                    hi: End::Open(Q::ZERO),
+                    empty: false,
+                },
+                (true, false) => Interval::negative(),
+            };
+            let key = (t.states(), t.move_count(), t.cost_sum());
+            seen.lock().unwrap().push((
+                fails,
+                key,
+                t.describe(),
+                s.exact.to_string(),
+                set.to_string(),
+            ));
+            set
+        });
+        let seen = seen.into_inner().unwrap();
+        let calls = seen.len() as u64;
+        let failures = seen.iter().filter(|s| s.0).count() as u64;
+        assert!(failures > 1 && failures < calls, "{failures} of {calls}");
+        assert_eq!(r.verdict, Verdict::Refuted);
+        assert_eq!(
+            (r.cases, r.engines[0].cases, r.engines[0].failures),
+            (calls, calls, failures)
+        );
+        let least = seen.iter().filter(|s| s.0).map(|s| s.1).min().unwrap();
+        let cx = r.counterexample.unwrap();
+        assert!(
+            cx.summary.starts_with("C4 counterexample: at M = "),
+            "{}",
+            cx.summary
+        );
+        assert_eq!(cx.file, "problems/counterexamples/c4-corrected.json");
+        let detail = |name: &str| {
+            cx.details
+                .iter()
+                .find(|(k, _)| k == name)
+                .map(|(_, v)| v.clone())
+                .unwrap()
+        };
+        let (exact, set) = (
+            detail("exact set of M (oracle)"),
+            detail("corrected formula's set"),
+        );
+        assert!(
+            seen.iter().any(|s| s.0
+                && s.1 == least
+                && s.2 == cx.problem
+                && s.3 == exact
+                && s.4 == set),
+            "{} {exact} {set}",
+            cx.problem
+        );
+        // Without the plant: C4-corrected verified over the same cases, C4 as printed the same.
+        let (printed_real, real) = check(Scope::Smoke);
+        assert_eq!(real.verdict, Verdict::Verified);
+        assert!(real.counterexample.is_none());
+        assert_eq!((real.cases, real.engines[0].failures), (calls, 0));
+        assert_eq!(
+            (printed.verdict, printed.cases, printed.engines[0].failures),
+            (
+                printed_real.verdict,
+                printed_real.cases,
+                printed_real.engines[0].failures
+            )
+        );
+        assert_eq!(printed.notes, printed_real.notes);
+        // "N more problems (of P up to relabelling) have no goal reachable …", the cases P − N.
+        let note = printed
+            .notes
+            .iter()
+            .find(|n| n.contains("no goal reachable"))
+            .unwrap();
+        let words: Vec<&str> = note.split(' ').collect();
+        let no_path: u64 = words[0].parse().unwrap();
+        let problems: u64 = words[4].parse().unwrap();
+        let cases: u64 = printed.scope.split(' ').next().unwrap().parse().unwrap();
+        assert!(no_path > 0, "{note}");
+        assert_eq!(cases + no_path, problems, "{note}");
+    }
 
     /// The accumulators of the parallel enumeration add their counts. Every count is checked
     /// with both sides non-zero: a claim that holds has no failures on either side, so a

@@ -166,13 +166,11 @@ pub fn c1_corrected(cases: u32, persistence: Option<&'static str>) -> PropertyRu
             Order::FarFirst,
             Order::Random(7),
         ] {
-            match run(&q, &q0, o, 256) {
-                Run::Converged(k) if k <= bound => {}
-                other => {
-                    return Err(TestCaseError::fail(format!(
-                        "{o:?}: {other:?}, bound {bound}"
-                    )));
-                }
+            let outcome = run(&q, &q0, o, 256);
+            if !converged_within(&outcome, bound) {
+                return Err(TestCaseError::fail(format!(
+                    "{o:?}: {outcome:?}, bound {bound}"
+                )));
             }
         }
         Ok(())
@@ -184,6 +182,15 @@ pub fn c1_corrected(cases: u32, persistence: Option<&'static str>) -> PropertyRu
         &n,
         &r,
     )
+}
+
+/// C1-corrected's test of one run: `Q̂ = Q*` after at most `bound` rounds (Proposition 1,
+/// corrected). A cycle, or a run not converged within the limit, fails.
+fn converged_within(outcome: &Run, bound: u64) -> bool {
+    match outcome {
+        Run::Converged(k) => *k <= bound,
+        Run::Cycles(..) | Run::NotWithin(_) => false,
+    }
 }
 
 /// C2 on random problems up to 6 states.
@@ -275,5 +282,22 @@ pub fn cases(scope: Scope) -> u32 {
         Scope::Smoke => 64,
         Scope::Quick => 2000,
         Scope::Full => 20000,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bound is inclusive: converging in exactly `bound` rounds passes, one more fails, and
+    /// a cycle or a run cut off at the limit fails whatever the bound.
+    #[test]
+    fn converged_within_its_bound_and_not_beyond() {
+        assert!(converged_within(&Run::Converged(0), 0));
+        assert!(converged_within(&Run::Converged(3), 3));
+        assert!(converged_within(&Run::Converged(2), 3));
+        assert!(!converged_within(&Run::Converged(4), 3));
+        assert!(!converged_within(&Run::Cycles(1, 2), 256));
+        assert!(!converged_within(&Run::NotWithin(256), 256));
     }
 }

@@ -85,3 +85,30 @@ pub fn echo(text: &str) -> String {
 pub fn one_line(message: &str) -> String {
     escape(message, MAX_LINE)
 }
+
+/// The LaTeX text-mode form of one of LaTeX's ten special characters (`None` for any other
+/// character): the one escape the LaTeX renderings of `verify` and `reproduce` share, applied a
+/// character at a time so that no escape is escaped again.
+///
+/// ```
+/// use truecost::echo::tex_special;
+/// assert_eq!(tex_special('\\'), Some(r"\textbackslash{}"));
+/// assert_eq!(tex_special('{'), Some(r"\{"));
+/// assert_eq!(tex_special('^'), Some(r"\^{}"));
+/// assert_eq!(tex_special('a'), None);
+/// ```
+pub fn tex_special(c: char) -> Option<&'static str> {
+    Some(match c {
+        '\\' => r"\textbackslash{}",
+        '&' => r"\&",
+        '%' => r"\%",
+        '_' => r"\_",
+        '#' => r"\#",
+        '{' => r"\{",
+        '}' => r"\}",
+        '$' => r"\$",
+        '^' => r"\^{}",
+        '~' => r"\~{}",
+        _ => return None,
+    })
+}

@@ -261,16 +261,11 @@ pub fn markdown(report: &Report, with_times: bool) -> String {
     s
 }
 
+/// Text escaped for LaTeX ([`crate::echo::tex_special`]).
 fn tex(s: &str) -> String {
-    s.replace('\\', "\\textbackslash{}")
-        .replace('&', "\\&")
-        .replace('%', "\\%")
-        .replace('_', "\\_")
-        .replace('#', "\\#")
-        .replace('{', "\\{")
-        .replace('}', "\\}")
-        .replace('^', "\\^{}")
-        .replace('~', "\\~{}")
+    s.chars()
+        .map(|c| crate::echo::tex_special(c).map_or_else(|| c.to_string(), str::to_string))
+        .collect()
 }
 
 /// The report as a LaTeX table (booktabs), with the tool version and git commit.
@@ -321,4 +316,117 @@ pub fn latex(report: &Report) -> String {
     );
     let _ = writeln!(s, "\\end{{table}}");
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::claims::{EngineRun, Verdict};
+
+    /// One claim with a timed engine run (10 cases in 2 s: 5 cases/s), an SMT run (6
+    /// obligations in 3 s) and an engine run that reports no time (0 s: no rate at all, not
+    /// "n/a"), under a tool name and commit that need escaping in LaTeX.
+    fn report() -> Report {
+        let run = |engine: &str, cases, seconds| EngineRun {
+            engine: engine.into(),
+            mode: "exhaustive".into(),
+            scope: "s".into(),
+            cases,
+            failures: 0,
+            seconds,
+        };
+        Report {
+            tool: "truecost_0.1".into(),
+            commit: "abc#def0123456789".into(),
+            scope: Scope::Smoke,
+            claims: vec![ClaimResult {
+                id: "C2_x".into(),
+                statement: "st".into(),
+                verdict: Verdict::Verified,
+                engine: "exhaustive enumeration".into(),
+                scope: "a | b".into(),
+                cases: 10,
+                counterexample: None,
+                engines: vec![
+                    run("exhaustive enumeration", 10, 2.0),
+                    run("smt (z3)", 6, 3.0),
+                    run("kani stand-in", 7, 0.0),
+                ],
+                notes: vec!["n".into()],
+            }],
+            alpha_star: None,
+            solver: None,
+            smt: vec![],
+        }
+    }
+
+    #[test]
+    fn rates_only_for_engine_runs_with_a_time() {
+        let r = report();
+        let v: Value = serde_json::from_str(&json(&r, true)).unwrap();
+        let engines = v["claims"][0]["engines"].as_array().unwrap();
+        assert_eq!(engines[0]["seconds"], json!(2.0));
+        assert_eq!(engines[0]["cases_per_second"], json!(5.0));
+        assert_eq!(engines[1]["cases_per_second"], json!(2.0));
+        assert!(engines[2].get("seconds").is_none(), "{}", engines[2]);
+        assert!(engines[2].get("cases_per_second").is_none());
+        let untimed: Value = serde_json::from_str(&json(&r, false)).unwrap();
+        assert!(untimed["claims"][0]["engines"][0].get("seconds").is_none());
+
+        let t = text(&r, true);
+        assert!(
+            t.contains(
+                "  engine: exhaustive enumeration [exhaustive] 10 cases, 0 failures, 5 cases/s\n"
+            ),
+            "{t}"
+        );
+        assert!(
+            t.contains("  engine: smt (z3) [exhaustive] 6 cases, 0 failures, 2 obligations/s\n"),
+            "{t}"
+        );
+        assert!(
+            t.contains("  engine: kani stand-in [exhaustive] 7 cases, 0 failures\n"),
+            "{t}"
+        );
+        assert!(!text(&r, false).contains("cases/s"));
+
+        let m = markdown(&r, true);
+        assert!(
+            m.contains("- exhaustive enumeration [exhaustive]: 10 cases, 0 failures, 5 cases/s\n"),
+            "{m}"
+        );
+        assert!(
+            m.contains("- kani stand-in [exhaustive]: 7 cases, 0 failures\n"),
+            "{m}"
+        );
+        assert!(
+            m.contains("| C2_x | verified | exhaustive enumeration | 10 | a / b |\n"),
+            "{m}"
+        );
+        assert!(!markdown(&r, false).contains("cases/s"));
+        assert_eq!(rate(1, 0.0, "x"), "n/a");
+    }
+
+    #[test]
+    fn latex_escapes_its_special_characters() {
+        assert_eq!(
+            tex(r"a\b&c%d_e#f{g}h^i~j$k"),
+            r"a\textbackslash{}b\&c\%d\_e\#f\{g\}h\^{}i\~{}j\$k"
+        );
+        let l = latex(&report());
+        let lines: Vec<&str> = l.lines().collect();
+        assert_eq!(
+            lines[0],
+            "% truecost_0.1 (commit abc#def0123456789), truecost verify --scope smoke"
+        );
+        assert!(
+            lines.contains(&r"C2\_x & verified & 10 & exhaustive enumeration \\"),
+            "{l}"
+        );
+        assert!(
+            lines.contains(&r"\caption{Machine-checked claims (truecost\_0.1, commit \texttt{abc\#def01234}, scope smoke).}"),
+            "{l}"
+        );
+        assert_eq!(lines.last(), Some(&r"\end{table}"));
+    }
 }

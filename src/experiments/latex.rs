@@ -32,14 +32,11 @@ pub fn tex(s: &str) -> String {
         out.push('$');
     };
     for c in s.chars() {
+        if let Some(escaped) = crate::echo::tex_special(c) {
+            out.push_str(escaped);
+            continue;
+        }
         match c {
-            '\\' => out.push_str(r"\textbackslash{}"),
-            '&' | '%' | '_' | '#' | '{' | '}' | '$' => {
-                out.push('\\');
-                out.push(c);
-            }
-            '^' => out.push_str(r"\^{}"),
-            '~' => out.push_str(r"\~{}"),
             'ε' => math(&mut out, r"\varepsilon"),
             'π' => math(&mut out, r"\pi"),
             'γ' => math(&mut out, r"\gamma"),

@@ -453,6 +453,52 @@ mod tests {
         );
     }
 
+    /// The size bound counts the states reachable from `x1`: a chain of [`MAX_STATES`] states
+    /// (cost 1 a move, the last the goal) is searched, with unreachable states beyond it —
+    /// one policy, no cycle, so `π*` (`S* = MAX_STATES`, `L* = MAX_STATES − 1`) is optimal for
+    /// every `M < 0` — and a chain of one state more is refused, naming its size.
+    #[test]
+    fn the_size_bound_counts_reachable_states() {
+        let chain = |reachable: usize, unreachable: usize| {
+            let n = reachable + unreachable;
+            Instance {
+                initial: 0,
+                is_goal: (0..n).map(|x| x == reachable - 1).collect(),
+                moves: (0..n)
+                    .map(|x| {
+                        if x + 1 < reachable {
+                            vec![(x + 1, 1)]
+                        } else if x >= reachable {
+                            vec![(0, 1)]
+                        } else {
+                            vec![]
+                        }
+                    })
+                    .collect(),
+            }
+        };
+        let sets = bonus_sets_by_cycles(&chain(MAX_STATES, 5))
+            .unwrap()
+            .unwrap();
+        assert_eq!(sets.len(), 1);
+        assert_eq!(
+            (sets[0].optimal_states, sets[0].optimal_cost),
+            (MAX_STATES as i64, MAX_STATES as i64 - 1)
+        );
+        assert!(
+            sets[0].exact.same_set(&Interval::negative()),
+            "{}",
+            sets[0].exact
+        );
+        assert_eq!(
+            bonus_sets_by_cycles(&chain(MAX_STATES + 1, 0)).unwrap_err(),
+            format!(
+                "{} states are reachable from x1; the violated-cycle search takes at most {MAX_STATES}",
+                MAX_STATES + 1
+            )
+        );
+    }
+
     /// Costs whose sums leave 64 bits are refused, naming the overflow, not wrapped: two moves
     /// of 2^62 make a goal path of 2^63.
     #[test]

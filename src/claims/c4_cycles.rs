@@ -437,7 +437,9 @@ mod tests {
     /// A goal-avoiding cycle caps M: `x1 = 0`, goal 2 at cost 4 (S* = 2), and a loop at 1
     /// (reachable: 0 → 1 costs 1) of mean 1. Optimal iff (4 + M)/2 <= 1 and, against the
     /// path 0 → 1 → 2 (cost 1 + 5, 3 states), (4 + M)/2 <= (6 + M)/3, i.e. M <= 0: the set
-    /// is M <= -2.
+    /// is M <= -2. Three Newton steps (Bellman–Ford runs): at M = 0 only the loop is violated
+    /// (mean 1 < 4/2), its crossing (1·4 − 2·1)/(2·0 − 1) = −2 is the right end, where nothing
+    /// is violated; at −B nothing is violated either, so the left end is unbounded.
     #[test]
     fn goal_avoiding_cycle_caps_the_bonus() {
         let inst = Instance {
@@ -451,6 +453,7 @@ mod tests {
             (sets[0].exact.lo, sets[0].exact.hi, sets[0].exact.empty),
             (End::Unbounded, End::Closed(Q::int(-2)), false)
         );
+        assert_eq!(sets[0].steps, 3);
     }
 
     /// The size bound counts the states reachable from `x1`: a chain of [`MAX_STATES`] states

@@ -754,6 +754,25 @@ fn rational_brackets_and_halving_by_hand() {
     }
 }
 
+/// `as_rational` of a linear polynomial is its root `−c₀/c₁`, whatever the leading
+/// coefficient: `2x − 3` (as a caller may build it) and `x − 3/2` (monic, as `isolate_roots`
+/// gives it) both name 3/2, in a bracket `(1, 2]` whose closed end is not the root.
+#[test]
+fn a_linear_root_as_a_rational() {
+    for poly in [Poly::from_i64(&[-3, 2]), Poly::from_i64(&[-3, 2]).monic()] {
+        let a = Algebraic {
+            poly,
+            lo: big(1),
+            hi: big(2),
+        };
+        assert!(!a.is_rational());
+        assert_eq!(a.as_rational(), Some(bq(3, 2)));
+    }
+    let mut roots = isolate_roots(&Poly::from_i64(&[-3, 2]), &big(0), &big(4));
+    assert_eq!(roots.len(), 1);
+    assert_eq!(roots.pop().unwrap().as_rational(), Some(bq(3, 2)));
+}
+
 #[test]
 fn algebraic_numbers_by_hand() {
     // ±√2 and ±√3: comparisons with rationals and with each other, decided exactly.

@@ -773,6 +773,20 @@ fn a_linear_root_as_a_rational() {
     assert_eq!(roots.pop().unwrap().as_rational(), Some(bq(3, 2)));
 }
 
+/// `decimal` refines the bracket below the last digit before truncating: √(49/50) =
+/// 0.98994…, whose isolating bracket from `(0, 2]` ends at 1 or above, is "0" and "0.9", not
+/// "1" or "1.0".
+#[test]
+fn decimals_of_a_root_just_below_a_digit() {
+    let r = isolate_roots(&Poly::from_i64(&[-49, 0, 50]), &big(0), &big(2))
+        .pop()
+        .unwrap();
+    assert!(r.hi >= big(1), "{r:?}");
+    assert_eq!(r.decimal(0), "0");
+    assert_eq!(r.decimal(1), "0.9");
+    assert_eq!(r.decimal(4), "0.9899");
+}
+
 #[test]
 fn algebraic_numbers_by_hand() {
     // ±√2 and ±√3: comparisons with rationals and with each other, decided exactly.

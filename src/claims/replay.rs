@@ -433,3 +433,36 @@ impl Replay {
         serde_json::to_string_pretty(&value).expect("serialisable") + "\n"
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Move;
+
+    /// `G*` and `h` by hand: from 0 the goal 2 costs 5 directly and 1 + 1 through 1, so
+    /// `G*(0) = 2` (not the first value found, 5) and `h(0) = 2` (the fewest moves of an
+    /// *optimal* path, not the one move of the direct one); 3 has no path (`+∞`, no `h`).
+    /// Both orders of 0's moves: the direct move scanned first, then last. And `h` is the
+    /// fewest moves among optimal paths when there are several.
+    #[test]
+    fn cost_to_go_and_fewest_moves_of_an_optimal_path_by_hand() {
+        let mv = |successor, cost: i64| Move {
+            successor,
+            cost: Rational::from_integer(cost.into()),
+        };
+        let int = |v: i64| Some(Rational::from_integer(v.into()));
+        for moves_of_0 in [vec![mv(2, 5), mv(1, 1)], vec![mv(1, 1), mv(2, 5)]] {
+            let moves = vec![moves_of_0, vec![mv(2, 1)], vec![], vec![mv(3, 1)]];
+            let p = Problem::new(moves, 0, vec![2]).unwrap();
+            let (g, h) = cost_to_go(&p);
+            assert_eq!(g, vec![int(2), int(1), int(0), None]);
+            assert_eq!(h, vec![Some(2), Some(1), Some(0), None]);
+        }
+        // Two optimal paths from 1, of two moves (through 0, scanned first) and of one: h(1)
+        // is the fewer, 1.
+        let moves = vec![vec![mv(2, 1)], vec![mv(0, 1), mv(2, 2)], vec![]];
+        let (g, h) = cost_to_go(&Problem::new(moves, 1, vec![2]).unwrap());
+        assert_eq!(g, vec![int(1), int(2), int(0)]);
+        assert_eq!(h, vec![Some(1), Some(1), Some(0)]);
+    }
+}

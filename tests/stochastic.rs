@@ -4,12 +4,12 @@
 //! bad input. Expected values come from hand derivations, independent oracles or the published
 //! table (`shared/reference/problem10.md`), never from the code under test.
 
+mod common;
+use common::stochastic_file;
+
 use num_bigint::BigInt;
 use num_traits::{One, Zero};
 use proptest::prelude::*;
-
-mod common;
-use common::stochastic_file;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 

@@ -3,11 +3,11 @@
 //! probabilities (binomial bounds), exact directed rounding, the published reference VI counts,
 //! thread-count independence, and one-line refusals of bad input.
 
-use num_traits::ToPrimitive;
-use proptest::prelude::*;
-
 mod common;
 use common::stochastic_file;
+
+use num_traits::ToPrimitive;
+use proptest::prelude::*;
 use rand::RngExt;
 use truecost::experiments::stochastic::{self, EpsilonSpec, RateSpec, Settings};
 use truecost::learning::plan::{sample_rng, EpsilonSchedule, Plan, Probability};

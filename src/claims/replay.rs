@@ -465,4 +465,26 @@ mod tests {
         assert_eq!(g, vec![int(1), int(2), int(0)]);
         assert_eq!(h, vec![Some(1), Some(1), Some(0)]);
     }
+
+    /// `--rounds` may be `MAX_ROUNDS` exactly, not one more, and the bound is checked before any
+    /// round runs: from `Q₀ = Q*` (the move of cost 1 to the goal) a replay allowed
+    /// `MAX_ROUNDS` rounds is converged at round 0.
+    #[test]
+    fn rounds_up_to_max_rounds_are_accepted() {
+        let one = Move {
+            successor: 1,
+            cost: Rational::from_integer(1.into()),
+        };
+        let p = Problem::new(vec![vec![one], vec![]], 0, vec![1]).unwrap();
+        let q0 = InitialValues::parse("1,0").unwrap();
+        let run = |rounds| replay(&p, &q0, ReplayOrder::Cyclic, Terminal::Updated, rounds);
+        assert_eq!(
+            run(MAX_ROUNDS).unwrap().verdict,
+            ReplayVerdict::Converged { round: 0 }
+        );
+        assert_eq!(
+            run(MAX_ROUNDS + 1).unwrap_err(),
+            format!("--rounds {}: at most {MAX_ROUNDS}", MAX_ROUNDS + 1)
+        );
+    }
 }

@@ -112,28 +112,41 @@ struct Trajectories {
     lassos: Vec<(Poly, Poly)>,
 }
 
+/// The bounds of the enumeration of trajectories, checked as it runs (issue 12).
+#[derive(Clone, Copy)]
+struct Bounds {
+    /// The most goal paths, and the most goal-avoiding lassos, stored.
+    trajectories: usize,
+    /// The most depth-first steps ([`MAX_SEARCH_STEPS`]).
+    steps: u64,
+    /// The most coefficients stored ([`MAX_COEFFICIENTS`]).
+    coefficients: u64,
+}
+
 /// Every goal path and goal-avoiding lasso from `x1`, each bound checked as the search runs.
-fn trajectories(problem: &Problem, limit: usize) -> Result<Trajectories, DiscountError> {
+fn trajectories(problem: &Problem, bounds: Bounds) -> Result<Trajectories, DiscountError> {
     struct Walk<'a> {
         problem: &'a Problem,
         pos: Vec<usize>,
         costs: Vec<Rational>,
         out: Trajectories,
-        limit: usize,
+        bounds: Bounds,
         steps: u64,
         coefficients: u64,
     }
     impl Walk<'_> {
-        /// Counts a stored trajectory of `stages` stages and checks every bound.
+        /// Counts a stored trajectory of `stages` stages (its `(N, D)` holds at most
+        /// `(stages + 1) + (stages + 1)` coefficients) and checks every bound.
         fn stored(&mut self, stages: usize) -> Result<(), DiscountError> {
             self.coefficients += 2 * stages as u64 + 2;
-            if self.out.paths.len() > self.limit || self.out.lassos.len() > self.limit {
-                return Err(DiscountError::TooLarge(self.limit));
+            let most = self.bounds.trajectories;
+            if self.out.paths.len() > most || self.out.lassos.len() > most {
+                return Err(DiscountError::TooLarge(most));
             }
-            if self.coefficients > MAX_COEFFICIENTS {
+            if self.coefficients > self.bounds.coefficients {
                 return Err(DiscountError::Effort {
                     what: "polynomial coefficients",
-                    bound: MAX_COEFFICIENTS,
+                    bound: self.bounds.coefficients,
                 });
             }
             Ok(())
@@ -141,10 +154,10 @@ fn trajectories(problem: &Problem, limit: usize) -> Result<Trajectories, Discoun
     }
     fn dfs(w: &mut Walk, x: usize) -> Result<(), DiscountError> {
         w.steps += 1;
-        if w.steps > MAX_SEARCH_STEPS {
+        if w.steps > w.bounds.steps {
             return Err(DiscountError::Effort {
                 what: "search steps",
-                bound: MAX_SEARCH_STEPS,
+                bound: w.bounds.steps,
             });
         }
         if w.problem.is_goal(x) {
@@ -176,7 +189,7 @@ fn trajectories(problem: &Problem, limit: usize) -> Result<Trajectories, Discoun
             paths: Vec::new(),
             lassos: Vec::new(),
         },
-        limit,
+        bounds,
         steps: 0,
         coefficients: 0,
     };
@@ -308,7 +321,12 @@ pub fn discount_set(problem: &Problem, limit: usize) -> Result<DiscountSet, Disc
 the cost of any lasso",
         ));
     }
-    let t = trajectories(problem, limit)?;
+    let bounds = Bounds {
+        trajectories: limit,
+        steps: MAX_SEARCH_STEPS,
+        coefficients: MAX_COEFFICIENTS,
+    };
+    let t = trajectories(problem, bounds)?;
     check_pair_work(&t)?;
     // Candidate breakpoints.
     let mut polys: Vec<Poly> = Vec::new();
@@ -486,4 +504,66 @@ pub fn set_text(s: &DiscountSet) -> String {
         })
         .collect::<Vec<_>>()
         .join(" U ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Move;
+
+    fn problem(moves: &[&[(usize, i64)]], goal: usize) -> Problem {
+        let moves = moves
+            .iter()
+            .map(|list| {
+                list.iter()
+                    .map(|&(successor, cost)| Move {
+                        successor,
+                        cost: Rational::from_integer(cost.into()),
+                    })
+                    .collect()
+            })
+            .collect();
+        Problem::new(moves, 0, vec![goal]).unwrap()
+    }
+
+    fn search(p: &Problem, most: usize, steps: u64, coefficients: u64) -> String {
+        let bounds = Bounds {
+            trajectories: most,
+            steps,
+            coefficients,
+        };
+        match trajectories(p, bounds) {
+            Ok(t) => format!("{} paths, {} lassos", t.paths.len(), t.lassos.len()),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    /// The enumeration's bounds at their edges, worked out by hand. Problem A: `0 → 1`, `0 ↺`,
+    /// `1 → 2` (goal), `1 → 0`. The search visits 0, 1, 2 (3 steps) and stores the path
+    /// 0 1 2 (2 stages: 6 coefficients), the lasso 0 1 0 (2 stages: 6) and the lasso 0 0
+    /// (1 stage: 4): 16 coefficients, 1 path, 2 lassos. Each bound is met exactly, then passed
+    /// by one.
+    #[test]
+    fn the_bounds_of_the_enumeration_by_hand() {
+        let a = problem(&[&[(1, 1), (0, 2)], &[(2, 1), (0, 1)], &[]], 2);
+        assert_eq!(search(&a, 2, 3, 16), "1 paths, 2 lassos");
+        let refused = |what: &str, bound: u64| {
+            format!("the enumeration of goal paths and lassos from x1 passed its bound of {bound} {what}: too large for the exact parametric analysis")
+        };
+        assert_eq!(search(&a, 2, 2, 16), refused("search steps", 2));
+        assert_eq!(search(&a, 2, 3, 15), refused("polynomial coefficients", 15));
+        let too_many = |most: usize| {
+            format!("the problem has more than {most} goal paths or goal-avoiding lassos from x1: too large for the exact parametric analysis")
+        };
+        // Two lassos, one path: one lasso too many.
+        assert_eq!(search(&a, 1, 3, 16), too_many(1));
+        // Problem B: `0 → 1` (goal), `0 ↺`: one path, one lasso, each exactly at the bound 1.
+        let b = problem(&[&[(1, 1), (0, 2)], &[]], 1);
+        assert_eq!(search(&b, 1, 2, 8), "1 paths, 1 lassos");
+        assert_eq!(search(&b, 0, 2, 8), too_many(0));
+        // Problem C: two moves `0 → 1` (goal), no lasso: one path too many.
+        let c = problem(&[&[(1, 1), (1, 2)], &[]], 1);
+        assert_eq!(search(&c, 2, 3, 8), "2 paths, 0 lassos");
+        assert_eq!(search(&c, 1, 3, 8), too_many(1));
+    }
 }

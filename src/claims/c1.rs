@@ -65,7 +65,6 @@ struct Acc {
     corrected_min: Option<(Key, Finding)>,
     max_rounds: u64,
     bound_attained: u64,
-    runs: u64,
     drop_h1: Option<(Key, Finding)>,
     drop_h2: Option<(Key, Finding)>,
     exhaustive_cases: u64,
@@ -88,7 +87,6 @@ fn merge(a: Acc, b: Acc) -> Acc {
         corrected_min: min_of(a.corrected_min, b.corrected_min),
         max_rounds: a.max_rounds.max(b.max_rounds),
         bound_attained: a.bound_attained + b.bound_attained,
-        runs: a.runs + b.runs,
         drop_h1: min_of(a.drop_h1, b.drop_h1),
         drop_h2: min_of(a.drop_h2, b.drop_h2),
         exhaustive_cases: a.exhaustive_cases + b.exhaustive_cases,
@@ -301,7 +299,6 @@ fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], correcte
             } else {
                 let mut bad = None;
                 for o in orders(seed) {
-                    acc.runs += 1;
                     let r = run(&printed, &q0, o, MAX_ROUNDS);
                     match r {
                         Run::Converged(_) => {}
@@ -365,7 +362,6 @@ fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], correcte
                 acc.corrected_cases += 1;
                 let bound = held.round_bound(&q0).expect("hypotheses hold");
                 for o in orders(seed) {
-                    acc.runs += 1;
                     let r = run(&held, &q0, o, MAX_ROUNDS);
                     match r {
                         Run::Converged(k) if k <= bound => {
@@ -735,6 +731,59 @@ mod tests {
     use crate::claims::qlearning::{QProblem, Terminal};
     use crate::claims::tiny::Tiny;
 
+    /// `merge` (the parallel enumeration's reduction) adds every count and keeps the larger of
+    /// the round maxima, field by field: two accumulators with different non-zero values (the
+    /// smoke and quick scopes leave several counts at 0, where `+`, `−` and `·` agree).
+    #[test]
+    fn merge_adds_every_count_and_keeps_the_larger_maxima() {
+        let a = Acc {
+            printed_cases: 1,
+            printed_failures: 2,
+            printed_undecided: 3,
+            corrected_cases: 4,
+            corrected_failures: 5,
+            max_rounds: 6,
+            bound_attained: 7,
+            exhaustive_cases: 8,
+            exhaustive_failures: 9,
+            exhaustive_too_large: 10,
+            exhaustive_max_rounds: 11,
+            exhaustive_attained: 12,
+            ..Acc::default()
+        };
+        let b = Acc {
+            printed_cases: 100,
+            printed_failures: 200,
+            printed_undecided: 300,
+            corrected_cases: 400,
+            corrected_failures: 500,
+            max_rounds: 2,
+            bound_attained: 700,
+            exhaustive_cases: 800,
+            exhaustive_failures: 900,
+            exhaustive_too_large: 1000,
+            exhaustive_max_rounds: 20,
+            exhaustive_attained: 1200,
+            ..Acc::default()
+        };
+        let m = merge(a, b);
+        assert_eq!(
+            (m.printed_cases, m.printed_failures, m.printed_undecided),
+            (101, 202, 303)
+        );
+        assert_eq!((m.corrected_cases, m.corrected_failures), (404, 505));
+        assert_eq!((m.max_rounds, m.bound_attained), (6, 707));
+        assert_eq!(
+            (
+                m.exhaustive_cases,
+                m.exhaustive_failures,
+                m.exhaustive_too_large
+            ),
+            (808, 909, 1010)
+        );
+        assert_eq!((m.exhaustive_max_rounds, m.exhaustive_attained), (20, 1212));
+    }
+
     /// The full scope checks every initial value the quick scope (CI's) checks, and more, for
     /// C1 and for C1-corrected (the smoke scope is a different small set).
     #[test]
@@ -743,6 +792,13 @@ mod tests {
             let (quick, full) = (values(Scope::Quick), values(Scope::Full));
             assert!(quick.iter().all(|v| full.contains(v)), "{quick:?} {full:?}");
             assert!(full.len() > quick.len());
+            // Distinct values: a repeated one would check less than the scope says.
+            for scope in [Scope::Smoke, Scope::Quick, Scope::Full] {
+                let mut distinct = values(scope).to_vec();
+                distinct.sort();
+                distinct.dedup();
+                assert_eq!(distinct.len(), values(scope).len(), "{:?}", values(scope));
+            }
         }
     }
 

@@ -731,6 +731,36 @@ mod tests {
     use crate::claims::qlearning::{QProblem, Terminal};
     use crate::claims::tiny::Tiny;
 
+    /// `initial_vectors` against a brute force: every vector over the domain on the move pairs,
+    /// less those where two identical moves of one state (interchangeable) have decreasing
+    /// values. Two identical moves `0 → 1` keep 6 of 9 vectors, `v(0) ≤ v(1)`; two moves of
+    /// different costs keep all 9; the goal's termination pair (index 2) stays 0.
+    #[test]
+    fn initial_vectors_keep_one_of_each_pair_of_interchangeable_moves() {
+        let domain = [0, 1, 3];
+        for (second_cost, interchangeable) in [(1, true), (2, false)] {
+            let t = Tiny::from_lists(&[vec![(1, 1), (1, second_cost)], vec![]]);
+            let q = QProblem::new(&t, Terminal::Updated);
+            let mut brute = Vec::new();
+            for a in domain {
+                for b in domain {
+                    if !interchangeable || a <= b {
+                        brute.push((a, b));
+                    }
+                }
+            }
+            let got: Vec<(i64, i64)> = initial_vectors(&q, &domain)
+                .iter()
+                .inspect(|v| assert!(v[2..].iter().all(|&x| x == 0), "{v:?}"))
+                .map(|v| (v[0], v[1]))
+                .collect();
+            let mut sorted = got.clone();
+            sorted.sort();
+            assert_eq!(sorted, brute, "moves of costs 1 and {second_cost}");
+            assert_eq!(got.len(), if interchangeable { 6 } else { 9 });
+        }
+    }
+
     /// `merge` (the parallel enumeration's reduction) adds every count and keeps the larger of
     /// the round maxima, field by field: two accumulators with different non-zero values (the
     /// smoke and quick scopes leave several counts at 0, where `+`, `−` and `·` agree).

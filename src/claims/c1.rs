@@ -284,7 +284,10 @@ fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], correcte
                     c,
                     (q0sum + terminal_q0) as u64,
                     index,
-                    vi as u64 * 2 + terminal_q0 as u64,
+                    // Ties within one problem go to the first found, in (vector, terminal
+                    // value) order: `keep_min` keeps the first of equal keys, and no other call
+                    // sees this `index`.
+                    0,
                 )
             };
             let seed = index.wrapping_mul(1_000_003).wrapping_add(vi as u64);
@@ -759,6 +762,62 @@ mod tests {
             assert_eq!(sorted, brute, "moves of costs 1 and {second_cost}");
             assert_eq!(got.len(), if interchangeable { 6 } else { 9 });
         }
+    }
+
+    /// A cycling failure of C1 as printed states the rounds its replay needs: the first round
+    /// of the repetition plus its period, the least number after which `truecost learn`
+    /// (`claims::replay`, an implementation apart from the claims engine's) reports that the
+    /// values never converge. On the chain 0 → … → 5 (goal) from `Q₀ = 0` with the termination
+    /// pair at 1 (held there by the update, so `Q ≠ Q*` forever), the values settle a step a
+    /// round: the repetition starts late enough that `from + period` differs from `from · period`
+    /// and from the replay command's floor of 4.
+    #[test]
+    fn a_cycling_failure_states_the_rounds_its_replay_needs() {
+        use crate::claims::replay::{replay, InitialValues, ReplayOrder, ReplayVerdict};
+        use crate::value::Rational;
+        let t = Tiny::from_lists(&[
+            vec![(1, 1)],
+            vec![(2, 1)],
+            vec![(3, 1)],
+            vec![(4, 1)],
+            vec![(5, 1)],
+            vec![],
+        ]);
+        let mut acc = Acc::default();
+        check_structure(&mut acc, &t, 0, &[0], &[0]);
+        let (_, f) = acc
+            .printed_min
+            .expect("the termination pair at 1 never converges");
+        assert_eq!(f.terminal_q0, 1);
+        let order = match f.order.expect("a cycling failure has an order") {
+            Order::Cyclic => ReplayOrder::Cyclic,
+            Order::Reverse => ReplayOrder::Reverse,
+            Order::FarFirst => ReplayOrder::FarFirst,
+            Order::Random(seed) => ReplayOrder::Random(seed),
+        };
+        let q = QProblem::new(&t, Terminal::Updated);
+        let q0 = InitialValues::PerPair(
+            (0..q.len())
+                .map(|p| Rational::from_integer(f.q0[p].into()))
+                .collect(),
+        );
+        let p: crate::model::Problem = t.to_problem();
+        let verdict = |rounds| {
+            replay(&p, &q0, order, Terminal::Updated, rounds)
+                .unwrap()
+                .verdict
+        };
+        assert!(f.rounds > 4, "{}", f.rounds);
+        assert!(matches!(
+            verdict(f.rounds),
+            ReplayVerdict::NeverConverges { from, period } if from + period == f.rounds
+        ));
+        assert_eq!(
+            verdict(f.rounds - 1),
+            ReplayVerdict::NotConverged {
+                rounds: f.rounds - 1
+            }
+        );
     }
 
     /// `merge` (the parallel enumeration's reduction) adds every count and keeps the larger of

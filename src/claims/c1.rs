@@ -258,7 +258,19 @@ fn optimum_text(q: &QProblem) -> String {
     s
 }
 
-fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], corrected_domain: &[i64]) {
+/// C1-corrected's round bound `R` of a problem prepared with the termination pair held, from
+/// `Q₀`: [`QProblem::round_bound`] in every check. A unit test plants a smaller one to take the
+/// failure path, which the theorem (C1-corrected holds) leaves untaken in every scope.
+type RoundBound = fn(&QProblem, &Values) -> Option<u64>;
+
+fn check_structure(
+    acc: &mut Acc,
+    t: &Tiny,
+    index: u64,
+    domain: &[i64],
+    corrected_domain: &[i64],
+    round_bound: RoundBound,
+) {
     let printed = QProblem::new(t, Terminal::Updated);
     let held = QProblem::new(t, Terminal::HeldAtZero);
     let terminal_pair = (0..printed.len())
@@ -363,7 +375,7 @@ fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], correcte
             let h2 = above || positive;
             if h1 && h2 {
                 acc.corrected_cases += 1;
-                let bound = held.round_bound(&q0).expect("hypotheses hold");
+                let bound = round_bound(&held, &q0).expect("hypotheses hold");
                 for o in orders(seed) {
                     let r = run(&held, &q0, o, MAX_ROUNDS);
                     match r {
@@ -416,7 +428,7 @@ fn check_structure(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], correcte
     }
 }
 
-fn check_all_orders(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64]) {
+fn check_all_orders(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], round_bound: RoundBound) {
     let held = QProblem::new(t, Terminal::HeldAtZero);
     if !held.all_finite() {
         return;
@@ -432,7 +444,7 @@ fn check_all_orders(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64]) {
             continue;
         }
         acc.exhaustive_cases += 1;
-        let bound = held.round_bound(q0).expect("hypotheses hold");
+        let bound = round_bound(&held, q0).expect("hypotheses hold");
         let key: Key = {
             let (a, b, c, _, _) = minimality_key(t, 0, 0);
             (
@@ -567,7 +579,7 @@ pub fn check(scope: Scope) -> (ClaimResult, ClaimResult) {
         let (a, distinct) = enumerate(
             &spec,
             Acc::default,
-            |acc, t, i| check_structure(acc, t, i, domain, corrected),
+            |acc, t, i| check_structure(acc, t, i, domain, corrected, QProblem::round_bound),
             merge,
         );
         acc = merge(acc, a);
@@ -581,7 +593,7 @@ pub fn check(scope: Scope) -> (ClaimResult, ClaimResult) {
         let (a, _) = enumerate(
             &spec,
             Acc::default,
-            |acc, t, i| check_all_orders(acc, t, i, domain),
+            |acc, t, i| check_all_orders(acc, t, i, domain, QProblem::round_bound),
             merge,
         );
         acc = merge(acc, a);
@@ -784,7 +796,7 @@ mod tests {
             vec![],
         ]);
         let mut acc = Acc::default();
-        check_structure(&mut acc, &t, 0, &[0], &[0]);
+        check_structure(&mut acc, &t, 0, &[0], &[0], QProblem::round_bound);
         let (_, f) = acc
             .printed_min
             .expect("the termination pair at 1 never converges");
@@ -818,6 +830,54 @@ mod tests {
                 rounds: f.rounds - 1
             }
         );
+    }
+
+    /// C1-corrected's failure path, which the theorem leaves untaken, reached with a planted
+    /// bound one below the true `R`. Chain 0 → 1 → 2 (goal), costs 1, `Q₀ = 0`, termination
+    /// pair held: `R = max(R₁, ⌈(max Q* − min(0, min Q₀))/c⌉) = max(2, 2) = 2`, by hand. The
+    /// cyclic and far-first orders (pairs 0, 1) need 2 rounds, the reverse order 1, and the
+    /// random order (seed 0: splitmix64's draw 0x…65F4 is even, so it swaps the two pairs) 1.
+    /// With `R` the case passes and the far-first order attains the bound; with `R − 1 = 1` the
+    /// cyclic and far-first runs fail (the cyclic one reported, first, with the rounds that show
+    /// it, `R − 1 + 1`), and the every-order exploration (worst order: 2 rounds) fails once.
+    #[test]
+    fn a_planted_bound_below_r_is_counted_and_reported() {
+        let t = Tiny::from_lists(&[vec![(1, 1)], vec![(2, 1)], vec![]]);
+        let below: RoundBound = |q, v| q.round_bound(v).map(|r| r - 1);
+        let mut right = Acc::default();
+        check_structure(&mut right, &t, 0, &[0], &[0], QProblem::round_bound);
+        check_all_orders(&mut right, &t, 0, &[0], QProblem::round_bound);
+        let mut planted = Acc::default();
+        check_structure(&mut planted, &t, 0, &[0], &[0], below);
+        check_all_orders(&mut planted, &t, 0, &[0], below);
+        assert_eq!((right.corrected_cases, right.corrected_failures), (1, 0));
+        assert_eq!((right.max_rounds, right.bound_attained), (2, 1));
+        assert_eq!(
+            (right.exhaustive_failures, right.exhaustive_attained),
+            (0, 1)
+        );
+        assert!(right.corrected_min.is_none() && right.exhaustive_min.is_none());
+        assert_eq!(
+            (planted.corrected_cases, planted.corrected_failures),
+            (1, 2)
+        );
+        assert_eq!((planted.max_rounds, planted.bound_attained), (1, 0));
+        assert_eq!(
+            (planted.exhaustive_cases, planted.exhaustive_failures),
+            (1, 1)
+        );
+        let (_, f) = planted.corrected_min.expect("a failure");
+        assert_eq!(
+            f.what,
+            "under the cyclic order: Q = Q* after 2 rounds (bound R = 1)"
+        );
+        assert_eq!((f.order, f.rounds), (Some(Order::Cyclic), 2));
+        let (_, f) = planted.exhaustive_min.expect("a failure");
+        assert_eq!(
+            f.what,
+            "every-order exploration: Converges(2) (bound R = 1)"
+        );
+        assert_eq!((f.order, f.rounds), (Some(Order::FarFirst), 2));
     }
 
     /// `merge` (the parallel enumeration's reduction) adds every count and keeps the larger of
@@ -932,6 +992,7 @@ mod tests {
                         i,
                         initial_values(Scope::Smoke),
                         corrected_values(Scope::Smoke),
+                        QProblem::round_bound,
                     )
                 },
                 merge,
@@ -1000,7 +1061,7 @@ mod tests {
     fn the_smallest_printed_failure_has_the_smallest_initial_values() {
         let t = Tiny::from_lists(&[vec![(1, 1), (2, 1)], vec![(1, 1)], vec![]]);
         let mut acc = Acc::default();
-        check_structure(&mut acc, &t, 0, &[-1, 0, 1, 3], &[0]);
+        check_structure(&mut acc, &t, 0, &[-1, 0, 1, 3], &[0], QProblem::round_bound);
         let moves = QProblem::new(&t, Terminal::Updated).len() - 1;
         let vectors = 4u64.pow(moves as u32);
         assert_eq!(acc.printed_cases, 2 * vectors);

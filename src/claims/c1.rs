@@ -428,7 +428,18 @@ fn check_structure(
     }
 }
 
-fn check_all_orders(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], round_bound: RoundBound) {
+/// The most states the every-order exploration of one case may visit (past it the case is
+/// counted as too large, and C1-corrected is inconclusive).
+const EXPLORATION_STATES: usize = 200_000;
+
+fn check_all_orders(
+    acc: &mut Acc,
+    t: &Tiny,
+    index: u64,
+    domain: &[i64],
+    round_bound: RoundBound,
+    states: usize,
+) {
     let held = QProblem::new(t, Terminal::HeldAtZero);
     if !held.all_finite() {
         return;
@@ -456,7 +467,7 @@ fn check_all_orders(acc: &mut Acc, t: &Tiny, index: u64, domain: &[i64], round_b
                 vi as u64,
             )
         };
-        match all_orders(&held, q0, 200_000) {
+        match all_orders(&held, q0, states) {
             AllOrders::Converges(k) if k <= bound => {
                 acc.exhaustive_max_rounds = acc.exhaustive_max_rounds.max(k);
                 if k == bound {
@@ -593,7 +604,9 @@ pub fn check(scope: Scope) -> (ClaimResult, ClaimResult) {
         let (a, _) = enumerate(
             &spec,
             Acc::default,
-            |acc, t, i| check_all_orders(acc, t, i, domain, QProblem::round_bound),
+            |acc, t, i| {
+                check_all_orders(acc, t, i, domain, QProblem::round_bound, EXPLORATION_STATES)
+            },
             merge,
         );
         acc = merge(acc, a);
@@ -840,16 +853,24 @@ mod tests {
     /// With `R` the case passes and the far-first order attains the bound; with `R − 1 = 1` the
     /// cyclic and far-first runs fail (the cyclic one reported, first, with the rounds that show
     /// it, `R − 1 + 1`), and the every-order exploration (worst order: 2 rounds) fails once.
+    /// An exploration allowed no state is counted as too large.
     #[test]
     fn a_planted_bound_below_r_is_counted_and_reported() {
         let t = Tiny::from_lists(&[vec![(1, 1)], vec![(2, 1)], vec![]]);
         let below: RoundBound = |q, v| q.round_bound(v).map(|r| r - 1);
         let mut right = Acc::default();
         check_structure(&mut right, &t, 0, &[0], &[0], QProblem::round_bound);
-        check_all_orders(&mut right, &t, 0, &[0], QProblem::round_bound);
+        check_all_orders(
+            &mut right,
+            &t,
+            0,
+            &[0],
+            QProblem::round_bound,
+            EXPLORATION_STATES,
+        );
         let mut planted = Acc::default();
         check_structure(&mut planted, &t, 0, &[0], &[0], below);
-        check_all_orders(&mut planted, &t, 0, &[0], below);
+        check_all_orders(&mut planted, &t, 0, &[0], below, EXPLORATION_STATES);
         assert_eq!((right.corrected_cases, right.corrected_failures), (1, 0));
         assert_eq!((right.max_rounds, right.bound_attained), (2, 1));
         assert_eq!(
@@ -878,6 +899,15 @@ mod tests {
             "every-order exploration: Converges(2) (bound R = 1)"
         );
         assert_eq!((f.order, f.rounds), (Some(Order::FarFirst), 2));
+        // An exploration allowed no state is too large: counted, neither a pass nor a failure.
+        let mut small = Acc::default();
+        check_all_orders(&mut small, &t, 0, &[0], QProblem::round_bound, 0);
+        assert_eq!((small.exhaustive_cases, small.exhaustive_too_large), (1, 1));
+        assert_eq!(
+            (small.exhaustive_failures, small.exhaustive_attained),
+            (0, 0)
+        );
+        assert_eq!(right.exhaustive_too_large, 0);
     }
 
     /// `merge` (the parallel enumeration's reduction) adds every count and keeps the larger of

@@ -843,6 +843,13 @@ mod tests {
                 rounds: f.rounds - 1
             }
         );
+        // Its report states the termination pair's 1 (pairs: the five moves, then the goal's
+        // termination pair) in the values and in the replay command.
+        let c = counterexample(&f, Terminal::Updated, "chain");
+        assert_eq!(
+            c.replay.as_deref(),
+            Some("truecost learn --file problems/counterexamples/chain.json --q0 0,0,0,0,0,1 --order cyclic --terminal updated --rounds 6")
+        );
     }
 
     /// C1-corrected's failure path, which the theorem leaves untaken, reached with a planted

@@ -613,6 +613,39 @@ pub fn check(scope: Scope) -> (ClaimResult, ClaimResult) {
         ex_scope.push(spec.describe());
     }
     let seconds2 = started.elapsed().as_secs_f64();
+    results(&Pass {
+        acc,
+        structures,
+        scope_text,
+        ex_scope,
+        domain,
+        corrected,
+        seconds: (seconds1, seconds2),
+    })
+}
+
+/// One enumeration pass of C1 and C1-corrected: what it found, its scope and its times.
+struct Pass {
+    acc: Acc,
+    structures: u64,
+    scope_text: Vec<String>,
+    ex_scope: Vec<String>,
+    domain: &'static [i64],
+    corrected: &'static [i64],
+    seconds: (f64, f64),
+}
+
+/// The two claims' results (verdicts, counts, counterexamples, notes) from a pass.
+fn results(pass: &Pass) -> (ClaimResult, ClaimResult) {
+    let Pass {
+        acc,
+        structures,
+        scope_text,
+        ex_scope,
+        domain,
+        corrected,
+        seconds: (seconds1, seconds2),
+    } = pass;
     let dom: Vec<String> = domain.iter().map(|d| d.to_string()).collect();
     let scope_line = format!(
         "{structures} problems up to relabelling ({}; one goal); initial values in {{{}}} on every move pair, \
@@ -744,7 +777,7 @@ termination pair held at 0; instances satisfying H0-H2 only; fair orders: cyclic
                 scope: ex_scope.join(" | "),
                 cases: acc.exhaustive_cases,
                 failures: acc.exhaustive_failures,
-                seconds: seconds2,
+                seconds: *seconds2,
             },
         ],
         notes,
@@ -915,6 +948,59 @@ mod tests {
             (0, 0)
         );
         assert_eq!(right.exhaustive_too_large, 0);
+    }
+
+    /// The verdicts from a pass's counts (the scopes never reach most of these: C1 as printed
+    /// is refuted in each, and C1-corrected holds): C1 is inconclusive when runs were undecided
+    /// and none failed; C1-corrected is refuted by a failure of either engine, and inconclusive
+    /// when some case was too large to explore and none failed.
+    #[test]
+    fn verdicts_from_the_counts_of_a_pass() {
+        let verdicts = |acc: Acc| {
+            let (printed, corrected) = results(&Pass {
+                acc,
+                structures: 1,
+                scope_text: vec![],
+                ex_scope: vec![],
+                domain: &[0],
+                corrected: &[0],
+                seconds: (0.0, 0.0),
+            });
+            (printed.verdict, corrected.verdict)
+        };
+        use Verdict::{Inconclusive, Refuted, Verified};
+        let base = || Acc {
+            printed_cases: 4,
+            corrected_cases: 4,
+            exhaustive_cases: 4,
+            ..Acc::default()
+        };
+        assert_eq!(verdicts(base()), (Verified, Verified));
+        let undecided = Acc {
+            printed_undecided: 1,
+            ..base()
+        };
+        assert_eq!(verdicts(undecided), (Inconclusive, Verified));
+        for (simulated, explored) in [(2, 0), (0, 1), (2, 1)] {
+            let failing = Acc {
+                corrected_failures: simulated,
+                exhaustive_failures: explored,
+                ..base()
+            };
+            assert_eq!(verdicts(failing).1, Refuted, "{simulated} {explored}");
+            let failing_and_too_large = Acc {
+                corrected_failures: simulated,
+                exhaustive_failures: explored,
+                exhaustive_too_large: 1,
+                ..base()
+            };
+            assert_eq!(verdicts(failing_and_too_large).1, Refuted);
+        }
+        let too_large = Acc {
+            exhaustive_too_large: 1,
+            ..base()
+        };
+        assert_eq!(verdicts(too_large).1, Inconclusive);
     }
 
     /// `merge` (the parallel enumeration's reduction) adds every count and keeps the larger of

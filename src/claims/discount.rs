@@ -566,4 +566,35 @@ mod tests {
         assert_eq!(search(&c, 2, 3, 8), "2 paths, 0 lassos");
         assert_eq!(search(&c, 1, 3, 8), too_many(1));
     }
+
+    /// A breakpoint that is rational is printed as the fraction; an irrational one as its
+    /// decimal expansion and the polynomial and bracket that define it. `3α − 2` has the root
+    /// 2/3; `2α² − 1` the root 1/√2 = 0.70710678118654752440084436210…
+    #[test]
+    fn rational_breakpoints_print_as_fractions() {
+        let poly = |c: &[i64]| {
+            Poly::new(
+                c.iter()
+                    .map(|&x| Rational::from_integer(x.into()))
+                    .collect(),
+            )
+        };
+        let (zero, one) = (Rational::zero(), Rational::one());
+        let root = |c: &[i64]| {
+            let roots = isolate_roots(&poly(c), &zero, &one);
+            assert_eq!(roots.len(), 1, "{c:?}");
+            Point::Root(roots[0].clone())
+        };
+        assert_eq!(point_text(&root(&[-2, 3])), "2/3");
+        let text = point_text(&root(&[-1, 0, 2]));
+        assert!(
+            text.starts_with("0.70710678118654752440084436210"),
+            "{text}"
+        );
+        assert!(text.contains(" (the root of "), "{text}");
+        assert_eq!(
+            (point_text(&Point::Zero), point_text(&Point::One)),
+            ("0".into(), "1".into())
+        );
+    }
 }

@@ -592,6 +592,25 @@ fn fail(message: String) {
 mod tests {
     use super::*;
 
+    /// `K/N` at the edges of `1 ≤ K ≤ N ≤ MAX_SHARDS`: each accepted at the edge, refused one
+    /// past it.
+    #[test]
+    fn a_part_is_accepted_up_to_its_bounds() {
+        let parse = |k: u32, n: u32| Part::parse(&format!("{k}/{n}")).map(|p| (p.k(), p.n()));
+        assert_eq!(parse(1, 1), Ok((1, 1)));
+        assert_eq!(parse(3, 3), Ok((3, 3)));
+        assert_eq!(parse(MAX_SHARDS, MAX_SHARDS), Ok((MAX_SHARDS, MAX_SHARDS)));
+        assert_eq!(parse(1, MAX_SHARDS), Ok((1, MAX_SHARDS)));
+        for (k, n) in [
+            (0, 3),
+            (4, 3),
+            (1, MAX_SHARDS + 1),
+            (MAX_SHARDS + 1, MAX_SHARDS + 1),
+        ] {
+            assert!(parse(k, n).is_err(), "{k}/{n}");
+        }
+    }
+
     fn sum_of_owned(part: Option<Part>) -> u64 {
         (0..100u64)
             .filter(|&i| part.is_none_or(|p| p.owns(i)))

@@ -736,4 +736,37 @@ mod tests {
         assert!(e.contains("met site 'second'"), "{e}");
         assert_eq!(replay(shards(), run_sites).unwrap(), run_sites());
     }
+
+    /// A shard file whose recorded values were tampered with is refused on merge, naming the
+    /// site: a split site without a value, a malformed value, a unit no shard ran.
+    #[test]
+    fn a_merge_of_tampered_values_is_refused_naming_the_site() {
+        let part = Part::parse("1/1").unwrap();
+        let (_, entries) = record_shard(part, run_sites);
+        let merge = |edit: &dyn Fn(&mut Vec<Entry>)| {
+            let mut entries = entries.clone();
+            edit(&mut entries);
+            let file = ShardFile {
+                part,
+                fingerprint: json!({}),
+                entries,
+                seconds: 0.0,
+            };
+            replay(vec![file], run_sites)
+        };
+        assert_eq!(merge(&|_| {}), Ok(run_sites()));
+        assert_eq!(
+            merge(&|e| e[0].value = None),
+            Err("site 'sum': a shard recorded no value".into())
+        );
+        let malformed = merge(&|e| e[0].value = Some("not json".into())).unwrap_err();
+        assert!(
+            malformed.starts_with("site 'sum': malformed value"),
+            "{malformed}"
+        );
+        assert_eq!(
+            merge(&|e| e[1].value = None),
+            Err("site 'first': no shard ran it".into())
+        );
+    }
 }

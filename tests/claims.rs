@@ -517,14 +517,14 @@ fn the_replay_and_the_claims_engine_s_run_agree() {
         let problem: truecost::model::Problem = t.to_problem();
         let seed = draw.random::<u64>();
         let orders = [
-            ReplayOrder::Cyclic,
-            ReplayOrder::Reverse,
-            ReplayOrder::FarFirst,
-            ReplayOrder::Random(0),
-            ReplayOrder::Random(GAMMA),
-            ReplayOrder::Random(!GAMMA),
-            ReplayOrder::Random(GAMMA | seed),
-            ReplayOrder::Random(seed),
+            Order::Cyclic,
+            Order::Reverse,
+            Order::FarFirst,
+            Order::Random(0),
+            Order::Random(GAMMA),
+            Order::Random(!GAMMA),
+            Order::Random(GAMMA | seed),
+            Order::Random(seed),
         ];
         for terminal in [Terminal::Updated, Terminal::HeldAtZero] {
             let q = QProblem::new(&t, terminal);
@@ -541,18 +541,12 @@ fn the_replay_and_the_claims_engine_s_run_agree() {
                     .collect(),
             );
             for order in orders {
-                let kernel_order = match order {
-                    ReplayOrder::Cyclic => Order::Cyclic,
-                    ReplayOrder::Reverse => Order::Reverse,
-                    ReplayOrder::FarFirst => Order::FarFirst,
-                    ReplayOrder::Random(s) => Order::Random(s),
-                };
-                let expected = match run(&q, &q0, kernel_order, 12) {
+                let expected = match run(&q, &q0, order, 12) {
                     Run::Converged(round) => ReplayVerdict::Converged { round },
                     Run::Cycles(from, period) => ReplayVerdict::NeverConverges { from, period },
                     Run::NotWithin(rounds) => ReplayVerdict::NotConverged { rounds },
                 };
-                let r = replay(&problem, &exact, order, terminal, 12).unwrap();
+                let r = replay(&problem, &exact, ReplayOrder::from(order), terminal, 12).unwrap();
                 assert_eq!(
                     r.verdict, expected,
                     "{lists:?} {terminal:?} {order:?} {q0:?}"

@@ -24,6 +24,7 @@
 
 use super::exact::Q;
 use super::qlearning::{all_orders, run, AllOrders, Order, QProblem, Run, Terminal, Values};
+use super::replay::ReplayOrder;
 use super::tiny::{minimality_key, FamilySpec, Tiny};
 use super::{enumerate, keep_min, min_of, ClaimResult, Counterexample, EngineRun, Scope, Verdict};
 
@@ -537,11 +538,9 @@ fn replay_command(
     file: &str,
 ) -> String {
     let values: Vec<String> = (0..q.len()).map(|p| q0[p].to_string()).collect();
-    let order = match f.order.unwrap_or(Order::Cyclic) {
-        Order::Cyclic => "cyclic".to_string(),
-        Order::Reverse => "reverse".to_string(),
-        Order::FarFirst => "far-first".to_string(),
-        Order::Random(seed) => format!("random --seed {seed}"),
+    let order = match ReplayOrder::from(f.order.unwrap_or(Order::Cyclic)) {
+        ReplayOrder::Random(seed) => format!("random --seed {seed}"),
+        other => other.name().to_string(),
     };
     format!(
         "truecost learn --file problems/counterexamples/{file}.json --q0 {} --order {order} --terminal {} --rounds {}",
@@ -831,7 +830,7 @@ mod tests {
     /// and from the replay command's floor of 4.
     #[test]
     fn a_cycling_failure_states_the_rounds_its_replay_needs() {
-        use crate::claims::replay::{replay, InitialValues, ReplayOrder, ReplayVerdict};
+        use crate::claims::replay::{replay, InitialValues, ReplayVerdict};
         use crate::value::Rational;
         let t = Tiny::from_lists(&[
             vec![(1, 1)],
@@ -847,12 +846,7 @@ mod tests {
             .printed_min
             .expect("the termination pair at 1 never converges");
         assert_eq!(f.terminal_q0, 1);
-        let order = match f.order.expect("a cycling failure has an order") {
-            Order::Cyclic => ReplayOrder::Cyclic,
-            Order::Reverse => ReplayOrder::Reverse,
-            Order::FarFirst => ReplayOrder::FarFirst,
-            Order::Random(seed) => ReplayOrder::Random(seed),
-        };
+        let order = ReplayOrder::from(f.order.expect("a cycling failure has an order"));
         let q = QProblem::new(&t, Terminal::Updated);
         let q0 = InitialValues::PerPair(
             (0..q.len())

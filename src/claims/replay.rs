@@ -18,7 +18,7 @@ use std::fmt::Write as _;
 use num_traits::Zero;
 use serde::Serialize;
 
-use super::qlearning::Terminal;
+use super::qlearning::{Order, Terminal};
 use crate::model::Problem;
 use crate::value::{parse_rational, Rational};
 
@@ -45,6 +45,26 @@ impl ReplayOrder {
             ReplayOrder::Reverse => "reverse",
             ReplayOrder::FarFirst => "far-first",
             ReplayOrder::Random(_) => "random",
+        }
+    }
+}
+
+/// The claims engine's order as a replay order: the same schedule (its random order draws the
+/// same permutations from the same seed), so a counterexample's replay command can name it.
+///
+/// ```
+/// use truecost::claims::qlearning::Order;
+/// use truecost::claims::replay::ReplayOrder;
+/// assert_eq!(ReplayOrder::from(Order::FarFirst).name(), "far-first");
+/// assert_eq!(ReplayOrder::from(Order::Random(7)), ReplayOrder::Random(7));
+/// ```
+impl From<Order> for ReplayOrder {
+    fn from(order: Order) -> ReplayOrder {
+        match order {
+            Order::Cyclic => ReplayOrder::Cyclic,
+            Order::Reverse => ReplayOrder::Reverse,
+            Order::FarFirst => ReplayOrder::FarFirst,
+            Order::Random(seed) => ReplayOrder::Random(seed),
         }
     }
 }

@@ -509,33 +509,22 @@ pub fn set_text(s: &DiscountSet) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::Move;
+    use crate::claims::tiny::Tiny;
 
-    fn problem(moves: &[&[(usize, i64)]], goal: usize) -> Problem {
-        let moves = moves
-            .iter()
-            .map(|list| {
-                list.iter()
-                    .map(|&(successor, cost)| Move {
-                        successor,
-                        cost: Rational::from_integer(cost.into()),
-                    })
-                    .collect()
-            })
-            .collect();
-        Problem::new(moves, 0, vec![goal]).unwrap()
-    }
-
-    fn search(p: &Problem, most: usize, steps: u64, coefficients: u64) -> String {
+    /// The search with these bounds: the numbers of paths and lassos, or its refusal.
+    fn search(
+        lists: &[Vec<(u8, u8)>],
+        most: usize,
+        steps: u64,
+        coefficients: u64,
+    ) -> Result<(usize, usize), DiscountError> {
+        let p: Problem = Tiny::from_lists(lists).to_problem();
         let bounds = Bounds {
             trajectories: most,
             steps,
             coefficients,
         };
-        match trajectories(p, bounds) {
-            Ok(t) => format!("{} paths, {} lassos", t.paths.len(), t.lassos.len()),
-            Err(e) => e.to_string(),
-        }
+        trajectories(&p, bounds).map(|t| (t.paths.len(), t.lassos.len()))
     }
 
     /// The enumeration's bounds at their edges, worked out by hand. Problem A: `0 → 1`, `0 ↺`,
@@ -545,25 +534,21 @@ mod tests {
     /// by one.
     #[test]
     fn the_bounds_of_the_enumeration_by_hand() {
-        let a = problem(&[&[(1, 1), (0, 2)], &[(2, 1), (0, 1)], &[]], 2);
-        assert_eq!(search(&a, 2, 3, 16), "1 paths, 2 lassos");
-        let refused = |what: &str, bound: u64| {
-            format!("the enumeration of goal paths and lassos from x1 passed its bound of {bound} {what}: too large for the exact parametric analysis")
-        };
+        let a = [vec![(1, 1), (0, 2)], vec![(2, 1), (0, 1)], vec![]];
+        assert_eq!(search(&a, 2, 3, 16), Ok((1, 2)));
+        let refused = |what, bound| Err(DiscountError::Effort { what, bound });
         assert_eq!(search(&a, 2, 2, 16), refused("search steps", 2));
         assert_eq!(search(&a, 2, 3, 15), refused("polynomial coefficients", 15));
-        let too_many = |most: usize| {
-            format!("the problem has more than {most} goal paths or goal-avoiding lassos from x1: too large for the exact parametric analysis")
-        };
+        let too_many = |most| Err(DiscountError::TooLarge(most));
         // Two lassos, one path: one lasso too many.
         assert_eq!(search(&a, 1, 3, 16), too_many(1));
         // Problem B: `0 → 1` (goal), `0 ↺`: one path, one lasso, each exactly at the bound 1.
-        let b = problem(&[&[(1, 1), (0, 2)], &[]], 1);
-        assert_eq!(search(&b, 1, 2, 8), "1 paths, 1 lassos");
+        let b = [vec![(1, 1), (0, 2)], vec![]];
+        assert_eq!(search(&b, 1, 2, 8), Ok((1, 1)));
         assert_eq!(search(&b, 0, 2, 8), too_many(0));
         // Problem C: two moves `0 → 1` (goal), no lasso: one path too many.
-        let c = problem(&[&[(1, 1), (1, 2)], &[]], 1);
-        assert_eq!(search(&c, 2, 3, 8), "2 paths, 0 lassos");
+        let c = [vec![(1, 1), (1, 2)], vec![]];
+        assert_eq!(search(&c, 2, 3, 8), Ok((2, 0)));
         assert_eq!(search(&c, 1, 3, 8), too_many(1));
     }
 

@@ -364,6 +364,12 @@ pub fn solve(ob: &Obligation, timeout_ms: u32) -> Answer {
     a
 }
 
+thread_local! {
+    /// This thread's linear solvers, one per logic and timeout (see [`solve_reusing`]).
+    static SOLVERS: std::cell::RefCell<Vec<(Logic, u32, z3::Solver)>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+}
+
 fn solve_reusing(ob: &Obligation, timeout_ms: u32) -> Answer {
     // Linear obligations reuse one solver per thread and logic (push, assert, check, pop):
     // creating a Z3 solver costs tens of milliseconds, solving a small linear obligation well
@@ -372,10 +378,6 @@ fn solve_reusing(ob: &Obligation, timeout_ms: u32) -> Answer {
     if ob.logic == Logic::QfNra {
         let solver = fresh_solver(ob.logic.name(), timeout_ms);
         return answer(&solver, ob);
-    }
-    thread_local! {
-        static SOLVERS: std::cell::RefCell<Vec<(Logic, u32, z3::Solver)>> =
-            const { std::cell::RefCell::new(Vec::new()) };
     }
     SOLVERS.with(|cell| {
         let mut solvers = cell.borrow_mut();
@@ -892,5 +894,87 @@ pub fn run(enc: Encoding, timeout_ms: u32) -> Outcome {
         counterexample,
         notes,
         solved,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn int(n: i64) -> Rational {
+        Rational::from_integer(n.into())
+    }
+
+    #[test]
+    fn numerals_z3_does_not_print_are_refused() {
+        // Each of these has digits around its one stray character, so a check that let it
+        // through would hand BigInt a string it parses (`+3`, `-3`, `5`, `35_0`).
+        for s in ["+3", "-3", ".5", "3.5_0", "3._5", "", "(- )", "(/ 1.0 0.0)"] {
+            assert_eq!(parse_numeral(s), None, "{s:?}");
+        }
+        assert_eq!(
+            parse_numeral("0.25"),
+            Some(Rational::new(1.into(), 4.into()))
+        );
+        assert_eq!(parse_numeral("3.0"), Some(int(3)));
+        assert_eq!(parse_numeral(" (- 3) "), Some(int(-3)));
+        assert_eq!(parse_numeral("false"), Some(int(0)));
+        assert_eq!(parse_numeral("true"), Some(int(1)));
+    }
+
+    /// `x_i < x_(i+1) + 1/3` for i < n, closed by `x_n + n < x_0`: unsatisfiable, and (at
+    /// n = 500) long enough that Z3 needs well over a millisecond to say so.
+    fn a_long_cycle(n: usize) -> Obligation {
+        let mut o = Obligation::new("test", "cycle", "none", Role::Hypotheses, Logic::QfLra);
+        let xs: Vec<String> = (0..=n)
+            .map(|i| o.declare(&format!("x{i}"), Sort::Real))
+            .collect();
+        for w in xs.windows(2) {
+            o.assert(format!("(< {} (+ {} (/ 1.0 3.0)))", w[0], w[1]));
+        }
+        o.assert(format!("(< (+ {} {}.0) {})", xs[n], n, xs[0]));
+        o
+    }
+
+    fn linear(logic: Logic) -> Obligation {
+        let mut o = Obligation::new("test", "x > 0", "none", Role::Hypotheses, logic);
+        let x = o.declare("x", Sort::Real);
+        o.assert(format!("(> {x} 0.0)"));
+        o
+    }
+
+    #[test]
+    fn a_thread_keeps_one_linear_solver_per_logic_and_timeout() {
+        // A fresh thread, so that its solvers are only the ones made here.
+        std::thread::spawn(|| {
+            let solvers = || SOLVERS.with(|cell| cell.borrow().len());
+            for (logic, timeout, expected) in [
+                (Logic::QfLra, 10_000, 1),
+                (Logic::QfLra, 10_000, 1),
+                (Logic::QfLira, 10_000, 2),
+                (Logic::QfLra, 20_000, 3),
+                (Logic::QfLira, 20_000, 4),
+                (Logic::QfLira, 10_000, 4),
+                (Logic::QfNra, 10_000, 4),
+            ] {
+                assert!(matches!(solve(&linear(logic), timeout), Answer::Sat(_)));
+                assert_eq!(solvers(), expected, "{logic:?} {timeout}");
+            }
+        })
+        .join()
+        .unwrap();
+    }
+
+    #[test]
+    fn a_thread_s_solver_is_reused_only_with_its_own_timeout() {
+        // A fresh thread, so that its solvers are only the ones made here: the solver made
+        // with a timeout of 1 ms must not answer an obligation given 100 s.
+        std::thread::spawn(|| {
+            let _ = solve(&a_long_cycle(1), 1);
+            let a = solve(&a_long_cycle(500), 100_000);
+            assert_eq!(a, Answer::Unsat);
+        })
+        .join()
+        .unwrap();
     }
 }

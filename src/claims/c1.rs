@@ -1188,4 +1188,21 @@ mod tests {
         assert_eq!(smallest.q0, [0i64; crate::claims::qlearning::MAX_PAIRS]);
         assert_eq!(smallest.terminal_q0, 0);
     }
+
+    /// A run that neither converges nor cycles within `MAX_ROUNDS` is counted as undecided,
+    /// once per order, and is not a failure. No scope is known to reach it; an initial value
+    /// of −1000 does: on `0 → 0 (1), 0 → goal (1)`, Q(0→0) = 1 + min(Q(0→0), Q(0→goal)) rises
+    /// by exactly 1 a round from −1000 (every value it takes is new, so no cycle), and needs
+    /// about a thousand rounds to reach its limit.
+    #[test]
+    fn a_run_still_moving_after_the_round_limit_is_undecided_under_each_order() {
+        let t = Tiny::from_lists(&[vec![(0, 1), (1, 1)], vec![]]);
+        let mut acc = Acc::default();
+        check_structure(&mut acc, &t, 0, &[-1000], &[0], QProblem::round_bound);
+        // One initial vector (every move at −1000), with the termination pair at 0 and at 1.
+        assert_eq!(acc.printed_cases, 2);
+        assert_eq!(acc.printed_undecided, 2 * ORDERS as u64);
+        assert_eq!(acc.printed_failures, 0);
+        assert!(acc.printed_min.is_none() && acc.printed_cycle_min.is_none());
+    }
 }

@@ -1025,4 +1025,187 @@ mod tests {
             Some(Q::new(1, (1i128 << 40) - 1))
         );
     }
+
+    /// `0 -> 1 -> 2 -> 3` (c0, c2, c3) and `0 -> 3` (c1): goal paths of 4 and 2 states, so
+    /// `S(u) − S*` is ±2 and a division by it is not a multiplication by it.
+    fn two_lengths() -> Shape {
+        Shape {
+            n: 4,
+            edges: vec![(0, 1), (0, 3), (1, 2), (2, 3)],
+        }
+    }
+
+    fn model(values: &[(&str, Rational)]) -> Model {
+        Model {
+            values: values
+                .iter()
+                .map(|(n, v)| (n.to_string(), v.clone()))
+                .collect(),
+        }
+    }
+
+    fn rat(n: i64, d: i64) -> Rational {
+        Rational::new(n.into(), d.into())
+    }
+
+    /// The formulas' intervals by hand on [`two_lengths`] with costs 1, 10, 1, 1: π* = the
+    /// long path (L* = 3, S* = 4), `u` = the direct move (L = 10, S = 2) bounds `M` from
+    /// below. Corrected: (4·10 − 2·3)/(2 − 4) = −17. Planted: (3·10 − 1·3)/(−2) = −27/2.
+    /// Printed: (1 − 2/4)(2·3/(4·10) − 1) = (1/2)(−17/20) = −17/40.
+    #[test]
+    fn formula_intervals_divide_by_a_length_difference_of_two() {
+        let shape = two_lengths();
+        let costs = [Q::int(1), Q::int(10), Q::int(1), Q::int(1)];
+        let paths = shape.goal_paths();
+        let p = paths.iter().find(|w| w.len == 4).expect("the long path");
+        let at = |f: Formula| formula_interval(&shape, &costs, p, f).expect("defined");
+        let corrected = at(Formula::Corrected);
+        assert!(corrected.contains(Q::int(-17)) && corrected.contains(Q::new(-1, 2)));
+        assert!(!corrected.contains(Q::new(-35, 2)) && !corrected.contains(Q::ZERO));
+        let planted = at(Formula::Planted);
+        assert!(planted.contains(Q::new(-27, 2)) && !planted.contains(Q::int(-14)));
+        let printed = at(Formula::Printed);
+        assert!(printed.contains(Q::new(-17, 40)) && !printed.contains(Q::new(-18, 40)));
+    }
+
+    /// [`Shape::parse`] refuses a move out of the goal (the goal has no moves) and a move to a
+    /// state past the goal, and reads a move into the goal from the state before it.
+    #[test]
+    fn parse_refuses_moves_out_of_the_goal_or_past_it() {
+        assert_eq!(Shape::parse("x1 = 0, goal 2; moves: c0 2->0"), None);
+        assert_eq!(Shape::parse("x1 = 0, goal 2; moves: c0 0->3"), None);
+        assert_eq!(Shape::parse("x1 = 0, goal 2; moves: c0 3->2"), None);
+        assert_eq!(
+            Shape::parse("x1 = 0, goal 2; moves: c0 1->2, c1 0->1"),
+            Some(Shape {
+                n: 3,
+                edges: vec![(1, 2), (0, 1)]
+            })
+        );
+    }
+
+    /// Which formula a model is replayed against follows the obligation, not the model. On
+    /// [`two_lengths`] with costs 1, 10, 1, 1 and `M = −15`: π* (average (3 − 15)/4 = −3) beats
+    /// the direct move ((10 − 15)/2 = −5/2), so π* is optimal, and the corrected interval
+    /// `[−17, 0)` agrees; the planted one, `[−27/2, 0)`, does not. The corrected proof
+    /// obligation's model is no failure, the planted one's is (reported under the corrected
+    /// claim's counterexample name), and a hypotheses check is never replayed.
+    #[test]
+    fn a_model_replays_against_its_own_obligation_s_formula() {
+        let shape = two_lengths();
+        let m = model(&[
+            ("c0", rat(1, 1)),
+            ("c1", rat(10, 1)),
+            ("c2", rat(1, 1)),
+            ("c3", rat(1, 1)),
+            ("M", rat(-15, 1)),
+        ]);
+        let corrected = obligation(CORRECTED_ID, &shape, Formula::Corrected, Role::Proof).unwrap();
+        assert!(matches!(replay(&corrected, &m), Replay::NotConfirmed(_)));
+        let planted = obligation(CORRECTED_ID, &shape, Formula::Planted, Role::Proof).unwrap();
+        let Replay::Confirmed(what, Some(ce)) = replay(&planted, &m) else {
+            panic!("the planted formula fails at M = -15");
+        };
+        assert!(what.contains("planted formula"), "{what}");
+        assert_eq!(ce.file, "problems/counterexamples/c4-corrected-smt.json");
+        let hyp = obligation(CORRECTED_ID, &shape, Formula::Corrected, Role::Hypotheses).unwrap();
+        assert!(matches!(replay(&hyp, &m), Replay::NotApplicable));
+    }
+
+    /// A model outside the hypotheses (M ≥ 0, or a negative cost) is not replayed, and neither
+    /// is one whose values, scaled to integers, reach 2^40: costs 1/2 and `M = −2^39` scale (by
+    /// 2) to `M = −2^40`.
+    #[test]
+    fn a_model_outside_the_hypotheses_or_the_range_is_not_replayed() {
+        let ob = obligation(
+            CORRECTED_ID,
+            &Shape {
+                n: 2,
+                edges: vec![(0, 0), (0, 1)],
+            },
+            Formula::WithoutCycleTerm,
+            Role::Dropped(CYCLE_TERM.into()),
+        )
+        .unwrap();
+        let refused = |m: &Model, why: &str| match replay(&ob, m) {
+            Replay::NotConfirmed(text) => assert!(text.contains(why), "{text}"),
+            _ => panic!("replayed: {m:?}"),
+        };
+        let zero_m = model(&[("c0", rat(0, 1)), ("c1", rat(1, 1)), ("M", rat(0, 1))]);
+        refused(&zero_m, "breaks a hypothesis");
+        let negative_cost = model(&[("c0", rat(-1, 1)), ("c1", rat(1, 1)), ("M", rat(-1, 2))]);
+        refused(&negative_cost, "breaks a hypothesis");
+        let far = model(&[
+            ("c0", rat(1, 2)),
+            ("c1", rat(1, 2)),
+            ("M", rat(-(1 << 39), 1)),
+        ]);
+        refused(&far, "too large");
+        // The same costs with `M = −2^38` (scaled: −2^39) pass the bound and reach the oracle.
+        let near = model(&[
+            ("c0", rat(1, 2)),
+            ("c1", rat(1, 2)),
+            ("M", rat(-(1 << 38), 1)),
+        ]);
+        assert!(!matches!(replay(&ob, &near), Replay::NotConfirmed(t) if t.contains("too large")));
+    }
+
+    /// The printed formula's counterexample, by hand, on `0 -> 1 -> 2` (c0 = 1/2, c2 = 1/2)
+    /// and `0 -> 2` (c1 = 3/4) at `M = −1/8`: π* is the direct move (L* = 3/4, S* = 2); the
+    /// exact condition (3/4 + M)/2 <= (1 + M)/3 is M <= −1/4, while the printed bound is
+    /// A(u) = (1 − 3/2)(3·(3/4)/(2·1) − 1) = −1/16. The report gives the problem with the
+    /// model's own costs and the exact set in the problem's units (the oracle ran on costs
+    /// scaled by 8).
+    #[test]
+    fn a_printed_failure_s_counterexample_is_the_model_in_its_own_units() {
+        let shape = Shape {
+            n: 3,
+            edges: vec![(0, 1), (0, 2), (1, 2)],
+        };
+        let ob = obligation(PRINTED_ID, &shape, Formula::Printed, Role::Printed).unwrap();
+        let m = model(&[
+            ("c0", rat(1, 2)),
+            ("c1", rat(3, 4)),
+            ("c2", rat(1, 2)),
+            ("M", rat(-1, 8)),
+        ]);
+        let Replay::Confirmed(what, Some(ce)) = replay(&ob, &m) else {
+            panic!("the printed formula fails at M = -1/8");
+        };
+        assert!(
+            what.contains("printed formula says pi* is optimal"),
+            "{what}"
+        );
+        assert_eq!(ce.file, "problems/counterexamples/c4-as-printed-smt.json");
+        assert_eq!(
+            ce.problem,
+            "0: ->1 (1/2), ->2 (3/4); 1: ->2 (1/2); 2 (goal)"
+        );
+        let detail = |k: &str| {
+            ce.details
+                .iter()
+                .find(|(n, _)| n == k)
+                .map(|(_, v)| v.clone())
+                .unwrap_or_else(|| panic!("no {k}"))
+        };
+        assert_eq!(detail("L*"), "3/4");
+        assert_eq!(detail("S*"), "2");
+        assert_eq!(detail("bonus M"), "-1/8");
+        assert_eq!(
+            detail("exact set of M (oracle, scaled back)"),
+            "(-inf, -1/4]"
+        );
+        assert_eq!(detail("formula's set"), "(-inf, -1/16]");
+        let p = crate::model::file::from_json(&ce.problem_file).expect("parses");
+        let moves = |x: usize| -> Vec<(usize, Rational)> {
+            p.moves(x)
+                .iter()
+                .map(|mv| (mv.successor, mv.cost.clone()))
+                .collect()
+        };
+        assert_eq!(moves(0), [(1, rat(1, 2)), (2, rat(3, 4))]);
+        assert_eq!(moves(1), [(2, rat(1, 2))]);
+        assert!(moves(2).is_empty());
+        assert_eq!(p.goals(), &[2]);
+    }
 }

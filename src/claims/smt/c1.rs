@@ -801,4 +801,63 @@ mod tests {
         assert_eq!(simple_paths(&t, &pairs, 0).len(), 1);
         assert_eq!(simple_paths(&t, &pairs, 1), vec![Vec::<usize>::new()]);
     }
+
+    /// The one-state structure whose goal has one zero-cost self-loop: pairs `(0, uT)` (pair
+    /// 0, cost 0, not in the model) and `(0 -> 0)` (pair 1, cost `l1`), as printed_structures
+    /// lists it; and a model of its costs and values, all integers (so the common scale is 1).
+    fn goal_loop(l1: i64, q0: i64, q1: i64) -> (Obligation, Model) {
+        let t = Tiny::from_lists(&[vec![(0, 0)]]);
+        assert!(printed_structures()
+            .iter()
+            .any(|p| p.describe() == t.describe()));
+        let o = Obligation::new(PRINTED, "test", &t.describe(), Role::Printed, Logic::QfLra);
+        let r = |n: i64| Rational::from_integer(n.into());
+        let m = Model {
+            values: vec![
+                ("l1".into(), r(l1)),
+                ("q0".into(), r(q0)),
+                ("q1".into(), r(q1)),
+            ],
+        };
+        (o, m)
+    }
+
+    fn not_confirmed(l1: i64, q0: i64, q1: i64) -> String {
+        let (o, m) = goal_loop(l1, q0, q1);
+        match replay_printed(&o, &m) {
+            Replay::NotConfirmed(why) => why,
+            other => panic!("{other:?}"),
+        }
+    }
+
+    const TOO_LARGE: &str = "the model's values are too large for the oracle";
+
+    /// The oracle's costs are `u8`: a scaled cost of 256 (or −1) is refused as too large for
+    /// it, not wrapped to 0 (or 255), though a value of 256 is fine. At cost 255 the model
+    /// reaches the oracle, which converges: `Q* = (0, 255 + G*(0)) = (0, 255)`; round 1 of
+    /// the cyclic order, from `(0, 256)`, sets `Q(0,uT) = 0 + min(0, 256) = 0`, then
+    /// `Q(0->0) = 255 + min(0, 256) = 255`: `Q*` after 1 round.
+    #[test]
+    fn a_cost_beyond_the_oracle_s_u8_is_refused() {
+        assert_eq!(not_confirmed(256, 0, 0), TOO_LARGE);
+        assert_eq!(not_confirmed(-1, 0, 0), TOO_LARGE);
+        assert_eq!(
+            not_confirmed(255, 0, 256),
+            "the oracle converges after 1 rounds"
+        );
+    }
+
+    /// The oracle's values must have magnitude below `2^40`: `2^40` itself (either sign) is
+    /// refused, `2^40 − 1` reaches the oracle, which converges: with cost 0, `Q* = (0, 0)`;
+    /// round 1 sets `Q(0,uT) = 0 + min(0, 2^40 − 1) = 0`, then `Q(0->0) = 0 + min(0, 2^40 −
+    /// 1) = 0`: `Q*` after 1 round.
+    #[test]
+    fn a_value_of_2_to_the_40_is_refused() {
+        assert_eq!(not_confirmed(0, 0, 1 << 40), TOO_LARGE);
+        assert_eq!(not_confirmed(0, 0, -(1 << 40)), TOO_LARGE);
+        assert_eq!(
+            not_confirmed(0, 0, (1 << 40) - 1),
+            "the oracle converges after 1 rounds"
+        );
+    }
 }

@@ -977,4 +977,175 @@ mod tests {
         .join()
         .unwrap();
     }
+
+    /// The solver a nonlinear obligation gets is made with the obligation's timeout: given
+    /// 1 ms, the 2000-step cycle of [`a_long_cycle`] (unsatisfiable, but Z3's nonlinear
+    /// procedure needs tens of milliseconds to say so) must come back `unknown` (a timeout),
+    /// never `unsat` — a solver made without the timeout would prove it. Stated in QF_NRA,
+    /// so that [`solve`] makes its solver here rather than take one from the thread's cache
+    /// (and because, in QF_LRA, Z3 was seen to prove such a cycle despite a 1 ms timeout);
+    /// a fresh thread all the same.
+    #[test]
+    fn a_fresh_solver_keeps_its_timeout() {
+        std::thread::spawn(|| {
+            let mut o = a_long_cycle(2000);
+            o.logic = Logic::QfNra;
+            let a = solve(&o, 1);
+            assert!(matches!(a, Answer::Unknown(_)), "{a:?}");
+        })
+        .join()
+        .unwrap();
+    }
+
+    fn solved(role: Role, answer: Answer) -> Solved {
+        Solved {
+            obligation: linear(Logic::QfLra).with_role(role),
+            answer,
+            seconds: 0.0,
+        }
+    }
+
+    /// `Solved::as_expected` by the roles' contract: a proof must be `unsat`, a hypotheses or
+    /// dropped-hypothesis check `sat`, a printed search either decided answer; `unknown` is
+    /// never as expected. Six of the eleven cases must be false.
+    #[test]
+    fn as_expected_follows_the_role() {
+        let sat = || Answer::Sat(None);
+        let unknown = || Answer::Unknown("timeout".into());
+        let dropped = || Role::Dropped("h".into());
+        for (role, answer, expected) in [
+            (Role::Proof, Answer::Unsat, true),
+            (Role::Proof, sat(), false),
+            (Role::Proof, unknown(), false),
+            (Role::Hypotheses, sat(), true),
+            (Role::Hypotheses, Answer::Unsat, false),
+            (dropped(), sat(), true),
+            (dropped(), Answer::Unsat, false),
+            (dropped(), unknown(), false),
+            (Role::Printed, sat(), true),
+            (Role::Printed, Answer::Unsat, true),
+            (Role::Printed, unknown(), false),
+        ] {
+            let s = solved(role.clone(), answer.clone());
+            assert_eq!(s.as_expected(), expected, "{role:?} {answer:?}");
+        }
+    }
+
+    /// One proof `unsat`, one trust check as required, nothing unknown: a proof. Each of
+    /// "at least one proof obligation" and "at least one trust check" is needed: with no
+    /// proof obligation (0 of 0 unsat) or no trust check (0 of 0 as required) every
+    /// equality still holds, and it must not be a proof.
+    #[test]
+    fn a_proof_needs_a_proof_obligation_and_a_trust_check() {
+        let one_of_each = Summary {
+            proofs: 1,
+            proofs_unsat: 1,
+            trust_checks: 1,
+            trust_ok: 1,
+            printed: 0,
+            printed_sat: 0,
+            unknown: 0,
+            seconds: 0.0,
+        };
+        assert!(one_of_each.proved());
+        let no_proof = Summary {
+            proofs: 0,
+            proofs_unsat: 0,
+            ..one_of_each.clone()
+        };
+        assert!(!no_proof.proved());
+        let no_trust_check = Summary {
+            trust_checks: 0,
+            trust_ok: 0,
+            ..one_of_each
+        };
+        assert!(!no_trust_check.proved());
+    }
+
+    /// `x > 0`: satisfiable.
+    fn satisfiable(role: Role) -> Obligation {
+        linear(Logic::QfLra).with_role(role)
+    }
+
+    /// `x < x`: unsatisfiable.
+    fn unsatisfiable(role: Role) -> Obligation {
+        let mut o = Obligation::new("test", "x < x", "none", role, Logic::QfLra);
+        let x = o.declare("x", Sort::Real);
+        o.assert(format!("(< {x} {x})"));
+        o
+    }
+
+    fn encoding(
+        obligations: Vec<Obligation>,
+        replay: fn(&Obligation, &Model) -> Replay,
+    ) -> Encoding {
+        Encoding {
+            claim: "test",
+            scope: "hand-built".into(),
+            obligations,
+            replay,
+        }
+    }
+
+    /// A dropped-hypothesis check whose model does not replay makes the run inconclusive even
+    /// though, counted, it is a proof (its one proof obligation `unsat`, its one trust check
+    /// `sat` as required, nothing unknown): a model the exact oracle does not confirm means
+    /// the encoding is wrong somewhere.
+    #[test]
+    fn a_model_that_does_not_replay_makes_a_proof_inconclusive() {
+        let out = run(
+            encoding(
+                vec![
+                    unsatisfiable(Role::Proof),
+                    satisfiable(Role::Dropped("x > 0".into())),
+                ],
+                |_, _| Replay::NotConfirmed("planted".into()),
+            ),
+            10_000,
+        );
+        assert!(out.summary.proved(), "{:?}", out.summary);
+        assert_eq!(out.verdict, SmtVerdict::Inconclusive);
+    }
+
+    /// A printed search whose model replays would refute the claim (no trust check, so all of
+    /// them, none, are as required), but another printed search came back `unknown` — here a
+    /// parse failure: its assertion names an undeclared constant, so Z3 parses 0 of its 1
+    /// assertions (in QF_NRA, so that the failure is in a solver of its own) — and anything
+    /// unknown makes the run inconclusive.
+    #[test]
+    fn an_unknown_makes_a_refutation_inconclusive() {
+        let mut broken = Obligation::new("test", "broken", "none", Role::Printed, Logic::QfNra);
+        broken.assert("(> undeclared 0.0)".into());
+        let out = run(
+            encoding(vec![satisfiable(Role::Printed), broken], |_, _| {
+                Replay::Confirmed("planted".into(), None)
+            }),
+            10_000,
+        );
+        assert_eq!((out.summary.printed_sat, out.summary.unknown), (1, 1));
+        assert_eq!(out.verdict, SmtVerdict::Inconclusive);
+    }
+
+    /// A claim with a printed search is refuted only when a printed search is `sat` (and its
+    /// model replays): here the printed search is `unsat` (no counterexample on its
+    /// structure) and only a proof obligation is `sat` with a model that replays, and there
+    /// is no trust check (so all of them, none, are as required). `Refuted` is documented as
+    /// "a Printed obligation was sat and its model replayed": not the case, so inconclusive.
+    #[test]
+    fn a_printed_claim_is_refuted_only_by_a_sat_printed_search() {
+        let out = run(
+            encoding(
+                vec![unsatisfiable(Role::Printed), satisfiable(Role::Proof)],
+                |_, _| Replay::Confirmed("planted".into(), None),
+            ),
+            10_000,
+        );
+        assert_eq!(
+            (out.summary.printed_sat, out.summary.proofs_unsat),
+            (0, 0),
+            "{:?}",
+            out.summary
+        );
+        assert_eq!(out.verdict, SmtVerdict::Inconclusive);
+    }
 }

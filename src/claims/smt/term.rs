@@ -168,3 +168,20 @@ pub fn is_min(v: &str, args: &[String]) -> String {
     parts.push(or(&args.iter().map(|a| eq(v, a)).collect::<Vec<_>>()));
     and(&parts)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An integer literal is a numeral, negated only when negative (SMT-LIB 2.6 has no
+    /// negative numerals: `-3` is `(- 3)`). Zero is the numeral `0`, not the term `(- 0)`
+    /// (which denotes the same integer, but is not what the contract promises and would be
+    /// text the other solvers re-check for nothing).
+    #[test]
+    fn integer_literals() {
+        assert_eq!(int(0), "0");
+        assert_eq!(int(3), "3");
+        assert_eq!(int(-1), "(- 1)");
+        assert_eq!(int(i64::MIN), "(- 9223372036854775808)");
+    }
+}

@@ -764,3 +764,127 @@ fn replay_symbolic_alpha(t: &Tiny, m: &Model) -> Replay {
         )),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::claims::smt::{solve, Answer, TIMEOUT_MS};
+
+    /// Whether Z3 finds the closed formula `term` (no unknowns) true.
+    fn holds(term: String) -> bool {
+        let mut o = Obligation::new("C2", "test", "none", Role::Proof, Logic::QfLra);
+        o.assert(term);
+        match solve(&o, TIMEOUT_MS) {
+            Answer::Sat(_) => true,
+            Answer::Unsat => false,
+            other => panic!("{other:?}"),
+        }
+    }
+
+    /// `le_ext` is `≤` in the extended reals `[−∞, +∞]`: `a ≤ b` iff `a = −∞` or `b = +∞` or
+    /// both are finite and `a ≤ b` as reals (so `+∞ ≤ +∞` and `−∞ ≤ −∞`). The finite part of
+    /// an infinite value (a total's prefix sum) is chosen here so that comparing finite parts
+    /// alone gives the other answer in every infinite case: `+∞` (finite part 0) is not `≤ 1`,
+    /// `−∞` (finite part 5) is `≤ 1`, and so on.
+    #[test]
+    fn le_ext_is_the_order_of_the_extended_reals() {
+        let v = |finite: i64, inf: Option<(bool, bool)>| Value {
+            finite: real_int(finite),
+            infinite: inf.map(|(p, n)| (p.to_string(), n.to_string())),
+        };
+        let fin = |x| v(x, Some((false, false)));
+        let pinf = |x| v(x, Some((true, false)));
+        let ninf = |x| v(x, Some((false, true)));
+        for (a, b, expected, what) in [
+            (pinf(0), fin(1), false, "+inf <= 1"),
+            (fin(1), pinf(0), true, "1 <= +inf"),
+            (ninf(5), fin(1), true, "-inf <= 1"),
+            (fin(1), ninf(5), false, "1 <= -inf"),
+            (pinf(2), pinf(1), true, "+inf <= +inf"),
+            (ninf(2), ninf(1), true, "-inf <= -inf"),
+            (pinf(0), ninf(1), false, "+inf <= -inf"),
+            (ninf(1), pinf(0), true, "-inf <= +inf"),
+            (fin(1), fin(2), true, "1 <= 2"),
+            (fin(2), fin(1), false, "2 <= 1"),
+            (v(1, None), v(2, None), true, "1 <= 2 (no infinities)"),
+            (v(2, None), v(1, None), false, "2 <= 1 (no infinities)"),
+        ] {
+            assert_eq!(holds(le_ext(&a, &b)), expected, "{what}");
+        }
+    }
+
+    /// The discounted value of a lasso by hand: a prefix of one stage of cost 3, then the cycle
+    /// 6, 9 repeated, at `α = 1/2`. Stage by stage: `3 + (1/2)·6 + (1/4)·9 + (1/8)·6 + …` =
+    /// `3 + 6·(1/2)/(1 − 1/4) + 9·(1/4)/(1 − 1/4)` = `3 + 4 + 3` = 10: the cycle's `j`-th stage
+    /// has weight `α^p · α^j / (1 − α^q)` (2/3, then 1/3), the second weight being the first
+    /// times `α`.
+    #[test]
+    fn discounted_value_of_a_lasso_by_hand() {
+        let l = Lasso {
+            prefix: vec![(0, 0)],
+            cycle: vec![(1, 0), (2, 0)],
+            terminates: false,
+            visits_goal: false,
+        };
+        let stage = |m: MoveId| real_int([3, 6, 9][m.0]);
+        let v = lasso_value(Some(Functional::Discounted(Q::new(1, 2))), &l, &stage);
+        assert!(v.infinite.is_none());
+        assert!(holds(eq(&v.finite, &real_int(10))), "{}", v.finite);
+        assert!(!holds(not(&eq(&v.finite, &real_int(10)))), "{}", v.finite);
+    }
+
+    /// A structure has at most `MAX_STATES` (7) states: `parse_shape` reads a text of 7
+    /// states (no moves) and refuses one of 8.
+    #[test]
+    fn parse_shape_refuses_more_states_than_a_structure_holds() {
+        let text =
+            |n: usize| (0..n).map(|x| x.to_string()).collect::<Vec<_>>().join("; ") + " (goal)";
+        assert_eq!(MAX_STATES, 7);
+        assert_eq!(parse_shape(&text(7)), Some(vec![vec![]; 7]));
+        assert_eq!(parse_shape(&text(8)), None);
+    }
+
+    /// The planted encoding plants its fault in every proof obligation: the every-α
+    /// obligations (the unplanted claim, `r = −l`) belong to the unplanted encoding only. In
+    /// the smoke scope (1–2 states, all within `symbolic_alpha_states`) the unplanted encoding
+    /// has them, the planted `r = l` one has none, and each of its proofs has the planted lemma.
+    #[test]
+    fn only_the_unplanted_encoding_has_the_every_alpha_obligations() {
+        let proofs = |plant| {
+            encoding_with(Scope::Smoke, plant)
+                .obligations
+                .into_iter()
+                .filter(|o| o.role == Role::Proof)
+                .map(|o| o.lemma)
+                .collect::<Vec<_>>()
+        };
+        assert!(proofs(Plant::None).iter().any(|l| l == LEMMA_ALPHA));
+        let planted = proofs(Plant::RewardNotNegated);
+        assert!(!planted.is_empty());
+        assert!(
+            planted.iter().all(|l| l == LEMMA_NOT_NEGATED),
+            "{planted:?}"
+        );
+    }
+
+    /// The every-α replay hands the oracle only an `α` whose numerator and denominator are
+    /// below 2^20 in absolute value: `2^20 / (2^20 − 1)` (the denominator fits, the numerator
+    /// does not) is refused, as is `−2^20 / 3`.
+    #[test]
+    fn the_every_alpha_replay_refuses_a_numerator_of_two_to_the_twenty() {
+        let t = Tiny::from_lists(&[vec![(0, 1), (1, 3)], vec![]]);
+        let big = 1i64 << 20;
+        for a in [
+            Rational::new(big.into(), (big - 1).into()),
+            Rational::new((-big).into(), 3.into()),
+        ] {
+            let m = Model {
+                values: vec![("a".into(), a.clone())],
+            };
+            match replay_symbolic_alpha(&t, &m) {
+                Replay::NotConfirmed(why) => assert_eq!(why, "alpha does not fit the oracle"),
+                other => panic!("alpha = {a}: {other:?}"),
+            }
+        }
+    }
+}

@@ -476,3 +476,128 @@ pub fn replay(o: &Obligation, m: &Model) -> Replay {
         )),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::claims::smt::{solve, Answer, TIMEOUT_MS};
+
+    fn q(n: i64, d: i64) -> Rational {
+        Rational::new(n.into(), d.into())
+    }
+
+    /// A model of `α` and the threshold's coefficients `p0, p1, …` (none: the zero polynomial).
+    fn model(a: Rational, threshold: &[i64]) -> Model {
+        let mut values = vec![("a".to_string(), a)];
+        for (k, &c) in threshold.iter().enumerate() {
+            values.push((format!("p{k}"), q(c, 1)));
+        }
+        Model { values }
+    }
+
+    fn confirmed(r: Replay) -> bool {
+        matches!(r, Replay::Confirmed(_, None))
+    }
+
+    /// The C3-example replay confirms a lemma's failure only when both its sides fail at the
+    /// model's `α`, worked out by hand on the worked example. At `α = 1/2` the goal-avoiding
+    /// loop at 0 costs `1/(1 − α) = 2` and every goal-reaching policy at least the path to 5,
+    /// `1 + 2α + 3α² + 4α³ + 5α⁴ = 57/16 > 2`: every optimal policy avoids the goal. At `α =
+    /// 99/100` the loop costs 100, the 2-cycle `0 ↔ 1` `(1 + 2α)/(1 − α²) > 100` (every other
+    /// avoiding lasso costs more per stage), the path to 5 then termination less than
+    /// `1 + 2 + 3 + 4 + 5 = 15`: every optimal policy reaches it. The claim's threshold at
+    /// `1/2` is `5/16 − 1/8 − 1/4 − 1/2 − 1 = −25/16`; the printed inequality `2 < 57/16`
+    /// holds there. A model with no coefficients carries the threshold 0, which is neither
+    /// `< 0` nor `> 0`.
+    #[test]
+    fn the_example_replay_confirms_only_a_failure_of_both_sides() {
+        let claimed = THRESHOLD.to_vec();
+        let at = |lemma: &str, a: Rational, threshold: &[i64]| {
+            let o = Obligation::new("C3-example", lemma, "x", Role::Proof, Logic::QfNra);
+            confirmed(example_replay(&o, &model(a, threshold)))
+        };
+        // Below: threshold < 0 and a goal-reaching policy optimal.
+        assert!(!at(BELOW, q(99, 100), &[]), "threshold 0 is not < 0");
+        assert!(
+            at(BELOW, q(99, 100), &[-1]),
+            "-1 < 0 and the goal is reached"
+        );
+        assert!(
+            !at(BELOW, q(1, 2), &[-1]),
+            "-1 < 0 but every optimal policy avoids"
+        );
+        // Above: threshold > 0 and a goal-avoiding policy optimal.
+        assert!(!at(ABOVE, q(1, 2), &[]), "threshold 0 is not > 0");
+        assert!(at(ABOVE, q(1, 2), &[1]), "1 > 0 and the goal is avoided");
+        assert!(
+            !at(ABOVE, q(99, 100), &[1]),
+            "1 > 0 but every optimal policy reaches"
+        );
+        // At: threshold = 0 and the optimal policies all of one kind.
+        assert!(!at(AT, q(1, 2), &claimed), "the threshold is -25/16, not 0");
+        assert!(
+            at(AT, q(1, 2), &[]),
+            "threshold 0 and every optimal policy avoids"
+        );
+        // Printed: the printed inequality (true at 1/2) against "threshold < 0".
+        assert!(!at(PRINTED, q(1, 2), &claimed), "-25/16 < 0: they agree");
+        assert!(at(PRINTED, q(1, 2), &[]), "0 is not < 0: they disagree");
+    }
+
+    /// The trust checks plant the thresholds `10α − 9` (root 9/10, below `α* ≈ 0.916`) and
+    /// `20α − 19` (root 19/20, above it), constant coefficient first: `p0 = −9, p1 = 10` and
+    /// `p0 = −19, p1 = 20`.
+    #[test]
+    fn the_planted_thresholds_are_ten_alpha_minus_nine_and_twenty_alpha_minus_nineteen() {
+        let enc = example_encoding(Scope::Smoke);
+        let planted = |role: &str| {
+            enc.obligations
+                .iter()
+                .find(|o| o.role == Role::Dropped(role.into()))
+                .unwrap_or_else(|| panic!("no trust check '{role}'"))
+                .asserts
+                .clone()
+        };
+        let low = planted("the exact threshold (planted: 10 alpha - 9)");
+        assert!(low.contains(&"(= p0 (- 9.0))".to_string()), "{low:?}");
+        assert!(low.contains(&"(= p1 10.0)".to_string()), "{low:?}");
+        let high = planted("the exact threshold (planted: 20 alpha - 19)");
+        assert!(high.contains(&"(= p0 (- 19.0))".to_string()), "{high:?}");
+        assert!(high.contains(&"(= p1 20.0)".to_string()), "{high:?}");
+    }
+
+    /// The certificate obligation compares every other lasso with the goal-*avoiding* lasso of
+    /// cost-1 moves, even when a goal-reaching lasso of cost-1 moves comes first. On
+    /// `0: ->1 (1), ->0 (1); 1 (goal)` (the lassos in order: to the goal, then the loop) the
+    /// goal path costs 1 and the loop `1/(1 − α)`, so the goal path is at most as costly for
+    /// every `α` in `[1/2, 9/10]`: sat, and the model replays (compared the other way round,
+    /// `1/(1 − α) ≤ 1` would need `α ≤ 0`: unsat).
+    #[test]
+    fn the_certificate_obligation_marks_the_goal_avoiding_lasso() {
+        let c = Tiny::from_lists(&[vec![(1, 1), (0, 1)], vec![]]);
+        let (lo, hi) = interval();
+        let o = certificate_obligation(&c, (Some(lo), Some(hi)), Role::Proof);
+        match solve(&o, TIMEOUT_MS) {
+            Answer::Sat(Some(m)) => assert!(confirmed(replay(&o, &m))),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    /// The certificate replay confirms only a goal-reaching policy that costs at most the
+    /// loop's `1/(1 − α)`: on `0: ->0 (1), ->1 (11); 1 (goal)` the goal path costs 11, the
+    /// loop 2 at `α = 1/2` (not confirmed), 11 at `α = 10/11` (a tie: confirmed) and 20 at
+    /// `α = 19/20` (confirmed).
+    #[test]
+    fn the_certificate_replay_compares_the_goal_path_with_the_loop() {
+        let o = Obligation::new(
+            "C3",
+            CERTIFIED,
+            "0: ->0 (1), ->1 (11); 1 (goal)",
+            Role::Proof,
+            Logic::QfNra,
+        );
+        assert!(!confirmed(replay(&o, &model(q(1, 2), &[]))));
+        assert!(confirmed(replay(&o, &model(q(10, 11), &[]))));
+        assert!(confirmed(replay(&o, &model(q(19, 20), &[]))));
+    }
+}

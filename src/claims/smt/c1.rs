@@ -734,7 +734,7 @@ fn replay_printed(o: &Obligation, m: &Model) -> Replay {
         })
         .collect();
     let Some(scaled) = scaled else {
-        return Replay::NotConfirmed("the model's values are too large for the oracle".into());
+        return Replay::NotConfirmed(VALUES_TOO_LARGE.into());
     };
     // Rebuild the structure with the scaled integer costs.
     let mut lists: Vec<Vec<(u8, u8)>> = vec![Vec::new(); t.states()];
@@ -788,6 +788,10 @@ fn replay_printed(o: &Obligation, m: &Model) -> Replay {
     }
 }
 
+/// Why a model is not replayed when a scaled cost does not fit the oracle's `u8` or a value
+/// its `2^40` bound.
+const VALUES_TOO_LARGE: &str = "the model's values are too large for the oracle";
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -830,8 +834,6 @@ mod tests {
         }
     }
 
-    const TOO_LARGE: &str = "the model's values are too large for the oracle";
-
     /// The oracle's costs are `u8`: a scaled cost of 256 (or −1) is refused as too large for
     /// it, not wrapped to 0 (or 255), though a value of 256 is fine. At cost 255 the model
     /// reaches the oracle, which converges: `Q* = (0, 255 + G*(0)) = (0, 255)`; round 1 of
@@ -839,8 +841,8 @@ mod tests {
     /// `Q(0->0) = 255 + min(0, 256) = 255`: `Q*` after 1 round.
     #[test]
     fn a_cost_beyond_the_oracle_s_u8_is_refused() {
-        assert_eq!(not_confirmed(256, 0, 0), TOO_LARGE);
-        assert_eq!(not_confirmed(-1, 0, 0), TOO_LARGE);
+        assert_eq!(not_confirmed(256, 0, 0), VALUES_TOO_LARGE);
+        assert_eq!(not_confirmed(-1, 0, 0), VALUES_TOO_LARGE);
         assert_eq!(
             not_confirmed(255, 0, 256),
             "the oracle converges after 1 rounds"
@@ -853,8 +855,8 @@ mod tests {
     /// 1) = 0`: `Q*` after 1 round.
     #[test]
     fn a_value_of_2_to_the_40_is_refused() {
-        assert_eq!(not_confirmed(0, 0, 1 << 40), TOO_LARGE);
-        assert_eq!(not_confirmed(0, 0, -(1 << 40)), TOO_LARGE);
+        assert_eq!(not_confirmed(0, 0, 1 << 40), VALUES_TOO_LARGE);
+        assert_eq!(not_confirmed(0, 0, -(1 << 40)), VALUES_TOO_LARGE);
         assert_eq!(
             not_confirmed(0, 0, (1 << 40) - 1),
             "the oracle converges after 1 rounds"

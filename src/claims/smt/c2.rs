@@ -753,7 +753,7 @@ fn replay_symbolic_alpha(t: &Tiny, m: &Model) -> Replay {
         (n.abs() < 1 << 20 && d < 1 << 20).then(|| Q::new(n, d))
     });
     let Some(alpha) = alpha else {
-        return Replay::NotConfirmed("alpha does not fit the oracle".into());
+        return Replay::NotConfirmed(ALPHA_DOES_NOT_FIT.into());
     };
     let f = Functional::Discounted(alpha);
     match crate::claims::c2::check_problem(t, &[f], 1).0 {
@@ -764,6 +764,9 @@ fn replay_symbolic_alpha(t: &Tiny, m: &Model) -> Replay {
         )),
     }
 }
+
+/// Why an every-α model is not replayed when its `α` does not fit the oracle's bound.
+const ALPHA_DOES_NOT_FIT: &str = "alpha does not fit the oracle";
 
 #[cfg(test)]
 mod tests {
@@ -882,7 +885,7 @@ mod tests {
                 values: vec![("a".into(), a.clone())],
             };
             match replay_symbolic_alpha(&t, &m) {
-                Replay::NotConfirmed(why) => assert_eq!(why, "alpha does not fit the oracle"),
+                Replay::NotConfirmed(why) => assert_eq!(why, ALPHA_DOES_NOT_FIT),
                 other => panic!("alpha = {a}: {other:?}"),
             }
         }

@@ -758,7 +758,7 @@ pub fn replay(ob: &Obligation, model: &Model) -> Replay {
         return Replay::NotConfirmed("the model has no M".into());
     };
     if !m.is_negative() || costs.iter().any(|c| c.is_negative()) {
-        return Replay::NotConfirmed(format!("the model breaks a hypothesis (M = {m})"));
+        return Replay::NotConfirmed(format!("{BREAKS_A_HYPOTHESIS} (M = {m})"));
     }
     // Scale to integers (costs, then M, on one scale d).
     let mut values = costs.clone();
@@ -767,11 +767,11 @@ pub fn replay(ob: &Obligation, model: &Model) -> Replay {
     let int = |n: &BigInt| n.to_i64().filter(|v| v.abs() < 1 << 40);
     let scaled: Option<Vec<i64>> = ints[..costs.len()].iter().map(int).collect();
     let (Some(scaled), Some(m_scaled)) = (scaled, int(&ints[costs.len()])) else {
-        return Replay::NotConfirmed("the model's values are too large to replay".into());
+        return Replay::NotConfirmed(TOO_LARGE_TO_REPLAY.into());
     };
     let (Some(qcosts), Some(qm)) = (costs.iter().map(to_q).collect::<Option<Vec<Q>>>(), to_q(&m))
     else {
-        return Replay::NotConfirmed("the model's values are too large to replay".into());
+        return Replay::NotConfirmed(TOO_LARGE_TO_REPLAY.into());
     };
     let mut moves = vec![Vec::new(); shape.n];
     for (i, &(a, b)) in shape.edges.iter().enumerate() {
@@ -938,6 +938,11 @@ fn counterexample(
     }
 }
 
+/// Why a model is not replayed when its values, scaled to integers, reach `2^40`.
+const TOO_LARGE_TO_REPLAY: &str = "the model's values are too large to replay";
+/// Why a model with `M >= 0` or a negative cost is not replayed (followed by its `M`).
+const BREAKS_A_HYPOTHESIS: &str = "the model breaks a hypothesis";
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -979,6 +984,16 @@ mod tests {
         assert!(reachable_shape(&[vec![0], vec![]]).is_none());
     }
 
+    /// `f`'s interval at exact `costs` when π* is the goal path of `s_star` states.
+    fn interval_for(shape: &Shape, costs: &[Q], s_star: usize, f: Formula) -> Option<Interval> {
+        let paths = shape.goal_paths();
+        let p = paths
+            .iter()
+            .find(|w| w.len == s_star)
+            .expect("a path of S* states");
+        formula_interval(shape, costs, p, f)
+    }
+
     /// The formulas' intervals at exact costs, by hand, on `0 → 1 → 2` (c0, c2) and `0 → 2`
     /// (c1) with costs 1, 5, 1: π* = `c0 c2` (L* = 2, S* = 3), the shorter `u = c1` (L = 5,
     /// S = 2) bounds `M` from below, and there is no cycle.
@@ -989,9 +1004,7 @@ mod tests {
             edges: vec![(0, 1), (0, 2), (1, 2)],
         };
         let costs = [Q::int(1), Q::int(5), Q::int(1)];
-        let paths = shape.goal_paths();
-        let p = paths.iter().find(|w| w.len == 3).expect("the long path");
-        let at = |f: Formula| formula_interval(&shape, &costs, p, f).expect("defined");
+        let at = |f: Formula| interval_for(&shape, &costs, 3, f).expect("defined");
         // Planted: ((S* − 1) L(u) − (S(u) − 1) L*) / (S(u) − S*) = (2·5 − 1·2)/(−1) = −8.
         let planted = at(Formula::Planted);
         assert!(planted.contains(Q::int(-8)) && planted.contains(Q::new(-1, 2)));
@@ -1004,7 +1017,7 @@ mod tests {
         assert!(printed.contains(Q::new(-11, 45)) && !printed.contains(Q::new(-12, 45)));
         // A zero L(u) leaves the printed formula undefined.
         let zero = [Q::int(1), Q::ZERO, Q::int(1)];
-        assert!(formula_interval(&shape, &zero, p, Formula::Printed).is_none());
+        assert!(interval_for(&shape, &zero, 3, Formula::Printed).is_none());
     }
 
     /// A model's value is replayed only below 2^40 in numerator and denominator.
@@ -1056,9 +1069,7 @@ mod tests {
     fn formula_intervals_divide_by_a_length_difference_of_two() {
         let shape = two_lengths();
         let costs = [Q::int(1), Q::int(10), Q::int(1), Q::int(1)];
-        let paths = shape.goal_paths();
-        let p = paths.iter().find(|w| w.len == 4).expect("the long path");
-        let at = |f: Formula| formula_interval(&shape, &costs, p, f).expect("defined");
+        let at = |f: Formula| interval_for(&shape, &costs, 4, f).expect("defined");
         let corrected = at(Formula::Corrected);
         assert!(corrected.contains(Q::int(-17)) && corrected.contains(Q::new(-1, 2)));
         assert!(!corrected.contains(Q::new(-35, 2)) && !corrected.contains(Q::ZERO));
@@ -1132,22 +1143,22 @@ mod tests {
             _ => panic!("replayed: {m:?}"),
         };
         let zero_m = model(&[("c0", rat(0, 1)), ("c1", rat(1, 1)), ("M", rat(0, 1))]);
-        refused(&zero_m, "breaks a hypothesis");
+        refused(&zero_m, BREAKS_A_HYPOTHESIS);
         let negative_cost = model(&[("c0", rat(-1, 1)), ("c1", rat(1, 1)), ("M", rat(-1, 2))]);
-        refused(&negative_cost, "breaks a hypothesis");
+        refused(&negative_cost, BREAKS_A_HYPOTHESIS);
         let far = model(&[
             ("c0", rat(1, 2)),
             ("c1", rat(1, 2)),
             ("M", rat(-(1 << 39), 1)),
         ]);
-        refused(&far, "too large");
+        refused(&far, TOO_LARGE_TO_REPLAY);
         // The same costs with `M = −2^38` (scaled: −2^39) pass the bound and reach the oracle.
         let near = model(&[
             ("c0", rat(1, 2)),
             ("c1", rat(1, 2)),
             ("M", rat(-(1 << 38), 1)),
         ]);
-        assert!(!matches!(replay(&ob, &near), Replay::NotConfirmed(t) if t.contains("too large")));
+        assert!(!matches!(replay(&ob, &near), Replay::NotConfirmed(t) if t == TOO_LARGE_TO_REPLAY));
     }
 
     /// The printed formula's counterexample, by hand, on `0 -> 1 -> 2` (c0 = 1/2, c2 = 1/2)

@@ -329,6 +329,29 @@ fn bad_objectives_and_specs_are_refused() {
     }
 }
 
+/// A map path naming an endless stream is refused after the map-file limit (not read until
+/// memory runs out), and the refusal escapes the path.
+#[test]
+fn endless_map_files_are_refused_at_the_limit() {
+    let err = EnvSpec::parse("frozenlake:map=/dev/zero")
+        .and_then(|s| s.build())
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("larger than 4194304 bytes"), "{err}");
+    let dir = tempfile::tempdir().unwrap();
+    let odd = dir.path().join("m\x1bap");
+    std::fs::write(&odd, "SFFG\nFHFH\n").unwrap();
+    let spec = format!("frozenlake:map={}", odd.display());
+    let env = EnvSpec::parse(&spec).and_then(|s| s.build());
+    assert!(env.is_ok(), "a small map file is read");
+    std::fs::write(&odd, "SFXG\n").unwrap();
+    let err = EnvSpec::parse(&spec)
+        .and_then(|s| s.build())
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("m\\x1bap") && !err.contains('\x1b'), "{err}");
+}
+
 #[test]
 fn figures_draw_the_map_and_the_policy() {
     use truecost::envs::figure::{policy_overlay, scene, value_overlay};

@@ -127,6 +127,16 @@ fn verify_merge_refuses_missing_duplicate_and_foreign_shards() {
     ]);
     assert_eq!(out.status.code(), Some(1));
     assert!(error_line(&out).contains("checksum"));
+    // An endless stream named as a shard is refused at the limit, by both merges.
+    for command in ["verify", "reproduce"] {
+        let out = truecost(&[command, "merge", "/dev/zero", &files[1]]);
+        assert_eq!(out.status.code(), Some(1), "{command}");
+        assert!(
+            error_line(&out).contains("the limit for shard files"),
+            "{command}: {}",
+            error_line(&out)
+        );
+    }
     // K/N is checked before any work.
     for bad in ["0/3", "4/3", "1/0", "1/4097", "x", "1/2/3"] {
         let out = truecost(&["verify", "--scope", "smoke", "--shard", bad]);

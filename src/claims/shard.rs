@@ -113,20 +113,22 @@ pub struct ShardFile {
     pub seconds: f64,
 }
 
-fn checksum(entries: &[Entry]) -> String {
-    // FNV-1a over the sites and values: detects a truncated or edited file.
+/// The checksum a shard file carries: FNV-1a over everything a merge trusts — the shard
+/// (`K/N`), the fingerprint of the run and every site with its value — so that a truncated or
+/// edited file is refused. (It detects accidents and casual edits, not a forger who recomputes it.)
+fn checksum(part: &str, fingerprint: &Value, entries: &[Entry]) -> String {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for e in entries {
-        for b in e
-            .site
-            .bytes()
-            .chain([0u8])
-            .chain(e.value.as_deref().unwrap_or("\u{1}").bytes())
-            .chain([0u8])
-        {
+    let mut feed = |bytes: &[u8]| {
+        for &b in bytes.iter().chain([0u8].iter()) {
             h ^= u64::from(b);
             h = h.wrapping_mul(0x0000_0100_0000_01b3);
         }
+    };
+    feed(part.as_bytes());
+    feed(fingerprint.to_string().as_bytes());
+    for e in entries {
+        feed(e.site.as_bytes());
+        feed(e.value.as_deref().unwrap_or("\u{1}").as_bytes());
     }
     format!("{h:016x}")
 }
@@ -144,7 +146,7 @@ impl ShardFile {
             "shard": self.part.to_string(),
             "fingerprint": self.fingerprint,
             "seconds": self.seconds,
-            "checksum": checksum(&self.entries),
+            "checksum": checksum(&self.part.to_string(), &self.fingerprint, &self.entries),
             "entries": entries,
         }))
         .expect("serialisable");
@@ -181,9 +183,12 @@ impl ShardFile {
                 value,
             });
         }
-        if v["checksum"].as_str() != Some(checksum(&entries).as_str()) {
+        let shard_text = v["shard"].as_str().unwrap_or("");
+        if v["checksum"].as_str()
+            != Some(checksum(shard_text, &v["fingerprint"], &entries).as_str())
+        {
             return Err(format!(
-                "{name}: the checksum does not match the entries (a truncated or edited file)"
+                "{name}: the checksum does not match the shard, fingerprint and entries (a truncated or edited file)"
             ));
         }
         Ok(ShardFile {
@@ -245,6 +250,38 @@ pub fn complete_set(mut files: Vec<(String, ShardFile)>) -> Result<Vec<ShardFile
         }
     }
     Ok(files.into_iter().map(|(_, f)| f).collect())
+}
+
+/// The largest shard file read, in bytes.
+pub const MAX_SHARD_BYTES: u64 = 64 << 20;
+
+/// The largest total size of the shard files of one merge, in bytes.
+pub const MAX_MERGE_BYTES: u64 = 1 << 30;
+
+/// Reads the shard files named on a `merge` command line as `(name, text)`, each at most
+/// [`MAX_SHARD_BYTES`] and all together at most [`MAX_MERGE_BYTES`] (`/dev/zero` or an endless
+/// pipe is refused after the limit, not read until memory runs out).
+///
+/// ```
+/// use truecost::claims::shard::read_files;
+/// let err = read_files(&["/dev/zero".into()]).unwrap_err();
+/// assert!(err.contains("the limit for shard files"), "{err}");
+/// ```
+pub fn read_files(paths: &[std::path::PathBuf]) -> Result<Vec<(String, String)>, String> {
+    let mut total = 0u64;
+    let mut files = Vec::with_capacity(paths.len());
+    for p in paths {
+        let text = crate::bounded::read_text(p, MAX_SHARD_BYTES, "shard files")
+            .map_err(|e| e.to_string())?;
+        total += text.len() as u64;
+        if total > MAX_MERGE_BYTES {
+            return Err(format!(
+                "the shard files take more than {MAX_MERGE_BYTES} bytes together, the limit of one merge"
+            ));
+        }
+        files.push((p.display().to_string(), text));
+    }
+    Ok(files)
 }
 
 /// Reads the shard files `(name, text)` of one command (`format`) and checks that they are the
@@ -698,6 +735,28 @@ mod tests {
         };
         let text = f.to_json("t/1").replace("\"12\"", "\"13\"");
         let e = ShardFile::from_json(&text, "t/1", "x.json").unwrap_err();
+        assert!(e.contains("checksum"), "{e}");
+    }
+
+    /// The checksum covers what a merge trusts besides the entries: the fingerprint (a seed
+    /// edited from 0 to 12345 would otherwise be reported as the run's) and the shard `K/N`.
+    #[test]
+    fn an_edited_fingerprint_or_part_fails_the_checksum() {
+        let f = ShardFile {
+            part: Part { k: 1, n: 2 },
+            fingerprint: json!({"seed": 0}),
+            entries: vec![],
+            seconds: 0.0,
+        };
+        let text = f.to_json("t/1");
+        assert!(ShardFile::from_json(&text, "t/1", "x.json").is_ok());
+        let seed = text.replace("\"seed\": 0", "\"seed\": 12345");
+        assert_ne!(seed, text);
+        let e = ShardFile::from_json(&seed, "t/1", "x.json").unwrap_err();
+        assert!(e.contains("checksum"), "{e}");
+        let part = text.replace("\"1/2\"", "\"2/2\"");
+        assert_ne!(part, text);
+        let e = ShardFile::from_json(&part, "t/1", "x.json").unwrap_err();
         assert!(e.contains("checksum"), "{e}");
     }
 

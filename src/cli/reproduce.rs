@@ -285,15 +285,7 @@ pub fn run(args: &ReproduceArgs) -> Result<String, String> {
 /// `reproduce merge FILES…` (issue 12, item 4).
 fn merge_command(args: &MergeArgs) -> Result<String, String> {
     args.output.prepare()?;
-    let files = args
-        .files
-        .iter()
-        .map(|p| {
-            std::fs::read_to_string(p)
-                .map(|text| (p.display().to_string(), text))
-                .map_err(|e| format!("cannot read {}: {e}", p.display()))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
+    let files = truecost::claims::shard::read_files(&args.files)?;
     let first: serde_json::Value = serde_json::from_str(&files[0].1).unwrap_or_default();
     if first["format"].as_str() == Some(stochastic::SHARD_FORMAT) {
         let (mut report, settings) = stochastic::merge(&files)?;

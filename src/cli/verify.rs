@@ -123,15 +123,7 @@ fn merge(args: &MergeArgs) -> Result<String, String> {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     }
-    let files = args
-        .files
-        .iter()
-        .map(|p| {
-            std::fs::read_to_string(p)
-                .map(|text| (p.display().to_string(), text))
-                .map_err(|e| format!("cannot read {}: {e}", p.display()))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
+    let files = truecost::claims::shard::read_files(&args.files)?;
     let r = truecost::claims::registry::merge(&files)?;
     if let Some(dir) = &args.counterexamples {
         write_counterexamples(dir, &r)?;

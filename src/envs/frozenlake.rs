@@ -21,14 +21,26 @@ pub const MAP_8X8: [&str; 8] = [
 /// Action names in Gymnasium's numbering.
 pub const ACTIONS: [&str; 4] = ["left", "down", "right", "up"];
 
-/// Reads a map file: one row per non-empty line, letters `S F H G` only, all rows equally
-/// long, at least one `S` and one `G`.
+/// The largest map file read, in bytes: a map of the largest accepted size (10⁶ cells) with
+/// its line ends and some surrounding blanks fits well below it.
+pub const MAX_MAP_BYTES: u64 = 4 << 20;
+
+/// Reads a map file (at most [`MAX_MAP_BYTES`]): one row per non-empty line, letters
+/// `S F H G` only, all rows equally long, at least one `S` and one `G`.
 fn read_map(path: &std::path::Path) -> Result<Vec<String>, EnvError> {
     let bad = |reason: String| EnvError::Map {
         path: path.display().to_string(),
         reason,
     };
-    let text = std::fs::read_to_string(path).map_err(|e| bad(e.to_string()))?;
+    use crate::bounded::BoundedError;
+    let text =
+        crate::bounded::read_text(path, MAX_MAP_BYTES, "map files").map_err(|e| match e {
+            BoundedError::Io { source, .. } => bad(source.to_string()),
+            BoundedError::TooLarge { limit, what, .. } => {
+                bad(format!("larger than {limit} bytes, the limit for {what}"))
+            }
+            BoundedError::NotText { .. } => bad("not UTF-8 text".to_string()),
+        })?;
     let rows: Vec<String> = text
         .lines()
         .map(str::trim)

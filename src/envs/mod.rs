@@ -59,7 +59,7 @@ pub enum EnvError {
         reason: String,
     },
     /// A FrozenLake map that cannot be read or is ill formed.
-    #[error("frozenlake map {path}: {reason}")]
+    #[error("frozenlake map {}: {reason}", crate::echo::echo(.path))]
     Map {
         /// The map file.
         path: String,

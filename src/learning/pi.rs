@@ -364,7 +364,12 @@ pub fn known_prefix() -> Vec<u8> {
 /// The `count` digits cached in `dir`, if its file is there and verifies: its length, every
 /// digit below 4, the checksum in its first 8 bytes, and the known prefix.
 fn load_cached(dir: &Path, count: usize) -> Option<Vec<u8>> {
-    let bytes = std::fs::read(cache_file(dir, count)).ok()?;
+    // Only a regular file (a FIFO would block), and never more than the file's exact size.
+    let path = cache_file(dir, count);
+    if !std::fs::metadata(&path).ok()?.is_file() {
+        return None;
+    }
+    let bytes = crate::bounded::read_bytes(&path, 8 + count as u64, "the digit cache").ok()?;
     let (head, body) = bytes.split_at_checked(8)?;
     let digits: Vec<u8> = body.to_vec();
     let expected = u64::from_le_bytes(head.try_into().ok()?);
@@ -536,6 +541,27 @@ mod tests {
         assert_eq!(load_cached(&dir, 1000), None);
         std::fs::write(&file, [1, 2, 3]).unwrap(); // no room for the checksum
         assert_eq!(load_cached(&dir, 1000), None);
+    }
+
+    /// The cache is read only from a regular file and never past its exact size: a FIFO in
+    /// its place is skipped at once (no blocking open), a longer file is not read to its end.
+    #[test]
+    fn cache_files_that_are_pipes_or_too_long_are_skipped() {
+        let tmp = tempfile::tempdir().unwrap();
+        let digits = compute(100);
+        store_cached(tmp.path(), &digits);
+        let file = cache_file(tmp.path(), 100);
+        let mut long = std::fs::read(&file).unwrap();
+        long.extend_from_slice(&[0; 4096]);
+        std::fs::write(&file, &long).unwrap();
+        assert_eq!(load_cached(tmp.path(), 100), None);
+        std::fs::remove_file(&file).unwrap();
+        let status = std::process::Command::new("mkfifo")
+            .arg(&file)
+            .status()
+            .unwrap();
+        assert!(status.success());
+        assert_eq!(load_cached(tmp.path(), 100), None);
     }
 
     #[test]

@@ -32,7 +32,6 @@
 //! [`crate::value::parse_rational`] (at most 4096 bytes, exponents within ±10000); the exact
 //! numbers of one file at most [`MAX_NUMBER_BITS`] bits in all.
 
-use std::io::Read;
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
@@ -283,25 +282,21 @@ pub(crate) fn from_file(file: FileProblem<FileAction>) -> Result<Problem, FileEr
 /// assert!(matches!(err, FileError::Io { .. }));
 /// ```
 pub fn read_text(path: &Path) -> Result<String, FileError> {
-    let io = |source| FileError::Io {
-        path: path.display().to_string(),
-        source,
-    };
-    let file = std::fs::File::open(path).map_err(io)?;
-    let mut bytes = Vec::new();
-    file.take(MAX_FILE_BYTES + 1)
-        .read_to_end(&mut bytes)
-        .map_err(io)?;
-    if bytes.len() as u64 > MAX_FILE_BYTES {
-        return Err(FileError::TooLarge {
-            path: path.display().to_string(),
-        });
-    }
-    String::from_utf8(bytes).map_err(|_| {
-        io(std::io::Error::new(
-            std::io::ErrorKind::InvalidData,
-            "stream did not contain valid UTF-8",
-        ))
+    use crate::bounded::BoundedError;
+    let path_text = || path.display().to_string();
+    crate::bounded::read_text(path, MAX_FILE_BYTES, "problem files").map_err(|e| match e {
+        BoundedError::Io { source, .. } => FileError::Io {
+            path: path_text(),
+            source,
+        },
+        BoundedError::TooLarge { .. } => FileError::TooLarge { path: path_text() },
+        BoundedError::NotText { .. } => FileError::Io {
+            path: path_text(),
+            source: std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                "stream did not contain valid UTF-8",
+            ),
+        },
     })
 }
 

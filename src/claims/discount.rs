@@ -152,20 +152,47 @@ fn trajectories(problem: &Problem, bounds: Bounds) -> Result<Trajectories, Disco
             Ok(())
         }
     }
-    fn dfs(w: &mut Walk, x: usize) -> Result<(), DiscountError> {
-        w.steps += 1;
-        if w.steps > w.bounds.steps {
-            return Err(DiscountError::Effort {
-                what: "search steps",
-                bound: w.bounds.steps,
-            });
+    impl Walk<'_> {
+        /// Enters `x` at the current depth: counts a search step; at a goal stores the path
+        /// (and the search goes no further: `false`); otherwise marks `x` on the path (`true`).
+        fn enter(&mut self, x: usize) -> Result<bool, DiscountError> {
+            self.steps += 1;
+            if self.steps > self.bounds.steps {
+                return Err(DiscountError::Effort {
+                    what: "search steps",
+                    bound: self.bounds.steps,
+                });
+            }
+            if self.problem.is_goal(x) {
+                self.out.paths.push(value(&self.costs, &[]));
+                self.stored(self.costs.len())?;
+                return Ok(false);
+            }
+            self.pos[x] = self.costs.len();
+            Ok(true)
         }
-        if w.problem.is_goal(x) {
-            w.out.paths.push(value(&w.costs, &[]));
-            return w.stored(w.costs.len());
+    }
+    /// Depth-first over simple paths from `start`, with an explicit stack (a path may be as
+    /// long as the problem has states: recursion would overflow the thread's stack). Each
+    /// frame is a state on the path and the index of its next move to try.
+    fn dfs(w: &mut Walk, start: usize) -> Result<(), DiscountError> {
+        let problem = w.problem;
+        let mut stack: Vec<(usize, usize)> = Vec::new();
+        if w.enter(start)? {
+            stack.push((start, 0));
         }
-        w.pos[x] = w.costs.len();
-        for m in w.problem.moves(x) {
+        while let Some((x, next)) = stack.last_mut() {
+            let x = *x;
+            let Some(m) = problem.moves(x).get(*next) else {
+                // Every move of x tried: x leaves the path, and so does the move into it.
+                w.pos[x] = usize::MAX;
+                stack.pop();
+                if !stack.is_empty() {
+                    w.costs.pop();
+                }
+                continue;
+            };
+            *next += 1;
             let y = m.successor;
             w.costs.push(m.cost.clone());
             if w.pos[y] != usize::MAX {
@@ -173,12 +200,13 @@ fn trajectories(problem: &Problem, bounds: Bounds) -> Result<Trajectories, Disco
                 let lasso = value(&w.costs[..s], &w.costs[s..]);
                 w.out.lassos.push(lasso);
                 w.stored(w.costs.len())?;
+                w.costs.pop();
+            } else if w.enter(y)? {
+                stack.push((y, 0));
             } else {
-                dfs(w, y)?;
+                w.costs.pop();
             }
-            w.costs.pop();
         }
-        w.pos[x] = usize::MAX;
         Ok(())
     }
     let mut walk = Walk {
@@ -550,6 +578,46 @@ mod tests {
         let c = [vec![(1, 1), (1, 2)], vec![]];
         assert_eq!(search(&c, 2, 3, 8), Ok((2, 0)));
         assert_eq!(search(&c, 1, 3, 8), too_many(1));
+    }
+
+    /// A path as long as the problem has states is searched without recursion: a chain of
+    /// 100,000 states (far deeper than a test thread's stack allows a recursive search) whose
+    /// last state reaches the goal or loops on itself gives one path and one lasso, each of
+    /// 100,000 stages.
+    #[test]
+    fn a_long_chain_is_searched_without_overflowing_the_stack() {
+        use crate::model::Move;
+        let n = 100_000;
+        let one = Rational::one();
+        let mut actions: Vec<Vec<Move>> = (0..n - 1)
+            .map(|x| {
+                vec![Move {
+                    successor: x + 1,
+                    cost: one.clone(),
+                }]
+            })
+            .collect();
+        actions.push(vec![
+            Move {
+                successor: n,
+                cost: one.clone(),
+            },
+            Move {
+                successor: n - 1,
+                cost: one.clone(),
+            },
+        ]);
+        actions.push(vec![]);
+        let p = Problem::new(actions, 0, vec![n]).unwrap();
+        let bounds = Bounds {
+            trajectories: 10,
+            steps: MAX_SEARCH_STEPS,
+            coefficients: MAX_COEFFICIENTS,
+        };
+        let t = trajectories(&p, bounds).unwrap();
+        assert_eq!((t.paths.len(), t.lassos.len()), (1, 1));
+        assert_eq!(t.paths[0].0.degree(), Some(n - 1), "n stages: degree n - 1");
+        assert_eq!(t.lassos[0].1.degree(), Some(1), "a cycle of one stage");
     }
 
     /// A breakpoint that is rational is printed as the fraction; an irrational one as its

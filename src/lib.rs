@@ -14,6 +14,7 @@
 //! adds what needs big rationals ([`value::ExactValue`], the unit of [`model::Graph`]).
 #![warn(missing_docs)]
 
+pub mod atomic;
 pub mod bounded;
 pub mod claims;
 pub mod echo;

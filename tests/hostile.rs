@@ -616,3 +616,50 @@ fn oversized_files_and_bad_outputs_are_refused_first() {
     let err = fails_one_line(&["render", "--problem", "10", "--out", "/no/such/dir/f.svg"]);
     assert!(err.contains("no directory"), "{err}");
 }
+
+/// Output files are written whole: `export` onto a path whose directory is missing leaves no
+/// temporary file behind and an existing file untouched when it fails; onto `/dev/stdout` (a
+/// pipe, which a rename cannot replace) it writes directly.
+#[test]
+fn exports_replace_files_whole_and_write_to_pipes_directly() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("grid.json");
+    std::fs::write(&out, "a good earlier file\n").unwrap();
+    let o = truecost()
+        .args([
+            "export",
+            "--grid",
+            "3x3",
+            "--out",
+            &out.display().to_string(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.starts_with('{') && text.ends_with("}\n"), "{text}");
+    let names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        vec!["grid.json".to_string()],
+        "no temporary file left"
+    );
+    let piped = truecost()
+        .args(["export", "--grid", "3x3", "--out", "/dev/stdout"])
+        .output()
+        .unwrap();
+    assert!(
+        piped.status.success(),
+        "{}",
+        String::from_utf8_lossy(&piped.stderr)
+    );
+    let printed = String::from_utf8(piped.stdout).unwrap();
+    assert!(printed.starts_with("{"), "{printed}");
+    assert!(
+        printed.contains(&text.trim_end()[..40]),
+        "the same file on stdout"
+    );
+}

@@ -46,8 +46,7 @@ pub fn run(args: &ExportArgs) -> Result<String, String> {
         format!("{} (truecost stage costs)", model.name)
     };
     let text = to_json(&problem, Some(&name));
-    std::fs::write(&args.out, text + "\n")
-        .map_err(|e| format!("cannot write {}: {e}", args.out.display()))?;
+    truecost::atomic::write(&args.out, (text + "\n").as_bytes())?;
     Ok(format!(
         "wrote {} ({} states, {} actions)\n",
         args.out.display(),
@@ -63,7 +62,7 @@ fn grid(size: &str, seed: u64, out: &std::path::Path) -> Result<String, String> 
     let problem = cost_grid(rows, cols, seed).map_err(|e| e.to_string())?;
     let name = format!("benchmark grid {rows}x{cols}, move costs 1-4 from seed {seed}");
     let text = truecost::model::file::to_json(&problem, Some(&name));
-    std::fs::write(out, text + "\n").map_err(|e| format!("cannot write {}: {e}", out.display()))?;
+    truecost::atomic::write(out, (text + "\n").as_bytes())?;
     Ok(format!(
         "wrote {} ({} states, {} moves)\n",
         out.display(),

@@ -452,5 +452,5 @@ fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
 }
 
 fn write_file(path: &Path, text: &str) -> Result<(), String> {
-    std::fs::write(path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))
+    truecost::atomic::write(path, text.as_bytes())
 }

@@ -151,7 +151,8 @@ impl Canvas {
         self.shapes.iter().filter(move |s| s.class() == class)
     }
 
-    /// Writes the figure as SVG or PNG, chosen by the file's extension.
+    /// Writes the figure as SVG or PNG, chosen by the file's extension, whole
+    /// ([`crate::atomic`]: a failed write leaves any earlier file in place).
     pub fn save(&self, path: &Path) -> Result<(), FigureError> {
         let name = path.display().to_string();
         let ext = path
@@ -163,16 +164,17 @@ impl Canvas {
             message,
         };
         match ext.as_deref() {
-            Some("svg") => {
-                std::fs::write(path, self.to_svg()).map_err(|e| write_err(e.to_string()))
-            }
+            Some("svg") => crate::atomic::replace_with(path, |tmp| {
+                std::fs::write(tmp, self.to_svg()).map_err(|e| e.to_string())
+            })
+            .map_err(write_err),
             Some("png") => {
                 if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
                     if !dir.is_dir() {
                         return Err(write_err(format!("no directory {}", dir.display())));
                     }
                 }
-                self.draw_png(path).map_err(write_err)
+                crate::atomic::replace_with(path, |tmp| self.draw_png(tmp)).map_err(write_err)
             }
             _ => Err(FigureError::Format(name)),
         }

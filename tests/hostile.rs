@@ -663,3 +663,26 @@ fn exports_replace_files_whole_and_write_to_pipes_directly() {
         "the same file on stdout"
     );
 }
+
+/// An absurd `RAYON_NUM_THREADS` is refused before any work, in one line (exit 2), instead of
+/// rayon trying to start that many threads.
+#[test]
+fn an_absurd_thread_variable_is_refused_first() {
+    for value in ["100000", "lots"] {
+        let o = truecost()
+            .env("RAYON_NUM_THREADS", value)
+            .args(["solve", "--problem", "10", "--algorithm", "dijkstra"])
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2), "{value}");
+        let err = String::from_utf8(o.stderr).unwrap();
+        assert_contract(&err);
+        assert!(err.contains("RAYON_NUM_THREADS"), "{err}");
+    }
+    let o = truecost()
+        .env("RAYON_NUM_THREADS", "2")
+        .args(["solve", "--problem", "10", "--algorithm", "dijkstra"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}

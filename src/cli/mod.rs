@@ -165,6 +165,11 @@ pub fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    let threads = std::env::var_os("RAYON_NUM_THREADS").map(|v| v.to_string_lossy().into_owned());
+    if let Err(message) = truecost::experiments::runs::check_thread_variable(threads.as_deref()) {
+        eprintln!("error: {}", truecost::echo::one_line(&message));
+        return ExitCode::from(2);
+    }
     let result = match cli.command {
         Command::Problems(args) => problems(&args),
         Command::Solve(args) => solve(&args),

@@ -118,6 +118,30 @@ impl RunSettings<'_> {
     }
 }
 
+/// Checks the `RAYON_NUM_THREADS` environment variable (its value, if set) before any work:
+/// rayon's global pool would otherwise try to start that many threads and fail late. Accepted:
+/// `0` (rayon's default, one per core) up to [`MAX_THREADS`].
+///
+/// ```
+/// use truecost::experiments::runs::check_thread_variable;
+/// assert!(check_thread_variable(None).is_ok());
+/// assert!(check_thread_variable(Some("2")).is_ok());
+/// assert!(check_thread_variable(Some("100000")).unwrap_err().contains("at most 256"));
+/// assert!(check_thread_variable(Some("many")).is_err());
+/// ```
+pub fn check_thread_variable(value: Option<&str>) -> Result<(), String> {
+    let Some(value) = value else {
+        return Ok(());
+    };
+    match value.trim().parse::<usize>() {
+        Ok(n) if n <= MAX_THREADS => Ok(()),
+        _ => Err(format!(
+            "RAYON_NUM_THREADS={} is not a number of worker threads: 0 (one per core) to at most {MAX_THREADS}",
+            crate::echo::echo(value)
+        )),
+    }
+}
+
 /// Runs `work` in a pool of `threads` workers (`None`: rayon's global pool).
 ///
 /// ```

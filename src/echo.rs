@@ -75,6 +75,17 @@ pub fn echo(text: &str) -> String {
     escape(text, MAX_ECHO)
 }
 
+/// Input as it may appear in a report on stdout (a file path, an `--env` text naming a map
+/// file): every control and direction character escaped, nothing shortened. One line, so it
+/// cannot break out of a LaTeX comment or a Markdown heading, nor move the terminal's cursor.
+///
+/// ```
+/// assert_eq!(truecost::echo::printable("m\n\\input{x}\u{1b}[2J"), "m\\n\\input{x}\\x1b[2J");
+/// ```
+pub fn printable(text: &str) -> String {
+    text.chars().map(escaped).collect()
+}
+
 /// A whole message as one printable line of at most [`MAX_LINE`] characters.
 ///
 /// ```

@@ -686,3 +686,66 @@ fn an_absurd_thread_variable_is_refused_first() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// A crafted file or map name reaches stdout escaped: no raw ESC byte for the terminal, no
+/// newline that would end a LaTeX comment and inject the rest as LaTeX.
+#[test]
+fn crafted_names_reach_reports_escaped() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = dir.path().join("m\n\\input{evil}\x1b[2J");
+    std::fs::write(&map, "SFF\nFHF\nFFG\n").unwrap();
+    let spec = format!("frozenlake:map={},slippery=false", map.display());
+    for format in ["text", "latex", "markdown"] {
+        let o = truecost()
+            .args(["discount", "--env", &spec, "--format", format])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let out = String::from_utf8(o.stdout).unwrap();
+        assert!(!out.contains('\x1b'), "{format}: raw ESC in {out:?}");
+        assert!(out.contains("m\\n\\input{evil}\\x1b[2J"), "{format}: {out}");
+        if format == "latex" {
+            for line in out.lines().filter(|l| l.contains("evil")) {
+                assert!(line.starts_with('%'), "only inside a comment: {line}");
+            }
+        }
+    }
+    let file = dir.path().join("p\x1b]0;title\x07.json");
+    std::fs::write(
+        &file,
+        r#"{"initial":0,"goals":[1],"actions":[[{"to":0,"cost":"1"},{"to":1,"cost":"3"}],[]]}"#,
+    )
+    .unwrap();
+    let o = truecost()
+        .args(["discount", "--file", &file.display().to_string()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = String::from_utf8(o.stdout).unwrap();
+    assert!(!out.chars().any(|c| c == '\x1b' || c == '\x07'), "{out:?}");
+    assert!(out.contains("p\\x1b]0;title\\x07.json"), "{out}");
+}
+
+/// Usage errors keep what they name: a missing required option is listed, and a negative
+/// discount factor is read as a value and refused as one (not taken for a flag `-0`).
+#[test]
+fn usage_errors_name_what_is_missing_or_wrong() {
+    let o = truecost()
+        .args(["solve", "--problem", "3"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert_contract(&err);
+    assert!(err.contains("--algorithm"), "{err}");
+    assert!(err.contains("see 'truecost solve --help'"), "{err}");
+    let o = truecost()
+        .args(["compare", "--env", "frozenlake", "--alphas", "-0.5"])
+        .output()
+        .unwrap();
+    assert_ne!(o.status.code(), Some(0));
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert_contract(&err);
+    assert!(!err.contains("unexpected argument"), "{err}");
+    assert!(err.contains("-0.5"), "{err}");
+}

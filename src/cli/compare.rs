@@ -28,7 +28,12 @@ pub struct CompareArgs {
     #[command(flatten)]
     model: ModelArgs,
     /// The discount factors of the discounted rows, comma-separated exact numbers.
-    #[arg(long, value_name = "A,A,...", default_value = "0.9,0.95,0.99,0.999")]
+    #[arg(
+        long,
+        value_name = "A,A,...",
+        default_value = "0.9,0.95,0.99,0.999",
+        allow_hyphen_values = true
+    )]
     alphas: String,
     /// Output format.
     #[arg(long, value_enum, default_value_t = CompareFormat::Text)]

@@ -10,6 +10,7 @@ use clap::Args;
 use serde_json::json;
 
 use truecost::claims::discount::{discount_set, point_text, set_text, DiscountSet};
+use truecost::echo::printable;
 use truecost::objectives::parametric::discount_breakpoints;
 use truecost::objectives::report::{
     discount_json, discount_latex, discount_markdown, discount_text,
@@ -52,7 +53,10 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
     let (problem, source) = match (&args.env.env, &args.file, args.problem) {
         (Some(spec), _, _) => return breakpoints(Source::Env(spec.clone()).load()?, args.format),
         (None, Some(path), _) => match read(path).map_err(|e| e.to_string())? {
-            ProblemFile::Deterministic(p) => (p, format!("file {}", path.display())),
+            ProblemFile::Deterministic(p) => (
+                p,
+                format!("file {}", printable(&path.display().to_string())),
+            ),
             ProblemFile::Stochastic(p) => {
                 return breakpoints(
                     Model::from_problem(*p, format!("file {}", path.display())),

@@ -193,12 +193,21 @@ pub fn main() -> ExitCode {
 /// A clap usage error as one escaped line: its message (without clap's `error: ` prefix, tips
 /// and usage block) and the help to read.
 fn usage_line(e: &clap::Error) -> String {
+    // The first paragraph of clap's message: for a missing argument, its heading line and the
+    // indented lines naming what is missing.
     let rendered = e.render().to_string();
-    let message = rendered
+    let paragraph: Vec<&str> = rendered
         .lines()
         .map(str::trim)
-        .find(|l| !l.is_empty())
-        .unwrap_or("invalid arguments");
+        .skip_while(|l| l.is_empty())
+        .take_while(|l| !l.is_empty())
+        .collect();
+    let joined = paragraph.join(" ");
+    let message = if joined.is_empty() {
+        "invalid arguments"
+    } else {
+        joined.as_str()
+    };
     let message = message.strip_prefix("error: ").unwrap_or(message);
     let args: Vec<String> = std::env::args_os()
         .skip(1)
@@ -213,6 +222,9 @@ fn usage_line(e: &clap::Error) -> String {
         "solve",
         "render",
         "reproduce",
+        "compare",
+        "export",
+        "learn",
     ];
     if let Some(command) = args.first().filter(|a| commands.contains(&a.as_str())) {
         help.push(' ');

@@ -45,7 +45,8 @@ use crate::value::{Extended, Rational};
 /// A problem with everything the three objectives need.
 #[derive(Clone, Debug)]
 pub struct Model {
-    /// What it is (the `--env` text, a problem number or a file name).
+    /// What it is (the `--env` text, a problem number or a file name), printable
+    /// ([`crate::echo::printable`]): reports print it as it is.
     pub name: String,
     /// The truecost problem: stage costs, goals; traps (non-goal states where the episode ends)
     /// have a single zero-cost self-loop.
@@ -144,7 +145,7 @@ impl Model {
             .collect();
         let initial = vec![(problem.initial(), Rational::one())];
         Model {
-            name,
+            name: crate::echo::printable(&name),
             problem,
             reward,
             terminal,
@@ -217,7 +218,7 @@ impl Model {
         }
         let problem = StochasticProblem::new(actions, env.initial[0].0, env.goals.clone())?;
         Ok(Model {
-            name: env.spec.clone(),
+            name: crate::echo::printable(&env.spec),
             problem,
             reward,
             terminal,

@@ -529,3 +529,33 @@ fn f64_value_iteration_measures_exactly_only_when_asked() {
         truecost().args(a).assert().success();
     }
 }
+
+/// `export --grid` writes only what the readers accept: the largest exportable grid's file is
+/// below the problem-file limit (worst case of the seeded costs: 4 moves per inner state), and a
+/// larger grid is refused before any work, with no file written.
+#[test]
+fn exported_grids_fit_the_readers_limit() {
+    use truecost::model::file::{to_json, MAX_FILE_BYTES};
+    use truecost::stochastic::benchmark::{exportable_size, MAX_EXPORT_STATES};
+    let (rows, cols) = (MAX_EXPORT_STATES / 1000, 1000);
+    assert!(exportable_size(rows, cols).is_ok());
+    assert!(exportable_size(rows, cols + 1).is_err());
+    let text = to_json(&cost_grid(rows, cols, 0).unwrap(), Some("largest"));
+    assert!((text.len() as u64) < MAX_FILE_BYTES, "{} bytes", text.len());
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("big.json");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_truecost"))
+        .args([
+            "export",
+            "--grid",
+            "1000x1000",
+            "--out",
+            &out.display().to_string(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert!(err.contains("at most 100000 states"), "{err}");
+    assert!(!out.exists());
+}

@@ -57,8 +57,9 @@ pub fn run(args: &ExportArgs) -> Result<String, String> {
 
 /// `export --grid` (issue 12, item 3): the seeded benchmark grid as a problem file.
 fn grid(size: &str, seed: u64, out: &std::path::Path) -> Result<String, String> {
-    use truecost::stochastic::benchmark::{cost_grid, parse_size};
+    use truecost::stochastic::benchmark::{cost_grid, exportable_size, parse_size};
     let (rows, cols) = parse_size(size).map_err(|e| e.to_string())?;
+    exportable_size(rows, cols).map_err(|e| e.to_string())?;
     let problem = cost_grid(rows, cols, seed).map_err(|e| e.to_string())?;
     let name = format!("benchmark grid {rows}x{cols}, move costs 1-4 from seed {seed}");
     let text = truecost::model::file::to_json(&problem, Some(&name));

@@ -19,6 +19,25 @@ use crate::value::Rational;
 /// The largest side accepted by [`cost_grid`] (10⁶ states at most).
 pub const MAX_SIDE: usize = 1000;
 
+/// The most states of a grid written as a problem file by `export --grid`: its file (about 250
+/// bytes a state) must stay below the 32 MiB that every reader of problem files accepts
+/// ([`crate::model::file::MAX_FILE_BYTES`]).
+pub const MAX_EXPORT_STATES: usize = 100_000;
+
+/// Refuses, before any work, a grid whose problem file no reader would accept.
+///
+/// ```
+/// use truecost::stochastic::benchmark::exportable_size;
+/// assert!(exportable_size(316, 316).is_ok());
+/// assert!(exportable_size(1000, 1000).unwrap_err().to_string().contains("at most 100000 states"));
+/// ```
+pub fn exportable_size(rows: usize, cols: usize) -> Result<(), BenchmarkGridError> {
+    if rows.saturating_mul(cols) > MAX_EXPORT_STATES {
+        return Err(BenchmarkGridError::TooLargeToExport(rows, cols));
+    }
+    Ok(())
+}
+
 /// Why a benchmark grid could not be built.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum BenchmarkGridError {
@@ -27,6 +46,9 @@ pub enum BenchmarkGridError {
         "grid size must be ROWSxCOLS with 1 <= ROWS, COLS <= 1000 and at least 2 states, got {0}"
     )]
     Size(String),
+    /// A grid too large for a problem file that can be read back.
+    #[error("a {0}x{1} grid cannot be exported: a problem file holds at most 100000 states (readers accept 32 MiB)")]
+    TooLargeToExport(usize, usize),
 }
 
 /// Parses a grid size `ROWSxCOLS` (or a single side `N` for `N×N`).

@@ -55,7 +55,8 @@ pub fn replace_with<E: From<String>>(
     result
 }
 
-/// Writes `bytes` to `path` whole ([`replace_with`]); the error names the path.
+/// Writes `bytes` to `path` whole ([`replace_with`]); the error names the path. A pipe whose
+/// reader has closed it is not an error (as for the reports on stdout).
 ///
 /// ```
 /// let dir = tempfile::tempdir().unwrap();
@@ -66,8 +67,10 @@ pub fn replace_with<E: From<String>>(
 /// assert!(err.starts_with("cannot write"), "{err}");
 /// ```
 pub fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    replace_with(path, |tmp| {
-        std::fs::write(tmp, bytes).map_err(|e| e.to_string())
+    replace_with(path, |tmp| match std::fs::write(tmp, bytes) {
+        // A pipe closed by its reader (`--out /dev/stdout | head`) took what it wanted.
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe && special(tmp) => Ok(()),
+        other => other.map_err(|e| e.to_string()),
     })
     .map_err(|e| {
         format!(

@@ -662,6 +662,16 @@ fn exports_replace_files_whole_and_write_to_pipes_directly() {
         printed.contains(&text.trim_end()[..40]),
         "the same file on stdout"
     );
+    // A reader that closes the pipe early (`| head -c 1`) is not an error.
+    let script = format!(
+        "{} export --grid 60x60 --out /dev/stdout | head -c 1 >/dev/null; exit ${{PIPESTATUS[0]}}",
+        env!("CARGO_BIN_EXE_truecost")
+    );
+    let o = std::process::Command::new("bash")
+        .args(["-c", &script])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 /// An absurd `RAYON_NUM_THREADS` is refused before any work, in one line (exit 2), instead of

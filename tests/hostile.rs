@@ -759,3 +759,73 @@ fn usage_errors_name_what_is_missing_or_wrong() {
     assert!(!err.contains("unexpected argument"), "{err}");
     assert!(err.contains("-0.5"), "{err}");
 }
+
+/// Long input echoed in a refusal is shortened, so the one-line cut keeps the reason: env
+/// specs (names, options, values) and probabilities such as --epsilon.
+#[test]
+fn long_echoes_keep_the_reason() {
+    let long = "9".repeat(400);
+    let cases = [
+        (
+            vec![
+                "solve".to_string(),
+                "--algorithm".into(),
+                "exact".into(),
+                "--env".into(),
+                format!("lake{long}"),
+            ],
+            "known: frozenlake",
+        ),
+        (
+            vec![
+                "solve".to_string(),
+                "--algorithm".into(),
+                "exact".into(),
+                "--env".into(),
+                format!("frozenlake:x{long}=1"),
+            ],
+            "options:",
+        ),
+        (
+            vec![
+                "solve".to_string(),
+                "--algorithm".into(),
+                "exact".into(),
+                "--env".into(),
+                format!("frozenlake:slippery={long}"),
+            ],
+            "true or false",
+        ),
+        (
+            vec![
+                "solve".to_string(),
+                "--algorithm".into(),
+                "exact".into(),
+                "--env".into(),
+                format!("frozenlake:y{long}"),
+            ],
+            "KEY=VALUE",
+        ),
+        (
+            vec![
+                "render".to_string(),
+                "--problem".into(),
+                "3".into(),
+                "--overlay".into(),
+                "visits".into(),
+                "--epsilon".into(),
+                format!("1{long}"),
+                "--out".into(),
+                "/tmp/never-written.png".into(),
+            ],
+            "outside [0, 1]",
+        ),
+    ];
+    for (args, reason) in cases {
+        let o = truecost().args(&args).output().unwrap();
+        assert_ne!(o.status.code(), Some(0), "{args:?}");
+        let err = String::from_utf8(o.stderr).unwrap();
+        assert_contract(&err);
+        assert!(err.contains(reason), "{reason:?} lost in {err}");
+    }
+}

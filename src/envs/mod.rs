@@ -31,10 +31,10 @@ use crate::value::{parse_rational, Rational};
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum EnvError {
     /// An unknown environment name.
-    #[error("unknown environment '{0}' (known: frozenlake, cliffwalking, taxi)")]
+    #[error("unknown environment '{}' (known: frozenlake, cliffwalking, taxi)", crate::echo::echo(.0))]
     UnknownEnvironment(String),
     /// An option the environment does not have.
-    #[error("{env}: unknown option '{option}' (options: {known})")]
+    #[error("{env}: unknown option '{}' (options: {known})", crate::echo::echo(.option))]
     UnknownOption {
         /// The environment.
         env: &'static str,
@@ -47,7 +47,7 @@ pub enum EnvError {
     #[error("{0}")]
     Syntax(String),
     /// An option value out of its range or not parseable.
-    #[error("{env}: {option}={value}: {reason}")]
+    #[error("{env}: {option}={}: {reason}", crate::echo::echo(.value))]
     Value {
         /// The environment.
         env: &'static str,
@@ -133,12 +133,16 @@ impl EnvSpec {
         for item in options.split(',').filter(|s| !s.is_empty()) {
             let Some((k, v)) = item.split_once('=') else {
                 return Err(EnvError::Syntax(format!(
-                    "{name}: option '{item}' must be KEY=VALUE"
+                    "{}: option '{}' must be KEY=VALUE",
+                    crate::echo::echo(name),
+                    crate::echo::echo(item)
                 )));
             };
             if pairs.iter().any(|(seen, _)| seen == k) {
                 return Err(EnvError::Syntax(format!(
-                    "{name}: option '{k}' given twice"
+                    "{}: option '{}' given twice",
+                    crate::echo::echo(name),
+                    crate::echo::echo(k)
                 )));
             }
             pairs.push((k.to_string(), v.to_string()));

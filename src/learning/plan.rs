@@ -29,7 +29,7 @@ use crate::value::Rational;
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum ProbabilityError {
     /// Outside `[0, 1]`.
-    #[error("{name} = {value} is outside [0, 1]")]
+    #[error("{name} = {} is outside [0, 1]", crate::echo::echo(.value))]
     OutOfRange {
         /// The parameter's name (`ε`, …).
         name: &'static str,
@@ -37,7 +37,7 @@ pub enum ProbabilityError {
         value: String,
     },
     /// The exact value needs a denominator beyond 2^63.
-    #[error("{name} = {value} has a denominator too large for exact coins (at most 2^63)")]
+    #[error("{name} = {} has a denominator too large for exact coins (at most 2^63)", crate::echo::echo(.value))]
     TooFine {
         /// The parameter's name.
         name: &'static str,

@@ -244,10 +244,10 @@ impl Target {
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum RateError {
     /// `ρ ∉ (0, 1]`.
-    #[error("learning rate rho = {0} is outside (0, 1]")]
+    #[error("learning rate rho = {} is outside (0, 1]", crate::echo::echo(.0))]
     Rho(String),
     /// `ω ∉ (1/2, 1]`.
-    #[error("learning-rate exponent omega = {0} is outside (0.5, 1] (the range where sum rho = inf and sum rho^2 < inf)")]
+    #[error("learning-rate exponent omega = {} is outside (0.5, 1] (the range where sum rho = inf and sum rho^2 < inf)", crate::echo::echo(.0))]
     Omega(String),
     /// In range exactly, but not once rounded to the learner's `f64` (issue 12).
     #[error(

@@ -829,3 +829,29 @@ fn long_echoes_keep_the_reason() {
         assert!(err.contains(reason), "{reason:?} lost in {err}");
     }
 }
+
+/// A γ listed twice is refused like a problem listed twice (the same rows would run twice),
+/// also when written two ways.
+#[test]
+fn a_gamma_listed_twice_is_refused() {
+    for gammas in ["0.9,0.9", "0.9,9/10"] {
+        let o = truecost()
+            .args([
+                "reproduce",
+                "stochastic",
+                "--problems",
+                "3",
+                "--gammas",
+                gammas,
+            ])
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(1), "{gammas}");
+        let err = String::from_utf8(o.stderr).unwrap();
+        assert_contract(&err);
+        assert!(
+            err.contains("gamma") && err.contains("listed twice"),
+            "{err}"
+        );
+    }
+}

@@ -229,6 +229,9 @@ pub enum ExperimentError {
     /// An empty list.
     #[error("no {0} given")]
     Empty(&'static str),
+    /// A value listed twice (the same rows would run twice).
+    #[error("{0} {1} is listed twice")]
+    Duplicate(&'static str, String),
     /// Too many learning rows.
     #[error("|gammas| x |rhos| x |epsilons| = {0} exceeds {MAX_LEARNING_ROWS} learning rows per problem")]
     TooManyRows(usize),
@@ -271,6 +274,11 @@ impl Settings {
         ] {
             if list == 0 {
                 return Err(ExperimentError::Empty(name));
+            }
+        }
+        for (i, g) in self.gammas.iter().enumerate() {
+            if self.gammas[..i].contains(g) {
+                return Err(ExperimentError::Duplicate("gamma", g.to_string()));
             }
         }
         let rows = self.gammas.len() * self.rhos.len() * self.epsilons.len();

@@ -55,6 +55,37 @@ pub fn replace_with<E: From<String>>(
     result
 }
 
+/// Checks, before any work, that [`write`] or [`replace_with`] will be able to produce `path`:
+/// it is not a directory, its directory exists, and a file can be created there (a read-only
+/// disk or a missing permission is found now, not after a long run). Special targets
+/// (`/dev/stdout`) pass.
+///
+/// ```
+/// let dir = tempfile::tempdir().unwrap();
+/// assert!(truecost::atomic::check_target(&dir.path().join("x.json")).is_ok());
+/// let err = truecost::atomic::check_target(dir.path()).unwrap_err();
+/// assert!(err.contains("is a directory"), "{err}");
+/// let err = truecost::atomic::check_target(&dir.path().join("no/x.json")).unwrap_err();
+/// assert!(err.contains("cannot write"), "{err}");
+/// ```
+pub fn check_target(path: &Path) -> Result<(), String> {
+    let shown = || crate::echo::echo(&path.display().to_string());
+    if special(path) {
+        return Ok(());
+    }
+    if path.is_dir() {
+        return Err(format!("cannot write {}: it is a directory", shown()));
+    }
+    let probe = temporary(path);
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)
+        .map_err(|e| format!("cannot write {}: {e}", shown()))?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
 /// Writes `bytes` to `path` whole ([`replace_with`]); the error names the path. A pipe whose
 /// reader has closed it is not an error (as for the reports on stdout).
 ///

@@ -855,3 +855,58 @@ fn a_gamma_listed_twice_is_refused() {
         );
     }
 }
+
+/// Output paths are checked before the work: `export` into a missing directory, `reproduce
+/// --out DIR` whose report file is a directory, and `render` onto a file system that refuses
+/// new files are refused at once, with nothing computed.
+#[test]
+fn output_paths_are_checked_before_the_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("missing/dir/x.json");
+    let started = std::time::Instant::now();
+    let o = truecost()
+        .args([
+            "export",
+            "--grid",
+            "300x300",
+            "--out",
+            &missing.display().to_string(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert_contract(&err);
+    assert!(err.contains("cannot write"), "{err}");
+    let out = dir.path().join("out");
+    std::fs::create_dir_all(out.join("deterministic.json")).unwrap();
+    let o = truecost()
+        .args([
+            "reproduce",
+            "deterministic",
+            "--problems",
+            "3",
+            "--samples",
+            "1",
+        ])
+        .args(["--out", &out.display().to_string(), "--quiet"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert_contract(&err);
+    assert!(
+        err.contains("deterministic.json") && err.contains("is a directory"),
+        "{err}"
+    );
+    // /sys refuses new files even to root: a figure there is refused before it is drawn.
+    let o = truecost()
+        .args(["render", "--problem", "3", "--out", "/sys/truecost-fig.png"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert_contract(&err);
+    assert!(err.contains("cannot write"), "{err}");
+    assert!(started.elapsed().as_secs() < 30, "refused before the work");
+}

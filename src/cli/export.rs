@@ -30,6 +30,7 @@ pub struct ExportArgs {
 
 /// Runs `export`.
 pub fn run(args: &ExportArgs) -> Result<String, String> {
+    truecost::atomic::check_target(&args.out)?;
     if let Some(size) = &args.grid {
         return grid(size, args.seed, &args.out);
     }

@@ -162,7 +162,8 @@ fn check_output(args: &RenderArgs) -> Result<(), String> {
             echo(&args.out.display().to_string())
         ));
     }
-    Ok(())
+    // A read-only disk or a missing permission: found before the work, not after it.
+    truecost::atomic::check_target(&args.out)
 }
 
 /// Runs the command; returns the message printed on success.

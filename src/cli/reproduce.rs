@@ -168,17 +168,25 @@ struct Output {
     quiet: bool,
 }
 
+/// The report files `--out` writes, by extension.
+const REPORT_EXTENSIONS: [&str; 4] = ["md", "csv", "json", "tex"];
+
 impl Output {
     /// Creates the `--out` and `--plots` directories before the (long) run, so a bad path
     /// fails at once and no result is lost (issue 12).
-    fn prepare(&self) -> Result<(), String> {
+    /// Each report file `stem.*` of `--out` and a file in `--plots` is checked writable too.
+    fn prepare(&self, stem: &str) -> Result<(), String> {
         if let Some(dir) = &self.out {
             std::fs::create_dir_all(dir)
                 .map_err(|e| format!("cannot create output directory {}: {e}", dir.display()))?;
+            for ext in REPORT_EXTENSIONS {
+                truecost::atomic::check_target(&dir.join(format!("{stem}.{ext}")))?;
+            }
         }
         if let Some(dir) = &self.plots {
             std::fs::create_dir_all(dir)
                 .map_err(|e| format!("cannot create plot directory {}: {e}", dir.display()))?;
+            truecost::atomic::check_target(&dir.join(format!("{stem}.svg")))?;
         }
         Ok(())
     }
@@ -192,12 +200,12 @@ impl Output {
         charts: impl FnOnce() -> Vec<(String, truecost::figures::chart::LineChart)>,
     ) -> Result<String, String> {
         if let Some(dir) = &self.out {
-            for (ext, format) in [
-                ("md", Format::Markdown),
-                ("csv", Format::Csv),
-                ("json", Format::Json),
-                ("tex", Format::Latex),
-            ] {
+            for (ext, format) in REPORT_EXTENSIONS.into_iter().zip([
+                Format::Markdown,
+                Format::Csv,
+                Format::Json,
+                Format::Latex,
+            ]) {
                 write_file(&dir.join(format!("{stem}.{ext}")), &render(format))?;
             }
         }
@@ -284,10 +292,15 @@ pub fn run(args: &ReproduceArgs) -> Result<String, String> {
 
 /// `reproduce merge FILES…` (issue 12, item 4).
 fn merge_command(args: &MergeArgs) -> Result<String, String> {
-    args.output.prepare()?;
     let files = truecost::claims::shard::read_files(&args.files)?;
     let first: serde_json::Value = serde_json::from_str(&files[0].1).unwrap_or_default();
-    if first["format"].as_str() == Some(stochastic::SHARD_FORMAT) {
+    let stochastic_shards = first["format"].as_str() == Some(stochastic::SHARD_FORMAT);
+    args.output.prepare(if stochastic_shards {
+        "stochastic"
+    } else {
+        "deterministic"
+    })?;
+    if stochastic_shards {
         let (mut report, settings) = stochastic::merge(&files)?;
         if args.against_published {
             stochastic::against_published(&mut report, &settings).map_err(|e| e.to_string())?;
@@ -343,7 +356,7 @@ fn deterministic_command(args: &DeterministicArgs) -> Result<String, String> {
         bar.finish_and_clear();
         return file.map_err(|e| e.to_string());
     }
-    args.output.prepare()?;
+    args.output.prepare("deterministic")?;
     let bar = progress_bar(args.output.quiet, deterministic::total_runs(&settings));
     let mut report = deterministic::run(&settings, &|k| bar.inc(k)).map_err(|e| e.to_string())?;
     bar.finish_and_clear();
@@ -434,7 +447,7 @@ fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
         bar.finish_and_clear();
         return file.map_err(e);
     }
-    args.output.prepare()?;
+    args.output.prepare("stochastic")?;
     let bar = progress_bar(args.output.quiet, stochastic::total_runs(&settings));
     let mut report = stochastic::run(&settings, &|k| bar.inc(k)).map_err(e)?;
     bar.finish_and_clear();

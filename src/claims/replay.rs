@@ -173,6 +173,11 @@ pub struct Replay {
 /// Largest number of rounds a replay runs.
 pub const MAX_ROUNDS: u64 = 100_000;
 
+/// Largest number of values a replay keeps (`(rounds + 1) × pairs`): the report lists every
+/// round's values, and the check for repeating rounds remembers them, so the product is
+/// bounded before the first round runs.
+pub const MAX_VALUES: u64 = 5_000_000;
+
 struct Pairs {
     state: Vec<usize>,
     to: Vec<usize>,
@@ -209,41 +214,45 @@ fn pairs_of(p: &Problem) -> Pairs {
 }
 
 /// `G*` (exact, `None` = `+∞`) and `h` (fewest moves of an optimal path) by Bellman–Ford.
+/// `G*` and `h` (fewest moves of an optimal path) of every state: Dijkstra backwards from the
+/// goals on the lexicographic key `(cost, moves)`. Costs are `≥ 0`, so the key of a move,
+/// `(l, 1)`, is non-negative in that order, and the least key of a state is `(G*(x), h(x))`:
+/// the least cost, and among the paths of least cost the fewest moves. `O(m log n)`, so a long
+/// chain costs no more than a short grid.
 fn cost_to_go(p: &Problem) -> (Vec<Option<Rational>>, Vec<Option<u64>>) {
+    use std::cmp::Reverse;
+    use std::collections::BinaryHeap;
     let n = p.states();
-    let mut g: Vec<Option<Rational>> = (0..n).map(|x| p.is_goal(x).then(Rational::zero)).collect();
-    for _ in 0..n {
-        let mut changed = false;
-        for x in 0..n {
-            for m in p.moves(x) {
-                if let Some(gy) = &g[m.successor] {
-                    let cand = &m.cost + gy;
-                    if g[x].as_ref().is_none_or(|gx| cand < *gx) {
-                        g[x] = Some(cand);
-                        changed = true;
-                    }
-                }
-            }
-        }
-        if !changed {
-            break;
+    let mut into: Vec<Vec<(usize, &Rational)>> = vec![Vec::new(); n];
+    for x in 0..n {
+        for m in p.moves(x) {
+            into[m.successor].push((x, &m.cost));
         }
     }
-    let mut h: Vec<Option<u64>> = (0..n).map(|x| p.is_goal(x).then_some(0)).collect();
-    for _ in 0..n {
-        let mut changed = false;
-        for x in 0..n {
-            for m in p.moves(x) {
-                if let (Some(gx), Some(gy), Some(hy)) = (&g[x], &g[m.successor], h[m.successor]) {
-                    if &m.cost + gy == *gx && h[x].is_none_or(|hx| hy + 1 < hx) {
-                        h[x] = Some(hy + 1);
-                        changed = true;
-                    }
-                }
-            }
+    let mut g: Vec<Option<Rational>> = vec![None; n];
+    let mut h: Vec<Option<u64>> = vec![None; n];
+    let mut done = vec![false; n];
+    let mut heap = BinaryHeap::new();
+    for x in (0..n).filter(|&x| p.is_goal(x)) {
+        g[x] = Some(Rational::zero());
+        h[x] = Some(0);
+        heap.push(Reverse((Rational::zero(), 0u64, x)));
+    }
+    while let Some(Reverse((gy, hy, y))) = heap.pop() {
+        if std::mem::replace(&mut done[y], true) {
+            continue;
         }
-        if !changed {
-            break;
+        for &(x, cost) in &into[y] {
+            let key = (cost + &gy, hy + 1);
+            let better = match (&g[x], h[x]) {
+                (Some(gx), Some(hx)) => (&key.0, key.1) < (gx, hx),
+                _ => true,
+            };
+            if !done[x] && better {
+                g[x] = Some(key.0.clone());
+                h[x] = Some(key.1);
+                heap.push(Reverse((key.0, key.1, x)));
+            }
         }
     }
     (g, h)
@@ -285,6 +294,12 @@ pub fn replay(
     }
     let pairs = pairs_of(problem);
     let count = pairs.state.len();
+    let kept = (rounds + 1).saturating_mul(count as u64);
+    if kept > MAX_VALUES {
+        return Err(format!(
+            "--rounds {rounds} on {count} state-action pairs keeps {kept} values (every round's, for the report): at most {MAX_VALUES}; give fewer rounds"
+        ));
+    }
     let held = |p: usize| pairs.terminal[p] && terminal == Terminal::HeldAtZero;
     let mut v: Vec<Rational> = match q0 {
         InitialValues::Constant(c) => vec![c.clone(); count],
@@ -484,6 +499,73 @@ mod tests {
         let (g, h) = cost_to_go(&Problem::new(moves, 1, vec![2]).unwrap());
         assert_eq!(g, vec![int(1), int(2), int(0)]);
         assert_eq!(h, vec![Some(1), Some(1), Some(0)]);
+    }
+
+    /// A chain listed from its far end (the order in which a sweep over the states moves the
+    /// goal's value one state per sweep) gets `G*` and `h` of every state at once: 20,000
+    /// states, and a shortcut of equal cost but more moves that `h` must not take.
+    #[test]
+    fn a_long_chain_gets_its_cost_to_go_without_quadratic_sweeps() {
+        let n = 20_000;
+        let one = Rational::from_integer(1.into());
+        let mut moves: Vec<Vec<Move>> = (0..n - 1)
+            .map(|x| {
+                vec![Move {
+                    successor: x + 1,
+                    cost: one.clone(),
+                }]
+            })
+            .collect();
+        moves.push(vec![]);
+        // From 0 also a move straight to n − 3 of cost n − 3: equal cost, one move.
+        moves[0].push(Move {
+            successor: n - 3,
+            cost: Rational::from_integer(((n - 3) as i64).into()),
+        });
+        let p = Problem::new(moves, 0, vec![n - 1]).unwrap();
+        let started = std::time::Instant::now();
+        let (g, h) = cost_to_go(&p);
+        for x in [1, 2, n / 2, n - 2, n - 1] {
+            assert_eq!(
+                g[x],
+                Some(Rational::from_integer(((n - 1 - x) as i64).into()))
+            );
+            assert_eq!(h[x], Some((n - 1 - x) as u64));
+        }
+        assert_eq!(g[0], Some(Rational::from_integer(((n - 1) as i64).into())));
+        assert_eq!(h[0], Some(3), "the shortcut: 1 move, then 2");
+        assert!(started.elapsed().as_secs() < 20, "{:?}", started.elapsed());
+    }
+
+    /// The values a replay keeps are bounded before the first round: `(rounds + 1) × pairs`
+    /// up to `MAX_VALUES` runs, one round more is refused, naming the bound.
+    #[test]
+    fn rounds_times_pairs_is_bounded_before_the_run() {
+        let wide: Vec<Vec<Move>> = (0..1000)
+            .map(|_| {
+                (0..100)
+                    .map(|_| Move {
+                        successor: 1000,
+                        cost: Rational::from_integer(1.into()),
+                    })
+                    .collect()
+            })
+            .chain([vec![]])
+            .collect();
+        let p = Problem::new(wide, 0, vec![1000]).unwrap();
+        let q0 = InitialValues::parse("0").unwrap();
+        // 100,001 pairs (the goal's termination pair included): 49 × 100,001 values for 48
+        // rounds fit, 50 × 100,001 for 49 do not.
+        let run = |rounds| replay(&p, &q0, ReplayOrder::Cyclic, Terminal::Updated, rounds);
+        assert_eq!(
+            run(48).unwrap().verdict,
+            ReplayVerdict::Converged { round: 1 }
+        );
+        let e = run(49).unwrap_err();
+        assert!(
+            e.contains("100001 state-action pairs") && e.contains("at most 5000000"),
+            "{e}"
+        );
     }
 
     /// `--rounds` may be `MAX_ROUNDS` exactly, not one more, and the bound is checked before any

@@ -337,7 +337,7 @@ fn endless_map_files_are_refused_at_the_limit() {
         .and_then(|s| s.build())
         .unwrap_err()
         .to_string();
-    assert!(err.contains("larger than 4194304 bytes"), "{err}");
+    assert!(err.contains("larger than 1048576 bytes"), "{err}");
     let dir = tempfile::tempdir().unwrap();
     let odd = dir.path().join("m\x1bap");
     std::fs::write(&odd, "SFFG\nFHFH\n").unwrap();
@@ -385,4 +385,21 @@ fn figures_draw_the_map_and_the_policy() {
     assert_eq!(canvas.of_class("obstacle").count(), 10, "the cliff");
     assert_eq!(canvas.of_class("value").count(), 48);
     assert!(scene(&EnvSpec::parse("taxi").unwrap().build().unwrap()).is_err());
+}
+
+/// A map is at most 100 × 100 cells, a size every command builds: one cell more is refused
+/// when the map is read, before any model is built.
+#[test]
+fn maps_are_bounded_to_what_can_be_built() {
+    use truecost::envs::frozenlake::check_map;
+    let map = |rows: usize, cols: usize| -> Vec<String> {
+        let mut m = vec!["F".repeat(cols); rows];
+        m[0].replace_range(0..1, "S");
+        m[rows - 1].replace_range(cols - 1..cols, "G");
+        m
+    };
+    assert!(check_map(&map(100, 100)).is_ok());
+    let err = check_map(&map(101, 100)).unwrap_err();
+    assert!(err.contains("at most 10000 cells"), "{err}");
+    assert!(check_map(&map(1, 10_001)).is_err());
 }

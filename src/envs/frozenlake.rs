@@ -21,9 +21,13 @@ pub const MAP_8X8: [&str; 8] = [
 /// Action names in Gymnasium's numbering.
 pub const ACTIONS: [&str; 4] = ["left", "down", "right", "up"];
 
-/// The largest map file read, in bytes: a map of the largest accepted size (10⁶ cells) with
-/// its line ends and some surrounding blanks fits well below it.
-pub const MAX_MAP_BYTES: u64 = 4 << 20;
+/// The most cells of a map file: 100 × 100, whose exact model every command builds and
+/// solves in seconds (a map of 10⁶ cells passed the reader but no command could build it).
+pub const MAX_MAP_CELLS: usize = 10_000;
+
+/// The largest map file read, in bytes: a map of [`MAX_MAP_CELLS`] cells with its line ends
+/// and generous surrounding blanks fits well below it.
+pub const MAX_MAP_BYTES: u64 = 1 << 20;
 
 /// Reads a map file (at most [`MAX_MAP_BYTES`]): one row per non-empty line, letters
 /// `S F H G` only, all rows equally long, at least one `S` and one `G`.
@@ -57,8 +61,11 @@ pub fn check_map(rows: &[String]) -> Result<(), String> {
     if width == 0 {
         return Err("empty map".into());
     }
-    if rows.len() * width > 1_000_000 {
-        return Err("more than 10^6 cells".into());
+    if rows.len().saturating_mul(width) > MAX_MAP_CELLS {
+        return Err(format!(
+            "{} x {width} cells: a map has at most {MAX_MAP_CELLS} cells (100 x 100)",
+            rows.len()
+        ));
     }
     for (i, r) in rows.iter().enumerate() {
         if let Some(c) = r.chars().find(|c| !"SFHG".contains(*c)) {

@@ -1,0 +1,337 @@
+//! The bridge between the Coq development (`proofs/coq/`) and the kernel's oracles: the
+//! definitions the Coq theorems are about (`Model.v`: `Gstar`, `Qstar`, `hstar`, `R1`,
+//! `round_bound`) must be the quantities the kernel computes. Problems of `claims::tiny`'s
+//! enumeration are written as Coq terms together with the kernel's exact values — `G*` from
+//! `oracle::optimal_cost_to_go` (policy enumeration), `Q*` from `QProblem::optimum`, `h` from
+//! `QProblem::optimal_steps` and the round bound of C1-corrected from `QProblem::round_bound`
+//! for three initial vectors — and `Bridge.v`'s checker, evaluated by `coqc`, compares them
+//! with Model.v's definitions. Coq prints how many problems and values it compared and the list
+//! of mismatches; the test requires none, and at least 1,000 problems.
+//!
+//! Without `coqc` on `PATH` the test fails with the install line (no silent skip). The Coq
+//! development is `../proofs/coq` from this crate, or the directory in `TRUECOST_COQ_DIR`
+//! (so that a copy of this crate with a planted oracle can be checked against the tree's
+//! proofs).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+use truecost_kernel::claims::oracle::optimal_cost_to_go;
+use truecost_kernel::claims::qlearning::{QProblem, Terminal, Values, MAX_PAIRS};
+use truecost_kernel::claims::tiny::{Family, FamilySpec, Tiny};
+
+/// The message when `coqc` cannot be run.
+const NO_COQC: &str =
+    "coqc not found: install Coq (Debian/Ubuntu: apt-get install -y coq; the README's prerequisites)";
+
+fn coq_dir() -> PathBuf {
+    match std::env::var_os("TRUECOST_COQ_DIR") {
+        Some(d) => PathBuf::from(d),
+        None => Path::new(env!("CARGO_MANIFEST_DIR")).join("../proofs/coq"),
+    }
+}
+
+/// The scopes, and the stride at which each one's labelled problems are sampled (every
+/// `stride`-th labelled problem, kept if it is its class's representative).
+fn scopes() -> Vec<(FamilySpec, u64)> {
+    let spec = |states, degree, goal_degree, costs: &[u8]| FamilySpec {
+        states,
+        initial_fixed: true,
+        degree,
+        goal_degree,
+        costs: costs.to_vec(),
+        distinct_successors: false,
+    };
+    vec![
+        // 2 states, 1-3 moves, 0-2 at the goal, costs with 0: 2,324 problems, every 6th.
+        (spec(2, (1, 3), (0, 2), &[0, 1, 2]), 6),
+        // 3 states, 1-2 moves, 0-1 at the goal: 5,103 problems, every 13th.
+        (spec(3, (1, 2), (0, 1), &[0, 2]), 13),
+        // 4 states, 1-2 moves, positive costs (Part B of the round bound applies).
+        (spec(4, (1, 2), (0, 1), &[1, 3]), 2_111),
+        // 4 states, one move each, 0-1 at the goal, costs with 0.
+        (spec(4, (1, 1), (0, 1), &[0, 1, 3]), 97),
+    ]
+}
+
+/// One problem and what the kernel computes for it.
+struct Case {
+    tiny: Tiny,
+    gstar: Vec<Option<i64>>,
+    qstar: Vec<Option<i64>>,
+    h: Vec<Option<u32>>,
+    r1: Option<u64>,
+    /// Initial vectors (one entry per pair, in pair order) and the kernel's round bound.
+    rounds: Vec<(Vec<i64>, Option<u64>)>,
+}
+
+fn case(t: &Tiny) -> Case {
+    let q = QProblem::new(t, Terminal::HeldAtZero);
+    let n = t.states();
+    let pairs = q.len();
+    let vector = |f: &dyn Fn(usize) -> i64| -> (Vec<i64>, Values) {
+        let mut v = [0i64; MAX_PAIRS];
+        for (p, x) in v.iter_mut().enumerate().take(pairs) {
+            *x = f(p);
+        }
+        (v[..pairs].to_vec(), v)
+    };
+    // All zero; one above Q* (Q* + 1, 50 where Q* is +oo); one with negative entries.
+    let zero = vector(&|_| 0);
+    let above = vector(&|p| q.optimum[p].map_or(50, |v| v + 1));
+    let negative = vector(&|p| (p % 3) as i64 - 2);
+    let rounds: Vec<(Vec<i64>, Option<u64>)> = [zero, above, negative]
+        .into_iter()
+        .map(|(list, v)| (list, q.round_bound(&v)))
+        .collect();
+    Case {
+        tiny: *t,
+        gstar: optimal_cost_to_go(t)[..n].to_vec(),
+        qstar: q.optimum.clone(),
+        h: q.optimal_steps()[..n].to_vec(),
+        // Part A of the round bound: with Q0 above Q* the bound is R1 (None if some h is +oo).
+        r1: rounds[1].1,
+        rounds,
+    }
+}
+
+fn q(v: i64) -> String {
+    format!("({v} # 1)")
+}
+
+fn oq(v: Option<i64>) -> String {
+    v.map_or("None".into(), |v| format!("(Some {})", q(v)))
+}
+
+fn on(v: Option<u64>) -> String {
+    v.map_or("None".into(), |v| format!("(Some {v}%nat)"))
+}
+
+fn list(items: impl Iterator<Item = String>) -> String {
+    format!("[{}]", items.collect::<Vec<_>>().join("; "))
+}
+
+/// `(problem, expected)` as a Coq term.
+fn coq_term(c: &Case) -> String {
+    let t = &c.tiny;
+    let moves = list((0..t.states()).map(|x| {
+        list(
+            t.moves(x)
+                .iter()
+                .map(|m| format!("({}%nat, {})", m.to, q(m.cost as i64))),
+        )
+    }));
+    let rounds = list(
+        c.rounds
+            .iter()
+            .map(|(v, r)| format!("({}, {})", list(v.iter().map(|&x| q(x))), on(*r))),
+    );
+    format!(
+        "(mk {} {moves}, {{| e_Gstar := {}; e_Qstar := {}; e_h := {}; e_R1 := {}; e_rounds := {rounds} |}})",
+        t.states(),
+        list(c.gstar.iter().map(|&v| oq(v))),
+        list(c.qstar.iter().map(|&v| oq(v))),
+        list(c.h.iter().map(|&v| on(v.map(u64::from)))),
+        on(c.r1),
+    )
+}
+
+/// What Coq printed for `check_all`: problems checked, values compared, and the mismatches
+/// `(problem, field, position)`.
+#[derive(Debug)]
+struct Verdict {
+    problems: u64,
+    values: u64,
+    mismatches: Vec<(usize, String, usize)>,
+}
+
+/// Parses `= (388%nat, 9000%nat, [(3%nat, "h"%string, 1%nat); ...])`.
+fn parse(out: &str) -> Option<Verdict> {
+    let text: String = out.chars().filter(|c| !c.is_whitespace()).collect();
+    let body = text.strip_prefix("=(")?;
+    let body = &body[..body.find(":nat*nat*")?];
+    let (problems, rest) = body.split_once("%nat,")?;
+    let (values, rest) = rest.split_once("%nat,")?;
+    let inner = rest.strip_prefix('[')?.strip_suffix("])")?;
+    let mut mismatches = Vec::new();
+    for item in inner.split(");").filter(|s| !s.is_empty()) {
+        let item = item.trim_start_matches('(').trim_end_matches(')');
+        let mut parts = item.split(',');
+        let i = parts.next()?.strip_suffix("%nat")?.parse().ok()?;
+        let what = parts.next()?.strip_suffix("%string")?.trim_matches('"');
+        let k = parts.next()?.strip_suffix("%nat")?.parse().ok()?;
+        mismatches.push((i, what.to_string(), k));
+    }
+    Some(Verdict {
+        problems: problems.parse().ok()?,
+        values: values.parse().ok()?,
+        mismatches,
+    })
+}
+
+fn run(cmd: &mut Command, what: &str) -> String {
+    let out = match cmd.output() {
+        Ok(out) => out,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => panic!("{NO_COQC}"),
+        Err(e) => panic!("{what}: {e}"),
+    };
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{what} failed ({}):\n{stdout}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    stdout
+}
+
+/// The kernel's value at a mismatch, for the failure message.
+fn kernel_value(c: &Case, what: &str, k: usize) -> String {
+    let get = |v: Option<String>| v.unwrap_or_else(|| "(no entry)".into());
+    match what {
+        "Gstar" => get(c.gstar.get(k).map(|v| format!("{v:?}"))),
+        "Qstar" => get(c.qstar.get(k).map(|v| format!("{v:?}"))),
+        "h" => get(c.h.get(k).map(|v| format!("{v:?}"))),
+        "R1" => format!("{:?}", c.r1),
+        _ => get(c
+            .rounds
+            .get(k)
+            .map(|(v, r)| format!("{r:?} for q0 = {v:?}"))),
+    }
+}
+
+#[test]
+fn model_definitions_equal_the_kernel_oracles_on_enumerated_problems() {
+    if Command::new("coqc").arg("--version").output().is_err() {
+        panic!("{NO_COQC}");
+    }
+    let dir = coq_dir();
+    let started = Instant::now();
+    // Only what the checker needs (Model.v, Bridge.v): the other proofs are built and checked
+    // by `make -C proofs/coq` in CI and by the crate `truecost`'s Coq test.
+    run(
+        Command::new("make").arg("-C").arg(&dir).arg("Bridge.vo"),
+        "make -C proofs/coq Bridge.vo",
+    );
+    eprintln!(
+        "make -C {}: {:.1} s",
+        dir.display(),
+        started.elapsed().as_secs_f64()
+    );
+    let work = std::env::temp_dir().join(format!("truecost-coq-bridge-{}", std::process::id()));
+    std::fs::create_dir_all(&work).unwrap();
+
+    let mut all = Vec::new();
+    let (mut total, mut checked, mut values) = (0usize, 0u64, 0u64);
+    let (mut failures, mut mismatches) = (String::new(), 0usize);
+    for (f, (spec, stride)) in scopes().iter().enumerate() {
+        let family = Family::new(spec);
+        let cases: Vec<Case> = (0..family.labelled_count())
+            .step_by(*stride as usize)
+            .map(|i| family.problem(i))
+            .filter(|t| family.is_canonical(t))
+            .map(|t| case(&t))
+            .collect();
+        let mut file = String::from(
+            "From Coq Require Import QArith List String.\nFrom Truecost Require Import Model Bridge.\n\
+             Import ListNotations.\nOpen Scope Q_scope.\n\n\
+             Definition problems : list (problem * expected) := [\n",
+        );
+        for (i, c) in cases.iter().enumerate() {
+            let sep = if i + 1 < cases.len() { ";" } else { "" };
+            writeln!(file, "  {}{sep}", coq_term(c)).unwrap();
+        }
+        file.push_str("].\n\nEval vm_compute in check_all problems.\n");
+        let path = work.join(format!("bridge_{f}.v"));
+        std::fs::write(&path, file).unwrap();
+        let out = run(
+            Command::new("coqc")
+                .arg("-q")
+                .arg("-R")
+                .arg(&dir)
+                .arg("Truecost")
+                .arg(&path)
+                .current_dir(&work),
+            &format!("coqc {}", path.display()),
+        );
+        let v = parse(&out).unwrap_or_else(|| panic!("unreadable Coq output:\n{out}"));
+        assert_eq!(v.problems, cases.len() as u64, "{}", spec.describe());
+        for (i, what, k) in &v.mismatches {
+            mismatches += 1;
+            if mismatches > 20 {
+                continue;
+            }
+            let c = &cases[*i];
+            writeln!(
+                failures,
+                "{} | problem {} ({}): Model.v's {what} differs from the kernel at position {k} \
+                 (kernel: {})",
+                spec.describe(),
+                i,
+                c.tiny.describe(),
+                kernel_value(c, what, *k)
+            )
+            .unwrap();
+        }
+        eprintln!(
+            "{}: {} problems, {} values, {} mismatches",
+            spec.describe(),
+            v.problems,
+            v.values,
+            v.mismatches.len()
+        );
+        total += cases.len();
+        checked += v.problems;
+        values += v.values;
+        all.extend(cases);
+    }
+    std::fs::remove_dir_all(&work).ok();
+    eprintln!(
+        "Coq checked {checked} problems ({values} values) against the kernel's oracles in {:.1} s",
+        started.elapsed().as_secs_f64()
+    );
+    assert!(
+        mismatches == 0,
+        "{mismatches} mismatches between Model.v and the kernel (the first {}):\n{failures}",
+        mismatches.min(20)
+    );
+    assert_eq!(checked, total as u64);
+    assert!(checked >= 1_000, "only {checked} problems checked");
+
+    // The sample mixes problems where every state reaches the goal and problems where some
+    // state does not, and round bounds of both parts and none.
+    let reach_all = all
+        .iter()
+        .filter(|c| c.gstar.iter().all(Option::is_some))
+        .count();
+    assert!(
+        reach_all >= 100 && all.len() - reach_all >= 100,
+        "{reach_all} of {}",
+        all.len()
+    );
+    let bounds: Vec<Option<u64>> = all
+        .iter()
+        .flat_map(|c| [c.rounds[0].1, c.rounds[2].1])
+        .collect();
+    let some = bounds.iter().filter(|b| b.is_some()).count();
+    assert!(some >= 100 && bounds.len() - some >= 100, "{some}");
+    assert!(all.iter().filter(|c| c.r1.is_some_and(|r| r >= 3)).count() >= 10);
+}
+
+/// The parser reads Coq's printing of `check_all`, with and without mismatches.
+#[test]
+fn coq_output_is_parsed() {
+    let v = parse("     = (388%nat, 9000%nat, [])\n     : nat * nat * list mismatch\n").unwrap();
+    assert_eq!((v.problems, v.values, v.mismatches.len()), (388, 9000, 0));
+    let v = parse(
+        "     = (2%nat, 30%nat,\n        [(0%nat, \"h\"%string, 1%nat);\n         (1%nat, \"round_bound\"%string, 2%nat)])\n     : nat * nat * list mismatch\n",
+    )
+    .unwrap();
+    assert_eq!(
+        v.mismatches,
+        vec![(0, "h".into(), 1), (1, "round_bound".into(), 2)]
+    );
+    assert!(parse("Error: something").is_none());
+}

@@ -233,3 +233,55 @@ fn reproduce_stochastic_merge_of_three_shards_is_the_whole_run() {
         ],
     );
 }
+
+/// A shard whose checksum was recomputed after tampering with a recorded counterexample (a
+/// tiny problem claiming 9 moves at a state, more than any tiny problem has) is refused with
+/// one line naming the site, not indexed out of bounds.
+#[test]
+fn a_tampered_counterexample_with_a_valid_checksum_is_refused_cleanly() {
+    use truecost::claims::shard::ShardFile;
+    let dir = scratch("tampered-tiny");
+    let files: Vec<String> = (1..=2)
+        .map(|k| {
+            let part = format!("{k}/2");
+            let path = dir.join(format!("c1-{k}.json"));
+            let text = ok(&[
+                "verify", "--scope", "smoke", "--claim", "C1", "--no-smt", "--shard", &part,
+            ]);
+            std::fs::write(&path, text).unwrap();
+            path.display().to_string()
+        })
+        .collect();
+    let text = std::fs::read_to_string(&files[0]).unwrap();
+    let format = serde_json::from_str::<Value>(&text).unwrap()["format"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let mut shard = ShardFile::from_json(&text, &format, "shard 1").unwrap();
+    let entry = shard
+        .entries
+        .iter_mut()
+        .find(|e| {
+            e.value
+                .as_deref()
+                .is_some_and(|v| v.contains("\"deg\":[1,"))
+        })
+        .expect("a recorded tiny problem with one move at state 0");
+    let value = entry.value.take().unwrap();
+    entry.value = Some(value.replacen("\"deg\":[1,", "\"deg\":[9,", 1));
+    let tampered = dir.join("tampered.json");
+    std::fs::write(&tampered, shard.to_json(&format)).unwrap();
+    let out = truecost(&[
+        "verify",
+        "merge",
+        &tampered.display().to_string(),
+        &files[1],
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let line = error_line(&out);
+    assert!(!line.contains("internal error"), "{line}");
+    assert!(
+        line.contains("more moves than a tiny problem allows"),
+        "{line}"
+    );
+}

@@ -24,9 +24,12 @@ pub struct TinyMove {
 }
 
 /// A tiny deterministic problem: states `0..n`, `x1 = 0`, goal `n − 1` (with the termination
-/// action of SPEC §1 in addition to its moves).
+/// action of SPEC §1 in addition to its moves). Read back from a file (a shard of `verify`),
+/// it is checked like [`Tiny::from_lists`] checks its lists: a tampered file is refused, not
+/// indexed out of bounds.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(try_from = "TinyFields"))]
 pub struct Tiny {
     /// `|X|`.
     pub n: u8,
@@ -34,6 +37,29 @@ pub struct Tiny {
     pub deg: [u8; MAX_STATES],
     /// The moves, sorted per state.
     pub moves: [[TinyMove; MAX_DEGREE]; MAX_STATES],
+}
+
+/// The fields of a [`Tiny`] as read, before the checks of [`Tiny::check`].
+#[cfg(feature = "serde")]
+#[derive(serde::Deserialize)]
+struct TinyFields {
+    n: u8,
+    deg: [u8; MAX_STATES],
+    moves: [[TinyMove; MAX_DEGREE]; MAX_STATES],
+}
+
+#[cfg(feature = "serde")]
+impl TryFrom<TinyFields> for Tiny {
+    type Error = &'static str;
+
+    fn try_from(f: TinyFields) -> Result<Tiny, &'static str> {
+        let t = Tiny {
+            n: f.n,
+            deg: f.deg,
+            moves: f.moves,
+        };
+        t.check().map(|()| t)
+    }
 }
 
 impl Tiny {
@@ -66,6 +92,33 @@ impl Tiny {
             }
         }
         t
+    }
+
+    /// Whether the arrays describe a problem: `1 ≤ n ≤ MAX_STATES`, at most [`MAX_DEGREE`]
+    /// moves per state, none beyond state `n − 1`, every move's target a state.
+    ///
+    /// ```
+    /// use truecost_kernel::claims::tiny::Tiny;
+    /// let mut t = Tiny::from_lists(&[vec![(1, 1)], vec![]]);
+    /// assert!(t.check().is_ok());
+    /// t.deg[0] = 9;
+    /// assert!(t.check().is_err());
+    /// ```
+    pub fn check(&self) -> Result<(), &'static str> {
+        let n = self.n as usize;
+        if !(1..=MAX_STATES).contains(&n) {
+            return Err("a tiny problem has 1 to 7 states");
+        }
+        for x in 0..MAX_STATES {
+            let d = self.deg[x] as usize;
+            if d > MAX_DEGREE || (x >= n && d > 0) {
+                return Err("a state has more moves than a tiny problem allows");
+            }
+            if self.moves[x][..d].iter().any(|m| m.to as usize >= n) {
+                return Err("a move leads outside the problem's states");
+            }
+        }
+        Ok(())
     }
 
     /// Number of states.

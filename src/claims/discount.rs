@@ -68,6 +68,12 @@ pub const MAX_COEFFICIENTS: u64 = 1_000_000;
 /// bound keeps a run to seconds.
 pub const MAX_PAIR_WORK: u64 = 200_000_000;
 
+/// The most bits one stage cost may take (numerator and denominator together, about 10³⁰⁰):
+/// root isolation on polynomials whose coefficients are such costs grows with a high power of
+/// their size (measured on a 3-state problem: costs of 10³⁰⁰ take about a second, 10¹⁰⁰⁰ a
+/// minute and a half), so larger costs are refused before any work.
+pub const MAX_COST_BITS: u64 = 1024;
+
 /// Why the analysis cannot run. Each refusal names the bound that was reached (issue 12: every
 /// search with a combinatorial blow-up is bounded while it runs).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -75,6 +81,9 @@ pub enum DiscountError {
     /// Too many trajectories for the exact enumeration.
     #[error("the problem has more than {0} goal paths or goal-avoiding lassos from x1: too large for the exact parametric analysis")]
     TooLarge(usize),
+    /// A stage cost too large for exact root isolation in bounded time.
+    #[error("a stage cost takes {0} bits (numerator and denominator): at most {MAX_COST_BITS} for the exact parametric analysis")]
+    CostBits(u64),
     /// The enumeration went past one of its effort bounds.
     #[error("the enumeration of goal paths and lassos from x1 passed its bound of {bound} {what}: too large for the exact parametric analysis")]
     Effort {
@@ -297,6 +306,14 @@ pub fn discount_set(problem: &Problem, limit: usize) -> Result<DiscountSet, Disc
         pieces: Vec::new(),
         method: method.into(),
     };
+    let bits = (0..problem.states())
+        .flat_map(|x| problem.moves(x))
+        .map(|m| m.cost.numer().bits() + m.cost.denom().bits())
+        .max()
+        .unwrap_or(0);
+    if bits > MAX_COST_BITS {
+        return Err(DiscountError::CostBits(bits));
+    }
     if problem.is_goal(problem.initial()) {
         return Ok(empty("x1 is a goal: every policy has reached it"));
     }
@@ -618,6 +635,25 @@ mod tests {
         assert_eq!((t.paths.len(), t.lassos.len()), (1, 1));
         assert_eq!(t.paths[0].0.degree(), Some(n - 1), "n stages: degree n - 1");
         assert_eq!(t.lassos[0].1.degree(), Some(1), "a cycle of one stage");
+    }
+
+    /// Stage costs are bounded in size before any work: 10³⁰⁰ (997 + 1 bits: numerator and
+    /// denominator) is analysed, 10³⁰⁹ (1027 + 1 bits) is refused at once, naming the bound.
+    #[test]
+    fn huge_costs_are_refused_before_the_analysis() {
+        let file = |cost: &str| {
+            crate::model::file::from_json(&format!(
+                r#"{{"initial":0,"goals":[2],"actions":[[{{"to":0,"cost":"{cost}"}},{{"to":1,"cost":"3"}}],[{{"to":0,"cost":"1"}},{{"to":2,"cost":"{cost}"}}],[]]}}"#
+            ))
+            .unwrap()
+        };
+        assert!(discount_set(&file("1e300"), 1000).is_ok());
+        let started = std::time::Instant::now();
+        assert_eq!(
+            discount_set(&file("1e309"), 1000),
+            Err(DiscountError::CostBits(1028))
+        );
+        assert!(started.elapsed().as_millis() < 1000);
     }
 
     /// A breakpoint that is rational is printed as the fraction; an irrational one as its

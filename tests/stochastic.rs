@@ -1094,11 +1094,12 @@ fn the_warm_start_finds_the_improvement_before_the_exact_phase() {
 
 /// The warm start switches only on an improvement larger than 10⁻⁹ of the value (module
 /// docs of `policy_iteration`): against a direct move at cost 10⁶, a detour cheaper by 10⁻⁵
-/// (relatively 10⁻¹¹) is left to the exact phase, which switches (two exact evaluations);
-/// cheaper by 1 (relatively 10⁻⁶) the warm start takes it (one).
+/// (relatively 10⁻¹¹) is left to the mixed-precision stage, which certifies it and switches
+/// (one round), so one exact evaluation confirms; cheaper by 1 (relatively 10⁻⁶) the warm
+/// start takes it.
 #[test]
 fn the_warm_start_ignores_improvements_below_its_relative_margin() {
-    for (detour, float, exact) in [("999999.99999", 0, 2), ("999999", 1, 1)] {
+    for (detour, float, refined, exact) in [("999999.99999", 0, 1, 1), ("999999", 1, 0, 1)] {
         let text = format!(
             r#"{{"initial":0,"goals":[1],"actions":[
             [{{"cost":"1000000","outcomes":[{{"to":1,"p":"1"}}]}},{{"cost":"{detour}","outcomes":[{{"to":2,"p":"1"}}]}}],
@@ -1108,8 +1109,12 @@ fn the_warm_start_ignores_improvements_below_its_relative_margin() {
         let o = optimum(&stochastic_file(&text)).unwrap();
         assert_eq!(o.stats.initial_policy, "attractor");
         assert_eq!(
-            (o.stats.float_iterations, o.stats.exact_iterations),
-            (float, exact),
+            (
+                o.stats.float_iterations,
+                o.stats.refinement_rounds,
+                o.stats.exact_iterations
+            ),
+            (float, refined, exact),
             "{detour}"
         );
         assert_eq!(o.cost_to_go(0), Extended::Finite(q(detour)));

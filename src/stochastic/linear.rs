@@ -116,12 +116,18 @@ impl SparseSystem {
         self.rhs.is_empty()
     }
 
-    fn row(&self, i: usize) -> impl Iterator<Item = (usize, i64)> + '_ {
+    /// The entries `(column, value)` of row `i`.
+    pub fn row(&self, i: usize) -> impl Iterator<Item = (usize, i64)> + '_ {
         let r = self.row_first[i]..self.row_first[i + 1];
         self.col[r.clone()]
             .iter()
             .zip(&self.val[r])
             .map(|(&c, &v)| (c as usize, v))
+    }
+
+    /// The right-hand side of row `i`.
+    pub fn rhs(&self, i: usize) -> i128 {
+        self.rhs[i]
     }
 
     /// Whether `A·N = d·r` holds exactly.
@@ -266,6 +272,7 @@ impl BandOrdering {
 }
 
 /// A banded matrix in reordered coordinates: row `i` holds columns `i−lower ..= i+upper`.
+#[derive(Clone, Debug)]
 struct Band<T> {
     n: usize,
     lower: usize,
@@ -988,51 +995,83 @@ pub fn solve_f64(system: &SparseSystem) -> Result<Vec<f64>, LinearError> {
 
 /// [`solve_f64`] with a precomputed ordering; also `log2 |det A|` from the pivots.
 fn solve_f64_ordered(system: &SparseSystem, ordering: &BandOrdering) -> (Vec<f64>, f64) {
-    let mut band = Band::new(system, ordering, |v| v as f64, |a, b| a + b);
-    let n = band.n;
-    let mut log2_det = 0.0;
-    for k in 0..n {
-        let pivot = band.data[band.index(k, k)];
-        log2_det += pivot.abs().log2();
-        let last_row = (k + band.lower).min(n.saturating_sub(1));
-        let last_col = (k + band.upper).min(n.saturating_sub(1));
-        for i in k + 1..=last_row {
-            let ik = band.index(i, k);
-            let l = band.data[ik] / pivot;
-            band.data[ik] = l;
-            if l == 0.0 {
-                continue;
+    let factor = FloatFactor::with_ordering(system, ordering.clone());
+    let rhs: Vec<f64> = system.rhs.iter().map(|&r| r as f64).collect();
+    (factor.solve(&rhs), factor.log2_det)
+}
+
+/// The `f64` band LU factor of a system (reverse Cuthill–McKee ordering, no pivoting), kept to
+/// solve the same matrix for many right-hand sides (the mixed-precision refinement of
+/// [`super::refine`]). Only ever proposes values; never reported.
+#[derive(Clone, Debug)]
+pub struct FloatFactor {
+    ordering: BandOrdering,
+    band: Band<f64>,
+    /// `log2 |det A|` from the pivots (an `f64` estimate).
+    pub log2_det: f64,
+}
+
+impl FloatFactor {
+    /// Factors `A` of `system` (its right-hand side is not used).
+    pub fn new(system: &SparseSystem) -> Result<Self, LinearError> {
+        let ordering = BandOrdering::new(system);
+        check_band(system.len(), &ordering)?;
+        Ok(Self::with_ordering(system, ordering))
+    }
+
+    fn with_ordering(system: &SparseSystem, ordering: BandOrdering) -> Self {
+        let mut band = Band::new(system, &ordering, |v| v as f64, |a, b| a + b);
+        let n = band.n;
+        let mut log2_det = 0.0;
+        for k in 0..n {
+            let pivot = band.data[band.index(k, k)];
+            log2_det += pivot.abs().log2();
+            let last_row = (k + band.lower).min(n.saturating_sub(1));
+            let last_col = (k + band.upper).min(n.saturating_sub(1));
+            for i in k + 1..=last_row {
+                let ik = band.index(i, k);
+                let l = band.data[ik] / pivot;
+                band.data[ik] = l;
+                if l == 0.0 {
+                    continue;
+                }
+                let kk = band.index(k, k);
+                for off in 1..=last_col - k {
+                    let t = ik + off;
+                    band.data[t] -= l * band.data[kk + off];
+                }
             }
-            let kk = band.index(k, k);
-            for off in 1..=last_col - k {
-                let t = ik + off;
-                band.data[t] -= l * band.data[kk + off];
+        }
+        FloatFactor {
+            ordering,
+            band,
+            log2_det,
+        }
+    }
+
+    /// `A⁻¹·rhs` in `f64` (`rhs` in the system's numbering).
+    pub fn solve(&self, rhs: &[f64]) -> Vec<f64> {
+        let (band, ordering) = (&self.band, &self.ordering);
+        let n = band.n;
+        let mut y: Vec<f64> = (0..n).map(|new| rhs[ordering.order[new]]).collect();
+        for i in 0..n {
+            let first = i.saturating_sub(band.lower);
+            let mut acc = y[i];
+            for (j, yj) in y.iter().enumerate().take(i).skip(first) {
+                acc -= band.data[band.index(i, j)] * yj;
             }
+            y[i] = acc;
         }
-    }
-    let mut y: Vec<f64> = (0..n)
-        .map(|new| system.rhs[ordering.order[new]] as f64)
-        .collect();
-    for i in 0..n {
-        let first = i.saturating_sub(band.lower);
-        let mut acc = y[i];
-        for (j, yj) in y.iter().enumerate().take(i).skip(first) {
-            acc -= band.data[band.index(i, j)] * yj;
+        for i in (0..n).rev() {
+            let last = (i + band.upper).min(n.saturating_sub(1));
+            let mut acc = y[i];
+            for (j, yj) in y.iter().enumerate().take(last + 1).skip(i + 1) {
+                acc -= band.data[band.index(i, j)] * yj;
+            }
+            y[i] = acc / band.data[band.index(i, i)];
         }
-        y[i] = acc;
+        (0..n).map(|old| y[ordering.position[old]]).collect()
     }
-    for i in (0..n).rev() {
-        let last = (i + band.upper).min(n - 1);
-        let mut acc = y[i];
-        for (j, yj) in y.iter().enumerate().take(last + 1).skip(i + 1) {
-            acc -= band.data[band.index(i, j)] * yj;
-        }
-        y[i] = acc / band.data[band.index(i, i)];
-    }
-    (
-        (0..n).map(|old| y[ordering.position[old]]).collect(),
-        log2_det,
-    )
 }
 
 #[cfg(test)]

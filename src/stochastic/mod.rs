@@ -15,6 +15,8 @@
 //! * [`linear`] — the exact sparse linear solver (Dixon p-adic lifting, rational reconstruction,
 //!   exact verification) and its `f64` twin.
 //! * [`policy_iteration`] — the exact optimum `G*`, `Q*` and an optimal policy.
+//! * [`refine`] — the mixed-precision policy iteration (certified improvements) that hands
+//!   the exact stage an optimal policy up to exact ties.
 //! * [`scale`] — the `--max-memory` budget of the exact optimum (sizes parsed exactly).
 //! * [`value_iteration`] — stochastic VI and asynchronous VI, exact and `f64`, with an explicit
 //!   stopping rule and the reference code's counting rule (SPEC §7).
@@ -35,6 +37,7 @@ pub mod noise;
 pub mod policy_iteration;
 pub mod problem;
 pub mod properness;
+pub mod refine;
 pub mod scale;
 pub mod value_iteration;
 

@@ -13,10 +13,17 @@
 //! 2. **Warm start in `f64`**: policy iteration with `f64` evaluations, switching an action only
 //!    when it is better by a relative margin of 10⁻⁹, and only while the policy stays proper.
 //!    This only proposes a policy; nothing of it is reported.
-//! 3. **Exact policy iteration**: evaluate the policy `μ` exactly by solving
+//! 3. **Mixed-precision policy iteration** ([`super::refine`]): evaluations in fixed point by
+//!    iterative refinement with a certified error bound, switching only where an improvement
+//!    is certified strict, raising the precision where gaps are within the bound. On grids
+//!    with many ties the `Q`-values of two actions differ by far less than `f64` resolves
+//!    (relative gaps down to `10⁻³⁰⁰`); this stage resolves them, so the exact stage starts from
+//!    a policy that is optimal up to exact ties. Nothing of it is reported.
+//! 4. **Exact policy iteration**: evaluate the policy `μ` exactly by solving
 //!    `(I − P_μ)·G = l_μ` over the finite non-goal states ([`super::linear::solve_exact`]),
 //!    then improve: at every state switch to the first action whose exact `Q` is *strictly*
-//!    smaller than `G_μ(x)`. Stop when no state switches.
+//!    smaller than `G_μ(x)`. Stop when no state switches (one exact evaluation and this check
+//!    in the common case).
 //!
 //! Why this is exact and terminates: with `l ≥ 0`, strict improvement from a proper policy gives
 //! a proper policy (a closed class avoiding the goals would have zero cost and no strict
@@ -65,6 +72,10 @@ pub struct PolicyIterationStats {
     pub initial_policy: &'static str,
     /// Improvement rounds of the `f64` warm start.
     pub float_iterations: usize,
+    /// Certified improvement rounds of the mixed-precision stage ([`super::refine`]).
+    pub refinement_rounds: usize,
+    /// The precision (bits after the point) the mixed-precision stage ended at.
+    pub refinement_bits: u64,
     /// Exact evaluations (the last one confirms optimality).
     pub exact_iterations: usize,
     /// Dixon lifting steps over all exact evaluations.
@@ -347,7 +358,21 @@ pub fn optimum_with(
         stats.float_iterations += 1;
     }
 
-    // 3. Exact policy iteration.
+    // 3. Mixed-precision policy iteration (certified strict improvements only).
+    let refined = super::refine::improve(
+        problem,
+        &properness.safe,
+        &index.states,
+        &index.of,
+        &scaled_costs.exact,
+        &mut policy,
+        &|p| build_system(problem, &index, p, &scaled_costs).ok(),
+    );
+    stats.refinement_rounds = refined.rounds;
+    stats.refinement_bits = refined.bits;
+    debug_assert!(is_proper(problem, &properness.finite, &policy));
+
+    // 4. Exact policy iteration.
     loop {
         progress(Progress::ExactEvaluation {
             evaluation: stats.exact_iterations + 1,

@@ -37,7 +37,7 @@ use std::collections::BTreeMap;
 
 use super::clock::{timed, Stopwatch};
 use super::published::{self, Comparison, DataError, Kind, Observations, Observed, Summary};
-use super::runs::{in_pool, RunSettings};
+use super::runs::{check_shard_size, in_pool, owned, row_groups, RunSettings};
 use super::stats::{mean_of_present, mean_std};
 use crate::claims::shard::{self, Entry, Part, ShardFile};
 use crate::learning::plan::{
@@ -983,18 +983,134 @@ pub fn run(
     in_pool(settings.threads, || run_validated(settings, progress))?
 }
 
+/// The whole run with memory bounded by one group of rows ([`row_groups`]): the π rows (one
+/// shared digit stream, problems in order) beside the other rows, each row summarised as soon
+/// as its samples are in, its samples then dropped.
 fn run_validated(
     settings: &Settings,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Report, ExperimentError> {
     let runs = prepare_all(settings)?;
-    let (pi, results) = compute(&runs, settings, progress, None)?;
-    let pi = pi.expect("the whole run runs the π rows");
-    let results = results
-        .into_iter()
-        .map(|r| r.expect("the whole run runs every task"))
+    let pi_row = pi_row();
+    let units: Vec<(usize, usize)> = (0..runs.len())
+        .flat_map(|p| {
+            PAPER_ROWS
+                .iter()
+                .enumerate()
+                .filter(|(_, row)| !row.is_pi())
+                .map(move |(r, _)| (p, r))
+        })
         .collect();
-    Ok(assemble(&runs, settings, pi, results))
+    let (pi, others) = rayon::join(
+        || -> Result<Vec<RowSummary>, ExperimentError> {
+            let mut out = Vec::with_capacity(runs.len());
+            pi_chain(&runs, settings, progress, |p, samples| {
+                out.push(row_summary(
+                    &runs[p],
+                    &PAPER_ROWS[pi_row],
+                    &samples,
+                    settings,
+                ));
+            })?;
+            Ok(out)
+        },
+        || -> Result<Vec<RowSummary>, ExperimentError> {
+            let samples = settings.samples;
+            let mut out = Vec::with_capacity(units.len());
+            for group in row_groups(units.len(), samples) {
+                let group = &units[group];
+                let count = group.len() as u64 * u64::from(samples);
+                let results = (0..count)
+                    .into_par_iter()
+                    .map(|i| -> Result<Option<Sample>, ExperimentError> {
+                        let (p, r) = group[(i / u64::from(samples)) as usize];
+                        let k = (i % u64::from(samples)) as u32;
+                        let (run, row) = (&runs[p], &PAPER_ROWS[r]);
+                        let s = if skip(run, row) {
+                            None
+                        } else {
+                            Some(run_sample(run, r, row, k, settings, None)?)
+                        };
+                        progress(1);
+                        Ok(s)
+                    })
+                    .collect::<Result<Vec<_>, _>>()?;
+                let mut results = results.into_iter();
+                for &(p, r) in group {
+                    let row: Vec<Sample> =
+                        results.by_ref().take(samples as usize).flatten().collect();
+                    out.push(row_summary(&runs[p], &PAPER_ROWS[r], &row, settings));
+                }
+            }
+            Ok(out)
+        },
+    );
+    let (mut pi, mut others) = (pi?.into_iter(), others?.into_iter());
+    let rows = (0..runs.len())
+        .flat_map(|_| PAPER_ROWS.iter())
+        .map(|row| {
+            if row.is_pi() {
+                pi.next()
+            } else {
+                others.next()
+            }
+            .expect("one summary per row")
+        })
+        .collect();
+    Ok(report(settings, rows))
+}
+
+/// The index of the π row in [`PAPER_ROWS`].
+fn pi_row() -> usize {
+    PAPER_ROWS
+        .iter()
+        .position(Row::is_pi)
+        .expect("a π row exists")
+}
+
+/// The π rows: one shared digit stream, problems in the given order, samples in order; each
+/// problem's samples go to `sink(problem index, samples)` (no samples where the goal is
+/// unreachable).
+fn pi_chain(
+    runs: &[ProblemRun],
+    settings: &Settings,
+    progress: &(dyn Fn(u64) + Sync),
+    mut sink: impl FnMut(usize, Vec<Sample>),
+) -> Result<(), ExperimentError> {
+    let mut stream = PiStream::new();
+    // Compute the digits the π runs can accept before any clock starts (a run of A
+    // actions accepts A digits; skipped digits beyond this are computed on demand).
+    let reachable = runs.iter().filter(|r| r.reachable).count() as u64;
+    stream.prefetch(
+        reachable
+            .saturating_mul(u64::from(settings.samples))
+            .saturating_mul(u64::from(settings.episodes))
+            .saturating_mul(u64::from(settings.max_steps)),
+    );
+    let pi_row = pi_row();
+    for (p, run) in runs.iter().enumerate() {
+        if skip(run, &PAPER_ROWS[pi_row]) {
+            progress(u64::from(settings.samples));
+            sink(p, Vec::new());
+            continue;
+        }
+        let samples = (0..settings.samples)
+            .map(|k| {
+                let s = run_sample(
+                    run,
+                    pi_row,
+                    &PAPER_ROWS[pi_row],
+                    k,
+                    settings,
+                    Some(&mut stream),
+                );
+                progress(1);
+                s
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        sink(p, samples);
+    }
+    Ok(())
 }
 
 fn prepare_all(settings: &Settings) -> Result<Vec<ProblemRun>, ExperimentError> {
@@ -1040,44 +1156,9 @@ fn compute(
             if part.is_some_and(|p| !p.owns(0)) {
                 return Ok(None);
             }
-            // The π rows: one shared digit stream, problems in the given order.
-            let mut stream = PiStream::new();
-            // Compute the digits the π runs can accept before any clock starts (a run of A
-            // actions accepts A digits; skipped digits beyond this are computed on demand).
-            let reachable = runs.iter().filter(|r| r.reachable).count() as u64;
-            stream.prefetch(
-                reachable
-                    .saturating_mul(u64::from(settings.samples))
-                    .saturating_mul(u64::from(settings.episodes))
-                    .saturating_mul(u64::from(settings.max_steps)),
-            );
-            let pi_row = PAPER_ROWS
-                .iter()
-                .position(Row::is_pi)
-                .expect("a π row exists");
-            runs.iter()
-                .map(|run| {
-                    if skip(run, &PAPER_ROWS[pi_row]) {
-                        progress(u64::from(settings.samples));
-                        return Ok(Vec::new());
-                    }
-                    (0..settings.samples)
-                        .map(|k| {
-                            let s = run_sample(
-                                run,
-                                pi_row,
-                                &PAPER_ROWS[pi_row],
-                                k,
-                                settings,
-                                Some(&mut stream),
-                            );
-                            progress(1);
-                            s
-                        })
-                        .collect()
-                })
-                .collect::<Result<_, _>>()
-                .map(Some)
+            let mut out = Vec::with_capacity(runs.len());
+            pi_chain(runs, settings, progress, |_, samples| out.push(samples))?;
+            Ok(Some(out))
         },
         || -> Result<Vec<Option<Option<Sample>>>, ExperimentError> {
             tasks
@@ -1121,12 +1202,21 @@ fn assemble(
                     .filter_map(|_| next.next().expect("one result per task"))
                     .collect()
             };
-            let note = skip(run, row).then(|| {
-                "not run: the goal is unreachable from x1 (as in the paper's code)".into()
-            });
-            rows.push(summarise(run, row, &samples, settings, note));
+            rows.push(row_summary(run, row, &samples, settings));
         }
     }
+    report(settings, rows)
+}
+
+/// A row's summary (with the note of a row not run).
+fn row_summary(run: &ProblemRun, row: &Row, samples: &[Sample], settings: &Settings) -> RowSummary {
+    let note = skip(run, row)
+        .then(|| "not run: the goal is unreachable from x1 (as in the paper's code)".into());
+    summarise(run, row, samples, settings, note)
+}
+
+/// The report of the rows' summaries.
+fn report(settings: &Settings, rows: Vec<RowSummary>) -> Report {
     Report {
         mode: settings.mode,
         model: settings.model(),
@@ -1160,15 +1250,19 @@ fn fingerprint(settings: &Settings) -> serde_json::Value {
 
 /// The number of sample runs shard `part` performs (for its progress bar).
 pub fn shard_runs(settings: &Settings, part: Part) -> u64 {
-    let owned = (0..tasks(settings.problems.len(), settings.samples).len() as u64)
-        .filter(|&t| part.owns(t))
-        .count() as u64;
+    let owned = owned(task_count(settings), part);
     let pi = if part.owns(0) {
         settings.problems.len() as u64 * u64::from(settings.samples)
     } else {
         0
     };
     owned + pi
+}
+
+/// The number of sample runs outside the π rows (the shard files' sites but one).
+fn task_count(settings: &Settings) -> u64 {
+    let rows = PAPER_ROWS.iter().filter(|r| !r.is_pi()).count() as u64;
+    settings.problems.len() as u64 * rows * u64::from(settings.samples)
 }
 
 /// `reproduce deterministic --shard K/N` (issue 12, item 4): runs the sample runs `t` (every
@@ -1200,6 +1294,7 @@ pub fn run_shard(
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<String, ExperimentError> {
     settings.validate()?;
+    check_shard_size(task_count(settings) + 1, part)?;
     let watch = Stopwatch::start();
     let (pi, results) = in_pool(settings.threads, || -> Result<_, ExperimentError> {
         let runs = prepare_all(settings)?;
@@ -1249,10 +1344,7 @@ pub fn merge(files: &[(String, String)]) -> Result<(Report, Settings), String> {
     };
     fp.confirm(&fingerprint(&settings))?;
     settings.validate().map_err(|e| e.to_string())?;
-    let runs = in_pool(None, || prepare_all(&settings))
-        .map_err(|e| e.to_string())?
-        .map_err(|e| e.to_string())?;
-    let count = tasks(runs.len(), settings.samples).len();
+    let count = task_count(&settings) as usize;
     if shards[0].entries.len() != count + 1 {
         return Err(format!(
             "the shards record {} sites, these settings have {}",
@@ -1260,6 +1352,9 @@ pub fn merge(files: &[(String, String)]) -> Result<(Report, Settings), String> {
             count + 1
         ));
     }
+    let runs = in_pool(None, || prepare_all(&settings))
+        .map_err(|e| e.to_string())?
+        .map_err(|e| e.to_string())?;
     // Site j's value: the one shard that recorded it.
     let owner = |j: usize| -> Result<&str, String> {
         let mut present = shards.iter().filter_map(|s| s.entries[j].value.as_deref());

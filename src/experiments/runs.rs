@@ -35,6 +35,24 @@ pub enum RunError {
     /// A bad learning parameter.
     #[error(transparent)]
     Learning(#[from] LearningError),
+    /// A shard would record more than `reproduce merge` reads.
+    #[error(
+        "a shard of these settings records {sites} runs, at least {} MiB{}, above the {} MiB that `reproduce merge` reads{}; use fewer --samples or --problems",
+        .bytes.div_ceil(1 << 20),
+        if *.shards > 1 { format!(" for all {} shards together", .shards) } else { String::new() },
+        .limit >> 20,
+        if *.shards > 1 { "" } else { " from one shard file" }
+    )]
+    ShardTooLarge {
+        /// Runs (sites) each shard file lists.
+        sites: u64,
+        /// Shards whose files a merge reads together (1: one file against the per-file limit).
+        shards: u32,
+        /// The least size in bytes.
+        bytes: u64,
+        /// The limit in bytes.
+        limit: u64,
+    },
     /// The thread pool could not be built.
     #[error("cannot start {threads} worker threads: {message}")]
     Threads {
@@ -116,6 +134,99 @@ impl RunSettings<'_> {
         }
         Ok(())
     }
+}
+
+/// The most sample runs a whole (unsharded) experiment keeps at once, unless one row has more
+/// samples (then one row: the summary statistics of a row need all of its samples). Rows are
+/// run in groups of consecutive rows of at most this many samples and summarised as each group
+/// ends, so memory stays bounded by one group whatever `--samples` is (at [`MAX_SAMPLES`],
+/// one row of about 150 bytes a sample, plus the π rows' row).
+pub const GROUP_SAMPLES: u64 = 1 << 16;
+
+/// The rows `0..rows` (each of `samples` samples) in groups of consecutive rows run together:
+/// as many rows as [`GROUP_SAMPLES`] holds, at least one.
+///
+/// ```
+/// use truecost::experiments::runs::row_groups;
+/// assert_eq!(row_groups(5, 100), vec![0..5]);
+/// assert_eq!(row_groups(3, 1 << 20), vec![0..1, 1..2, 2..3]);
+/// assert_eq!(row_groups(5, 1 << 15), vec![0..2, 2..4, 4..5]);
+/// ```
+pub fn row_groups(rows: usize, samples: u32) -> Vec<std::ops::Range<usize>> {
+    let per = (GROUP_SAMPLES / u64::from(samples.max(1))).max(1) as usize;
+    (0..rows)
+        .step_by(per)
+        .map(|start| start..(start + per).min(rows))
+        .collect()
+}
+
+/// The most samples a group of [`row_groups`] holds: what the memory of a whole run is
+/// bounded by (per group of rows run at a time).
+///
+/// ```
+/// use truecost::experiments::runs::{held_samples, MAX_SAMPLES};
+/// assert_eq!(held_samples(16 * 10, 100), 16_000);
+/// assert_eq!(held_samples(16 * 10, MAX_SAMPLES), 1 << 20);
+/// ```
+pub fn held_samples(rows: usize, samples: u32) -> u64 {
+    row_groups(rows, samples)
+        .iter()
+        .map(|g| g.len() as u64 * u64::from(samples))
+        .max()
+        .unwrap_or(0)
+}
+
+/// How many of the items `0..total` shard `part` owns (`t mod N = K − 1`), without listing them.
+///
+/// ```
+/// use truecost::claims::shard::Part;
+/// use truecost::experiments::runs::owned;
+/// let p = Part::parse("2/3").unwrap();
+/// assert_eq!(owned(10, p), (0..10).filter(|&t| p.owns(t)).count() as u64);
+/// assert_eq!(owned(0, p), 0);
+/// ```
+pub fn owned(total: u64, part: crate::claims::shard::Part) -> u64 {
+    let (k, n) = (u64::from(part.k()), u64::from(part.n()));
+    (total + n - k) / n
+}
+
+/// The least bytes a site takes in a shard file (the pretty-printed
+/// `{"site": "sample run 0", "value": null}` with its indentation and comma).
+pub const MIN_SITE_BYTES: u64 = 50;
+
+/// Checks, before any run, that the files of a sharded run of `sites` sites can be merged:
+/// every shard file lists every site, so one file takes at least `sites ×`
+/// [`MIN_SITE_BYTES`] (at most [`crate::claims::shard::MAX_SHARD_BYTES`]) and the N files at
+/// least N times that (at most [`crate::claims::shard::MAX_MERGE_BYTES`]).
+///
+/// ```
+/// use truecost::claims::shard::Part;
+/// use truecost::experiments::runs::check_shard_size;
+/// assert!(check_shard_size(1000, Part::parse("1/2").unwrap()).is_ok());
+/// let err = check_shard_size(16 * 10 << 20, Part::parse("1/2").unwrap()).unwrap_err();
+/// assert!(err.to_string().contains("64 MiB"), "{err}");
+/// ```
+pub fn check_shard_size(sites: u64, part: crate::claims::shard::Part) -> Result<(), RunError> {
+    use crate::claims::shard::{MAX_MERGE_BYTES, MAX_SHARD_BYTES};
+    let one = sites.saturating_mul(MIN_SITE_BYTES);
+    if one > MAX_SHARD_BYTES {
+        return Err(RunError::ShardTooLarge {
+            sites,
+            shards: 1,
+            bytes: one,
+            limit: MAX_SHARD_BYTES,
+        });
+    }
+    let all = one.saturating_mul(u64::from(part.n()));
+    if all > MAX_MERGE_BYTES {
+        return Err(RunError::ShardTooLarge {
+            sites,
+            shards: part.n(),
+            bytes: all,
+            limit: MAX_MERGE_BYTES,
+        });
+    }
+    Ok(())
 }
 
 /// Checks the `RAYON_NUM_THREADS` environment variable (its value, if set) before any work:

@@ -37,7 +37,7 @@ use std::collections::BTreeMap;
 use super::clock::Stopwatch;
 use super::deterministic::stream;
 use super::published::{self, Comparison, DataError, Kind, Observations, Observed, Summary};
-use super::runs::{in_pool, RunError, RunSettings};
+use super::runs::{check_shard_size, in_pool, owned, row_groups, RunError, RunSettings};
 use super::stats::{mean_of_present, mean_std};
 use crate::claims::shard::{self, Entry, Part, ShardFile};
 use crate::learning::plan::{sample_rng, EpsilonSchedule, Plan, Probability, ProbabilityError};
@@ -617,23 +617,54 @@ pub fn run(
     in_pool(settings.threads, || run_validated(settings, progress))?
 }
 
+/// The whole run with memory bounded by one group of rows ([`row_groups`]): the learning
+/// rows in groups, each row summarised as soon as its samples are in, its samples then dropped;
+/// the VI runs after.
 fn run_validated(
     settings: &Settings,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Report, ExperimentError> {
     let prepared = prepare_all(settings)?;
-    let (samples, vi) = compute(&prepared, settings, progress, None)?;
-    Ok(assemble(
-        &prepared,
-        settings,
-        samples
-            .into_iter()
-            .map(|s| s.expect("the whole run runs every task"))
-            .collect(),
-        vi.into_iter()
-            .map(|v| v.expect("the whole run runs every VI"))
-            .collect(),
-    ))
+    let units = units(&prepared, settings);
+    let rows = learning_rows(settings);
+    let samples = settings.samples;
+    let mut learned = Vec::with_capacity(units.len());
+    for group in row_groups(units.len(), samples) {
+        let group = &units[group];
+        let count = group.len() as u64 * u64::from(samples);
+        let results = (0..count)
+            .into_par_iter()
+            .map(|i| {
+                let (pair, row) = group[(i / u64::from(samples)) as usize];
+                let k = (i % u64::from(samples)) as u32;
+                let s = learning_task(&prepared[pair], row, k, settings)?;
+                progress(1);
+                Ok(s)
+            })
+            .collect::<Result<Vec<_>, ExperimentError>>()?;
+        let mut results = results.into_iter();
+        for &(pair, row) in group {
+            let row_samples: Vec<Sample> =
+                results.by_ref().take(samples as usize).flatten().collect();
+            let (_, r, e) = rows[row];
+            learned.push((
+                pair,
+                summarise(&prepared[pair], r, e, &row_samples, settings),
+            ));
+        }
+    }
+    let vi = vi_runs(&prepared, settings, progress, None)?;
+    let mut learned = learned.into_iter().peekable();
+    let mut out = Vec::new();
+    for (i, (pr, v)) in prepared.iter().zip(vi).enumerate() {
+        let [a, s] = v.expect("the whole run runs every VI");
+        while let Some((_, row)) = learned.next_if(|(pair, _)| *pair == i) {
+            out.push(row);
+        }
+        out.push(vi_summary(pr, Schedule::Asynchronous, a, settings));
+        out.push(vi_summary(pr, Schedule::Synchronous, s, settings));
+    }
+    Ok(report(settings, out))
 }
 
 fn prepare_all(settings: &Settings) -> Result<Vec<Prepared>, ExperimentError> {
@@ -648,8 +679,8 @@ fn prepare_all(settings: &Settings) -> Result<Vec<Prepared>, ExperimentError> {
         .collect()
 }
 
-/// Every `(pair, learning row, sample)`, in report order.
-fn tasks(prepared: &[Prepared], settings: &Settings) -> Vec<(usize, usize, u32)> {
+/// Every `(pair, learning row)`, in report order.
+fn units(prepared: &[Prepared], settings: &Settings) -> Vec<(usize, usize)> {
     let rows = learning_rows(settings);
     prepared
         .iter()
@@ -658,52 +689,50 @@ fn tasks(prepared: &[Prepared], settings: &Settings) -> Vec<(usize, usize, u32)>
             rows.iter()
                 .enumerate()
                 .filter(move |(_, t)| t.0 == pr.gamma)
-                .flat_map(move |(row, _)| (0..settings.samples).map(move |k| (i, row, k)))
+                .map(move |(row, _)| (i, row))
         })
         .collect()
 }
 
-/// Every learning task's sample (`None`: another shard's; `Some(None)`: not run, the goal is
-/// unreachable) and every pair's two VI runs (`None`: another shard's). `part` selects a
-/// shard's share (issue 12, item 4): task `t` when `part.owns(t)`, pair `i`'s VIs when
-/// `part.owns(i)`.
+/// The number of learning sample runs (the shard files' sites but the VI runs').
+fn task_count(settings: &Settings) -> u64 {
+    settings.problems.len() as u64
+        * learning_rows(settings).len() as u64
+        * u64::from(settings.samples)
+}
+
+/// Sample `k` of learning row `row` on a prepared pair (`None`: not run, the goal is
+/// unreachable).
+fn learning_task(
+    pr: &Prepared,
+    row: usize,
+    k: u32,
+    settings: &Settings,
+) -> Result<Option<Sample>, ExperimentError> {
+    if !pr.reachable {
+        return Ok(None);
+    }
+    let (_, r, e) = learning_rows(settings)[row];
+    let config = StochasticQConfig {
+        episodes: settings.episodes,
+        max_steps: settings.max_steps,
+        rate: settings.rhos[r].rate,
+        epsilon: settings.epsilons[e].schedule.clone(),
+        initial_value: 0.0,
+    };
+    Ok(Some(learn_sample(pr, &config, settings.seed, row, k)?))
+}
+
+/// Every pair's two VI runs (`None`: another shard's, pair `i` belonging to `part` when
+/// `part.owns(i)`).
 #[allow(clippy::type_complexity)]
-fn compute(
+fn vi_runs(
     prepared: &[Prepared],
     settings: &Settings,
     progress: &(dyn Fn(u64) + Sync),
     part: Option<Part>,
-) -> Result<(Vec<Option<Option<Sample>>>, Vec<Option<[ViMeasured; 2]>>), ExperimentError> {
-    let rows = learning_rows(settings);
-    let tasks = tasks(prepared, settings);
-    let results: Vec<Option<Option<Sample>>> = tasks
-        .par_iter()
-        .enumerate()
-        .map(
-            |(t, &(i, row, k))| -> Result<Option<Option<Sample>>, ExperimentError> {
-                if part.is_some_and(|p| !p.owns(t as u64)) {
-                    return Ok(None);
-                }
-                let pr = &prepared[i];
-                let out = if pr.reachable {
-                    let (_, r, e) = rows[row];
-                    let config = StochasticQConfig {
-                        episodes: settings.episodes,
-                        max_steps: settings.max_steps,
-                        rate: settings.rhos[r].rate,
-                        epsilon: settings.epsilons[e].schedule.clone(),
-                        initial_value: 0.0,
-                    };
-                    Some(learn_sample(pr, &config, settings.seed, row, k)?)
-                } else {
-                    None
-                };
-                progress(1);
-                Ok(Some(out))
-            },
-        )
-        .collect::<Result<_, _>>()?;
-    let vi: Vec<Option<[ViMeasured; 2]>> = prepared
+) -> Result<Vec<Option<[ViMeasured; 2]>>, ExperimentError> {
+    prepared
         .par_iter()
         .enumerate()
         .map(
@@ -718,7 +747,37 @@ fn compute(
                 Ok(Some([a, s]))
             },
         )
+        .collect()
+}
+
+/// Every learning task's sample (`None`: another shard's; `Some(None)`: not run, the goal is
+/// unreachable) and every pair's two VI runs (`None`: another shard's). `part` selects a
+/// shard's share (issue 12, item 4): task `t` when `part.owns(t)`, pair `i`'s VIs when
+/// `part.owns(i)`.
+#[allow(clippy::type_complexity)]
+fn compute(
+    prepared: &[Prepared],
+    settings: &Settings,
+    progress: &(dyn Fn(u64) + Sync),
+    part: Option<Part>,
+) -> Result<(Vec<Option<Option<Sample>>>, Vec<Option<[ViMeasured; 2]>>), ExperimentError> {
+    let samples = settings.samples;
+    let tasks: Vec<(usize, usize)> = units(prepared, settings);
+    let count = tasks.len() as u64 * u64::from(samples);
+    let results: Vec<Option<Option<Sample>>> = (0..count)
+        .into_par_iter()
+        .map(|t| -> Result<Option<Option<Sample>>, ExperimentError> {
+            if part.is_some_and(|p| !p.owns(t)) {
+                return Ok(None);
+            }
+            let (i, row) = tasks[(t / u64::from(samples)) as usize];
+            let k = (t % u64::from(samples)) as u32;
+            let out = learning_task(&prepared[i], row, k, settings)?;
+            progress(1);
+            Ok(Some(out))
+        })
         .collect::<Result<_, _>>()?;
+    let vi = vi_runs(prepared, settings, progress, part)?;
     Ok((results, vi))
 }
 
@@ -743,6 +802,11 @@ fn assemble(
         out.push(vi_summary(pr, Schedule::Asynchronous, a, settings));
         out.push(vi_summary(pr, Schedule::Synchronous, s, settings));
     }
+    report(settings, out)
+}
+
+/// The report of the rows' summaries.
+fn report(settings: &Settings, rows: Vec<RowSummary>) -> Report {
     Report {
         noise: settings.noise,
         tolerance: settings.tolerance,
@@ -753,7 +817,7 @@ fn assemble(
         max_steps: settings.max_steps,
         problems: settings.problems.clone(),
         gammas: settings.gammas.iter().map(gamma_text).collect(),
-        rows: out,
+        rows,
         against_published: None,
     }
 }
@@ -1189,10 +1253,7 @@ fn fingerprint(settings: &Settings) -> serde_json::Value {
 /// The number of runs shard `part` performs (for its progress bar).
 pub fn shard_runs(settings: &Settings, part: Part) -> u64 {
     let pairs = settings.problems.len() as u64 * settings.gammas.len() as u64;
-    let tasks = pairs * learning_rows(settings).len() as u64 / settings.gammas.len().max(1) as u64
-        * u64::from(settings.samples);
-    (0..tasks).filter(|&t| part.owns(t)).count() as u64
-        + 2 * (0..pairs).filter(|&i| part.owns(i)).count() as u64
+    owned(task_count(settings), part) + 2 * owned(pairs, part)
 }
 
 /// `reproduce stochastic --shard K/N` (issue 12, item 4): runs the learning sample runs `t`
@@ -1222,6 +1283,8 @@ pub fn run_shard(
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<String, ExperimentError> {
     settings.validate()?;
+    let pairs = settings.problems.len() as u64 * settings.gammas.len() as u64;
+    check_shard_size(task_count(settings) + pairs, part)?;
     let watch = Stopwatch::start();
     let (samples, vi) = in_pool(settings.threads, || -> Result<_, ExperimentError> {
         let prepared = prepare_all(settings)?;
@@ -1286,17 +1349,18 @@ pub fn merge(files: &[(String, String)]) -> Result<(Report, Settings), String> {
     };
     fp.confirm(&fingerprint(&settings))?;
     settings.validate().map_err(|e| e.to_string())?;
-    let prepared = in_pool(None, || prepare_all(&settings))
-        .map_err(|e| e.to_string())?
-        .map_err(|e| e.to_string())?;
-    let count = tasks(&prepared, &settings).len();
-    if shards[0].entries.len() != count + prepared.len() {
+    let count = task_count(&settings) as usize;
+    let pairs = settings.problems.len() * settings.gammas.len();
+    if shards[0].entries.len() != count + pairs {
         return Err(format!(
             "the shards record {} sites, these settings have {}",
             shards[0].entries.len(),
-            count + prepared.len()
+            count + pairs
         ));
     }
+    let prepared = in_pool(None, || prepare_all(&settings))
+        .map_err(|e| e.to_string())?
+        .map_err(|e| e.to_string())?;
     let owner = |j: usize| -> Result<&str, String> {
         let site = &shards[0].entries[j].site;
         let mut present = shards.iter().filter_map(|s| s.entries[j].value.as_deref());

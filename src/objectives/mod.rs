@@ -598,14 +598,38 @@ pub fn parse_objective(name: &str, alpha: Option<&str>) -> Result<Objective, Str
 }
 
 /// Parses a discount factor `α ∈ (0, 1)` from its exact text.
+///
+/// Its exact denominator must be at most `2^62`, the exact solvers' limit on a common
+/// denominator (a discounted solve multiplies the probabilities by `α`): more digits than that
+/// are refused here, naming the bound, with the value shortened.
+///
+/// ```
+/// use truecost::objectives::parse_alpha;
+/// assert_eq!(parse_alpha("0.25").unwrap(), "1/4".parse().unwrap());
+/// let long = format!("0.{}", "1".repeat(300));
+/// let err = parse_alpha(&long).unwrap_err();
+/// assert!(err.contains("2^62") && err.contains("…") && err.len() < 300, "{err}");
+/// ```
 pub fn parse_alpha(text: &str) -> Result<Rational, String> {
-    let a = crate::value::parse_rational(text).map_err(|e| format!("alpha: {e}"))?;
-    if a.is_positive() && a < Rational::one() {
-        Ok(a)
-    } else {
-        Err(ObjectiveError::Alpha(text.to_string()).to_string())
+    let a = crate::value::parse_rational(text)
+        .map_err(|e| format!("alpha {}: {e}", crate::echo::echo(text)))?;
+    if !(a.is_positive() && a < Rational::one()) {
+        return Err(ObjectiveError::Alpha(crate::echo::echo(text)).to_string());
     }
+    if a.denom().bits() > MAX_ALPHA_DENOMINATOR_BITS {
+        return Err(format!(
+            "the discount factor alpha = {} has an exact denominator of {} bits ({} decimal digits), above the {MAX_ALPHA_DENOMINATOR_BITS} bits (2^{MAX_ALPHA_DENOMINATOR_BITS}) the exact solvers take; give alpha with fewer digits",
+            crate::echo::echo(text),
+            a.denom().bits(),
+            a.denom().to_string().len(),
+        ));
+    }
+    Ok(a)
 }
+
+/// The bits of the largest denominator of `α` ([`parse_alpha`]): `2^62`, the exact solvers'
+/// limit on a state's common denominator.
+pub const MAX_ALPHA_DENOMINATOR_BITS: u64 = 62;
 
 /// Where a model comes from: an environment, a paper problem or a problem file (issue 11,
 /// item 1: `--env` wherever `--problem`/`--file` is accepted).

@@ -56,7 +56,7 @@ fn error_line(out: &Output) -> String {
 #[test]
 fn verify_merge_of_three_shards_is_the_whole_report_byte_for_byte() {
     let dir = scratch("verify");
-    let files = three_shards(&dir, &["verify", "--scope", "smoke"]);
+    let files = three_shards(&dir, &["verify", "--no-coq", "--scope", "smoke"]);
     // The shards split the work: their enumerations' case counts differ from the whole run's.
     let shard1: Value = serde_json::from_str(&std::fs::read_to_string(&files[0]).unwrap()).unwrap();
     assert_eq!(shard1["shard"], "1/3");
@@ -64,6 +64,7 @@ fn verify_merge_of_three_shards_is_the_whole_report_byte_for_byte() {
     for format in ["text", "json", "markdown", "latex"] {
         let whole = ok(&[
             "verify",
+            "--no-coq",
             "--scope",
             "smoke",
             "--no-times",
@@ -78,6 +79,7 @@ fn verify_merge_of_three_shards_is_the_whole_report_byte_for_byte() {
     }
     let whole: Value = serde_json::from_str(&ok(&[
         "verify",
+        "--no-coq",
         "--scope",
         "smoke",
         "--no-times",
@@ -96,10 +98,13 @@ fn verify_merge_of_three_shards_is_the_whole_report_byte_for_byte() {
 #[test]
 fn verify_merge_refuses_missing_duplicate_and_foreign_shards() {
     let dir = scratch("verify-refusals");
-    let files = three_shards(&dir, &["verify", "--scope", "smoke", "--claim", "C2"]);
+    let files = three_shards(
+        &dir,
+        &["verify", "--no-coq", "--scope", "smoke", "--claim", "C2"],
+    );
     let other = three_shards(
         &scratch("verify-refusals-other"),
-        &["verify", "--scope", "smoke", "--claim", "C3"],
+        &["verify", "--no-coq", "--scope", "smoke", "--claim", "C3"],
     );
     let missing = truecost(&["verify", "merge", &files[0], &files[2]]);
     assert_eq!(missing.status.code(), Some(1));
@@ -139,7 +144,7 @@ fn verify_merge_refuses_missing_duplicate_and_foreign_shards() {
     }
     // K/N is checked before any work.
     for bad in ["0/3", "4/3", "1/0", "1/4097", "x", "1/2/3"] {
-        let out = truecost(&["verify", "--scope", "smoke", "--shard", bad]);
+        let out = truecost(&["verify", "--no-coq", "--scope", "smoke", "--shard", bad]);
         assert_eq!(out.status.code(), Some(1), "--shard {bad}");
         assert!(error_line(&out).contains("expected K/N"));
     }
@@ -246,7 +251,8 @@ fn a_tampered_counterexample_with_a_valid_checksum_is_refused_cleanly() {
             let part = format!("{k}/2");
             let path = dir.join(format!("c1-{k}.json"));
             let text = ok(&[
-                "verify", "--scope", "smoke", "--claim", "C1", "--no-smt", "--shard", &part,
+                "verify", "--no-coq", "--scope", "smoke", "--claim", "C1", "--no-smt", "--shard",
+                &part,
             ]);
             std::fs::write(&path, text).unwrap();
             path.display().to_string()

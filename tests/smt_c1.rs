@@ -177,3 +177,84 @@ fn an_unknown_answer_is_inconclusive_never_proved() {
         out.notes
     );
 }
+
+/// Part B's round count with `R` the integer ceiling: the statement's bound, made from
+/// `c1::ROUND_BOUND`, is proved (B4 unsat, its hypotheses sat), and the same encoding made
+/// from a bound with the ceiling one too low, `R = max(R1, ceil((max Q* - m)/c) - 1)`, gets a
+/// satisfiable B4 whose model replays exactly as a bound that stops short: the SMT engine
+/// refutes it.
+#[test]
+fn a_planted_ceiling_minus_one_is_refuted_by_the_smt_engine() {
+    use truecost::claims::c1::{RoundBound, ROUND_BOUND};
+    let b4 = |enc: &smt::Encoding| {
+        enc.obligations
+            .iter()
+            .filter(|o| o.lemma.starts_with("B4: "))
+            .cloned()
+            .collect::<Vec<_>>()
+    };
+    let good = c1::corrected_with(Scope::Smoke, ROUND_BOUND);
+    let good_b4 = b4(&good);
+    assert_eq!(good_b4.len(), 2, "a proof and its hypotheses twin");
+    for o in &good_b4 {
+        assert_eq!(o.logic.name(), "QF_NIRA");
+        assert!(o
+            .decls
+            .iter()
+            .any(|(n, s)| n == "R" && *s == smt::Sort::Int));
+        let expected = o.role.expected();
+        assert_eq!(solve(o, 60_000).status(), Some(expected), "{}", o.lemma);
+    }
+    assert_eq!(
+        good_b4[0].lemma,
+        "B4: R = max(R1, ceil((max Q* - min(0, min Q0)) / c)) with R1 = 1 + max over moves (x,u) of h(f(x,u)): R rounds reach level max Q*"
+    );
+
+    let planted = RoundBound {
+        ceil_offset: -1,
+        ..ROUND_BOUND
+    };
+    let enc = c1::corrected_with(Scope::Smoke, planted);
+    assert!(enc
+        .scope
+        .contains("ceil((max Q* - min(0, min Q0)) / c) - 1"));
+    let out = smt::run(enc, smt::TIMEOUT_MS);
+    assert_eq!(out.verdict, SmtVerdict::Refuted, "{:?}", out.notes);
+    let sat: Vec<_> = out
+        .solved
+        .iter()
+        .filter(|x| x.obligation.role == Role::Proof && x.answer.status() == Some(Status::Sat))
+        .collect();
+    assert_eq!(sat.len(), 1, "only B4 fails");
+    assert!(sat[0]
+        .obligation
+        .lemma
+        .contains("ceil((max Q* - min(0, min Q0)) / c) - 1"));
+    assert!(
+        out.notes
+            .iter()
+            .any(|n| n.contains("the bound stops short")),
+        "{:?}",
+        out.notes
+    );
+}
+
+/// The printed claim's obligations carry C1's own label: `--smt-out` writes them under
+/// `c1/`, and the index names them `C1`, apart from C1-corrected's.
+#[test]
+fn printed_obligations_are_exported_under_c1() {
+    let out = smt::run(c1::printed(), smt::TIMEOUT_MS);
+    assert!(!out.solved.is_empty());
+    assert!(out.solved.iter().all(|s| s.obligation.claim == "C1"));
+    let dir = tempfile::tempdir().unwrap();
+    smt::write_files(dir.path(), &out.solved).unwrap();
+    let index = std::fs::read_to_string(dir.path().join("index.tsv")).unwrap();
+    let rows: Vec<&str> = index.lines().skip(1).collect();
+    assert_eq!(rows.len(), out.solved.len());
+    for row in rows {
+        let cols: Vec<&str> = row.split('\t').collect();
+        assert!(cols[0].starts_with("c1/"), "{row}");
+        assert_eq!(cols[1], "C1", "{row}");
+    }
+    assert!(!dir.path().join("c1-corrected").exists());
+}

@@ -9,6 +9,7 @@ use serde_json::Value;
 fn verify_json_has_the_required_shape_and_exits_0_with_refuted_claims() {
     let text = stdout(&[
         "verify",
+        "--no-coq",
         "--scope",
         "smoke",
         "--format",
@@ -46,6 +47,7 @@ fn verify_json_has_the_required_shape_and_exits_0_with_refuted_claims() {
         text,
         stdout(&[
             "verify",
+            "--no-coq",
             "--scope",
             "smoke",
             "--format",
@@ -57,18 +59,28 @@ fn verify_json_has_the_required_shape_and_exits_0_with_refuted_claims() {
 
 #[test]
 fn verify_prints_cases_per_second_unless_told_not_to() {
-    let text = stdout(&["verify", "--scope", "smoke", "--claim", "C2"]);
+    let text = stdout(&["verify", "--no-coq", "--scope", "smoke", "--claim", "C2"]);
     assert!(text.contains("cases/s"), "{text}");
     assert!(text.contains("obligations/s"), "{text}");
     assert!(text.contains("smt solver: Z3 4."), "{text}");
     assert!(text.contains("C2  PROVED"));
     assert!(!text.contains("C1 "));
     // Without times: neither the rates nor the solver's version (a property of the machine).
-    let quiet = stdout(&["verify", "--scope", "smoke", "--claim", "C2", "--no-times"]);
+    let quiet = stdout(&[
+        "verify",
+        "--no-coq",
+        "--scope",
+        "smoke",
+        "--claim",
+        "C2",
+        "--no-times",
+    ]);
     assert!(quiet.contains("C2  PROVED") && quiet.contains("engine: smt (Z3) [proof]"));
     assert!(!quiet.contains("obligations/s") && !quiet.contains("smt solver"));
     // --no-smt leaves the enumeration's verdict.
-    let no_smt = stdout(&["verify", "--scope", "smoke", "--claim", "C2", "--no-smt"]);
+    let no_smt = stdout(&[
+        "verify", "--no-coq", "--scope", "smoke", "--claim", "C2", "--no-smt",
+    ]);
     assert!(no_smt.contains("C2  VERIFIED") && !no_smt.contains("smt (Z3)"));
 }
 
@@ -78,6 +90,7 @@ fn verify_smt_out_refuses_a_non_empty_directory_before_any_work() {
     std::fs::write(dir.path().join("x"), "x").unwrap();
     let e = fails_one_line(&[
         "verify",
+        "--no-coq",
         "--scope",
         "smoke",
         "--smt-out",
@@ -91,7 +104,7 @@ fn verify_smt_out_refuses_a_non_empty_directory_before_any_work() {
 #[test]
 fn verify_latex_and_markdown() {
     let tex = stdout(&[
-        "verify", "--scope", "smoke", "--claim", "C4", "--format", "latex",
+        "verify", "--no-coq", "--scope", "smoke", "--claim", "C4", "--format", "latex",
     ]);
     assert!(tex.contains("\\begin{tabular}") && tex.contains("\\bottomrule"));
     assert!(tex.contains("truecost 0.1.0") && tex.contains("commit"));
@@ -102,13 +115,14 @@ fn verify_latex_and_markdown() {
     );
     assert!(tex.contains("SMT solver Z3 4."), "{tex}");
     let md = stdout(&[
-        "verify", "--scope", "smoke", "--claim", "C3", "--format", "markdown",
+        "verify", "--no-coq", "--scope", "smoke", "--claim", "C3", "--format", "markdown",
     ]);
     assert!(md.contains("| claim | verdict | engine | cases | scope |"));
     assert!(md.contains("| C3 | proved | smt (Z3) |"), "{md}");
     assert!(md.contains("SMT solver: Z3 4."), "{md}");
     let quiet = stdout(&[
         "verify",
+        "--no-coq",
         "--scope",
         "smoke",
         "--claim",
@@ -126,6 +140,7 @@ fn verify_writes_counterexamples_that_solve_replays() {
     let d = dir.path().to_str().unwrap();
     stdout(&[
         "verify",
+        "--no-coq",
         "--scope",
         "smoke",
         "--no-times",
@@ -196,6 +211,7 @@ fn verify_claim_selects_by_id_or_by_prefix() {
     let ids = |claim: &str| -> Vec<String> {
         let text = stdout(&[
             "verify",
+            "--no-coq",
             "--scope",
             "smoke",
             "--claim",
@@ -227,7 +243,7 @@ fn verify_bad_input() {
     fails_one_line(&["verify", "--claim", "C2", "--file", "problems/line.json"]);
     fails_one_line(&["verify", "--claim", "C4", "--file", "/nonexistent.json"]);
     truecost()
-        .args(["verify", "--scope", "huge"])
+        .args(["verify", "--no-coq", "--scope", "huge"])
         .assert()
         .code(2);
 }
@@ -261,6 +277,7 @@ fn verify_does_not_depend_on_the_number_of_threads() {
             .env("RAYON_NUM_THREADS", threads)
             .args([
                 "verify",
+                "--no-coq",
                 "--scope",
                 "smoke",
                 "--format",
@@ -274,4 +291,54 @@ fn verify_does_not_depend_on_the_number_of_threads() {
         out.stdout
     };
     assert_eq!(run("1"), run("3"));
+}
+
+/// `verify` re-checks the Coq development in the run (no `--no-coq`): each claim carried by a
+/// Coq theorem gets the Coq level, or — for a refuted claim — keeps `refuted` with the Coq
+/// engine named; the report names the Coq version. Without `coqc` this test fails (the
+/// install line is in the refusal of `tests/coq_proofs.rs`).
+#[test]
+fn verify_reaches_the_coq_level_when_coq_rechecks_the_development() {
+    let text = stdout(&[
+        "verify",
+        "--scope",
+        "smoke",
+        "--format",
+        "json",
+        "--no-times",
+    ]);
+    let v: Value = serde_json::from_str(&text).unwrap();
+    let verdict = |id: &str| -> (String, String) {
+        let c = v["claims"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|c| c["id"] == id)
+            .unwrap_or_else(|| panic!("{id} in {text}"));
+        (
+            c["verdict"].as_str().unwrap().to_string(),
+            c["engine"].as_str().unwrap().to_string(),
+        )
+    };
+    for id in ["C1-corrected", "C2", "C3", "C3-example", "C4-corrected"] {
+        let (level, engine) = verdict(id);
+        assert_eq!(level, "proved for every finite problem (Coq)", "{id}");
+        assert!(engine.starts_with("coq (Coq 8."), "{id}: {engine}");
+    }
+    for id in ["C1", "C4"] {
+        assert_eq!(verdict(id).0, "refuted", "{id}");
+    }
+    let c4 = v["claims"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["id"] == "C4")
+        .unwrap();
+    assert!(
+        c4["notes"].as_array().unwrap().iter().any(|n| n
+            .as_str()
+            .unwrap()
+            .contains("Truecost.C4.c4_as_printed_refuted")),
+        "{c4}"
+    );
 }

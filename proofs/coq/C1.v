@@ -2,7 +2,7 @@
 
     - [c1_as_printed_refuted]: C1 as printed (SPEC §6; the claims registry's
       [c1::STATEMENT]) fails on the minimal counterexample [loop2].
-    - [c1_corrected]: C1-corrected (the claims registry's [c1::CORRECTED];
+    - [c1_corrected]: C1-corrected (the claims registry's [c1::corrected_statement] with [c1::ROUND_BOUND];
       [docs/proofs/c1.md]) for EVERY well-formed finite problem, with the round bound
       [round_bound] that [truecost verify] prints; its two parts are
       [c1_corrected_from_above] (Part A) and [c1_corrected_from_below] (Part B).
@@ -480,7 +480,7 @@ Proof.
 Qed.
 
 (** C1-corrected, Part A (the paper's Proposition 1 under (H0), (H1), [Q0 >= Q*]; the claims
-    registry's [c1::CORRECTED], first case; [docs/proofs/c1.md], Part A): from the end of
+    registry's [c1::corrected_statement] with [c1::ROUND_BOUND], first case; [docs/proofs/c1.md], Part A): from the end of
     round [R1 = 1 + max h(f(x,u))] on, [Q = Q*], for every order cut into rounds. *)
 Theorem c1_corrected_from_above q0 r1 rs :
   (forall x a, In (x, a) (pairs P) -> exists v, Qstar P x a = Some v /\ v <= q0 x a) ->
@@ -618,7 +618,7 @@ Proof.
 Qed.
 
 (** C1-corrected, Part B (the paper's Proposition 1 under (H0), (H1), every move cost
-    [>= c > 0], any [Q0]; the claims registry's [c1::CORRECTED], second case;
+    [>= c > 0], any [Q0]; the claims registry's [c1::corrected_statement] with [c1::ROUND_BOUND], second case;
     [docs/proofs/c1.md], Part B): the run from [Q0] lies between the runs from [min(Q0, Q* )]
     and [max(Q0, Q* )] (B2); the upper one is exact after [R1] rounds (Part A), the lower one
     once [m + R c >= max Q*] (B1, B3), [m <= Q0] on the move pairs. *)
@@ -717,7 +717,7 @@ Proof.
 Qed.
 
 (** C1-corrected (the paper's Proposition 1, corrected; the claims registry's
-    [c1::CORRECTED]; [docs/proofs/c1.md]) for every well-formed finite problem: under (H0)
+    [c1::corrected_statement]; [docs/proofs/c1.md]) for every well-formed finite problem: under (H0)
     [Q0(xg,uT) = 0] (and the termination pair held), (H1) every state reaching the goal, and
     (H2) as checked by [round_bound] ([Q0 >= Q*], or every move cost [>= c > 0]), for every
     list of rounds [rs] (each round: pairs of the problem, every move pair at least once) with
@@ -840,7 +840,7 @@ Proof.
 Qed.
 
 (** C1-corrected in the paper's form (Proposition 1: "[Q = Q*] after finitely many steps";
-    the claims registry's [c1::CORRECTED]): if every move pair occurs infinitely often in
+    the claims registry's [c1::corrected_statement] with [c1::ROUND_BOUND]): if every move pair occurs infinitely often in
     the update sequence [s], then under (H0), (H1) and (H2) the values after the first [k]
     updates equal [Q*] for every [k >= N]. *)
 Theorem c1_paper_form q0 :

@@ -33,12 +33,123 @@ pub const STATEMENT: &str = "C1 (as printed): with stage costs l >= 0 and ANY in
 pair (the goal's termination action uT included: f(xg,uT) = xg, l = 0) is updated infinitely often by the rho = 1 rule \
 Q(x,u) <- l(x,u) + min_u' Q(f(x,u),u'), then Q = Q* after finitely many steps.";
 
-/// The corrected statement.
-pub const CORRECTED: &str = "C1-corrected: assume (H0) the goal's termination value is held at Q(xg,uT) = 0, \
+/// C1-corrected's round bound `R`, in one place: the statement ([`corrected_statement`]), the
+/// SMT encoding's round-count obligations (`smt::c1`: Part A's `R₁`, Part B's B4 with `R` the
+/// integer ceiling) and the bound's exact value ([`RoundBound::rounds`]) are all made from it,
+/// so that changing the statement changes what is proved and checked.
+///
+/// `R₁ = r1_offset + max h(f(x,u))` over the moves `(x,u)`; `R = R₁` when `Q₀ ≥ Q*`, else
+/// `R = max(R₁, ⌈(max Q* − m)/c⌉ + ceil_offset)` with `m = min(0, min Q₀)`. The statement's
+/// bound is [`ROUND_BOUND`] (offsets 1 and 0); other offsets are planted wrong bounds that the
+/// engines must reject.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RoundBound {
+    /// The constant added to `max h(f(x,u))` in `R₁` (the statement: 1).
+    pub r1_offset: i64,
+    /// The constant added to `⌈(max Q* − m)/c⌉` (the statement: 0).
+    pub ceil_offset: i64,
+}
+
+/// The round bound of C1-corrected as stated.
+pub const ROUND_BOUND: RoundBound = RoundBound {
+    r1_offset: 1,
+    ceil_offset: 0,
+};
+
+/// `term` with `offset` added, as text (`1 + t`, `t`, `t - 1`).
+fn plus(offset: i64, term: &str, before: bool) -> String {
+    match offset {
+        0 => term.to_string(),
+        k if k > 0 && before => format!("{k} + {term}"),
+        k if k > 0 => format!("{term} + {k}"),
+        k => format!("{term} - {}", k.unsigned_abs()),
+    }
+}
+
+impl RoundBound {
+    /// `R₁` as printed in the statement.
+    ///
+    /// ```
+    /// use truecost::claims::c1::ROUND_BOUND;
+    /// assert_eq!(ROUND_BOUND.r1_text(), "1 + max over moves (x,u) of h(f(x,u))");
+    /// ```
+    pub fn r1_text(&self) -> String {
+        plus(self.r1_offset, "max over moves (x,u) of h(f(x,u))", true)
+    }
+
+    /// The ceiling term of `R` as printed in the statement.
+    ///
+    /// ```
+    /// use truecost::claims::c1::{RoundBound, ROUND_BOUND};
+    /// assert_eq!(ROUND_BOUND.ceil_text(), "ceil((max Q* - min(0, min Q0)) / c)");
+    /// let planted = RoundBound { ceil_offset: -1, ..ROUND_BOUND };
+    /// assert_eq!(planted.ceil_text(), "ceil((max Q* - min(0, min Q0)) / c) - 1");
+    /// ```
+    pub fn ceil_text(&self) -> String {
+        plus(
+            self.ceil_offset,
+            "ceil((max Q* - min(0, min Q0)) / c)",
+            false,
+        )
+    }
+
+    /// The statement of C1-corrected with this bound (with [`ROUND_BOUND`]: the registry's).
+    pub fn statement(&self) -> String {
+        format!(
+            "C1-corrected: assume (H0) the goal's termination value is held at Q(xg,uT) = 0, \
 (H1) every state can reach the goal (Q* finite), (H2) Q0 >= Q* on every pair, or every move costs l(x,u) >= c > 0 \
 (Q0 then arbitrary). Cut any fair update sequence into rounds (consecutive segments updating every pair at least \
-once). Then Q = Q* from the end of round R on, where R1 = 1 + max over moves (x,u) of h(f(x,u)) (h = fewest moves \
-of an optimal path to the goal), R = R1 if Q0 >= Q*, else R = max(R1, ceil((max Q* - min(0, min Q0)) / c)).";
+once). Then Q = Q* from the end of round R on, where R1 = {} (h = fewest moves \
+of an optimal path to the goal), R = R1 if Q0 >= Q*, else R = max(R1, {}).",
+            self.r1_text(),
+            self.ceil_text()
+        )
+    }
+
+    /// The bound's value, exactly: `max_h` is `max h(f(x,u))` over the moves (`None`: no
+    /// move), `above` whether `Q₀ ≥ Q*`, and `(max Q*, m, c)` the rest, `c > 0` (only read
+    /// when `!above`). Never negative.
+    ///
+    /// ```
+    /// use truecost::claims::c1::ROUND_BOUND;
+    /// use truecost::value::Rational;
+    /// let r = |n: i64| Rational::from_integer(n.into());
+    /// // R1 = 1 + 1; ceil((5 - (-2)) / 2) = 4.
+    /// assert_eq!(ROUND_BOUND.rounds(Some(1), false, &r(5), &r(-2), &r(2)), 4);
+    /// assert_eq!(ROUND_BOUND.rounds(Some(1), true, &r(5), &r(-2), &r(2)), 2);
+    /// ```
+    pub fn rounds(
+        &self,
+        max_h: Option<u64>,
+        above: bool,
+        max_qstar: &crate::value::Rational,
+        m: &crate::value::Rational,
+        c: &crate::value::Rational,
+    ) -> u64 {
+        use num_traits::ToPrimitive;
+        let r1 = max_h.map_or(0, |h| (h as i64).saturating_add(self.r1_offset).max(0));
+        if above {
+            return r1 as u64;
+        }
+        let ceil = ((max_qstar - m) / c)
+            .ceil()
+            .to_integer()
+            .to_i64()
+            .unwrap_or(i64::MAX)
+            .saturating_add(self.ceil_offset);
+        r1.max(ceil).max(0) as u64
+    }
+}
+
+/// The statement of C1-corrected, made from [`ROUND_BOUND`].
+///
+/// ```
+/// let s = truecost::claims::c1::corrected_statement();
+/// assert!(s.ends_with("R = max(R1, ceil((max Q* - min(0, min Q0)) / c))."));
+/// ```
+pub fn corrected_statement() -> String {
+    ROUND_BOUND.statement()
+}
 
 type Key = (usize, usize, u64, u64, u64, u64);
 
@@ -262,7 +373,7 @@ fn optimum_text(q: &QProblem) -> String {
 /// C1-corrected's round bound `R` of a problem prepared with the termination pair held, from
 /// `Q₀`: [`QProblem::round_bound`] in every check. A unit test plants a smaller one to take the
 /// failure path, which the theorem (C1-corrected holds) leaves untaken in every scope.
-type RoundBound = fn(&QProblem, &Values) -> Option<u64>;
+type BoundOracle = fn(&QProblem, &Values) -> Option<u64>;
 
 fn check_structure(
     acc: &mut Acc,
@@ -270,7 +381,7 @@ fn check_structure(
     index: u64,
     domain: &[i64],
     corrected_domain: &[i64],
-    round_bound: RoundBound,
+    round_bound: BoundOracle,
 ) {
     let printed = QProblem::new(t, Terminal::Updated);
     let held = QProblem::new(t, Terminal::HeldAtZero);
@@ -438,7 +549,7 @@ fn check_all_orders(
     t: &Tiny,
     index: u64,
     domain: &[i64],
-    round_bound: RoundBound,
+    round_bound: BoundOracle,
     states: usize,
 ) {
     let held = QProblem::new(t, Terminal::HeldAtZero);
@@ -741,7 +852,7 @@ exactly by the far-from-goal-first order in {} instances and by the worst fair o
     let corrected_min = min_of(acc.corrected_min.clone(), acc.exhaustive_min.clone());
     let corrected = ClaimResult {
         id: "C1-corrected".into(),
-        statement: CORRECTED.into(),
+        statement: corrected_statement(),
         verdict: if failures > 0 {
             Verdict::Refuted
         } else if acc.exhaustive_too_large > 0 {
@@ -879,6 +990,88 @@ mod tests {
         );
     }
 
+    /// The statement made from [`ROUND_BOUND`] is the published one, word for word; a planted
+    /// bound changes it.
+    #[test]
+    fn the_statement_is_made_from_the_round_bound() {
+        assert_eq!(
+            corrected_statement(),
+            "C1-corrected: assume (H0) the goal's termination value is held at Q(xg,uT) = 0, \
+(H1) every state can reach the goal (Q* finite), (H2) Q0 >= Q* on every pair, or every move costs l(x,u) >= c > 0 \
+(Q0 then arbitrary). Cut any fair update sequence into rounds (consecutive segments updating every pair at least \
+once). Then Q = Q* from the end of round R on, where R1 = 1 + max over moves (x,u) of h(f(x,u)) (h = fewest moves \
+of an optimal path to the goal), R = R1 if Q0 >= Q*, else R = max(R1, ceil((max Q* - min(0, min Q0)) / c))."
+        );
+        let planted = RoundBound {
+            r1_offset: 0,
+            ceil_offset: -1,
+        };
+        let s = planted.statement();
+        assert!(
+            s.contains("R1 = max over moves (x,u) of h(f(x,u)) (h"),
+            "{s}"
+        );
+        assert!(s.ends_with("R = max(R1, ceil((max Q* - min(0, min Q0)) / c) - 1)."));
+    }
+
+    /// [`RoundBound::rounds`] of the stated bound is the kernel oracle's
+    /// [`QProblem::round_bound`] on every smoke-scope problem satisfying H1 and H2, from every
+    /// initial vector over {-2, 0, 1, 3} (so both branches, and a negative `m`, are taken); a
+    /// planted `ceil − 1` differs on some of them.
+    #[test]
+    fn the_round_bound_s_value_is_the_kernel_s() {
+        use crate::value::Rational;
+        let r = |n: i64| Rational::from_integer(n.into());
+        let (mut compared, mut ceil_branch, mut planted_differs) = (0, 0, 0);
+        for spec in specs(Scope::Smoke) {
+            for t in crate::claims::tiny::Family::new(&spec).canonical() {
+                let held = QProblem::new(&t, Terminal::HeldAtZero);
+                if !held.all_finite() {
+                    continue;
+                }
+                let moves: Vec<usize> = (0..held.len())
+                    .filter(|&p| !held.pairs[p].terminal)
+                    .collect();
+                let h = held.optimal_steps();
+                let max_h = moves
+                    .iter()
+                    .map(|&p| u64::from(h[held.pairs[p].to as usize].unwrap()))
+                    .max();
+                let c = moves.iter().map(|&p| held.pairs[p].cost).min();
+                let top = moves
+                    .iter()
+                    .map(|&p| held.optimum[p].unwrap())
+                    .max()
+                    .unwrap_or(0);
+                for q0 in initial_vectors(&held, &[-2, 0, 1, 3]) {
+                    let above = moves.iter().all(|&p| q0[p] >= held.optimum[p].unwrap());
+                    let positive = c.is_some_and(|c| c > 0);
+                    if !(above || positive) {
+                        assert_eq!(held.round_bound(&q0), None);
+                        continue;
+                    }
+                    let m = moves.iter().map(|&p| q0[p]).min().unwrap_or(0).min(0);
+                    let cc = r(c.unwrap_or(1));
+                    let ours = ROUND_BOUND.rounds(max_h, above, &r(top), &r(m), &cc);
+                    assert_eq!(Some(ours), held.round_bound(&q0), "{}", t.describe());
+                    compared += 1;
+                    ceil_branch += u64::from(!above);
+                    let wrong = RoundBound {
+                        ceil_offset: -1,
+                        ..ROUND_BOUND
+                    };
+                    planted_differs +=
+                        u64::from(wrong.rounds(max_h, above, &r(top), &r(m), &cc) != ours);
+                }
+            }
+        }
+        assert!(
+            compared > 100 && ceil_branch > 10,
+            "{compared} {ceil_branch}"
+        );
+        assert!(planted_differs > 0);
+    }
+
     /// C1-corrected's failure path, which the theorem leaves untaken, reached with a planted
     /// bound one below the true `R`. Chain 0 → 1 → 2 (goal), costs 1, `Q₀ = 0`, termination
     /// pair held: `R = max(R₁, ⌈(max Q* − min(0, min Q₀))/c⌉) = max(2, 2) = 2`, by hand. The
@@ -891,7 +1084,7 @@ mod tests {
     #[test]
     fn a_planted_bound_below_r_is_counted_and_reported() {
         let t = Tiny::from_lists(&[vec![(1, 1)], vec![(2, 1)], vec![]]);
-        let below: RoundBound = |q, v| q.round_bound(v).map(|r| r - 1);
+        let below: BoundOracle = |q, v| q.round_bound(v).map(|r| r - 1);
         let mut right = Acc::default();
         check_structure(&mut right, &t, 0, &[0], &[0], QProblem::round_bound);
         check_all_orders(

@@ -9,9 +9,13 @@
 //! * Engine 3 — Kani harnesses in `proofs/` (one source: symbolic under `cargo kani`, run by
 //!   explicit-state enumeration through a stand-in crate under `cargo test`); the registry
 //!   lists them ([`registry`]).
+//! * Engine 4 — SMT proofs over the reals for a stated scope ([`smt`], Z3).
+//! * Engine 5 — the Coq development in `proofs/coq/`, theorems about every finite problem,
+//!   re-checked by `coqc` when `verify` runs ([`coq`]).
 //!
-//! A claim is `verified` only for the scope an engine checked, `refuted` with a minimal
-//! counterexample, or `inconclusive`. Nothing here reads a clock except [`run`], which wraps
+//! A claim is `proved for every finite problem (Coq)` only when its Coq theorems were
+//! re-checked in the same run, `proved` for the SMT engine's stated scope, `verified` only for
+//! the scope an engine checked, `refuted` with a minimal counterexample, or `inconclusive`. Nothing here reads a clock except [`run`], which wraps
 //! each engine to report cases per second.
 
 // Index loops over tiny fixed arrays read better than iterator chains in these oracles.
@@ -23,6 +27,7 @@ pub mod c2;
 pub mod c3;
 pub mod c4;
 pub mod c4_cycles;
+pub mod coq;
 pub mod discount;
 pub mod exact;
 pub mod harnesses;
@@ -84,6 +89,9 @@ impl Scope {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Verdict {
+    /// A Coq theorem about every finite problem, re-checked by `coqc` in this run with
+    /// accepted `Print Assumptions` ([`coq`]; PROOFS.md's strongest level).
+    ProvedCoq,
     /// The SMT engine showed the negation unsatisfiable over the reals for every structure of
     /// its stated scope, with its trust checks passing (PROOFS.md).
     Proved,
@@ -96,9 +104,16 @@ pub enum Verdict {
 }
 
 impl Verdict {
-    /// `proved`, `verified`, `refuted` or `inconclusive`.
+    /// `proved for every finite problem (Coq)`, `proved`, `verified`, `refuted` or
+    /// `inconclusive`.
+    ///
+    /// ```
+    /// use truecost::claims::Verdict;
+    /// assert_eq!(Verdict::ProvedCoq.name(), "proved for every finite problem (Coq)");
+    /// ```
     pub fn name(self) -> &'static str {
         match self {
+            Verdict::ProvedCoq => "proved for every finite problem (Coq)",
             Verdict::Proved => "proved",
             Verdict::Verified => "verified",
             Verdict::Refuted => "refuted",

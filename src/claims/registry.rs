@@ -3,6 +3,7 @@
 
 use std::time::Instant;
 
+use super::coq::{self, Kind};
 use super::harnesses::harness_runs;
 use super::report::{AlphaStar, Report};
 use super::sampled::{self, PropertyRun};
@@ -18,6 +19,10 @@ pub struct Options {
     pub smt: bool,
     /// Per-obligation timeout of the SMT engine, in milliseconds.
     pub smt_timeout_ms: u32,
+    /// Re-check the Coq development with `coqc` (engine 5, [`coq`]): `truecost verify` does
+    /// unless `--no-coq`. Off by default here: it compiles the whole development, and a
+    /// library caller (the test suite's pinned reports) asks for it explicitly.
+    pub coq: bool,
 }
 
 impl Default for Options {
@@ -25,6 +30,7 @@ impl Default for Options {
         Options {
             smt: true,
             smt_timeout_ms: smt::TIMEOUT_MS,
+            coq: false,
         }
     }
 }
@@ -87,6 +93,128 @@ fn attach_smt(result: &mut ClaimResult, outcome: &Outcome) {
                 .notes
                 .push("engines disagree (smt against enumeration/proptest): inconclusive".into());
             result.verdict = Verdict::Inconclusive;
+        }
+        _ => {}
+    }
+}
+
+/// Adds the Coq engine's result to a claim that has theorems in [`coq::THEOREMS`], and gives
+/// it the level "proved for every finite problem (Coq)" when every one of them that proves it
+/// was re-checked in this run and accepted (a refuting theorem confirms `refuted`). A Coq
+/// result against another engine's verdict gives `inconclusive`; a check that did not run,
+/// or failed, leaves the verdict and says so.
+fn attach_coq(result: &mut ClaimResult, check: &coq::Check) {
+    let theorems = coq::theorems_of(&result.id);
+    if theorems.is_empty() {
+        return;
+    }
+    let names: Vec<String> = theorems
+        .iter()
+        .map(|t| format!("{} ({})", t.name, t.file))
+        .collect();
+    let coq_name = check.coq();
+    let scope = format!("every finite problem: {}", names.join("; "));
+    let coq_run = |mode: String, failures: u64| EngineRun {
+        engine: "coq".into(),
+        mode,
+        scope: scope.clone(),
+        cases: theorems.len() as u64,
+        failures,
+        // The re-check's time is the report's (one `coq:` line), not a rate per claim.
+        seconds: 0.0,
+    };
+    match &check.outcome {
+        coq::Outcome::NotAvailable(why) => {
+            result.engines.push(EngineRun {
+                cases: 0,
+                ..coq_run("not re-checked on this machine".into(), 0)
+            });
+            result.notes.push(format!(
+                "coq: the Coq proof was NOT re-checked on this machine ({why}); the theorem(s) that would carry this \
+claim: {}; the verdict above is the other engines'",
+                names.join(", ")
+            ));
+            return;
+        }
+        coq::Outcome::SourcesRefused(found) => {
+            result.engines.push(coq_run(
+                "refused: the sources admit something".into(),
+                theorems.len() as u64,
+            ));
+            result.notes.push(format!(
+                "coq: the embedded Coq sources were refused before compiling (forbidden words: {}); not re-checked",
+                found.join(", ")
+            ));
+            return;
+        }
+        coq::Outcome::BuildFailed(why) => {
+            // The files before the failure compiled: their theorems are judged below.
+            result.notes.push(format!(
+                "coq: the Coq development did not fully build with {coq_name}: {why}"
+            ));
+        }
+        coq::Outcome::Checked => {}
+    }
+    let mut failures = 0;
+    for t in &theorems {
+        let verdict = check
+            .theorem(t.name)
+            .cloned()
+            .unwrap_or_else(|| coq::Assumptions::Missing("not asked about".into()));
+        failures += u64::from(!verdict.accepted());
+        let weaker = t
+            .weaker
+            .map(|w| format!("; weaker than the paper: {w}"))
+            .unwrap_or_default();
+        result.notes.push(format!(
+            "coq: {} ({}), re-checked by coqc ({coq_name}) in this run: {}. Statement: {}{weaker}",
+            t.name,
+            t.file,
+            verdict.describe(),
+            t.statement
+        ));
+    }
+    let mode = if failures == 0 {
+        format!("proof re-checked by coqc ({coq_name}), Print Assumptions accepted")
+    } else {
+        format!("re-checked by coqc ({coq_name}): {failures} theorem(s) not accepted")
+    };
+    result.engines.push(coq_run(mode, failures));
+    if failures > 0 {
+        return;
+    }
+    let kind = theorems[0].kind;
+    let disagree = matches!(
+        (kind, result.verdict),
+        (Kind::Proves, Verdict::Refuted)
+            | (
+                Kind::Refutes,
+                Verdict::Proved | Verdict::Verified | Verdict::ProvedCoq
+            )
+    );
+    if disagree {
+        result
+            .notes
+            .push("engines disagree (coq against the other engines): inconclusive".into());
+        result.verdict = Verdict::Inconclusive;
+        return;
+    }
+    let contradicted = result
+        .notes
+        .iter()
+        .any(|n| n.starts_with("engines disagree"));
+    match kind {
+        Kind::Proves if !contradicted => {
+            result.verdict = Verdict::ProvedCoq;
+            result.engine = format!("coq ({coq_name})");
+            result.scope = scope;
+            result.cases = theorems.len() as u64;
+        }
+        Kind::Refutes if !contradicted && result.verdict != Verdict::Refuted => {
+            result.verdict = Verdict::Refuted;
+            result.engine = format!("coq ({coq_name})");
+            result.scope = scope;
+            result.cases = theorems.len() as u64;
         }
         _ => {}
     }
@@ -244,6 +372,7 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
         }
     }
     let alpha_star = star.map(|a| AlphaStar::new(&a));
+    let wants_coq = options.coq && claims.iter().any(|c| !coq::theorems_of(&c.id).is_empty());
     let mut smt_outcomes = Vec::new();
     if options.smt {
         for c in claims.iter_mut() {
@@ -254,8 +383,23 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
             }
         }
     }
+    let coq_check = wants_coq.then(|| {
+        shard::unit("coq re-check", coq::recheck, || coq::Check {
+            version: None,
+            outcome: coq::Outcome::NotAvailable("re-checked by another shard".into()),
+            theorems: vec![],
+            files: 0,
+            seconds: 0.0,
+        })
+    });
+    if let Some(check) = &coq_check {
+        for c in claims.iter_mut() {
+            attach_coq(c, check);
+        }
+    }
     Ok(Report {
         solver: options.smt.then(smt::solver_version),
+        coq: coq_check,
         smt: smt_outcomes,
         tool: format!("truecost {}", env!("CARGO_PKG_VERSION")),
         commit: option_env!("TRUECOST_GIT_COMMIT")
@@ -277,6 +421,7 @@ fn fingerprint(scope: Scope, only: Option<&str>, options: &Options) -> serde_jso
         "claim": only,
         "smt": options.smt,
         "smt_timeout_ms": options.smt_timeout_ms,
+        "coq": options.coq,
     })
 }
 
@@ -330,6 +475,7 @@ pub fn merge(files: &[(String, String)]) -> Result<Report, String> {
     let options = Options {
         smt: fp.field("smt")?,
         smt_timeout_ms: fp.field("smt_timeout_ms")?,
+        coq: fp.field("coq")?,
     };
     fp.confirm(&fingerprint(scope, only.as_deref(), &options))?;
     shard::replay(shards, || run(scope, only.as_deref(), &options))?
@@ -373,6 +519,143 @@ mod tests {
             notes: vec!["an outcome note".into()],
             solved: vec![],
         }
+    }
+
+    fn coq_check(outcome: coq::Outcome, each: coq::Assumptions) -> coq::Check {
+        coq::Check {
+            version: Some("8.16.1".into()),
+            theorems: if matches!(
+                outcome,
+                coq::Outcome::Checked | coq::Outcome::BuildFailed(_)
+            ) {
+                coq::THEOREMS
+                    .iter()
+                    .map(|t| coq::TheoremCheck {
+                        name: t.name.into(),
+                        assumptions: each.clone(),
+                    })
+                    .collect()
+            } else {
+                vec![]
+            },
+            outcome,
+            files: 5,
+            seconds: 1.0,
+        }
+    }
+
+    fn claim(id: &str, verdict: Verdict) -> ClaimResult {
+        ClaimResult {
+            id: id.into(),
+            ..enumerated(verdict)
+        }
+    }
+
+    /// The Coq level is given only for a re-check that ran in this run and accepted every
+    /// theorem of the claim; it names the theorem, the file and the Coq version.
+    #[test]
+    fn the_coq_level_needs_a_recheck_that_ran_and_accepted_every_theorem() {
+        use coq::{Assumptions as A, Outcome as O};
+        let clean = coq_check(O::Checked, A::Closed);
+        let mut r = claim("C1-corrected", Verdict::Proved);
+        attach_coq(&mut r, &clean);
+        assert_eq!(r.verdict, Verdict::ProvedCoq);
+        assert_eq!(r.engine, "coq (Coq 8.16.1)");
+        assert!(
+            r.scope
+                .contains("Truecost.C1.c1_corrected (proofs/coq/C1.v)"),
+            "{}",
+            r.scope
+        );
+        let n = coq::theorems_of("C1-corrected").len() as u64;
+        assert!(n >= 3);
+        assert_eq!(r.cases, n);
+        let e = r.engines.last().unwrap();
+        assert_eq!((e.engine.as_str(), e.cases, e.failures), ("coq", n, 0));
+        assert!(r.notes.iter().any(|n| n.starts_with(
+            "coq: Truecost.C1.c1_corrected (proofs/coq/C1.v), re-checked by coqc (Coq 8.16.1) in this run: closed"
+        )));
+        // The reals' axioms are accepted and listed.
+        let reals = coq_check(
+            O::Checked,
+            A::Allowed(vec!["ClassicalDedekindReals.sig_forall_dec".into()]),
+        );
+        let mut r = claim("C2", Verdict::Verified);
+        attach_coq(&mut r, &reals);
+        assert_eq!(r.verdict, Verdict::ProvedCoq);
+        assert!(r.notes.iter().any(|n| n.contains("sig_forall_dec")));
+        // A forbidden axiom, a missing theorem, a refused or failed build, or no coqc: the
+        // verdict stays the other engines'.
+        for check in [
+            coq_check(O::Checked, A::Forbidden(vec!["foo (Axioms)".into()])),
+            coq_check(O::Checked, A::Missing("not found".into())),
+            coq_check(
+                O::SourcesRefused(vec!["C1.v:3: Admitted".into()]),
+                A::Closed,
+            ),
+            coq_check(
+                O::BuildFailed("C1.v does not compile".into()),
+                A::Missing("C1.v was not compiled".into()),
+            ),
+            coq_check(O::NotAvailable(coq::NOT_FOUND.into()), A::Closed),
+        ] {
+            let mut r = claim("C1-corrected", Verdict::Proved);
+            attach_coq(&mut r, &check);
+            assert_eq!(r.verdict, Verdict::Proved, "{check:?}");
+            assert_eq!(r.engine, "exhaustive enumeration");
+            assert_eq!(r.engines.len(), 1);
+        }
+        // A later file that fails leaves the theorems of the files compiled before it judged
+        // on their own (each file depends only on the ones before it), and is reported.
+        let mut r = claim("C2", Verdict::Proved);
+        attach_coq(
+            &mut r,
+            &coq_check(O::BuildFailed("C3.v does not compile".into()), A::Closed),
+        );
+        assert_eq!(r.verdict, Verdict::ProvedCoq);
+        assert!(r.notes[0].contains("did not fully build") && r.notes[0].contains("C3.v"));
+        let mut r = claim("C1-corrected", Verdict::Proved);
+        attach_coq(
+            &mut r,
+            &coq_check(O::NotAvailable(coq::NOT_FOUND.into()), A::Closed),
+        );
+        assert_eq!(r.engines[0].mode, "not re-checked on this machine");
+        assert!(r.notes[0].contains("NOT re-checked on this machine (coqc not found"));
+        assert!(r.notes[0].contains("Truecost.C1.c1_corrected"));
+        // A claim without a Coq theorem is left alone.
+        let mut r = claim("C9", Verdict::Proved);
+        attach_coq(&mut r, &clean);
+        assert_eq!((r.verdict, r.engines.len()), (Verdict::Proved, 0));
+    }
+
+    /// A Coq result against another engine's verdict is a disagreement: inconclusive. The
+    /// refutation of C1 as printed confirms the enumeration's `refuted` and keeps its
+    /// counterexample's engine.
+    #[test]
+    fn coq_against_another_engine_is_inconclusive() {
+        let clean = coq_check(coq::Outcome::Checked, coq::Assumptions::Closed);
+        let mut r = claim("C1-corrected", Verdict::Refuted);
+        attach_coq(&mut r, &clean);
+        assert_eq!(r.verdict, Verdict::Inconclusive);
+        assert!(r
+            .notes
+            .iter()
+            .any(|n| n.starts_with("engines disagree (coq")));
+        let mut r = claim("C1", Verdict::Verified);
+        attach_coq(&mut r, &clean);
+        assert_eq!(r.verdict, Verdict::Inconclusive);
+        let mut r = claim("C1", Verdict::Refuted);
+        attach_coq(&mut r, &clean);
+        assert_eq!(
+            (r.verdict, r.engine.as_str()),
+            (Verdict::Refuted, "exhaustive enumeration")
+        );
+        // An earlier disagreement is not overruled.
+        let mut r = claim("C2", Verdict::Inconclusive);
+        r.notes
+            .push("engines disagree (smt against enumeration/proptest): inconclusive".into());
+        attach_coq(&mut r, &clean);
+        assert_eq!(r.verdict, Verdict::Inconclusive);
     }
 
     /// How the SMT engine's verdict combines with the enumeration's (the doc comment of

@@ -61,6 +61,104 @@ pub struct Report {
     pub solver: Option<String>,
     /// The SMT engine's outcomes, every obligation with its answer (for `--smt-out`).
     pub smt: Vec<super::smt::Outcome>,
+    /// The Coq engine's re-check, when it was asked for (`None`: not asked; the report then
+    /// says nothing about Coq).
+    pub coq: Option<super::coq::Check>,
+}
+
+/// One line on the Coq re-check: what ran, with which Coq, and what it found (the time only
+/// `with_times`).
+///
+/// ```
+/// use truecost::claims::coq::{Check, Outcome};
+/// use truecost::claims::report::coq_line;
+/// let absent = Check {
+///     version: None,
+///     outcome: Outcome::NotAvailable("coqc not found".into()),
+///     theorems: vec![],
+///     files: 0,
+///     seconds: 0.0,
+/// };
+/// assert_eq!(
+///     coq_line(&absent, false),
+///     "the Coq proofs (proofs/coq) were NOT re-checked on this machine: coqc not found"
+/// );
+/// ```
+pub fn coq_line(check: &super::coq::Check, with_times: bool) -> String {
+    use super::coq::Outcome;
+    let time = if with_times && check.seconds > 0.0 {
+        format!(" ({:.1} s)", check.seconds)
+    } else {
+        String::new()
+    };
+    match &check.outcome {
+        Outcome::Checked => {
+            let accepted = check
+                .theorems
+                .iter()
+                .filter(|t| t.assumptions.accepted())
+                .count();
+            format!(
+                "the Coq proofs (proofs/coq) re-checked in this run by coqc ({}): {} files compiled, {accepted} of {} \
+theorems accepted by Print Assumptions{time}",
+                check.coq(),
+                check.files,
+                check.theorems.len()
+            )
+        }
+        Outcome::NotAvailable(why) => {
+            format!("the Coq proofs (proofs/coq) were NOT re-checked on this machine: {why}")
+        }
+        Outcome::SourcesRefused(found) => format!(
+            "the Coq proofs (proofs/coq) were refused before compiling: {}{time}",
+            found.join(", ")
+        ),
+        Outcome::BuildFailed(why) => format!(
+            "the Coq proofs (proofs/coq) did not fully build with coqc ({}): {why}; {} files compiled before it, \
+{} of {} theorems accepted by Print Assumptions{time}",
+            check.coq(),
+            check.files,
+            check
+                .theorems
+                .iter()
+                .filter(|t| t.assumptions.accepted())
+                .count(),
+            check.theorems.len()
+        ),
+    }
+}
+
+/// The Coq re-check as JSON: the line, the outcome, and every theorem of the table with its
+/// claim, file, statement, what it is weaker than the paper's, and its assumptions.
+fn coq_json(check: &super::coq::Check, with_times: bool) -> Value {
+    use super::coq::{Outcome, THEOREMS};
+    let theorems: Vec<Value> = THEOREMS
+        .iter()
+        .map(|t| {
+            let a = check.theorem(t.name);
+            json!({
+                "claim": t.claim,
+                "theorem": t.name,
+                "file": t.file,
+                "statement": t.statement,
+                "weaker_than_paper": t.weaker,
+                "rechecked": a.is_some(),
+                "accepted": a.is_some_and(|a| a.accepted()),
+                "assumptions": a.map(|a| a.describe()),
+            })
+        })
+        .collect();
+    let mut v = json!({
+        "summary": coq_line(check, false),
+        "coq_version": check.version,
+        "rechecked": check.outcome == Outcome::Checked,
+        "files": check.files,
+        "theorems": theorems,
+    });
+    if with_times {
+        v["seconds"] = json!(check.seconds);
+    }
+    v
 }
 
 fn rate(cases: u64, seconds: f64, engine: &str) -> String {
@@ -119,6 +217,9 @@ pub fn json(report: &Report, with_times: bool) -> String {
             "lo": a.lo, "hi": a.hi, "polynomial": a.polynomial, "decimal": a.decimal,
         })),
     });
+    if let Some(check) = &report.coq {
+        root["coq"] = coq_json(check, with_times);
+    }
     if with_times {
         root["commit"] = json!(report.commit);
         if let Some(solver) = &report.solver {
@@ -144,6 +245,9 @@ pub fn text(report: &Report, with_times: bool) -> String {
         if let Some(solver) = &report.solver {
             let _ = writeln!(s, "smt solver: {solver}");
         }
+    }
+    if let Some(check) = &report.coq {
+        let _ = writeln!(s, "coq: {}", coq_line(check, with_times));
     }
     for c in &report.claims {
         let _ = writeln!(s);
@@ -201,6 +305,9 @@ pub fn markdown(report: &Report, with_times: bool) -> String {
         if let Some(solver) = &report.solver {
             let _ = writeln!(s, "SMT solver: {solver}\n");
         }
+    }
+    if let Some(check) = &report.coq {
+        let _ = writeln!(s, "Coq: {}\n", coq_line(check, with_times));
     }
     let _ = writeln!(s, "| claim | verdict | engine | cases | scope |");
     let _ = writeln!(s, "|---|---|---|---|---|");
@@ -313,6 +420,12 @@ pub fn latex(report: &Report) -> String {
             .as_ref()
             .map(|v| format!("; SMT solver {}", tex(v)))
             .unwrap_or_default()
+            + &report
+                .coq
+                .as_ref()
+                .filter(|c| c.outcome == super::coq::Outcome::Checked)
+                .map(|c| format!("; Coq proofs re-checked by {}", tex(&c.coq())))
+                .unwrap_or_default()
     );
     let _ = writeln!(s, "\\end{{table}}");
     s
@@ -357,6 +470,7 @@ mod tests {
             alpha_star: None,
             solver: None,
             smt: vec![],
+            coq: None,
         }
     }
 

@@ -79,6 +79,11 @@ pub struct VerifyArgs {
     /// Skip the SMT engine (no `proved` verdicts).
     #[arg(long)]
     no_smt: bool,
+    /// Skip the re-check of the Coq proofs (proofs/coq) with coqc: no "proved for every
+    /// finite problem (Coq)" verdicts. Without coqc on PATH the report says the proofs were
+    /// not re-checked on this machine.
+    #[arg(long)]
+    no_coq: bool,
     /// Per-obligation time limit of the SMT engine, in seconds (an obligation that runs out
     /// of time is `unknown`: the claim is then not proved).
     #[arg(long, value_name = "SECONDS", default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=3600))]
@@ -113,6 +118,7 @@ fn shard(args: &VerifyArgs, part: &str) -> Result<String, String> {
     let options = truecost::claims::registry::Options {
         smt: !args.no_smt,
         smt_timeout_ms: args.smt_timeout * 1000,
+        coq: !args.no_coq,
     };
     truecost::claims::registry::run_shard(args.scope, args.claim.as_deref(), &options, part)
 }
@@ -193,6 +199,7 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
     let options = truecost::claims::registry::Options {
         smt: !args.no_smt,
         smt_timeout_ms: args.smt_timeout * 1000,
+        coq: !args.no_coq,
     };
     let r = truecost::claims::registry::run(args.scope, args.claim.as_deref(), &options)?;
     if let Some(dir) = &args.smt_out {

@@ -26,9 +26,10 @@
 use num_traits::{ToPrimitive, Zero};
 
 use super::term::{
-    and, app, eq, ge, gt, implies, is_min, le, lt, min, ne, not, or, real_int, sub, sum,
+    and, app, eq, ge, gt, implies, int, is_min, le, lt, min, ne, not, or, real_int, sub, sum,
 };
 use super::{Encoding, Logic, Model, Obligation, Replay, Role, Sort};
+use crate::claims::c1::{self, RoundBound};
 use crate::claims::qlearning::{run as run_q, Order, QProblem, Run, Terminal, MAX_PAIRS};
 use crate::claims::tiny::{Family, FamilySpec, Tiny};
 use crate::claims::{Counterexample, Scope};
@@ -144,7 +145,7 @@ fn with_hypotheses(out: &mut Vec<Obligation>, mut proof: Obligation, conclusion_
     out.push(proof);
 }
 
-fn local_lemmas(scope: Scope) -> Vec<Obligation> {
+fn local_lemmas(scope: Scope, bound: RoundBound) -> Vec<Obligation> {
     let mut out = Vec::new();
     for d in 1..=local_degree(scope) {
         // A1: Q >= Q* on y's pairs => l + min Q(y,.) >= Q*(x,u).
@@ -249,23 +250,85 @@ fn local_lemmas(scope: Scope) -> Vec<Obligation> {
     o.assert(eq(&v, &qt));
     o.assert(gt(&qt, "0.0"));
     out.push(o);
-    // The round count of Part B: R >= (max Q* - m)/c with c > 0 gives m + R c >= max Q*.
+    out.extend(round_count(bound));
+    out
+}
+
+/// The lemma name of B4 for `bound` (the formula is part of it, so that the index and the
+/// files name the bound they prove).
+fn b4_lemma(bound: RoundBound) -> String {
+    format!(
+        "B4: R = max(R1, {}) with R1 = {}: R rounds reach level max Q*",
+        bound.ceil_text(),
+        bound.r1_text()
+    )
+}
+
+/// B4, Part B's round count, with `R` the integer the statement defines (QF_NIRA): reals
+/// `c > 0`, `m ≤ 0` (`m = min(0, min Q₀)`), `top ≥ 0` (`max Q*`, costs ≥ 0); integers
+/// `hmax ≥ 0` (`max h(f(x,u))`), `k = ⌈(top − m)/c⌉` (as `(k − 1)·c < top − m ≤ k·c`, which
+/// only the ceiling satisfies), `R1` and `R` as [`RoundBound`] makes them; negated
+/// conclusion `m + R·c < top` (the lower run's level after `R` rounds, `m + R·c`, is below
+/// `max Q*`). Unsat proves that `R` rounds reach the level at which Part B's sandwich closes.
+fn round_count(bound: RoundBound) -> Vec<Obligation> {
     let mut o = Obligation::new(
         CLAIM,
-        "B4: ceil((max Q* - m)/c) rounds reach level max Q*",
+        &b4_lemma(bound),
         "arithmetic",
         Role::Proof,
-        Logic::QfNra,
+        Logic::QfNira,
     );
     let c = o.declare("c", Sort::Real);
     let m = o.declare("m", Sort::Real);
     let top = o.declare("top", Sort::Real);
-    let r = o.declare("R", Sort::Real);
+    let hmax = o.declare("hmax", Sort::Int);
+    let k = o.declare("k", Sort::Int);
+    let r1 = o.declare("R1", Sort::Int);
+    let r = o.declare("R", Sort::Int);
+    let times_c = |n: &str| app("*", &[app("to_real", &[n.to_string()]), c.clone()]);
     o.assert(gt(&c, "0.0"));
-    o.assert(ge(&app("*", &[r.clone(), c.clone()]), &sub(&top, &m)));
-    let neg = lt(&sum(&[m.clone(), app("*", &[r.clone(), c.clone()])]), &top);
+    o.assert(le(&m, "0.0"));
+    o.assert(ge(&top, "0.0"));
+    o.assert(ge(&hmax, "0"));
+    let gap = sub(&top, &m);
+    o.assert(ge(&times_c(&k), &gap));
+    o.assert(lt(&times_c(&app("-", &[k.clone(), "1".into()])), &gap));
+    o.assert(eq(&r1, &app("+", &[int(bound.r1_offset), hmax.clone()])));
+    let ceil = app("+", &[k.clone(), int(bound.ceil_offset)]);
+    o.assert(eq(&r, &super::term::ite(&ge(&r1, &ceil), &r1, &ceil)));
+    let neg = lt(&sum(&[m.clone(), times_c(&r)]), &top);
+    let mut out = Vec::new();
     with_hypotheses(&mut out, o, neg);
     out
+}
+
+/// Replays a satisfiable B4 in exact arithmetic: the model's `c > 0`, `m`, `top` give the
+/// true number of rounds `⌈(top − m)/c⌉`, recomputed here; the model's `R` is confirmed as
+/// too small when it is below that number and `m + R·c < top` holds exactly.
+fn replay_round_count(m: &Model) -> Replay {
+    use num_traits::Signed;
+    let get = |n: &str| m.get(n).cloned();
+    let (Some(c), Some(lo), Some(top), Some(r)) = (get("c"), get("m"), get("top"), get("R")) else {
+        return Replay::NotConfirmed("the model lacks c, m, top or R".into());
+    };
+    if !c.is_positive() || !r.is_integer() {
+        return Replay::NotConfirmed("the model's c is not positive or R not an integer".into());
+    }
+    let needed = ((&top - &lo) / &c).ceil();
+    let level = &lo + &r * &c;
+    if r < needed && level < top {
+        Replay::Confirmed(
+            format!(
+                "R = {r} rounds leave the lower run at level m + R c = {level} < max Q* = {top}, while \
+ceil((max Q* - m)/c) = {needed} (c = {c}, m = {lo}): the bound stops short"
+            ),
+            None,
+        )
+    } else {
+        Replay::NotConfirmed(format!(
+            "the model's R = {r} is not below ceil((max Q* - m)/c) = {needed}"
+        ))
+    }
 }
 
 /// The pairs of a structure in [`QProblem`]'s order: `(state, successor, terminal)`.
@@ -327,14 +390,14 @@ struct Whole {
 }
 
 impl Whole {
-    fn new(t: &Tiny, lemma: &str, role: Role) -> Option<Whole> {
+    fn new(claim: &str, t: &Tiny, lemma: &str, role: Role) -> Option<Whole> {
         let pairs = pairs_of(t);
         let n = t.states();
         let paths: Vec<Vec<Vec<usize>>> = (0..n).map(|x| simple_paths(t, &pairs, x)).collect();
         if paths.iter().any(|p| p.is_empty()) {
             return None; // H1 fails: outside C1-corrected's scope.
         }
-        let mut o = Obligation::new(CLAIM, lemma, &t.describe(), role, Logic::QfLra);
+        let mut o = Obligation::new(claim, lemma, &t.describe(), role, Logic::QfLra);
         let cost: Vec<String> = pairs
             .iter()
             .enumerate()
@@ -480,6 +543,7 @@ fn replaced(q: &[String], p: usize, v: String) -> Vec<String> {
 /// `h(f(p)) ≤ r`, and `I_{R₁}` ⇒ `Q = Q*`.
 fn whole_a(t: &Tiny, role: Role, r1_offset: i64) -> Option<(Obligation, String)> {
     let mut w = Whole::new(
+        CLAIM,
         t,
         "A: Bellman/descent facts; I_r preserved by every update; progress; I_R1 => Q = Q*",
         role,
@@ -516,7 +580,7 @@ fn whole_a(t: &Tiny, role: Role, r1_offset: i64) -> Option<(Obligation, String)>
 /// every update; monotonicity; `Q ≤ Q*` preserved; `J_t` with `t ≥ max Q*` and `Q ≤ Q*` ⇒
 /// `Q = Q*`.
 fn whole_b(t: &Tiny, role: Role, positive: bool) -> Option<(Obligation, String)> {
-    let mut w = Whole::new(t, "B: J_t lifted to J_(t+c) by every update; monotone; Q <= Q* preserved; J_t with t >= max Q* and Q <= Q* => Q = Q*", role)?;
+    let mut w = Whole::new(CLAIM, t, "B: J_t lifted to J_(t+c) by every update; monotone; Q <= Q* preserved; J_t with t >= max Q* and Q <= Q* => Q = Q*", role)?;
     let q = w.values("q");
     let q2 = w.values("z");
     let c = w.o.declare("c", Sort::Real);
@@ -589,26 +653,43 @@ fn whole_structure_obligations(scope: Scope, r1_offset: i64) -> Vec<Obligation> 
     out
 }
 
-/// C1-corrected: local lemmas for every graph of bounded out-degree, and the whole-structure
-/// steps for every structure of the scope.
+/// C1-corrected: local lemmas for every graph of bounded out-degree, the round count, and
+/// the whole-structure steps for every structure of the scope — for the statement's bound
+/// [`c1::ROUND_BOUND`].
 pub fn corrected(scope: Scope) -> Encoding {
-    corrected_with_round_bound(scope, 1)
+    corrected_with(scope, c1::ROUND_BOUND)
 }
 
-/// The encoding of C1-corrected with `R₁ = offset + max h(f(x,u))`: the statement's bound is
-/// `offset = 1`; a smaller offset is a planted wrong threshold that the proof must reject
-/// (the mutation test of issue 9, item 2).
+/// [`corrected_with`] with `R₁ = offset + max h(f(x,u))` and the statement's ceiling term: a
+/// smaller offset than 1 is a planted wrong threshold that the proof must reject.
 pub fn corrected_with_round_bound(scope: Scope, offset: i64) -> Encoding {
-    let mut obligations = local_lemmas(scope);
-    obligations.extend(whole_structure_obligations(scope, offset));
+    corrected_with(
+        scope,
+        RoundBound {
+            r1_offset: offset,
+            ..c1::ROUND_BOUND
+        },
+    )
+}
+
+/// The encoding of C1-corrected for the round bound `bound` ([`RoundBound`], the one
+/// definition the statement is printed from): Part A's last level is `R₁` and B4's round
+/// count is `R`, both as `bound` makes them. A planted bound (`R₁` one lower, or the ceiling
+/// minus one) makes some proof obligation satisfiable.
+pub fn corrected_with(scope: Scope, bound: RoundBound) -> Encoding {
+    let mut obligations = local_lemmas(scope, bound);
+    obligations.extend(whole_structure_obligations(scope, bound.r1_offset));
     Encoding {
         claim: CLAIM,
         scope: format!(
-            "local lemmas A1, A2, B1-B4 for every graph whose states have <= {} pairs (any number of states); \
+            "local lemmas A1, A2, B1-B3 for every graph whose states have <= {} pairs (any number of states); \
+B4 (the round count R = max(R1, {}), R1 = {}, integers; costs and levels reals); \
 whole-structure steps for every structure with <= {} states and <= 2 moves per state (goal: <= 2 moves), up to \
 relabelling, in which every state reaches the goal; every number of rounds (induction on the level r / t, \
 docs/proofs/c1.md); costs, initial values, c and t: all reals",
             local_degree(scope),
+            bound.ceil_text(),
+            bound.r1_text(),
             structure_scope_text(scope)
         ),
         obligations,
@@ -619,9 +700,10 @@ docs/proofs/c1.md); costs, initial values, c and t: all reals",
 /// Replays of the corrected claim's satisfiable checks: the dropped hypotheses' failures are
 /// local arithmetic facts (no run to replay); a satisfiable *proof* obligation would be a bug
 /// in the proof, never a counterexample.
-fn replay_corrected(o: &Obligation, _m: &Model) -> Replay {
+fn replay_corrected(o: &Obligation, m: &Model) -> Replay {
     match o.role {
         Role::Dropped(_) | Role::Hypotheses => Replay::NotApplicable,
+        Role::Proof if o.lemma.starts_with("B4: ") => replay_round_count(m),
         _ => Replay::NotConfirmed(
             "a proof obligation of C1-corrected is satisfiable: the lemma is wrong".into(),
         ),
@@ -652,6 +734,7 @@ pub fn printed() -> Encoding {
     let mut obligations = Vec::new();
     for t in printed_structures() {
         let Some(mut w) = Whole::new(
+            PRINTED,
             &t,
             "a fixed point of every update that differs from Q*",
             Role::Printed,

@@ -564,7 +564,7 @@ pub fn obligation(claim: &str, shape: &Shape, f: Formula, role: Role) -> Option<
     Some(ob)
 }
 
-/// The states bound of the scope: smoke 3, quick 4, full 5 (≤ 5 states takes ≈ 175 s of CPU:
+/// The states bound of the scope: smoke 3, quick 5, full 5 (≤ 5 states takes ≈ 175 s of CPU:
 /// the per-obligation cost, not the solving, dominates; see `docs/proofs/c4.md`).
 fn max_states(scope: Scope) -> usize {
     match scope {
@@ -613,7 +613,7 @@ pub fn corrected_obligations(shapes: &[Shape], f: Formula) -> (Vec<Obligation>, 
 }
 
 /// The SMT encoding of **C4-corrected** (issue 9, item 1): for every reachable shape of the
-/// structures with ≤ 5 states (`Scope::Full`; quick: ≤ 4, smoke: ≤ 3), every real cost ≥ 0 and every real `M < 0`, and
+/// structures with ≤ 5 states (`Scope::Full` and `Scope::Quick`; smoke: ≤ 3), every real cost ≥ 0 and every real `M < 0`, and
 /// every choice of `π*` among the optimal single-shot paths: `π*` is average-cost optimal ⟺
 /// `M` lies in the corrected interval. With the trust checks (hypotheses satisfiable, the
 /// cycle term dropped).

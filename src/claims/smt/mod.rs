@@ -44,6 +44,9 @@ pub enum Logic {
     QfLira,
     /// Quantifier-free nonlinear real arithmetic (polynomials in `α`).
     QfNra,
+    /// Quantifier-free nonlinear arithmetic over integers and reals (a round count, an
+    /// integer, times a cost).
+    QfNira,
 }
 
 impl Logic {
@@ -53,6 +56,7 @@ impl Logic {
             Logic::QfLra => "QF_LRA",
             Logic::QfLira => "QF_LIRA",
             Logic::QfNra => "QF_NRA",
+            Logic::QfNira => "QF_NIRA",
         }
     }
 }
@@ -375,7 +379,7 @@ fn solve_reusing(ob: &Obligation, timeout_ms: u32) -> Answer {
     // creating a Z3 solver costs tens of milliseconds, solving a small linear obligation well
     // under one. Nonlinear ones get a fresh solver, so that Z3 chooses its complete nonlinear
     // procedure (nlsat) rather than the incremental one.
-    if ob.logic == Logic::QfNra {
+    if matches!(ob.logic, Logic::QfNra | Logic::QfNira) {
         let solver = fresh_solver(ob.logic.name(), timeout_ms);
         return answer(&solver, ob);
     }

@@ -69,7 +69,7 @@ fn f01_c4_bonus_set_of_a_grid_is_refused_with_its_bound() {
         let err = fails_one_line(&["verify", "--claim", "C4", "--problem", problem]);
         assert_contract(&err);
         assert!(
-            err.contains("more than 4194304 stationary policies"),
+            err.contains("stationary policies from x1 (the bound"),
             "{err}"
         );
     }
@@ -93,6 +93,133 @@ fn f01_c4_bonus_set_of_a_grid_is_refused_with_its_bound() {
         v["bonus_sets"].as_array().is_some_and(|a| !a.is_empty()),
         "{v}"
     );
+}
+
+/// A chain of `states` states (goal last) whose first `branching` states have a second,
+/// costlier move to the next state: exactly `2^branching` stationary policies.
+fn branching_chain(states: usize, branching: usize) -> String {
+    let rows: Vec<String> = (0..states)
+        .map(|x| {
+            if x + 1 == states {
+                "[]".to_string()
+            } else if x < branching {
+                format!(
+                    r#"[{{"to":{},"cost":"1"}},{{"to":{},"cost":"2"}}]"#,
+                    x + 1,
+                    x + 1
+                )
+            } else {
+                format!(r#"[{{"to":{},"cost":"1"}}]"#, x + 1)
+            }
+        })
+        .collect();
+    format!(
+        r#"{{"format":"truecost-problem/1","states":{states},"initial":0,"goals":[{}],"actions":[{}]}}"#,
+        states - 1,
+        rows.join(",")
+    )
+}
+
+// The policy bound of the exact bonus analysis counts states too: on 1,021 states 2^22 policies
+// took minutes, so a large problem gets a smaller bound (policies x states <= 2^30), refused at
+// once with the bound named; a small problem keeps 2^22.
+#[test]
+fn c4_policy_bound_shrinks_with_the_number_of_states() {
+    let dir = tempfile::tempdir().unwrap();
+    let big = write(dir.path(), "big.json", &branching_chain(1021, 21));
+    let started = std::time::Instant::now();
+    let err = fails_one_line(&["verify", "--claim", "C4", "--file", big.to_str().unwrap()]);
+    assert_contract(&err);
+    assert!(
+        err.contains("more than 1048576 stationary policies"),
+        "{err}"
+    );
+    assert!(started.elapsed() < std::time::Duration::from_secs(30));
+    // 300 states: 2^30 / 300 gives 2^21; 22 branching states are 2^22 policies, refused.
+    let mid = write(dir.path(), "mid.json", &branching_chain(300, 22));
+    let err = fails_one_line(&["verify", "--claim", "C4", "--file", mid.to_str().unwrap()]);
+    assert!(
+        err.contains("more than 2097152 stationary policies"),
+        "{err}"
+    );
+    // A small chain with a few choices is analysed.
+    let small = write(dir.path(), "small.json", &branching_chain(20, 4));
+    let v = json(&[
+        "verify",
+        "--claim",
+        "C4",
+        "--file",
+        small.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    assert!(
+        v["bonus_sets"].as_array().is_some_and(|a| !a.is_empty()),
+        "{v}"
+    );
+}
+
+// `discount` on a stochastic file: the work of one exact probe grows with the size of the
+// numbers (the lcm of the probability denominators), not only with the number of states; a
+// problem whose single probe would pass the bound is refused before any work.
+#[test]
+fn discount_bounds_the_work_by_the_numbers_size() {
+    // 30 states; state x moves on with probability 1/p_x (p_x the x-th prime above 1000) and
+    // otherwise stays: the lcm of the denominators has about 30 x 10 bits.
+    let primes: Vec<u64> = (1001u64..)
+        .filter(|n| (2..*n).take_while(|d| d * d <= *n).all(|d| n % d != 0))
+        .take(30)
+        .collect();
+    let rows: Vec<String> = primes
+        .iter()
+        .enumerate()
+        .map(|(x, p)| {
+            format!(
+                r#"[{{"cost":"1","outcomes":[{{"to":{},"p":"1/{p}"}},{{"to":{x},"p":"{}/{p}"}}]}}]"#,
+                x + 1,
+                p - 1
+            )
+        })
+        .chain(std::iter::once("[]".to_string()))
+        .collect();
+    let text = format!(
+        r#"{{"format":"truecost-stochastic/1","states":31,"initial":0,"goals":[30],"actions":[{}]}}"#,
+        rows.join(",")
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let file = write(dir.path(), "primes.json", &text);
+    let started = std::time::Instant::now();
+    let err = fails_one_line(&["discount", "--file", file.to_str().unwrap()]);
+    assert_contract(&err);
+    assert!(
+        err.contains("one exact probe of this problem is estimated"),
+        "{err}"
+    );
+    assert!(err.contains("30 running states"), "{err}");
+    assert!(started.elapsed() < std::time::Duration::from_secs(10));
+    // The same chain with denominators 2 is analysed.
+    let halves: Vec<String> = (0..30)
+        .map(|x| {
+            format!(
+                r#"[{{"cost":"1","outcomes":[{{"to":{},"p":"1/2"}},{{"to":{x},"p":"1/2"}}]}}]"#,
+                x + 1
+            )
+        })
+        .chain(std::iter::once("[]".to_string()))
+        .collect();
+    let text = format!(
+        r#"{{"format":"truecost-stochastic/1","states":31,"initial":0,"goals":[30],"actions":[{}]}}"#,
+        halves.join(",")
+    );
+    let file = write(dir.path(), "halves.json", &text);
+    let v = json(&[
+        "discount",
+        "--file",
+        file.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    assert!(v.is_object(), "{v}");
 }
 
 // Failure 2: `--file /dev/stdin` was read twice (refused); a FIFO hung.

@@ -35,6 +35,33 @@ use super::{enumerate, keep_min, min_of, ClaimResult, Counterexample, EngineRun,
 use crate::model::Problem;
 use crate::value::{to_common_scale, Rational};
 
+/// The most stationary policies the exact bonus analysis enumerates for one problem.
+pub const MAX_BONUS_POLICIES: u64 = 1 << 22;
+
+/// The most policy-stage steps it may take: each enumerated policy walks its lasso from `x1`,
+/// up to one step per state, so the work is about policies × states. Measured (release, one
+/// core): 2^22 policies on a 1,021-state chain of two-way choices took two minutes; this bound
+/// keeps every accepted problem to about half a minute.
+pub const MAX_BONUS_WORK: u64 = 1 << 30;
+
+/// The policy bound of [`bonus_analysis`] for a problem of `states` states: the largest power
+/// of two with `limit × states ≤` [`MAX_BONUS_WORK`], at most [`MAX_BONUS_POLICIES`] (so
+/// problems of up to 256 states keep the full 2^22).
+///
+/// ```
+/// use truecost::claims::c4::{bonus_policy_limit, MAX_BONUS_POLICIES};
+/// assert_eq!(bonus_policy_limit(4), MAX_BONUS_POLICIES);
+/// assert_eq!(bonus_policy_limit(256), 1 << 22);
+/// assert_eq!(bonus_policy_limit(257), 1 << 21);
+/// assert_eq!(bonus_policy_limit(1021), 1 << 20);
+/// assert_eq!(bonus_policy_limit(0), MAX_BONUS_POLICIES);
+/// ```
+pub fn bonus_policy_limit(states: usize) -> u64 {
+    let per_state = MAX_BONUS_WORK / (states.max(1) as u64);
+    let power = 1u64 << (63 - per_state.max(1).leading_zeros());
+    power.min(MAX_BONUS_POLICIES)
+}
+
 /// Whether the bonus `m`, in the problem's own units, lies in `interval`, a set of bonuses
 /// scaled by `scale` (as [`Instance::from_problem`] scales costs to integers): `m·scale ∈
 /// interval`, decided on exact rationals, since `m` may lie beyond [`Q`]'s range.

@@ -7,11 +7,12 @@
 use std::path::PathBuf;
 
 use clap::Args;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
 
 use truecost::claims::discount::{discount_set, point_text, set_text, DiscountSet};
 use truecost::echo::printable;
-use truecost::objectives::parametric::discount_breakpoints;
+use truecost::objectives::parametric::{discount_breakpoints_with, MAX_PROBE_WORK};
 use truecost::objectives::report::{
     discount_json, discount_latex, discount_markdown, discount_text,
 };
@@ -116,7 +117,31 @@ fn latex_set(source: &str, set: &DiscountSet) -> String {
 
 /// The parametric analysis of a stochastic model (issue 11, item 3).
 fn breakpoints(model: Model, format: CompareFormat) -> Result<String, String> {
-    let d = discount_breakpoints(&model).map_err(|e| e.to_string())?;
+    use std::io::IsTerminal;
+    let bar = if std::io::stderr().is_terminal() {
+        let bar = ProgressBar::with_draw_target(Some(100), ProgressDrawTarget::stderr());
+        bar.set_style(
+            ProgressStyle::with_template(
+                "{spinner} {msg} [{bar:20}] work {pos}% of the bound {elapsed}",
+            )
+            .expect("a valid template")
+            .progress_chars("=> "),
+        );
+        bar
+    } else {
+        ProgressBar::hidden()
+    };
+    let d = discount_breakpoints_with(&model, &mut |p| {
+        bar.set_position((p.work * 100 / MAX_PROBE_WORK) as u64);
+        bar.set_message(format!(
+            "probe {} ({} regions, {} gaps)",
+            p.probes + 1,
+            p.regions,
+            p.gaps
+        ));
+    });
+    bar.finish_and_clear();
+    let d = d.map_err(|e| e.to_string())?;
     Ok(match format {
         CompareFormat::Text => discount_text(&model, &d),
         CompareFormat::Json => pretty(&discount_json(&model, &d)),

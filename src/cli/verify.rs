@@ -8,7 +8,9 @@ use clap::{Args, Subcommand, ValueEnum};
 use num_bigint::BigInt;
 use serde_json::json;
 
-use truecost::claims::c4::{bonus_analysis, contains_unscaled, End, Instance, Interval};
+use truecost::claims::c4::{
+    bonus_analysis, bonus_policy_limit, contains_unscaled, End, Instance, Interval,
+};
 use truecost::claims::exact::Q;
 use truecost::claims::{report, Scope};
 use truecost::model::{file, Problem};
@@ -357,7 +359,10 @@ fn bonus(
 ) -> Result<String, String> {
     use truecost::claims::c4::BonusError;
     let (inst, d) = Instance::from_problem(problem)?;
-    let sets = match (bonus_analysis(&inst, 1 << 22), environment) {
+    let sets = match (
+        bonus_analysis(&inst, bonus_policy_limit(inst.moves.len())),
+        environment,
+    ) {
         (
             Err(
                 e @ (BonusError::TooManyPolicies { .. }

@@ -81,6 +81,65 @@ pub const MAX_CHAIN_DEGREE: usize = 200;
 /// The most probes (regions of optimal policies) the covering of `(0, 1)` may take.
 pub const MAX_REGIONS: usize = 2_000;
 
+/// The most work the probes of one stochastic analysis may do together, in units of
+/// [`probe_work`] (`n⁴·b⁴` per probe). Measured on random stochastic problems (release, one
+/// core, 30–50 running states, probabilities with denominators 4, 97 and 997): a probe takes
+/// about one second per 1.3·10¹¹ units, so this bound (≈ 1.8·10¹³) keeps an analysis to about
+/// two minutes; checked before every probe.
+pub const MAX_PROBE_WORK: u128 = 1 << 44;
+
+/// The most work one probe may take before any work starts: a problem that cannot afford 16
+/// probes within [`MAX_PROBE_WORK`] is refused at once.
+pub const MAX_SINGLE_PROBE_WORK: u128 = MAX_PROBE_WORK / 16;
+
+/// The estimated work of one probe of a stochastic analysis: `n⁴·b⁴`, with `n` the running
+/// states (the degree of the rational functions and the size of the exact solve) and `b` the
+/// bits of the numbers that enter them: the lcm of every probability denominator, the lcm of
+/// every stage-cost denominator and the largest stage-cost numerator (exact policy iteration
+/// scales a policy's equations by these lcms, and root isolation grows with a high power of
+/// the coefficients' size). The exponents fit the measurements of [`MAX_PROBE_WORK`].
+///
+/// ```
+/// use truecost::objectives::parametric::probe_work;
+/// assert_eq!(probe_work(10, 4), 10u128.pow(4) * 4u128.pow(4));
+/// assert_eq!(probe_work(0, 0), 1);
+/// ```
+pub fn probe_work(running: usize, bits: u64) -> u128 {
+    let (n, b) = (running.max(1) as u128, bits.max(1) as u128);
+    n.pow(4).saturating_mul(b.pow(4))
+}
+
+/// The bits `b` of [`probe_work`] for a model: over the actions of the running states.
+fn number_bits(model: &Model, running: &[StateId]) -> u64 {
+    use num_integer::Integer;
+    let p = &model.problem;
+    let (mut probabilities, mut rewards) = (BigInt::one(), BigInt::one());
+    let mut numerator = 0;
+    for &x in running {
+        for a in p.actions(x) {
+            rewards = rewards.lcm(model.reward[a].denom());
+            numerator = numerator.max(model.reward[a].numer().bits());
+            for o in p.outcomes(a) {
+                probabilities = probabilities.lcm(o.probability.denom());
+            }
+        }
+    }
+    probabilities.bits() + rewards.bits() + numerator
+}
+
+/// What [`discount_breakpoints_with`] is doing, for a progress display.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ProbeProgress {
+    /// Probes run (exact policy iterations at a rational `α`).
+    pub probes: usize,
+    /// Regions of `(0, 1)` with a known optimal policy set.
+    pub regions: usize,
+    /// Gaps of `(0, 1)` still to cover.
+    pub gaps: usize,
+    /// Work done, in units of [`probe_work`], and the bound [`MAX_PROBE_WORK`].
+    pub work: u128,
+}
+
 /// Why the parametric analysis refused or failed. One line each.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum ParametricError {
@@ -99,6 +158,30 @@ pub enum ParametricError {
         degree: usize,
         /// [`MAX_CHAIN_DEGREE`].
         bound: usize,
+    },
+    /// One probe alone would exceed [`MAX_SINGLE_PROBE_WORK`].
+    #[error("one exact probe of this problem is estimated at {work} units ({states} running states, numbers of {bits} bits: n^4 b^4); the exact parametric analysis takes at most {bound} per probe (about 8 s)")]
+    ProbeWork {
+        /// Running states.
+        states: usize,
+        /// Bits of the numbers.
+        bits: u64,
+        /// Estimated units.
+        work: u128,
+        /// [`MAX_SINGLE_PROBE_WORK`].
+        bound: u128,
+    },
+    /// The probes together would exceed [`MAX_PROBE_WORK`].
+    #[error("the exact parametric analysis stopped after {probes} probes ({regions} regions of (0,1) covered, {gaps} gaps left): the next probe would pass its work bound of {bound} units (about two minutes); the problem has too many breakpoints for numbers this size")]
+    Work {
+        /// Probes run.
+        probes: usize,
+        /// Regions found.
+        regions: usize,
+        /// Gaps left.
+        gaps: usize,
+        /// [`MAX_PROBE_WORK`].
+        bound: u128,
     },
     /// Too many regions: the piece bound.
     #[error("the discount-optimal policy changes more than {0} times on (0,1): beyond the bound of the exact parametric analysis")]
@@ -1002,6 +1085,17 @@ fn most_truecost(
 /// assert_eq!(d.intervals[1].achievement.success.min.to_string(), "1");
 /// ```
 pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, ParametricError> {
+    discount_breakpoints_with(model, &mut |_| {})
+}
+
+/// [`discount_breakpoints`], calling `progress` before every probe. The result does not
+/// depend on `progress`. Stochastic problems are refused before any work when one probe would
+/// exceed [`MAX_SINGLE_PROBE_WORK`], and while running when the next probe would take the
+/// work past [`MAX_PROBE_WORK`].
+pub fn discount_breakpoints_with(
+    model: &Model,
+    progress: &mut dyn FnMut(ProbeProgress),
+) -> Result<DiscountAnalysis, ParametricError> {
     let p = &model.problem;
     let running: Vec<StateId> = (0..p.states()).filter(|&x| !model.terminal[x]).collect();
     let deterministic = is_deterministic(model);
@@ -1011,6 +1105,23 @@ pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, Parametri
             bound: MAX_RUNNING_STATES,
         });
     }
+    // Deterministic problems have their own bound (the chain degree, checked while running).
+    let per_probe = if deterministic {
+        0
+    } else {
+        let bits = number_bits(model, &running);
+        let work = probe_work(running.len(), bits);
+        if work > MAX_SINGLE_PROBE_WORK {
+            return Err(ParametricError::ProbeWork {
+                states: running.len(),
+                bits,
+                work,
+                bound: MAX_SINGLE_PROBE_WORK,
+            });
+        }
+        work
+    };
+    let mut work = 0u128;
     let mut index = vec![None; p.states()];
     for (i, &x) in running.iter().enumerate() {
         index[x] = Some(i);
@@ -1025,6 +1136,21 @@ pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, Parametri
         }
         let mut found = None;
         for t in probe_points(l.as_ref(), r.as_ref()) {
+            if work + per_probe > MAX_PROBE_WORK {
+                return Err(ParametricError::Work {
+                    probes,
+                    regions: regions.len(),
+                    gaps: gaps.len() + 1,
+                    bound: MAX_PROBE_WORK,
+                });
+            }
+            progress(ProbeProgress {
+                probes,
+                regions: regions.len(),
+                gaps: gaps.len() + 1,
+                work,
+            });
+            work += per_probe;
             probes += 1;
             if let Some(region) = probe(model, &running, &index, &t, &mut degree, deterministic)? {
                 found = Some(region);

@@ -82,17 +82,17 @@ pub const MAX_CHAIN_DEGREE: usize = 200;
 pub const MAX_REGIONS: usize = 2_000;
 
 /// The most work the probes of one stochastic analysis may do together, in units of
-/// [`probe_work`] (`n⁴·b⁴` per probe). Measured on random stochastic problems (release, one
-/// core, 30–50 running states, probabilities with denominators 4, 97 and 997): a probe takes
-/// about one second per 1.3·10¹¹ units, so this bound (≈ 1.8·10¹³) keeps an analysis to about
-/// two minutes; checked before every probe.
-pub const MAX_PROBE_WORK: u128 = 1 << 44;
+/// [`probe_work`] (`n⁵·b⁴` per probe). Measured on random stochastic problems (release, a
+/// loaded 2-core machine, 30–50 running states, probabilities with denominators 4, 97 and
+/// 997): a probe takes about one second per 5·10¹² units, so this bound (≈ 5.6·10¹⁴) keeps an
+/// analysis to about two minutes; checked before every probe.
+pub const MAX_PROBE_WORK: u128 = 1 << 49;
 
 /// The most work one probe may take before any work starts: a problem that cannot afford 16
 /// probes within [`MAX_PROBE_WORK`] is refused at once.
 pub const MAX_SINGLE_PROBE_WORK: u128 = MAX_PROBE_WORK / 16;
 
-/// The estimated work of one probe of a stochastic analysis: `n⁴·b⁴`, with `n` the running
+/// The estimated work of one probe of a stochastic analysis: `n⁵·b⁴`, with `n` the running
 /// states (the degree of the rational functions and the size of the exact solve) and `b` the
 /// bits of the numbers that enter them: the lcm of every probability denominator, the lcm of
 /// every stage-cost denominator and the largest stage-cost numerator (exact policy iteration
@@ -101,12 +101,12 @@ pub const MAX_SINGLE_PROBE_WORK: u128 = MAX_PROBE_WORK / 16;
 ///
 /// ```
 /// use truecost::objectives::parametric::probe_work;
-/// assert_eq!(probe_work(10, 4), 10u128.pow(4) * 4u128.pow(4));
+/// assert_eq!(probe_work(10, 4), 10u128.pow(5) * 4u128.pow(4));
 /// assert_eq!(probe_work(0, 0), 1);
 /// ```
 pub fn probe_work(running: usize, bits: u64) -> u128 {
     let (n, b) = (running.max(1) as u128, bits.max(1) as u128);
-    n.pow(4).saturating_mul(b.pow(4))
+    n.pow(5).saturating_mul(b.pow(4))
 }
 
 /// The bits `b` of [`probe_work`] for a model: over the actions of the running states.
@@ -160,7 +160,7 @@ pub enum ParametricError {
         bound: usize,
     },
     /// One probe alone would exceed [`MAX_SINGLE_PROBE_WORK`].
-    #[error("one exact probe of this problem is estimated at {work} units ({states} running states, numbers of {bits} bits: n^4 b^4); the exact parametric analysis takes at most {bound} per probe (about 8 s)")]
+    #[error("one exact probe of this problem is estimated at {work} units ({states} running states, numbers of {bits} bits: n^5 b^4); the exact parametric analysis takes at most {bound} per probe (about 7 s)")]
     ProbeWork {
         /// Running states.
         states: usize,

@@ -1,0 +1,339 @@
+"""The importer on hand-written toy-text tables (no Gymnasium needed for most tests)."""
+
+import itertools
+import os
+import shutil
+import subprocess
+import sys
+import unittest
+from fractions import Fraction
+
+from truecost_gym import ImportRefused, import_table, to_json
+from truecost_gym.importer import BAD_TABLE, UNSUPPORTED
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PYTHON_DIR = os.path.dirname(HERE)
+REPO = os.path.dirname(PYTHON_DIR)
+
+# A toy-text table written by hand (Gymnasium's convention P[s][a] = [(p, s', r, terminated)]):
+# state 0 the start, 1 a corridor, 2 the goal (+10 on entry), 3 a pit (-5 on entry).
+#   state 0, action 0 (walk): to the corridor, reward -1 (listed twice, 0.5 each, as Gymnasium
+#            lists outcomes of different slips that land on the same cell);
+#   state 0, action 1 (jump): the goal with probability 2/3, the pit with 1/3;
+#   state 1, action 0 (push): reward -2 and stay with probability 1/3, the goal with 2/3;
+#   state 1, action 1 (back): to the start, reward -1.
+# Initial distribution: 3/4 on the start, 1/4 in the corridor.
+TWO_THIRDS, ONE_THIRD = 2 / 3, 1 / 3
+TINY_P = {
+    0: {0: [(0.5, 1, -1.0, False), (0.5, 1, -1.0, False)],
+        1: [(TWO_THIRDS, 2, 10.0, True), (ONE_THIRD, 3, -5.0, True)]},
+    1: {0: [(ONE_THIRD, 1, -2.0, False), (TWO_THIRDS, 2, 10.0, True)],
+        1: [(1.0, 0, -1.0, False)]},
+    2: {0: [(1.0, 2, 0.0, True)], 1: [(1.0, 2, 0.0, True)]},
+    3: {0: [(1.0, 3, 0.0, True)], 1: [(1.0, 3, 0.0, True)]},
+}
+TINY_ISD = [0.75, 0.25, 0.0, 0.0]
+
+
+def optimum_by_enumeration(problem):
+    """The least expected cost from the initial state over the stationary deterministic
+    policies that reach a goal with probability 1 (exact Gaussian elimination per policy):
+    an oracle independent of the importer and of truecost's solvers."""
+    n = problem["states"]
+    goals = set(problem["goals"])
+    acts = problem["actions"]
+    choices = [range(len(acts[x])) if x not in goals else [None] for x in range(n)]
+    best = None
+    for policy in itertools.product(*choices):
+        succ = {x: [(o["to"], Fraction(o["p"])) for o in acts[x][policy[x]]["outcomes"]]
+                for x in range(n) if x not in goals}
+        # Proper from the initial state: every state it reaches can reach a goal.
+        reach = {problem["initial"]}
+        stack = list(reach)
+        while stack:
+            x = stack.pop()
+            for y, _ in succ.get(x, []):
+                if y not in reach:
+                    reach.add(y)
+                    stack.append(y)
+        can = set(goals)
+        changed = True
+        while changed:
+            changed = False
+            for x, out in succ.items():
+                if x not in can and any(y in can for y, _ in out):
+                    can.add(x)
+                    changed = True
+        if not reach <= can:
+            continue
+        # Solve (I - P) G = c on the reached non-goal states.
+        xs = sorted(reach - goals)
+        idx = {x: i for i, x in enumerate(xs)}
+        m = len(xs)
+        a = [[Fraction(int(i == j)) for j in range(m)] + [Fraction(acts[x][policy[x]]["cost"])]
+             for i, x in enumerate(xs)]
+        for i, x in enumerate(xs):
+            for y, p in succ[x]:
+                if y in idx:
+                    a[i][idx[y]] -= p
+        for c in range(m):
+            r = next(r for r in range(c, m) if a[r][c] != 0)
+            a[c], a[r] = a[r], a[c]
+            for r in range(m):
+                if r != c and a[r][c] != 0:
+                    f = a[r][c] / a[c][c]
+                    a[r] = [u - f * v for u, v in zip(a[r], a[c])]
+        g = a[idx[problem["initial"]]][m] / a[idx[problem["initial"]]][idx[problem["initial"]]]
+        if best is None or g < best:
+            best = g
+    return best
+
+
+def optimum_by_enumeration_moves(problem):
+    """``optimum_by_enumeration`` on a file whose moves ``{to, cost}`` are read as one outcome."""
+    as_outcomes = dict(problem)
+    as_outcomes["actions"] = [
+        [a if "outcomes" in a else {"cost": a["cost"], "outcomes": [{"to": a["to"], "p": "1"}]}
+         for a in row]
+        for row in problem["actions"]
+    ]
+    return optimum_by_enumeration(as_outcomes)
+
+
+def truecost_binary():
+    for build in ("release", "debug"):
+        path = os.path.join(REPO, "target", build, "truecost")
+        if os.access(path, os.X_OK):
+            return path
+    return shutil.which("truecost")
+
+
+class TinyTable(unittest.TestCase):
+    def setUp(self):
+        self.problem, self.report = import_table(TINY_P, 4, 2, TINY_ISD, env_name="tiny")
+
+    def test_file_contents_by_hand(self):
+        p = self.problem
+        self.assertEqual((p["format"], p["states"], p["initial"], p["goals"]),
+                         ("truecost-stochastic/1", 5, 4, [2]))
+        self.assertEqual(self.report["traps"], [3])
+        acts = p["actions"]
+        # Walk: the two entries to the corridor merged; reward -1 costs 1.
+        self.assertEqual(acts[0][0], {"cost": "1", "outcomes": [{"to": 1, "p": "1"}]})
+        # Jump: 2/3 * 1 (a positive reward costs one step) + 1/3 * 5 = 7/3.
+        self.assertEqual(acts[0][1], {"cost": "7/3", "outcomes": [{"to": 2, "p": "2/3"},
+                                                                   {"to": 3, "p": "1/3"}]})
+        # Push: 1/3 * 2 + 2/3 * 1 = 4/3.
+        self.assertEqual(acts[1][0]["cost"], "4/3")
+        self.assertEqual(acts[2], [], "the goal terminates")
+        self.assertEqual(acts[3], [{"cost": "0", "outcomes": [{"to": 3, "p": "1"}]}], "a trap")
+        self.assertEqual(acts[4], [{"cost": "0", "outcomes": [{"to": 0, "p": "3/4"},
+                                                              {"to": 1, "p": "1/4"}]}])
+        self.assertEqual(self.report["merged_outcomes"], 1)
+
+    def test_optimum_known_by_hand(self):
+        # Corridor: G(1) = 4/3 + G(1)/3, so G(1) = 2; start: walk 1 + G(1) = 3 (the jump may
+        # fall into the pit: not proper). From the initial distribution 3/4 * 3 + 1/4 * 2.
+        self.assertEqual(optimum_by_enumeration(self.problem), Fraction(11, 4))
+        binary = truecost_binary()
+        if binary is None:
+            self.skipTest("no truecost binary built")
+        import json
+        import tempfile
+
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "tiny.json")
+            with open(path, "w") as f:
+                f.write(to_json(self.problem))
+            out = subprocess.run([binary, "solve", "--file", path, "--algorithm", "exact",
+                                  "--format", "json"], capture_output=True, text=True, check=True)
+            self.assertEqual(json.loads(out.stdout)["cost_to_go_initial"], "11/4")
+
+    def test_every_recovered_value_is_reported(self):
+        by_float = {(v["kind"], v["float"]): v for v in self.report["values"]}
+        self.assertEqual(by_float[("probability", repr(TWO_THIRDS))]["value"], "2/3")
+        self.assertEqual(by_float[("probability", repr(ONE_THIRD))]["value"], "1/3")
+        self.assertEqual(by_float[("initial probability", "0.75")]["how"], "exact")
+        self.assertEqual(by_float[("reward", "-5.0")]["value"], "-5")
+
+    def test_compact_and_pretty_texts_hold_the_same_problem(self):
+        import json
+
+        self.assertEqual(json.loads(to_json(self.problem, compact=True)), self.problem)
+        self.assertEqual(json.loads(to_json(self.problem)), self.problem)
+
+    def test_single_outcomes_as_moves(self):
+        p, report = import_table(TINY_P, 4, 2, TINY_ISD, deterministic_moves=True)
+        acts = p["actions"]
+        self.assertEqual(acts[0][0], {"to": 1, "cost": "1"}, "merged to one outcome: a move")
+        self.assertIn("outcomes", acts[0][1], "the jump stays stochastic")
+        self.assertEqual(acts[1][1], {"to": 0, "cost": "1"})
+        self.assertEqual(acts[3], [{"to": 3, "cost": "0"}], "the trap's self-loop")
+        self.assertTrue(report["deterministic_moves"])
+        self.assertEqual(optimum_by_enumeration_moves(p), Fraction(11, 4))
+
+    def test_goals_may_be_named(self):
+        p, report = import_table(TINY_P, 4, 2, TINY_ISD, goals=[2, 3])
+        self.assertEqual((p["goals"], report["traps"]), ([2, 3], []))
+
+
+class Refusals(unittest.TestCase):
+    def test_row_summing_to_one_minus_1e9_refused(self):
+        P = {s: dict(r) for s, r in TINY_P.items()}
+        P[1][0] = [(0.5, 1, -2.0, False), (0.5 - 1e-9, 2, 10.0, True)]
+        with self.assertRaises(ImportRefused) as c:
+            import_table(P, 4, 2, TINY_ISD, env_name="tiny")
+        msg = str(c.exception)
+        self.assertIn("state 1, action 0", msg)
+        self.assertIn("not exactly 1", msg)
+        self.assertIn("1 - 1e-09", msg)
+        self.assertEqual(c.exception.status, BAD_TABLE)
+        self.assertNotIn("\n", msg)
+
+    def test_exact_binary_refuses_gymnasiums_thirds(self):
+        P = {s: dict(r) for s, r in TINY_P.items()}
+        third = (1 - 1 / 3) / 2  # FrozenLake's 0.33333333333333337
+        P[1][0] = [(third, 1, -2.0, False), (1 / 3, 0, -2.0, False), (third, 2, 10.0, True)]
+        p, _ = import_table(P, 4, 2, TINY_ISD)
+        self.assertEqual([o["p"] for o in p["actions"][1][0]["outcomes"]], ["1/3"] * 3)
+        with self.assertRaises(ImportRefused) as c:
+            import_table(P, 4, 2, TINY_ISD, exact_binary=True)
+        # The floats 2/3 and 1/3 of the jump already sum to 1 - 2^-54 in exact binary.
+        self.assertIn("state 0, action 1", str(c.exception))
+        self.assertIn("(1 - 5.55e-17) in exact binary", str(c.exception))
+        P[0][1] = [(0.5, 2, 10.0, True), (0.5, 3, -5.0, True)]
+        with self.assertRaises(ImportRefused) as c:
+            import_table(P, 4, 2, TINY_ISD, exact_binary=True)
+        self.assertIn("state 1, action 0", str(c.exception))
+        self.assertIn("(1 + 5.55e-17) in exact binary", str(c.exception))
+
+    def test_state_entered_with_and_without_termination_refused(self):
+        P = {s: dict(r) for s, r in TINY_P.items()}
+        P[1][1] = [(1.0, 3, -1.0, False)]  # walks into the pit without ending the episode
+        with self.assertRaises(ImportRefused) as c:
+            import_table(P, 4, 2, TINY_ISD)
+        self.assertIn("state 3 is entered with terminated=True", str(c.exception))
+
+    def test_no_goal_refused(self):
+        P = {s: {a: [(1.0, s, -1.0, False)] for a in (0, 1)} for s in range(2)}
+        with self.assertRaises(ImportRefused) as c:
+            import_table(P, 2, 2, [1.0, 0.0])
+        self.assertIn("--goals", str(c.exception))
+
+    def test_initial_distribution_required_and_checked(self):
+        with self.assertRaises(ImportRefused):
+            import_table(TINY_P, 4, 2, None)
+        with self.assertRaises(ImportRefused) as c:
+            import_table(TINY_P, 4, 2, [0.5, 0.25, 0.0, 0.0])
+        self.assertIn("initial distribution sums to 3/4", str(c.exception))
+        p, _ = import_table(TINY_P, 4, 2, 1)
+        self.assertEqual((p["states"], p["initial"]), (4, 1))
+
+    def test_bad_entries_refused(self):
+        for entries, needle in [([(1.0, 7, -1.0, False)], "next state 7"),
+                                ([(1.5, 0, -1.0, False)], "not in [0, 1]"),
+                                ([(1.0, 0, float("nan"), False)], "not a finite number"),
+                                ([(1.0, 0)], "not (probability, next_state, reward, terminated)"),
+                                ([], "state 0, action 0: no outcome of positive probability"),
+                                ([(0.0, 1, -1.0, False)], "no outcome of positive probability")]:
+            P = {s: dict(r) for s, r in TINY_P.items()}
+            P[0][0] = entries
+            with self.subTest(needle=needle), self.assertRaises(ImportRefused) as c:
+                import_table(P, 4, 2, TINY_ISD)
+            self.assertIn(needle, str(c.exception))
+
+
+class Doctests(unittest.TestCase):
+    def test_importer_doctests(self):
+        import doctest
+
+        from truecost_gym import importer
+
+        failures, tried = doctest.testmod(importer)
+        self.assertEqual(failures, 0)
+        self.assertGreater(tried, 0)
+
+
+try:
+    import gymnasium  # noqa: F401
+
+    HAVE_GYM = True
+except ImportError:
+    HAVE_GYM = False
+
+
+def run_cli(*args, cwd=None):
+    env = dict(os.environ, PYTHONPATH=PYTHON_DIR + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    return subprocess.run([sys.executable, "-m", "truecost_gym", *args], capture_output=True,
+                          text=True, cwd=cwd, env=env)
+
+
+BOX_MODULE = '''
+import gymnasium as gym
+import numpy as np
+from gymnasium import spaces
+
+
+class Continuous(gym.Env):
+    def __init__(self):
+        self.observation_space = spaces.Box(low=0.0, high=1.0, shape=(2,), dtype=np.float64)
+        self.action_space = spaces.Discrete(2)
+        self.P = {}
+
+
+gym.register("BoxWorld-v0", entry_point=Continuous)
+'''
+
+
+@unittest.skipUnless(HAVE_GYM, "gymnasium is not installed")
+class WithGymnasium(unittest.TestCase):
+    def test_box_space_refused_in_one_line_exit_2(self):
+        import tempfile
+
+        with tempfile.TemporaryDirectory() as d:
+            with open(os.path.join(d, "boxworld.py"), "w") as f:
+                f.write(BOX_MODULE)
+            out = run_cli("export", "BoxWorld-v0", "--module", "boxworld", "--out",
+                          os.path.join(d, "x.json"), cwd=d)
+            self.assertEqual(out.returncode, UNSUPPORTED, out.stderr)
+            self.assertEqual(len(out.stderr.strip().splitlines()), 1, out.stderr)
+            self.assertTrue(out.stderr.startswith("error: BoxWorld-v0: the observation space is Box"))
+            self.assertIn("not Discrete", out.stderr)
+            self.assertFalse(os.path.exists(os.path.join(d, "x.json")))
+
+    def test_environment_object_without_registration(self):
+        import gymnasium as gym
+        from gymnasium import spaces
+
+        from truecost_gym import from_env
+
+        class Tiny(gym.Env):
+            observation_space = spaces.Discrete(4)
+            action_space = spaces.Discrete(2)
+            P = TINY_P
+            isd = TINY_ISD
+
+        p, _ = from_env(Tiny(), "tiny")
+        self.assertEqual(p["actions"][0][1]["cost"], "7/3")
+        self.assertEqual(optimum_by_enumeration(p), Fraction(11, 4))
+
+    def test_usage_errors_are_one_line_exit_2(self):
+        for args in (["export", "FrozenLake-v1"], ["export", "NoSuchEnv-v0", "--out", "-"],
+                     ["export", "FrozenLake-v1", "--kwargs", "[1]", "--out", "-"],
+                     ["export", "FrozenLake-v1", "--max-denominator", "0", "--out", "-"]):
+            with self.subTest(args=args):
+                out = run_cli(*args)
+                self.assertEqual(out.returncode, 2, out.stderr)
+                self.assertEqual(len(out.stderr.strip().splitlines()), 1, out.stderr)
+                self.assertTrue(out.stderr.startswith("error: "), out.stderr)
+                self.assertEqual(out.stdout, "")
+
+    def test_exact_binary_refuses_slippery_frozenlake_naming_the_row(self):
+        out = run_cli("export", "FrozenLake-v1", "--exact-binary", "--out", "-")
+        self.assertEqual(out.returncode, BAD_TABLE)
+        self.assertIn("state 0, action 0: the probabilities sum to", out.stderr)
+        self.assertIn("(1 + 5.55e-17) in exact binary", out.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,221 @@
+"""Command line: ``python3 -m truecost_gym export ENV_ID [options] --out FILE.json``.
+
+Every refusal is one line on stderr (``error: ...``): exit status 2 for usage errors and for
+environments truecost cannot import (non-Discrete spaces, no transition table), 1 for a table
+that is inconsistent after recovery (a probability row not summing to 1, a state entered both
+with and without termination).
+"""
+
+import argparse
+import importlib
+import json
+import os
+import sys
+import tempfile
+
+from .importer import BAD_TABLE, UNSUPPORTED, ImportRefused, to_json
+from .rational import BINARY, DEFAULT_MAX_DENOMINATOR, DEFAULT_ULPS, EXACT
+
+SHOWN = 20  # recovered values listed on stderr (all of them are in --report)
+
+
+def _one_line(text, limit=300):
+    text = " ".join(str(text).split())
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+def fail(message, status):
+    print(f"error: {_one_line(message)}", file=sys.stderr)
+    sys.exit(status)
+
+
+class Parser(argparse.ArgumentParser):
+    def error(self, message):
+        fail(f"{message} (try --help)", 2)
+
+
+def _states(text):
+    try:
+        out = [int(t) for t in text.split(",") if t.strip()]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected comma-separated states, got {text!r}")
+    if not out:
+        raise argparse.ArgumentTypeError("expected at least one state")
+    return out
+
+
+def _positive(text):
+    try:
+        v = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
+    if v < 1:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
+    return v
+
+
+def _non_negative(text):
+    try:
+        v = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}")
+    if v < 0:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}")
+    return v
+
+
+def parser():
+    p = Parser(prog="python3 -m truecost_gym",
+               description="A discrete Gymnasium environment as a truecost problem file.")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=Parser)
+    e = sub.add_parser(
+        "export",
+        help="write ENV_ID's transition table as a truecost-stochastic/1 file",
+        description="Write the environment's transition table env.unwrapped.P as a "
+        "truecost-stochastic/1 problem file with exact probabilities and truecost stage costs "
+        "(reward r < 0 costs -r, r >= 0 costs 1), for truecost solve|compare|discount --file.",
+    )
+    e.add_argument("env_id", metavar="ENV_ID",
+                   help="a registered id (FrozenLake-v1), or module:Id (Gymnasium imports the module)")
+    e.add_argument("--kwargs", metavar="JSON", default="{}",
+                   help="keyword arguments of gymnasium.make, as a JSON object")
+    e.add_argument("--module", metavar="MODULE", action="append", default=[],
+                   help="import MODULE first (it registers the environment); repeatable")
+    e.add_argument("--entry-point", metavar="MODULE:CLASS",
+                   help="register ENV_ID with this entry point first (a class that is not "
+                   "registered anywhere)")
+    e.add_argument("--out", metavar="FILE.json", required=True,
+                   help="the problem file to write ('-': standard output)")
+    e.add_argument("--report", metavar="FILE.json",
+                   help="also write every recovered value and every choice made, as JSON")
+    e.add_argument("--max-denominator", metavar="N", type=_positive,
+                   default=DEFAULT_MAX_DENOMINATOR,
+                   help=f"largest denominator of a recovered fraction (default {DEFAULT_MAX_DENOMINATOR})")
+    e.add_argument("--ulps", metavar="K", type=_non_negative, default=DEFAULT_ULPS,
+                   help="when no fraction rounds to the float, accept the simplest one within K "
+                   f"units in the last place (default {DEFAULT_ULPS}; 0: rounding interval only)")
+    e.add_argument("--exact-binary", action="store_true",
+                   help="keep every float's exact binary value (no recovery)")
+    e.add_argument("--goals", metavar="S,S,...", type=_states,
+                   help="the goal states (default: the terminal states entered with the greatest "
+                   "terminal reward)")
+    e.add_argument("--initial", metavar="STATE", type=_non_negative,
+                   help="the initial state (default: the environment's initial_state_distrib or isd)")
+    e.add_argument("--deterministic-moves", action="store_true",
+                   help="write an action with a single outcome as a move {to, cost}: a table "
+                   "without randomness becomes a deterministic problem file (for verify --claim "
+                   "C4, learn, solve --algorithm dijkstra)")
+    e.add_argument("--compact", action="store_true",
+                   help="one state's actions per line (default: the layout of truecost export)")
+    e.add_argument("--quiet", action="store_true",
+                   help="do not list the recovered values on stderr")
+    return p
+
+
+def _write(path, text):
+    if path == "-":
+        sys.stdout.write(text)
+        return
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(dir=folder, prefix=".truecost_gym.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def export(args):
+    try:
+        kwargs = json.loads(args.kwargs)
+    except json.JSONDecodeError as e:
+        fail(f"--kwargs: not JSON: {e}", 2)
+    if not isinstance(kwargs, dict):
+        fail("--kwargs: expected a JSON object", 2)
+    for folder in (args.out, args.report):
+        if folder and folder != "-":
+            d = os.path.dirname(os.path.abspath(folder))
+            if not os.path.isdir(d):
+                fail(f"{folder}: no such directory {d}", 2)
+    if "" not in sys.path and os.getcwd() not in sys.path:
+        sys.path.insert(0, os.getcwd())
+    for name in args.module:
+        try:
+            importlib.import_module(name)
+        except Exception as e:  # the user's module: any failure is reported in one line
+            fail(f"--module {name}: {type(e).__name__}: {e}", 2)
+    try:
+        import gymnasium
+    except ImportError:
+        fail("gymnasium is not installed (pip install gymnasium)", 2)
+    if args.entry_point:
+        if ":" not in args.entry_point:
+            fail(f"--entry-point {args.entry_point}: expected MODULE:CLASS", 2)
+        gymnasium.register(id=args.env_id, entry_point=args.entry_point)
+    try:
+        env = gymnasium.make(args.env_id, **kwargs)
+    except Exception as e:  # unknown ids, bad keyword arguments, the user's constructor
+        fail(f"cannot make {args.env_id}: {type(e).__name__}: {e}", 2)
+    from .environment import from_env
+
+    try:
+        problem, report = from_env(env, args.env_id, initial=args.initial,
+                                   max_denominator=args.max_denominator, ulps=args.ulps,
+                                   exact_binary=args.exact_binary, goals=args.goals,
+                                   deterministic_moves=args.deterministic_moves)
+    except ImportRefused as e:
+        fail(str(e), e.status)
+    options = "" if not kwargs else " " + json.dumps(kwargs, separators=(",", ":"))
+    extra = report["initial_distribution"]
+    name = f"{args.env_id}{options} (Gymnasium {gymnasium.__version__}"
+    if extra is not None:
+        name += f"; state {extra['extra_state']} draws the initial state"
+    name += "; truecost stage costs)"
+    problem["name"] = name
+    report["gymnasium_version"] = gymnasium.__version__
+    report["env_id"] = args.env_id
+    report["kwargs"] = kwargs
+    _write(args.out, to_json(problem, compact=args.compact))
+    if args.report:
+        _write(args.report, json.dumps(report, indent=2) + "\n")
+    if not args.quiet:
+        listed = [v for v in report["values"] if v["how"] != EXACT]
+        for v in listed[:SHOWN]:
+            what = "kept" if v["how"] == BINARY else "recovered"
+            print(f"{what} {v['kind']} {v['float']} = {v['value']} ({v['how']}; "
+                  f"{v['entries']} entries, first {v['first']})", file=sys.stderr)
+        if len(listed) > SHOWN:
+            print(f"... and {len(listed) - SHOWN} more recovered values (--report lists them)",
+                  file=sys.stderr)
+    binary = len(report["binary"])
+    note = f"; {binary} values kept in exact binary" if binary and not args.exact_binary else ""
+    if args.out != "-":
+        print(f"wrote {args.out} ({report['states']} states, {report['actions']} actions; "
+              f"goals {_short(report['goals'])}, traps {_short(report['traps'])}{note})")
+    return 0
+
+
+def _short(states, limit=8):
+    if len(states) <= limit:
+        return "[" + ", ".join(map(str, states)) + "]"
+    return "[" + ", ".join(map(str, states[:limit])) + f", ... {len(states)} in all]"
+
+
+def main(argv=None):
+    args = parser().parse_args(argv)
+    if args.command == "export":
+        return export(args)
+    return BAD_TABLE
+
+
+if __name__ == "__main__":
+    sys.exit(main())
+
+
+__all__ = ["main", "parser", "UNSUPPORTED"]

@@ -1,0 +1,354 @@
+"""A discrete Gymnasium environment's transition table as a truecost stochastic problem file.
+
+The input is the toy-text convention: ``env.unwrapped.P[s][a]`` is a list of
+``(probability, next_state, reward, terminated)`` for every state ``s`` of a ``Discrete``
+observation space and every action ``a`` of a ``Discrete`` action space, and
+``env.unwrapped.initial_state_distrib`` (or ``isd``) the initial distribution. The output is the
+``truecost-stochastic/1`` JSON that ``truecost solve|compare|discount --file`` read, built the
+way ``truecost export --env`` builds the built-in environments:
+
+* **terminal states** are the states entered by a transition with ``terminated=True`` from a
+  state where the episode runs (reachable from the initial distribution without ending the
+  episode); a state entered both with and without termination is refused. States no episode
+  reaches keep Gymnasium's actions (Taxi's 96 states "passenger delivered, taxi elsewhere").
+  Among them the **goals** are those entered with the greatest reward of any terminated
+  transition (FrozenLake's goal +1 against the holes' 0, CliffWalking's single terminal state,
+  Taxi's deliveries +20); the others are **traps** (the episode ends in failure). ``goals=``
+  overrides the choice. A goal has no action (termination, cost 0); a trap a single zero-cost
+  self-loop, so that no policy entering it reaches a goal.
+* **stage costs** (the paper's truecost, SPEC §1 and §3): an outcome with reward ``r < 0``
+  costs ``-r`` (the environment's own penalty: CliffWalking's -1 per step and -100 per fall,
+  Taxi's -10 for an illegal action); an outcome with ``r >= 0`` costs 1, one step (FrozenLake's
+  0 and +1, Taxi's +20 delivery, whose reward is a terminal bonus, not a cost). An action costs
+  the expectation over its outcomes: the file's cost is paid whatever the outcome, and equal
+  expectations give equal expected totals.
+* **outcomes**: zero-probability entries are dropped, entries to the same next state merged
+  (probabilities added, first appearance order), as ``truecost export --env`` does.
+* **initial state**: a single state of probability 1 is the file's ``initial``; a distribution
+  becomes one extra state (numbered ``|X|``, the new initial state) whose single zero-cost action
+  draws the initial state (truecost and reach values unchanged, every path one step longer).
+
+Every float is recovered as an exact fraction by :mod:`truecost_gym.rational`; a probability row
+that does not sum to exactly 1 after recovery is refused, naming the state and action.
+"""
+
+import json
+from fractions import Fraction
+
+from .rational import (
+    BINARY,
+    DEFAULT_MAX_DENOMINATOR,
+    DEFAULT_ULPS,
+    float_text,
+    recover,
+)
+
+FORMAT = "truecost-stochastic/1"
+
+#: Exit status of a refusal: 2 for an environment truecost cannot import (its kind: spaces,
+#: no transition table), 1 for a table that is malformed or inconsistent.
+UNSUPPORTED, BAD_TABLE = 2, 1
+
+
+class ImportRefused(Exception):
+    """A one-line refusal with its exit status."""
+
+    def __init__(self, message, status=BAD_TABLE):
+        super().__init__(message)
+        self.status = status
+
+
+def _space_size(space, what, env_name):
+    name = type(space).__name__
+    n = getattr(space, "n", None)
+    if name != "Discrete" or n is None:
+        raise ImportRefused(
+            f"{env_name}: the {what} space is {space!r}, not Discrete: truecost imports finite "
+            "environments with a transition table (env.unwrapped.P) only",
+            UNSUPPORTED,
+        )
+    start = int(getattr(space, "start", 0))
+    if start != 0:
+        raise ImportRefused(
+            f"{env_name}: the {what} space {space!r} starts at {start}; the transition table "
+            "convention numbers states and actions from 0",
+            UNSUPPORTED,
+        )
+    return int(n)
+
+
+class _Values:
+    """Recovers floats and records each distinct one (kind, text) once for the report."""
+
+    def __init__(self, env_name, max_denominator, ulps, exact_binary):
+        self.env_name = env_name
+        self.max_denominator = max_denominator
+        self.ulps = ulps
+        self.exact_binary = exact_binary
+        self.seen = {}
+
+    def get(self, kind, x, where):
+        key = (kind, float_text(x))
+        entry = self.seen.get(key)
+        if entry is None:
+            try:
+                r = recover(x, self.max_denominator, self.ulps, self.exact_binary)
+            except (TypeError, ValueError) as e:
+                raise ImportRefused(f"{self.env_name}: {where}: {kind} {x!r}: {e}") from None
+            entry = {"kind": kind, "float": r.text, "value": str(r.value), "how": r.how,
+                     "entries": 0, "first": where, "_exact": r.value}
+            self.seen[key] = entry
+        entry["entries"] += 1
+        return entry["_exact"]
+
+    def report(self):
+        return [{k: v for k, v in e.items() if not k.startswith("_")}
+                for e in self.seen.values()]
+
+
+def _entries(P, s, a, env_name):
+    try:
+        row = P[s][a]
+    except (KeyError, IndexError, TypeError):
+        raise ImportRefused(f"{env_name}: P[{s}][{a}] is missing from the transition table") from None
+    out = []
+    for i, t in enumerate(row):
+        if not isinstance(t, (tuple, list)) or len(t) != 4:
+            raise ImportRefused(
+                f"{env_name}: P[{s}][{a}][{i}] is {t!r}, not (probability, next_state, reward, "
+                "terminated)"
+            )
+        out.append(t)
+    return out
+
+
+def _off_one(total):
+    """``total`` exactly, and how far from 1 (a float's repr would print 1.0 for 1 + 2^-54)."""
+    diff = total - 1
+    sign = "+" if diff > 0 else "-"
+    text = str(total)
+    if len(text) > 60:
+        text = text[:28] + "…" + text[-28:]
+    return f"{text} (1 {sign} {float(abs(diff)):.3g})"
+
+
+def truecost_cost(reward):
+    """The paper's stage cost of one outcome (module docs): ``-r`` for ``r < 0``, else 1.
+
+    >>> truecost_cost(Fraction(-100)), truecost_cost(Fraction(20)), truecost_cost(Fraction(0))
+    (Fraction(100, 1), Fraction(1, 1), Fraction(1, 1))
+    """
+    return -reward if reward < 0 else Fraction(1)
+
+
+def import_table(P, n_states, n_actions, initial, *, env_name="environment",
+                 max_denominator=DEFAULT_MAX_DENOMINATOR, ulps=DEFAULT_ULPS,
+                 exact_binary=False, goals=None, deterministic_moves=False):
+    """Builds the problem from a transition table (module docs).
+
+    ``P[s][a]``: lists of ``(p, s', r, terminated)``; ``initial``: a sequence of ``n_states``
+    probabilities, or one state (an ``int``); ``goals``: the goal states, overriding the rule of
+    the module docs. Returns ``(problem, report)``: ``problem`` is a dict in the file's key
+    order with exact strings, ``report`` a dict describing every recovered value and every
+    choice made. ``deterministic_moves`` writes an action with a single outcome as a move
+    ``{"to": y, "cost": c}``: a table without randomness then makes a deterministic problem
+    file, which the commands on deterministic problems also read (``verify --claim C4``,
+    ``learn``, ``solve --algorithm dijkstra``). Raises :class:`ImportRefused` (one line, naming
+    the state and action).
+    """
+    values = _Values(env_name, max_denominator, ulps, exact_binary)
+    after = "in exact binary" if exact_binary else "after recovery"
+    # Pass 1: read and recover every entry with positive probability.
+    table = []
+    for s in range(n_states):
+        row = []
+        for a in range(n_actions):
+            outcomes = []
+            for i, (p, nxt, r, done) in enumerate(_entries(P, s, a, env_name)):
+                where = f"P[{s}][{a}][{i}]"
+                prob = values.get("probability", p, where)
+                if prob < 0 or prob > 1:
+                    raise ImportRefused(f"{env_name}: {where}: probability {float_text(p)} is not in [0, 1]")
+                try:
+                    nxt_i = int(nxt)
+                except (TypeError, ValueError):
+                    nxt_i = -1
+                if nxt_i != nxt or not 0 <= nxt_i < n_states:
+                    raise ImportRefused(
+                        f"{env_name}: {where}: next state {nxt!r} is not a state 0..{n_states - 1}"
+                    )
+                if prob == 0:
+                    continue
+                reward = values.get("reward", r, where)
+                outcomes.append((prob, nxt_i, reward, bool(done), where))
+            row.append(outcomes)
+        table.append(row)
+
+    # Initial distribution.
+    if initial is None:
+        raise ImportRefused(
+            f"{env_name}: no initial state distribution (env.unwrapped.initial_state_distrib or "
+            "isd): give --initial STATE"
+        )
+    if isinstance(initial, int):
+        if not 0 <= initial < n_states:
+            raise ImportRefused(f"{env_name}: initial state {initial} is not a state 0..{n_states - 1}",
+                                UNSUPPORTED)
+        initial = [1 if s == initial else 0 for s in range(n_states)]
+    if len(initial) != n_states:
+        raise ImportRefused(
+            f"{env_name}: the initial distribution has {len(initial)} entries for {n_states} states"
+        )
+    start = []
+    for s, q in enumerate(initial):
+        prob = values.get("initial probability", q, f"initial_state_distrib[{s}]")
+        if prob < 0 or prob > 1:
+            raise ImportRefused(f"{env_name}: initial_state_distrib[{s}] = {float_text(q)} is not in [0, 1]")
+        if prob > 0:
+            start.append((s, prob))
+    total = sum((p for _, p in start), Fraction(0))
+    if total != 1:
+        raise ImportRefused(
+            f"{env_name}: the initial distribution sums to {_off_one(total)} {after}, not "
+            "exactly 1"
+        )
+
+    # Terminal states: entered by a terminated transition from a state where the episode runs
+    # (reachable from the initial distribution without ending the episode; named goals end it
+    # too). States no episode reaches keep their actions and do not take part in the checks.
+    named = set()
+    for g in goals or ():
+        if not 0 <= g < n_states:
+            raise ImportRefused(f"{env_name}: goal {g} is not a state 0..{n_states - 1}",
+                                UNSUPPORTED)
+        named.add(g)
+    entered_running = {}  # state -> where it was first entered without termination
+    entered_terminated = {}  # state -> [(reward, where)] of terminated entries
+    frontier = []
+    for x, _ in start:
+        if x not in named and x not in entered_running:
+            entered_running[x] = f"initial_state_distrib[{x}]"
+            frontier.append(x)
+    while frontier:
+        s = frontier.pop()
+        for a in range(n_actions):
+            for prob, nxt, reward, done, where in table[s][a]:
+                if done:
+                    entered_terminated.setdefault(nxt, []).append((reward, where))
+                elif nxt not in named and nxt not in entered_running:
+                    entered_running[nxt] = where
+                    frontier.append(nxt)
+    for x in sorted(entered_terminated):
+        if x in entered_running:
+            raise ImportRefused(
+                f"{env_name}: state {x} is entered with terminated=True "
+                f"({entered_terminated[x][0][1]}) and without ({entered_running[x]}); "
+                "truecost's terminal states end every episode that enters them"
+            )
+    terminal = set(entered_terminated) | named
+    if goals is None:
+        terminal_rewards = [r for lst in entered_terminated.values() for r, _ in lst]
+        if not terminal_rewards:
+            raise ImportRefused(
+                f"{env_name}: no episode ends (no terminated transition is reachable), so there "
+                "is no goal: name the goal states with --goals"
+            )
+        best = max(terminal_rewards)
+        goal_set = {x for x, lst in entered_terminated.items() if any(r == best for r, _ in lst)}
+        goal_rule = f"terminal states entered with the greatest terminal reward ({best})"
+    else:
+        goal_set = named
+        goal_rule = "named with --goals"
+    traps = sorted(terminal - goal_set)
+    running = len(entered_running)
+
+    # Pass 2: actions with merged outcomes and expected costs.
+    actions = []
+    merged = 0
+    for s in range(n_states):
+        if s in goal_set:
+            actions.append([])
+            continue
+        if s in terminal:
+            actions.append([{"to": s, "cost": "0"}] if deterministic_moves else
+                           [{"cost": "0", "outcomes": [{"to": s, "p": "1"}]}])
+            continue
+        row = []
+        for a in range(n_actions):
+            entries = table[s][a]
+            if not entries:
+                raise ImportRefused(
+                    f"{env_name}: state {s}, action {a}: no outcome of positive probability"
+                )
+            total = sum((p for p, *_ in entries), Fraction(0))
+            if total != 1:
+                    raise ImportRefused(
+                    f"{env_name}: state {s}, action {a}: the probabilities sum to "
+                    f"{_off_one(total)} {after}, not exactly 1"
+                )
+            cost = sum((p * truecost_cost(r) for p, _, r, _, _ in entries), Fraction(0))
+            by_next = {}
+            for p, nxt, *_ in entries:
+                if nxt in by_next:
+                    merged += 1
+                by_next[nxt] = by_next.get(nxt, Fraction(0)) + p
+            if deterministic_moves and len(by_next) == 1:
+                row.append({"to": next(iter(by_next)), "cost": str(cost)})
+            else:
+                row.append({"cost": str(cost),
+                            "outcomes": [{"to": x, "p": str(p)} for x, p in by_next.items()]})
+        actions.append(row)
+
+    states = n_states
+    if len(start) == 1:
+        x1 = start[0][0]
+    else:
+        x1 = n_states
+        states += 1
+        actions.append([{"cost": "0", "outcomes": [{"to": x, "p": str(p)} for x, p in start]}])
+
+    problem = {
+        "format": FORMAT,
+        "name": f"{env_name} (truecost stage costs)",
+        "states": states,
+        "initial": x1,
+        "goals": sorted(goal_set),
+        "actions": actions,
+    }
+    recovered = values.report()
+    report = {
+        "environment": env_name,
+        "states": states,
+        "actions": sum(len(r) for r in actions),
+        "initial": x1,
+        "initial_distribution": None if len(start) == 1 else
+        {"extra_state": n_states, "support": len(start)},
+        "running_states": running,
+        "goals": sorted(goal_set),
+        "goal_rule": goal_rule,
+        "traps": traps,
+        "cost_rule": "an outcome with reward r < 0 costs -r, with r >= 0 costs 1 (one step); "
+                     "an action costs the expectation over its outcomes",
+        "merged_outcomes": merged,
+        "max_denominator": max_denominator,
+        "ulps": ulps,
+        "exact_binary": exact_binary,
+        "deterministic_moves": deterministic_moves,
+        "values": recovered,
+        "binary": [v for v in recovered if v["how"] == BINARY],
+    }
+    return problem, report
+
+
+def to_json(problem, compact=False):
+    """The file's text: ``compact`` puts one state's action list per line; otherwise the same
+    layout as ``truecost export`` (two-space indentation)."""
+    if not compact:
+        return json.dumps(problem, indent=2, ensure_ascii=False) + "\n"
+    head = {k: v for k, v in problem.items() if k != "actions"}
+    sep = (",", ":")
+    lines = [json.dumps(head, separators=sep, ensure_ascii=False)[:-1] + ',"actions":[']
+    rows = [json.dumps(r, separators=sep) for r in problem["actions"]]
+    lines.append(",\n".join(rows))
+    lines.append("]}")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,320 @@
+//! Gymnasium environments imported by `python3 -m truecost_gym export` give, read with `--file`,
+//! the exact answers of the built-in `--env` benchmarks (docs/guide/gymnasium.md).
+//!
+//! The fixtures in `tests/data/gym_import/` were written by the importer from Gymnasium 1.4.0's
+//! own tables (`python/tests/test_fixtures.py` regenerates and compares them when Gymnasium is
+//! installed); this file needs no Python. `mud_corridor.json` is the guide's environment, whose
+//! optimum and discount breakpoint are derived by hand below.
+
+mod common;
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+use common::cli::json;
+use serde_json::Value;
+
+/// (fixture, `--env` SPEC): the importer's file and the built-in benchmark it must match.
+const PAIRS: [(&str, &str); 5] = [
+    ("frozenlake_4x4_slippery.json", "frozenlake"),
+    ("frozenlake_4x4.json", "frozenlake:slippery=false"),
+    ("cliffwalking.json", "cliffwalking"),
+    ("cliffwalking_slippery.json", "cliffwalking:slippery=true"),
+    ("taxi.json", "taxi"),
+];
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/gym_import")
+        .join(name)
+}
+
+fn read_json(path: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// `truecost export --env SPEC` into `dir`, parsed.
+fn exported(spec: &str, dir: &Path) -> Value {
+    let out = dir.join("export.json");
+    json_free(&["export", "--env", spec, "--out", out.to_str().unwrap()]);
+    read_json(&out)
+}
+
+/// Runs a command that must succeed (its stdout is not JSON).
+fn json_free(args: &[&str]) {
+    common::cli::stdout(args);
+}
+
+/// The states where an episode of the file's problem runs: reachable from `initial` along
+/// outcomes, not expanding goals (computed from the file's JSON alone).
+fn running_states(file: &Value) -> BTreeSet<usize> {
+    let goals: BTreeSet<usize> = file["goals"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|g| g.as_u64().unwrap() as usize)
+        .collect();
+    let mut seen = BTreeSet::new();
+    let mut stack = vec![file["initial"].as_u64().unwrap() as usize];
+    while let Some(x) = stack.pop() {
+        if goals.contains(&x) || !seen.insert(x) {
+            continue;
+        }
+        for action in file["actions"][x].as_array().unwrap() {
+            for o in action["outcomes"].as_array().unwrap() {
+                stack.push(o["to"].as_u64().unwrap() as usize);
+            }
+        }
+    }
+    seen
+}
+
+fn without(mut v: Value, keys: &[&str]) -> Value {
+    for k in keys {
+        v.as_object_mut().unwrap().remove(*k);
+    }
+    v
+}
+
+#[test]
+fn imported_files_hold_the_problems_that_export_env_writes() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, spec) in PAIRS {
+        let ours = without(read_json(&fixture(name)), &["name"]);
+        let theirs = without(exported(spec, dir.path()), &["name"]);
+        if spec != "taxi" {
+            assert_eq!(ours, theirs, "{name} against export --env {spec}");
+            continue;
+        }
+        // Taxi: the same 501 states (500 and the extra state drawing Gymnasium's initial
+        // distribution), the same actions wherever an episode runs. Gymnasium's table enters only
+        // the 4 delivered states with the taxi at the destination (terminated=True); the other
+        // 96 "passenger at the destination" states, which `--env` also makes goals, no episode
+        // reaches, and the importer keeps Gymnasium's actions there.
+        for key in ["format", "states", "initial"] {
+            assert_eq!(ours[key], theirs[key], "taxi: {key}");
+        }
+        let running = running_states(&ours);
+        assert_eq!(
+            running,
+            running_states(&theirs),
+            "taxi: the same running states"
+        );
+        assert_eq!(
+            running.len(),
+            401,
+            "taxi: 400 running states and the extra initial state"
+        );
+        for &x in &running {
+            assert_eq!(ours["actions"][x], theirs["actions"][x], "taxi: state {x}");
+        }
+        let goals = |v: &Value| -> BTreeSet<u64> {
+            v["goals"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|g| g.as_u64().unwrap())
+                .collect()
+        };
+        let (our_goals, their_goals) = (goals(&ours), goals(&theirs));
+        assert_eq!(
+            our_goals.len(),
+            4,
+            "taxi: the delivered states an episode enters"
+        );
+        assert!(our_goals.is_subset(&their_goals), "{our_goals:?}");
+    }
+}
+
+/// `solve --algorithm exact --objective OBJ --format json` on `--env SPEC` or `--file F`.
+fn solve(source: &[&str], objective: &str) -> Value {
+    let mut args = vec!["solve"];
+    args.extend_from_slice(source);
+    args.extend_from_slice(&[
+        "--algorithm",
+        "exact",
+        "--objective",
+        objective,
+        "--format",
+        "json",
+    ]);
+    json(&args)
+}
+
+#[test]
+fn solve_file_gives_the_exact_answers_of_solve_env() {
+    for (name, spec) in PAIRS {
+        let path = fixture(name);
+        let file = read_json(&path);
+        let running = running_states(&file);
+        let extra_state = spec == "taxi";
+        for (objective, key) in [
+            ("truecost", "cost_to_go_initial"),
+            ("reach", "reach_probability_initial"),
+        ] {
+            let env = solve(&["--env", spec], objective);
+            let ours = solve(&["--file", path.to_str().unwrap()], objective);
+            let what = format!("{name} against --env {spec}, {objective}");
+            assert_eq!(ours[key], env[key], "{what}");
+            for k in [
+                "success_probability",
+                "policy_success_probability",
+                "expected_truecost",
+            ] {
+                assert_eq!(ours[k], env[k], "{what}: {k}");
+            }
+            for &x in running.iter().filter(|&&x| x < 500 || !extra_state) {
+                assert_eq!(ours["values"][x], env["values"][x], "{what}: value of {x}");
+                assert_eq!(ours["policy"][x], env["policy"][x], "{what}: policy at {x}");
+            }
+            if extra_state {
+                // Drawing the initial state is one more step on every path.
+                let steps = |v: &Value| -> num_rational::BigRational {
+                    v["expected_steps"].as_str().unwrap().parse().unwrap()
+                };
+                let one = num_rational::BigRational::from_integer(1.into());
+                assert_eq!(steps(&ours), steps(&env) + one, "{what}: steps");
+            } else {
+                assert_eq!(ours["expected_steps"], env["expected_steps"], "{what}");
+            }
+        }
+    }
+}
+
+/// `discount --format json` on a source, without the keys that name the source.
+fn discount(source: &[&str]) -> Value {
+    let mut args = vec!["discount"];
+    args.extend_from_slice(source);
+    args.extend_from_slice(&["--format", "json"]);
+    without(json(&args), &["source", "rewards"])
+}
+
+#[test]
+fn discount_file_gives_the_breakpoints_of_discount_env_when_rewards_are_negated_costs() {
+    // CliffWalking's rewards are -1 per step and -100 per fall, exactly the negated truecost
+    // stage costs that `discount --file` discounts: the whole analysis must coincide.
+    // Deterministic CliffWalking has no breakpoint (every discount factor walks the shortest
+    // path along the cliff); on the slippery one the discount-optimal path changes with alpha.
+    for (name, spec, has_breakpoints) in [
+        ("cliffwalking.json", "cliffwalking", false),
+        (
+            "cliffwalking_slippery.json",
+            "cliffwalking:slippery=true",
+            true,
+        ),
+    ] {
+        let ours = discount(&["--file", fixture(name).to_str().unwrap()]);
+        let env = discount(&["--env", spec]);
+        assert_eq!(ours, env, "{name} against --env {spec}");
+        assert_eq!(
+            !ours["breakpoints"].as_array().unwrap().is_empty(),
+            has_breakpoints,
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn discount_file_of_an_import_equals_that_of_the_export() {
+    // FrozenLake's rewards (0 per step, 1 at the goal) are not negated costs, so `discount
+    // --env` and `discount --file` analyse different rewards; the imported and the exported
+    // file must still give the same analysis.
+    let dir = tempfile::tempdir().unwrap();
+    for (name, spec) in [
+        ("frozenlake_4x4_slippery.json", "frozenlake"),
+        ("frozenlake_4x4.json", "frozenlake:slippery=false"),
+    ] {
+        let out = dir.path().join(format!("{name}.export.json"));
+        json_free(&["export", "--env", spec, "--out", out.to_str().unwrap()]);
+        let ours = discount(&["--file", fixture(name).to_str().unwrap()]);
+        assert_eq!(ours, discount(&["--file", out.to_str().unwrap()]), "{name}");
+        assert!(!ours["intervals"].as_array().unwrap().is_empty(), "{name}");
+    }
+}
+
+#[test]
+fn a_deterministic_table_imported_as_moves_is_a_deterministic_problem() {
+    // `--deterministic-moves`: FrozenLake without slipping as a file of moves `{to, cost}`, so
+    // the commands on deterministic problems read it and agree with `--env`.
+    let path = fixture("frozenlake_4x4_moves.json");
+    let file = path.to_str().unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(!text.contains("outcomes"), "moves only");
+    let env = solve(&["--env", "frozenlake:slippery=false"], "truecost");
+    let ours = solve(&["--file", file], "truecost");
+    for k in ["cost_to_go_initial", "values", "policy", "expected_steps"] {
+        assert_eq!(ours[k], env[k], "{k}");
+    }
+    let dijkstra = json(&[
+        "solve",
+        "--file",
+        file,
+        "--algorithm",
+        "dijkstra",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(dijkstra["cost_to_go_initial"], env["cost_to_go_initial"]);
+    let c4 = |source: &[&str]| {
+        let mut args = vec!["verify", "--claim", "C4"];
+        args.extend_from_slice(source);
+        args.extend_from_slice(&["--format", "json"]);
+        json(&args)
+    };
+    assert_eq!(
+        c4(&["--file", file]),
+        c4(&["--env", "frozenlake:slippery=false"])
+    );
+}
+
+/// The guide's MudCorridor under the always-right policy, discounted by `a`, from cell `from`
+/// (cells 1-3 cost 3, cell 0 costs 1, a move right succeeds with probability 9/10, else the
+/// agent stays): `V(i) = (-toll(i) + 9a/10 V(i+1)) / (1 - a/10)`, `V(4) = 0`.
+fn mud_go_right(a: f64, from: usize) -> f64 {
+    let mut v = 0.0;
+    for cell in (from..4).rev() {
+        let toll = if cell == 0 { 1.0 } else { 3.0 };
+        v = (-toll + 0.9 * a * v) / (1.0 - 0.1 * a);
+    }
+    v
+}
+
+#[test]
+fn the_guides_mud_corridor_has_its_hand_computed_optimum_and_breakpoints() {
+    let path = fixture("mud_corridor.json");
+    let file = path.to_str().unwrap();
+    // Truecost: always right; leaving a cell takes 10/9 expected tries, so
+    // G*(0) = 10/9 * (1 + 3 + 3 + 3) = 100/9 in 4 * 10/9 = 40/9 expected steps.
+    let t = solve(&["--file", file], "truecost");
+    assert_eq!(t["cost_to_go_initial"], "100/9");
+    assert_eq!(t["expected_steps"], "40/9");
+    assert_eq!(
+        t["policy"],
+        serde_json::json!([1, 1, 1, 1, null]),
+        "always right"
+    );
+    // Discounted (the negated costs are the environment's own rewards): staying on the meadow
+    // forever returns -1/(1 - a); the breakpoints are where a state is indifferent between
+    // heading for the goal and heading back to the meadow.
+    let d = discount(&["--file", file]);
+    let alphas: Vec<f64> = d["breakpoints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|b| b["alpha_decimal"].as_str().unwrap().parse().unwrap())
+        .collect();
+    assert_eq!(alphas.len(), 2, "{d}");
+    let loiter = |a: f64| -1.0 / (1.0 - a);
+    // Cell 1: back to the meadow (-3, then loitering) against onwards.
+    let back_from_1 = |a: f64| -3.0 + a * loiter(a);
+    assert!((back_from_1(alphas[0]) - mud_go_right(alphas[0], 1)).abs() < 1e-9);
+    // Cell 0: loitering against going (every cell onwards going right).
+    assert!((loiter(alphas[1]) - mud_go_right(alphas[1], 0)).abs() < 1e-9);
+    for (a, goes) in [(alphas[1] - 1e-3, false), (alphas[1] + 1e-3, true)] {
+        assert_eq!(mud_go_right(a, 0) > loiter(a), goes, "a = {a}");
+    }
+    let intervals = d["intervals"].as_array().unwrap();
+    assert_eq!(intervals.first().unwrap()["success_probability"], "0");
+    assert_eq!(intervals.last().unwrap()["success_probability"], "1");
+    assert_eq!(intervals.last().unwrap()["truecost"], "100/9");
+}

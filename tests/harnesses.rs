@@ -1,13 +1,17 @@
 //! The Kani harness registry (`claims::harnesses`, issue 10 item 2) against the harness sources
-//! in `proofs/src/`: every `#[kani::proof]` is registered under its file, with the source's
-//! `#[kani::unwind]`, `#[kani::should_panic]` and stated sample count, and its doc comment
-//! states the domain the registry gives. (The proofs crate's own test runs every harness through
-//! the stand-in and compares mode, executions, domain bits and failures.)
+//! in `proofs/src/` and the table of bodies `verify` runs (`truecost_proofs::harnesses`): every
+//! `#[kani::proof]` is registered under its file, with the source's `#[kani::unwind]`,
+//! `#[kani::should_panic]` and stated sample count, and its doc comment states the domain the
+//! registry gives; the table has every registered harness, in the registry's order, with the
+//! same `should_panic` and sample count. (The proofs crate's own test runs every harness through
+//! the stand-in and compares mode, executions, choice bits and failures.)
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use truecost::claims::harnesses::{harness_runs, StandinMode, HARNESSES};
+use truecost::claims::harnesses::{
+    not_run, of_claim, reported, run_standin, StandinMode, HARNESSES,
+};
 
 #[derive(Debug, Default)]
 struct Source {
@@ -65,6 +69,11 @@ fn sources() -> BTreeMap<String, Source> {
                     let name = rest.split('(').next().unwrap().to_string();
                     let s = current.take().unwrap();
                     assert!(out.insert(name, s).is_none(), "duplicate harness name");
+                } else if t.starts_with("fn ") {
+                    // A private harness: the stand-in's own tests in lib.rs, not a registered
+                    // harness (the table `verify` runs names public ones only).
+                    assert_eq!(file, "lib.rs", "{file}: a harness must be pub: {t}");
+                    current = None;
                 } else if !t.starts_with("#[") {
                     panic!("{file}: unexpected line between #[kani::proof] and its fn: {t}");
                 }
@@ -133,14 +142,14 @@ fn registry_matches_the_harness_sources() {
                 );
             }
         }
-        // Wide harnesses state their domain in their doc comment, as the registry does.
-        if h.domain_bits >= 32 {
+        // Wide harnesses state their width in their doc comment, as the registry does.
+        if h.choice_bits >= 32 {
             assert_eq!(h.mode, StandinMode::Sampled, "{}", h.name);
             assert!(
-                s.doc.contains(&format!("2^{}", h.domain_bits)),
-                "{}: the doc comment states the domain 2^{}: {}",
+                s.doc.contains(&format!("2^{}", h.choice_bits)),
+                "{}: the doc comment states the width 2^{} (choice bits): {}",
                 h.name,
-                h.domain_bits,
+                h.choice_bits,
                 s.doc
             );
         }
@@ -156,29 +165,81 @@ fn registry_matches_the_harness_sources() {
     }
 }
 
+/// The table `verify` runs is the registry: the same harnesses in the same order, with the
+/// source's `should_panic` and the registry's sample count (what a sampled run executes).
 #[test]
-fn every_claim_has_a_wide_harness_and_the_report_says_sampled() {
+fn the_table_verify_runs_is_the_registry() {
+    let table = truecost_proofs::harnesses();
+    let names: Vec<&str> = table.iter().map(|h| h.name).collect();
+    let registered: Vec<&str> = HARNESSES.iter().map(|h| h.name).collect();
+    assert_eq!(names, registered);
+    for (t, h) in table.iter().zip(HARNESSES) {
+        assert_eq!(t.should_panic, h.should_panic, "{}", h.name);
+        if h.mode == StandinMode::Sampled {
+            assert_eq!(t.samples, h.executions, "{}", h.name);
+        }
+    }
+}
+
+/// Every claim has a wide harness; run here, each is sampled, does what it states (a
+/// `should_panic` one is refuted as expected, by an assertion), hits every cover, and its line
+/// says it was run here by the stand-in and is not a Kani result. Not run, the line says so.
+#[test]
+fn every_claim_has_a_wide_harness_run_here_by_the_stand_in() {
+    let table = truecost_proofs::harnesses();
     for id in ["C1", "C1-corrected", "C2", "C3", "C4", "C4-corrected"] {
-        let runs = harness_runs(id);
-        assert!(!runs.is_empty(), "{id}");
-        for r in &runs {
-            assert!(r.mode.contains("sampled ("), "{id}: {}", r.mode);
-            assert!(!r.mode.contains("exhaustive"), "{id}: {}", r.mode);
+        let hs = of_claim(id);
+        assert!(!hs.is_empty(), "{id}");
+        let names: Vec<&str> = hs.iter().map(|h| h.name).collect();
+        for (h, run) in hs.iter().zip(run_standin(&table, &names)) {
+            assert_eq!(run.problem, None, "{}", h.name);
+            assert_eq!(run.covers_hit, run.covers, "{}", h.name);
+            assert_eq!(run.should_panic, run.failures > 0, "{}", h.name);
+            let e = reported(h, &run);
             assert!(
-                r.mode.contains("Kani itself not run here"),
+                e.mode.starts_with(&format!(
+                    "run here by the stand-in: sampled {} executions, {} failures",
+                    h.executions, run.failures
+                )),
                 "{id}: {}",
-                r.mode
+                e.mode
+            );
+            assert!(e.mode.ends_with("; not a Kani result"), "{}", e.mode);
+            assert!(!e.mode.contains("HARNESS FAILS"), "{}", e.mode);
+            assert_eq!(
+                e.mode.contains("refuted as expected"),
+                h.should_panic,
+                "{}",
+                e.mode
+            );
+            assert_eq!((e.cases, e.failures), (run.executions, run.failures));
+            let skipped = not_run(h);
+            assert!(skipped
+                .mode
+                .starts_with("NOT run by this verify (--no-harnesses)"));
+            assert!(skipped.mode.contains("Kani itself not run here"));
+            assert!(
+                skipped
+                    .mode
+                    .contains(&format!("{} choice bits", h.choice_bits)),
+                "{}",
+                skipped.mode
             );
         }
     }
     // C1-corrected: the three inductive steps (Parts A and B, the sandwich).
-    assert_eq!(harness_runs("C1-corrected").len(), 3);
-    // The small exhaustive variant says so.
-    let ex = harness_runs("C3-example");
+    assert_eq!(of_claim("C1-corrected").len(), 3);
+    // The small exhaustive variant states its exact number of choice sequences.
+    let ex = of_claim("C3-example");
+    let run = &run_standin(&table, &[ex[0].name])[0];
+    assert_eq!(run.mode, "exhaustive");
+    let line = reported(ex[0], run).mode;
     assert!(
-        ex[0].mode.contains("exhaustive (256 executions)"),
-        "{}",
-        ex[0].mode
+        line.starts_with(&format!(
+            "run here by the stand-in: exhaustive, every one of {} choice sequences, 0 failures",
+            ex[0].executions
+        )),
+        "{line}"
     );
 }
 

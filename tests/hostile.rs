@@ -142,6 +142,22 @@ fn c4_policy_bound_shrinks_with_the_number_of_states() {
         err.contains("more than 2097152 stationary policies"),
         "{err}"
     );
+    // A long chain with 2^16 policies is analysed (the cross-check's cycle enumeration enters
+    // only nodes on a cycle: it was exponential in the branching on such chains).
+    let long = write(dir.path(), "long.json", &branching_chain(1021, 16));
+    let v = json(&[
+        "verify",
+        "--claim",
+        "C4",
+        "--file",
+        long.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    let sets = v["bonus_sets"].as_array().expect("bonus sets");
+    assert_eq!(sets.len(), 1, "{v}");
+    assert_eq!(sets[0]["least_mean_cycle"], Value::Null, "{v}");
+    assert_eq!(sets[0]["corrected_agrees"], true, "{v}");
     // A small chain with a few choices is analysed.
     let small = write(dir.path(), "small.json", &branching_chain(20, 4));
     let v = json(&[
@@ -376,20 +392,31 @@ fn f05_plot_directory_is_checked_before_the_run() {
 #[test]
 fn f06_discount_of_a_large_grid_is_refused_with_its_bound() {
     let dir = tempfile::tempdir().unwrap();
-    let grid = write(dir.path(), "grid32.json", &grid_file(32, true, None));
+    // 39 x 39: 1520 states, 1519 where the episode runs, over the deterministic analysis'
+    // bound of 1448 (one probe estimated at n^2 2^24 units): refused before any work.
+    let grid = write(dir.path(), "grid39.json", &grid_file(39, true, None));
+    let started = std::time::Instant::now();
     let err = fails_one_line(&["discount", "--file", grid.to_str().unwrap()]);
     assert_contract(&err);
-    assert!(err.contains("passed its bound of"), "{err}");
-    assert!(
-        err.contains("too large for the exact parametric analysis"),
-        "{err}"
-    );
-    // A 3 x 3 grid has few trajectories but a quadratic breakpoint search (696 pairs of
-    // degree 17 took five minutes): refused before it starts.
+    assert!(err.contains("1519 running states"), "{err}");
+    assert!(err.contains("at most 1448 running states"), "{err}");
+    assert!(started.elapsed() < std::time::Duration::from_secs(10));
+    // A 3 x 3 grid with costs 1-4 (refused by the enumeration of goal paths and lassos: 696
+    // pairs of degree 17 took five minutes) is answered by the parametric analysis.
     let small = write(dir.path(), "grid3.json", &grid_file(3, true, None));
-    let err = fails_one_line(&["discount", "--file", small.to_str().unwrap()]);
-    assert!(err.contains("units of breakpoint work"), "{err}");
-    // The unit-cost grid is decided by a lemma, without enumeration.
+    let v = json(&[
+        "discount",
+        "--file",
+        small.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    assert!(v["set"].is_string(), "{v}");
+    assert!(
+        v["method"].as_str().unwrap().contains("deterministic"),
+        "{v}"
+    );
+    // The unit-cost grid: one probe, no breakpoint, never a lasso.
     let unit = write(dir.path(), "unit32.json", &grid_file(32, false, None));
     let v = json(&[
         "discount",

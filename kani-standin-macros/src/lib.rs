@@ -5,7 +5,7 @@
 //! value of a type a choice.
 
 use proc_macro::TokenStream;
-use quote::{format_ident, quote};
+use quote::{format_ident, quote, ToTokens};
 use syn::{parse_macro_input, Data, DeriveInput, Fields, ItemFn};
 
 fn is_kani_attr(attr: &syn::Attribute, name: &str) -> bool {
@@ -18,8 +18,56 @@ fn is_kani_attr(attr: &syn::Attribute, name: &str) -> bool {
     segs.last().is_some_and(|l| l == name) && (segs.len() == 1 || segs[0] == "kani")
 }
 
-/// Marks a harness: the function stays as written; under `cargo test` a test runs it for every
-/// choice of its `kani::any()` values (or a seeded sample when a domain is too wide).
+/// The messages of the `cover!` calls (and `kani::cover(..)` calls) written in a harness body,
+/// as the stand-in's `cover!` names them: `cover!()` is `"cover location"`, `cover!(c)` is
+/// `"cover condition: c"` (compared whitespace-insensitively), `cover!(c, "msg")` is `msg`.
+/// A message that is not a string literal is not listed (the run still records the call).
+fn covers_in(ts: proc_macro2::TokenStream, out: &mut Vec<String>) {
+    use proc_macro2::{Delimiter, TokenTree};
+    let tokens: Vec<TokenTree> = ts.into_iter().collect();
+    let punct =
+        |i: usize, c: char| matches!(tokens.get(i), Some(TokenTree::Punct(p)) if p.as_char() == c);
+    let ident = |i: usize, n: &str| matches!(tokens.get(i), Some(TokenTree::Ident(x)) if x == n);
+    for (i, t) in tokens.iter().enumerate() {
+        let TokenTree::Group(g) = t else { continue };
+        let is_macro = i >= 2 && punct(i - 1, '!') && ident(i - 2, "cover");
+        let is_call = g.delimiter() == Delimiter::Parenthesis
+            && i >= 4
+            && ident(i - 1, "cover")
+            && punct(i - 2, ':')
+            && punct(i - 3, ':')
+            && ident(i - 4, "kani");
+        if !(is_macro || is_call) {
+            covers_in(g.stream(), out);
+            continue;
+        }
+        // Split the arguments at top-level commas.
+        let mut args: Vec<proc_macro2::TokenStream> = vec![proc_macro2::TokenStream::new()];
+        for t in g.stream() {
+            if matches!(&t, TokenTree::Punct(p) if p.as_char() == ',') {
+                args.push(proc_macro2::TokenStream::new());
+            } else {
+                args.last_mut().expect("non-empty").extend([t]);
+            }
+        }
+        args.retain(|a| !a.is_empty());
+        let message = match (is_macro, args.len()) {
+            (true, 0) => Some("cover location".to_string()),
+            (true, 1) => Some(format!("cover condition: {}", args[0])),
+            (_, 2) => syn::parse2::<syn::LitStr>(args[1].clone())
+                .ok()
+                .map(|l| l.value()),
+            _ => None,
+        };
+        out.extend(message);
+    }
+}
+
+/// Marks a harness: the function stays as written (so the same source compiles under real
+/// Kani); next to it, a module of the same name holds `HARNESS: kani::Harness` (name,
+/// `should_panic`, the stated sample count, the messages of the covers written in the body, the
+/// body), and under `cargo test` a `#[test]` runs it for every choice of its `kani::any()`
+/// values (or a seeded sample when a domain is too wide) through `HARNESS.check()`.
 #[proc_macro_attribute]
 pub fn proof(_attr: TokenStream, item: TokenStream) -> TokenStream {
     let mut f = parse_macro_input!(item as ItemFn);
@@ -41,14 +89,29 @@ pub fn proof(_attr: TokenStream, item: TokenStream) -> TokenStream {
             .iter()
             .any(|n| is_kani_attr(a, n))
     });
+    let mut covers = Vec::new();
+    covers_in(f.block.to_token_stream(), &mut covers);
     let name = &f.sig.ident;
+    let vis = &f.vis;
     let test = format_ident!("{}_standin", name);
     quote! {
         #f
+        #[doc(hidden)]
+        #[allow(missing_docs)]
+        #vis mod #name {
+            /// The harness as the stand-in runs it.
+            pub const HARNESS: ::kani::Harness = ::kani::Harness {
+                name: stringify!(#name),
+                should_panic: #should_panic,
+                samples: #samples,
+                covers: &[#(#covers),*],
+                body: super::#name,
+            };
+        }
         #[cfg(test)]
         #[test]
         fn #test() {
-            let summary = ::kani::__run_with(stringify!(#name), #should_panic, #samples, #name);
+            let summary = #name::HARNESS.check();
             ::std::eprintln!("{}", summary);
         }
     }

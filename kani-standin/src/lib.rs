@@ -1,12 +1,11 @@
 //! A stand-in for Kani's `kani` crate (see `../shared/KANI.md`), used only when not compiling
 //! under Kani. Same public names and signatures as Kani's API (`any`, `any_where`, `assume`,
 //! `assert`, `cover`, `Arbitrary`, the attributes); different engine: every `kani::any()` is a
-//! choice point, and [`__run`] re-executes the harness body.
+//! choice point, and [`Harness::explore`] re-executes the harness body.
 //!
 //! * **Exhaustive** when every choice has at most 2^16 values and every execution's choices at
-//!   most 2^22 combinations: depth-first over every choice
-//!   sequence (`assume(false)` prunes a branch; a failing assertion reports the exact choice
-//!   sequence).
+//!   most 2^22 combinations: depth-first over every choice sequence (`assume(false)` prunes a
+//!   branch; a failing assertion reports the exact choice sequence).
 //! * **Sampled** as soon as one choice is wider (a `u32`, an `i32`, ...) or one execution's
 //!   choices span more than 2^22 combinations ([`EXHAUSTIVE_BITS`]): a stated number of
 //!   seeded executions ([`SAMPLES`], or the harness's `#[cfg_attr(not(kani), kani::samples(N))]`),
@@ -15,15 +14,34 @@
 //!   values mixed with boundary values (one choice in eight). The summary says `sampled`; a
 //!   sampled run is evidence, never a proof.
 //!
-//! The summary also states the harness's *domain* in bits (the largest `Σ log2 |choice|` over the
-//! executions), which is what a model checker covers symbolically. Nothing here is symbolic: it
-//! is not Kani. As under Kani's `#[kani::should_panic]`, only an assertion failure (a
-//! `kani::assert`, `assert!` or `panic!`) counts as the expected failure: an arithmetic overflow
-//! (`attempt to ...`) fails every harness.
+//! **What the figures count.** An exhaustive run counts its *choice sequences*: every
+//! combination of values the body's `kani::any()` calls can return, each executed once, so the
+//! count is exact (two sequences may still build the same problem, e.g. `any::<u8>() % 3`). A
+//! sampled run counts its executions and how many of them drew a *distinct* choice sequence
+//! (boundary values repeat), and states the width of the domain in **choice bits**: the largest
+//! `Σ log2 |choice|` of one execution. Choice bits measure nondeterminism, not distinct inputs:
+//! a harness that draws an unused `u8` has 8 more bits and no more inputs.
+//!
+//! **Covers.** `kani::cover!(cond, "msg")` records, per call site, in how many non-pruned
+//! executions it was reached and its condition held; the `cover!` calls written in a harness
+//! body are also known statically (`#[kani::proof]` lists their messages), so a cover that no
+//! execution reaches is seen too. A harness fails when one of its covers is never satisfied in a
+//! non-pruned execution: without it, nothing shows that the branch the harness is about is
+//! reachable under its `assume`s. (Kani itself reports an unsatisfied cover without failing the
+//! harness; the stand-in is stricter on purpose.) A cover in a helper function that no
+//! execution reaches is invisible here.
+//!
+//! **Vacuity.** A harness whose every execution is pruned by `assume` fails.
+//!
+//! Nothing here is symbolic: it is not Kani. As under Kani's `#[kani::should_panic]`, only an
+//! assertion failure (a `kani::assert`, `assert!` or `panic!`) counts as the expected failure:
+//! an arithmetic overflow (`attempt to ...`) fails every harness.
 
 use std::cell::RefCell;
+use std::collections::HashSet;
 use std::fmt;
-use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::hash::{Hash, Hasher};
+use std::panic::{catch_unwind, AssertUnwindSafe, Location};
 use std::sync::Once;
 
 pub use kani_standin_macros::{proof, samples, should_panic, solver, unwind, Arbitrary};
@@ -42,6 +60,14 @@ pub const EXHAUSTIVE_BITS: f64 = 22.0;
 
 struct AssumeFailed;
 
+/// A cover call site and what the executions did with it.
+struct CoverSite {
+    message: &'static str,
+    location: Option<&'static Location<'static>>,
+    reached: u64,
+    satisfied: u64,
+}
+
 #[derive(Default)]
 struct Explorer {
     trail: Vec<(u64, u64)>,
@@ -52,11 +78,61 @@ struct Explorer {
     execution: u64,
     bits: f64,
     max_bits: f64,
+    /// The values chosen in this execution.
+    choices: Vec<u128>,
+    covers: Vec<CoverSite>,
+    /// This execution's cover events: (site, condition).
+    pending: Vec<(usize, bool)>,
+}
+
+impl Explorer {
+    fn cover(&mut self, cond: bool, message: &'static str, at: &'static Location<'static>) {
+        let i = match self
+            .covers
+            .iter()
+            .position(|c| c.message == message && c.location == Some(at))
+        {
+            Some(i) => i,
+            None => {
+                self.covers.push(CoverSite {
+                    message,
+                    location: Some(at),
+                    reached: 0,
+                    satisfied: 0,
+                });
+                self.covers.len() - 1
+            }
+        };
+        self.pending.push((i, cond));
+    }
+
+    /// Ends an execution: its cover events count unless it was pruned.
+    fn settle_covers(&mut self, pruned: bool) {
+        let pending = std::mem::take(&mut self.pending);
+        if pruned {
+            return;
+        }
+        let mut reached = vec![false; self.covers.len()];
+        let mut satisfied = vec![false; self.covers.len()];
+        for (i, cond) in pending {
+            reached[i] = true;
+            satisfied[i] |= cond;
+        }
+        for (c, (r, s)) in self
+            .covers
+            .iter_mut()
+            .zip(reached.into_iter().zip(satisfied))
+        {
+            c.reached += u64::from(r);
+            c.satisfied += u64::from(s);
+        }
+    }
 }
 
 thread_local! {
     static EXPLORER: RefCell<Option<Explorer>> = const { RefCell::new(None) };
     static QUIET: RefCell<bool> = const { RefCell::new(false) };
+    static LAST_PANIC: RefCell<Option<String>> = const { RefCell::new(None) };
 }
 
 fn next_random(state: &mut u64) -> u64 {
@@ -96,11 +172,13 @@ pub fn __choose_in(domain: u128, boundaries: &[u128]) -> u128 {
             };
             let from_boundaries =
                 x.execution < BOUNDARY_EXECUTIONS || next_random(&mut x.rng).is_multiple_of(8);
-            return if from_boundaries {
+            let v = if from_boundaries {
                 boundary(x)
             } else {
                 uniform(x)
             };
+            x.choices.push(v);
+            return v;
         }
         if x.wide_seen {
             return 0; // the run restarts in sampled mode
@@ -113,6 +191,7 @@ pub fn __choose_in(domain: u128, boundaries: &[u128]) -> u128 {
             0
         };
         x.pos += 1;
+        x.choices.push(v as u128);
         v as u128
     })
 }
@@ -254,15 +333,27 @@ pub fn assert(cond: bool, msg: &'static str) {
     }
 }
 
-/// A coverage goal (recorded by Kani; nothing to do here).
-pub fn cover(_cond: bool, _msg: &'static str) {}
+/// A coverage goal: records, for this call site, whether `cond` held (see the crate docs).
+/// Outside a harness run it does nothing.
+#[track_caller]
+pub fn cover(cond: bool, msg: &'static str) {
+    let at = Location::caller();
+    EXPLORER.with(|e| {
+        if let Some(x) = e.borrow_mut().as_mut() {
+            x.cover(cond, msg, at);
+        }
+    });
+}
 
-/// `kani::cover!(...)`.
+/// `kani::cover!(...)`, with Kani's messages: `cover!()` is `"cover location"`, `cover!(c)` is
+/// `"cover condition: c"`.
 #[macro_export]
 macro_rules! cover {
-    () => {};
+    () => {
+        $crate::cover(true, "cover location")
+    };
     ($cond:expr $(,)?) => {
-        $crate::cover($cond, "cover")
+        $crate::cover($cond, concat!("cover condition: ", stringify!($cond)))
     };
     ($cond:expr, $msg:literal) => {
         $crate::cover($cond, $msg)
@@ -288,38 +379,148 @@ impl Mode {
     }
 }
 
+/// A cover of a harness and what its run did with it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Cover {
+    /// Its message (`cover!(c, "msg")`), or Kani's message for `cover!()` / `cover!(c)`.
+    pub message: String,
+    /// `file:line:column` of the call (`None`: written in the body but never reached).
+    pub location: Option<String>,
+    /// Non-pruned executions that reached it.
+    pub reached: u64,
+    /// Non-pruned executions that reached it with its condition true.
+    pub satisfied: u64,
+}
+
+impl Cover {
+    /// Satisfied in some non-pruned execution.
+    pub fn hit(&self) -> bool {
+        self.satisfied > 0
+    }
+}
+
+/// The first failing execution of a run.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Failure {
+    /// The panic message.
+    pub message: String,
+    /// Where it panicked (`file:line:column`), when known.
+    pub location: Option<String>,
+    /// The values its `kani::any()` calls returned, in order (choice indices: an integer's is
+    /// `value - MIN`).
+    pub choices: Vec<u128>,
+}
+
 /// The outcome of running a harness.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Summary {
     /// Harness name.
     pub name: String,
+    /// Whether the harness is `#[kani::should_panic]`.
+    pub should_panic: bool,
     /// Exhaustive or sampled.
     pub mode: Mode,
-    /// Executions of the body.
+    /// Executions of the body (exhaustive: every choice sequence, once).
     pub executions: u64,
+    /// Distinct choice sequences among the executions (exhaustive: all of them).
+    pub distinct: u64,
     /// Executions pruned by `assume`.
     pub pruned: u64,
     /// Executions that failed (an assertion failed or the body panicked).
     pub failures: u64,
-    /// The domain in bits: the largest `Σ log2 |choice|` of one execution (rounded down).
-    pub domain_bits: u32,
+    /// The domain's width in choice bits: the largest `Σ log2 |choice|` of one execution
+    /// (rounded down). Bits of nondeterminism, not a count of distinct inputs.
+    pub choice_bits: u32,
+    /// Every cover of the harness: the ones reached (by call site), then the ones written in
+    /// its body that no execution reached.
+    pub covers: Vec<Cover>,
+    /// The first failing execution.
+    pub first_failure: Option<Failure>,
+    /// The first arithmetic overflow (never the expected failure of a `should_panic` harness).
+    pub overflow: Option<String>,
+    /// Why the run stopped early (too many executions for exhaustive mode).
+    pub stopped: Option<String>,
+}
+
+impl Summary {
+    /// Covers satisfied in some non-pruned execution.
+    pub fn covers_hit(&self) -> usize {
+        self.covers.iter().filter(|c| c.hit()).count()
+    }
+
+    /// `Ok` when the harness did what it states: no failure (or, `should_panic`, an assertion
+    /// failure and no overflow), not every execution pruned, every cover satisfied. `Err` says
+    /// why not.
+    pub fn verdict(&self) -> Result<(), String> {
+        let name = &self.name;
+        if let Some(why) = &self.stopped {
+            return Err(format!("{name}: {why}"));
+        }
+        if self.executions > 0 && self.pruned == self.executions {
+            return Err(format!(
+                "{name} is vacuous: every execution was pruned by assume"
+            ));
+        }
+        match (&self.first_failure, self.should_panic) {
+            (Some(f), false) => {
+                return Err(format!(
+                    "{name} fails: {}{}; choice sequence {:?}",
+                    f.message,
+                    f.location
+                        .as_ref()
+                        .map_or(String::new(), |l| format!(" (at {l})")),
+                    f.choices
+                ))
+            }
+            (None, true) => return Err(format!("{name} was expected to fail but passed")),
+            (Some(_), true) => {
+                if let Some(o) = &self.overflow {
+                    return Err(format!(
+                        "{name}: an arithmetic overflow is not the expected failure: {o}"
+                    ));
+                }
+            }
+            (None, false) => {}
+        }
+        let live = self.executions - self.pruned;
+        if let Some(c) = self.covers.iter().find(|c| !c.hit()) {
+            return Err(match &c.location {
+                None => format!(
+                    "{name}: cover \"{}\" was never reached in {live} non-pruned executions",
+                    c.message
+                ),
+                Some(at) => format!(
+                    "{name}: cover \"{}\" ({at}) was never satisfied in {live} non-pruned executions (reached in {})",
+                    c.message, c.reached
+                ),
+            });
+        }
+        Ok(())
+    }
 }
 
 impl fmt::Display for Summary {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "kani-standin: {}: ", self.name)?;
+        match self.mode {
+            Mode::Exhaustive => write!(
+                f,
+                "exhaustive (every one of {} choice sequences; {} pruned by assume)",
+                self.executions, self.pruned
+            )?,
+            Mode::Sampled => write!(
+                f,
+                "sampled ({} executions, {} distinct choice sequences, seeded, boundary values first; {} pruned by assume)",
+                self.executions, self.distinct, self.pruned
+            )?,
+        }
         write!(
             f,
-            "kani-standin: {}: {} ({} executions{}; {} pruned by assume), {} failing; domain 2^{} choices",
-            self.name,
-            self.mode.name(),
-            self.executions,
-            match self.mode {
-                Mode::Exhaustive => ", every choice",
-                Mode::Sampled => ", seeded, boundary values first",
-            },
-            self.pruned,
+            ", {} failing; covers {}/{} satisfied; domain {} choice bits",
             self.failures,
-            self.domain_bits
+            self.covers_hit(),
+            self.covers.len(),
+            self.choice_bits
         )
     }
 }
@@ -329,8 +530,12 @@ fn install_hook() {
     HOOK.call_once(|| {
         let previous = std::panic::take_hook();
         std::panic::set_hook(Box::new(move |info| {
-            let quiet = QUIET.with(|q| *q.borrow());
-            if info.payload().is::<AssumeFailed>() || quiet {
+            if info.payload().is::<AssumeFailed>() {
+                return;
+            }
+            if QUIET.with(|q| *q.borrow()) {
+                let at = info.location().map(|l| l.to_string());
+                LAST_PANIC.with(|p| *p.borrow_mut() = at);
                 return;
             }
             previous(info);
@@ -342,30 +547,117 @@ fn is_overflow(msg: &str) -> bool {
     msg.starts_with("attempt to ")
 }
 
-/// Runs a harness over every choice (or a seeded sample of [`SAMPLES`] executions); panics with
-/// the failing choice sequence if a non-`should_panic` harness fails, if a `should_panic`
-/// harness never fails (or fails by an arithmetic overflow), or if every execution was pruned.
+/// Runs `f` with the stand-in's panic hook silent; `true` if it panicked. (Used to ask whether
+/// this build checks arithmetic overflow.)
 #[doc(hidden)]
-pub fn __run(name: &str, should_panic: bool, body: fn()) -> Summary {
+pub fn __panics(f: impl FnOnce()) -> bool {
+    install_hook();
+    let previous = QUIET.with(|q| std::mem::replace(&mut *q.borrow_mut(), true));
+    let panicked = catch_unwind(AssertUnwindSafe(f)).is_err();
+    QUIET.with(|q| *q.borrow_mut() = previous);
+    panicked
+}
+
+/// A harness as the stand-in runs it: `#[kani::proof]` defines one next to every harness
+/// function, as `<harness>::HARNESS` (a module of the same name).
+#[derive(Clone, Copy, Debug)]
+pub struct Harness {
+    /// The harness function's name.
+    pub name: &'static str,
+    /// `#[kani::should_panic]`.
+    pub should_panic: bool,
+    /// Executions in sampled mode (the stated `kani::samples(N)`, else [`SAMPLES`]).
+    pub samples: u64,
+    /// Messages of the `cover!` calls written in the body (each must be satisfied).
+    pub covers: &'static [&'static str],
+    /// The body.
+    pub body: fn(),
+}
+
+impl Harness {
+    /// Runs the harness with its stated executions; never panics on the outcome (see
+    /// [`Summary::verdict`]).
+    pub fn explore(&self) -> Summary {
+        self.explore_with(self.samples)
+    }
+
+    /// [`Harness::explore`] with `samples` executions in sampled mode (an exhaustive run
+    /// enumerates every choice sequence regardless).
+    pub fn explore_with(&self, samples: u64) -> Summary {
+        explore(self, samples)
+    }
+
+    /// Runs the harness; panics with the reason and the summary if [`Summary::verdict`] is not
+    /// `Ok` (a failing assertion names its choice sequence). What the `#[test]` that
+    /// `#[kani::proof]` adds calls.
+    pub fn check(&self) -> Summary {
+        let s = self.explore();
+        if let Err(why) = s.verdict() {
+            panic!("kani-standin: {why}; {s}");
+        }
+        s
+    }
+}
+
+/// Runs a harness over every choice (or a seeded sample of [`SAMPLES`] executions); panics with
+/// the reason (a failing choice sequence, a `should_panic` harness that never fails or fails by
+/// an arithmetic overflow, every execution pruned, a cover never satisfied).
+#[doc(hidden)]
+pub fn __run(name: &'static str, should_panic: bool, body: fn()) -> Summary {
     __run_with(name, should_panic, SAMPLES, body)
 }
 
 /// [`__run`] with a stated number of executions for sampled mode.
 #[doc(hidden)]
-pub fn __run_with(name: &str, should_panic: bool, samples: u64, body: fn()) -> Summary {
+pub fn __run_with(name: &'static str, should_panic: bool, samples: u64, body: fn()) -> Summary {
+    Harness {
+        name,
+        should_panic,
+        samples,
+        covers: &[],
+        body,
+    }
+    .check()
+}
+
+fn same_message(a: &str, b: &str) -> bool {
+    a.split_whitespace().eq(b.split_whitespace())
+        || a.chars()
+            .filter(|c| !c.is_whitespace())
+            .eq(b.chars().filter(|c| !c.is_whitespace()))
+}
+
+fn choice_hash(choices: &[u128]) -> u64 {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    choices.hash(&mut h);
+    h.finish()
+}
+
+fn explore(h: &Harness, samples: u64) -> Summary {
     install_hook();
-    let mut summary = Summary {
+    let name = h.name;
+    let fresh = |mode| Summary {
         name: name.to_string(),
-        mode: Mode::Exhaustive,
+        should_panic: h.should_panic,
+        mode,
         executions: 0,
+        distinct: 0,
         pruned: 0,
         failures: 0,
-        domain_bits: 0,
+        choice_bits: 0,
+        covers: Vec::new(),
+        first_failure: None,
+        overflow: None,
+        stopped: None,
     };
-    EXPLORER.with(|e| *e.borrow_mut() = Some(Explorer::default()));
-    QUIET.with(|q| *q.borrow_mut() = should_panic);
-    let mut first_failure: Option<(String, Vec<u64>)> = None;
-    let mut overflow: Option<String> = None;
+    let mut summary = fresh(Mode::Exhaustive);
+    let nested = EXPLORER.with(|e| e.borrow_mut().replace(Explorer::default()).is_some());
+    assert!(
+        !nested,
+        "kani-standin: {name}: a harness run inside a harness run"
+    );
+    let quiet_before = QUIET.with(|q| std::mem::replace(&mut *q.borrow_mut(), true));
+    let mut seen: HashSet<u64> = HashSet::new();
     loop {
         EXPLORER.with(|e| {
             let mut e = e.borrow_mut();
@@ -373,21 +665,25 @@ pub fn __run_with(name: &str, should_panic: bool, samples: u64, body: fn()) -> S
             x.pos = 0;
             x.bits = 0.0;
             x.execution = summary.executions;
+            x.choices.clear();
+            x.pending.clear();
         });
-        let outcome = catch_unwind(AssertUnwindSafe(body));
+        LAST_PANIC.with(|p| *p.borrow_mut() = None);
+        let outcome = catch_unwind(AssertUnwindSafe(h.body));
         summary.executions += 1;
-        let (wide, sampled, trail) = EXPLORER.with(|e| {
-            let e = e.borrow();
-            let x = e.as_ref().expect("explorer");
-            (
-                x.wide_seen,
-                x.sampled,
-                x.trail.iter().map(|t| t.0).collect::<Vec<_>>(),
-            )
+        let pruned = matches!(&outcome, Err(p) if p.is::<AssumeFailed>());
+        let (wide, sampled, choices) = EXPLORER.with(|e| {
+            let mut e = e.borrow_mut();
+            let x = e.as_mut().expect("explorer");
+            x.settle_covers(pruned);
+            (x.wide_seen, x.sampled, x.choices.clone())
         });
+        if sampled {
+            seen.insert(choice_hash(&choices));
+        }
         match outcome {
             Ok(()) => {}
-            Err(p) if p.is::<AssumeFailed>() => summary.pruned += 1,
+            Err(_) if pruned => summary.pruned += 1,
             Err(p) => {
                 summary.failures += 1;
                 let msg = p
@@ -396,22 +692,20 @@ pub fn __run_with(name: &str, should_panic: bool, samples: u64, body: fn()) -> S
                     .or_else(|| p.downcast_ref::<String>().cloned())
                     .unwrap_or_default();
                 if is_overflow(&msg) {
-                    overflow.get_or_insert(msg.clone());
+                    summary.overflow.get_or_insert(msg.clone());
                 }
-                first_failure.get_or_insert((msg, trail.clone()));
+                if summary.first_failure.is_none() {
+                    summary.first_failure = Some(Failure {
+                        message: msg,
+                        location: LAST_PANIC.with(|p| p.borrow_mut().take()),
+                        choices,
+                    });
+                }
             }
         }
         if wide && !sampled {
             // Restart in sampled mode.
-            summary = Summary {
-                mode: Mode::Sampled,
-                executions: 0,
-                pruned: 0,
-                failures: 0,
-                ..summary
-            };
-            first_failure = None;
-            overflow = None;
+            summary = fresh(Mode::Sampled);
             EXPLORER.with(|e| {
                 *e.borrow_mut() = Some(Explorer {
                     sampled: true,
@@ -443,29 +737,209 @@ pub fn __run_with(name: &str, should_panic: bool, samples: u64, body: fn()) -> S
         if done {
             break;
         }
-        assert!(
-            summary.executions < MAX_EXHAUSTIVE,
-            "kani-standin: {name}: more than {MAX_EXHAUSTIVE} executions; shrink the harness domains"
-        );
-    }
-    summary.domain_bits = EXPLORER.with(|e| {
-        let e = e.borrow();
-        e.as_ref().expect("explorer").max_bits.floor() as u32
-    });
-    EXPLORER.with(|e| *e.borrow_mut() = None);
-    QUIET.with(|q| *q.borrow_mut() = false);
-    if summary.pruned == summary.executions {
-        panic!("kani-standin: {name} is vacuous: every execution was pruned by assume; {summary}");
-    }
-    match (should_panic, first_failure) {
-        (false, Some((msg, choices))) => {
-            panic!("kani-standin: {name} fails: {msg}; choice sequence {choices:?}; {summary}")
+        if !sampled && summary.executions >= MAX_EXHAUSTIVE {
+            summary.stopped = Some(format!(
+                "more than {MAX_EXHAUSTIVE} executions in exhaustive mode; shrink the harness domains"
+            ));
+            break;
         }
-        (true, None) => panic!("kani-standin: {name} was expected to fail but passed: {summary}"),
-        (true, Some(_)) if overflow.is_some() => panic!(
-            "kani-standin: {name}: an arithmetic overflow is not the expected failure: {}; {summary}",
-            overflow.unwrap_or_default()
-        ),
-        _ => summary,
+    }
+    let x = EXPLORER.with(|e| e.borrow_mut().take()).expect("explorer");
+    QUIET.with(|q| *q.borrow_mut() = quiet_before);
+    summary.choice_bits = x.max_bits.floor() as u32;
+    summary.distinct = match summary.mode {
+        Mode::Exhaustive => summary.executions,
+        Mode::Sampled => seen.len() as u64,
+    };
+    summary.covers = x
+        .covers
+        .iter()
+        .map(|c| Cover {
+            message: c.message.to_string(),
+            location: c.location.map(|l| l.to_string()),
+            reached: c.reached,
+            satisfied: c.satisfied,
+        })
+        .collect();
+    for &m in h.covers {
+        if !summary.covers.iter().any(|c| same_message(&c.message, m)) {
+            summary.covers.push(Cover {
+                message: m.to_string(),
+                location: None,
+                reached: 0,
+                satisfied: 0,
+            });
+        }
+    }
+    summary
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn harness(name: &'static str, covers: &'static [&'static str], body: fn()) -> Harness {
+        Harness {
+            name,
+            should_panic: false,
+            samples: 200,
+            covers,
+            body,
+        }
+    }
+
+    /// A cover whose condition holds on one choice of 256 is hit (exhaustive: on exactly one
+    /// execution); one whose condition never holds fails the harness, naming the cover.
+    #[test]
+    fn a_cover_never_satisfied_fails_and_one_satisfied_passes() {
+        fn hit() {
+            let v: u8 = any();
+            cover!(v == 200, "two hundred");
+        }
+        let s = harness("hit", &[], hit).explore();
+        assert_eq!(s.verdict(), Ok(()), "{s}");
+        assert_eq!(s.covers.len(), 1);
+        assert_eq!((s.covers[0].reached, s.covers[0].satisfied), (256, 1));
+        assert_eq!(s.covers[0].message, "two hundred");
+        assert!(s.covers[0].location.as_deref().unwrap().contains("lib.rs"));
+        fn missed() {
+            let v: u8 = any();
+            cover!(v.count_ones() > 8, "more than eight bits set");
+        }
+        let s = harness("missed", &[], missed).explore();
+        let why = s.verdict().unwrap_err();
+        assert!(
+            why.contains("cover \"more than eight bits set\"") && why.contains("never satisfied"),
+            "{why}"
+        );
+        assert_eq!(s.covers_hit(), 0);
+        // The panicking entry point fails too.
+        assert!(catch_unwind(|| __run("missed", false, missed)).is_err());
+    }
+
+    /// A cover reached only in pruned executions is not satisfied.
+    #[test]
+    fn a_cover_hit_only_in_pruned_executions_does_not_count() {
+        fn pruned_after() {
+            let v: u8 = any();
+            cover!(v == 7, "seven");
+            assume(v != 7);
+        }
+        let s = harness("pruned_after", &[], pruned_after).explore();
+        assert_eq!(
+            (s.pruned, s.covers[0].reached, s.covers[0].satisfied),
+            (1, 255, 0)
+        );
+        assert!(s.verdict().is_err());
+    }
+
+    /// A cover written in the body but never reached (its branch is dead under the assume)
+    /// fails; the same cover reachable passes. The static list is what `#[kani::proof]`
+    /// extracts from the body.
+    #[test]
+    fn a_cover_never_reached_fails() {
+        fn dead() {
+            let v: u8 = any();
+            assume(v < 10);
+            if v > 20 {
+                cover!(true, "big");
+            }
+        }
+        let s = harness("dead", &["big"], dead).explore();
+        assert_eq!(s.covers.len(), 1);
+        assert_eq!(s.covers[0].location, None);
+        let why = s.verdict().unwrap_err();
+        assert!(why.contains("\"big\" was never reached"), "{why}");
+        fn live() {
+            let v: u8 = any();
+            assume(v < 30);
+            if v > 20 {
+                cover!(true, "big");
+            }
+        }
+        let s = harness("live", &["big"], live).explore();
+        assert_eq!(s.verdict(), Ok(()));
+        assert_eq!((s.covers.len(), s.covers[0].satisfied), (1, 9));
+        // Kani's message for `cover!(cond)`, matched whatever the spacing.
+        fn plain() {
+            let v: bool = any();
+            cover!(v);
+        }
+        let s = harness("plain", &["cover condition: v"], plain).explore();
+        assert_eq!(s.verdict(), Ok(()));
+        assert_eq!(s.covers.len(), 1);
+    }
+
+    /// Sampled harnesses: covers on a wide domain, the distinct count below the executions
+    /// (boundary values repeat), the width in choice bits; every execution pruned fails.
+    #[test]
+    fn sampled_covers_distinct_sequences_and_vacuity() {
+        fn wide() {
+            let (a, b): (u64, u64) = (any(), any());
+            cover!(a == u64::MAX, "max");
+            cover!(a > 1 << 40 && b > 1 << 40, "both large");
+        }
+        let s = harness("wide", &[], wide).explore_with(3000);
+        assert_eq!(
+            (s.mode, s.executions, s.choice_bits),
+            (Mode::Sampled, 3000, 128)
+        );
+        assert_eq!(s.verdict(), Ok(()), "{s}");
+        // The first 1000 executions draw each u64 from 8 boundary values: at most 64 distinct
+        // pairs among them.
+        assert!(s.distinct <= 64 + 2000 && s.distinct > 64, "{s}");
+        fn never() {
+            let a: u64 = any();
+            assume(a.count_ones() > 64);
+        }
+        let s = harness("never", &[], never).explore_with(100);
+        assert!(s.verdict().unwrap_err().contains("vacuous"));
+    }
+
+    /// A failing assertion names its message, location and choices; a should_panic harness
+    /// that fails by an assertion passes, one that never fails or overflows does not.
+    #[test]
+    fn failures_and_should_panic() {
+        fn bad() {
+            let v: u8 = any();
+            assert(v != 3, "three is bad");
+        }
+        let s = harness("bad", &[], bad).explore();
+        assert_eq!(s.failures, 1);
+        let why = s.verdict().unwrap_err();
+        assert!(
+            why.contains("three is bad") && why.contains("choice sequence [3]"),
+            "{why}"
+        );
+        assert!(s
+            .first_failure
+            .unwrap()
+            .location
+            .unwrap()
+            .contains("lib.rs"));
+        let mut expected = harness("bad", &[], bad);
+        expected.should_panic = true;
+        assert_eq!(expected.explore().verdict(), Ok(()));
+        fn fine() {
+            let _: bool = any();
+        }
+        let mut never_fails = harness("fine", &[], fine);
+        never_fails.should_panic = true;
+        assert!(never_fails
+            .explore()
+            .verdict()
+            .unwrap_err()
+            .contains("expected to fail"));
+        fn overflows() {
+            let v: u8 = any();
+            let _ = std::hint::black_box(v) + 255;
+        }
+        if __panics(|| {
+            let _ = std::hint::black_box(u8::MAX) + 1;
+        }) {
+            let mut o = harness("overflows", &[], overflows);
+            o.should_panic = true;
+            assert!(o.explore().verdict().unwrap_err().contains("overflow"));
+        }
     }
 }

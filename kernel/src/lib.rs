@@ -3,7 +3,7 @@
 //! The bignum-free computational kernel of `truecost` (the exact re-implementation of
 //! *Relating Reinforcement Learning to Dynamic Programming-Based Planning*, Georgiev, Timperi,
 //! Sakçak, LaValle): exactly the code that the Kani harnesses in `proofs/` verify, in a crate
-//! with **no dependencies** (issue 10, item 3), so that `cargo kani -p truecost-proofs` compiles
+//! with **no dependencies**, so that `cargo kani -p truecost-proofs` compiles
 //! neither big integers nor clap, rayon, plotters, indicatif or z3.
 //!
 //! * [`value`] — the [`value::CostValue`] trait's arithmetic core and [`value::Units`];

@@ -61,6 +61,29 @@ pub trait CostValue: Clone + PartialEq + PartialOrd + fmt::Debug + Send + Sync +
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug)]
 pub struct Units(pub u64);
 
+impl Units {
+    /// Extended addition that reports overflow: `+∞` absorbs (`Some(+∞)`); the sum of two
+    /// finite counts is `Some` exactly when it is below `u64::MAX` (which would read as `+∞`),
+    /// and `None` otherwise. [`CostValue::plus`] is this, panicking on `None`.
+    ///
+    /// ```
+    /// use truecost_kernel::value::{CostValue, Units};
+    /// assert_eq!(Units(2).checked_plus(&Units(3)), Some(Units(5)));
+    /// assert_eq!(Units(u64::MAX - 1).checked_plus(&Units(1)), None);
+    /// assert_eq!(Units(7).checked_plus(&Units::infinity()), Some(Units::infinity()));
+    /// ```
+    #[inline]
+    pub fn checked_plus(&self, other: &Units) -> Option<Units> {
+        if self.0 == u64::MAX || other.0 == u64::MAX {
+            return Some(Units(u64::MAX));
+        }
+        match self.0.checked_add(other.0) {
+            Some(s) if s != u64::MAX => Some(Units(s)),
+            _ => None,
+        }
+    }
+}
+
 impl CostValue for Units {
     const EXACT: bool = true;
     #[inline]
@@ -77,15 +100,12 @@ impl CostValue for Units {
     }
     #[inline]
     fn plus(&self, other: &Self) -> Self {
-        if self.0 == u64::MAX || other.0 == u64::MAX {
-            return Units(u64::MAX);
-        }
         // The graph constructor proves `states × max cost < u64::MAX`; planners never add more
         // than `states` stage costs, so this cannot fail. If it ever did, failing loudly is the
         // only acceptable outcome: a wrapped or saturated sum would be a silently wrong number.
-        match self.0.checked_add(other.0) {
-            Some(s) if s != u64::MAX => Units(s),
-            _ => panic!("exact cost overflow: the Units bound was violated (a truecost bug)"),
+        match self.checked_plus(other) {
+            Some(s) => s,
+            None => panic!("exact cost overflow: the Units bound was violated (a truecost bug)"),
         }
     }
     #[inline]

@@ -8,6 +8,14 @@
 //! ones. Family: 3 non-goal states with 2 moves each (successors symbolic), the goal without
 //! moves whose termination pair is held at 0 (H0), every state reaching the goal (H1, assumed),
 //! `u16` costs, `i32` values (computed in `i64`: no overflow is possible, and Kani checks it).
+//! The update only adds and takes minima (no symbolic multiplication), so the 64-bit values cost
+//! CBMC adders and comparators, not multipliers.
+//!
+//! Loops CBMC unrolls (`tests/unwind_bounds.rs` derives each bound from the constants): a round
+//! of at most `ROUND + MOVES = 18` updates (unwind 19 for the inductive steps); for C1 as
+//! printed, 7 updates per round, 6 rounds and the element-wise round comparison over 7 pairs
+//! (unwind 8). Values are compared element by element, never with `==` on `[i64; 24]`: that
+//! would become CBMC's `memcmp`, one loop iteration per byte (192).
 
 use truecost_kernel::claims::qlearning::Terminal;
 
@@ -40,11 +48,13 @@ pub fn c1_corrected_round_lifts_the_exact_level() {
         let exact = h[s.to[p]].expect("H1") < r;
         v[p] = if exact { star[p] } else { raw.max(star[p]) };
     }
+    let before = v;
     let (order, len) = any_round();
     for k in 0..len {
         q.update(&mut v, order[k]);
     }
     kani::assert(v[TERMINAL] == 0, "the termination pair stays 0 (H0)");
+    let (mut changed, mut lifted) = (false, false);
     for p in 0..MOVES {
         kani::assert(v[p] >= star[p], "Q >= Q* after the round (Lemma A1)");
         if h[s.to[p]].expect("H1") < r + 1 {
@@ -53,7 +63,15 @@ pub fn c1_corrected_round_lifts_the_exact_level() {
                 "pairs with h(f(x,u)) <= r are exact (Lemma A2)",
             );
         }
+        changed |= v[p] != before[p];
+        lifted |= before[p] > star[p] && v[p] == star[p];
     }
+    kani::cover!(changed, "the round changes some value");
+    kani::cover!(lifted, "a pair above Q* becomes exact");
+    kani::cover!(
+        r == N as u32 + 1,
+        "the top level: every pair exact before the round"
+    );
 }
 
 /// **C1-corrected, Part B, inductive step** (every move costs `≥ c ≥ 1`, any `Q₀`). Invariant
@@ -75,16 +93,22 @@ pub fn c1_corrected_round_raises_the_floor_by_c() {
     for p in 0..MOVES {
         v[p] = (kani::any::<i32>() as i64).max(star[p].min(t));
     }
+    let before = v;
     let (order, len) = any_round();
     for k in 0..len {
         q.update(&mut v, order[k]);
     }
+    let (mut rises, mut tight) = (false, false);
     for p in 0..MOVES {
         kani::assert(
             v[p] >= star[p].min(t + c),
             "J_{t+c}: Q >= min(Q*, t + c) after the round (Lemma B1)",
         );
+        rises |= before[p] < star[p] && v[p] > before[p];
+        tight |= t + c < star[p] && v[p] < star[p];
     }
+    kani::cover!(rises, "a value below Q* rises");
+    kani::cover!(tight, "the new floor t + c binds below Q*");
 }
 
 /// **C1-corrected, Part B, the sandwich** (costs `≥ 0`): for any values `Q ≤ Q'` (`Q = min(any
@@ -104,15 +128,21 @@ pub fn c1_corrected_round_is_monotone_below_q_star() {
         low[p] = (kani::any::<i32>() as i64).min(star[p]);
         high[p] = low[p] + kani::any::<u32>() as i64;
     }
+    let start = low;
     let (order, len) = any_round();
     for k in 0..len {
         q.update(&mut low, order[k]);
         q.update(&mut high, order[k]);
     }
+    let (mut apart, mut reaches) = (false, false);
     for p in 0..MOVES {
         kani::assert(low[p] <= high[p], "Q <= Q' is preserved (Lemma B2)");
         kani::assert(low[p] <= star[p], "Q <= Q* is preserved (Lemma B3)");
+        apart |= low[p] < high[p];
+        reaches |= start[p] < star[p] && low[p] == star[p];
     }
+    kani::cover!(apart, "Q < Q' strictly somewhere after the round");
+    kani::cover!(reaches, "a value below Q* reaches Q*");
 }
 
 /// Cyclic rounds simulated by [`c1_as_printed_round_fixed_points_are_optimal`].
@@ -141,8 +171,21 @@ pub fn c1_as_printed_round_fixed_points_are_optimal() {
         for p in 0..=TERMINAL {
             q.update(&mut v, p);
         }
-        if v == before {
-            let optimal = (0..MOVES).all(|p| v[p] == star[p]) && v[TERMINAL] == 0;
+        // Element-wise over the 7 pairs in use (not `v == before`: see the module comment).
+        let (mut unchanged, mut optimal, mut below) = (true, v[TERMINAL] == 0, false);
+        for p in 0..=TERMINAL {
+            unchanged &= v[p] == before[p];
+        }
+        for p in 0..MOVES {
+            optimal &= v[p] == star[p];
+            below |= v[p] < star[p];
+        }
+        kani::cover!(unchanged && optimal, "a round that changes nothing at Q*");
+        kani::cover!(
+            unchanged && below,
+            "a fixed point below Q* (the counterexample)"
+        );
+        if unchanged {
             kani::assert(optimal, "a round that changes nothing ends at Q*");
         }
     }

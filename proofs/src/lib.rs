@@ -7,7 +7,9 @@
 //! executions) when a choice is wider than 2^16 values, exhaustively otherwise. Each harness is
 //! listed in `truecost::claims::harnesses::HARNESSES`; a test checks that registry against these
 //! sources (names, unwind bounds, should_panic, sample counts) and against the stand-in's runs
-//! (mode, executions, domain size).
+//! (mode, executions, choice bits, failures, covers). [`harnesses`] is the table of every
+//! harness as the stand-in runs it: `truecost verify` runs the harnesses of the claims it
+//! checks through it, in its own process, and reports what the stand-in found there.
 //!
 //! The harnesses earn their place by width (every domain but the two `_exhaustive_small`
 //! variants is at least 2^99 choices: symbolic successors, `u8`/`u16`/`u32` costs, `i32`
@@ -19,7 +21,8 @@
 //! Every harness body calls only `truecost-kernel` (the bignum-free kernel that `truecost`
 //! re-exports under its old paths), the very code `truecost` runs: under `--cfg kani` this
 //! crate's dependency tree is the kernel alone (issue 10, item 3; checked by
-//! `tests/lean_kani_build.rs`). `truecost` itself is a dev-dependency for the registry
+//! `tests/lean_kani_build.rs`). `truecost` depends on this crate (not under Kani) to run the
+//! harness bodies in `verify`; `truecost` is in turn a dev-dependency here, for the registry
 //! cross-check only.
 
 // Harnesses index small fixed arrays in bounded loops, as Kani prefers.
@@ -51,123 +54,133 @@ impl Three {
     }
 }
 
+/// The stand-in (`kani-standin`) under the name `truecost` uses to run the harnesses: its
+/// [`standin::Harness`], [`standin::Summary`] and [`standin::Mode`].
+#[cfg(not(kani))]
+pub use kani as standin;
+
+/// Every harness of this crate as the stand-in runs it (name, `should_panic`, the stated
+/// sample count, the covers written in the body, the body), in the order of
+/// `truecost::claims::harnesses::HARNESSES`. A harness missing here or there fails the
+/// registry cross-check.
+#[cfg(not(kani))]
+pub fn harnesses() -> Vec<kani::Harness> {
+    vec![
+        c1::c1_as_printed_round_fixed_points_are_optimal::HARNESS,
+        c1::c1_corrected_round_lifts_the_exact_level::HARNESS,
+        c1::c1_corrected_round_raises_the_floor_by_c::HARNESS,
+        c1::c1_corrected_round_is_monotone_below_q_star::HARNESS,
+        c2::c2_oracle_argmin_cost_is_argmax_reward::HARNESS,
+        c3::c3_certificate_makes_discounting_avoid_the_goal::HARNESS,
+        c3::c3_example_sides_of_alpha_star_exhaustive_small::HARNESS,
+        c4::c4_as_printed_set_is_the_oracles::HARNESS,
+        c4::c4_corrected_set_is_the_oracles::HARNESS,
+        solvers::dijkstra_cost_to_go_satisfies_bellman_optimality::HARNESS,
+        solvers::dijkstra_equals_value_iteration::HARNESS,
+        solvers::dijkstra_equals_value_iteration_exhaustive_small::HARNESS,
+        solvers::exploration_discovers_the_reachable_states_exhaustive_small::HARNESS,
+        values::units_plus_is_exact_when_it_fits::HARNESS,
+        values::units_plus_reports_every_overflow::HARNESS,
+        values::rational_add_and_mul_are_exact::HARNESS,
+    ]
+}
+
+/// Whether this build checks integer overflow (`-C overflow-checks`, on in debug and test
+/// builds, off in a default release build): without it an overflow in a harness body or in the
+/// kernel wraps silently instead of failing the stand-in's run (Kani checks it regardless).
+#[cfg(not(kani))]
+pub fn overflow_checks() -> bool {
+    kani::__panics(|| {
+        let _ = std::hint::black_box(std::hint::black_box(u8::MAX) + 1);
+    })
+}
+
 #[cfg(all(test, not(kani)))]
 mod registry {
     use truecost::claims::harnesses::{StandinMode, HARNESSES};
 
-    /// Every harness body, by name (a harness missing here or in the registry fails the test).
-    fn bodies() -> Vec<(&'static str, fn())> {
-        vec![
-            (
-                "c1_as_printed_round_fixed_points_are_optimal",
-                crate::c1::c1_as_printed_round_fixed_points_are_optimal,
-            ),
-            (
-                "c1_corrected_round_lifts_the_exact_level",
-                crate::c1::c1_corrected_round_lifts_the_exact_level,
-            ),
-            (
-                "c1_corrected_round_raises_the_floor_by_c",
-                crate::c1::c1_corrected_round_raises_the_floor_by_c,
-            ),
-            (
-                "c1_corrected_round_is_monotone_below_q_star",
-                crate::c1::c1_corrected_round_is_monotone_below_q_star,
-            ),
-            (
-                "c2_oracle_argmin_cost_is_argmax_reward",
-                crate::c2::c2_oracle_argmin_cost_is_argmax_reward,
-            ),
-            (
-                "c3_certificate_makes_discounting_avoid_the_goal",
-                crate::c3::c3_certificate_makes_discounting_avoid_the_goal,
-            ),
-            (
-                "c3_example_sides_of_alpha_star_exhaustive_small",
-                crate::c3::c3_example_sides_of_alpha_star_exhaustive_small,
-            ),
-            (
-                "c4_as_printed_set_is_the_oracles",
-                crate::c4::c4_as_printed_set_is_the_oracles,
-            ),
-            (
-                "c4_corrected_set_is_the_oracles",
-                crate::c4::c4_corrected_set_is_the_oracles,
-            ),
-            (
-                "dijkstra_cost_to_go_satisfies_bellman_optimality",
-                crate::solvers::dijkstra_cost_to_go_satisfies_bellman_optimality,
-            ),
-            (
-                "dijkstra_equals_value_iteration",
-                crate::solvers::dijkstra_equals_value_iteration,
-            ),
-            (
-                "dijkstra_equals_value_iteration_exhaustive_small",
-                crate::solvers::dijkstra_equals_value_iteration_exhaustive_small,
-            ),
-            (
-                "exploration_discovers_the_reachable_states_exhaustive_small",
-                crate::solvers::exploration_discovers_the_reachable_states_exhaustive_small,
-            ),
-            (
-                "units_plus_is_exact_when_it_fits",
-                crate::values::units_plus_is_exact_when_it_fits,
-            ),
-            (
-                "units_plus_reports_every_overflow",
-                crate::values::units_plus_reports_every_overflow,
-            ),
-            (
-                "rational_add_and_mul_are_exact",
-                crate::values::rational_add_and_mul_are_exact,
-            ),
-        ]
-    }
-
-    /// The registry's mode, execution count, domain size and failing count of every harness are
-    /// what the stand-in measures when it runs the harness (the sample counts and the rest of
-    /// each entry are checked against the sources by `tests/harnesses.rs` of `truecost`).
+    /// The registry against the stand-in's runs of [`crate::harnesses`]: every harness once,
+    /// in the registry's order, and each run's mode, executions, choice bits and failing count
+    /// are the entry's; every run passes its own checks (no unexpected failure, a
+    /// `should_panic` harness refuted by an assertion, not vacuous, every cover satisfied). The
+    /// sample counts and the rest of each entry are checked against the sources by
+    /// `tests/harnesses.rs` of `truecost`.
     #[test]
     fn registry_matches_the_stand_in_runs() {
-        let all = bodies();
-        assert_eq!(all.len(), HARNESSES.len());
-        for (name, body) in all {
-            let h = HARNESSES
+        let all = crate::harnesses();
+        let names: Vec<&str> = all.iter().map(|h| h.name).collect();
+        let registered: Vec<&str> = HARNESSES.iter().map(|h| h.name).collect();
+        assert_eq!(names, registered, "the table and the registry, in order");
+        for h in &all {
+            let entry = HARNESSES
                 .iter()
-                .find(|h| h.name == name)
+                .find(|e| e.name == h.name)
                 .expect("registered");
-            let s = kani::__run_with(name, h.should_panic, h.executions, body);
+            assert_eq!(h.should_panic, entry.should_panic, "{}", h.name);
+            let s = h.explore();
+            assert_eq!(s.verdict(), Ok(()), "{s}");
             let mode = match s.mode {
                 kani::Mode::Exhaustive => StandinMode::Exhaustive,
                 kani::Mode::Sampled => StandinMode::Sampled,
             };
-            assert_eq!(mode, h.mode, "{name}: {s}");
-            assert_eq!(s.executions, h.executions, "{name}: {s}");
-            assert_eq!(s.domain_bits, h.domain_bits, "{name}: {s}");
-            assert_eq!(s.failures, h.failing, "{name}: {s}");
+            assert_eq!(mode, entry.mode, "{s}");
+            assert_eq!(s.executions, entry.executions, "{s}");
+            assert_eq!(s.choice_bits, entry.choice_bits, "{s}");
+            assert_eq!(s.failures, entry.failing, "{s}");
             // Wide domains only, but for the named small variants.
             assert_eq!(
-                name.ends_with("_exhaustive_small"),
-                h.domain_bits < 32,
-                "{name}"
+                h.name.ends_with("_exhaustive_small"),
+                entry.choice_bits < 32,
+                "{}",
+                h.name
             );
-            // A sampled harness is not vacuous: most executions are not pruned.
-            assert!(s.executions - s.pruned >= s.executions / 20, "{name}: {s}");
+            // Not nearly vacuous: at least one execution in twenty is not pruned.
+            assert!(s.executions - s.pruned >= s.executions / 20, "{s}");
         }
     }
 
-    /// Every finite pair whose sum does not fit is reported: every non-pruned execution of the
-    /// overflow harness panics.
+    /// A harness with covers in the three forms, one in a branch.
+    #[kani::proof]
+    fn listed_covers() {
+        let v: u8 = kani::any();
+        if v > 20 {
+            kani::cover!(v == 30, "thirty");
+        }
+        kani::cover!(v == 3);
+        kani::cover!();
+    }
+
+    /// The same covers with the branch made dead by an assume.
+    fn dead_branch() {
+        let v: u8 = kani::any();
+        kani::assume(v < 10);
+        if v > 20 {
+            kani::cover!(v == 30, "thirty");
+        }
+        kani::cover!(v == 3);
+        kani::cover!();
+    }
+
+    /// `#[kani::proof]` lists the covers written in the body, in Kani's messages; with the
+    /// branch dead, its cover is reported as never reached (the run alone could not see it: no
+    /// execution calls it), and the harness fails.
     #[test]
-    fn every_sampled_overflow_is_reported() {
-        let s = kani::__run_with(
-            "units_plus_reports_every_overflow",
-            true,
-            kani::SAMPLES,
-            crate::values::units_plus_reports_every_overflow,
+    fn the_proof_macro_lists_the_covers_of_the_body() {
+        let h = listed_covers::HARNESS;
+        assert_eq!(
+            h.covers,
+            ["thirty", "cover condition: v == 3", "cover location"]
         );
-        assert_eq!(s.failures, s.executions - s.pruned, "{s}");
+        let s = h.explore();
+        assert_eq!((s.verdict(), s.covers_hit()), (Ok(()), 3), "{s}");
+        let dead = kani::Harness {
+            body: dead_branch,
+            ..h
+        };
+        let s = dead.explore();
+        let why = s.verdict().expect_err("a cover is never reached");
+        assert!(why.contains("cover \"thirty\" was never reached"), "{why}");
+        assert_eq!(s.covers_hit(), 2, "{s}");
     }
 
     /// The stand-in really enumerates and really fails: a harness with a false assertion on
@@ -205,7 +218,7 @@ mod registry {
     }
 
     /// A wide domain is sampled, with the stated number of executions, boundary values first,
-    /// and reports its width; many narrow choices together are sampled too.
+    /// and reports its width in choice bits; many narrow choices together are sampled too.
     #[test]
     fn wide_domains_are_sampled_boundary_values_first() {
         fn wide() {
@@ -214,9 +227,10 @@ mod registry {
         }
         let s = kani::__run_with("wide", false, 1234, wide);
         assert_eq!(
-            (s.mode, s.executions, s.domain_bits),
+            (s.mode, s.executions, s.choice_bits),
             (kani::Mode::Sampled, 1234, 32)
         );
+        assert_eq!(s.covers_hit(), 1);
         // Boundary values first: some early execution draws i32::MIN, i32::MAX, -1, 0, 1 (an
         // assertion that they never occur must fail).
         for (name, body) in [
@@ -239,12 +253,16 @@ mod registry {
             let _: [u8; 4] = kani::any();
         }
         let s = kani::__run_with("many_narrow", false, 100, many_narrow);
-        assert_eq!((s.mode, s.domain_bits), (kani::Mode::Sampled, 32));
-        // An overflow is not the failure a should_panic harness expects.
+        assert_eq!((s.mode, s.choice_bits), (kani::Mode::Sampled, 32));
+        // An overflow is not the failure a should_panic harness expects (where this build
+        // checks overflow at all).
         fn overflows() {
             let v: u8 = kani::any();
             let _ = std::hint::black_box(v) + 255;
         }
-        assert!(std::panic::catch_unwind(|| kani::__run("overflows", true, overflows)).is_err());
+        assert_eq!(
+            std::panic::catch_unwind(|| kani::__run("overflows", true, overflows)).is_err(),
+            crate::overflow_checks()
+        );
     }
 }

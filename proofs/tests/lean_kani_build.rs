@@ -1,4 +1,4 @@
-//! Issue 10, item 3: `cargo kani -p truecost-proofs` compiles only what the harnesses verify.
+//! `cargo kani -p truecost-proofs` compiles only what the harnesses verify.
 //!
 //! `cargo kani` passes `--cfg=kani` to cargo through `RUSTFLAGS`, so cargo evaluates the
 //! `[target.'cfg(not(kani))'.…]` tables of `proofs/Cargo.toml` with it; `cargo tree` under the
@@ -35,7 +35,7 @@ fn tree(rustflags: &str, edges: &str) -> BTreeSet<String> {
         .collect()
 }
 
-/// The crates that must never reach Kani's build (issue 10, item 3).
+/// The crates that must never reach Kani's build.
 fn forbidden(name: &str) -> bool {
     [
         "clap",

@@ -39,9 +39,10 @@ use crate::value::{to_common_scale, Rational};
 pub const MAX_BONUS_POLICIES: u64 = 1 << 22;
 
 /// The most policy-stage steps it may take: each enumerated policy walks its lasso from `x1`,
-/// up to one step per state, so the work is about policies × states. Measured (release, one
-/// core): 2^22 policies on a 1,021-state chain of two-way choices took two minutes; this bound
-/// keeps every accepted problem to about half a minute.
+/// up to one step per state, and so does the goal-path search, so the work is about
+/// policies × states. Measured (release, a loaded 2-core machine): 2^20 policies on a 1,021-state
+/// chain of two-way choices take 16 s, 2^22 took two minutes; this bound keeps every accepted
+/// problem to about half a minute.
 pub const MAX_BONUS_WORK: u64 = 1 << 30;
 
 /// The policy bound of [`bonus_analysis`] for a problem of `states` states: the largest power

@@ -7,8 +7,8 @@
 //!   ([`oracle`], [`qlearning`]).
 //! * Engine 2 — proptest properties on larger random problems with shrinking ([`sampled`]).
 //! * Engine 3 — Kani harnesses in `proofs/` (one source: symbolic under `cargo kani`, run by
-//!   explicit-state enumeration through a stand-in crate under `cargo test`); the registry
-//!   lists them ([`registry`]).
+//!   explicit-state enumeration or seeded sampling through a stand-in crate under `cargo test`
+//!   and by `verify` in its own process); [`harnesses`] lists them.
 //! * Engine 4 — SMT proofs over the reals for a stated scope ([`smt`], Z3).
 //! * Engine 5 — the Coq development in `proofs/coq/`, theorems about every finite problem,
 //!   re-checked by `coqc` when `verify` runs ([`coq`]).
@@ -127,7 +127,8 @@ impl Verdict {
 pub struct EngineRun {
     /// `exhaustive enumeration`, `proptest`, `kani harness …` or `smt`.
     pub engine: String,
-    /// `exhaustive`, `sampled`, or `not run by verify` (Kani harnesses: see `proofs/`).
+    /// `exhaustive` or `sampled`; for a Kani harness, how the stand-in ran it in this process
+    /// (or that it was not run, with `--no-harnesses`).
     pub mode: String,
     /// What was checked.
     pub scope: String,

@@ -4,15 +4,19 @@
 use std::time::Instant;
 
 use super::coq::{self, Kind};
-use super::harnesses::harness_runs;
-use super::report::{AlphaStar, Report};
+use super::harnesses::{self, StandinRun, HARNESSES};
+use super::report::{AlphaStar, HarnessSection, Report};
 use super::sampled::{self, PropertyRun};
 use super::shard::{self, Part, ShardFile};
 use super::smt::{self, Encoding, Outcome, SmtVerdict};
 use super::tiny::Tiny;
 use super::{alpha, c1, c2, c3, c4, ClaimResult, Counterexample, EngineRun, Scope, Verdict};
 
-/// What `verify` runs besides the enumeration, proptest and harness engines.
+/// The table of harness bodies `verify` runs through the stand-in
+/// (`truecost_proofs::harnesses`; a test may pass another, see [`harnesses::run_standin`]).
+pub type HarnessTable = fn() -> Vec<truecost_proofs::standin::Harness>;
+
+/// What `verify` runs besides the enumeration and proptest engines.
 #[derive(Clone, Debug)]
 pub struct Options {
     /// Run the SMT engine (engine 4).
@@ -23,6 +27,9 @@ pub struct Options {
     /// unless `--no-coq`. Off by default here: it compiles the whole development, and a
     /// library caller (the test suite's pinned reports) asks for it explicitly.
     pub coq: bool,
+    /// Run the Kani harnesses' bodies through the stand-in in this process, from this table
+    /// (`None`: `--no-harnesses`; the report then says they were not run).
+    pub harnesses: Option<HarnessTable>,
 }
 
 impl Default for Options {
@@ -31,6 +38,7 @@ impl Default for Options {
             smt: true,
             smt_timeout_ms: smt::TIMEOUT_MS,
             coq: false,
+            harnesses: Some(truecost_proofs::harnesses),
         }
     }
 }
@@ -238,8 +246,94 @@ fn selected(id: &str, only: Option<&str>) -> bool {
     }
 }
 
-fn attach(result: &mut ClaimResult, prop: Option<(PropertyRun, f64)>) {
-    result.engines.extend(harness_runs(&result.id));
+/// The harnesses `verify` runs for the claims selected by `only`: those stating a selected
+/// claim, and, when every claim is selected, the lemmas on truecost's own code.
+fn harness_plan(only: Option<&str>) -> Vec<&'static harnesses::Harness> {
+    HARNESSES
+        .iter()
+        .filter(|h| {
+            if IDS.contains(&h.claim) {
+                selected(h.claim, only)
+            } else {
+                only.is_none()
+            }
+        })
+        .collect()
+}
+
+/// Runs the planned harnesses through the stand-in (each an indivisible shard unit); `None`
+/// when the options skip them.
+fn run_harnesses(
+    plan: &[&'static harnesses::Harness],
+    options: &Options,
+) -> Option<Vec<StandinRun>> {
+    let table = options.harnesses?;
+    let sites: Vec<String> = plan
+        .iter()
+        .map(|h| format!("kani harness {}", h.name))
+        .collect();
+    let runs = shard::units(
+        &sites,
+        |wanted| {
+            let names: Vec<&str> = plan
+                .iter()
+                .zip(wanted)
+                .filter(|(_, &w)| w)
+                .map(|(h, _)| h.name)
+                .collect();
+            let mut done = harnesses::run_standin(&table(), &names).into_iter();
+            wanted
+                .iter()
+                .map(|&w| if w { done.next() } else { None })
+                .collect()
+        },
+        StandinRun::by_another_shard,
+    );
+    // A shard's placeholder for a harness another shard owns takes the harness's name.
+    Some(
+        plan.iter()
+            .zip(runs)
+            .map(|(h, run)| StandinRun {
+                name: h.name.to_string(),
+                ..run
+            })
+            .collect(),
+    )
+}
+
+/// The engine line of harness `h`, and what its run means for the claim: an assertion failing
+/// in a harness that must hold contradicts a claim that holds (inconclusive, as any
+/// disagreement between engines); any other way a harness fails (a cover never satisfied,
+/// every execution pruned, a printed statement not refuted) is noted, the verdict left alone.
+fn attach_harness(result: &mut ClaimResult, h: &harnesses::Harness, runs: Option<&[StandinRun]>) {
+    let Some(runs) = runs else {
+        result.engines.push(harnesses::not_run(h));
+        return;
+    };
+    let run = runs
+        .iter()
+        .find(|r| r.name == h.name)
+        .expect("every planned harness has a run");
+    result.engines.push(harnesses::reported(h, run));
+    let Some(problem) = &run.problem else { return };
+    if run.refutes() && result.verdict != Verdict::Refuted {
+        result.notes.push(format!(
+            "engines disagree (kani harness {}, run here by the stand-in, fails: {problem}): inconclusive",
+            h.name
+        ));
+        result.verdict = Verdict::Inconclusive;
+    } else {
+        result.notes.push(format!(
+            "kani harness {} did not do what it states when run here by the stand-in: {problem}",
+            h.name
+        ));
+    }
+}
+
+fn attach(result: &mut ClaimResult, prop: Option<(PropertyRun, f64)>, runs: Option<&[StandinRun]>) {
+    for h in harnesses::of_claim(&result.id) {
+        attach_harness(result, h, runs);
+    }
     let Some((p, seconds)) = prop else { return };
     result.engines.push(p.engine_run(seconds));
     if let Some((t, what)) = &p.counterexample {
@@ -324,6 +418,9 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
         }
     }
     let n = sampled::cases(scope);
+    let plan = harness_plan(only);
+    let harness_runs = run_harnesses(&plan, options);
+    let runs = harness_runs.as_deref();
     let mut claims = Vec::new();
     if selected("C1", only) || selected("C1-corrected", only) {
         let (mut a, mut b) = c1::check(scope);
@@ -331,6 +428,7 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
             attach(
                 &mut a,
                 Some(property("C1", || sampled::c1_printed(n, None))),
+                runs,
             );
             claims.push(a);
         }
@@ -338,35 +436,41 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
             attach(
                 &mut b,
                 Some(property("C1-corrected", || sampled::c1_corrected(n, None))),
+                runs,
             );
             claims.push(b);
         }
     }
     if selected("C2", only) {
         let mut a = c2::check(scope);
-        attach(&mut a, Some(property("C2", || sampled::c2(n, None))));
+        attach(&mut a, Some(property("C2", || sampled::c2(n, None))), runs);
         claims.push(a);
     }
     if selected("C3", only) {
         let mut a = c3::check(scope);
-        attach(&mut a, Some(property("C3", || sampled::c3(n, None))));
+        attach(&mut a, Some(property("C3", || sampled::c3(n, None))), runs);
         claims.push(a);
     }
     let (mut example, star) = alpha::check();
     if selected("C3-example", only) {
-        attach(&mut example, None);
+        attach(&mut example, None, runs);
         claims.push(example);
     }
     if selected("C4", only) || selected("C4-corrected", only) {
         let (mut a, mut b) = c4::check(scope);
         if selected("C4", only) {
-            attach(&mut a, Some(property("C4", || sampled::c4(true, n, None))));
+            attach(
+                &mut a,
+                Some(property("C4", || sampled::c4(true, n, None))),
+                runs,
+            );
             claims.push(a);
         }
         if selected("C4-corrected", only) {
             attach(
                 &mut b,
                 Some(property("C4-corrected", || sampled::c4(false, n, None))),
+                runs,
             );
             claims.push(b);
         }
@@ -397,7 +501,9 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
             attach_coq(c, check);
         }
     }
+    let harnesses = harness_section(&plan, runs);
     Ok(Report {
+        harnesses: Some(harnesses),
         solver: options.smt.then(smt::solver_version),
         coq: coq_check,
         smt: smt_outcomes,
@@ -411,6 +517,44 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
     })
 }
 
+/// The report's harness section: one line on what ran, and the lemma harnesses' engine lines.
+fn harness_section(
+    plan: &[&'static harnesses::Harness],
+    runs: Option<&[StandinRun]>,
+) -> HarnessSection {
+    let lemmas: Vec<&harnesses::Harness> = plan
+        .iter()
+        .copied()
+        .filter(|h| !IDS.contains(&h.claim))
+        .collect();
+    let Some(runs) = runs else {
+        return HarnessSection {
+            summary: format!(
+                "the {} kani harnesses of proofs/ for these claims were NOT run (--no-harnesses)",
+                plan.len()
+            ),
+            lemmas: lemmas.into_iter().map(harnesses::not_run).collect(),
+            overflow_checks: None,
+        };
+    };
+    let failing = runs.iter().filter(|r| r.problem.is_some()).count();
+    HarnessSection {
+        summary: format!(
+            "{} kani harnesses of proofs/ run here by the stand-in with their stated executions, seeded: {} as stated, {failing} failing; evidence, not Kani results (Kani is not run here)",
+            runs.len(),
+            runs.len() - failing
+        ),
+        lemmas: lemmas
+            .into_iter()
+            .map(|h| {
+                let run = runs.iter().find(|r| r.name == h.name).expect("planned");
+                harnesses::reported(h, run)
+            })
+            .collect(),
+        overflow_checks: Some(truecost_proofs::overflow_checks()),
+    }
+}
+
 /// What a shard file of `verify` must share with the other shards of its run: the tool and
 /// commit (the sites must be the same), the scope, the claim filter and the options.
 fn fingerprint(scope: Scope, only: Option<&str>, options: &Options) -> serde_json::Value {
@@ -422,6 +566,7 @@ fn fingerprint(scope: Scope, only: Option<&str>, options: &Options) -> serde_jso
         "smt": options.smt,
         "smt_timeout_ms": options.smt_timeout_ms,
         "coq": options.coq,
+        "harnesses": options.harnesses.is_some(),
     })
 }
 
@@ -476,6 +621,9 @@ pub fn merge(files: &[(String, String)]) -> Result<Report, String> {
         smt: fp.field("smt")?,
         smt_timeout_ms: fp.field("smt_timeout_ms")?,
         coq: fp.field("coq")?,
+        harnesses: fp
+            .field::<bool>("harnesses")?
+            .then_some(truecost_proofs::harnesses as HarnessTable),
     };
     fp.confirm(&fingerprint(scope, only.as_deref(), &options))?;
     shard::replay(shards, || run(scope, only.as_deref(), &options))?
@@ -656,6 +804,65 @@ mod tests {
             .push("engines disagree (smt against enumeration/proptest): inconclusive".into());
         attach_coq(&mut r, &clean);
         assert_eq!(r.verdict, Verdict::Inconclusive);
+    }
+
+    /// What a harness run here means for its claim: one that does what it states leaves the
+    /// verdict; one whose assertion fails (a counterexample found by the stand-in) makes a claim
+    /// that holds inconclusive, noted as a disagreement; one broken otherwise (a cover never
+    /// satisfied) is noted and leaves the verdict; not run, the line says so.
+    #[test]
+    fn a_harness_failing_here_contradicts_a_claim_that_holds() {
+        let h = harnesses::of_claim("C2")[0];
+        let ok = StandinRun {
+            name: h.name.into(),
+            mode: "sampled".into(),
+            executions: 10,
+            distinct: 10,
+            pruned: 0,
+            failures: 0,
+            choice_bits: 99,
+            covers_hit: 2,
+            covers: 2,
+            should_panic: false,
+            problem: None,
+            seconds: 0.0,
+        };
+        let mut r = claim("C2", Verdict::Proved);
+        attach_harness(&mut r, h, Some(std::slice::from_ref(&ok)));
+        assert_eq!((r.verdict, r.notes.len()), (Verdict::Proved, 0));
+        assert_eq!((r.engines[0].cases, r.engines[0].failures), (10, 0));
+        let failing = StandinRun {
+            failures: 3,
+            problem: Some("c2 fails: argmin cost = argmax reward".into()),
+            ..ok.clone()
+        };
+        let mut r = claim("C2", Verdict::Proved);
+        attach_harness(&mut r, h, Some(std::slice::from_ref(&failing)));
+        assert_eq!(r.verdict, Verdict::Inconclusive);
+        assert!(r.notes[0].starts_with("engines disagree (kani harness"));
+        assert!(r.engines[0]
+            .mode
+            .contains("sampled 10 executions, 3 failures, covers 2/2 hit"));
+        assert!(r.engines[0].mode.contains("HARNESS FAILS: c2 fails"));
+        // Later engines do not overrule the disagreement.
+        attach_coq(
+            &mut r,
+            &coq_check(coq::Outcome::Checked, coq::Assumptions::Closed),
+        );
+        assert_eq!(r.verdict, Verdict::Inconclusive);
+        let uncovered = StandinRun {
+            covers_hit: 1,
+            problem: Some("cover \"x\" was never satisfied".into()),
+            ..ok.clone()
+        };
+        let mut r = claim("C2", Verdict::Proved);
+        attach_harness(&mut r, h, Some(std::slice::from_ref(&uncovered)));
+        assert_eq!(r.verdict, Verdict::Proved);
+        assert!(r.notes[0].contains("did not do what it states"));
+        let mut r = claim("C2", Verdict::Proved);
+        attach_harness(&mut r, h, None);
+        assert!(r.engines[0].mode.starts_with("NOT run by this verify"));
+        assert_eq!(r.verdict, Verdict::Proved);
     }
 
     /// How the SMT engine's verdict combines with the enumeration's (the doc comment of

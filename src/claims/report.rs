@@ -43,6 +43,34 @@ fn replay_command(ce: &super::Counterexample) -> String {
         .unwrap_or_else(|| format!("truecost solve --file {} --algorithm dijkstra", ce.file))
 }
 
+/// What `verify` did with the Kani harnesses of `proofs/`: one line, and the engine lines of the
+/// harnesses on truecost's own code that state no claim of the report (the claims' own
+/// harnesses are among each claim's engines).
+#[derive(Clone, Debug, PartialEq)]
+pub struct HarnessSection {
+    /// What ran (or that nothing did), how many failed; never a Kani result.
+    pub summary: String,
+    /// The lemma harnesses (solvers, exact value types), when every claim was selected.
+    pub lemmas: Vec<super::EngineRun>,
+    /// Whether this build checks integer overflow (`None`: nothing ran). Shown with times only:
+    /// a property of the build, like the solver's version.
+    pub overflow_checks: Option<bool>,
+}
+
+impl HarnessSection {
+    /// The summary, and with times whether the build checks overflow.
+    pub fn line(&self, with_times: bool) -> String {
+        match self.overflow_checks {
+            Some(false) if with_times => format!(
+                "{}; overflow checks are OFF in this build: an overflow in a body wraps here instead of failing",
+                self.summary
+            ),
+            Some(true) if with_times => format!("{}; overflow checks on", self.summary),
+            _ => self.summary.clone(),
+        }
+    }
+}
+
 /// The whole report.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Report {
@@ -64,6 +92,9 @@ pub struct Report {
     /// The Coq engine's re-check, when it was asked for (`None`: not asked; the report then
     /// says nothing about Coq).
     pub coq: Option<super::coq::Check>,
+    /// The Kani harnesses run by the stand-in in this process (`None`: a report built without
+    /// the registry says nothing about them).
+    pub harnesses: Option<HarnessSection>,
 }
 
 /// One line on the Coq re-check: what ran, with which Coq, and what it found (the time only
@@ -174,6 +205,27 @@ fn rate(cases: u64, seconds: f64, engine: &str) -> String {
     }
 }
 
+fn engine_json(e: &super::EngineRun, with_times: bool) -> Value {
+    let mut v = serde_json::to_value(e).expect("serialisable");
+    if with_times && e.seconds > 0.0 {
+        v["seconds"] = json!(e.seconds);
+        v["cases_per_second"] = json!(e.cases as f64 / e.seconds);
+    }
+    v
+}
+
+fn engine_line(e: &super::EngineRun, with_times: bool) -> String {
+    let t = if with_times && e.seconds > 0.0 {
+        format!(", {}", rate(e.cases, e.seconds, &e.engine))
+    } else {
+        String::new()
+    };
+    format!(
+        "{} [{}] {} cases, {} failures{t}",
+        e.engine, e.mode, e.cases, e.failures
+    )
+}
+
 /// The report as JSON: `{"claims": [{"id", "statement", "verdict", "engine", "scope", "cases",
 /// "counterexample", ...}], "alpha_star": {"lo", "hi"}, ...}`.
 pub fn json(report: &Report, with_times: bool) -> String {
@@ -220,6 +272,12 @@ pub fn json(report: &Report, with_times: bool) -> String {
     if let Some(check) = &report.coq {
         root["coq"] = coq_json(check, with_times);
     }
+    if let Some(h) = &report.harnesses {
+        root["harnesses"] = json!({
+            "summary": h.line(with_times),
+            "lemmas": h.lemmas.iter().map(|e| engine_json(e, with_times)).collect::<Vec<_>>(),
+        });
+    }
     if with_times {
         root["commit"] = json!(report.commit);
         if let Some(solver) = &report.solver {
@@ -248,6 +306,9 @@ pub fn text(report: &Report, with_times: bool) -> String {
     }
     if let Some(check) = &report.coq {
         let _ = writeln!(s, "coq: {}", coq_line(check, with_times));
+    }
+    if let Some(h) = &report.harnesses {
+        let _ = writeln!(s, "harnesses: {}", h.line(with_times));
     }
     for c in &report.claims {
         let _ = writeln!(s);
@@ -279,6 +340,17 @@ pub fn text(report: &Report, with_times: bool) -> String {
             let _ = writeln!(s, "  note: {n}");
         }
     }
+    if let Some(h) = report.harnesses.as_ref().filter(|h| !h.lemmas.is_empty()) {
+        let _ = writeln!(s);
+        let _ = writeln!(
+            s,
+            "kani harnesses on truecost's own code (lemmas the claims' engines rely on)"
+        );
+        for e in &h.lemmas {
+            let _ = writeln!(s, "  engine: {}", engine_line(e, with_times));
+            let _ = writeln!(s, "    scope: {}", e.scope);
+        }
+    }
     if let Some(a) = &report.alpha_star {
         let _ = writeln!(s);
         let _ = writeln!(
@@ -308,6 +380,9 @@ pub fn markdown(report: &Report, with_times: bool) -> String {
     }
     if let Some(check) = &report.coq {
         let _ = writeln!(s, "Coq: {}\n", coq_line(check, with_times));
+    }
+    if let Some(h) = &report.harnesses {
+        let _ = writeln!(s, "Kani harnesses: {}\n", h.line(with_times));
     }
     let _ = writeln!(s, "| claim | verdict | engine | cases | scope |");
     let _ = writeln!(s, "|---|---|---|---|---|");
@@ -356,6 +431,12 @@ pub fn markdown(report: &Report, with_times: bool) -> String {
         }
         for n in &c.notes {
             let _ = writeln!(s, "- note: {n}");
+        }
+    }
+    if let Some(h) = report.harnesses.as_ref().filter(|h| !h.lemmas.is_empty()) {
+        let _ = writeln!(s, "\n## Kani harnesses on truecost's own code\n");
+        for e in &h.lemmas {
+            let _ = writeln!(s, "- {}", engine_line(e, with_times));
         }
     }
     if let Some(a) = &report.alpha_star {
@@ -471,6 +552,7 @@ mod tests {
             solver: None,
             smt: vec![],
             coq: None,
+            harnesses: None,
         }
     }
 

@@ -86,6 +86,11 @@ pub struct VerifyArgs {
     /// not re-checked on this machine.
     #[arg(long)]
     no_coq: bool,
+    /// Skip running the Kani harnesses' bodies (proofs/) through the stand-in in this process:
+    /// the report then says they were not run. (They run seeded, sampled or exhaustive, in
+    /// well under a second in a release build; Kani itself is never run by verify.)
+    #[arg(long)]
+    no_harnesses: bool,
     /// Per-obligation time limit of the SMT engine, in seconds (an obligation that runs out
     /// of time is `unknown`: the claim is then not proved).
     #[arg(long, value_name = "SECONDS", default_value_t = 60, value_parser = clap::value_parser!(u32).range(1..=3600))]
@@ -121,6 +126,7 @@ fn shard(args: &VerifyArgs, part: &str) -> Result<String, String> {
         smt: !args.no_smt,
         smt_timeout_ms: args.smt_timeout * 1000,
         coq: !args.no_coq,
+        harnesses: (!args.no_harnesses).then_some(truecost_proofs::harnesses as _),
     };
     truecost::claims::registry::run_shard(args.scope, args.claim.as_deref(), &options, part)
 }
@@ -202,6 +208,7 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
         smt: !args.no_smt,
         smt_timeout_ms: args.smt_timeout * 1000,
         coq: !args.no_coq,
+        harnesses: (!args.no_harnesses).then_some(truecost_proofs::harnesses as _),
     };
     let r = truecost::claims::registry::run(args.scope, args.claim.as_deref(), &options)?;
     if let Some(dir) = &args.smt_out {

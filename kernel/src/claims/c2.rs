@@ -5,8 +5,8 @@
 //! never by negating the cost. The claim runner (scopes, the parallel enumeration, the report)
 //! is `truecost::claims::c2`.
 
-use super::exact::{FracExt, Q};
-use super::oracle::{evaluate_fast, policies, trajectory, Functional};
+use super::exact::{ExactInt, FracExt, Q};
+use super::oracle::{evaluate_fast, policies, trajectory, Functional, Trajectory};
 use super::tiny::Tiny;
 
 /// The functionals checked.
@@ -22,41 +22,53 @@ pub fn functionals() -> Vec<Functional> {
     ]
 }
 
+/// The policies (indices into `trs`, one trajectory per policy) minimising the cost and those
+/// maximising the reward (every stage cost negated, evaluated afresh) under `f`, as bit masks.
+pub fn optimisers<I: ExactInt>(trs: &[Trajectory], f: Functional<I>) -> (u128, u128) {
+    assert!(!trs.is_empty() && trs.len() <= 128);
+    let mut costs = [FracExt::<I>::NegInf; 128];
+    let mut rewards = [FracExt::<I>::NegInf; 128];
+    for (i, tr) in trs.iter().enumerate() {
+        costs[i] = evaluate_fast(tr, f, 1);
+        rewards[i] = evaluate_fast(tr, f, -1);
+    }
+    let (costs, rewards) = (&costs[..trs.len()], &rewards[..trs.len()]);
+    let min = *costs.iter().min().expect("a policy");
+    let max = *rewards.iter().max().expect("a policy");
+    let argmin: u128 = costs
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| **c == min)
+        .fold(0, |m, (i, _)| m | 1 << i);
+    let argmax: u128 = rewards
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| **r == max)
+        .fold(0, |m, (i, _)| m | 1 << i);
+    (argmin, argmax)
+}
+
 /// Checks one problem from the start states `0..starts`; `None` if the equivalence holds for
 /// each of them and every functional, else a description of the failure. Also returns the
 /// number of comparisons made.
-pub fn check_problem(t: &Tiny, fs: &[Functional], starts: usize) -> (Option<String>, u64) {
+pub fn check_problem<I: ExactInt>(
+    t: &Tiny,
+    fs: &[Functional<I>],
+    starts: usize,
+) -> (Option<String>, u64) {
     let ps = policies(t, true);
     assert!(ps.len() <= 128);
     let mut comparisons = 0;
-    let mut costs = [FracExt::NegInf; 128];
-    let mut rewards = [FracExt::NegInf; 128];
     for start in 0..starts.min(t.states()) {
         let trs: Vec<_> = ps.iter().map(|p| trajectory(t, p, start)).collect();
         for &f in fs {
-            for (i, tr) in trs.iter().enumerate() {
-                costs[i] = evaluate_fast(tr, f, 1);
-                rewards[i] = evaluate_fast(tr, f, -1);
-            }
-            let (costs, rewards) = (&costs[..trs.len()], &rewards[..trs.len()]);
-            let min = *costs.iter().min().expect("a policy");
-            let max = *rewards.iter().max().expect("a policy");
-            let argmin: u128 = costs
-                .iter()
-                .enumerate()
-                .filter(|(_, c)| **c == min)
-                .fold(0, |m, (i, _)| m | 1 << i);
-            let argmax: u128 = rewards
-                .iter()
-                .enumerate()
-                .filter(|(_, r)| **r == max)
-                .fold(0, |m, (i, _)| m | 1 << i);
+            let (argmin, argmax) = optimisers(&trs, f);
             comparisons += 1;
             if argmin != argmax {
                 return (
                     Some(format!(
                         "from state {start}, {}: cost minimisers {argmin:#b} differ from reward maximisers {argmax:#b}",
-                        f.name()
+                        f.describe()
                     )),
                     comparisons,
                 );
@@ -64,4 +76,55 @@ pub fn check_problem(t: &Tiny, fs: &[Functional], starts: usize) -> (Option<Stri
         }
     }
     (None, comparisons)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The cost minimisers and reward maximisers at 16 bits (32 for 9/10) are the product's
+    /// (`i128`) on every 4-state problem with one move per non-goal state and costs 0 or 255
+    /// (the extremes of the harness's `u8` costs).
+    #[test]
+    fn narrow_optimisers_agree_with_i128() {
+        let mut compared = 0;
+        for code in 0..(4u32 * 2).pow(3) {
+            let lists: Vec<Vec<(u8, u8)>> = (0..3)
+                .map(|x| {
+                    let c = code >> (3 * x) & 7;
+                    vec![((c % 4) as u8, if c / 4 == 1 { 255 } else { 0 })]
+                })
+                .chain([vec![]])
+                .collect();
+            let t = Tiny::from_lists(&lists);
+            let trs: Vec<_> = policies(&t, true)
+                .iter()
+                .map(|p| trajectory(&t, p, 0))
+                .collect();
+            let half = Q::<i16>::ratio(1, 2);
+            let narrow = [
+                Functional::Total,
+                Functional::Discounted(half),
+                Functional::Average,
+                Functional::HorizonTotal(3),
+                Functional::HorizonDiscounted(3, half),
+                Functional::HorizonAverage(4),
+            ];
+            let fs = functionals();
+            let wide: Vec<_> = fs
+                .iter()
+                .filter(|f| **f != Functional::Discounted(Q::new(9, 10)))
+                .collect();
+            for (n, w) in narrow.iter().zip(&wide) {
+                assert_eq!(optimisers(&trs, *n), optimisers(&trs, **w));
+                compared += 1;
+            }
+            assert_eq!(
+                optimisers(&trs, Functional::Discounted(Q::<i32>::ratio(9, 10))),
+                optimisers(&trs, Functional::Discounted(Q::new(9, 10)))
+            );
+            assert_eq!(check_problem(&t, &narrow, 1), (None, 6));
+        }
+        assert_eq!(compared, 6 * 512);
+    }
 }

@@ -7,7 +7,7 @@
 //! by the exact oracle ([`optimal_policy_avoids_goal`]: every stationary policy evaluated
 //! exactly), never trusted. The claim runner is `truecost::claims::c3`.
 
-use super::exact::{Frac, FracExt, Q};
+use super::exact::{ExactInt, Frac, FracExt, Q};
 use super::oracle::{evaluate_fast, policies, trajectory, Functional};
 use super::tiny::{Tiny, MAX_STATES};
 
@@ -57,15 +57,16 @@ pub fn goal_reachable(t: &Tiny) -> bool {
 }
 
 /// The certificate construction for `alpha` (see the module doc). `None` if the hypotheses
-/// fail or a cost does not fit.
-pub fn certificate(t: &Tiny, alpha: Q) -> Option<Tiny> {
+/// fail or a cost does not fit. Generic over the width `I` of `alpha`'s exact arithmetic.
+pub fn certificate<I: ExactInt>(t: &Tiny, alpha: Q<I>) -> Option<Tiny> {
     let w = goal_avoiding_core(t);
     if !w[0] || !goal_reachable(t) {
         return None;
     }
     let n = t.states() as u32;
-    let bound = Q::ONE / ((Q::ONE - alpha) * alpha.pow(n.saturating_sub(2)));
-    let k = bound.numer() / bound.denom() + 1;
+    let bound = Q::one() / ((Q::one() - alpha) * alpha.pow(n.saturating_sub(2)));
+    // `bound > 0` (0 < α < 1), so the truncating quotient is the floor.
+    let k = bound.numer().to_i128() / bound.denom().to_i128() + 1;
     let k = u8::try_from(k).ok()?;
     let mut marked = [[false; 3]; MAX_STATES];
     let mut x = 0usize;
@@ -86,10 +87,11 @@ pub fn certificate(t: &Tiny, alpha: Q) -> Option<Tiny> {
 }
 
 /// The oracle: whether some policy that is discount-optimal from `x1 = 0` at `alpha` never
-/// reaches the goal and has only positive stage costs on its trajectory.
-pub fn optimal_policy_avoids_goal(t: &Tiny, alpha: Q) -> bool {
+/// reaches the goal and has only positive stage costs on its trajectory. Generic over the
+/// width `I` of the exact values (every policy's discounted value, an unnormalised fraction).
+pub fn optimal_policy_avoids_goal<I: ExactInt>(t: &Tiny, alpha: Q<I>) -> bool {
     let ps = policies(t, false);
-    let mut best: Option<Frac> = None;
+    let mut best: Option<Frac<I>> = None;
     let mut avoid_at_best = false;
     for p in &ps {
         let tr = trajectory(t, p, 0);

@@ -15,8 +15,8 @@
 
 use std::fmt;
 
-use super::exact::Q;
-use super::oracle::{karp_minimum_mean_cycle, simple_cycles};
+use super::exact::{ExactInt, Q};
+use super::oracle::{karp_minimum_mean_cycle_in, simple_cycles};
 use super::tiny::Tiny;
 
 /// A problem type that converts to an [`Instance`] with integer costs and its scale `D`
@@ -30,42 +30,42 @@ pub trait ToInstance {
     fn to_instance(&self) -> Result<(Instance, Self::Scale), String>;
 }
 
-/// One end of an interval of bonuses.
+/// One end of an interval of bonuses (exact rationals over `I`, `i128` unless stated).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub enum End {
+pub enum End<I: ExactInt = i128> {
     /// Unbounded (`-∞` below, `+∞` above).
     Unbounded,
     /// Included.
-    Closed(Q),
+    Closed(Q<I>),
     /// Excluded.
-    Open(Q),
+    Open(Q<I>),
 }
 
 /// A convex set of rationals `{M : lo ≤/< M ≤/< hi}`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Interval {
+pub struct Interval<I: ExactInt = i128> {
     /// Lower end.
-    pub lo: End,
+    pub lo: End<I>,
     /// Upper end.
-    pub hi: End,
+    pub hi: End<I>,
     /// Whether the set is empty.
     pub empty: bool,
 }
 
-impl Interval {
+impl<I: ExactInt> Interval<I> {
     /// `M < 0`.
-    pub fn negative() -> Interval {
+    pub fn negative() -> Interval<I> {
         Interval {
             lo: End::Unbounded,
-            hi: End::Open(Q::ZERO),
+            hi: End::Open(Q::zero()),
             empty: false,
         }
     }
 
     /// Whether `m` belongs to the set.
-    pub fn contains(&self, m: Q) -> bool {
+    pub fn contains(&self, m: Q<I>) -> bool {
         !self.empty
             && match self.lo {
                 End::Unbounded => true,
@@ -80,7 +80,7 @@ impl Interval {
     }
 
     /// Intersects with `[lo, +∞)` (closed).
-    pub fn at_least(&mut self, lo: Q) {
+    pub fn at_least(&mut self, lo: Q<I>) {
         self.lo = match self.lo {
             End::Closed(a) | End::Open(a) if a > lo => self.lo,
             End::Open(a) if a == lo => self.lo,
@@ -90,7 +90,7 @@ impl Interval {
     }
 
     /// Intersects with `(-∞, hi]` (closed).
-    pub fn at_most(&mut self, hi: Q) {
+    pub fn at_most(&mut self, hi: Q<I>) {
         self.hi = match self.hi {
             End::Closed(b) | End::Open(b) if b < hi => self.hi,
             End::Open(b) if b == hi => self.hi,
@@ -116,12 +116,12 @@ impl Interval {
     }
 
     /// Set equality.
-    pub fn same_set(&self, o: &Interval) -> bool {
+    pub fn same_set(&self, o: &Interval<I>) -> bool {
         (self.empty && o.empty) || (!self.empty && !o.empty && self.lo == o.lo && self.hi == o.hi)
     }
 
     /// The finite ends.
-    fn ends(&self) -> Vec<Q> {
+    fn ends(&self) -> Vec<Q<I>> {
         let mut v = Vec::new();
         for e in [self.lo, self.hi] {
             if let End::Closed(q) | End::Open(q) = e {
@@ -132,7 +132,7 @@ impl Interval {
     }
 }
 
-impl fmt::Display for Interval {
+impl<I: ExactInt> fmt::Display for Interval<I> {
     /// `[-3/2, -1)`, `(-inf, 0)`, `empty`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if self.empty {
@@ -368,11 +368,16 @@ impl Instance {
     /// `Lav(Ĉ)` by Karp's algorithm, cross-checked against simple-cycle enumeration
     /// (`Err` on disagreement: an internal error).
     pub fn least_mean_cycle(&self) -> Result<Option<Q>, String> {
+        self.least_mean_cycle_in()
+    }
+
+    /// [`Instance::least_mean_cycle`] in exact rationals over `I`.
+    pub fn least_mean_cycle_in<I: ExactInt>(&self) -> Result<Option<Q<I>>, String> {
         let (n, arcs) = self.tiny_like();
-        let karp = karp_minimum_mean_cycle(n, &arcs);
+        let karp = karp_minimum_mean_cycle_in::<I>(n, &arcs);
         let enumerated = simple_cycles(n, &arcs)
             .into_iter()
-            .map(|(w, l)| Q::new(w as i128, l as i128))
+            .map(|(w, l)| Q::from_i64s(w, l as i64))
             .min();
         if karp != enumerated {
             return Err(format!(
@@ -386,19 +391,20 @@ impl Instance {
 /// The three sets of bonuses for one choice of `π*` (one value of `S*`).
 #[derive(Clone, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct BonusSets {
+pub struct BonusSets<I: ExactInt = i128> {
     /// `L*`.
     pub optimal_cost: i64,
     /// `S*`.
     pub optimal_states: i64,
     /// `Lav(Ĉ)` (`None`: no goal-avoiding cycle reachable).
-    pub least_mean_cycle: Option<Q>,
+    pub least_mean_cycle: Option<Q<I>>,
     /// The exact set, from the policy-enumeration oracle.
-    pub exact: Interval,
-    /// The printed formula's set (`None` when it divides by `L(u) = 0`).
-    pub printed: Option<Interval>,
+    pub exact: Interval<I>,
+    /// The printed formula's set (`None` when it divides by `L(u) = 0`, or when not asked
+    /// for: [`bonus_analysis_in`]).
+    pub printed: Option<Interval<I>>,
     /// The corrected formula's set.
-    pub corrected: Interval,
+    pub corrected: Interval<I>,
 }
 
 /// The most states reachable from `x1` that [`bonus_analysis`] accepts: with integer costs
@@ -462,6 +468,18 @@ pub fn bonus_sets(inst: &Instance, limit: u64) -> Result<Option<Vec<BonusSets>>,
 /// assert_eq!(bonus_analysis(&grid, 1 << 22), Err(BonusError::TooManyPolicies { limit: 1 << 22 }));
 /// ```
 pub fn bonus_analysis(inst: &Instance, limit: u64) -> Result<Option<Vec<BonusSets>>, BonusError> {
+    bonus_analysis_in(inst, limit, true)
+}
+
+/// [`bonus_analysis`] in exact rationals over `I` (checked: a value that does not fit `I`
+/// panics); the printed formula's set is computed only if `printed` is true (otherwise every
+/// `printed` is `None`).
+pub fn bonus_analysis_in<I: ExactInt>(
+    inst: &Instance,
+    limit: u64,
+    printed: bool,
+) -> Result<Option<Vec<BonusSets<I>>>, BonusError> {
+    let with_printed = printed;
     let reach = inst.reachable();
     if !(0..inst.moves.len()).any(|x| reach[x] && inst.is_goal[x]) {
         return Ok(None);
@@ -480,12 +498,14 @@ pub fn bonus_analysis(inst: &Instance, limit: u64) -> Result<Option<Vec<BonusSet
     let Some(averages) = inst.policy_averages(limit) else {
         return Err(BonusError::TooManyPolicies { limit });
     };
-    let lav = inst.least_mean_cycle().map_err(BonusError::Internal)?;
+    let lav = inst
+        .least_mean_cycle_in::<I>()
+        .map_err(BonusError::Internal)?;
     // Cross-check Karp against the policies' goal-avoiding cycles.
     let from_policies = averages
         .iter()
         .filter(|a| a.1 == 0)
-        .map(|a| Q::new(a.0 as i128, a.2 as i128))
+        .map(|a| Q::from_i64s(a.0, a.2))
         .min();
     if from_policies != lav {
         return Err(BonusError::Internal(format!(
@@ -503,21 +523,21 @@ pub fn bonus_analysis(inst: &Instance, limit: u64) -> Result<Option<Vec<BonusSet
             let coef = k - r * s;
             let rhs = c * s - lstar * k;
             if coef > 0 {
-                exact.at_most(Q::new(rhs as i128, coef as i128));
+                exact.at_most(Q::from_i64s(rhs, coef));
             } else if coef < 0 {
-                exact.at_least(Q::new(rhs as i128, coef as i128));
+                exact.at_least(Q::from_i64s(rhs, coef));
             } else if rhs < 0 {
                 exact.empty = true;
             }
         }
-        let cycle_bound = lav.map(|l| Q::int(s as i128) * l - Q::int(lstar as i128));
+        let cycle_bound =
+            lav.map(|l| Q::integer(I::from_i64(s)) * l - Q::integer(I::from_i64(lstar)));
         // Printed.
-        let printed = if paths.iter().any(|p| p.1 != s && p.0 == 0) {
+        let printed = if !with_printed || paths.iter().any(|p| p.1 != s && p.0 == 0) {
             None
         } else {
             let a_of = |l: i64, su: i64| {
-                (Q::ONE - Q::new(su as i128, s as i128))
-                    * (Q::new((su * lstar) as i128, (s * l) as i128) - Q::ONE)
+                (Q::one() - Q::from_i64s(su, s)) * (Q::from_i64s(su * lstar, s * l) - Q::one())
             };
             let mut iv = Interval::negative();
             for &(l, su) in &paths {
@@ -537,7 +557,7 @@ pub fn bonus_analysis(inst: &Instance, limit: u64) -> Result<Option<Vec<BonusSet
             if su == s {
                 continue;
             }
-            let t = Q::new((s * l - su * lstar) as i128, (su - s) as i128);
+            let t = Q::from_i64s(s * l - su * lstar, su - s);
             if su < s {
                 corrected.at_least(t);
             } else {
@@ -598,3 +618,71 @@ impl fmt::Display for BonusError {
 }
 
 impl std::error::Error for BonusError {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn wide(q: Q<i16>) -> Q {
+        Q::new(q.numer() as i128, q.denom() as i128)
+    }
+
+    fn wide_end(e: End<i16>) -> End {
+        match e {
+            End::Unbounded => End::Unbounded,
+            End::Closed(q) => End::Closed(wide(q)),
+            End::Open(q) => End::Open(wide(q)),
+        }
+    }
+
+    fn wide_interval(i: Interval<i16>) -> Interval {
+        Interval {
+            lo: wide_end(i.lo),
+            hi: wide_end(i.hi),
+            empty: i.empty,
+        }
+    }
+
+    /// The analysis at 16 bits gives the product's (`i128`) sets on every 3-state problem with
+    /// 1–2 moves per non-goal state and costs 0, 1 or 7; without the printed formula when not
+    /// asked for.
+    #[test]
+    fn sixteen_bit_analysis_agrees_with_i128() {
+        let costs = [0u8, 1, 7];
+        let mut checked = 0;
+        for code in 0..(3u32 * 3 * 3).pow(2) * 4 {
+            let mut c = code;
+            let mut lists: Vec<Vec<(u8, u8)>> = vec![Vec::new(), Vec::new(), Vec::new()];
+            for x in 0..2 {
+                let deg = 1 + (c % 2) as usize;
+                c /= 2;
+                for _ in 0..deg {
+                    let (to, cost) = ((c % 3) as u8, costs[(c / 3 % 3) as usize]);
+                    c /= 9;
+                    lists[x].push((to, cost));
+                }
+            }
+            let t = Tiny::from_lists(&lists);
+            let inst = Instance::from_tiny(&t);
+            let full = bonus_analysis(&inst, 1 << 12).expect("within bounds");
+            let narrow = bonus_analysis_in::<i16>(&inst, 1 << 12, true).expect("within bounds");
+            let lean = bonus_analysis_in::<i16>(&inst, 1 << 12, false).expect("within bounds");
+            assert_eq!(full.is_some(), narrow.is_some());
+            let (Some(full), Some(narrow), Some(lean)) = (full, narrow, lean) else {
+                continue;
+            };
+            for ((f, n), l) in full.iter().zip(&narrow).zip(&lean) {
+                assert_eq!(f.exact, wide_interval(n.exact));
+                assert_eq!(f.corrected, wide_interval(n.corrected));
+                assert_eq!(f.printed, n.printed.map(wide_interval));
+                assert_eq!(f.least_mean_cycle, n.least_mean_cycle.map(wide));
+                assert_eq!(
+                    (l.exact, l.corrected, l.printed),
+                    (n.exact, n.corrected, None)
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked > 100, "{checked}");
+    }
+}

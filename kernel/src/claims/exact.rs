@@ -1,96 +1,261 @@
-//! Small exact rationals (`i128` numerator and denominator) for the enumeration engines.
+//! Small exact rationals for the enumeration engines, generic over the integer width.
 //!
 //! The engines run millions of tiny problems; big rationals would dominate their time. Every
 //! operation here is checked: an overflow is reported as an internal error (a panic that the
 //! CLI turns into a non-zero exit), never a wrapped number. The scopes are small enough that
 //! no overflow occurs (values have at most a few dozen bits).
+//!
+//! The product computes with `i128` ([`Q`] is `Q<i128>`); the same code instantiated at `i8`,
+//! `i16` or `i32` ([`ExactInt`]) is what the Kani harnesses verify on small bit-vectors, where
+//! a symbolic product or remainder costs a model checker a small fraction of its `i128` price.
 
 use std::cmp::Ordering;
 use std::fmt;
-
-/// An exact rational `n/d` with `d > 0` and `gcd(n, d) = 1`.
-///
-/// ```
-/// use truecost_kernel::claims::exact::Q;
-/// assert_eq!(Q::new(2, 4) + Q::int(1), Q::new(3, 2));
-/// assert!(Q::new(1, 3) < Q::new(1, 2));
-/// ```
-#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct Q {
-    n: i128,
-    d: i128,
-}
+use std::hash::Hash;
 
 fn overflow() -> ! {
     panic!("exact arithmetic overflow in the claims engine (a truecost bug: scope bound violated)")
 }
 
-fn gcd(mut a: i128, mut b: i128) -> i128 {
-    a = a.abs();
-    b = b.abs();
-    while b != 0 {
-        let t = a % b;
+/// A signed machine integer the exact types compute with: `i8`, `i16`, `i32`, `i64`, `i128`.
+/// Every operation is checked; the `_exact` forms panic on overflow (never wrap).
+pub trait ExactInt:
+    Copy + Ord + Eq + Hash + fmt::Debug + fmt::Display + Send + Sync + 'static
+{
+    /// Zero.
+    const ZERO: Self;
+    /// One.
+    const ONE: Self;
+    /// `self + o`, `None` on overflow.
+    fn checked_add(self, o: Self) -> Option<Self>;
+    /// `self - o`, `None` on overflow.
+    fn checked_sub(self, o: Self) -> Option<Self>;
+    /// `self · o`, `None` on overflow.
+    fn checked_mul(self, o: Self) -> Option<Self>;
+    /// `self / o` truncated towards zero, `None` on overflow or `o = 0`.
+    fn checked_div(self, o: Self) -> Option<Self>;
+    /// `self mod o` (sign of `self`), `None` on overflow or `o = 0`.
+    fn checked_rem(self, o: Self) -> Option<Self>;
+    /// `-self`, `None` on overflow.
+    fn checked_neg(self) -> Option<Self>;
+    /// `|self|`, `None` on overflow.
+    fn checked_abs(self) -> Option<Self>;
+    /// `-1`, `0` or `1`.
+    fn signum(self) -> Self;
+    /// `v` in this width, `None` if it does not fit.
+    fn from_i128(v: i128) -> Option<Self>;
+    /// The value as an `i128` (exact: every width is at most 128 bits).
+    fn to_i128(self) -> i128;
+
+    /// `v` in this width; panics (an overflow) if it does not fit.
+    #[inline]
+    fn from_i64(v: i64) -> Self {
+        Self::from_i128(v as i128).unwrap_or_else(|| overflow())
+    }
+    /// `self + o`; panics on overflow.
+    #[inline]
+    fn add_exact(self, o: Self) -> Self {
+        self.checked_add(o).unwrap_or_else(|| overflow())
+    }
+    /// `self - o`; panics on overflow.
+    #[inline]
+    fn sub_exact(self, o: Self) -> Self {
+        self.checked_sub(o).unwrap_or_else(|| overflow())
+    }
+    /// `self · o`; panics on overflow.
+    #[inline]
+    fn mul_exact(self, o: Self) -> Self {
+        self.checked_mul(o).unwrap_or_else(|| overflow())
+    }
+    /// `-self`; panics on overflow.
+    #[inline]
+    fn neg_exact(self) -> Self {
+        self.checked_neg().unwrap_or_else(|| overflow())
+    }
+}
+
+macro_rules! exact_int {
+    ($($t:ty),*) => {$(
+        exact_int!($t, |a: $t, b: $t| <$t>::checked_mul(a, b));
+    )*};
+    ($t:ty, $mul:expr) => {
+        impl ExactInt for $t {
+            const ZERO: Self = 0;
+            const ONE: Self = 1;
+            #[inline]
+            fn checked_add(self, o: Self) -> Option<Self> {
+                <$t>::checked_add(self, o)
+            }
+            #[inline]
+            fn checked_sub(self, o: Self) -> Option<Self> {
+                <$t>::checked_sub(self, o)
+            }
+            #[inline]
+            fn checked_mul(self, o: Self) -> Option<Self> {
+                ($mul)(self, o)
+            }
+            #[inline]
+            fn checked_div(self, o: Self) -> Option<Self> {
+                <$t>::checked_div(self, o)
+            }
+            #[inline]
+            fn checked_rem(self, o: Self) -> Option<Self> {
+                <$t>::checked_rem(self, o)
+            }
+            #[inline]
+            fn checked_neg(self) -> Option<Self> {
+                <$t>::checked_neg(self)
+            }
+            #[inline]
+            fn checked_abs(self) -> Option<Self> {
+                <$t>::checked_abs(self)
+            }
+            #[inline]
+            fn signum(self) -> Self {
+                <$t>::signum(self)
+            }
+            #[inline]
+            fn from_i128(v: i128) -> Option<Self> {
+                <$t>::try_from(v).ok()
+            }
+            #[inline]
+            fn to_i128(self) -> i128 {
+                self as i128
+            }
+        }
+    };
+}
+exact_int!(i8, i16, i32, i64);
+// The product's width: the engines' operands are almost always within `i64`, whose product
+// cannot overflow `i128` (|a·b| ≤ 2^126); only otherwise the full overflow check runs.
+exact_int!(i128, |a: i128, b: i128| {
+    if a == a as i64 as i128 && b == b as i64 as i128 {
+        Some(a.wrapping_mul(b))
+    } else {
+        a.checked_mul(b)
+    }
+});
+
+/// The greatest common divisor of `|a|` and `|b|` by Euclid's algorithm (`gcd(0, 0) = 0`).
+/// By Lamé's theorem the loop runs at most `1 + k` times when the smaller magnitude is below
+/// the Fibonacci number `F(k+2)` (the `1` for a first iteration that only swaps the operands).
+fn gcd<I: ExactInt>(a: I, b: I) -> I {
+    let mut a = a.checked_abs().unwrap_or_else(|| overflow());
+    let mut b = b.checked_abs().unwrap_or_else(|| overflow());
+    while b != I::ZERO {
+        let t = a.checked_rem(b).unwrap_or_else(|| overflow());
         a = b;
         b = t;
     }
     a
 }
 
-impl Q {
-    /// Zero.
-    pub const ZERO: Q = Q { n: 0, d: 1 };
-    /// One.
-    pub const ONE: Q = Q { n: 1, d: 1 };
+/// An exact rational `n/d` with `d > 0` and `gcd(n, d) = 1`, over the integer type `I`
+/// (`i128` unless stated: the product's type).
+///
+/// ```
+/// use truecost_kernel::claims::exact::Q;
+/// assert_eq!(Q::new(2, 4) + Q::int(1), Q::new(3, 2));
+/// assert!(Q::new(1, 3) < Q::new(1, 2));
+/// // The same arithmetic at 16 bits (what the Kani harnesses verify).
+/// let h = Q::<i16>::ratio(2, 4) + Q::<i16>::integer(1);
+/// assert_eq!((h.numer(), h.denom()), (3, 2));
+/// ```
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Q<I: ExactInt = i128> {
+    n: I,
+    d: I,
+}
 
-    /// `n/d`, normalised. Panics if `d == 0` (a bug, never input).
-    pub fn new(n: i128, d: i128) -> Q {
-        assert!(d != 0, "zero denominator");
-        let g = gcd(n, d).max(1);
-        let (mut n, mut d) = (n / g, d / g);
-        if d < 0 {
-            n = n.checked_neg().unwrap_or_else(|| overflow());
-            d = d.checked_neg().unwrap_or_else(|| overflow());
+impl<I: ExactInt> Q<I> {
+    /// Zero (in any width; [`Q::ZERO`] is the `i128` one).
+    pub const fn zero() -> Self {
+        Q {
+            n: I::ZERO,
+            d: I::ONE,
+        }
+    }
+
+    /// One (in any width; [`Q::ONE`] is the `i128` one).
+    pub const fn one() -> Self {
+        Q {
+            n: I::ONE,
+            d: I::ONE,
+        }
+    }
+
+    /// `n/d`, normalised. Panics if `d == 0` (a bug, never input) or on overflow.
+    pub fn ratio(n: I, d: I) -> Self {
+        assert!(d != I::ZERO, "zero denominator");
+        let g = gcd(n, d).max(I::ONE);
+        let mut n = n.checked_div(g).unwrap_or_else(|| overflow());
+        let mut d = d.checked_div(g).unwrap_or_else(|| overflow());
+        if d < I::ZERO {
+            n = n.neg_exact();
+            d = d.neg_exact();
         }
         Q { n, d }
     }
 
     /// The integer `n`.
-    pub const fn int(n: i128) -> Q {
-        Q { n, d: 1 }
+    pub const fn integer(n: I) -> Self {
+        Q { n, d: I::ONE }
+    }
+
+    /// `n/d` from `i64` values, normalised; panics if either does not fit `I` or `d == 0`.
+    pub fn from_i64s(n: i64, d: i64) -> Self {
+        Q::ratio(I::from_i64(n), I::from_i64(d))
     }
 
     /// Numerator.
-    pub fn numer(self) -> i128 {
+    pub fn numer(self) -> I {
         self.n
     }
 
     /// Denominator (positive).
-    pub fn denom(self) -> i128 {
+    pub fn denom(self) -> I {
         self.d
     }
 
     /// Whether the value is zero.
     pub fn is_zero(self) -> bool {
-        self.n == 0
+        self.n == I::ZERO
     }
 
     /// The sign: -1, 0 or 1.
-    pub fn signum(self) -> i128 {
+    pub fn signum(self) -> I {
         self.n.signum()
     }
 
     /// `self^k`.
-    pub fn pow(self, k: u32) -> Q {
-        let mut r = Q::ONE;
+    pub fn pow(self, k: u32) -> Self {
+        let mut r = Self::one();
         for _ in 0..k {
             r = r * self;
         }
         r
     }
+}
+
+impl Q {
+    /// Zero (`i128`).
+    pub const ZERO: Q = Q { n: 0, d: 1 };
+    /// One (`i128`).
+    pub const ONE: Q = Q { n: 1, d: 1 };
+
+    /// `n/d`, normalised (`i128`). Panics if `d == 0` (a bug, never input).
+    pub fn new(n: i128, d: i128) -> Q {
+        Q::ratio(n, d)
+    }
+
+    /// The integer `n` (`i128`).
+    pub const fn int(n: i128) -> Q {
+        Q { n, d: 1 }
+    }
 
     /// The big-rational value (exact). Only with the `bignum` feature, which `truecost`
-    /// enables and the Kani build (`truecost-proofs`) does not (issue 10, item 3).
+    /// enables and the Kani build (`truecost-proofs`) does not.
     #[cfg(feature = "bignum")]
     pub fn to_rational(self) -> num_rational::BigRational {
         use num_bigint::BigInt;
@@ -98,76 +263,71 @@ impl Q {
     }
 }
 
-fn mul(a: i128, b: i128) -> i128 {
-    a.checked_mul(b).unwrap_or_else(|| overflow())
-}
-
-impl std::ops::Add for Q {
-    type Output = Q;
-    fn add(self, o: Q) -> Q {
+impl<I: ExactInt> std::ops::Add for Q<I> {
+    type Output = Q<I>;
+    fn add(self, o: Q<I>) -> Q<I> {
         if self.d == o.d {
-            return Q::new(
-                self.n.checked_add(o.n).unwrap_or_else(|| overflow()),
-                self.d,
-            );
+            return Q::ratio(self.n.add_exact(o.n), self.d);
         }
-        let n = mul(self.n, o.d)
-            .checked_add(mul(o.n, self.d))
-            .unwrap_or_else(|| overflow());
-        Q::new(n, mul(self.d, o.d))
+        let n = self.n.mul_exact(o.d).add_exact(o.n.mul_exact(self.d));
+        Q::ratio(n, self.d.mul_exact(o.d))
     }
 }
 
-impl std::ops::Neg for Q {
-    type Output = Q;
-    fn neg(self) -> Q {
+impl<I: ExactInt> std::ops::Neg for Q<I> {
+    type Output = Q<I>;
+    fn neg(self) -> Q<I> {
         Q {
-            n: self.n.checked_neg().unwrap_or_else(|| overflow()),
+            n: self.n.neg_exact(),
             d: self.d,
         }
     }
 }
 
-impl std::ops::Sub for Q {
-    type Output = Q;
-    fn sub(self, o: Q) -> Q {
+impl<I: ExactInt> std::ops::Sub for Q<I> {
+    type Output = Q<I>;
+    fn sub(self, o: Q<I>) -> Q<I> {
         self + (-o)
     }
 }
 
-impl std::ops::Mul for Q {
-    type Output = Q;
-    fn mul(self, o: Q) -> Q {
-        let g1 = gcd(self.n, o.d).max(1);
-        let g2 = gcd(o.n, self.d).max(1);
-        Q::new(mul(self.n / g1, o.n / g2), mul(self.d / g2, o.d / g1))
+impl<I: ExactInt> std::ops::Mul for Q<I> {
+    type Output = Q<I>;
+    fn mul(self, o: Q<I>) -> Q<I> {
+        let g1 = gcd(self.n, o.d).max(I::ONE);
+        let g2 = gcd(o.n, self.d).max(I::ONE);
+        let div = |a: I, g: I| a.checked_div(g).unwrap_or_else(|| overflow());
+        Q::ratio(
+            div(self.n, g1).mul_exact(div(o.n, g2)),
+            div(self.d, g2).mul_exact(div(o.d, g1)),
+        )
     }
 }
 
-impl std::ops::Div for Q {
-    type Output = Q;
-    fn div(self, o: Q) -> Q {
-        assert!(o.n != 0, "division by zero");
-        self * Q::new(o.d, o.n)
+impl<I: ExactInt> std::ops::Div for Q<I> {
+    type Output = Q<I>;
+    fn div(self, o: Q<I>) -> Q<I> {
+        assert!(o.n != I::ZERO, "division by zero");
+        self * Q::ratio(o.d, o.n)
     }
 }
 
-impl PartialOrd for Q {
+impl<I: ExactInt> PartialOrd for Q<I> {
     fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
         Some(self.cmp(other))
     }
 }
 
-impl Ord for Q {
+impl<I: ExactInt> Ord for Q<I> {
     fn cmp(&self, o: &Self) -> Ordering {
-        mul(self.n, o.d).cmp(&mul(o.n, self.d))
+        self.n.mul_exact(o.d).cmp(&o.n.mul_exact(self.d))
     }
 }
 
-impl fmt::Display for Q {
+impl<I: ExactInt> fmt::Display for Q<I> {
     /// `"3"` or `"-7/2"`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.d == 1 {
+        if self.d == I::ONE {
             write!(f, "{}", self.n)
         } else {
             write!(f, "{}/{}", self.n, self.d)
@@ -199,46 +359,96 @@ impl fmt::Display for Ext {
 /// An unnormalised exact fraction `n/d` (`d > 0`), compared by cross-multiplication: the fast
 /// path of the enumeration engines (no gcd). Checked arithmetic.
 #[derive(Clone, Copy, Debug)]
-pub struct Frac {
+pub struct Frac<I: ExactInt = i128> {
     /// Numerator.
-    pub n: i128,
+    pub n: I,
     /// Denominator (positive).
-    pub d: i128,
+    pub d: I,
 }
 
-impl PartialEq for Frac {
+impl<I: ExactInt> PartialEq for Frac<I> {
     fn eq(&self, o: &Self) -> bool {
         self.cmp(o) == Ordering::Equal
     }
 }
-impl Eq for Frac {}
-impl PartialOrd for Frac {
+impl<I: ExactInt> Eq for Frac<I> {}
+impl<I: ExactInt> PartialOrd for Frac<I> {
     fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
         Some(self.cmp(o))
     }
 }
-impl Ord for Frac {
+impl<I: ExactInt> Ord for Frac<I> {
     fn cmp(&self, o: &Self) -> Ordering {
-        mul(self.n, o.d).cmp(&mul(o.n, self.d))
+        self.n.mul_exact(o.d).cmp(&o.n.mul_exact(self.d))
     }
 }
 
 /// An extended unnormalised fraction (`-∞ < finite < +∞`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-pub enum FracExt {
+pub enum FracExt<I: ExactInt = i128> {
     /// `-∞`.
     NegInf,
     /// Finite.
-    Fin(Frac),
+    Fin(Frac<I>),
     /// `+∞`.
     PosInf,
 }
 
-/// `b^k` checked.
+/// `b^k` checked (`i128`).
 pub fn ipow(b: i128, k: usize) -> i128 {
-    let mut r: i128 = 1;
+    power(b, k)
+}
+
+/// `b^k` checked, in any width.
+pub fn power<I: ExactInt>(b: I, k: usize) -> I {
+    let mut r = I::ONE;
     for _ in 0..k {
-        r = mul(r, b);
+        r = r.mul_exact(b);
     }
     r
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every operation at 16 bits gives the `i128` result wherever the 16-bit one does not
+    /// overflow (the widths differ only in where they report overflow).
+    #[test]
+    fn narrow_widths_agree_with_i128() {
+        let values: Vec<(i16, i16)> = (-12..=12)
+            .flat_map(|n| (1..=12).flat_map(move |d| [(n, d), (n, -d)]))
+            .collect();
+        let wide = |q: Q<i16>| Q::new(q.numer() as i128, q.denom() as i128);
+        for &(n1, d1) in &values {
+            let a = Q::<i16>::ratio(n1, d1);
+            let wa = Q::new(n1 as i128, d1 as i128);
+            assert_eq!(wide(a), wa);
+            for &(n2, d2) in &values {
+                let b = Q::<i16>::ratio(n2, d2);
+                let wb = Q::new(n2 as i128, d2 as i128);
+                assert_eq!(wide(a + b), wa + wb);
+                assert_eq!(wide(a - b), wa - wb);
+                assert_eq!(wide(a * b), wa * wb);
+                if !b.is_zero() {
+                    assert_eq!(wide(a / b), wa / wb);
+                }
+                assert_eq!(a.cmp(&b), wa.cmp(&wb));
+            }
+        }
+    }
+
+    /// An overflow at a narrow width panics, never wraps: 100 + 100 does not fit an `i8`, nor
+    /// does the cross product of 100/1 and 1/100, nor `-(-128)`.
+    #[test]
+    fn narrow_overflow_panics() {
+        let big = Q::<i8>::integer(100);
+        assert!(std::panic::catch_unwind(|| big + big).is_err());
+        let small = Q::<i8>::ratio(1, 100);
+        assert!(std::panic::catch_unwind(|| big.cmp(&small)).is_err());
+        assert!(std::panic::catch_unwind(|| -Q::<i8>::integer(i8::MIN)).is_err());
+        assert!(std::panic::catch_unwind(|| Q::<i8>::ratio(i8::MIN, -1)).is_err());
+        assert!(std::panic::catch_unwind(|| Q::<i8>::from_i64s(128, 1)).is_err());
+        assert_eq!(Q::<i8>::from_i64s(-6, 4), Q::<i8>::ratio(-3, 2));
+    }
 }

@@ -5,7 +5,7 @@
 //! Nothing here knows the formulas of SPEC §6: a claim is checked by comparing what these
 //! brute-force computations give with what the claim states.
 
-use super::exact::{ipow, Ext, Frac, FracExt, Q};
+use super::exact::{power, ExactInt, Ext, Frac, FracExt, Q};
 use super::tiny::{Tiny, MAX_STATES};
 
 /// A decision of a stationary policy at one state: a move index, or [`TERMINATE`].
@@ -109,19 +109,20 @@ pub fn trajectory(t: &Tiny, policy: &Policy, start: usize) -> Trajectory {
     }
 }
 
-/// A functional of a stage sequence that is linear in the stages (SPEC §1, §6 C2).
+/// A functional of a stage sequence that is linear in the stages (SPEC §1, §6 C2); its discount
+/// factors are exact rationals over `I` (`i128` unless stated).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Functional {
+pub enum Functional<I: ExactInt = i128> {
     /// `Σ_{k≥1} s_k` in `[-∞, ∞]`.
     Total,
     /// `Σ_{k≥1} α^{k-1} s_k`.
-    Discounted(Q),
+    Discounted(Q<I>),
     /// `lim (1/N) Σ_{k≤N} s_k`.
     Average,
     /// `Σ_{k≤K} s_k`.
     HorizonTotal(usize),
     /// `Σ_{k≤K} α^{k-1} s_k`.
-    HorizonDiscounted(usize, Q),
+    HorizonDiscounted(usize, Q<I>),
     /// `(1/K) Σ_{k≤K} s_k`.
     HorizonAverage(usize),
 }
@@ -129,6 +130,13 @@ pub enum Functional {
 impl Functional {
     /// A short name such as `discounted(1/2)`.
     pub fn name(&self) -> String {
+        self.describe()
+    }
+}
+
+impl<I: ExactInt> Functional<I> {
+    /// A short name such as `discounted(1/2)` (in any width; [`Functional::name`] for `i128`).
+    pub fn describe(&self) -> String {
         match self {
             Functional::Total => "total".into(),
             Functional::Discounted(a) => format!("discounted(alpha={a})"),
@@ -222,68 +230,83 @@ pub fn evaluate(tr: &Trajectory, functional: Functional, sign: i64) -> Ext {
     }
 }
 
+/// `f(0) + … + f(n − 1)`, checked.
+#[inline]
+fn sum_of<I: ExactInt>(n: usize, f: impl Fn(usize) -> I) -> I {
+    (0..n).fold(I::ZERO, |acc, k| acc.add_exact(f(k)))
+}
+
 /// The same value as [`evaluate`], as an unnormalised fraction (the engines' fast path):
 /// discounted sums use `α = a/b` with integer numerator and denominator over `b^p (b^c − a^c)`.
-pub fn evaluate_fast(tr: &Trajectory, functional: Functional, sign: i64) -> FracExt {
-    let s = |k: usize| stage(tr, k, sign) as i128;
+/// Generic over the integer width `I`; every operation is checked (an overflow panics).
+pub fn evaluate_fast<I: ExactInt>(
+    tr: &Trajectory,
+    functional: Functional<I>,
+    sign: i64,
+) -> FracExt<I> {
+    let s = |k: usize| I::from_i64(stage(tr, k, sign));
+    let c = |j: usize| I::from_i64(sign * tr.cycle[j]);
+    let count = |n: usize| I::from_i64(n as i64);
     match functional {
         Functional::Total => {
-            let cycle: i128 = (0..tr.cycle_len)
-                .map(|j| (sign * tr.cycle[j]) as i128)
-                .sum();
-            if cycle > 0 {
+            let cycle = sum_of(tr.cycle_len, c);
+            if cycle > I::ZERO {
                 FracExt::PosInf
-            } else if cycle < 0 {
+            } else if cycle < I::ZERO {
                 FracExt::NegInf
             } else {
                 FracExt::Fin(Frac {
-                    n: (0..tr.prefix_len).map(s).sum(),
-                    d: 1,
+                    n: sum_of(tr.prefix_len, s),
+                    d: I::ONE,
                 })
             }
         }
         Functional::Discounted(alpha) => {
             let (a, b) = (alpha.numer(), alpha.denom());
-            let (p, c) = (tr.prefix_len, tr.cycle_len);
+            let (p, cl) = (tr.prefix_len, tr.cycle_len);
             // Q_{j+1} = b·Q_j + s_j·a^j·b gives Σ_{k<j} s_k a^k b^(j−k); likewise the cycle.
-            let (mut prefix, mut ap, mut bp) = (0i128, 1i128, 1i128);
+            let (mut prefix, mut ap, mut bp) = (I::ZERO, I::ONE, I::ONE);
             for k in 0..p {
-                prefix = b * prefix + s(k) * ap * b;
-                ap *= a;
-                bp *= b;
+                prefix = b
+                    .mul_exact(prefix)
+                    .add_exact(s(k).mul_exact(ap).mul_exact(b));
+                ap = ap.mul_exact(a);
+                bp = bp.mul_exact(b);
             }
-            let (mut cycle, mut ac, mut bc) = (0i128, 1i128, 1i128);
-            for j in 0..c {
-                cycle = b * cycle + (sign * tr.cycle[j]) as i128 * ac * b;
-                ac *= a;
-                bc *= b;
+            let (mut cycle, mut ac, mut bc) = (I::ZERO, I::ONE, I::ONE);
+            for j in 0..cl {
+                cycle = b
+                    .mul_exact(cycle)
+                    .add_exact(c(j).mul_exact(ac).mul_exact(b));
+                ac = ac.mul_exact(a);
+                bc = bc.mul_exact(b);
             }
-            let gap = bc - ac;
+            let gap = bc.sub_exact(ac);
             FracExt::Fin(Frac {
-                n: prefix * gap + ap * cycle,
-                d: bp * gap,
+                n: prefix.mul_exact(gap).add_exact(ap.mul_exact(cycle)),
+                d: bp.mul_exact(gap),
             })
         }
         Functional::Average => FracExt::Fin(Frac {
-            n: (0..tr.cycle_len)
-                .map(|j| (sign * tr.cycle[j]) as i128)
-                .sum(),
-            d: tr.cycle_len as i128,
+            n: sum_of(tr.cycle_len, c),
+            d: count(tr.cycle_len),
         }),
         Functional::HorizonTotal(h) => FracExt::Fin(Frac {
-            n: (0..h).map(s).sum(),
-            d: 1,
+            n: sum_of(h, s),
+            d: I::ONE,
         }),
         Functional::HorizonDiscounted(h, alpha) => {
             let (a, b) = (alpha.numer(), alpha.denom());
             FracExt::Fin(Frac {
-                n: (0..h).map(|k| s(k) * ipow(a, k) * ipow(b, h - 1 - k)).sum(),
-                d: ipow(b, h.saturating_sub(1)),
+                n: sum_of(h, |k| {
+                    s(k).mul_exact(power(a, k)).mul_exact(power(b, h - 1 - k))
+                }),
+                d: power(b, h.saturating_sub(1)),
             })
         }
         Functional::HorizonAverage(h) => FracExt::Fin(Frac {
-            n: (0..h).map(s).sum(),
-            d: h as i128,
+            n: sum_of(h, s),
+            d: count(h),
         }),
     }
 }
@@ -319,6 +342,15 @@ pub fn optimal_cost_to_go(t: &Tiny) -> [Option<i64>; MAX_STATES] {
 /// assert_eq!(karp_minimum_mean_cycle(3, &arcs), Some(Q::new(3, 2)));
 /// ```
 pub fn karp_minimum_mean_cycle(n: usize, arcs: &[(usize, usize, i64)]) -> Option<Q> {
+    karp_minimum_mean_cycle_in(n, arcs)
+}
+
+/// [`karp_minimum_mean_cycle`] with the means exact rationals over `I` (checked: a mean whose
+/// numerator or denominator does not fit `I` panics).
+pub fn karp_minimum_mean_cycle_in<I: ExactInt>(
+    n: usize,
+    arcs: &[(usize, usize, i64)],
+) -> Option<Q<I>> {
     if n == 0 {
         return None;
     }
@@ -337,13 +369,13 @@ pub fn karp_minimum_mean_cycle(n: usize, arcs: &[(usize, usize, i64)]) -> Option
             }
         }
     }
-    let mut best: Option<Q> = None;
+    let mut best: Option<Q<I>> = None;
     for v in 0..n {
         let Some(dn) = d[n][v] else { continue };
-        let mut worst: Option<Q> = None;
+        let mut worst: Option<Q<I>> = None;
         for (k, dk) in d.iter().enumerate().take(n) {
             if let Some(dk) = dk[v] {
-                let m = Q::new((dn - dk) as i128, (n - k) as i128);
+                let m = Q::from_i64s(dn - dk, (n - k) as i64);
                 if worst.is_none_or(|w| m > w) {
                     worst = Some(m);
                 }
@@ -360,34 +392,67 @@ pub fn karp_minimum_mean_cycle(n: usize, arcs: &[(usize, usize, i64)]) -> Option
 
 /// Every simple cycle of the graph (each once, rooted at its smallest node) as
 /// `(total weight, length)`.
+///
+/// The search from each root follows only arcs into nodes `≥ root` that can reach the root
+/// again among such nodes (a backward search first), over adjacency lists: a node that lies on
+/// no cycle through the root is never entered, so an acyclic graph costs `O(n·m)` whatever its
+/// number of paths (a 1,021-state chain with parallel moves was exponential before).
+///
+/// ```
+/// use truecost_kernel::claims::oracle::simple_cycles;
+/// // 0 <-> 1 (weights 1 and 2), a self-loop at 2 (weight 5), 1 -> 2, and a parallel 0 -> 1.
+/// let arcs = [(0, 1, 1), (1, 0, 2), (2, 2, 5), (1, 2, 0), (0, 1, 3)];
+/// let mut c = simple_cycles(3, &arcs);
+/// c.sort();
+/// assert_eq!(c, vec![(3, 2), (5, 1), (5, 2)]);
+/// ```
 pub fn simple_cycles(n: usize, arcs: &[(usize, usize, i64)]) -> Vec<(i64, usize)> {
     let mut out = Vec::new();
+    let mut forward: Vec<Vec<(usize, i64)>> = vec![Vec::new(); n];
+    let mut backward: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for &(a, b, w) in arcs {
+        forward[a].push((b, w));
+        backward[b].push(a);
+    }
     let mut on_path = vec![false; n];
+    let mut back = vec![false; n];
+    let mut stack = Vec::new();
+    #[allow(clippy::too_many_arguments)]
     fn dfs(
         root: usize,
         v: usize,
         weight: i64,
         len: usize,
-        arcs: &[(usize, usize, i64)],
+        forward: &[Vec<(usize, i64)>],
+        back: &[bool],
         on_path: &mut [bool],
         out: &mut Vec<(i64, usize)>,
     ) {
-        for &(a, b, w) in arcs {
-            if a != v || b < root {
-                continue;
-            }
+        for &(b, w) in &forward[v] {
             if b == root {
                 out.push((weight + w, len + 1));
-            } else if !on_path[b] {
+            } else if b > root && back[b] && !on_path[b] {
                 on_path[b] = true;
-                dfs(root, b, weight + w, len + 1, arcs, on_path, out);
+                dfs(root, b, weight + w, len + 1, forward, back, on_path, out);
                 on_path[b] = false;
             }
         }
     }
     for root in 0..n {
+        // The nodes >= root that reach root through nodes >= root.
+        back.iter_mut().for_each(|b| *b = false);
+        back[root] = true;
+        stack.push(root);
+        while let Some(v) = stack.pop() {
+            for &a in &backward[v] {
+                if a > root && !back[a] {
+                    back[a] = true;
+                    stack.push(a);
+                }
+            }
+        }
         on_path[root] = true;
-        dfs(root, root, 0, 0, arcs, &mut on_path, &mut out);
+        dfs(root, root, 0, 0, &forward, &back, &mut on_path, &mut out);
         on_path[root] = false;
     }
     out

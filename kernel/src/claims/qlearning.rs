@@ -336,7 +336,7 @@ fn key(v: &Values, p: usize) -> u128 {
     k
 }
 
-/// Explores every fair order from `q0` exhaustively (issue 5, item 2: "every order").
+/// Explores every fair order from `q0` exhaustively.
 ///
 /// The round-end values form a finite graph (each edge: one round, all its update sequences);
 /// convergence under every fair order holds iff no cycle avoids `Q*`, and the longest path to

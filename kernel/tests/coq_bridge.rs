@@ -13,8 +13,11 @@
 //! (so that a copy of this crate with a planted oracle can be checked against the tree's
 //! proofs).
 
+#[path = "support/coq.rs"]
+mod coq_support;
+
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+
 use std::process::Command;
 use std::time::Instant;
 
@@ -22,16 +25,7 @@ use truecost_kernel::claims::oracle::optimal_cost_to_go;
 use truecost_kernel::claims::qlearning::{QProblem, Terminal, Values, MAX_PAIRS};
 use truecost_kernel::claims::tiny::{Family, FamilySpec, Tiny};
 
-/// The message when `coqc` cannot be run.
-const NO_COQC: &str =
-    "coqc not found: install Coq (Debian/Ubuntu: apt-get install -y coq; the README's prerequisites)";
-
-fn coq_dir() -> PathBuf {
-    match std::env::var_os("TRUECOST_COQ_DIR") {
-        Some(d) => PathBuf::from(d),
-        None => Path::new(env!("CARGO_MANIFEST_DIR")).join("../proofs/coq"),
-    }
-}
+use coq_support::{coq_dir, list, parse, run, NO_COQC};
 
 /// The scopes, and the stride at which each one's labelled problems are sampled (every
 /// `stride`-th labelled problem, kept if it is its class's representative).
@@ -109,10 +103,6 @@ fn on(v: Option<u64>) -> String {
     v.map_or("None".into(), |v| format!("(Some {v}%nat)"))
 }
 
-fn list(items: impl Iterator<Item = String>) -> String {
-    format!("[{}]", items.collect::<Vec<_>>().join("; "))
-}
-
 /// `(problem, expected)` as a Coq term.
 fn coq_term(c: &Case) -> String {
     let t = &c.tiny;
@@ -136,55 +126,6 @@ fn coq_term(c: &Case) -> String {
         list(c.h.iter().map(|&v| on(v.map(u64::from)))),
         on(c.r1),
     )
-}
-
-/// What Coq printed for `check_all`: problems checked, values compared, and the mismatches
-/// `(problem, field, position)`.
-#[derive(Debug)]
-struct Verdict {
-    problems: u64,
-    values: u64,
-    mismatches: Vec<(usize, String, usize)>,
-}
-
-/// Parses `= (388%nat, 9000%nat, [(3%nat, "h"%string, 1%nat); ...])`.
-fn parse(out: &str) -> Option<Verdict> {
-    let text: String = out.chars().filter(|c| !c.is_whitespace()).collect();
-    let body = text.strip_prefix("=(")?;
-    let body = &body[..body.find(":nat*nat*")?];
-    let (problems, rest) = body.split_once("%nat,")?;
-    let (values, rest) = rest.split_once("%nat,")?;
-    let inner = rest.strip_prefix('[')?.strip_suffix("])")?;
-    let mut mismatches = Vec::new();
-    for item in inner.split(");").filter(|s| !s.is_empty()) {
-        let item = item.trim_start_matches('(').trim_end_matches(')');
-        let mut parts = item.split(',');
-        let i = parts.next()?.strip_suffix("%nat")?.parse().ok()?;
-        let what = parts.next()?.strip_suffix("%string")?.trim_matches('"');
-        let k = parts.next()?.strip_suffix("%nat")?.parse().ok()?;
-        mismatches.push((i, what.to_string(), k));
-    }
-    Some(Verdict {
-        problems: problems.parse().ok()?,
-        values: values.parse().ok()?,
-        mismatches,
-    })
-}
-
-fn run(cmd: &mut Command, what: &str) -> String {
-    let out = match cmd.output() {
-        Ok(out) => out,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => panic!("{NO_COQC}"),
-        Err(e) => panic!("{what}: {e}"),
-    };
-    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "{what} failed ({}):\n{stdout}\n{}",
-        out.status,
-        String::from_utf8_lossy(&out.stderr)
-    );
-    stdout
 }
 
 /// The kernel's value at a mismatch, for the failure message.

@@ -16,12 +16,15 @@
 //!   `c3_engine`), or neither side building one.
 //!
 //! Coq prints how many problems and values it compared and the list of mismatches; the test
-//! requires none, and at least 300 problems. A second run writes a few problems with planted
+//! requires none, and at least 1,000 problems. A second run writes a few problems with planted
 //! wrong values (a `T(u)` off by one in an interval end, a wrong `S(u)`, a certificate cost)
 //! and requires Coq to report exactly those.
 //!
 //! Without `coqc` on `PATH` the test fails with the install line (no silent skip). The Coq
 //! development is `../proofs/coq` from this crate, or the directory in `TRUECOST_COQ_DIR`.
+
+#[path = "support/coq.rs"]
+mod coq_support;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -33,19 +36,10 @@ use truecost_kernel::claims::c4::{bonus_analysis, End, Instance, Interval};
 use truecost_kernel::claims::exact::Q;
 use truecost_kernel::claims::tiny::{Family, FamilySpec, Tiny};
 
-/// The message when `coqc` cannot be run.
-const NO_COQC: &str =
-    "coqc not found: install Coq (Debian/Ubuntu: apt-get install -y coq; the README's prerequisites)";
+use coq_support::{coq_dir, list, parse, run, Verdict, NO_COQC};
 
 /// The policy bound of the bonus analysis (as `verify` runs it).
 const LIMIT: u64 = 1 << 20;
-
-fn coq_dir() -> PathBuf {
-    match std::env::var_os("TRUECOST_COQ_DIR") {
-        Some(d) => PathBuf::from(d),
-        None => Path::new(env!("CARGO_MANIFEST_DIR")).join("../proofs/coq"),
-    }
-}
 
 /// The discount factors `alpha0` of the certificates: `claims::c3::alphas()` and one more.
 fn alphas() -> Vec<Q> {
@@ -155,10 +149,6 @@ fn oq(v: Option<Q>) -> String {
     v.map_or("None".into(), |v| format!("(Some {})", q(v)))
 }
 
-fn list(items: impl Iterator<Item = String>) -> String {
-    format!("[{}]", items.collect::<Vec<_>>().join("; "))
-}
-
 fn end(e: End) -> String {
     match e {
         End::Unbounded => "Unb".into(),
@@ -209,55 +199,6 @@ fn coq_term(c: &Case) -> String {
         oq(c.lav),
         list(c.core.iter().map(|b| b.to_string())),
     )
-}
-
-/// What Coq printed for `check_all`: problems checked, values compared, and the mismatches
-/// `(problem, field, position)`.
-#[derive(Debug)]
-struct Verdict {
-    problems: u64,
-    values: u64,
-    mismatches: Vec<(usize, String, usize)>,
-}
-
-/// Parses `= (388%nat, 9000%nat, [(3%nat, "sets"%string, 1%nat); ...])`.
-fn parse(out: &str) -> Option<Verdict> {
-    let text: String = out.chars().filter(|c| !c.is_whitespace()).collect();
-    let body = text.strip_prefix("=(")?;
-    let body = &body[..body.find(":nat*nat*")?];
-    let (problems, rest) = body.split_once("%nat,")?;
-    let (values, rest) = rest.split_once("%nat,")?;
-    let inner = rest.strip_prefix('[')?.strip_suffix("])")?;
-    let mut mismatches = Vec::new();
-    for item in inner.split(");").filter(|s| !s.is_empty()) {
-        let item = item.trim_start_matches('(').trim_end_matches(')');
-        let mut parts = item.split(',');
-        let i = parts.next()?.strip_suffix("%nat")?.parse().ok()?;
-        let what = parts.next()?.strip_suffix("%string")?.trim_matches('"');
-        let k = parts.next()?.strip_suffix("%nat")?.parse().ok()?;
-        mismatches.push((i, what.to_string(), k));
-    }
-    Some(Verdict {
-        problems: problems.parse().ok()?,
-        values: values.parse().ok()?,
-        mismatches,
-    })
-}
-
-fn run(cmd: &mut Command, what: &str) -> String {
-    let out = match cmd.output() {
-        Ok(out) => out,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => panic!("{NO_COQC}"),
-        Err(e) => panic!("{what}: {e}"),
-    };
-    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "{what} failed ({}):\n{stdout}\n{}",
-        out.status,
-        String::from_utf8_lossy(&out.stderr)
-    );
-    stdout
 }
 
 /// Writes `cases` as a Coq file in `work`, evaluates `check_all` on them with `coqc`.

@@ -1,0 +1,73 @@
+//! What the Coq bridge tests share: where the development is, how `coqc` is run, and how the
+//! verdict of a `check_all` evaluation is read back.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The message when `coqc` cannot be run.
+pub const NO_COQC: &str =
+    "coqc not found: install Coq (Debian/Ubuntu: apt-get install -y coq; the README's prerequisites)";
+
+/// `proofs/coq/`, or `TRUECOST_COQ_DIR`.
+pub fn coq_dir() -> PathBuf {
+    match std::env::var_os("TRUECOST_COQ_DIR") {
+        Some(d) => PathBuf::from(d),
+        None => Path::new(env!("CARGO_MANIFEST_DIR")).join("../proofs/coq"),
+    }
+}
+
+/// A Coq list of the items.
+pub fn list(items: impl Iterator<Item = String>) -> String {
+    format!("[{}]", items.collect::<Vec<_>>().join("; "))
+}
+
+/// What Coq printed for `check_all`: problems checked, values compared, and the mismatches
+/// `(problem, field, position)`.
+#[derive(Debug)]
+pub struct Verdict {
+    pub problems: u64,
+    pub values: u64,
+    pub mismatches: Vec<(usize, String, usize)>,
+}
+
+/// Parses `= (388%nat, 9000%nat, [(3%nat, "h"%string, 1%nat); ...])`.
+pub fn parse(out: &str) -> Option<Verdict> {
+    let text: String = out.chars().filter(|c| !c.is_whitespace()).collect();
+    let body = text.strip_prefix("=(")?;
+    let body = &body[..body.find(":nat*nat*")?];
+    let (problems, rest) = body.split_once("%nat,")?;
+    let (values, rest) = rest.split_once("%nat,")?;
+    let inner = rest.strip_prefix('[')?.strip_suffix("])")?;
+    let mut mismatches = Vec::new();
+    for item in inner.split(");").filter(|s| !s.is_empty()) {
+        let item = item.trim_start_matches('(').trim_end_matches(')');
+        let mut parts = item.split(',');
+        let i = parts.next()?.strip_suffix("%nat")?.parse().ok()?;
+        let what = parts.next()?.strip_suffix("%string")?.trim_matches('"');
+        let k = parts.next()?.strip_suffix("%nat")?.parse().ok()?;
+        mismatches.push((i, what.to_string(), k));
+    }
+    Some(Verdict {
+        problems: problems.parse().ok()?,
+        values: values.parse().ok()?,
+        mismatches,
+    })
+}
+
+/// Runs `cmd`, failing with [`NO_COQC`] when the program is missing and with its output when
+/// it fails; returns its standard output.
+pub fn run(cmd: &mut Command, what: &str) -> String {
+    let out = match cmd.output() {
+        Ok(out) => out,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => panic!("{NO_COQC}"),
+        Err(e) => panic!("{what}: {e}"),
+    };
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{what} failed ({}):\n{stdout}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    stdout
+}

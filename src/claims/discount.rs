@@ -19,6 +19,7 @@ use num_traits::{One, Signed, Zero};
 
 use super::poly::{isolate_roots, Algebraic, Poly};
 use crate::model::Problem;
+use crate::objectives::roots::Reduction;
 use crate::value::Rational;
 
 /// An end of a piece of the set.
@@ -73,6 +74,68 @@ pub const MAX_PAIR_WORK: u64 = 200_000_000;
 /// their size (measured on a 3-state problem: costs of 10³⁰⁰ take about a second, 10¹⁰⁰⁰ a
 /// minute and a half), so larger costs are refused before any work.
 pub const MAX_COST_BITS: u64 = 1024;
+
+/// The maximal pieces of a subset of `(0, 1)` given by membership on its atoms in increasing
+/// order: `member[2i]` for the open gap before `points[i]` (the last gap ends at 1),
+/// `member[2i + 1]` for `points[i]` itself. A run of members becomes one piece, closed at an
+/// end that is a point, open at an end that is a gap's.
+///
+/// ```
+/// use truecost::claims::discount::{pieces_of_members, Point};
+/// use truecost::claims::poly::Algebraic;
+/// use num_rational::BigRational;
+/// let half = Point::Root(Algebraic::from_rational(BigRational::new(1.into(), 2.into())));
+/// // (0, 1/2) out, 1/2 in, (1/2, 1) in: the piece [1/2, 1).
+/// let p = pieces_of_members(&[half.clone()], &[false, true, true]);
+/// assert_eq!(p.len(), 1);
+/// assert_eq!((p[0].lo.clone(), p[0].lo_closed, p[0].hi.clone(), p[0].hi_closed), (half, true, Point::One, false));
+/// ```
+pub fn pieces_of_members(points: &[Point], member: &[bool]) -> Vec<Piece> {
+    assert_eq!(
+        member.len(),
+        2 * points.len() + 1,
+        "a gap around every point"
+    );
+    let lo_of = |a: usize| -> (Point, bool) {
+        if a % 2 == 1 {
+            (points[a / 2].clone(), true)
+        } else if a == 0 {
+            (Point::Zero, false)
+        } else {
+            (points[a / 2 - 1].clone(), false)
+        }
+    };
+    let hi_of = |a: usize| -> (Point, bool) {
+        if a % 2 == 1 {
+            (points[a / 2].clone(), true)
+        } else if a / 2 < points.len() {
+            (points[a / 2].clone(), false)
+        } else {
+            (Point::One, false)
+        }
+    };
+    let mut pieces = Vec::new();
+    let mut k = 0;
+    while k < member.len() {
+        if !member[k] {
+            k += 1;
+            continue;
+        }
+        let start = k;
+        while k + 1 < member.len() && member[k + 1] {
+            k += 1;
+        }
+        let ((lo, lo_closed), (hi, hi_closed)) = (lo_of(start), hi_of(k));
+        pieces.push(Piece {
+            lo,
+            lo_closed,
+            hi,
+            hi_closed,
+        });
+        k += 1;
+    }
+    pieces
+}
 
 /// Why the analysis cannot run. Each refusal names the bound that was reached (issue 12: every
 /// search with a combinatorial blow-up is bounded while it runs).
@@ -427,63 +490,15 @@ the cost of any lasso",
         lo = r.hi.clone();
     }
     gaps.push(member_rational(&t, &((&lo + Rational::one()) / &two)));
-    // Atoms in increasing order: gap 0, root 0, gap 1, ..., gap k; merge runs of members.
-    let mut atoms: Vec<(bool, Option<usize>, bool)> = Vec::new(); // (is_root, root index, member)
-    for i in 0..gaps.len() {
-        atoms.push((false, None, gaps[i]));
-        if i < points.len() {
-            atoms.push((true, Some(i), points[i].1));
+    let ends: Vec<Point> = points.iter().map(|p| p.0.clone()).collect();
+    let mut member = Vec::with_capacity(gaps.len() + points.len());
+    for (i, &g) in gaps.iter().enumerate() {
+        member.push(g);
+        if let Some(p) = points.get(i) {
+            member.push(p.1);
         }
     }
-    let root_point = |i: usize| points[i].0.clone();
-    let mut pieces: Vec<Piece> = Vec::new();
-    let mut k = 0;
-    while k < atoms.len() {
-        if !atoms[k].2 {
-            k += 1;
-            continue;
-        }
-        let start = k;
-        while k + 1 < atoms.len() && atoms[k + 1].2 {
-            k += 1;
-        }
-        let (lo, lo_closed) = match atoms[start] {
-            (true, Some(i), _) => (root_point(i), true),
-            _ => {
-                // A gap: its left end is the root before it, or 0.
-                let gap = start / 2;
-                (
-                    if gap == 0 {
-                        Point::Zero
-                    } else {
-                        root_point(gap - 1)
-                    },
-                    false,
-                )
-            }
-        };
-        let (hi, hi_closed) = match atoms[k] {
-            (true, Some(i), _) => (root_point(i), true),
-            _ => {
-                let gap = k / 2;
-                (
-                    if gap < points.len() {
-                        root_point(gap)
-                    } else {
-                        Point::One
-                    },
-                    false,
-                )
-            }
-        };
-        pieces.push(Piece {
-            lo,
-            lo_closed,
-            hi,
-            hi_closed,
-        });
-        k += 1;
-    }
+    let pieces = pieces_of_members(&ends, &member);
     Ok(DiscountSet {
         pieces,
         method: format!(
@@ -495,7 +510,9 @@ the cost of any lasso",
     })
 }
 
-/// `a` as text: `0`, `1`, or `root of P in (lo, hi] ≈ decimal`.
+/// `a` as text: `0`, `1`, `p/q`, or its decimal correctly rounded to 30 digits followed by
+/// `...`, with the factor of its polynomial that vanishes there (named the minimal polynomial
+/// when proved irreducible) and an isolating bracket `(lo, hi]`.
 pub fn point_text(p: &Point) -> String {
     match p {
         Point::Zero => "0".into(),
@@ -507,12 +524,22 @@ pub fn point_text(p: &Point) -> String {
                 One::one(),
                 num_bigint::BigInt::one() << 100usize,
             ));
+            let (poly, how) = b.reduced_polynomial();
             format!(
-                "{} (the root of {} in ({}, {}])",
-                b.decimal(30),
-                b.poly.primitive(),
+                "{}... (the root of {}{poly} in ({}, {}]{}; decimal rounded to 30 digits)",
+                b.decimal_rounded(30),
+                if how == Reduction::Minimal {
+                    "the minimal polynomial "
+                } else {
+                    ""
+                },
                 rat(&b.lo),
-                rat(&b.hi)
+                rat(&b.hi),
+                if how == Reduction::Minimal {
+                    ""
+                } else {
+                    ", square-free without rational roots, irreducibility not proved"
+                }
             )
         }
     }

@@ -1,5 +1,5 @@
 //! Exact univariate polynomials with rational coefficients, Sturm sequences, real-root
-//! isolation and algebraic numbers given by an isolating interval (issue 5, item 6).
+//! isolation and algebraic numbers given by an isolating interval.
 
 use std::cmp::Ordering;
 use std::fmt;
@@ -385,31 +385,129 @@ impl Algebraic {
         }
     }
 
-    /// A decimal approximation with `digits` digits after the point (truncated from the
-    /// bracket's midpoint; for display only).
+    /// The factor of [`Self::poly`] vanishing at the number, as a primitive integer polynomial
+    /// with a positive leading coefficient, and what is proved of it: `x − q` for a rational
+    /// `q`; otherwise the square-free part without rational roots, [`Reduction::Minimal`] when
+    /// proved irreducible over `Q` ([`crate::objectives::roots::reduce_polynomial`]). The
+    /// bracket isolates the number for it too (it divides [`Self::poly`]).
+    ///
+    /// ```
+    /// use truecost::claims::poly::{isolate_roots, Poly};
+    /// use truecost::objectives::roots::Reduction;
+    /// // (x^2 − 2)(2x − 3)(x + 1): the root √2 in (1, 29/20) has the minimal polynomial x^2 − 2.
+    /// let p = Poly::from_i64(&[-2, 0, 1]).mul(&Poly::from_i64(&[-3, 2])).mul(&Poly::from_i64(&[1, 1]));
+    /// let a = isolate_roots(&p, &"1".parse().unwrap(), &"29/20".parse().unwrap()).remove(0);
+    /// let (m, how) = a.reduced_polynomial();
+    /// assert_eq!((m.to_string(), how), ("x^2 - 2".to_string(), Reduction::Minimal));
+    /// ```
+    pub fn reduced_polynomial(&self) -> (Poly, crate::objectives::roots::Reduction) {
+        use crate::objectives::roots::{integer_form, reduce_polynomial, Reduction};
+        if let Some(q) = self.as_rational() {
+            return (
+                Poly::new(vec![-q, Rational::one()]).primitive(),
+                Reduction::Minimal,
+            );
+        }
+        let (g, _, how) = reduce_polynomial(&integer_form(&self.poly));
+        let (g, how) = match how {
+            Reduction::SquareFree => {
+                match crate::objectives::roots::irreducible_factor_at(&g, &self.lo, &self.hi) {
+                    Some(f) => (f, Reduction::Minimal),
+                    None => (g, how),
+                }
+            }
+            _ => (g, how),
+        };
+        (
+            Poly::new(g.into_iter().map(Rational::from_integer).collect()).primitive(),
+            how,
+        )
+    }
+
+    /// The number truncated (towards −∞) to `digits` digits after the point: the digits of
+    /// the number itself (the bracket is cut at the digit boundary it may contain).
     pub fn decimal(&self, digits: usize) -> String {
+        if let Some(q) = self.as_rational() {
+            return decimal(&q, digits);
+        }
+        let unit = Rational::new(BigInt::one(), num_traits::pow(BigInt::from(10), digits));
+        self.decimal_in_cells(&unit, &Rational::zero(), digits, decimal)
+    }
+
+    /// The number correctly rounded to `digits` digits after the point (to nearest; a tie,
+    /// only possible for a rational, away from zero), as [`decimal_rounded`] of the exact value.
+    ///
+    /// ```
+    /// use truecost::claims::poly::{isolate_roots, Poly};
+    /// let sqrt2 = isolate_roots(&Poly::from_i64(&[-2, 0, 1]), &"0".parse().unwrap(), &"2".parse().unwrap()).remove(0);
+    /// assert_eq!(sqrt2.decimal_rounded(10), "1.4142135624"); // √2 = 1.41421356237…
+    /// assert_eq!(sqrt2.decimal(10), "1.4142135623");
+    /// ```
+    pub fn decimal_rounded(&self, digits: usize) -> String {
+        if let Some(q) = self.as_rational() {
+            return decimal_rounded(&q, digits);
+        }
+        let unit = Rational::new(BigInt::one(), num_traits::pow(BigInt::from(10), digits));
+        let half = &unit / r(2);
+        self.decimal_in_cells(&unit, &half, digits, decimal_rounded)
+    }
+
+    /// An irrational number's digits by `print`, whose cells are `[k·unit − offset,
+    /// (k + 1)·unit − offset)`: the bracket is refined below one unit and cut at the cell
+    /// boundary inside it, then a point strictly inside the bracket, in the number's cell, is
+    /// printed.
+    fn decimal_in_cells(
+        &self,
+        unit: &Rational,
+        offset: &Rational,
+        digits: usize,
+        print: fn(&Rational, usize) -> String,
+    ) -> String {
         let mut a = self.clone();
-        let width = Rational::new(BigInt::one(), num_traits::pow(BigInt::from(10), digits + 2));
-        a.refine_to(&width);
-        decimal(&a.hi, digits)
+        a.refine_to(unit);
+        let boundary = ((&a.lo + offset) / unit).floor() * unit + unit - offset;
+        if a.lo < boundary && boundary < a.hi {
+            // Irrational: not the boundary itself.
+            if self.cmp_rational(&boundary) == Ordering::Less {
+                a.hi = boundary;
+            } else {
+                a.lo = boundary;
+            }
+        }
+        print(&((&a.lo + &a.hi) / r(2)), digits)
     }
 }
 
-/// `x` in decimal, truncated to `digits` digits after the point (no point when `digits` is 0).
+/// `x` correctly rounded to `digits` digits after the point: to nearest, a tie away from zero
+/// (no point when `digits` is 0).
 ///
 /// ```
-/// use truecost::claims::poly::decimal;
+/// use truecost::claims::poly::decimal_rounded;
 /// use truecost::value::parse_rational;
-/// assert_eq!(decimal(&parse_rational("7/2").unwrap(), 0), "3");
-/// assert_eq!(decimal(&parse_rational("7/2").unwrap(), 2), "3.50");
+/// let q = |t: &str| parse_rational(t).unwrap();
+/// assert_eq!(decimal_rounded(&q("2/3"), 5), "0.66667");
+/// assert_eq!(decimal_rounded(&q("1/8"), 2), "0.13");
+/// assert_eq!(decimal_rounded(&q("-1/8"), 2), "-0.13");
+/// assert_eq!(decimal_rounded(&q("999/1000"), 2), "1.00");
+/// assert_eq!(decimal_rounded(&q("-1/1000"), 2), "0.00");
 /// ```
-pub fn decimal(x: &Rational, digits: usize) -> String {
+pub fn decimal_rounded(x: &Rational, digits: usize) -> String {
+    let scale = Rational::from_integer(num_traits::pow(BigInt::from(10), digits));
+    let half = Rational::new(BigInt::one(), BigInt::from(2));
+    let scaled = x * scale;
+    let k = if scaled.is_negative() {
+        -(-scaled + half).floor()
+    } else {
+        (scaled + half).floor()
+    };
+    fixed(&k.to_integer(), digits)
+}
+
+/// The integer `k` as `k / 10^digits` with `digits` digits after the point.
+fn fixed(k: &BigInt, digits: usize) -> String {
     let scale = num_traits::pow(BigInt::from(10), digits);
-    let scaled = (x * Rational::from_integer(scale.clone()))
-        .floor()
-        .to_integer();
-    let neg = scaled.is_negative();
-    let a = scaled.abs();
+    let neg = k.is_negative();
+    let a = k.abs();
     let int = &a / &scale;
     let frac = &a % &scale;
     if digits == 0 {
@@ -422,6 +520,20 @@ pub fn decimal(x: &Rational, digits: usize) -> String {
         frac.to_string(),
         width = digits
     )
+}
+
+/// `x` in decimal, truncated to `digits` digits after the point (no point when `digits` is 0).
+///
+/// ```
+/// use truecost::claims::poly::decimal;
+/// use truecost::value::parse_rational;
+/// assert_eq!(decimal(&parse_rational("7/2").unwrap(), 0), "3");
+/// assert_eq!(decimal(&parse_rational("7/2").unwrap(), 2), "3.50");
+/// ```
+pub fn decimal(x: &Rational, digits: usize) -> String {
+    let scale = num_traits::pow(BigInt::from(10), digits);
+    let scaled = (x * Rational::from_integer(scale)).floor().to_integer();
+    fixed(&scaled, digits)
 }
 
 /// A rational strictly between the algebraic numbers `a < b` (brackets refined as needed).

@@ -1,8 +1,10 @@
 //! `truecost discount`: for a deterministic problem (a paper grid or a deterministic file), the
-//! exact set of discount factors for which a discount-optimal policy fails to reach the goal
-//! (issue 5, item 6); for an environment (`--env`) or a stochastic problem file, the exact
-//! breakpoints where the discount-optimal policies change, with the success probability and
-//! truecost of each interval's optimal policies (issue 11, item 3).
+//! exact set of discount factors for which a discount-optimal policy fails to reach the goal;
+//! for an environment (`--env`) or a stochastic problem file, the exact breakpoints where the
+//! discount-optimal policies change, with the success probability and truecost of each
+//! interval's optimal policies. Every case is answered by the parametric policy analysis of
+//! [`truecost::objectives::parametric`]; the set of a deterministic problem is read off its
+//! breakpoints ([`truecost::objectives::failure_set`]).
 
 use std::path::PathBuf;
 
@@ -10,13 +12,15 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
 
-use truecost::claims::discount::{discount_set, point_text, set_text, DiscountSet};
+use truecost::claims::discount::{point_text, set_text, DiscountSet};
 use truecost::echo::printable;
-use truecost::objectives::parametric::{discount_breakpoints_with, MAX_PROBE_WORK};
+use truecost::objectives::parametric::{
+    discount_breakpoints_with, DiscountAnalysis, MAX_PROBE_WORK,
+};
 use truecost::objectives::report::{
     discount_json, discount_latex, discount_markdown, discount_text,
 };
-use truecost::objectives::{Model, Source};
+use truecost::objectives::{failure_set, Model, Source};
 use truecost::problems::{GridLayout, StepCost};
 use truecost::stochastic::file::{read, ProblemFile};
 
@@ -38,7 +42,8 @@ pub struct DiscountArgs {
     /// Stage cost of a grid move (paper problems only) [default: unit].
     #[arg(long, value_enum)]
     step_cost: Option<StepCost>,
-    /// Output format.
+    /// Output format. Decimals are correctly rounded to the digits shown; "..." marks a value
+    /// whose expansion goes on.
     #[arg(long, value_enum, default_value_t = CompareFormat::Text)]
     format: CompareFormat,
 }
@@ -52,17 +57,18 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
         return Err("--step-cost applies to the paper's problems (--problem N)".into());
     }
     let (problem, source) = match (&args.env.env, &args.file, args.problem) {
-        (Some(spec), _, _) => return breakpoints(Source::Env(spec.clone()).load()?, args.format),
+        (Some(spec), _, _) => {
+            let model = Source::Env(spec.clone()).load()?;
+            return analysis(&model).map(|d| breakpoints(&model, &d, args.format));
+        }
         (None, Some(path), _) => match read(path).map_err(|e| e.to_string())? {
             ProblemFile::Deterministic(p) => (
                 p,
                 format!("file {}", printable(&path.display().to_string())),
             ),
             ProblemFile::Stochastic(p) => {
-                return breakpoints(
-                    Model::from_problem(*p, format!("file {}", path.display())),
-                    args.format,
-                )
+                let model = Model::from_problem(*p, format!("file {}", path.display()));
+                return analysis(&model).map(|d| breakpoints(&model, &d, args.format));
             }
         },
         (None, None, Some(id)) => (
@@ -73,7 +79,8 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
         ),
         (None, None, None) => return Err("give --problem N, --file FILE or --env SPEC".into()),
     };
-    let set = discount_set(&problem, 20_000).map_err(|e| e.to_string())?;
+    let model = Model::from_deterministic(&problem, source.clone()).map_err(|e| e.to_string())?;
+    let set = failure_set(&analysis(&model)?);
     Ok(match args.format {
         CompareFormat::Json => {
             let pieces: Vec<_> = set
@@ -115,8 +122,8 @@ fn latex_set(source: &str, set: &DiscountSet) -> String {
     )
 }
 
-/// The parametric analysis of a stochastic model (issue 11, item 3).
-fn breakpoints(model: Model, format: CompareFormat) -> Result<String, String> {
+/// The parametric analysis of a model, with a progress bar on a terminal.
+fn analysis(model: &Model) -> Result<DiscountAnalysis, String> {
     use std::io::IsTerminal;
     let bar = if std::io::stderr().is_terminal() {
         let bar = ProgressBar::with_draw_target(Some(100), ProgressDrawTarget::stderr());
@@ -131,7 +138,7 @@ fn breakpoints(model: Model, format: CompareFormat) -> Result<String, String> {
     } else {
         ProgressBar::hidden()
     };
-    let d = discount_breakpoints_with(&model, &mut |p| {
+    let d = discount_breakpoints_with(model, &mut |p| {
         bar.set_position((p.work * 100 / MAX_PROBE_WORK) as u64);
         bar.set_message(format!(
             "probe {} ({} regions, {} gaps)",
@@ -141,11 +148,15 @@ fn breakpoints(model: Model, format: CompareFormat) -> Result<String, String> {
         ));
     });
     bar.finish_and_clear();
-    let d = d.map_err(|e| e.to_string())?;
-    Ok(match format {
-        CompareFormat::Text => discount_text(&model, &d),
-        CompareFormat::Json => pretty(&discount_json(&model, &d)),
-        CompareFormat::Markdown => discount_markdown(&model, &d),
-        CompareFormat::Latex => discount_latex(&model, &d),
-    })
+    d.map_err(|e| e.to_string())
+}
+
+/// The breakpoint report of a stochastic model or an environment.
+fn breakpoints(model: &Model, d: &DiscountAnalysis, format: CompareFormat) -> String {
+    match format {
+        CompareFormat::Text => discount_text(model, d),
+        CompareFormat::Json => pretty(&discount_json(model, d)),
+        CompareFormat::Markdown => discount_markdown(model, d),
+        CompareFormat::Latex => discount_latex(model, d),
+    }
 }

@@ -821,3 +821,115 @@ impl Model {
         crate::model::Problem::new(moves, x1, p.goals().to_vec()).map_err(|e| e.to_string())
     }
 }
+
+impl Model {
+    /// The model of a deterministic problem (SPEC §1) for the parametric discount analysis:
+    /// every move becomes an action with its single outcome (probability 1), rewards are the
+    /// negated stage costs, goals end the episode.
+    ///
+    /// A dead end (a non-goal state without moves) has cost-to-go `+∞` in the deterministic
+    /// model (SPEC §1): no trajectory through it has a discounted value, so no discount-optimal
+    /// policy enters it. Moves into dead ends are removed, repeatedly (a state whose every move
+    /// leads into dead ends is one too); what remains are exactly the goal paths and lassos of
+    /// [`crate::claims::discount::discount_set`]. A dead-end `x1` has no goal path: every policy
+    /// fails there, as the model says (it ends at `x1`, unsuccessfully).
+    ///
+    /// ```
+    /// use truecost::model::{Move, Problem};
+    /// use truecost::objectives::Model;
+    /// // 0 → 1 (dead end) or 0 → 2 (goal): the move into the dead end is removed.
+    /// let mv = |successor, cost: &str| Move { successor, cost: cost.parse().unwrap() };
+    /// let p = Problem::new(vec![vec![mv(1, "1"), mv(2, "5")], vec![], vec![]], 0, vec![2]).unwrap();
+    /// let m = Model::from_deterministic(&p, "example".into()).unwrap();
+    /// assert_eq!(m.problem.actions(0).len(), 1);
+    /// assert!(truecost::objectives::parametric::is_deterministic(&m));
+    /// ```
+    pub fn from_deterministic(
+        problem: &crate::model::Problem,
+        name: String,
+    ) -> Result<Self, StochasticError> {
+        let n = problem.states();
+        let mut dead: Vec<bool> = (0..n)
+            .map(|x| !problem.is_goal(x) && problem.moves(x).is_empty())
+            .collect();
+        loop {
+            let mut changed = false;
+            for x in 0..n {
+                if !dead[x]
+                    && !problem.is_goal(x)
+                    && problem.moves(x).iter().all(|m| dead[m.successor])
+                {
+                    dead[x] = true;
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        let moves = (0..n)
+            .map(|x| {
+                problem
+                    .moves(x)
+                    .iter()
+                    .filter(|m| !dead[m.successor])
+                    .cloned()
+                    .collect()
+            })
+            .collect();
+        let pruned = crate::model::Problem::new(moves, problem.initial(), problem.goals().to_vec())
+            .expect("removing moves keeps the states, x1 and the goals well formed");
+        let stochastic = StochasticProblem::from_deterministic(
+            &pruned,
+            crate::stochastic::NoiseModel::Paper,
+            &crate::stochastic::Predictability::one(),
+        )?;
+        Ok(Model::from_problem(stochastic, name))
+    }
+}
+
+/// The set of `α ∈ (0, 1)` for which a discount-optimal policy fails to reach a goal from the
+/// initial state, read off the parametric analysis of a deterministic model
+/// ([`Model::from_deterministic`]): an open interval between breakpoints belongs to it iff
+/// the policies optimal there have least success probability `< 1` from `x1`, and a breakpoint
+/// iff the policies optimal at the point do (there the optimal actions of both neighbouring
+/// intervals tie, so a point can belong to the set while neither neighbour does, or the
+/// reverse). In a deterministic model a policy's success from `x1` is 0 or 1, and a policy
+/// using only optimal actions follows a discount-optimal trajectory, so this is the set of
+/// [`crate::claims::discount::discount_set`] (checked in `tests/discount_engines.rs`).
+/// Consecutive members are merged into maximal pieces.
+pub fn failure_set(d: &parametric::DiscountAnalysis) -> crate::claims::discount::DiscountSet {
+    use crate::claims::discount::{pieces_of_members, DiscountSet, Point};
+    use crate::claims::poly::Algebraic;
+    let point = |r: &roots::Root| -> Point {
+        Point::Root(match r.as_rational() {
+            Some(q) => Algebraic::from_rational(q.clone()),
+            // An open bracket (lo, hi) holding one simple root of the polynomial, not a root
+            // at hi: the unique root of the square-free part in (lo, hi].
+            None => Algebraic {
+                poly: r.poly.poly.squarefree(),
+                lo: r.lo.clone(),
+                hi: r.hi.clone(),
+            },
+        })
+    };
+    let fails = |a: &parametric::Achievement| a.success.min < Rational::one();
+    // Atoms in increasing order: interval 0, breakpoint 0, interval 1, …, interval k.
+    let ends: Vec<Point> = d.breakpoints.iter().map(|b| point(&b.at)).collect();
+    let mut member = Vec::with_capacity(d.intervals.len() + d.breakpoints.len());
+    for (i, interval) in d.intervals.iter().enumerate() {
+        member.push(fails(&interval.achievement));
+        if let Some(b) = d.breakpoints.get(i) {
+            member.push(fails(&b.achievement));
+        }
+    }
+    let pieces = pieces_of_members(&ends, &member);
+    DiscountSet {
+        pieces,
+        method: format!(
+            "{}; {} breakpoints in (0,1) where the discount-optimal policies change",
+            report::discount_method(d),
+            d.breakpoints.len()
+        ),
+    }
+}

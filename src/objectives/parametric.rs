@@ -183,6 +183,16 @@ pub enum ParametricError {
         /// [`MAX_PROBE_WORK`].
         bound: u128,
     },
+    /// One probe of a deterministic model alone would exceed [`MAX_SINGLE_PROBE_WORK`].
+    #[error("one exact probe of this deterministic problem is estimated at {work} units ({states} running states: n^2 2^24); the exact parametric analysis takes at most {bound} per probe (about 7 s), i.e. at most 1448 running states")]
+    DeterministicProbeWork {
+        /// Running states.
+        states: usize,
+        /// Estimated units.
+        work: u128,
+        /// [`MAX_SINGLE_PROBE_WORK`].
+        bound: u128,
+    },
     /// Too many regions: the piece bound.
     #[error("the discount-optimal policy changes more than {0} times on (0,1): beyond the bound of the exact parametric analysis")]
     Pieces(usize),
@@ -467,6 +477,26 @@ fn poly_add_scaled(acc: &mut Vec<BigInt>, f: &[BigInt], w: &BigInt, shift: usize
     for (k, fk) in f.iter().enumerate() {
         acc[k + shift] += w * fk;
     }
+}
+
+/// The estimated work of one probe of a deterministic analysis (module docs, step 1′), in the
+/// units of [`MAX_PROBE_WORK`]: `n²·2^24` with `n` the running states (the advantages are
+/// about proportional to `n`, and so is the degree of their polynomials on grids). Measured in
+/// release on a loaded 2-core machine on benchmark grids with move costs 1–9: 10×10 (99 running
+/// states) 58 ms per probe, 20×20 (399) 0.71 s per probe, i.e. about `n²·2^24` units at the
+/// stochastic rate of 5·10¹² units per second and no less; unit-cost 32×32 (1023) 0.56 s for
+/// its single probe, Taxi (400) 0.2 s. So a deterministic model over 1448 running states is
+/// refused before any work ([`MAX_SINGLE_PROBE_WORK`]), and the probes of one analysis stop at
+/// [`MAX_PROBE_WORK`] (about 210 probes of a 20×20 grid).
+///
+/// ```
+/// use truecost::objectives::parametric::{deterministic_probe_work, MAX_SINGLE_PROBE_WORK};
+/// assert!(deterministic_probe_work(1448) <= MAX_SINGLE_PROBE_WORK);
+/// assert!(deterministic_probe_work(1449) > MAX_SINGLE_PROBE_WORK);
+/// ```
+pub fn deterministic_probe_work(running: usize) -> u128 {
+    let n = running.max(1) as u128;
+    (n * n) << 24
 }
 
 /// Whether every action where the episode runs has a single outcome (probability 1): the
@@ -1089,9 +1119,10 @@ pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, Parametri
 }
 
 /// [`discount_breakpoints`], calling `progress` before every probe. The result does not
-/// depend on `progress`. Stochastic problems are refused before any work when one probe would
-/// exceed [`MAX_SINGLE_PROBE_WORK`], and while running when the next probe would take the
-/// work past [`MAX_PROBE_WORK`].
+/// depend on `progress`. A problem is refused before any work when one probe would exceed
+/// [`MAX_SINGLE_PROBE_WORK`] ([`probe_work`] for stochastic models, [`deterministic_probe_work`]
+/// for deterministic ones), and while running when the next probe would take the work past
+/// [`MAX_PROBE_WORK`].
 pub fn discount_breakpoints_with(
     model: &Model,
     progress: &mut dyn FnMut(ProbeProgress),
@@ -1105,9 +1136,18 @@ pub fn discount_breakpoints_with(
             bound: MAX_RUNNING_STATES,
         });
     }
-    // Deterministic problems have their own bound (the chain degree, checked while running).
+    // Deterministic problems: the chain degree is checked while running, and each probe
+    // counts `n²·2^24` units of the same work bounds (`deterministic_probe_work`).
     let per_probe = if deterministic {
-        0
+        let work = deterministic_probe_work(running.len());
+        if work > MAX_SINGLE_PROBE_WORK {
+            return Err(ParametricError::DeterministicProbeWork {
+                states: running.len(),
+                work,
+                bound: MAX_SINGLE_PROBE_WORK,
+            });
+        }
+        work
     } else {
         let bits = number_bits(model, &running);
         let work = probe_work(running.len(), bits);
@@ -1182,9 +1222,11 @@ pub fn discount_breakpoints_with(
         points.extend(region.touches.iter().cloned());
     }
     points.sort_by(|a, b| a.compare(b));
-    points.dedup_by(|a, b| a.compare(b) == Ordering::Equal);
+    // Equal points met through different polynomials keep their common factor.
+    points.dedup_by(|a, b| b.absorb_if_equal(a));
     for b in &mut points {
         b.recognise_rational();
+        b.reduce();
     }
     let indices = |allowed: &[bool]| -> Vec<Vec<usize>> {
         (0..p.states())

@@ -1,5 +1,5 @@
-//! What `solve --objective` and `compare` print (issue 11, items 2 and 4): exact strings, with
-//! decimals beside them, in JSON, text, Markdown and LaTeX.
+//! What `solve --objective`, `compare` and `discount` print: exact strings, with decimals
+//! beside them (correctly rounded to the digits shown), in JSON, text, Markdown and LaTeX.
 
 use serde_json::{json, Value};
 
@@ -20,7 +20,7 @@ fn rational(r: &Rational) -> Extended {
 }
 
 /// The success probability: the exact string if every optimal policy has the same, else
-/// `{"min", "max"}` (issue 11, item 2).
+/// `{"min", "max"}`.
 pub fn success_json(b: &Bounds) -> Value {
     if b.min == b.max {
         json!(exact(&rational(&b.min)))
@@ -143,7 +143,7 @@ pub fn solution_text(model: &Model, s: &Solution) -> String {
     out
 }
 
-/// One row of `compare` (issue 11, item 4).
+/// One row of `compare`.
 #[derive(Clone, Debug)]
 pub struct CompareRow {
     /// The objective.
@@ -338,25 +338,36 @@ pub fn facts(model: &Model) -> Result<Value, ObjectiveError> {
     }))
 }
 
-/// A breakpoint's exact description (issue 11, item 3): a rational, or the unique root of a
-/// primitive integer polynomial in a rational bracket of width at most `2^-100 < 1e-30`,
-/// with 30 decimals.
+/// A breakpoint's exact description: a rational, or the unique root of a primitive integer
+/// polynomial in a rational bracket of width at most `2^-100 < 1e-30`, with its decimal
+/// correctly rounded to 30 digits. The polynomial is the factor vanishing at the point
+/// ([`super::roots::Root::reduce`]): the minimal polynomial when proved irreducible, else
+/// square-free without rational roots.
 pub struct PointText {
-    /// 30 digits after the point (truncated), or the exact rational.
+    /// The value correctly rounded to 30 digits after the point (the exact value when it
+    /// has at most 30 digits, zero-padded).
     pub decimal: String,
+    /// The value correctly rounded to 12 digits after the point (short forms).
+    pub short: String,
     /// `p/q` if the point is rational.
     pub exact: Option<String>,
     /// The polynomial (for an irrational point).
     pub polynomial: Option<String>,
     /// Its degree.
     pub degree: usize,
+    /// Whether the polynomial is proved irreducible over `Q` (the minimal polynomial).
+    pub minimal: bool,
     /// The bracket's ends (`lo < α < hi`; both equal the point if rational).
     pub bracket: (String, String),
 }
 
+/// Digits after the point of the short decimals of breakpoints (tables and interval ends).
+pub const SHORT_DIGITS: usize = 12;
+
 /// The text of a breakpoint (refined to a bracket of width at most `2^-100`).
 pub fn point_text(r: &super::roots::Root) -> PointText {
     let mut r = r.clone();
+    r.reduce();
     r.refine_to(&Rational::new(
         num_bigint::BigInt::from(1),
         num_bigint::BigInt::from(1) << 100u32,
@@ -364,6 +375,7 @@ pub fn point_text(r: &super::roots::Root) -> PointText {
     let rat = |x: &Rational| crate::claims::discount::rat(x);
     PointText {
         decimal: r.decimal(30),
+        short: r.decimal(SHORT_DIGITS),
         exact: r.as_rational().map(rat),
         polynomial: (!r.exact).then(|| r.polynomial().to_string()),
         degree: if r.exact {
@@ -371,6 +383,7 @@ pub fn point_text(r: &super::roots::Root) -> PointText {
         } else {
             r.polynomial().degree().unwrap_or(0)
         },
+        minimal: r.exact || r.reduction == super::roots::Reduction::Minimal,
         bracket: (rat(&r.lo), rat(&r.hi)),
     }
 }
@@ -399,13 +412,14 @@ fn end_json(r: Option<&super::roots::Root>, none: &str) -> Value {
 
 /// `discount --env|--file` as JSON: every breakpoint exactly (polynomial and bracket), every
 /// interval with a rational sample point, an optimal policy, the success probability and
-/// truecost of its optimal policies (issue 11, item 3).
+/// truecost of its optimal policies.
 pub fn discount_json(model: &Model, d: &super::parametric::DiscountAnalysis) -> Value {
     json!({
         "source": model.name,
         "rewards": model.reward_source,
         "initial_states": model.initial.len(),
         "method": discount_method(d),
+        "decimals": DECIMALS_NOTE,
         "breakpoints": d.breakpoints.iter().map(|b| {
             let t = point_text(&b.at);
             let mut v = json!({
@@ -413,6 +427,8 @@ pub fn discount_json(model: &Model, d: &super::parametric::DiscountAnalysis) -> 
                 "alpha_decimal": t.decimal,
                 "exact": t.exact,
                 "polynomial": t.polynomial,
+                "polynomial_degree": t.degree,
+                "polynomial_minimal": t.minimal,
                 "bracket": [t.bracket.0, t.bracket.1],
                 "touch": b.touch,
                 "ties": b.ties.iter().map(|(x, a)| json!({"state": x, "optimal_actions": a})).collect::<Vec<_>>(),
@@ -471,8 +487,7 @@ fn short_point(r: Option<&super::roots::Root>, none: &str) -> String {
         None => none.into(),
         Some(r) => {
             let t = point_text(r);
-            t.exact
-                .unwrap_or_else(|| format!("{}...", &t.decimal[..t.decimal.len().min(14)]))
+            t.exact.unwrap_or_else(|| format!("{}...", t.short))
         }
     }
 }
@@ -493,10 +508,16 @@ fn ties_text(b: &super::parametric::Breakpoint) -> String {
         .join("; ")
 }
 
-/// `discount --env|--file` as text.
+/// How the decimals of `discount` are made, in one line.
+pub const DECIMALS_NOTE: &str = "every decimal is correctly rounded to the digits shown (to nearest); '...' marks a value whose expansion goes on";
+
+/// `discount --env|--file` as text. Every decimal is correctly rounded to the digits shown
+/// (to nearest, a tie away from zero): breakpoints to 30 digits after the point, interval ends
+/// to 12, probabilities and truecosts to 12 significant digits; `...` after a decimal marks a
+/// value whose expansion goes on (an irrational breakpoint).
 pub fn discount_text(model: &Model, d: &super::parametric::DiscountAnalysis) -> String {
     let mut out = format!(
-        "source       {}\nrewards      {} (discounted, maximised)\nmethod       {}\nbreakpoints  {} (alpha in (0,1) where the set of discount-optimal policies changes)\n",
+        "source       {}\nrewards      {} (discounted, maximised)\nmethod       {}\ndecimals     {DECIMALS_NOTE}\nbreakpoints  {} (alpha in (0,1) where the set of discount-optimal policies changes)\n",
         model.name,
         model.reward_source,
         discount_method(d),
@@ -514,12 +535,20 @@ pub fn discount_text(model: &Model, d: &super::parametric::DiscountAnalysis) -> 
             let t = point_text(&b.at);
             let what = match (&t.exact, &t.polynomial) {
                 (Some(q), _) => format!("alpha = {q} exactly"),
-                (None, Some(p)) if p.len() <= 120 => format!(
-                    "alpha = {}... (the root of {p} in ({}, {}))",
+                (None, Some(p)) if t.minimal && p.len() <= 120 => format!(
+                    "alpha = {}... (the root of the minimal polynomial {p} in ({}, {}))",
                     t.decimal, t.bracket.0, t.bracket.1
                 ),
+                (None, Some(p)) if p.len() <= 120 => format!(
+                    "alpha = {}... (the root of {p} in ({}, {}); square-free, no rational roots, irreducibility not proved)",
+                    t.decimal, t.bracket.0, t.bracket.1
+                ),
+                _ if t.minimal => format!(
+                    "alpha = {}... (the root of a degree-{} minimal polynomial in ({}, {}); see --format json)",
+                    t.decimal, t.degree, t.bracket.0, t.bracket.1
+                ),
                 _ => format!(
-                    "alpha = {}... (the root of a degree-{} polynomial in ({}, {}); see --format json)",
+                    "alpha = {}... (the root of a polynomial with this root (degree {}, square-free, no rational roots; irreducibility not proved) in ({}, {}); see --format json)",
                     t.decimal, t.degree, t.bracket.0, t.bracket.1
                 ),
             };
@@ -564,7 +593,7 @@ const DISCOUNT_HEADER: [&str; 3] = ["alpha", "success probability", "truecost"];
 /// `discount --env|--file` as a Markdown table (intervals and breakpoints in order).
 pub fn discount_markdown(model: &Model, d: &super::parametric::DiscountAnalysis) -> String {
     let mut out = format!(
-        "**{}** ({}, discounted): {} breakpoints\n\n| {} |\n|---|---|---|\n",
+        "**{}** ({}, discounted): {} breakpoints; decimals correctly rounded to the digits shown\n\n| {} |\n|---|---|---|\n",
         model.name,
         model.reward_source,
         d.breakpoints.len(),
@@ -584,7 +613,7 @@ pub fn discount_latex(model: &Model, d: &super::parametric::DiscountAnalysis) ->
             .replace(" to ", "--")
     };
     let mut out = format!(
-        "% {} ({}, discounted): {} breakpoints\n\\begin{{tabular}}{{lrr}}\n\\hline\n$\\alpha$ & success probability & truecost \\\\\n\\hline\n",
+        "% {} ({}, discounted): {} breakpoints; decimals correctly rounded to the digits shown\n\\begin{{tabular}}{{lrr}}\n\\hline\n$\\alpha$ & success probability & truecost \\\\\n\\hline\n",
         model.name,
         model.reward_source,
         d.breakpoints.len()

@@ -18,7 +18,7 @@ PAPER_PROBLEMS = [0, 1, 2, 3, 4, 5, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16]
 STEVE_DET = "sims/steve_sims_3000steps/deterministic/example_{}_results_100_samples.csv"
 I5_DET = "sims/sims_det_section_3000_steps/examples_i5-12400F_16GBRam_RTX3060/example_{}_results_100_samples.csv"
 STEVE_STOCH = "sims/steve_sims_3000steps/stochastic/example_{}_stochastic_results_100_samples.csv"
-STEVE_MACHINE = "the paper's timing machine (AMD Ryzen 7 3700X per issue 13)"
+STEVE_MACHINE = "the paper's timing machine (AMD Ryzen 7 3700X as reported for the paper's timings)"
 I5_MACHINE = "Intel i5-12400F (named by the directory)"
 
 

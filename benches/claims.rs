@@ -1,4 +1,4 @@
-//! Throughput of the claims engines (issue 5, item 10): the smoke scope of each engine-1 check,
+//! Throughput of the claims engines: the smoke scope of each engine-1 check,
 //! and the exact isolation of alpha*. `truecost verify` also prints cases per second.
 
 use criterion::{criterion_group, criterion_main, Criterion};

@@ -1,4 +1,4 @@
-//! Benchmarks of the three objectives on the Gymnasium benchmarks (issue 11, item 7).
+//! Benchmarks of the three objectives on the Gymnasium benchmarks.
 //!
 //! `objectives/<env>/<objective>` — one exact solve ([`Model::solve`]: the optimum and the
 //! success-probability bounds, truecost and steps of the reported policy) per objective on
@@ -43,8 +43,8 @@ fn objectives(c: &mut Criterion) {
     group.finish();
 }
 
-/// `discount/<env>`: the exact breakpoints of the discount-optimal policies (issue 11, items 3
-/// and 7: FrozenLake 8x8 ≤ 30 s on 2 cores).
+/// `discount/<env>`: the exact breakpoints of the discount-optimal policies (target: FrozenLake
+/// 8x8 ≤ 30 s on 2 cores).
 fn discount(c: &mut Criterion) {
     let mut group = c.benchmark_group("discount");
     group.sample_size(10);

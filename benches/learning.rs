@@ -1,9 +1,9 @@
-//! Benchmarks of Q-learning on Problem 10 of the paper (issue 3): `ρ = 1`, `Q₀ = 0`, the paper's
+//! Benchmarks of Q-learning on Problem 10 of the paper: `ρ = 1`, `Q₀ = 0`, the paper's
 //! 1000 episodes × 3000 steps, ε = 0 (greedy) and ε = 0.9 over the random plan.
 //!
 //! * `q_learning/<ε>/reference` — the reference mode of SPEC §7 (`f64` Euclidean costs, checks
 //!   every 1000 actions): the same work as the paper's Python code, which takes about 0.9 s
-//!   (ε = 0) and 2.0 s (ε = 0.9) per run; the issue's target is ≥ 100× faster (≤ 9 ms, ≤ 20 ms).
+//!   (ε = 0) and 2.0 s (ε = 0.9) per run; the target is ≥ 100× faster (≤ 9 ms, ≤ 20 ms).
 //! * `q_learning/<ε>/exact` — unit step costs in exact `Units`, metrics after every action.
 //!
 //! One iteration builds the Q-table and runs to the end (the run stops early when it converges,

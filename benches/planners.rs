@@ -1,7 +1,7 @@
 //! Benchmarks of the model-free planners on Problem 10 of the paper.
 //!
 //! Every benchmark times exactly the timed region of the experiments' model-free rows,
-//! [`model_free_counts`] (SPEC §2 "model-free variants", issue 13 item 1): the depth-first
+//! [`model_free_counts`] (SPEC §2 "model-free variants"): the depth-first
 //! exploration from `x1`, one planner on the discovered graph, and its path. Compiling the
 //! problem into a graph happens once, outside the timed loop.
 //!
@@ -11,7 +11,7 @@
 //! * `model_free/<planner>/reference` — the reference mode of SPEC §7 (`f64`): forward
 //!   Dijkstra from `x1`, value iteration capped at 1000 sweeps.
 //!
-//! Issue 12 item 5 targets ≥ 150× the paper's Python code measured on the same machine
+//! The targets are ≥ 150× the paper's Python code measured on the same machine
 //! (`docs/speed.md`): model-free Dijkstra ≤ 15 µs, asynchronous VI ≤ 200 µs, synchronous VI
 //! ≤ 200 µs.
 //!

@@ -1,11 +1,11 @@
-//! Benchmarks of the stochastic solvers (issue 4, items 2 and 3).
+//! Benchmarks of the stochastic solvers (value iteration and the exact optimum).
 //!
 //! * `exact_optimum/p10/<noise>/<γ>` — the exact optimum of Problem 10 (unit step costs) by
 //!   policy iteration with exact rational solves. Target: ≤ 5 s at γ = 0.999.
 //! * `exact_optimum_table/<noise>` — all 16 paper problems × γ ∈ {0.999, 0.99, 0.9, 0.7, 0.5}
 //!   for one noise model. Target: both noise models together ≤ 5 minutes.
-//! * `exact_optimum_grid/<side>x<side>` — the exact optimum of a seeded benchmark grid (issue 12,
-//!   item 3: `truecost export --grid`, costs 1–4, paper noise, γ = 0.99), mid-size (30×30, 900
+//! * `exact_optimum_grid/<side>x<side>` — the exact optimum of a seeded benchmark grid
+//!   (`truecost export --grid`, costs 1–4, paper noise, γ = 0.99), mid-size (30×30, 900
 //!   states); the 100×100 case is timed with the CLI (README, "Large models").
 //! * `stochastic_vi/f64_grid/<schedule>` — `f64` VI on the 100×100 benchmark grid to the
 //!   tolerance 1e-9 (no exact `G*`: that is `--exact-error`'s job).

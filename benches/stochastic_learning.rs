@@ -1,4 +1,4 @@
-//! Benchmarks of stochastic Q-learning on Problem 10 of the paper (issue 4, item 9): γ = 0.999,
+//! Benchmarks of stochastic Q-learning on Problem 10 of the paper: γ = 0.999,
 //! ρ = 0.99, ε = 0.9 over the random plan, 3000 episodes × 3000 steps, `Q₀ = 0`. The paper's
 //! Python code takes about 2 s per run on this machine; the target is ≥ 100× faster (≤ 20 ms).
 //!

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Dump Gymnasium's own transition tables for truecost's conformance tests (issue 11).
+"""Dump Gymnasium's own transition tables for truecost's toy-text conformance tests.
 
 For every environment configuration truecost models (`--env SPEC`), writes
 tests/data/gymnasium/<name>.json with Gymnasium's `env.unwrapped.P` (every state, every

@@ -55,7 +55,7 @@ pub fn replace_with<E: From<String>>(
     result
 }
 
-/// Checks, before any work, that [`write`] or [`replace_with`] will be able to produce `path`:
+/// Checks, before any work, that [`write()`] or [`replace_with`] will be able to produce `path`:
 /// it is not a directory, its directory exists, and a file can be created there (a read-only
 /// disk or a missing permission is found now, not after a long run). Special targets
 /// (`/dev/stdout`) pass.

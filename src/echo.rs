@@ -1,4 +1,4 @@
-//! Echoing user input in messages (issue 12, item 1): every error is **one printable line**.
+//! Echoing user input in messages: every error is **one printable line**.
 //!
 //! Input reaches messages in many places (a cost's text, a path, a format tag, a learning
 //! rate). This module is the one place that makes such text safe to print: control characters

@@ -4,14 +4,16 @@
 //! *Relating Reinforcement Learning to Dynamic Programming-Based Planning* (Georgiev, Timperi,
 //! Sakçak, LaValle), with a reference mode that reproduces the paper's published counts.
 //!
-//! Architecture (each layer imports only the ones before it):
-//! [`value`] → [`model`] → [`problems`] → [`solvers`] → [`learning`] → [`planning`] → [`experiments`] → `cli`
-//! (the binary). Beneath them all, the `kernel/` crate `truecost_kernel` (no dependencies): the
-//! value types' arithmetic core ([`value::CostValue`], [`value::Units`]), the planning graph,
-//! the planners ([`solvers`]) and the claims' bignum-free oracles (`claims::{exact, tiny,
-//! oracle, qlearning}`, the C2/C3/C4 checks) — exactly what the Kani harnesses in `proofs/`
-//! verify (issue 10, item 3). This crate re-exports every kernel item under its old path and
-//! adds what needs big rationals ([`value::ExactValue`], the unit of [`model::Graph`]).
+//! Architecture (each layer imports only the layers before it; `tests/architecture.rs` checks
+//! this from the source): [`echo`] → [`atomic`], [`bounded`] → [`value`] → [`model`] →
+//! [`problems`], [`solvers`] → [`planning`], [`stochastic`] → [`learning`] → [`claims`] →
+//! [`envs`] → [`objectives`], [`experiments`] → [`figures`] → `cli` (the binary). Beneath them
+//! all, the `kernel/` crate `truecost_kernel` (no dependencies): the value types' arithmetic
+//! core ([`value::CostValue`], [`value::Units`]), the planning graph, the planners
+//! ([`solvers`]) and the claims' bignum-free oracles (`claims::{exact, tiny, oracle,
+//! qlearning}`, the C2/C3/C4 checks) — exactly what the Kani harnesses in `proofs/` verify.
+//! This crate re-exports every kernel item under its old path and adds what needs big
+//! rationals ([`value::ExactValue`], the unit of [`model::Graph`]).
 #![warn(missing_docs)]
 
 pub mod atomic;

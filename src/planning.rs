@@ -196,8 +196,7 @@ fn plan_on<V: ExactValue>(
 }
 
 /// What one model-free planning run measures: counts only — no values, no text, nothing on the
-/// heap (it is `Copy`), so the timed region that returns it cannot render or build a report
-/// (issue 13, item 1).
+/// heap (it is `Copy`), so the timed region that returns it cannot render or build a report.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub struct PlanCounts {
     /// Sweeps (VI) or heap pops (Dijkstra).
@@ -219,7 +218,7 @@ impl PlanCounts {
     }
 }
 
-/// The timed region of a model-free planner row (issue 13, item 1; SPEC §2 "model-free
+/// The timed region of a model-free planner row (SPEC §2 "model-free
 /// variants"): the robot explores the **prepared** graph, then the planner runs on the
 /// discovered graph and its path is read off — what the paper's code times. Problem
 /// compilation happens before (the caller passes a compiled [`Graph`]); no oracle runs here (in

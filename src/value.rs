@@ -28,7 +28,7 @@ pub type Rational = BigRational;
 pub use truecost_kernel::value::{CostValue, Units};
 
 /// The exact meaning of a planner's value (SPEC §1): the big-rational side of [`CostValue`],
-/// kept out of the bignum-free kernel that the Kani harnesses verify (issue 10, item 3).
+/// kept out of the bignum-free kernel that the Kani harnesses verify.
 ///
 /// ```
 /// use truecost::value::{ExactValue, Extended, Units};
@@ -229,7 +229,7 @@ pub enum ParseRationalReason {
 /// Parses an exact rational from its text: an integer (`"42"`), a decimal (`"0.999"`, `"-1.5"`,
 /// `"2e-3"`) or a fraction (`"800/19"`, each side such a number). Never goes through `f64`.
 ///
-/// Limits (issue 12): at most [`MAX_NUMBER_TEXT`] bytes and exponents within
+/// Limits: at most [`MAX_NUMBER_TEXT`] bytes and exponents within
 /// ±[`MAX_EXPONENT`]; each refusal says which rule was broken.
 ///
 /// ```

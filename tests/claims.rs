@@ -173,7 +173,7 @@ fn smoke_report_verdicts_and_minimal_counterexamples() {
             .filter(|e| e.engine.starts_with("exhaustive"))
             .all(|e| e.failures == 0));
     }
-    // C1: the headline counterexample is the zero-cost cycle started below Q* (issue 10): state
+    // C1: the headline counterexample is the zero-cost cycle started below Q*: state
     // 0 with a zero-cost self-loop and a move of cost 1 to the goal, every value 0: the self-loop
     // keeps Q(0->0) = 0 < Q* = 1. The lone goal whose termination value starts at 1 is a note.
     let c1 = r.claims.iter().find(|c| c.id == "C1").unwrap();

@@ -1,4 +1,4 @@
-//! The exact algebra the claims rely on (issue 14, item 2), each piece against a brute force
+//! The exact algebra the claims rely on, each piece against a brute force
 //! that shares no code with it:
 //!
 //! * C4's bonus sets (`c4::bonus_sets`) against the minimum mean cycle of the reset graph, found
@@ -982,4 +982,15 @@ fn unscaled_membership_agrees_with_scaled_membership() {
     let huge = parse_rational("-1e40").unwrap();
     assert!(contains_unscaled(&below, &huge, &BigInt::from(7)));
     assert!(!contains_unscaled(&below, &-huge, &BigInt::from(7)));
+}
+
+/// The report's α* is the quartic's root rounded to nearest at 30 digits. The expected digits
+/// come from an 80-digit Newton iteration outside truecost (0.91635458253384933778559036811365…):
+/// the 31st digit is 6, so the 30th rounds up from 3 to 4, where truncation would keep 3.
+#[test]
+fn alpha_star_decimal_is_rounded_to_nearest() {
+    let a = truecost::claims::alpha::alpha_star().unwrap();
+    let report = truecost::claims::report::AlphaStar::new(&a);
+    assert_eq!(report.decimal, "0.916354582533849337785590368114");
+    assert_eq!(a.decimal(30), "0.916354582533849337785590368113");
 }

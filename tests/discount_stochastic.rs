@@ -1,4 +1,4 @@
-//! Issue 11, item 3: `discount` on stochastic problems — the exact breakpoints where the
+//! `discount` on stochastic problems — the exact breakpoints where the
 //! discount-optimal policies change, checked against independent means: brute force over all
 //! stationary deterministic policies (each evaluated by its own exact Gaussian elimination at
 //! rational α's) on small stochastic files, and Bellman-optimality checks by a separate linear
@@ -7,9 +7,9 @@
 use num_bigint::BigInt;
 use num_traits::{One, Zero};
 
+use truecost::claims::poly::roots::Root;
 use truecost::envs::EnvSpec;
 use truecost::objectives::parametric::{discount_breakpoints, DiscountAnalysis};
-use truecost::objectives::roots::Root;
 use truecost::objectives::Model;
 use truecost::stochastic::file::{from_json, ProblemFile};
 use truecost::value::{Extended, Rational};

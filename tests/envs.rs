@@ -1,4 +1,4 @@
-//! The three objectives on the Gymnasium benchmarks (issue 11, item 2), against oracles that
+//! The three objectives on the Gymnasium benchmarks, against oracles that
 //! share no code with the solvers: value iteration in `f64` and breadth-first search run on
 //! Gymnasium's own `P` tables (the dumps of `tests/data/gymnasium/`), and values published
 //! for these benchmarks.
@@ -353,9 +353,11 @@ fn endless_map_files_are_refused_at_the_limit() {
 }
 
 #[test]
-fn figures_draw_the_map_and_the_policy() {
-    use truecost::envs::figure::{policy_overlay, scene, value_overlay};
-    use truecost::figures::render::draw;
+fn figures_draw_the_map_and_every_optimal_action() {
+    use truecost::figures::envs::{
+        intended_cell, optimal_actions, policy_overlay, scene, value_overlay,
+    };
+    use truecost::figures::render::{draw, ActionGlyph, LegendKey, Overlay};
     let env = EnvSpec::parse("frozenlake:map=8x8")
         .unwrap()
         .build()
@@ -363,21 +365,59 @@ fn figures_draw_the_map_and_the_policy() {
     let m = Model::from_environment(&env).unwrap();
     let s = m.solve(&Objective::Discounted(q("0.9"))).unwrap();
     let sc = scene(&env).unwrap();
-    let canvas = draw(&sc, &policy_overlay(&env, &m, &s), 600, 600).unwrap();
-    assert_eq!(canvas.of_class("obstacle").count(), 10, "the ten holes");
-    // One arrow per state with an action (64 − 10 holes − 1 goal), except the actions aimed at
-    // the border (LEFT 0 in column 0, DOWN 1 in row 7, RIGHT 2 in column 7, UP 3 in row 0).
-    let mut arrows = 0;
+    let overlay = policy_overlay(&env, &m, &s);
+    let Overlay::Actions { actions, legend } = &overlay else {
+        panic!("an optimal-actions overlay")
+    };
+    let optimal = optimal_actions(&m, &s);
+    // Every state with an action draws its reported action, the goal and the ten holes nothing.
+    let (mut arrows, mut bars) = (0, 0);
     for x in 0..64 {
-        if let Some(a) = s.policy[x] {
-            let a = a - m.problem.actions(x).start;
-            let (r, c) = (x / 8, x % 8);
-            let wall = matches!((a, r, c), (0, _, 0) | (1, 7, _) | (2, _, 7) | (3, 0, _));
-            arrows += usize::from(!wall);
+        match s.policy[x] {
+            None => {
+                assert!(env.is_terminal(x), "{x}");
+                assert!(actions[x].is_empty(), "{x}");
+            }
+            Some(a) => {
+                assert!(
+                    optimal[x].contains(&a),
+                    "{x}: the reported action is optimal"
+                );
+                let local = a - m.problem.actions(x).start;
+                let y = intended_cell(&env, x, local);
+                let (r, c) = (x / 8, x % 8);
+                // LEFT 0 in column 0, DOWN 1 in row 7, RIGHT 2 in column 7, UP 3 in row 0.
+                let wall = matches!((local, r, c), (0, _, 0) | (1, 7, _) | (2, _, 7) | (3, 0, _));
+                assert_eq!(wall, y == x, "{x}");
+                if !wall {
+                    assert!(actions[x].contains(&ActionGlyph::Move(y)), "{x}");
+                }
+            }
+        }
+        for g in &actions[x] {
+            match g {
+                ActionGlyph::Move(_) => arrows += 1,
+                ActionGlyph::Blocked { .. } => bars += 1,
+            }
         }
     }
-    assert!(arrows < 53 && arrows > 30);
+    let canvas = draw(&sc, &overlay, 600, 600).unwrap();
+    assert_eq!(canvas.of_class("obstacle").count(), 10, "the ten holes");
     assert_eq!(canvas.of_class("policy").count(), arrows);
+    assert_eq!(canvas.of_class("arrowhead").count(), arrows);
+    assert_eq!(canvas.of_class("blocked").count(), bars);
+    assert_eq!(canvas.of_class("blocked-bar").count(), bars);
+    // The legend names the bar exactly when one is drawn (slippery: the agent may still slip).
+    let bar_entry = legend.iter().find(|e| e.key == LegendKey::Blocked);
+    assert_eq!(bar_entry.is_some(), bars > 0);
+    if let Some(e) = bar_entry {
+        assert!(
+            e.text.contains("stays in place unless it slips"),
+            "{}",
+            e.text
+        );
+    }
+    assert_eq!(canvas.of_class("legend").count(), legend.len());
     let cliff = EnvSpec::parse("cliffwalking").unwrap().build().unwrap();
     let cm = Model::from_environment(&cliff).unwrap();
     let cs = cm.solve(&Objective::Truecost).unwrap();
@@ -385,6 +425,217 @@ fn figures_draw_the_map_and_the_policy() {
     assert_eq!(canvas.of_class("obstacle").count(), 10, "the cliff");
     assert_eq!(canvas.of_class("value").count(), 48);
     assert!(scene(&EnvSpec::parse("taxi").unwrap().build().unwrap()).is_err());
+}
+
+/// A FrozenLake environment on a map written to a file.
+fn map_env(dir: &tempfile::TempDir, rows: &str, slippery: bool) -> truecost::envs::Environment {
+    let path = dir.path().join("map.txt");
+    std::fs::write(&path, rows).unwrap();
+    EnvSpec::parse(&format!(
+        "frozenlake:map={},slippery={slippery}",
+        path.display()
+    ))
+    .unwrap()
+    .build()
+    .unwrap()
+}
+
+/// The 2×2 map `SF / FG` without slipping: from S (0) RIGHT to 1 and DOWN to 2 are both two
+/// steps from G (3), LEFT and UP hit the border; from 1 only DOWN and from 2 only RIGHT reach
+/// G in one step. Gymnasium's actions: 0 LEFT, 1 DOWN, 2 RIGHT, 3 UP.
+#[test]
+fn tied_optimal_actions_are_all_drawn_and_named_in_the_legend() {
+    use truecost::figures::envs::{optimal_actions, policy_overlay, q_value};
+    use truecost::figures::render::{ActionGlyph::Move, LegendKey, Overlay};
+    let dir = tempfile::tempdir().unwrap();
+    let env = map_env(&dir, "SF\nFG\n", false);
+    let m = Model::from_environment(&env).unwrap();
+    let first = |x: usize| m.problem.actions(x).start;
+    // Truecost: G*(1) = G*(2) = 1, G*(0) = 2; Q(0, RIGHT) = Q(0, DOWN) = 1 + 1 = 2, Q(0, LEFT)
+    // = Q(0, UP) = 1 + G*(0) = 3. Discounted with α = 1/2: V(1) = V(2) = 1 (reward 1 on
+    // entering G), V(0) = α·1 = 1/2 by RIGHT and by DOWN, α·V(0) = 1/4 by LEFT or UP.
+    for (objective, value) in [
+        (Objective::Truecost, "2"),
+        (Objective::Discounted(q("1/2")), "1/2"),
+    ] {
+        let s = m.solve(&objective).unwrap();
+        assert_eq!(s.values[0], Extended::Finite(q(value)), "{objective:?}");
+        let optimal = optimal_actions(&m, &s);
+        assert_eq!(
+            optimal[0],
+            vec![first(0) + 1, first(0) + 2],
+            "{objective:?}"
+        );
+        assert_eq!(optimal[1], vec![first(1) + 1], "{objective:?}: only DOWN");
+        assert_eq!(optimal[2], vec![first(2) + 2], "{objective:?}: only RIGHT");
+        assert!(optimal[3].is_empty(), "the goal");
+        // The tie is exact: the two Q-values are the same rational.
+        assert_eq!(q_value(&m, &s, first(0) + 1), q_value(&m, &s, first(0) + 2));
+        let Overlay::Actions { actions, legend } = policy_overlay(&env, &m, &s) else {
+            panic!("an optimal-actions overlay")
+        };
+        assert_eq!(
+            actions,
+            vec![vec![Move(2), Move(1)], vec![Move(3)], vec![Move(3)], vec![]],
+            "{objective:?}"
+        );
+        let keys: Vec<LegendKey> = legend.iter().map(|e| e.key).collect();
+        assert_eq!(
+            keys,
+            vec![LegendKey::Arrow, LegendKey::Tie],
+            "{objective:?}: no bar drawn"
+        );
+        assert!(legend[1].text.contains("tied optimal actions"));
+        assert!(legend[1].text.contains("exactly equal Q-values"));
+    }
+    // Reach: every state reaches G with probability 1, so every action attains V = 1; but
+    // LEFT and UP at 0, RIGHT and UP at 1, LEFT and DOWN at 2 keep the agent in place, and no
+    // policy choosing them reaches G. Going back (1 LEFT to 0, 2 UP to 0) is reach-optimal:
+    // 0 then goes on to the other side.
+    let s = m.solve(&Objective::Reach).unwrap();
+    let Overlay::Actions { actions, legend } = policy_overlay(&env, &m, &s) else {
+        panic!("an optimal-actions overlay")
+    };
+    assert_eq!(
+        actions,
+        vec![
+            vec![Move(2), Move(1)],
+            vec![Move(0), Move(3)],
+            vec![Move(3), Move(0)],
+            vec![]
+        ]
+    );
+    assert_eq!(
+        legend.len(),
+        2,
+        "arrow and tie: no bar is an optimal action"
+    );
+}
+
+/// The 1×3 slippery map `SFG` (success rate 1/3: the intended direction and each
+/// perpendicular one with probability 1/3; moves off the map stay). At F (1) RIGHT reaches G
+/// with 1/3 and stays otherwise: G*(1) = 3; DOWN and UP go to S, stay or reach G, 1/3 each:
+/// 1 + 6/3 + 3/3 = 4; LEFT 1 + 6/3 + 2·3/3 = 5. At S (0) RIGHT, DOWN and UP each move to F
+/// with 1/3 (RIGHT intended, DOWN and UP by slipping) and stay otherwise:
+/// G*(0) = 1 + 2/3·G*(0) + 1/3·3, so G*(0) = 6 by all three; LEFT never leaves: 1 + 6 = 7.
+/// So at S the optimal
+/// actions are DOWN and UP — both aimed at the border — and RIGHT.
+#[test]
+fn moves_into_the_border_are_bars_with_a_legend_entry() {
+    use truecost::figures::envs::{policy_overlay, scene};
+    use truecost::figures::render::{draw, ActionGlyph::*, LegendKey, Overlay};
+    let dir = tempfile::tempdir().unwrap();
+    let env = map_env(&dir, "SFG\n", true);
+    let m = Model::from_environment(&env).unwrap();
+    let s = m.solve(&Objective::Truecost).unwrap();
+    assert_eq!(s.values[0], Extended::from_integer(6));
+    assert_eq!(s.values[1], Extended::from_integer(3));
+    let overlay = policy_overlay(&env, &m, &s);
+    let Overlay::Actions { actions, legend } = &overlay else {
+        panic!("an optimal-actions overlay")
+    };
+    // DOWN pushes south (y grows upwards), UP north.
+    assert_eq!(
+        actions,
+        &vec![
+            vec![
+                Blocked { toward: (0, -1) },
+                Move(1),
+                Blocked { toward: (0, 1) }
+            ],
+            vec![Move(2)],
+            vec![]
+        ]
+    );
+    let keys: Vec<LegendKey> = legend.iter().map(|e| e.key).collect();
+    assert_eq!(
+        keys,
+        vec![LegendKey::Arrow, LegendKey::Tie, LegendKey::Blocked]
+    );
+    assert!(legend[2].text.contains("into the border"));
+    assert!(legend[2].text.contains("stays in place unless it slips"));
+    let canvas = draw(&scene(&env).unwrap(), &overlay, 600, 400).unwrap();
+    assert_eq!(canvas.of_class("blocked").count(), 2);
+    assert_eq!(canvas.of_class("blocked-bar").count(), 2);
+    assert_eq!(canvas.of_class("policy").count(), 2, "S to F and F to G");
+    let svg = canvas.to_svg();
+    for entry in legend.iter() {
+        assert!(svg.contains(&entry.text), "{}", entry.text);
+    }
+    // Reach: V = 1 everywhere; LEFT at S never leaves S, and LEFT at F only goes back to S or
+    // stays: no policy choosing either reaches G. The rest attain V = 1 and can reach G.
+    let r = m.solve(&Objective::Reach).unwrap();
+    let Overlay::Actions { actions, .. } = policy_overlay(&env, &m, &r) else {
+        panic!("an optimal-actions overlay")
+    };
+    assert_eq!(
+        actions,
+        vec![
+            vec![
+                Blocked { toward: (0, -1) },
+                Move(1),
+                Blocked { toward: (0, 1) }
+            ],
+            vec![
+                Blocked { toward: (0, -1) },
+                Move(2),
+                Blocked { toward: (0, 1) }
+            ],
+            vec![]
+        ]
+    );
+}
+
+/// CliffWalking: from the start (36, bottom left) UP to 24 is the only optimal action: RIGHT
+/// falls (cost 100), LEFT and DOWN hit the border. Taxi with the passenger aboard and the
+/// destination R (0, 0): from (1, 1) north to (0, 1) and west to (1, 0) are both one move
+/// from R (no wall between (0, 1) and (0, 0) nor between (1, 0) and (0, 0)), from (0, 1) only
+/// west is.
+#[test]
+fn single_and_tied_actions_on_cliffwalking_and_taxi() {
+    use truecost::figures::envs::{policy_overlay, taxi_actions_overlay, taxi_scene, TaxiSlice};
+    use truecost::figures::render::{draw, ActionGlyph::Move, LegendKey, Overlay};
+    let env = EnvSpec::parse("cliffwalking").unwrap().build().unwrap();
+    let m = Model::from_environment(&env).unwrap();
+    let s = m.solve(&Objective::Truecost).unwrap();
+    let Overlay::Actions { actions, .. } = policy_overlay(&env, &m, &s) else {
+        panic!("an optimal-actions overlay")
+    };
+    assert_eq!(actions[36], vec![Move(24)]);
+    // Along row 2 only RIGHT (DOWN falls), at (2, 11) only DOWN to the goal.
+    for c in 0..11 {
+        assert_eq!(actions[24 + c], vec![Move(25 + c)], "(2, {c})");
+    }
+    assert_eq!(actions[35], vec![Move(47)]);
+    let taxi = EnvSpec::parse("taxi").unwrap().build().unwrap();
+    let m = Model::from_environment(&taxi).unwrap();
+    let s = m.solve(&Objective::Truecost).unwrap();
+    let slice = TaxiSlice::new(4, 0).unwrap();
+    let (overlay, marks) = taxi_actions_overlay(&m, &s, &slice);
+    let Overlay::Actions { actions, legend } = &overlay else {
+        panic!("an optimal-actions overlay")
+    };
+    assert_eq!(
+        actions[5 + 1],
+        vec![Move(1), Move(5)],
+        "(1, 1): north or west"
+    );
+    assert_eq!(actions[1], vec![Move(0)], "(0, 1): west");
+    assert_eq!(actions[5], vec![Move(0)], "(1, 0): north");
+    assert!(actions[0].is_empty(), "R: drop off, a mark");
+    assert_eq!(marks.len(), 1);
+    assert_eq!(marks[0].class, "dropoff");
+    assert!(legend.iter().any(|e| e.key == LegendKey::Tie));
+    let mut scene = taxi_scene(&taxi, Some(&slice));
+    scene.marks.extend(marks);
+    let canvas = draw(&scene, &overlay, 700, 700).unwrap();
+    let arrows: usize = actions.iter().map(Vec::len).sum();
+    assert!(
+        arrows > 24,
+        "ties add arrows to one per moving cell: {arrows}"
+    );
+    assert_eq!(canvas.of_class("policy").count(), arrows);
+    assert_eq!(canvas.of_class("dropoff").count(), 1);
 }
 
 /// A map is at most 100 × 100 cells, a size every command builds: one cell more is refused

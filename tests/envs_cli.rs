@@ -1,5 +1,4 @@
-//! `--env`, `--objective`, `compare`, `export` and `problems --env` on the command line
-//! (issue 11, items 1, 2 and 4).
+//! `--env`, `--objective`, `compare`, `export` and `problems --env` on the command line.
 
 mod common;
 

@@ -1,4 +1,4 @@
-//! Conformance with Gymnasium (issue 11, item 6): our exact environments against the `P`
+//! Conformance with Gymnasium: our exact environments against the `P`
 //! tables Gymnasium 1.4.0 itself holds, dumped by `scripts/gymnasium_dump.py` into
 //! `tests/data/gymnasium/`. Probabilities must agree within 1e-15 (Gymnasium's are floats:
 //! FrozenLake's 1/3 is 0.33333333333333337 there); successors, rewards, terminations, the

@@ -1,4 +1,4 @@
-//! Fuzz target for the problem-file readers (issue 12, item 2), run by `cargo test` (and so by
+//! Fuzz target for the problem-file readers, run by `cargo test` (and so by
 //! CI) for a fixed budget of seeded cases: `cargo fuzz` needs a nightly toolchain, so this is a
 //! proptest byte-level target instead.
 //!

@@ -1,4 +1,4 @@
-//! The Kani harness registry (`claims::harnesses`, issue 10 item 2) against the harness sources
+//! The Kani harness registry (`claims::harnesses`) against the harness sources
 //! in `proofs/src/` and the table of bodies `verify` runs (`truecost_proofs::harnesses`): every
 //! `#[kani::proof]` is registered under its file, with the source's `#[kani::unwind]`,
 //! `#[kani::should_panic]` and stated sample count, and its doc comment states the domain the
@@ -252,7 +252,7 @@ fn version(v: &serde_json::Value) -> Option<(u32, u32)> {
     Some((parts.next()?, parts.next().unwrap_or(0)))
 }
 
-/// Issue 10, item 3: every workspace crate's `rust-version` is at least what each crate it
+/// Every workspace crate's `rust-version` is at least what each crate it
 /// depends on (normal and build dependencies, transitively, every feature, on the host platform)
 /// declares,
 /// so a toolchain that the manifest accepts can build it (the previous 1.80 could not: z3 and

@@ -1,4 +1,4 @@
-//! Hostile input (issue 12, item 1): one regression test per failure listed in the issue, and
+//! Hostile input: one regression test for each way hostile input once broke a command, and
 //! the contract everywhere — one escaped line on stderr (≤ 300 characters after `error: `),
 //! exit 1 for bad input and 2 for usage, no panic, no hang, bounded work.
 
@@ -62,9 +62,9 @@ fn grid_file(n: usize, varied: bool, format: Option<&str>) -> String {
 
 const LINE: &str = include_str!("../problems/line.json");
 
-// Failure 1: `verify --claim C4` on a grid listed every simple path before any limit applied.
+// `verify --claim C4` on a grid is refused with its bound before any simple path is listed.
 #[test]
-fn f01_c4_bonus_set_of_a_grid_is_refused_with_its_bound() {
+fn c4_bonus_set_of_a_grid_is_refused_with_its_bound() {
     for problem in ["10", "0"] {
         let err = fails_one_line(&["verify", "--claim", "C4", "--problem", problem]);
         assert_contract(&err);
@@ -238,9 +238,9 @@ fn discount_bounds_the_work_by_the_numbers_size() {
     assert!(v.is_object(), "{v}");
 }
 
-// Failure 2: `--file /dev/stdin` was read twice (refused); a FIFO hung.
+// `--file /dev/stdin` and a FIFO are read once (a second read would be refused or hang).
 #[test]
-fn f02_problem_files_are_read_once_from_pipes() {
+fn problem_files_are_read_once_from_pipes() {
     let out = truecost()
         .args([
             "solve",
@@ -285,7 +285,7 @@ fn f02_problem_files_are_read_once_from_pipes() {
 
 #[cfg(unix)]
 #[test]
-fn f02_a_fifo_is_read_once() {
+fn a_fifo_is_read_once() {
     let dir = tempfile::tempdir().unwrap();
     let fifo = dir.path().join("problem.fifo");
     let made = std::process::Command::new("mkfifo").arg(&fifo).status();
@@ -309,9 +309,9 @@ fn f02_a_fifo_is_read_once() {
     writer.join().unwrap();
 }
 
-// Failure 3: rates were checked exactly, rounded to f64, and checked (or used) again.
+// Learning rates are checked as the learner uses them: exactly, and again once rounded to f64.
 #[test]
-fn f03_learning_rates_are_checked_as_the_learner_uses_them() {
+fn learning_rates_are_checked_as_the_learner_uses_them() {
     let base = [
         "reproduce",
         "stochastic",
@@ -351,9 +351,9 @@ fn f03_learning_rates_are_checked_as_the_learner_uses_them() {
     }
 }
 
-// Failure 4: `--threads 100000` spawned threads until killed.
+// `--threads 100000` is refused instead of spawning threads until the system gives out.
 #[test]
-fn f04_thread_count_is_bounded() {
+fn thread_count_is_bounded() {
     for experiment in ["deterministic", "stochastic"] {
         let err = fails_one_line(&[
             "reproduce",
@@ -369,9 +369,9 @@ fn f04_thread_count_is_bounded() {
     }
 }
 
-// Failure 5: `--plots FILE` was checked only after the run.
+// `--plots FILE` is checked before the run, not after it.
 #[test]
-fn f05_plot_directory_is_checked_before_the_run() {
+fn plot_directory_is_checked_before_the_run() {
     let dir = tempfile::tempdir().unwrap();
     let file = write(dir.path(), "not-a-dir", "x");
     let out = dir.path().join("out");
@@ -388,12 +388,13 @@ fn f05_plot_directory_is_checked_before_the_run() {
     assert!(!out.join("deterministic.json").exists());
 }
 
-// Failure 6: `discount` on a 32 × 32 grid ran minutes and took 1.35 GB before refusing.
+// `discount` on a 32 × 32 grid is refused with its bound at once (unbounded, it runs minutes
+// and takes 1.35 GB).
 #[test]
-fn f06_discount_of_a_large_grid_is_refused_with_its_bound() {
+fn discount_of_a_large_grid_is_refused_with_its_bound() {
     let dir = tempfile::tempdir().unwrap();
     // 39 x 39: 1521 states, 1520 where the episode runs, over the deterministic analysis'
-    // bound of 1448 (one probe estimated at n^2 2^24 units): refused before any work.
+    // bound of 1448 (one probe estimated at n^2 2^22 units): refused before any work.
     let grid = write(dir.path(), "grid39.json", &grid_file(39, true, None));
     let started = std::time::Instant::now();
     let err = fails_one_line(&["discount", "--file", grid.to_str().unwrap()]);
@@ -433,9 +434,9 @@ fn one_move(cost: &str) -> String {
     format!(r#"{{"initial": 0, "goals": [1], "actions": [[{{"to": 1, "cost": "{cost}"}}], []]}}"#)
 }
 
-// Failure 7: a long cost was "not an exact number" (undocumented limit), echoed whole.
+// A long cost is refused with its documented length limit named, and echoed shortened.
 #[test]
-fn f07_number_limits_are_named_and_echoes_are_short() {
+fn number_limits_are_named_and_echoes_are_short() {
     let dir = tempfile::tempdir().unwrap();
     let long = write(dir.path(), "long.json", &one_move(&"7".repeat(5000)));
     let err = fails_one_line(&[
@@ -486,10 +487,10 @@ fn f07_number_limits_are_named_and_echoes_are_short() {
     assert_eq!(v["cost_to_go_initial"], expected);
 }
 
-// Failure 8: a stochastic-tagged file without outcomes was refused; a deterministic-tagged
-// file with outcomes was accepted by some commands.
+// The format tag and the outcomes agree in every command: a stochastic-tagged file without
+// outcomes is accepted, a deterministic-tagged file with outcomes is refused.
 #[test]
-fn f08_format_tags_and_outcomes_agree_in_every_command() {
+fn format_tags_and_outcomes_agree_in_every_command() {
     let dir = tempfile::tempdir().unwrap();
     let tagged = write(
         dir.path(),
@@ -542,15 +543,15 @@ fn f08_format_tags_and_outcomes_agree_in_every_command() {
     let s = "problems/slippery.json";
     let err = fails_one_line(&["verify", "--claim", "C4", "--file", s]);
     assert!(err.contains("lists outcomes"), "{err}");
-    // `discount` takes stochastic files since issue 11 item 3 (parametric policy analysis);
+    // `discount` takes stochastic files (parametric policy analysis);
     // its answers are checked against brute force in tests/discount_stochastic.rs.
     let v = json(&["discount", "--file", s, "--format", "json"]);
     assert!(v.is_object(), "{v}");
 }
 
-// Failure 9: newlines and ANSI escapes in costs, tags and paths reached the terminal raw.
+// Newlines and ANSI escapes in costs, tags and paths are escaped before they reach the terminal.
 #[test]
-fn f09_echoed_input_is_escaped() {
+fn echoed_input_is_escaped() {
     let dir = tempfile::tempdir().unwrap();
     let cost = write(dir.path(), "cost.json", &one_move("1\\n\\u001b[31mred"));
     let err = fails_one_line(&[
@@ -594,9 +595,9 @@ fn f09_echoed_input_is_escaped() {
     assert_contract(&err);
 }
 
-// Failure 10: γ with a huge denominator blamed "state 0".
+// A γ with a huge denominator is refused naming γ, not a state.
 #[test]
-fn f10_gamma_denominator_limit_names_gamma() {
+fn gamma_denominator_limit_names_gamma() {
     let gamma = format!("0.{}1", "9".repeat(30));
     let err = fails_one_line(&[
         "solve",
@@ -613,9 +614,9 @@ fn f10_gamma_denominator_limit_names_gamma() {
     assert!(err.contains("2^62"), "{err}");
 }
 
-// Failure 11: negative numbers after flags gave clap's "unexpected argument '-0'".
+// Negative numbers after flags reach the range checks (not clap's "unexpected argument '-0'").
 #[test]
-fn f11_negative_numbers_reach_the_range_checks() {
+fn negative_numbers_reach_the_range_checks() {
     let dir = tempfile::tempdir().unwrap();
     let svg = dir.path().join("v.svg");
     let svg = svg.to_str().unwrap();
@@ -693,9 +694,10 @@ fn f11_negative_numbers_reach_the_range_checks() {
     }
 }
 
-// Failure 12: `render --overlay path --epsilon 0.5 --seed 5` ignored the visits options.
+// `render --overlay path --epsilon 0.5 --seed 5` is refused: the visits options need
+// `--overlay visits`.
 #[test]
-fn f12_visits_options_need_the_visits_overlay() {
+fn visits_options_need_the_visits_overlay() {
     let dir = tempfile::tempdir().unwrap();
     let svg = dir.path().join("p.svg");
     let err = fails_one_line(&[
@@ -715,11 +717,12 @@ fn f12_visits_options_need_the_visits_overlay() {
     assert!(!svg.exists());
 }
 
-// Failure 13 is pinned in tests/reproduce.rs (Problem 6's planner rows converge).
+// Problem 6's planner rows (G* = +inf everywhere) report converged: pinned in
+// tests/reproduce.rs.
 
-// Failure 14: reference-mode JSON said `"inf"` where a number is promised.
+// Reference-mode JSON gives a number, or null where no goal is reachable, never `"inf"`.
 #[test]
-fn f14_reference_json_value_is_a_number_or_null() {
+fn reference_json_value_is_a_number_or_null() {
     let v = json(&[
         "solve",
         "--problem",

@@ -1,4 +1,4 @@
-//! `truecost learn` (issue 10, item 4): derandomized Q-learning replayed round by round in
+//! `truecost learn`: derandomized Q-learning replayed round by round in
 //! exact arithmetic, and the replay commands carried by the claims' counterexamples.
 
 mod common;
@@ -310,7 +310,7 @@ fn counterexamples_carry_a_replay_that_shows_the_failure() {
     }
 }
 
-/// Issue 10, item 5, on the command line: a negative initial value makes the
+/// On the command line, a negative initial value makes the
 /// `⌈(max Q* − min(0, min Q₀))/c⌉` term of C1-corrected's bound decide, and the replay attains
 /// it: `0 → 0 (1), 0 → goal (1)` from `Q₀ = −2`, by hand `Q(0→0)` = −1, 0, 1, 2 over rounds 1–4.
 #[test]

@@ -3,7 +3,7 @@
 //! code for every problem.
 //!
 //! Expected values are copied from published sources, never from truecost's output (and
-//! cross-checked with the shipped `data/published/`, extracted independently for issue 13):
+//! cross-checked with the shipped `data/published/`, extracted independently):
 //! * `shared/reference/problem10.md` (Problem 10, and the first three π runs of Problem 0);
 //! * the paper's result tables, generated from the CSV files of the paper's code repository
 //!   (`filkata123/valit_q_comparison`, `sims/sims_det_section_3000_steps/
@@ -250,8 +250,8 @@ fn pi_rows_of_every_paper_problem_match_the_published_means() {
     }
 }
 
-/// The shipped published data (`data/published/`, read from the paper's repository for issue
-/// 13) agrees with the counts above, which an earlier session copied from the paper's tables:
+/// The shipped published data (`data/published/`, read from the paper's repository)
+/// agrees with the counts above, which were copied from the paper's tables:
 /// two independent extractions of the same published numbers.
 #[test]
 fn shipped_published_data_agrees_with_the_counts_copied_here() {

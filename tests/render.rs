@@ -433,3 +433,133 @@ fn reproduce_stochastic_writes_the_plots() {
         assert_eq!(png.read_info().unwrap().info().width, 1000);
     }
 }
+
+/// Three cells in a row: at 0 one move east and one push north into the border, at 1 two
+/// tied moves (west and east), 2 the goal. Every glyph is found where the state is, and the
+/// legend lines are drawn with their text under the map.
+#[test]
+fn optimal_actions_overlay_draws_ties_bars_and_the_legend() {
+    use truecost::figures::canvas::Shape;
+    use truecost::figures::render::{draw, ActionGlyph::*, LegendEntry, LegendKey, Overlay, Scene};
+    let scene = Scene {
+        title: "row".into(),
+        caption: "three cells".into(),
+        positions: vec![(5.0, 5.0), (15.0, 5.0), (25.0, 5.0)],
+        extent: (30.0, 10.0),
+        obstacles: vec![],
+        moves: vec![(0, 1), (1, 2)],
+        initial: Some(0),
+        goals: vec![2],
+        walls: vec![],
+        marks: vec![],
+    };
+    let legend = vec![
+        LegendEntry {
+            key: LegendKey::Arrow,
+            text: "arrow: one action".into(),
+        },
+        LegendEntry {
+            key: LegendKey::Tie,
+            text: "several: tied".into(),
+        },
+        LegendEntry {
+            key: LegendKey::Blocked,
+            text: "bar: into the border".into(),
+        },
+    ];
+    let overlay = Overlay::Actions {
+        actions: vec![
+            vec![Move(1), Blocked { toward: (0, 1) }],
+            vec![Move(0), Move(2)],
+            vec![],
+        ],
+        legend: legend.clone(),
+    };
+    let canvas = draw(&scene, &overlay, 600, 400).unwrap();
+    let nodes: Vec<(f64, f64)> = canvas
+        .of_class("node")
+        .map(|s| match s {
+            Shape::Circle { c, .. } => *c,
+            _ => panic!("a node is a circle"),
+        })
+        .collect();
+    let lines = |class: &'static str| -> Vec<((f64, f64), (f64, f64))> {
+        canvas
+            .of_class(class)
+            .map(|s| match s {
+                Shape::Line { a, b, .. } => (*a, *b),
+                _ => panic!("{class} is a line"),
+            })
+            .collect()
+    };
+    // Three arrows: 0 east, 1 west and 1 east (the tie), each from its state's node.
+    let shafts = lines("policy");
+    assert_eq!(shafts.len(), 3);
+    assert_eq!(canvas.of_class("arrowhead").count(), 3);
+    let from = |x: usize| shafts.iter().filter(|(a, _)| *a == nodes[x]).count();
+    assert_eq!((from(0), from(1), from(2)), (1, 2, 0));
+    let at_one: Vec<f64> = shafts
+        .iter()
+        .filter(|(a, _)| *a == nodes[1])
+        .map(|(a, b)| b.0 - a.0)
+        .collect();
+    assert!(at_one.iter().any(|&d| d < 0.0) && at_one.iter().any(|&d| d > 0.0));
+    // The bar: from node 0 straight up (pixel y grows downwards), stopping inside the cell
+    // (less than half the distance to the next state), the bar across it.
+    let spacing = nodes[1].0 - nodes[0].0;
+    let stroke = lines("blocked");
+    assert_eq!(stroke.len(), 1);
+    let (a, b) = stroke[0];
+    assert_eq!(a, nodes[0]);
+    assert!((b.0 - a.0).abs() < 1e-9 && b.1 < a.1);
+    assert!(a.1 - b.1 < spacing / 2.0, "{} {}", a.1 - b.1, spacing);
+    let bar = lines("blocked-bar");
+    assert_eq!(bar.len(), 1);
+    let (p, q) = bar[0];
+    assert!(
+        (p.1 - b.1).abs() < 1e-9 && (q.1 - b.1).abs() < 1e-9,
+        "horizontal, at the end"
+    );
+    assert!(((p.0 + q.0) / 2.0 - b.0).abs() < 1e-9 && p.0 != q.0);
+    // The legend: one text per entry, in order, under the map and above the caption.
+    let texts: Vec<(String, f64)> = canvas
+        .of_class("legend")
+        .map(|s| match s {
+            Shape::Text { text, at, .. } => (text.clone(), at.1),
+            _ => panic!("a legend line is text"),
+        })
+        .collect();
+    assert_eq!(
+        texts.iter().map(|(t, _)| t.as_str()).collect::<Vec<_>>(),
+        vec!["arrow: one action", "several: tied", "bar: into the border"]
+    );
+    let map_bottom = nodes[0].1 + spacing / 2.0;
+    let caption_top = canvas
+        .of_class("caption")
+        .map(|s| match s {
+            Shape::Text { at, .. } => at.1,
+            _ => panic!(),
+        })
+        .fold(f64::INFINITY, f64::min);
+    for (k, (_, y)) in texts.iter().enumerate() {
+        assert!(*y > map_bottom && *y < caption_top - 10.0, "{k}: {y}");
+    }
+    assert!(texts.windows(2).all(|w| w[0].1 < w[1].1));
+    // The keys: an arrow (shaft and head), two arrows, a stroke and a bar — as drawn.
+    assert_eq!(canvas.of_class("legend-key").count(), 2 + 4 + 2);
+    let svg = canvas.to_svg();
+    for entry in &legend {
+        assert!(svg.contains(&format!(">{}<", entry.text)), "{}", entry.text);
+    }
+    assert_eq!(count(&svg, "legend"), 3);
+    // The single-successor overlay has no legend.
+    let plain = draw(
+        &scene,
+        &Overlay::Policy(vec![Some(1), Some(2), Some(2)]),
+        600,
+        400,
+    )
+    .unwrap();
+    assert_eq!(plain.of_class("legend").count(), 0);
+    assert_eq!(plain.of_class("policy").count(), 2);
+}

@@ -228,7 +228,7 @@ fn learning_rows_are_not_run_where_the_goal_is_unreachable() {
             assert_eq!(row["mean_actions"], Value::Null);
         } else {
             assert_eq!(row["samples"], 2);
-            // The planners' values equal G* (+inf everywhere): converged (issue 12, failure 13).
+            // The planners' values equal G* (+inf everywhere): converged.
             assert_eq!(row["convergence_rate"], 1.0);
             assert_eq!(row["goal_reached_rate"], 0.0);
         }

@@ -1,6 +1,6 @@
-//! Issue 13: what the Q-learning rows time (item 1, pinned by the timed region's type, as
+//! What the Q-learning rows time (pinned by the timed region's type, as
 //! `reproduce_published.rs` pins the planner rows'), and the LaTeX rendering of the published
-//! numbers beside ours (item 3), pinned by a reviewed snapshot (times left out).
+//! numbers beside ours, pinned by a reviewed snapshot (times left out).
 //!
 //! Expected published values are copied from `shared/reference/problem10.md` and
 //! `data/published/` (numbers from the paper's repository), never from truecost's output.
@@ -107,7 +107,7 @@ fn latex_shows_the_published_value_beside_ours_with_the_verdict() {
     });
 }
 
-/// The stochastic experiment's LaTeX (issue 13, item 3): Problem 10, γ = 0.999, ρ = ε = 0.9 and
+/// The stochastic experiment's LaTeX: Problem 10, γ = 0.999, ρ = ε = 0.9 and
 /// both value iterations under the reference code's noise and tolerance, two samples, against
 /// the published table; pinned without times by a reviewed snapshot.
 #[test]

@@ -1,8 +1,8 @@
-//! Issue 13: like-for-like clocks, nanoseconds per action, and the paper's published numbers
+//! Like-for-like clocks, nanoseconds per action, and the paper's published numbers
 //! beside ours (`reproduce deterministic|stochastic --against-published`).
 //!
-//! Expected published values are copied from `shared/reference/problem10.md` (numbers an
-//! earlier session established from the paper's repository), never from truecost's output.
+//! Expected published values are copied from `shared/reference/problem10.md` (numbers
+//! established from the paper's repository), never from truecost's output.
 
 mod common;
 
@@ -16,7 +16,7 @@ use truecost::model::Graph;
 use truecost::planning::{model_free_counts, Algorithm, Mode, PlanCounts};
 use truecost::value::parse_rational;
 
-// ---- item 1: what is inside the timed region, pinned by types --------------------------------
+// ---- what is inside the timed region, pinned by types ------------------------------------------
 
 /// The timed region of a model-free row takes a compiled graph (compilation happens before)
 /// and returns counts only: `PlanCounts` owns nothing on the heap (no strings, no vectors, so
@@ -109,7 +109,7 @@ fn shipped_published_data_parses_and_names_its_provenance() {
         value("q-learning", "0", "mean_actions_initial_optimal"),
         n("52000")
     );
-    // The issue's published times: Dijkstra 2.48 ms, greedy Q-learning 334 ms.
+    // The paper's published times: Dijkstra 2.48 ms, greedy Q-learning 334 ms.
     let ms = |alg: &str, eps: &str| row(alg, eps)["mean_time_s"].approx() * 1000.0;
     assert!((ms("model-free-dijkstra", "") - 2.48).abs() < 0.005);
     assert!((ms("q-learning", "0") - 334.0).abs() < 0.5);

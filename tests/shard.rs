@@ -1,4 +1,4 @@
-//! Sharding over many machines (issue 12, item 4): three shards run as separate processes and
+//! Sharding over many machines: three shards run as separate processes and
 //! their merge is compared with the whole run — `verify` byte for byte (text and JSON, times
 //! left out), `reproduce deterministic|stochastic` field by field apart from times — and every
 //! incomplete or foreign set of shards is refused with one line and exit 1.

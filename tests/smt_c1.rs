@@ -1,4 +1,4 @@
-//! The SMT engine on claim C1 (issue 9, item 6): a hand-checked obligation, the trust checks,
+//! The SMT engine on claim C1: a hand-checked obligation, the trust checks,
 //! a planted wrong threshold, the printed claim's replayed counterexample, and the
 //! `--smt-out` files re-solved to their declared status.
 

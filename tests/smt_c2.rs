@@ -1,4 +1,4 @@
-//! The SMT encoding of C2 (issue 9): a hand-checked structure's obligations, the trust checks,
+//! The SMT encoding of C2: a hand-checked structure's obligations, the trust checks,
 //! a mutation test (a planted wrong reward makes the proof fail, and the model replays), and
 //! the SMT-LIB files parsing back to the same answers. Smoke scope only.
 

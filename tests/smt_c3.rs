@@ -1,4 +1,4 @@
-//! The SMT encodings of C3-example and C3 (issue 9): hand-checked obligations, the trust
+//! The SMT encodings of C3-example and C3: hand-checked obligations, the trust
 //! checks, mutation tests (a planted wrong threshold or interval makes the proof fail, and the
 //! model replays), and the SMT-LIB files parsing back to the same answers. Smoke scope only.
 

@@ -1,4 +1,4 @@
-//! The SMT encodings of C4 and C4-corrected (issue 9): a hand-written obligation, the trust
+//! The SMT encodings of C4 and C4-corrected: a hand-written obligation, the trust
 //! checks, the mutation test, and the SMT-LIB files read back and re-solved.
 
 use truecost::claims::smt::c4::{self, Formula, Shape};

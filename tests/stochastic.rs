@@ -244,7 +244,7 @@ fn out(to: usize, p: &str) -> Outcome {
 // ---------------------------------------------------------------------------------------------
 // One small problem with a trap, solved by hand, against what the module reports beside `G*`:
 // the optimum's accessors, value iteration's work counts (checked against a count made here
-// from the problem's own lists) and the sampler's end points (issue 14: the mutants
+// from the problem's own lists) and the sampler's end points (the mutants
 // `unreduced → Some((0, 0))`, `q_value`'s `d·s_x` → `d/s_x`, `suboptimal_states` without its
 // goal filter, `sweeps * per_sweep_terms` → `/`, `usable`'s `==` → `!=` and
 // `cumulative.len() - 1` → `+ 1` survived the value tests).

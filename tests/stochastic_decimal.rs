@@ -1,7 +1,7 @@
 //! `stochastic::decimal` (the rounded display of exact values) against a brute force in exact
 //! rationals: the shown number, read back exactly, is `v` rounded half away from zero to
 //! `significant` digits, and the notation is plain in `[1e-4, 1e{significant})`, scientific
-//! outside (issue 14: the rounding mutants `num·2 + den` → `num + 2 + den` and the carry test
+//! outside (the rounding mutants `num·2 + den` → `num + 2 + den` and the carry test
 //! `>` → `<` survived the snapshot tests).
 
 use num_bigint::BigInt;

@@ -1,6 +1,6 @@
 //! The exact sparse solver's public edges (`src/stochastic/linear.rs`): emptiness, the band
 //! ordering's widths on patterns whose bandwidth is known by hand, and the refusal of a band
-//! too wide for memory, which must name the width the ordering actually has (issue 14: the
+//! too wide for memory, which must name the width the ordering actually has (the
 //! mutants `is_empty → true`, `bandwidths → (0, 0)` and the width `lower + upper + 1` →
 //! `lower + upper` survived the solver's other tests).
 
@@ -376,4 +376,90 @@ fn an_f64_singular_estimate_falls_back_to_the_hadamard_bound() {
         !seen.is_empty() && seen.iter().all(|l| l.expected == expected),
         "{seen:?}"
     );
+}
+
+/// `reduced_all` (one batched gcd through the product of the numerators modulo `d`) gives, for
+/// every numerator, the same lowest terms as `num-rational`'s own reduction, on denominators
+/// sharing small and large factors with some numerators, zero and negative numerators, and
+/// numerators beyond `d²` (the plain division path).
+#[test]
+fn batched_reduction_agrees_with_reducing_each_fraction() {
+    use num_rational::BigRational;
+    use rand::{RngExt, SeedableRng};
+    use truecost::stochastic::linear::{reduced, reduced_all};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+    let big = |bits: usize, rng: &mut rand_chacha::ChaCha8Rng| -> BigInt {
+        let mut x = BigInt::from(1u8);
+        for _ in 0..bits.div_ceil(32) {
+            x = (x << 32) + BigInt::from(rng.random::<u32>());
+        }
+        x
+    };
+    for case in 0..12 {
+        let large_factor = big(200 + 100 * case, &mut rng);
+        let small = BigInt::from([2u32, 3, 5, 6, 7, 12, 1024, 97][case % 8]);
+        let d = match case {
+            0 => BigInt::from(1u8),
+            1 => big(300, &mut rng) * BigInt::from(2u8) + BigInt::from(1u8),
+            _ => &large_factor * &small * big(64, &mut rng),
+        };
+        let numerators: Vec<BigInt> = (0..40)
+            .map(|i| {
+                let n = match i % 8 {
+                    0 => BigInt::from(0u8),
+                    1 => &small * big(100, &mut rng),
+                    2 => &large_factor * big(50, &mut rng),
+                    3 => &d * big(20, &mut rng),
+                    4 => &d * &d * big(40, &mut rng) + BigInt::from(i),
+                    5 => BigInt::from(i + 1),
+                    _ => big(case * 50 + 30, &mut rng),
+                };
+                if i % 3 == 0 {
+                    -n
+                } else {
+                    n
+                }
+            })
+            .collect();
+        let refs: Vec<&BigInt> = numerators.iter().collect();
+        let batched = reduced_all(&refs, &d);
+        assert_eq!(batched.len(), numerators.len());
+        for (n, r) in numerators.iter().zip(&batched) {
+            let expected = BigRational::new(n.clone(), d.clone());
+            assert_eq!(r.numer(), expected.numer(), "case {case}: {n}/{d}");
+            assert_eq!(r.denom(), expected.denom(), "case {case}: {n}/{d}");
+            assert_eq!(r, &reduced(n, &d), "case {case}");
+        }
+    }
+}
+
+/// When the three probe unknowns (first, middle, last) have denominator 1 and the others 7, the
+/// probes' common denominator misses the 7: the solver must widen it (more probes, or every
+/// unknown) and still return the exact solution with the least common denominator.
+#[test]
+fn a_factor_missing_from_the_probes_denominators_is_found() {
+    for n in [64usize, 301] {
+        let probes = [0, n / 2, n - 1];
+        let mut s = SparseSystem::new();
+        let mut expected = Vec::new();
+        for j in 0..n {
+            let (diagonal, rhs) = if probes.contains(&j) {
+                (1, j as i128 + 1)
+            } else {
+                (7, j as i128)
+            };
+            s.push_row(&[(j, diagonal)], rhs).unwrap();
+            expected.push(num_rational::BigRational::new(
+                BigInt::from(rhs),
+                BigInt::from(diagonal),
+            ));
+        }
+        let z = solve_exact(&s).unwrap();
+        assert_eq!(z.denominator, BigInt::from(7), "{n}");
+        for (j, e) in expected.iter().enumerate() {
+            let got =
+                num_rational::BigRational::new(z.numerators[j].clone(), z.denominator.clone());
+            assert_eq!(&got, e, "{n}: unknown {j}");
+        }
+    }
 }

@@ -1,4 +1,4 @@
-//! `memory_estimate` (the estimate behind `solve --max-memory`, issue 12, item 3) against the
+//! `memory_estimate` (the estimate behind `solve --max-memory`) against the
 //! heap actually used: this test binary counts every allocation (a global allocator around the
 //! system one) and records the peak of the live bytes while a built problem is held and solved
 //! by `optimum`, and — for `all_values` — every exact value is reduced and printed as JSON text, as
@@ -313,8 +313,10 @@ fn the_estimate_s_band_is_that_of_every_action_s_pattern() {
 /// 34` bytes. The pattern couples 1–0 and 3–0, a path, which reverse Cuthill–McKee orders with
 /// one band on each side: width 3. The problem holds 10 outcomes and 6 actions (`128·10 +
 /// 160·6 = 2240` bytes), so the bytes are
-/// `16 MiB + 2240 + 3·1024 + 3·3·(8+4+8) + 3·3·4 + 3·3·34 = 16 MiB + 5834`, and with the values
-/// `+ 3·34·2 + 4·3·⌊34·2.41⌋ = + 204 + 972`.
+/// `16 MiB + 2240 + 3·1024` and the larger of the exact stage `3·3·(8+4+8) + 3·3·4 + 3·3·34 =
+/// 522` and the mixed-precision stage (precision cap `4.5 + 192 = 196.5` bits, so numbers of
+/// `⌈196.5/8⌉ + 32 = 57` bytes): `3·3·8 + 2·3·57 + 4·3·8 = 510`; that is `16 MiB + 5834`, and
+/// with the values `+ 3·34·2 + 4·3·⌊34·2.41⌋ = + 204 + 972`.
 #[test]
 fn every_part_of_the_estimate_worked_by_hand() {
     let _one = exclusive();
@@ -338,6 +340,7 @@ fn every_part_of_the_estimate_worked_by_hand() {
         (e.unknowns, e.band_width, e.lifting_steps, e.lifted_bits),
         (3, 3, 3, 31.0)
     );
+    assert_eq!((e.refinement_cap_bits, e.refinement_bytes), (196.5, 510));
     assert_eq!(e.bytes, (16 << 20) + 5834);
     let with_values = memory_estimate(&s, true);
     assert_eq!(with_values.bytes, (16 << 20) + 5834 + 204 + 972);

@@ -88,6 +88,9 @@ fn the_fast_path_finds_the_plain_exact_optimum_on_every_pattern() {
                 let plain = plain_policy_iteration(&p);
                 let o = optimum(&p).unwrap();
                 assert_eq!(o.cost_to_go_all(), &plain[..], "{what}");
+                // The texts printed in parallel, each denominator once, are the values' own.
+                let texts: Vec<String> = plain.iter().map(|v| v.to_string()).collect();
+                assert_eq!(o.cost_to_go_texts(), texts, "{what}");
                 // The reported policy attains G* everywhere.
                 assert!(
                     o.suboptimal_states(&p, o.policy_actions()).is_empty(),
@@ -195,5 +198,39 @@ fn export_writes_every_pattern_and_refuses_bad_options_before_work() {
             !std::path::Path::new(out).exists(),
             "{extra:?}: nothing written"
         );
+    }
+}
+
+/// The parallel parts (batched reduction, improvement tests, refinement residuals) give the
+/// same optimum, policy and statistics on one thread as on several.
+#[test]
+fn one_thread_and_several_agree() {
+    let run = |threads: usize, p: &StochasticProblem| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| {
+                let o = optimum(p).unwrap();
+                // The texts first: printed from values reduced for them, not from the cache.
+                let texts = o.cost_to_go_texts();
+                (
+                    o.cost_to_go_all().to_vec(),
+                    texts,
+                    o.policy_actions().to_vec(),
+                    o.stats.clone(),
+                )
+            })
+    };
+    for pattern in [GridPattern::Random, GridPattern::Ties, GridPattern::Walls] {
+        let grid = pattern_grid(9, 9, pattern, CostRange::DEFAULT, 5).unwrap();
+        for noise in [NoiseModel::Paper, NoiseModel::Reference] {
+            let p = stochastic(&grid, noise, "0.999");
+            let one = run(1, &p);
+            assert_eq!(one, run(3, &p), "{} {}", pattern.name(), noise.name());
+            // The texts are the reduced values' own.
+            let texts: Vec<String> = one.0.iter().map(|v| v.to_string()).collect();
+            assert_eq!(one.1, texts);
+        }
     }
 }

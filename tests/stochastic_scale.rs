@@ -1,8 +1,8 @@
-//! Large stochastic models (issue 12, item 3): the seeded benchmark grids, the fast exact
+//! Large stochastic models: the seeded benchmark grids, the fast exact
 //! optimum against an exhaustive brute-force oracle and an independent exact Bellman check (so
 //! the speed-up cannot silently change a number), `--max-memory`, the progress bar's silence
 //! off a terminal, and f64 VI computing the exact `G*` only with `--exact-error`. Expected
-//! values come from the oracles here or from the issue's text, never from the code under test.
+//! values come from the oracles here or from the specification, never from the code under test.
 
 mod common;
 
@@ -11,7 +11,9 @@ use num_traits::{One, Zero};
 use common::cli::{fails, json, truecost};
 use truecost::model::Problem;
 use truecost::stochastic::benchmark::{cost_grid, parse_size as parse_grid};
-use truecost::stochastic::policy_iteration::{memory_estimate, optimum, optimum_with, Progress};
+use truecost::stochastic::policy_iteration::{
+    memory_estimate, optimum, optimum_with, problem_bytes, Progress,
+};
 use truecost::stochastic::scale::parse_size;
 use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
 use truecost::value::{Extended, Rational};
@@ -273,13 +275,27 @@ fn exact_optimum_satisfies_the_bellman_equation_on_mid_size_grids() {
     }
 }
 
-/// The warm start leaves one exact evaluation on the benchmark grids (issue 12: "one or two
-/// exact evaluations, not 23"), and the progress events count what the statistics report.
+/// The warm start leaves one exact evaluation on the benchmark grids (one or two exact
+/// evaluations, not 23), and the progress events count what the statistics report.
 #[test]
 fn warm_start_leaves_one_exact_evaluation_and_progress_reports_it() {
     let s = noisy(&cost_grid(20, 20, 0).unwrap(), NoiseModel::Paper, "0.99");
     let (mut exact, mut float, mut last_lift) = (0, 0, 0);
+    let mut refinements: Vec<(usize, u64)> = Vec::new();
     let o = optimum_with(&s, &mut |e| match e {
+        Progress::Refinement { policy, bits } => {
+            // Policies count up from 1; within a policy the precision only grows.
+            if let Some(&(p, b)) = refinements.last() {
+                assert!(
+                    policy == p + 1 || (policy == p && bits > b),
+                    "{p}/{b} then {policy}/{bits}"
+                );
+            } else {
+                assert_eq!(policy, 1);
+            }
+            assert!(exact == 0, "refinement comes before the exact stage");
+            refinements.push((policy, bits));
+        }
         // Evaluations and rounds are numbered from 1, in order.
         Progress::ExactEvaluation { evaluation } => {
             exact += 1;
@@ -302,6 +318,13 @@ fn warm_start_leaves_one_exact_evaluation_and_progress_reports_it() {
         "one more f64 evaluation than switches"
     );
     assert!(last_lift > 0 && o.stats.lifting_steps >= last_lift);
+    // One refinement policy more than certified rounds, ending at the reported precision.
+    assert_eq!(
+        refinements.last().copied(),
+        Some((o.stats.refinement_rounds + 1, o.stats.refinement_bits)),
+        "{:?}",
+        o.stats
+    );
     // The same numbers with or without a progress callback.
     assert_eq!(optimum(&s).unwrap().cost_to_go_all(), o.cost_to_go_all());
 }
@@ -388,6 +411,67 @@ fn memory_estimate_grows_with_the_grid_and_with_json() {
             o.stats
         );
         assert!(memory_estimate(&s, true).bytes > e.bytes);
+    }
+}
+
+/// The estimate counts the mixed-precision stage too: at least its own peak (its `f64` band LU
+/// and fixed-point numbers at the precision cap) on top of what every stage holds, and the
+/// stage's cap is above the `log₂|det A|` the `f64` LU measures.
+#[test]
+fn memory_estimate_includes_the_refinement_stage() {
+    for (side, gamma) in [(10, "0.99"), (20, "0.999")] {
+        let s = noisy(&cost_grid(side, side, 0).unwrap(), NoiseModel::Paper, gamma);
+        let e = memory_estimate(&s, false);
+        let u = e.unknowns as u64;
+        assert!(e.refinement_bytes >= u * e.band_width as u64 * 8, "{e:?}");
+        assert!(
+            e.refinement_bytes >= 2 * u * (e.refinement_cap_bits / 8.0) as u64,
+            "{e:?}"
+        );
+        assert!(
+            e.bytes >= (16 << 20) + problem_bytes(&s) + e.refinement_bytes,
+            "{e:?}"
+        );
+        // The cap bounds the precision the stage reaches.
+        let o = optimum(&s).unwrap();
+        assert!(
+            (o.stats.refinement_bits as f64) <= e.refinement_cap_bits,
+            "{e:?} {:?}",
+            o.stats
+        );
+    }
+}
+
+/// `--max-memory` at the estimate runs, one byte below it refuses, naming the estimate.
+#[test]
+fn max_memory_refuses_one_byte_below_the_estimate() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = grid_file(&dir, 10);
+    let s = noisy(&cost_grid(10, 10, 0).unwrap(), NoiseModel::Paper, "0.99");
+    for (format, all_values) in [("text", false), ("json", true)] {
+        let bytes = memory_estimate(&s, all_values).bytes;
+        let run = |budget: u64| -> Vec<String> {
+            [
+                "solve",
+                "--file",
+                &f,
+                "--gamma",
+                "0.99",
+                "--algorithm",
+                "exact",
+                "--format",
+                format,
+                "--max-memory",
+                &budget.to_string(),
+            ]
+            .iter()
+            .map(|s| s.to_string())
+            .collect()
+        };
+        let err = fails(&run(bytes - 1), 1);
+        assert!(err.contains("above the budget --max-memory"), "{err}");
+        assert!(err.contains("99 unknowns"), "{err}");
+        truecost().args(run(bytes)).assert().success();
     }
 }
 

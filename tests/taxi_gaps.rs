@@ -1,4 +1,4 @@
-//! Issue 11's Taxi gaps: `discount` on deterministic models (successor chains instead of the
+//! Taxi at full size: `discount` on deterministic models (successor chains instead of the
 //! Krylov denominator, so Taxi's 400 running states are no longer refused), `render --env taxi`
 //! of one slice of the state space, and `verify --claim C4 --env taxi --initial STATE`.
 //!
@@ -13,8 +13,8 @@ mod common;
 use num_bigint::BigInt;
 use num_traits::{One, Zero};
 
-use truecost::envs::figure::{taxi_policy_overlay, taxi_scene, taxi_value_overlay, TaxiSlice};
 use truecost::envs::{taxi, EnvSpec, Environment};
+use truecost::figures::envs::{taxi_policy_overlay, taxi_scene, taxi_value_overlay, TaxiSlice};
 use truecost::figures::render::{draw, Overlay};
 use truecost::objectives::parametric::{discount_breakpoints, DiscountAnalysis, ParametricError};
 use truecost::objectives::{Model, Objective};
@@ -341,7 +341,7 @@ fn c3_example_threshold_by_the_deterministic_path() {
     check_against_brute_force(&m, &d);
     // At 0 the policy "stay" (u = −1, a self-loop costing 1) against "walk to the goal": the
     // threshold solves 1/(1−α) = 1 + 2α + 3α² + 4α³ + 5α⁴; both sides checked exactly.
-    let at0: Vec<&truecost::objectives::roots::Root> =
+    let at0: Vec<&truecost::claims::poly::roots::Root> =
         d.breakpoints.iter().map(|b| &b.at).collect();
     assert!(!at0.is_empty());
     let f = |a: &Rational| {
@@ -764,7 +764,9 @@ fn render_env_taxi_on_the_command_line() {
         ("depot", 4),
         ("move", 34),
         ("node", 25),
-        ("policy", 24),
+        // Every optimal move is drawn: the shortest-path edges towards Y in Taxi's maze, 34
+        // over the 24 cells other than Y (a breadth-first search by hand over the map's walls).
+        ("policy", 34),
         ("pickup", 1),
         ("dropoff", 0),
         ("passenger", 1),

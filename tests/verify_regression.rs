@@ -1,10 +1,10 @@
-//! Verdict regression (issue 14, item 1): `verify --scope quick`, through the library entry point
+//! Verdict regression: `verify --scope quick`, through the library entry point
 //! `truecost::claims::run`, pinned claim by claim — every enumeration engine's and the proptest
 //! engine's cases and failures, every counterexample (problem and exact details), the notes and
 //! `α*` — without times.
 //!
 //! The smoke scope of `tests/claims.rs` is too small to see a planted bug in C4's interval
-//! algebra (issue 14: `Interval::at_least` ignoring a larger lower end keeps the smoke report
+//! algebra (`Interval::at_least` ignoring a larger lower end keeps the smoke report
 //! unchanged, while the quick scope reports C4-corrected refuted with 1,609 failures). The quick
 //! scope is what `truecost verify` runs in CI; here it runs in the test profile.
 //!

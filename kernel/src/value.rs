@@ -6,7 +6,7 @@
 //! rationals — the exact extended rationals themselves (`truecost::value::Extended`), the value
 //! of one unit, rendering a value as exact text — lives in `truecost::value`
 //! (`truecost::value::ExactValue`), so this crate, which the Kani harnesses verify, has no
-//! dependencies (issue 10, item 3).
+//! dependencies.
 
 use std::cmp::Ordering;
 use std::fmt;

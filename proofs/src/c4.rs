@@ -77,7 +77,7 @@ pub fn c4_corrected_set_is_the_oracles() {
     }
 }
 
-/// The largest stage cost of [`any_small_tiny`].
+/// The largest stage cost of `any_small_tiny`.
 pub const PRINTED_MAX_COST: u8 = 5;
 
 /// Any 4-state problem as [`any_tiny`] builds it, with costs in `0..=PRINTED_MAX_COST`.

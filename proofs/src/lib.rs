@@ -1,4 +1,4 @@
-//! Kani harnesses for truecost (engine 3; issue 10; README "Running the proofs with Kani").
+//! Kani harnesses for truecost (engine 3; README "Running the proofs with Kani").
 //!
 //! One source, two engines: `cargo kani -p truecost-proofs` checks every `#[kani::proof]`
 //! symbolically (with the real `kani` crate, which Kani injects); under `cargo test` the
@@ -20,7 +20,7 @@
 //!
 //! Every harness body calls only `truecost-kernel` (the bignum-free kernel that `truecost`
 //! re-exports under its old paths), the very code `truecost` runs: under `--cfg kani` this
-//! crate's dependency tree is the kernel alone (issue 10, item 3; checked by
+//! crate's dependency tree is the kernel alone (checked by
 //! `tests/lean_kani_build.rs`). `truecost` depends on this crate (not under Kani) to run the
 //! harness bodies in `verify`; `truecost` is in turn a dev-dependency here, for the registry
 //! cross-check only.

@@ -179,9 +179,9 @@ fn check_dijkstra<const S: usize>(p: &Problem<S>) -> [Option<u64>; STATES] {
     oracle
 }
 
-/// Truecost's Dijkstra against the Bellman–Ford oracle ([`check_dijkstra`]: `G*(goal) = 0`,
+/// Truecost's Dijkstra against the Bellman–Ford oracle (`check_dijkstra`: `G*(goal) = 0`,
 /// Bellman optimality, and least-ness — `G*` is the least path cost, `+∞` where there is no
-/// path — and the policy) on every problem of [`any_problem`]
+/// path — and the policy) on every problem of `any_problem`
 /// (domain 2^243; sampled by the stand-in). Kani also checks that no `Units` addition
 /// overflows and no index is out of bounds. Unwind 8: 7 heap pops (`1 + SLOTS`) is the longest
 /// loop.
@@ -217,7 +217,7 @@ pub fn dijkstra_cost_to_go_satisfies_bellman_optimality() {
 
 /// An extra comparison between two of truecost's planners: Dijkstra's `G*` equals synchronous
 /// and asynchronous value iteration's (`solvers::value_iteration`), element by element, on
-/// every problem of [`any_problem`] (domain 2^243). The independent check is
+/// every problem of `any_problem` (domain 2^243). The independent check is
 /// [`dijkstra_cost_to_go_satisfies_bellman_optimality`]. Unwind 8: 7 heap pops; value iteration
 /// sweeps at most `STATES + 1 = 5` times.
 #[kani::proof]
@@ -244,7 +244,7 @@ pub fn dijkstra_equals_value_iteration() {
 
 /// Small exhaustive variant (a deliberate second check, enumerated completely by the stand-in):
 /// every 3-state problem whose non-goal states have one or two moves with successor and cost in
-/// `0..=2` (8100 problems): Dijkstra against the Bellman–Ford oracle ([`check_dijkstra`]) and,
+/// `0..=2` (8100 problems): Dijkstra against the Bellman–Ford oracle (`check_dijkstra`) and,
 /// as an extra, against synchronous value iteration. Unwind 6: 5 heap pops (`1 + 4` moves).
 #[kani::proof]
 #[kani::unwind(6)]

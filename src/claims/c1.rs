@@ -455,7 +455,7 @@ fn check_structure(
                     rounds,
                 };
                 // A failure with the termination pair at 0 and Q* finite is a zero-cost cycle
-                // started below Q* (the headline counterexample; issue 10, item 4).
+                // started below Q* (the headline counterexample).
                 if terminal_q0 == 0 && printed.all_finite() {
                     keep_min(&mut acc.printed_cycle_min, key, finding);
                 }
@@ -638,7 +638,7 @@ fn counterexample(f: &Finding, terminal: Terminal, file: &str) -> Counterexample
     .with_replay(replay)
 }
 
-/// The `truecost learn` command that replays a finding on its problem file (issue 10, item 4):
+/// The `truecost learn` command that replays a finding on its problem file:
 /// the same initial values (one per pair, in the file's pair order), order and treatment of the
 /// termination pair, for enough rounds to show the failure.
 fn replay_command(
@@ -664,8 +664,8 @@ fn replay_command(
     )
 }
 
-/// The note for C1's smallest failure when it is not the headline counterexample (issue 10,
-/// item 4): the headline is the smallest failure with the termination pair at 0 and every
+/// The note for C1's smallest failure when it is not the headline counterexample: the
+/// headline is the smallest failure with the termination pair at 0 and every
 /// `Q*` finite; a smaller one (the termination pair at 1, or a pair with `Q* = ∞`) is named
 /// too. `None` when the two are the same finding.
 fn termination_pair_note(headline: &Finding, smallest: &Finding) -> Option<String> {
@@ -1261,7 +1261,7 @@ of an optimal path to the goal), R = R1 if Q0 >= Q*, else R = max(R1, ceil((max 
         }
     }
 
-    /// Issue 10, item 5: the quick scope (CI) checks the `min(0, min Q₀)` term of `R`, which
+    /// The quick scope (CI) checks the `min(0, min Q₀)` term of `R`, which
     /// only a negative initial value exercises: on `0 → 0 (1), 0 → goal (1)` from `Q₀ = −2`,
     /// `R = max(R₁, ⌈(max Q* − (−2))/c⌉) = max(2, 4) = 4`, and the cyclic order needs all 4
     /// rounds (`Q(0→0)`: −1, 0, 1, 2 by hand), so a scope without negative values never sees

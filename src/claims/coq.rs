@@ -659,7 +659,7 @@ fn coqc(src: &Path, cwd: &Path, file: &str) -> Result<String, String> {
 /// Re-checks a development: refuses it if [`scan_sources`] finds anything; otherwise writes
 /// `sources` (in order) to a fresh directory, compiles each with `coqc -R <dir> Truecost`,
 /// then runs `Print Assumptions` on each of `theorems` (fully qualified names, `Truecost.` +
-/// module path + name) — all in one Coq session, a theorem it could not answer again in a
+/// module path + name) — all in one coqtop process, a theorem it could not answer again in a
 /// file of its own — and classifies the output
 /// ([`parse_assumptions`]); a theorem Coq cannot find is [`Assumptions::Missing`]. The
 /// directory is removed afterwards.
@@ -745,7 +745,7 @@ fn compile_and_ask(
             .filter(|&i| i >= check.files)
             .map(|i| sources[i].0)
     };
-    // One Coq session asks about every theorem of the compiled files, each answer after a
+    // One coqtop process asks about every theorem of the compiled files, each answer after a
     // marker; a theorem whose answer is not followed by the next marker (Coq stopped there,
     // e.g. at a missing name) is asked again on its own.
     let asked: Vec<&str> = theorems

@@ -1,4 +1,4 @@
-//! `truecost discount` (issue 5, item 6, beyond the paper): the exact set of discount factors
+//! `truecost discount` (beyond the paper): the exact set of discount factors
 //! `α ∈ (0, 1)` for which a discount-optimal policy fails to reach the goal from `x1`.
 //!
 //! A stationary policy's trajectory from `x1` is a simple path to a goal (it then terminates at
@@ -18,8 +18,8 @@ use std::cmp::Ordering;
 use num_traits::{One, Signed, Zero};
 
 use super::poly::{isolate_roots, Algebraic, Poly};
+use crate::claims::poly::roots::Reduction;
 use crate::model::Problem;
-use crate::objectives::roots::Reduction;
 use crate::value::Rational;
 
 /// An end of a piece of the set.
@@ -137,7 +137,7 @@ pub fn pieces_of_members(points: &[Point], member: &[bool]) -> Vec<Piece> {
     pieces
 }
 
-/// Why the analysis cannot run. Each refusal names the bound that was reached (issue 12: every
+/// Why the analysis cannot run. Each refusal names the bound that was reached (every
 /// search with a combinatorial blow-up is bounded while it runs).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum DiscountError {
@@ -184,7 +184,7 @@ struct Trajectories {
     lassos: Vec<(Poly, Poly)>,
 }
 
-/// The bounds of the enumeration of trajectories, checked as it runs (issue 12).
+/// The bounds of the enumeration of trajectories, checked as it runs.
 #[derive(Clone, Copy)]
 struct Bounds {
     /// The most goal paths, and the most goal-avoiding lassos, stored.
@@ -343,7 +343,7 @@ fn member_algebraic(t: &Trajectories, b: &Algebraic) -> bool {
 
 /// The exact set of `α ∈ (0,1)` for which a discount-optimal policy fails to reach a goal from
 /// `x1`. `limit` bounds the number of paths and lassos enumerated; [`MAX_SEARCH_STEPS`],
-/// [`MAX_COEFFICIENTS`] and [`MAX_PAIR_WORK`] bound the rest of the work (issue 12), so a
+/// [`MAX_COEFFICIENTS`] and [`MAX_PAIR_WORK`] bound the rest of the work, so a
 /// large problem is refused within seconds, naming the bound it reached.
 ///
 /// ```

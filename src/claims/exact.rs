@@ -1,6 +1,6 @@
 //! Small exact rationals (`i128` numerator and denominator) for the enumeration engines: the
 //! kernel's `truecost_kernel::claims::exact` (bignum-free, verified by the Kani harness
-//! `rational_add_and_mul_are_exact`; issue 10, item 3), re-exported under this path.
+//! `rational_add_and_mul_are_exact`), re-exported under this path.
 //! `Q::to_rational` gives the exact [`crate::value::Rational`]:
 //!
 //! ```

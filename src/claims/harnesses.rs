@@ -1,4 +1,4 @@
-//! The Kani harnesses of `proofs/` (engine 3; issue 10): what each states, its domain, its
+//! The Kani harnesses of `proofs/` (engine 3): what each states, its domain, its
 //! bounds, how the stand-in runs it, and what `cargo kani` adds; and the runner that executes
 //! their bodies in this process ([`run_standin`]), which `verify` reports.
 //!
@@ -315,15 +315,6 @@ impl Harness {
 /// The harnesses that state claim `id` (registry order).
 pub fn of_claim(id: &str) -> Vec<&'static Harness> {
     HARNESSES.iter().filter(|h| h.claim == id).collect()
-}
-
-/// The harnesses on truecost's own code that state no claim of the report (the solvers, the
-/// exact value types): lemmas the claims' engines rely on.
-pub fn lemmas() -> Vec<&'static Harness> {
-    HARNESSES
-        .iter()
-        .filter(|h| !super::registry::IDS.contains(&h.claim))
-        .collect()
 }
 
 /// One harness run by the stand-in in this process: what `verify` reports (serialisable, so a

@@ -1,4 +1,4 @@
-//! The claims engine (SPEC §6, issue 5): the paper's four propositions C1–C4 *exactly as
+//! The claims engine (SPEC §6): the paper's four propositions C1–C4 *exactly as
 //! printed*, corrected statements where a printed one is refuted, and the engines that check
 //! them against independent oracles.
 //!
@@ -85,7 +85,7 @@ impl Scope {
     }
 }
 
-/// The verdict on a claim (issue 5, item 1).
+/// The verdict on a claim.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Verdict {
@@ -155,7 +155,7 @@ pub struct Counterexample {
     /// The problem file's text.
     #[serde(skip)]
     pub problem_file: String,
-    /// A command that shows the failure (issue 10, item 4), starting with `truecost `.
+    /// A command that shows the failure, starting with `truecost `.
     pub replay: Option<String>,
 }
 
@@ -173,7 +173,7 @@ impl Counterexample {
         }
     }
 
-    /// The same counterexample with the command that replays its failure (issue 10, item 4).
+    /// The same counterexample with the command that replays its failure.
     pub fn with_replay(self, command: String) -> Self {
         Counterexample {
             replay: Some(command),
@@ -212,7 +212,7 @@ pub struct ClaimResult {
 ///
 /// Under `verify --shard K/N` it visits only the labelled indices `i ≡ K − 1 (mod N)` and
 /// records its partial accumulator; `verify merge` merges the shards' accumulators with
-/// `merge` instead of visiting anything ([`shard`], issue 12, item 4) — hence the serde bounds.
+/// `merge` instead of visiting anything ([`shard`]) — hence the serde bounds.
 pub fn enumerate<A, I, V, M>(spec: &FamilySpec, init: I, visit: V, merge: M) -> (A, u64)
 where
     A: Send + serde::Serialize + serde::de::DeserializeOwned,

@@ -1,4 +1,4 @@
-//! The claims registry (issue 5, item 1): every claim with its statement, the engines that
+//! The claims registry: every claim with its statement, the engines that
 //! check it, and the Kani harnesses of `proofs/` that state it for symbolic checking.
 
 use std::time::Instant;
@@ -239,6 +239,15 @@ pub const IDS: [&str; 7] = [
     "C4-corrected",
 ];
 
+/// The harnesses on truecost's own code that state no claim of the report (the solvers, the
+/// exact value types): lemmas the claims' engines rely on.
+pub fn lemmas() -> Vec<&'static harnesses::Harness> {
+    HARNESSES
+        .iter()
+        .filter(|h| !IDS.contains(&h.claim))
+        .collect()
+}
+
 fn selected(id: &str, only: Option<&str>) -> bool {
     match only {
         None => true,
@@ -358,7 +367,7 @@ fn attach(result: &mut ClaimResult, prop: Option<(PropertyRun, f64)>, runs: Opti
     }
 }
 
-/// A proptest run as a shard records it (issue 12, item 4).
+/// A proptest run as a shard records it.
 #[derive(serde::Serialize, serde::Deserialize)]
 struct PropertyRecord {
     cases: u64,
@@ -570,7 +579,7 @@ fn fingerprint(scope: Scope, only: Option<&str>, options: &Options) -> serde_jso
     })
 }
 
-/// `truecost verify --shard K/N` (issue 12, item 4): runs shard `part` of [`run`] — the
+/// `truecost verify --shard K/N`: runs shard `part` of [`run`] — the
 /// labelled indices `i ≡ K − 1 (mod N)` of every enumeration, and the proptest runs and SMT
 /// obligations it owns (see [`shard`]) — and returns its partial report as the text of a
 /// shard file for [`merge`].
@@ -608,7 +617,7 @@ pub fn run_shard(
     .to_json(shard::VERIFY_FORMAT))
 }
 
-/// `truecost verify merge FILES…` (issue 12, item 4): the report of the whole run from the
+/// `truecost verify merge FILES…`: the report of the whole run from the
 /// texts of its N shard files `(name, text)`: every shard present once, all of one run (the
 /// same scope, claims, options and build). Verdicts, case counts and counterexamples are the
 /// whole run's; the engines' times are the merge's own (render without times).

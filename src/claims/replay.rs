@@ -1,5 +1,5 @@
 //! Replays of derandomized Q-learning (`ρ = 1`, SPEC §2) on a problem file, round by round, in
-//! exact arithmetic (issue 10, item 4): the command behind every C1 counterexample
+//! exact arithmetic: the command behind every C1 counterexample
 //! (`truecost learn --file F --q0 … --order … --rounds N`).
 //!
 //! The pairs are every move of every state, in file order, and at each goal its termination
@@ -267,7 +267,7 @@ fn splitmix(state: &mut u64) -> u64 {
 }
 
 /// Runs derandomized Q-learning on `problem` from `q0` under `order` for at most `rounds`
-/// rounds (issue 10, item 4; SPEC §2 with `ρ = 1`; claim C1). With [`Terminal::HeldAtZero`]
+/// rounds (SPEC §2 with `ρ = 1`; claim C1). With [`Terminal::HeldAtZero`]
 /// the termination pairs are 0 and never updated (H0 of C1-corrected); with
 /// [`Terminal::Updated`] they are ordinary pairs (C1 as printed).
 ///

@@ -1,4 +1,4 @@
-//! The `truecost verify` report and its renderings (issue 5, item 8): text, JSON, Markdown and
+//! The `truecost verify` report and its renderings: text, JSON, Markdown and
 //! a LaTeX table. Times appear only when asked for (`with_times`), so the report without them
 //! is reproducible byte for byte and pinned by a snapshot.
 
@@ -19,7 +19,7 @@ pub struct AlphaStar {
     pub hi: String,
     /// The polynomial whose root it is.
     pub polynomial: String,
-    /// 30 decimals.
+    /// Rounded to nearest at 30 decimals.
     pub decimal: String,
 }
 
@@ -30,12 +30,12 @@ impl AlphaStar {
             lo: rat(&a.lo),
             hi: rat(&a.hi),
             polynomial: a.poly.primitive().to_string(),
-            decimal: a.decimal(30),
+            decimal: a.decimal_rounded(30),
         }
     }
 }
 
-/// The command that shows a counterexample's failure: its own replay (issue 10, item 4), or
+/// The command that shows a counterexample's failure: its own replay, or
 /// the exact solve of its problem file.
 fn replay_command(ce: &super::Counterexample) -> String {
     ce.replay
@@ -355,7 +355,7 @@ pub fn text(report: &Report, with_times: bool) -> String {
         let _ = writeln!(s);
         let _ = writeln!(
             s,
-            "alpha* = {} (root of {} in (0,1))",
+            "alpha* = {} (rounded to nearest; root of {} in (0,1))",
             a.decimal, a.polynomial
         );
         let _ = writeln!(s, "  lo = {}", a.lo);
@@ -442,7 +442,7 @@ pub fn markdown(report: &Report, with_times: bool) -> String {
     if let Some(a) = &report.alpha_star {
         let _ = writeln!(
             s,
-            "\n## alpha*\n\n`{}` is the root of `{}` in (0,1), in `({}, {}]`.",
+            "\n## alpha*\n\n`{}` (rounded to nearest) is the root of `{}` in (0,1), in `({}, {}]`.",
             a.decimal, a.polynomial, a.lo, a.hi
         );
     }
@@ -483,12 +483,7 @@ pub fn latex(report: &Report) -> String {
     let alpha = report
         .alpha_star
         .as_ref()
-        .map(|a| {
-            format!(
-                " $\\alpha^* \\approx {}$.",
-                &a.decimal[..a.decimal.len().min(22)]
-            )
-        })
+        .map(|a| format!(" $\\alpha^* \\approx {}$.", a.decimal))
         .unwrap_or_default();
     let _ = writeln!(
         s,

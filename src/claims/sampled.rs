@@ -1,5 +1,5 @@
 //! Engine 2: proptest properties on larger random problems than engine 1 enumerates, with
-//! shrinking to a minimal counterexample (issue 5, item 4). The runs are deterministic (a fixed
+//! shrinking to a minimal counterexample. The runs are deterministic (a fixed
 //! ChaCha seed), so `truecost verify` reports the same cases and counterexamples every time.
 
 use std::sync::atomic::{AtomicU64, Ordering};

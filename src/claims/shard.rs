@@ -1,8 +1,8 @@
-//! Sharding the claims engines over many machines (issue 12, item 4).
+//! Sharding the claims engines over many machines.
 //!
 //! `truecost verify --shard K/N` runs the same control flow as the whole run, but every
 //! expensive *site* does only the K-th part of its work and records what it computed in a
-//! [`Ledger`]:
+//! `Ledger`:
 //!
 //! * an exhaustive enumeration ([`super::enumerate`]) visits the labelled indices `i` with
 //!   `i mod N = K − 1` and records its partial accumulator — counts, maxima and the

@@ -1,5 +1,5 @@
 //! Tiny problems for exhaustive small-scope enumeration (engine 1), with symmetry reduction:
-//! the kernel's `truecost_kernel::claims::tiny` (bignum-free; issue 10, item 3), re-exported
+//! the kernel's `truecost_kernel::claims::tiny` (bignum-free), re-exported
 //! under this path, and the conversion of a [`Tiny`] into the library's exact model.
 
 use num_bigint::BigInt;

@@ -1,4 +1,4 @@
-//! `truecost compare` (issue 11, item 4): every objective side by side — success probability,
+//! `truecost compare`: every objective side by side — success probability,
 //! expected truecost, expected steps — in text, Markdown, JSON or LaTeX.
 
 use clap::{Args, ValueEnum};

@@ -1,11 +1,12 @@
-//! `--env SPEC` and `--objective` (issue 11, items 1 and 2): the shared options flattened into
-//! `solve`, `problems`, `compare` and `export`, and the commands' bodies. Parsing only; the
-//! library does the work ([`truecost::objectives`], [`truecost::envs`]).
+//! `--env SPEC` and `--objective`: the shared options flattened into `solve`, `problems`,
+//! `compare`, `export` and `render`, and the bodies of `solve --objective` and
+//! `problems --env`. Parsing only; the library does the work ([`truecost::objectives`],
+//! [`truecost::envs`]).
 
 use clap::{Args, ValueEnum};
 
 use truecost::objectives::report::{solution_json, solution_text};
-use truecost::objectives::{parse_objective, Model, Source};
+use truecost::objectives::{parse_objective, Model, Objective, Source};
 use truecost::problems::StepCost;
 use truecost::stochastic::{NoiseModel, Predictability};
 
@@ -63,6 +64,19 @@ pub struct ModelArgs {
     /// How 1 - gamma is spread [default: paper].
     #[arg(long, value_enum)]
     pub noise: Option<NoiseModel>,
+}
+
+impl ObjectiveArgs {
+    /// The objective the options name (the paper's `truecost` when none is given) and its
+    /// name, checked by [`parse_objective`] (one line on error).
+    pub fn parse(&self) -> Result<(&'static str, Objective), String> {
+        let name = match self.objective.unwrap_or(ObjectiveName::Truecost) {
+            ObjectiveName::Truecost => "truecost",
+            ObjectiveName::Reach => "reach",
+            ObjectiveName::Discounted => "discounted",
+        };
+        Ok((name, parse_objective(name, self.alpha.as_deref())?))
+    }
 }
 
 impl ModelArgs {
@@ -141,12 +155,7 @@ pub fn solve(args: &super::SolveArgs) -> Result<String, String> {
     {
         return Err("--objective and --env take --algorithm exact without --model-free, --mode reference, --tolerance, --max-sweeps or --arithmetic".into());
     }
-    let name = match args.objective.objective.unwrap_or(ObjectiveName::Truecost) {
-        ObjectiveName::Truecost => "truecost",
-        ObjectiveName::Reach => "reach",
-        ObjectiveName::Discounted => "discounted",
-    };
-    let objective = parse_objective(name, args.objective.alpha.as_deref())?;
+    let (_, objective) = args.objective.parse()?;
     let model = ModelArgs {
         env: args.env.clone(),
         problem: args.problem,
@@ -198,152 +207,4 @@ pub fn pretty(v: &serde_json::Value) -> String {
     let mut s = serde_json::to_string_pretty(v).expect("serialisable");
     s.push('\n');
     s
-}
-
-/// Taxi's passenger place for `render --env taxi --passenger P`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum PassengerPlace {
-    /// Waiting at depot R (0, 0).
-    R,
-    /// Waiting at depot G (0, 4).
-    G,
-    /// Waiting at depot Y (4, 0).
-    Y,
-    /// Waiting at depot B (4, 3).
-    B,
-    /// In the taxi.
-    Taxi,
-}
-
-/// Taxi's destination for `render --env taxi --destination D`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Depot {
-    /// Depot R (0, 0).
-    R,
-    /// Depot G (0, 4).
-    G,
-    /// Depot Y (4, 0).
-    Y,
-    /// Depot B (4, 3).
-    B,
-}
-
-/// `--passenger` and `--destination` of `render --env taxi`: which 25 of the 500 states.
-#[derive(Args, Debug, Clone, Default)]
-pub struct TaxiSliceArgs {
-    /// With --env taxi: draw the 25 states (one per taxi cell) where the passenger is waiting
-    /// at this depot (r, g, y, b) or is in the taxi (taxi); goes with --destination.
-    #[arg(long, value_enum, ignore_case = true, value_name = "R|G|Y|B|TAXI")]
-    pub passenger: Option<PassengerPlace>,
-    /// With --env taxi: the destination depot of the slice drawn (r, g, y, b), marked as the
-    /// goal; goes with --passenger.
-    #[arg(long, value_enum, ignore_case = true, value_name = "R|G|Y|B")]
-    pub destination: Option<Depot>,
-}
-
-/// `render --env SPEC [--objective O --alpha A] [--passenger P --destination D]
-/// --overlay none|values|policy --out F` (issue 11, item 5). Every option is checked before
-/// anything is solved.
-pub fn render(
-    spec: &str,
-    objective: &ObjectiveArgs,
-    slice: &TaxiSliceArgs,
-    overlay: super::render::OverlayKind,
-    width: u32,
-    height: u32,
-    out: &std::path::Path,
-) -> Result<String, String> {
-    use super::render::OverlayKind;
-    use truecost::envs::figure::{
-        policy_overlay, scene, taxi_policy_overlay, taxi_scene, taxi_value_overlay, value_overlay,
-        TaxiSlice,
-    };
-    use truecost::figures::render::{draw, Overlay};
-    let env = truecost::envs::EnvSpec::parse(spec)
-        .and_then(|s| s.build())
-        .map_err(|e| e.to_string())?;
-    let slice = match (slice.passenger, slice.destination) {
-        (None, None) => None,
-        (Some(p), Some(d)) => Some(TaxiSlice::new(p as usize, d as usize)?),
-        _ => {
-            return Err(
-                "--passenger and --destination go together: they choose the Taxi slice to draw"
-                    .into(),
-            )
-        }
-    };
-    let is_taxi = env.layout == truecost::envs::Layout::Taxi;
-    if slice.is_some() && !is_taxi {
-        return Err(format!(
-            "--passenger and --destination choose a slice of taxi; {} is drawn whole",
-            env.spec
-        ));
-    }
-    if !matches!(
-        overlay,
-        OverlayKind::None | OverlayKind::Values | OverlayKind::Policy
-    ) {
-        return Err("render --env draws --overlay none, values or policy".into());
-    }
-    if is_taxi && slice.is_none() && overlay != OverlayKind::None {
-        return Err(truecost::envs::figure::NotDrawable.to_string());
-    }
-    let name = match objective.objective.unwrap_or(ObjectiveName::Truecost) {
-        ObjectiveName::Truecost => "truecost",
-        ObjectiveName::Reach => "reach",
-        ObjectiveName::Discounted => "discounted",
-    };
-    let objective = parse_objective(name, objective.alpha.as_deref())?;
-    let mut scene = if is_taxi {
-        taxi_scene(&env, slice.as_ref())
-    } else {
-        scene(&env).map_err(|e| e.to_string())?
-    };
-    let overlay = match overlay {
-        OverlayKind::None => Overlay::None,
-        OverlayKind::Values | OverlayKind::Policy => {
-            let model = Model::from_environment(&env).map_err(|e| e.to_string())?;
-            let s = model.solve(&objective).map_err(|e| e.to_string())?;
-            let p = |r: &truecost::value::Rational| {
-                truecost::stochastic::decimal(&truecost::value::Extended::Finite(r.clone()), 6)
-            };
-            let success = if s.success.min == s.success.max {
-                p(&s.success.min)
-            } else {
-                format!("{} to {}", p(&s.success.min), p(&s.success.max))
-            };
-            let over = match model.initial.len() {
-                1 => String::new(),
-                k => format!(" (expectation over the {k} initial states)"),
-            };
-            scene.caption = format!(
-                "{}; {} objective, exact; initial value {}{over}; success probability {success}",
-                scene.caption,
-                name,
-                truecost::stochastic::decimal(&s.value_initial, 6)
-            );
-            match (overlay, &slice) {
-                (OverlayKind::Values, Some(slice)) => taxi_value_overlay(&s, slice),
-                (OverlayKind::Values, None) => value_overlay(&s),
-                (_, Some(slice)) => {
-                    scene.caption.push_str(
-                        "; arrows: the policy's moves, marks: its pick-up and drop-off (a move into a wall or the border is not drawn)",
-                    );
-                    let (overlay, marks) = taxi_policy_overlay(&model, &s, slice);
-                    scene.marks.extend(marks);
-                    overlay
-                }
-                (_, None) => {
-                    scene
-                        .caption
-                        .push_str(" (an action aimed at the border is not drawn)");
-                    policy_overlay(&env, &model, &s)
-                }
-            }
-        }
-        _ => unreachable!("refused above"),
-    };
-    let canvas = draw(&scene, &overlay, width, height).map_err(|e| e.to_string())?;
-    canvas.save(out).map_err(|e| e.to_string())?;
-    Ok(format!("wrote {} ({width}x{height})\n", out.display()))
 }

@@ -1,4 +1,4 @@
-//! `truecost export --env SPEC --out F.json` (issue 11, item 1): an environment as a
+//! `truecost export --env SPEC --out F.json`: an environment as a
 //! stochastic problem file (truecost stage costs; an initial distribution becomes one extra
 //! zero-cost initial state, see [`truecost::objectives::Model::exportable`]).
 

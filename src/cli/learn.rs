@@ -1,5 +1,5 @@
-//! `truecost learn`: replays derandomized Q-learning on a problem file round by round (issue 10,
-//! item 4; the library function is `claims::replay::replay`).
+//! `truecost learn`: replays derandomized Q-learning on a problem file round by round
+//! (the library function is `claims::replay::replay`).
 
 use std::path::PathBuf;
 

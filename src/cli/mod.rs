@@ -50,7 +50,7 @@ enum Command {
     Reproduce(reproduce::ReproduceArgs),
     /// Every objective side by side: success probability, expected truecost, expected steps.
     Compare(compare::CompareArgs),
-    /// Write a Gymnasium benchmark (--env) as a stochastic problem file.
+    /// Write a Gymnasium benchmark (--env) or a benchmark grid (--grid) as a problem file.
     Export(export::ExportArgs),
 }
 
@@ -98,7 +98,7 @@ struct SolveArgs {
     /// One of the paper's problems, 0 to 18 (`truecost problems` lists them).
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
-    /// A problem file in truecost's JSON format (see README, "Problem files").
+    /// A problem file in truecost's JSON format (see docs/guide/problem-files.md).
     #[arg(long, value_name = "FILE")]
     file: Option<PathBuf>,
     /// The planner (`exact`: the exact optimum of the stochastic model, by policy iteration
@@ -274,7 +274,7 @@ fn solve(args: &SolveArgs) -> Result<String, String> {
     if args.file.is_some() && args.step_cost.is_some() {
         return Err("--step-cost applies to the paper's grid problems (--problem N); a problem file gives its own costs".into());
     }
-    // A file is read once, in either format (issue 12: pipes and FIFOs can be read only once).
+    // A file is read once, in either format (pipes and FIFOs can be read only once).
     let loaded = match &args.file {
         Some(path) => Some(stochastic_file::read(path).map_err(|e| e.to_string())?),
         None => None,

@@ -107,7 +107,7 @@ pub fn report_json(report: &PlanReport, source: &str) -> String {
     obj.insert("model".into(), json!(mode_name(report.mode)));
     if report.mode == Mode::Reference {
         // The reference mode's value is an f64: a JSON number, or null where no goal is
-        // reachable (JSON has no infinity; issue 12, failure 14: this was the string "inf").
+        // reachable (JSON has no infinity, and the string "inf" is not a number).
         let v = report
             .cost_to_go_initial
             .parse::<f64>()

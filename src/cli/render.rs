@@ -21,6 +21,8 @@ use truecost::stochastic::problem::Provenance;
 use truecost::stochastic::{decimal, NoiseModel, Predictability, StochasticProblem};
 use truecost::value::{parse_rational, CostValue, Extended, Rational};
 
+use super::env::{EnvArg, ObjectiveArgs};
+
 /// What to draw over the problem.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum OverlayKind {
@@ -41,11 +43,11 @@ pub enum OverlayKind {
 #[command(group(clap::ArgGroup::new("source").required(true).args(["problem", "file", "env"])))]
 pub struct RenderArgs {
     #[command(flatten)]
-    env: super::env::EnvArg,
+    env: EnvArg,
     #[command(flatten)]
-    objective: super::env::ObjectiveArgs,
+    objective: ObjectiveArgs,
     #[command(flatten)]
-    slice: super::env::TaxiSliceArgs,
+    slice: TaxiSliceArgs,
     /// One of the paper's problems, 0 to 18.
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
@@ -104,7 +106,7 @@ struct VisitsRun {
 
 impl VisitsRun {
     /// The run's settings (defaults filled in), or a refusal when they are given without
-    /// `--overlay visits` (issue 12, failure 12) or out of range.
+    /// `--overlay visits` or out of range.
     fn from_args(args: &RenderArgs) -> Result<Option<VisitsRun>, String> {
         let given = args.epsilon.is_some()
             || args.seed.is_some()
@@ -178,7 +180,7 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         {
             return Err("--gamma, --noise, --step-cost and --mode apply to --problem and --file; an environment has its own transitions and costs".into());
         }
-        return super::env::render(
+        return render_env(
             spec,
             &args.objective,
             &args.slice,
@@ -527,4 +529,140 @@ fn caption(report: &PlanReport, overlay: OverlayKind) -> String {
         "{g} ({}, {values}){overlay}; grey segments: allowed moves",
         report.algorithm.name()
     )
+}
+
+/// Taxi's passenger place for `render --env taxi --passenger P`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PassengerPlace {
+    /// Waiting at depot R (0, 0).
+    R,
+    /// Waiting at depot G (0, 4).
+    G,
+    /// Waiting at depot Y (4, 0).
+    Y,
+    /// Waiting at depot B (4, 3).
+    B,
+    /// In the taxi.
+    Taxi,
+}
+
+/// Taxi's destination for `render --env taxi --destination D`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Depot {
+    /// Depot R (0, 0).
+    R,
+    /// Depot G (0, 4).
+    G,
+    /// Depot Y (4, 0).
+    Y,
+    /// Depot B (4, 3).
+    B,
+}
+
+/// `--passenger` and `--destination` of `render --env taxi`: which 25 of the 500 states.
+#[derive(Args, Debug, Clone, Default)]
+pub struct TaxiSliceArgs {
+    /// With --env taxi: draw the 25 states (one per taxi cell) where the passenger is waiting
+    /// at this depot (r, g, y, b) or is in the taxi (taxi); goes with --destination.
+    #[arg(long, value_enum, ignore_case = true, value_name = "R|G|Y|B|TAXI")]
+    pub passenger: Option<PassengerPlace>,
+    /// With --env taxi: the destination depot of the slice drawn (r, g, y, b), marked as the
+    /// goal; goes with --passenger.
+    #[arg(long, value_enum, ignore_case = true, value_name = "R|G|Y|B")]
+    pub destination: Option<Depot>,
+}
+
+/// `render --env SPEC [--objective O --alpha A] [--passenger P --destination D]
+/// --overlay none|values|policy --out F`: the environment's map, with the optimum of the
+/// objective as values or policy. Every option is checked before anything is solved.
+fn render_env(
+    spec: &str,
+    objective: &ObjectiveArgs,
+    slice: &TaxiSliceArgs,
+    overlay: OverlayKind,
+    width: u32,
+    height: u32,
+    out: &std::path::Path,
+) -> Result<String, String> {
+    use truecost::figures::envs::{
+        policy_overlay, scene, taxi_actions_overlay, taxi_scene, taxi_value_overlay, value_overlay,
+        TaxiSlice,
+    };
+    use truecost::figures::render::{draw, Overlay};
+    let env = truecost::envs::EnvSpec::parse(spec)
+        .and_then(|s| s.build())
+        .map_err(|e| e.to_string())?;
+    let slice = match (slice.passenger, slice.destination) {
+        (None, None) => None,
+        (Some(p), Some(d)) => Some(TaxiSlice::new(p as usize, d as usize)?),
+        _ => {
+            return Err(
+                "--passenger and --destination go together: they choose the Taxi slice to draw"
+                    .into(),
+            )
+        }
+    };
+    let is_taxi = env.layout == truecost::envs::Layout::Taxi;
+    if slice.is_some() && !is_taxi {
+        return Err(format!(
+            "--passenger and --destination choose a slice of taxi; {} is drawn whole",
+            env.spec
+        ));
+    }
+    if !matches!(
+        overlay,
+        OverlayKind::None | OverlayKind::Values | OverlayKind::Policy
+    ) {
+        return Err("render --env draws --overlay none, values or policy".into());
+    }
+    if is_taxi && slice.is_none() && overlay != OverlayKind::None {
+        return Err(truecost::figures::envs::NotDrawable.to_string());
+    }
+    let (name, objective) = objective.parse()?;
+    let mut scene = if is_taxi {
+        taxi_scene(&env, slice.as_ref())
+    } else {
+        scene(&env).map_err(|e| e.to_string())?
+    };
+    let overlay = match overlay {
+        OverlayKind::None => Overlay::None,
+        OverlayKind::Values | OverlayKind::Policy => {
+            let model =
+                truecost::objectives::Model::from_environment(&env).map_err(|e| e.to_string())?;
+            let s = model.solve(&objective).map_err(|e| e.to_string())?;
+            let p = |r: &truecost::value::Rational| {
+                truecost::stochastic::decimal(&truecost::value::Extended::Finite(r.clone()), 6)
+            };
+            let success = if s.success.min == s.success.max {
+                p(&s.success.min)
+            } else {
+                format!("{} to {}", p(&s.success.min), p(&s.success.max))
+            };
+            let over = match model.initial.len() {
+                1 => String::new(),
+                k => format!(" (expectation over the {k} initial states)"),
+            };
+            scene.caption = format!(
+                "{}; {} objective, exact; initial value {}{over}; success probability {success}",
+                scene.caption,
+                name,
+                truecost::stochastic::decimal(&s.value_initial, 6)
+            );
+            match (overlay, &slice) {
+                (OverlayKind::Values, Some(slice)) => taxi_value_overlay(&s, slice),
+                (OverlayKind::Values, None) => value_overlay(&s),
+                (_, Some(slice)) => {
+                    scene.caption.push_str("; marks: pick-up and drop-off");
+                    let (overlay, marks) = taxi_actions_overlay(&model, &s, slice);
+                    scene.marks.extend(marks);
+                    overlay
+                }
+                (_, None) => policy_overlay(&env, &model, &s),
+            }
+        }
+        _ => unreachable!("refused above"),
+    };
+    let canvas = draw(&scene, &overlay, width, height).map_err(|e| e.to_string())?;
+    canvas.save(out).map_err(|e| e.to_string())?;
+    Ok(format!("wrote {} ({width}x{height})\n", out.display()))
 }

@@ -173,7 +173,7 @@ const REPORT_EXTENSIONS: [&str; 4] = ["md", "csv", "json", "tex"];
 
 impl Output {
     /// Creates the `--out` and `--plots` directories before the (long) run, so a bad path
-    /// fails at once and no result is lost (issue 12).
+    /// fails at once and no result is lost.
     /// Each report file `stem.*` of `--out` and a file in `--plots` is checked writable too.
     fn prepare(&self, stem: &str) -> Result<(), String> {
         if let Some(dir) = &self.out {
@@ -290,7 +290,7 @@ pub fn run(args: &ReproduceArgs) -> Result<String, String> {
     }
 }
 
-/// `reproduce merge FILES…` (issue 12, item 4).
+/// `reproduce merge FILES…`.
 fn merge_command(args: &MergeArgs) -> Result<String, String> {
     let files = truecost::claims::shard::read_files(&args.files)?;
     let first: serde_json::Value = serde_json::from_str(&files[0].1).unwrap_or_default();

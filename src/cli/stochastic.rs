@@ -50,7 +50,7 @@ pub enum Arithmetic {
     F64,
 }
 
-/// Options for large stochastic models (issue 12, item 3).
+/// Options for large stochastic models.
 #[derive(Args, Debug, Default)]
 pub struct ScaleArgs {
     /// Memory budget of the exact optimum, e.g. 4G, 512M, 1.5G (K, M, G, T: powers of 1024;
@@ -112,6 +112,12 @@ fn checked_optimum(
     let result = optimum_with(problem, &mut |event| match event {
         Progress::FloatEvaluation { round } => {
             bar.set_message(format!("f64 warm start, evaluation {round}"));
+            bar.tick();
+        }
+        Progress::Refinement { policy, bits } => {
+            bar.set_message(format!(
+                "mixed-precision refinement, policy {policy} at {bits} bits"
+            ));
             bar.tick();
         }
         Progress::ExactEvaluation { evaluation } => {
@@ -220,7 +226,7 @@ pub fn solve(args: &SolveArgs, file: Option<ProblemFile>) -> Result<String, Stri
         return Err("--exact-error applies to --algorithm vi and async-vi (the exact optimum is exact already)".into());
     }
     let prepared = prepare(args, file, noise, &gamma)?;
-    // f64 VI in exact mode measures nothing exactly unless asked (issue 12: 10⁴ states take
+    // f64 VI in exact mode measures nothing exactly unless asked (10⁴ states take
     // seconds in f64, the exact optimum much longer); the reference mode always compares with
     // its exact twin (the published comparison, 400 states).
     let wants_optimum = schedule.is_none()
@@ -461,7 +467,7 @@ fn exact_report(prepared: &Prepared, opt: &Optimum, all: bool) -> Report {
         value_iteration: None,
         iterations: opt.stats.exact_iterations as u64,
         cost_to_go: if all {
-            opt.cost_to_go_all().iter().map(|v| v.to_string()).collect()
+            opt.cost_to_go_texts()
         } else {
             Vec::new()
         },

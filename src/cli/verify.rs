@@ -1,5 +1,5 @@
-//! `truecost verify`: the claims of SPEC §6 checked by machine (issue 5, item 8), and, with
-//! `--claim C4 --file F | --problem N`, the exact set of bonuses `M` for one problem (item 7).
+//! `truecost verify`: the claims of SPEC §6 checked by machine, and, with
+//! `--claim C4 --file F | --problem N`, the exact set of bonuses `M` for one problem.
 
 use std::fmt::Write;
 use std::path::PathBuf;
@@ -119,7 +119,7 @@ pub struct MergeArgs {
     counterexamples: Option<PathBuf>,
 }
 
-/// `verify --shard K/N` (issue 12, item 4): the shard's partial report.
+/// `verify --shard K/N`: the shard's partial report.
 fn shard(args: &VerifyArgs, part: &str) -> Result<String, String> {
     let part = truecost::claims::shard::Part::parse(part)?;
     let options = truecost::claims::registry::Options {
@@ -131,7 +131,7 @@ fn shard(args: &VerifyArgs, part: &str) -> Result<String, String> {
     truecost::claims::registry::run_shard(args.scope, args.claim.as_deref(), &options, part)
 }
 
-/// `verify merge FILES…` (issue 12, item 4): the whole run's report from its shards.
+/// `verify merge FILES…`: the whole run's report from its shards.
 fn merge(args: &MergeArgs) -> Result<String, String> {
     if let Some(dir) = &args.counterexamples {
         std::fs::create_dir_all(dir)
@@ -239,7 +239,7 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
     })
 }
 
-/// `verify --claim C4 --env SPEC` (issue 11, item 1): the bonus set of a deterministic
+/// `verify --claim C4 --env SPEC`: the bonus set of a deterministic
 /// environment; a stochastic one is refused with the reason.
 fn bonus_env(spec: &str, args: &VerifyArgs) -> Result<String, String> {
     if args.claim.as_deref() != Some("C4") {

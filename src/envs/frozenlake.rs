@@ -55,7 +55,7 @@ fn read_map(path: &std::path::Path) -> Result<Vec<String>, EnvError> {
     Ok(rows)
 }
 
-/// The checks of [`read_map`] on rows already read.
+/// The checks of `read_map` on rows already read.
 pub fn check_map(rows: &[String]) -> Result<(), String> {
     let width = rows.first().map(|r| r.len()).unwrap_or(0);
     if width == 0 {

@@ -1,4 +1,4 @@
-//! Gymnasium's toy-text benchmarks as exact stochastic problems (issue 11, item 1):
+//! Gymnasium's toy-text benchmarks as exact stochastic problems:
 //! FrozenLake-v1, CliffWalking-v1 (and its slippery variant) and Taxi-v4, faithful to
 //! Gymnasium 1.x — the same state and action numbering, the same outcome lists in the same
 //! order, the same rewards and terminations — with every probability exact (FrozenLake's 1/3 is
@@ -8,7 +8,7 @@
 //!   success_rate=p/q]`, `cliffwalking[:slippery=true|false]`, `taxi`.
 //! * [`Environment`] — Gymnasium's table `P[s][a] = [(p, s', r, terminated), ...]` with exact
 //!   `p`, the initial state distribution, the goal and trap states, and the map.
-//! * [`Environment::truecost_cost`] — the paper's cost of each outcome (issue 11, item 2):
+//! * [`Environment::truecost_cost`] — the paper's cost of each outcome:
 //!   FrozenLake 1 per step; CliffWalking 1 per step, 100 per fall; Taxi 1 per action (the
 //!   delivery included), 10 for an illegal pick-up/drop-off, the delivery's +20 reported as the
 //!   terminal bonus `M` of Proposition 4 ([`Environment::terminal_bonus`]).
@@ -16,7 +16,6 @@
 //! The problem the solvers see is built by [`crate::objectives::Model::from_environment`].
 
 pub mod cliffwalking;
-pub mod figure;
 pub mod frozenlake;
 pub mod taxi;
 
@@ -79,7 +78,7 @@ pub enum MapChoice {
     File(PathBuf),
 }
 
-/// A parsed `--env SPEC` (issue 11, item 1).
+/// A parsed `--env SPEC`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum EnvSpec {
     /// `frozenlake[:map=…,slippery=…,success_rate=p/q]` (FrozenLake-v1).
@@ -322,7 +321,7 @@ impl Environment {
         self.goals.contains(&x) || self.traps.contains(&x)
     }
 
-    /// The paper's cost of one outcome (issue 11, item 2): FrozenLake 1 per step; CliffWalking
+    /// The paper's cost of one outcome: FrozenLake 1 per step; CliffWalking
     /// `−reward` (1 per step, 100 per fall); Taxi 1 per action, 10 for an illegal
     /// pick-up/drop-off, 1 for the delivery (its +20 is [`Self::terminal_bonus`]).
     ///

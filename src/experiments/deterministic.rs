@@ -331,8 +331,8 @@ pub struct RowSummary {
     /// Mean actions of the planner alone, after exploration (model-free rows: relaxations or
     /// backups; the paper's "convergence action" column of these rows).
     pub mean_planner_actions: Option<f64>,
-    /// Mean nanoseconds per counted action: total run time over total actions (issue 13, item
-    /// 2), comparable across machines and languages.
+    /// Mean nanoseconds per counted action: total run time over total actions,
+    /// comparable across machines and languages.
     pub mean_ns_per_action: Option<f64>,
     /// Mean iterations (episodes / sweeps / pops; see the mode).
     pub mean_iterations: Option<f64>,
@@ -490,7 +490,7 @@ fn prepare(id: usize, settings: &Settings) -> Result<ProblemRun, ExperimentError
     match settings.mode {
         Mode::Exact => {
             let problem = GridLayout::exact(id)?.to_problem(settings.step_cost);
-            // Compiled once, before any clock starts (issue 13, item 1).
+            // Compiled once, before any clock starts.
             let compiled = ExactGraph::new(&problem);
             let value_type = compiled.representation();
             let (graph, reachable) = match compiled {
@@ -527,7 +527,7 @@ fn prepare(id: usize, settings: &Settings) -> Result<ProblemRun, ExperimentError
     }
 }
 
-/// What the clock of a learning row reads (issue 13, item 1): seconds to the end of the run and
+/// What the clock of a learning row reads: seconds to the end of the run and
 /// to each milestone. `Copy`: nothing is rendered inside the timed region.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LearningClock {
@@ -539,12 +539,12 @@ pub struct LearningClock {
     pub initial_optimal_s: Option<f64>,
 }
 
-/// The timed region of a learning row (issue 13, item 1): the clock wraps the learner only —
+/// The timed region of a learning row: the clock wraps the learner only —
 /// setting up its Q-table on a graph compiled before, and learning until it finishes, with
 /// milestones read between calls to [`QLearner::advance`]. The oracle values `optimum` are
 /// prepared before; the learner compares with them through a counter updated with each `Q̂`
 /// update (`O(1)` per action, see [`crate::learning::q_learning`]). It returns the counts
-/// ([`Outcome`](crate::learning::q_learning::Outcome), `Copy`) and the clock; the learner is
+/// ([`Outcome`], `Copy`) and the clock; the learner is
 /// handed back so that the greedy path is read after the clock stopped.
 ///
 /// ```
@@ -682,7 +682,7 @@ fn run_sample(
         iterations: counts.iterations,
         // A DP planner on the explored graph (x1's whole component: every reachable move was
         // tried) computes the optimum itself, so its values equal G* — also where G* = +inf,
-        // as on Problem 6 (issue 12, failure 13: this said "not converged" there).
+        // as on Problem 6, where it is converged too.
         converged: true,
         converged_at: None,
         initial_optimal_at: None,
@@ -698,7 +698,7 @@ fn run_sample(
     })
 }
 
-/// The timed region of a model-free row (issue 13, item 1): the clock wraps
+/// The timed region of a model-free row: the clock wraps
 /// [`model_free_counts`] on a graph compiled before — exploration, the planner on the
 /// discovered graph, its path — and the region returns counts only ([`PlanCounts`] is `Copy`).
 ///
@@ -894,7 +894,7 @@ fn published_key(r: &RowSummary) -> published::RowKey {
     )
 }
 
-/// Puts the paper's published numbers beside ours (issue 13, items 3 and 4): every row the
+/// Puts the paper's published numbers beside ours: every row the
 /// paper's CSV files publish gains `published` and `agreement`, and the report its closing
 /// [`Summary`]. Rows the paper does not publish stay as they are.
 ///
@@ -1140,7 +1140,7 @@ fn skip(run: &ProblemRun, row: &Row) -> bool {
 
 /// The π rows' samples per problem (`None`: another shard runs them) and every task's sample
 /// (`None`: another shard's task; `Some(None)`: not run, the goal is unreachable). `part`
-/// selects a shard's share (issue 12, item 4): task `t` (in [`tasks`] order) when
+/// selects a shard's share: task `t` (in [`tasks`] order) when
 /// `part.owns(t)`, and the π rows — one chain sharing one digit stream, so indivisible —
 /// on shard 1.
 #[allow(clippy::type_complexity)]
@@ -1265,7 +1265,7 @@ fn task_count(settings: &Settings) -> u64 {
     settings.problems.len() as u64 * rows * u64::from(settings.samples)
 }
 
-/// `reproduce deterministic --shard K/N` (issue 12, item 4): runs the sample runs `t` (every
+/// `reproduce deterministic --shard K/N`: runs the sample runs `t` (every
 /// `(problem, row, sample)` but the π rows, in report order) with `t mod N = K − 1`, and the
 /// π rows on shard 1 (one digit stream shared in problem order: indivisible), and returns the
 /// shard file's text. [`merge`] combines the N files into the report of [`run`]; every number,
@@ -1324,7 +1324,7 @@ fn encode<T: Serialize>(value: &T) -> String {
     serde_json::to_string(value).expect("serialisable")
 }
 
-/// `reproduce merge` of deterministic shard files `(name, text)` (issue 12, item 4): the
+/// `reproduce merge` of deterministic shard files `(name, text)`: the
 /// report of [`run`] with the settings the shards ran (every shard present once, all of one
 /// run and build). The problems are prepared again (compiled, their oracle solved: no clock);
 /// no sample is rerun.

@@ -1,4 +1,4 @@
-//! LaTeX renderings of the reproduction reports (issue 13, item 3): per problem (and `γ`), a
+//! LaTeX renderings of the reproduction reports: per problem (and `γ`), a
 //! table of our results and, with `--against-published`, the paper's published value beside
 //! ours with the verdict, as the Markdown shows them; then the reproduction summary.
 //!
@@ -160,7 +160,7 @@ fn summary(s: &mut String, summary: Option<&Summary>) {
     );
 }
 
-/// `reproduce deterministic --format latex` (issue 13, item 3).
+/// `reproduce deterministic --format latex`.
 ///
 /// ```
 /// use truecost::experiments::deterministic::{against_published, run, Settings};
@@ -244,7 +244,7 @@ pub fn deterministic(report: &Report, with_times: bool) -> String {
     s
 }
 
-/// `reproduce stochastic --format latex` (issue 13, item 3).
+/// `reproduce stochastic --format latex`.
 pub fn stochastic(report: &stochastic::Report, with_times: bool) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "% truecost reproduce stochastic: {}", report.settings());

@@ -1,4 +1,4 @@
-//! The paper's published numbers beside ours (issue 13, items 3 and 4).
+//! The paper's published numbers beside ours.
 //!
 //! # Data
 //!
@@ -728,7 +728,7 @@ impl Comparison {
     }
 }
 
-/// The closing summary (issue 13, item 4).
+/// The closing summary.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Summary {
     /// Metrics compared.

@@ -8,7 +8,7 @@ use crate::problems::ProblemError;
 pub const MAX_SAMPLES: u32 = 1 << 20;
 /// The most actions one learning run may take (episodes × max steps).
 pub const MAX_ACTIONS_PER_RUN: u64 = 1 << 32;
-/// The most worker threads (`--threads`; issue 12: a huge count would spawn threads until the
+/// The most worker threads (`--threads`: a huge count would spawn threads until the
 /// system gives out).
 pub const MAX_THREADS: usize = 256;
 

@@ -95,7 +95,7 @@ impl RateSpec {
             LearningRate::constant(&rho)?
         };
         // The text printed is what runs: the input when its f64 prints back as the same exact
-        // number (0.99, 1/n^0.8), else the f64's shortest decimal (issue 12).
+        // number (0.99, 1/n^0.8), else the f64's shortest decimal.
         let (value, prefix) = match rate {
             LearningRate::Constant(r) => (r, ""),
             LearningRate::Decay(w) => (w, "1/n^"),
@@ -175,7 +175,7 @@ pub struct Settings {
     pub threads: Option<usize>,
 }
 
-/// The default `γ` values (README: affordable in minutes on two cores).
+/// The default `γ` values (each affordable in minutes on two cores).
 pub const DEFAULT_GAMMAS: [&str; 3] = ["0.999", "0.99", "0.9"];
 /// The default learning rates.
 pub const DEFAULT_RHOS: [&str; 2] = ["0.99", "1/n^0.8"];
@@ -341,8 +341,8 @@ pub struct RowSummary {
     pub mean_actions: Option<f64>,
     /// Their standard deviation.
     pub std_actions: Option<f64>,
-    /// Mean nanoseconds per counted action: total run time over total actions (issue 13, item
-    /// 2), comparable across machines and languages.
+    /// Mean nanoseconds per counted action: total run time over total actions,
+    /// comparable across machines and languages.
     pub mean_ns_per_action: Option<f64>,
     /// Mean episodes run (VI: sweeps).
     pub mean_iterations: Option<f64>,
@@ -752,7 +752,7 @@ fn vi_runs(
 
 /// Every learning task's sample (`None`: another shard's; `Some(None)`: not run, the goal is
 /// unreachable) and every pair's two VI runs (`None`: another shard's). `part` selects a
-/// shard's share (issue 12, item 4): task `t` when `part.owns(t)`, pair `i`'s VIs when
+/// shard's share: task `t` when `part.owns(t)`, pair `i`'s VIs when
 /// `part.owns(i)`.
 #[allow(clippy::type_complexity)]
 fn compute(
@@ -944,7 +944,7 @@ fn metric_kind(metric: &str) -> Option<Kind> {
     })
 }
 
-/// Puts the paper's published stochastic numbers beside ours (issue 13, items 3 and 4). The
+/// Puts the paper's published stochastic numbers beside ours. The
 /// paper's files publish problems 1, 10 and 11 at `γ` 0.999 and 0.99 (100 samples,
 /// `ρ` 0.5–0.99, `ε` 0–1) under the reference code's noise model and ±5 tolerance: rows are
 /// matched on problem, `γ`, `ρ` and `ε` (as exact numbers). The VI rows are deterministic:
@@ -1256,7 +1256,7 @@ pub fn shard_runs(settings: &Settings, part: Part) -> u64 {
     owned(task_count(settings), part) + 2 * owned(pairs, part)
 }
 
-/// `reproduce stochastic --shard K/N` (issue 12, item 4): runs the learning sample runs `t`
+/// `reproduce stochastic --shard K/N`: runs the learning sample runs `t`
 /// (every `(problem, γ, row, sample)` in report order) with `t mod N = K − 1` and the two VI
 /// runs of the `(problem, γ)` pairs `i` with `i mod N = K − 1`, and returns the shard file's
 /// text. [`merge`] combines the N files into the report of [`run`].
@@ -1316,7 +1316,7 @@ pub fn run_shard(
     .to_json(SHARD_FORMAT))
 }
 
-/// `reproduce merge` of stochastic shard files `(name, text)` (issue 12, item 4): the report
+/// `reproduce merge` of stochastic shard files `(name, text)`: the report
 /// of [`run`] with the settings the shards ran (every shard present once, all of one run and
 /// build). The problems are prepared again (their exact optima solved: no clock); no sample
 /// or VI is rerun.

@@ -1,6 +1,6 @@
 //! The experiments' reports as text, Markdown, CSV and JSON (the LaTeX renderer is
 //! [`super::latex`]): one table per problem with the paper's rows, the published numbers beside
-//! ours with their verdicts (`--against-published`, issue 13) and the reproduction summary.
+//! ours with their verdicts (`--against-published`) and the reproduction summary.
 //! Every format names the mode or noise model, the tolerance and the seed.
 
 use std::fmt::Write as _;

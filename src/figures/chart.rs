@@ -1,4 +1,4 @@
-//! Line charts for the experiment plots (issue 6): series of points against a numeric axis,
+//! Line charts for the experiment plots: series of points against a numeric axis,
 //! with axis labels, ticks, a legend, and a caption naming the model and seed.
 
 use super::canvas::{Canvas, FigureError, Rgb, Shape};

@@ -1,18 +1,27 @@
-//! Figures of the benchmarks (issue 11, item 5): the map as a [`Scene`] — cells as states,
-//! FrozenLake's holes and CliffWalking's cliff as discs, the start and the goal — with a
-//! policy (the intended cell of each chosen action) or a value overlay drawn by
-//! [`crate::figures::render::draw`].
+//! Figures of the benchmarks: the map as a [`Scene`] — cells as states, FrozenLake's holes
+//! and CliffWalking's cliff as discs, the start and the goal — with a policy or a value overlay
+//! drawn by [`crate::figures::render::draw`].
+//!
+//! The policy overlays ([`policy_overlay`], [`taxi_actions_overlay`]) draw *every* optimal
+//! action of a state ([`optimal_actions`]: the actions whose exact `Q`-value equals the optimal
+//! value, compared as rationals, and that some optimal stationary policy uses): an arrow to the
+//! cell its move aims at, several arrows at a state where actions tie; an action whose move
+//! aims into a wall or the border (the agent stays in place) is a short stroke ending in a bar.
+//! The legend under the map says what arrows, several arrows and bars mean.
 //!
 //! Taxi's 500 states are 25 taxi cells × 5 passenger places × 4 destinations: one figure draws
 //! the 5×5 map (its walls, the depots R, G, Y, B) and one *slice* ([`TaxiSlice`]: the
 //! passenger's place and the destination fixed, the 25 taxi cells varying), the destination
 //! marked as the goal; the policy overlay marks pick-up and drop-off actions in their cells
-//! ([`taxi_scene`], [`taxi_policy_overlay`], [`taxi_value_overlay`]).
+//! ([`taxi_scene`], [`taxi_actions_overlay`], [`taxi_value_overlay`]).
 
-use super::{cliffwalking, taxi, Environment, Layout};
-use crate::figures::render::{Mark, Overlay, Scene};
-use crate::objectives::{Model, Solution};
+use num_traits::{Signed, Zero};
+
+use super::render::{ActionGlyph, LegendEntry, LegendKey, Mark, Overlay, Scene};
+use crate::envs::{cliffwalking, taxi, Environment, Layout};
+use crate::objectives::{Model, Objective, Solution};
 use crate::problems::geometry::Disc;
+use crate::value::{Extended, Rational};
 
 /// Cell side in world units.
 const CELL: i64 = 10;
@@ -40,7 +49,7 @@ impl TaxiSlice {
     /// 25 states are where the episode has ended (Taxi's goals), there is no policy to draw.
     ///
     /// ```
-    /// use truecost::envs::figure::TaxiSlice;
+    /// use truecost::figures::envs::TaxiSlice;
     /// let s = TaxiSlice::new(4, 1).unwrap();
     /// assert_eq!(s.state(0, 4), ((0 * 5 + 4) * 5 + 4) * 4 + 1); // Gymnasium's encode(0, 4, 4, 1) = 97
     /// assert!(TaxiSlice::new(2, 2).unwrap_err().contains("ended"));
@@ -94,14 +103,14 @@ fn cell_centre(nrow: usize, row: usize, col: usize) -> (f64, f64) {
     )
 }
 
-/// The scene of Taxi's 5×5 map (issue 11, item 5): 25 cells (the taxi's position, scene state
+/// The scene of Taxi's 5×5 map: 25 cells (the taxi's position, scene state
 /// `row·5 + col`), a grey segment between neighbouring cells not separated by a wall, the six
 /// walls of Gymnasium's `MAP`, the depots R, G, Y, B; with a slice, the destination as the
 /// goal and a `passenger` mark at the passenger's depot (if waiting). No `x1` is marked: the
 /// initial state is drawn uniformly from 300 states.
 ///
 /// ```
-/// use truecost::envs::{figure::{taxi_scene, TaxiSlice}, EnvSpec};
+/// use truecost::{envs::EnvSpec, figures::envs::{taxi_scene, TaxiSlice}};
 /// let env = EnvSpec::parse("taxi").unwrap().build().unwrap();
 /// let s = taxi_scene(&env, Some(&TaxiSlice::new(0, 1).unwrap()));
 /// assert_eq!((s.positions.len(), s.walls.len(), s.moves.len(), s.goals.clone()), (25, 6, 34, vec![4]));
@@ -179,12 +188,37 @@ pub fn taxi_scene(env: &Environment, slice: Option<&TaxiSlice>) -> Scene {
     }
 }
 
-/// The policy overlay of a Taxi slice: an arrow from each cell to the cell its move aims at
-/// (none for a move into a wall or the border), and a `pickup` / `dropoff` mark in the cells
-/// where the policy picks up or drops off (returned as marks to add to the scene).
+/// The cell a Taxi move (Gymnasium action 0 south, 1 north, 2 east, 3 west) aims at from
+/// `(row, col)`: the cell itself where a wall or the border is in the way, or for pick-up and
+/// drop-off (4, 5).
+fn taxi_target(row: usize, col: usize, action: usize) -> (usize, usize) {
+    match action {
+        0 => ((row + 1).min(4), col),
+        1 => (row.saturating_sub(1), col),
+        2 if taxi::open_east(row, col) => (row, (col + 1).min(4)),
+        3 if taxi::open_west(row, col) => (row, col.saturating_sub(1)),
+        _ => (row, col),
+    }
+}
+
+/// The pick-up (`action` 4) or drop-off (5) mark in the cell `(row, col)`.
+fn taxi_mark(row: usize, col: usize, action: usize) -> Mark {
+    let (px, py) = cell_centre(5, row, col);
+    Mark {
+        class: if action == 4 { "pickup" } else { "dropoff" },
+        at: (px, py + CELL as f64 * 0.25),
+        text: if action == 4 { "pick up" } else { "drop off" }.into(),
+        size: 12.0,
+    }
+}
+
+/// The reported policy of a Taxi slice, one action per cell: an arrow from each cell to the
+/// cell its move aims at (none for a move into a wall or the border), and a `pickup` /
+/// `dropoff` mark in the cells where the policy picks up or drops off (returned as marks to
+/// add to the scene). [`taxi_actions_overlay`] draws every optimal action instead.
 ///
 /// ```
-/// use truecost::envs::{figure::{taxi_policy_overlay, TaxiSlice}, EnvSpec};
+/// use truecost::{envs::EnvSpec, figures::envs::{taxi_policy_overlay, TaxiSlice}};
 /// use truecost::figures::render::Overlay;
 /// use truecost::objectives::{Model, Objective};
 /// let env = EnvSpec::parse("taxi").unwrap().build().unwrap();
@@ -206,27 +240,67 @@ pub fn taxi_policy_overlay(model: &Model, s: &Solution, slice: &TaxiSlice) -> (O
             next.push(None);
             continue;
         };
-        let (mut nr, mut nc) = (r, c);
-        match a {
-            0 => nr = (r + 1).min(n - 1),
-            1 => nr = r.saturating_sub(1),
-            2 if taxi::open_east(r, c) => nc = (c + 1).min(n - 1),
-            3 if taxi::open_west(r, c) => nc = c.saturating_sub(1),
-            4 | 5 => {
-                let (px, py) = cell_centre(n, r, c);
-                marks.push(Mark {
-                    class: if a == 4 { "pickup" } else { "dropoff" },
-                    at: (px, py + CELL as f64 * 0.25),
-                    text: if a == 4 { "pick up" } else { "drop off" }.into(),
-                    size: 12.0,
-                });
-            }
-            _ => {}
+        if a >= 4 {
+            marks.push(taxi_mark(r, c, a));
         }
+        let (nr, nc) = taxi_target(r, c, a);
         let target = nr * n + nc;
         next.push((target != cell).then_some(target));
     }
     (Overlay::Policy(next), marks)
+}
+
+/// Every optimal action of a Taxi slice ([`optimal_actions`]): per cell an arrow to the cell
+/// each optimal move aims at — several arrows where moves tie —, a bar for an optimal move into
+/// a wall or the border, and a `pickup` / `dropoff` mark (returned as marks to add to the
+/// scene) where picking up or dropping off is optimal; with the legend.
+///
+/// ```
+/// use truecost::{envs::EnvSpec, figures::envs::{taxi_actions_overlay, TaxiSlice}};
+/// use truecost::figures::render::{ActionGlyph, Overlay};
+/// use truecost::objectives::{Model, Objective};
+/// let env = EnvSpec::parse("taxi").unwrap().build().unwrap();
+/// let m = Model::from_environment(&env).unwrap();
+/// let s = m.solve(&Objective::Truecost).unwrap();
+/// // Passenger in the taxi, destination R (0, 0): from (1, 1) north to (0, 1) or west to
+/// // (1, 0) are both two moves from the drop-off.
+/// let (Overlay::Actions { actions, .. }, marks) = taxi_actions_overlay(&m, &s, &TaxiSlice::new(4, 0).unwrap()) else { panic!() };
+/// assert_eq!(actions[6], vec![ActionGlyph::Move(1), ActionGlyph::Move(5)]);
+/// assert_eq!(marks.iter().map(|m| m.class).collect::<Vec<_>>(), vec!["dropoff"]);
+/// ```
+pub fn taxi_actions_overlay(
+    model: &Model,
+    s: &Solution,
+    slice: &TaxiSlice,
+) -> (Overlay, Vec<Mark>) {
+    let optimal = optimal_actions(model, s);
+    let n = 5;
+    let mut actions = Vec::with_capacity(n * n);
+    let mut tied = false;
+    let mut marks = Vec::new();
+    for cell in 0..n * n {
+        let (r, c) = (cell / n, cell % n);
+        let x = slice.state(r, c);
+        let first = model.problem.actions(x).start;
+        tied |= optimal[x].len() > 1;
+        let mut glyphs = Vec::new();
+        for a in optimal[x].iter().map(|a| a - first) {
+            if a >= 4 {
+                marks.push(taxi_mark(r, c, a));
+                continue;
+            }
+            let (nr, nc) = taxi_target(r, c, a);
+            glyphs.push(if (nr, nc) == (r, c) {
+                let toward = [(0, -1), (0, 1), (1, 0), (-1, 0)][a];
+                ActionGlyph::Blocked { toward }
+            } else {
+                ActionGlyph::Move(nr * n + nc)
+            });
+        }
+        actions.push(glyphs);
+    }
+    let legend = legend(&actions, tied, "a wall or the border", false);
+    (Overlay::Actions { actions, legend }, marks)
 }
 
 /// The value overlay of a Taxi slice: the objective's exact values at its 25 states (coloured
@@ -245,7 +319,7 @@ pub fn taxi_value_overlay(s: &Solution, slice: &TaxiSlice) -> Overlay {
 /// The scene of a FrozenLake or CliffWalking map (Taxi: [`taxi_scene`] of a slice).
 ///
 /// ```
-/// use truecost::envs::{figure::scene, EnvSpec};
+/// use truecost::{envs::EnvSpec, figures::envs::scene};
 /// let env = EnvSpec::parse("frozenlake").unwrap().build().unwrap();
 /// let s = scene(&env).unwrap();
 /// assert_eq!((s.positions.len(), s.obstacles.len(), s.moves.len(), s.initial, s.goals.clone()), (16, 4, 24, Some(0), vec![15]));
@@ -303,36 +377,230 @@ pub fn scene(env: &Environment) -> Result<Scene, NotDrawable> {
     })
 }
 
-/// The cell Gymnasium action `a` aims at from `x` (the move without slipping, before a fall).
-pub fn intended_cell(env: &Environment, x: usize, a: usize) -> usize {
-    let (nrow, ncol) = env.shape;
-    let (r, c) = (x / ncol, x % ncol);
-    // (row, col) deltas in each benchmark's action numbering.
-    let (dr, dc): (i64, i64) = match (&env.layout, a) {
+/// The `(row, col)` step of Gymnasium action `a` of a grid benchmark.
+fn step(env: &Environment, a: usize) -> (i64, i64) {
+    match (&env.layout, a) {
         (Layout::FrozenLake { .. }, 0) | (Layout::CliffWalking, 3) => (0, -1),
         (Layout::FrozenLake { .. }, 1) | (Layout::CliffWalking, 2) => (1, 0),
         (Layout::FrozenLake { .. }, 2) | (Layout::CliffWalking, 1) => (0, 1),
         _ => (-1, 0),
-    };
+    }
+}
+
+/// The cell Gymnasium action `a` aims at from `x` (the move without slipping, before a fall).
+pub fn intended_cell(env: &Environment, x: usize, a: usize) -> usize {
+    let (nrow, ncol) = env.shape;
+    let (r, c) = (x / ncol, x % ncol);
+    let (dr, dc) = step(env, a);
     let nr = (r as i64 + dr).clamp(0, nrow as i64 - 1) as usize;
     let nc = (c as i64 + dc).clamp(0, ncol as i64 - 1) as usize;
     nr * ncol + nc
 }
 
-/// The policy overlay: at each state the intended cell of the solution's action (a goal
-/// names itself; no arrow where the policy prescribes nothing).
-pub fn policy_overlay(env: &Environment, model: &Model, s: &Solution) -> Overlay {
-    Overlay::Policy(
-        (0..env.states())
-            .map(|x| {
-                if env.goals.contains(&x) {
-                    Some(x)
-                } else {
-                    s.policy[x].map(|a| intended_cell(env, x, a - model.problem.actions(x).start))
+/// The exact `Q`-value of action `a` (a global id of [`Model::problem`]) under the solution's
+/// objective: one Bellman backup of its exact optimal values. Truecost
+/// `Q(x, a) = l(x, a) + Σ p·G*(y)` (`+∞` if an outcome has `G* = +∞`); reach `Σ p·V(y)`;
+/// discounted `r(x, a) + α·Σ p·V_α(y)` (an ended episode has `V_α = 0`).
+///
+/// ```
+/// use truecost::{envs::EnvSpec, figures::envs::q_value};
+/// use truecost::objectives::{Model, Objective};
+/// let env = EnvSpec::parse("frozenlake:slippery=false").unwrap().build().unwrap();
+/// let m = Model::from_environment(&env).unwrap();
+/// let s = m.solve(&Objective::Truecost).unwrap();
+/// // LEFT at the start hits the border: one step spent, still six to go.
+/// assert_eq!(q_value(&m, &s, m.problem.actions(0).start).to_string(), "7");
+/// ```
+pub fn q_value(model: &Model, s: &Solution, a: usize) -> Extended {
+    let p = &model.problem;
+    let mut expected = Rational::zero();
+    for o in p.outcomes(a) {
+        match &s.values[o.successor] {
+            Extended::Finite(v) => expected += &o.probability * v,
+            Extended::Infinite if o.probability.is_zero() => {}
+            Extended::Infinite => return Extended::Infinite,
+        }
+    }
+    Extended::Finite(match &s.objective {
+        Objective::Truecost => p.cost(a) + expected,
+        Objective::Reach => expected,
+        Objective::Discounted(alpha) => &model.reward[a] + alpha * expected,
+    })
+}
+
+/// The exactly optimal actions of every state (global ids of [`Model::problem`], ascending):
+/// the actions whose exact [`q_value`] equals the state's optimal value (rational equality, no
+/// tolerance) and that some optimal stationary policy uses. Empty where the solution
+/// prescribes nothing (`policy[x]` is `None`: goals, ended episodes, states from which no
+/// policy reaches a goal).
+///
+/// Under truecost and reach an action can attain the optimal value without being usable: a
+/// move into the border that keeps the agent in place attains the reach probability of its
+/// own state, and a zero-cost loop attains `G*`; a policy choosing it never gets anywhere. So
+/// where actions tie, an action is kept only if, with the state committed to it and every
+/// other state free to choose among its value-attaining actions, a state where the solution
+/// prescribes nothing is still reachable with positive probability from the state (then a
+/// stationary policy with that choice reaches one with probability 1, and attains the optimal
+/// values everywhere). Under discounting every policy ends (probability `1 − α` a step), so
+/// every value-attaining action is optimal.
+///
+/// ```
+/// use truecost::{envs::EnvSpec, figures::envs::optimal_actions};
+/// use truecost::objectives::{Model, Objective};
+/// let env = EnvSpec::parse("cliffwalking").unwrap().build().unwrap();
+/// let m = Model::from_environment(&env).unwrap();
+/// let s = m.solve(&Objective::Truecost).unwrap();
+/// let up = m.problem.actions(36).start; // Gymnasium's UP from the start, only way round the cliff
+/// assert_eq!(optimal_actions(&m, &s)[36], vec![up]);
+/// ```
+pub fn optimal_actions(model: &Model, s: &Solution) -> Vec<Vec<usize>> {
+    let p = &model.problem;
+    let n = p.states();
+    let mut optimal: Vec<Vec<usize>> = (0..n)
+        .map(|x| match s.policy[x] {
+            None => Vec::new(),
+            Some(_) => p
+                .actions(x)
+                .filter(|&a| q_value(model, s, a) == s.values[x])
+                .collect(),
+        })
+        .collect();
+    if matches!(s.objective, Objective::Discounted(_)) {
+        return optimal;
+    }
+    // Who steps where with positive probability, through value-attaining actions only.
+    let mut predecessors: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for (x, list) in optimal.iter().enumerate() {
+        for &a in list {
+            for o in p.outcomes(a).iter().filter(|o| o.probability.is_positive()) {
+                predecessors[o.successor].push(x);
+            }
+        }
+    }
+    let ended: Vec<usize> = (0..n).filter(|&x| s.policy[x].is_none()).collect();
+    for (x, list) in optimal.iter_mut().enumerate() {
+        if list.len() < 2 {
+            continue;
+        }
+        // The states that reach an ended state with positive probability without x.
+        let mut reaches = vec![false; n];
+        let mut queue = ended.clone();
+        for &e in &ended {
+            reaches[e] = true;
+        }
+        while let Some(y) = queue.pop() {
+            for &z in &predecessors[y] {
+                if z != x && !reaches[z] {
+                    reaches[z] = true;
+                    queue.push(z);
                 }
-            })
-            .collect(),
-    )
+            }
+        }
+        list.retain(|&a| {
+            p.outcomes(a)
+                .iter()
+                .any(|o| o.probability.is_positive() && reaches[o.successor])
+        });
+    }
+    optimal
+}
+
+/// The legend of an optimal-actions overlay: an entry for each kind of glyph the figure
+/// shows — arrows, several glyphs at one cell (tied actions), bars (moves into a wall or the
+/// border) — and none for what it does not show.
+fn legend(
+    actions: &[Vec<ActionGlyph>],
+    tied: bool,
+    obstacle: &str,
+    slippery: bool,
+) -> Vec<LegendEntry> {
+    let shown = |blocked: bool| {
+        actions
+            .iter()
+            .flatten()
+            .any(|g| matches!(g, ActionGlyph::Blocked { .. }) == blocked)
+    };
+    let mut legend = Vec::new();
+    if shown(false) {
+        legend.push(LegendEntry {
+            key: LegendKey::Arrow,
+            text: "arrow: an optimal action, towards the cell its move aims at (alone at a cell: the only optimal action)"
+                .into(),
+        });
+    }
+    if tied {
+        legend.push(LegendEntry {
+            key: LegendKey::Tie,
+            text: "several at one cell: tied optimal actions (exactly equal Q-values), each chosen by some optimal policy"
+                .into(),
+        });
+    }
+    if shown(true) {
+        legend.push(LegendEntry {
+            key: LegendKey::Blocked,
+            text: format!(
+                "bar: an optimal action whose move aims into {obstacle}: the agent stays in place{}",
+                if slippery { " unless it slips" } else { "" }
+            ),
+        });
+    }
+    legend
+}
+
+/// Whether some action of the environment has more than one outcome (slippery FrozenLake,
+/// slippery CliffWalking).
+fn slippery(env: &Environment) -> bool {
+    env.table.iter().flatten().any(|outcomes| {
+        outcomes
+            .iter()
+            .filter(|t| t.probability.is_positive())
+            .count()
+            > 1
+    })
+}
+
+/// The policy overlay of a FrozenLake or CliffWalking map: every optimal action of every state
+/// ([`optimal_actions`]) — an arrow to the cell its move aims at (before slipping), several
+/// arrows where actions tie, a bar for a move into the border (the agent stays in place) —
+/// with the legend; nothing at goals, holes and states from which no policy reaches a goal.
+///
+/// ```
+/// use truecost::{envs::EnvSpec, figures::envs::policy_overlay};
+/// use truecost::figures::render::{ActionGlyph, Overlay};
+/// use truecost::objectives::{Model, Objective};
+/// let env = EnvSpec::parse("cliffwalking").unwrap().build().unwrap();
+/// let m = Model::from_environment(&env).unwrap();
+/// let s = m.solve(&Objective::Truecost).unwrap();
+/// let Overlay::Actions { actions, .. } = policy_overlay(&env, &m, &s) else { panic!() };
+/// assert_eq!(actions[36], vec![ActionGlyph::Move(24)]); // up, round the cliff
+/// assert!(actions[47].is_empty()); // the goal
+/// ```
+pub fn policy_overlay(env: &Environment, model: &Model, s: &Solution) -> Overlay {
+    let optimal = optimal_actions(model, s);
+    let actions: Vec<Vec<ActionGlyph>> = optimal
+        .iter()
+        .enumerate()
+        .map(|(x, list)| {
+            let first = model.problem.actions(x).start;
+            list.iter()
+                .map(|a| {
+                    let a = a - first;
+                    match intended_cell(env, x, a) {
+                        y if y == x => {
+                            let (dr, dc) = step(env, a);
+                            ActionGlyph::Blocked {
+                                toward: (dc as i8, -dr as i8),
+                            }
+                        }
+                        y => ActionGlyph::Move(y),
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    let tied = optimal.iter().any(|list| list.len() > 1);
+    let legend = legend(&actions, tied, "the border", slippery(env));
+    Overlay::Actions { actions, legend }
 }
 
 /// The value overlay (`+∞` uncoloured), labelled with the objective and the exact initial value.

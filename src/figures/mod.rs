@@ -1,9 +1,11 @@
-//! Figures (issue 6): the paper's problem figure with overlays, drawn as classed shapes and
+//! Figures: the paper's problem figure with overlays, drawn as classed shapes and
 //! written as SVG or PNG. Pure Rust; the PNG text uses the bundled DejaVu Sans font
-//! (`assets/`, Bitstream Vera licence).
+//! (`assets/`, Bitstream Vera licence). [`envs`] draws the Gymnasium benchmarks' maps with
+//! their exact policies and values.
 
 pub mod canvas;
 pub mod chart;
+pub mod envs;
 pub mod plots;
 pub mod render;
 

@@ -1,4 +1,4 @@
-//! The paper's plots from an experiment report (issue 6, item 2): goal discovery against ε
+//! The paper's plots from an experiment report: goal discovery against ε
 //! (normalised per problem, in "easy" and "hard" problem groups) and convergence rate against
 //! ε for the deterministic runner; run time against ρ and convergence rate against ρ and ε for
 //! the stochastic one (one series per γ). Every caption names the model, the seed and the

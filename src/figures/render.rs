@@ -1,5 +1,6 @@
 //! The paper's problem figure: obstacle discs, allowed moves, start and goal, with an optional
-//! overlay (optimal path, cost-to-go heat map with colour bar, policy arrows, visit counts).
+//! overlay (optimal path, cost-to-go heat map with colour bar, policy arrows, every optimal
+//! action with ties and moves into walls and a legend, visit counts).
 
 use super::canvas::{viridis, Canvas, FigureError, Rgb, Shape};
 use crate::problems::geometry::Disc;
@@ -59,8 +60,51 @@ pub enum Overlay {
     },
     /// The successor chosen at every state (`None`: no action; a goal names itself).
     Policy(Vec<Option<usize>>),
+    /// Every optimal action at every state, with a legend of what the glyphs mean: several
+    /// glyphs at one state are tied optimal actions.
+    Actions {
+        /// Per state, one glyph per optimal action (empty: nothing drawn — a goal, an ended
+        /// episode, a state where the objective prescribes nothing).
+        actions: Vec<Vec<ActionGlyph>>,
+        /// The legend, drawn under the map in this order.
+        legend: Vec<LegendEntry>,
+    },
     /// Visit counts per unordered move.
     Visits(Vec<((usize, usize), u64)>),
+}
+
+/// How one optimal action is drawn at its state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ActionGlyph {
+    /// The action's intended move leads to this state: an arrow towards it.
+    Move(usize),
+    /// The action's intended move runs into a wall or the border, the agent stays in place:
+    /// a short stroke from the state towards the obstacle, ending in a bar across it.
+    Blocked {
+        /// The direction pushed, one grid step in world coordinates (`(1, 0)` east, `(0, 1)`
+        /// north; y grows upwards).
+        toward: (i8, i8),
+    },
+}
+
+/// What a legend line shows next to its text.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LegendKey {
+    /// One arrow.
+    Arrow,
+    /// Two arrows from one point (tied optimal actions).
+    Tie,
+    /// A stroke ending in a bar ([`ActionGlyph::Blocked`]).
+    Blocked,
+}
+
+/// One legend line: a key drawn as the figure draws it, and what it means.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LegendEntry {
+    /// The key.
+    pub key: LegendKey,
+    /// The meaning, one line.
+    pub text: String,
 }
 
 const LEFT: f64 = 30.0;
@@ -89,7 +133,17 @@ pub fn draw(
 ) -> Result<Canvas, FigureError> {
     let mut canvas = Canvas::new(width, height)?;
     let (w, h) = (f64::from(width), f64::from(height));
-    let scale = ((w - LEFT - RIGHT) / scene.extent.0).min((h - TOP - BOTTOM) / scene.extent.1);
+    // The caption is wrapped at "; " boundaries to the canvas width (about 6.5 px a character).
+    let lines = super::wrap(&scene.caption, ((w - 2.0 * LEFT) / 6.5).max(20.0) as usize);
+    let legend: &[LegendEntry] = match overlay {
+        Overlay::Actions { legend, .. } => legend,
+        _ => &[],
+    };
+    // Under the map: the legend, one line per entry, above the caption.
+    let legend_top =
+        h - BOTTOM.max(14.0 * lines.len() as f64 + 20.0) - LEGEND_LINE * legend.len() as f64;
+    let scale =
+        ((w - LEFT - RIGHT) / scene.extent.0).min((legend_top - TOP).max(10.0) / scene.extent.1);
     let to_px = |(x, y): (f64, f64)| (LEFT + x * scale, TOP + (scene.extent.1 - y) * scale);
     let node = |v: usize| to_px(scene.positions[v]);
     let shapes = &mut canvas.shapes;
@@ -177,11 +231,56 @@ pub fn draw(
         Overlay::Policy(policy) => {
             for (x, next) in policy.iter().enumerate() {
                 if let Some(y) = next.filter(|&y| y != x) {
-                    arrow(shapes, node(x), node(y));
+                    arrow(shapes, node(x), node(y), POLICY_CLASSES);
+                }
+            }
+        }
+        Overlay::Actions { actions, .. } => {
+            let step = min_spacing(&scene.positions) * scale;
+            for (x, glyphs) in actions.iter().enumerate() {
+                for glyph in glyphs {
+                    match *glyph {
+                        ActionGlyph::Move(y) if y != x => {
+                            arrow(shapes, node(x), node(y), POLICY_CLASSES)
+                        }
+                        ActionGlyph::Move(_) => {}
+                        ActionGlyph::Blocked { toward } => {
+                            blocked(shapes, node(x), toward, step, BLOCKED_CLASSES)
+                        }
+                    }
                 }
             }
         }
         _ => {}
+    }
+    for (k, entry) in legend.iter().enumerate() {
+        let y = legend_top + LEGEND_LINE * (k as f64 + 0.5);
+        let key = (LEFT + 4.0, y);
+        match entry.key {
+            LegendKey::Arrow => arrow(shapes, key, (key.0 + 40.0, y), LEGEND_CLASSES),
+            LegendKey::Tie => {
+                arrow(
+                    shapes,
+                    (key.0, y + 4.0),
+                    (key.0 + 40.0, y + 4.0),
+                    LEGEND_CLASSES,
+                );
+                arrow(
+                    shapes,
+                    (key.0, y + 4.0),
+                    (key.0 + 36.0, y - 14.0),
+                    LEGEND_CLASSES,
+                );
+            }
+            LegendKey::Blocked => blocked(shapes, key, (1, 0), 56.0, LEGEND_CLASSES),
+        }
+        shapes.push(Shape::Text {
+            class: "legend",
+            at: (LEFT + 44.0, y + 4.0),
+            text: entry.text.clone(),
+            size: 12.0,
+            centre: false,
+        });
     }
     for m in &scene.marks {
         shapes.push(Shape::Text {
@@ -226,8 +325,6 @@ pub fn draw(
         size: 18.0,
         centre: false,
     });
-    // The caption is wrapped at "; " boundaries to the canvas width (about 6.5 px a character).
-    let lines = super::wrap(&scene.caption, ((w - 2.0 * LEFT) / 6.5).max(20.0) as usize);
     for (k, line) in lines.iter().enumerate() {
         shapes.push(Shape::Text {
             class: "caption",
@@ -240,27 +337,74 @@ pub fn draw(
     Ok(canvas)
 }
 
-fn arrow(shapes: &mut Vec<Shape>, a: (f64, f64), b: (f64, f64)) {
+/// Height of one legend line, pixels.
+const LEGEND_LINE: f64 = 20.0;
+/// The classes of a drawn arrow (shaft, head) and of a blocked move (stroke, bar).
+const POLICY_CLASSES: (&str, &str) = ("policy", "arrowhead");
+const BLOCKED_CLASSES: (&str, &str) = ("blocked", "blocked-bar");
+const LEGEND_CLASSES: (&str, &str) = ("legend-key", "legend-key");
+const ARROW: Rgb = (33, 102, 172);
+
+/// An arrow from `a` reaching past the middle towards `b` (so that arrows of neighbouring
+/// states in opposite directions do not overlap).
+fn arrow(
+    shapes: &mut Vec<Shape>,
+    a: (f64, f64),
+    b: (f64, f64),
+    classes: (&'static str, &'static str),
+) {
     let (dx, dy) = (b.0 - a.0, b.1 - a.1);
     let len = (dx * dx + dy * dy).sqrt().max(1e-9);
     let (ux, uy) = (dx / len, dy / len);
     let tip = (a.0 + dx * 0.55, a.1 + dy * 0.55);
     let head = (len * 0.18).clamp(3.0, 8.0);
     shapes.push(Shape::Line {
-        class: "policy",
+        class: classes.0,
         a,
         b: tip,
-        color: (33, 102, 172),
+        color: ARROW,
         width: 1.5,
     });
     shapes.push(Shape::Polygon {
-        class: "arrowhead",
+        class: classes.1,
         points: vec![
             (tip.0 + ux * head, tip.1 + uy * head),
             (tip.0 - uy * head * 0.6, tip.1 + ux * head * 0.6),
             (tip.0 + uy * head * 0.6, tip.1 - ux * head * 0.6),
         ],
-        fill: (33, 102, 172),
+        fill: ARROW,
+    });
+}
+
+/// A move into a wall or the border from the state at `a` (pixels), `step` pixels between
+/// neighbouring states: a stroke towards the obstacle stopping short of the cell's edge, and a
+/// bar across its end (the agent stays in place).
+fn blocked(
+    shapes: &mut Vec<Shape>,
+    a: (f64, f64),
+    toward: (i8, i8),
+    step: f64,
+    classes: (&'static str, &'static str),
+) {
+    let (dx, dy) = (f64::from(toward.0), -f64::from(toward.1));
+    let len = (dx * dx + dy * dy).sqrt().max(1e-9);
+    let (ux, uy) = (dx / len, dy / len);
+    let reach = (step * 0.38).max(4.0);
+    let half = (step * 0.14).clamp(2.5, 8.0);
+    let end = (a.0 + ux * reach, a.1 + uy * reach);
+    shapes.push(Shape::Line {
+        class: classes.0,
+        a,
+        b: end,
+        color: ARROW,
+        width: 1.5,
+    });
+    shapes.push(Shape::Line {
+        class: classes.1,
+        a: (end.0 - uy * half, end.1 + ux * half),
+        b: (end.0 + uy * half, end.1 - ux * half),
+        color: ARROW,
+        width: 2.5,
     });
 }
 

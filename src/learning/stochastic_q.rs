@@ -249,7 +249,7 @@ pub enum RateError {
     /// `ω ∉ (1/2, 1]`.
     #[error("learning-rate exponent omega = {} is outside (0.5, 1] (the range where sum rho = inf and sum rho^2 < inf)", crate::echo::echo(.0))]
     Omega(String),
-    /// In range exactly, but not once rounded to the learner's `f64` (issue 12).
+    /// In range exactly, but not once rounded to the learner's `f64`.
     #[error(
         "{name} = {text} rounds to {rounded} in f64 (the learner's arithmetic), outside {range}"
     )]

@@ -27,7 +27,7 @@
 //!   file without `outcomes` is a deterministic problem); an action listing `outcomes` is
 //!   refused here with a message naming it (only the stochastic solvers read those).
 //!
-//! Limits (issue 12), each refusal naming its bound: a file of at most [`MAX_FILE_BYTES`]
+//! Limits, each refusal naming its bound: a file of at most [`MAX_FILE_BYTES`]
 //! bytes, read **once** (so `/dev/stdin`, pipes and FIFOs work); each number as in
 //! [`crate::value::parse_rational`] (at most 4096 bytes, exponents within ±10000); the exact
 //! numbers of one file at most [`MAX_NUMBER_BITS`] bits in all.
@@ -231,7 +231,7 @@ impl NumberBudget {
 /// let p = truecost::model::file::from_json(text).unwrap();
 /// assert_eq!(p.states(), 2);
 /// assert!(truecost::model::file::from_json(r#"{"initial": 0, "goals": [1], "actions": [[{"to": 1, "cost": 1.5}], []]}"#).is_err());
-/// // The stochastic tag is accepted when no action lists outcomes (issue 12, failure 8).
+/// // The stochastic tag is accepted when no action lists outcomes.
 /// let tagged = text.replace("{\"initial\"", "{\"format\": \"truecost-stochastic/1\", \"initial\"");
 /// assert_eq!(truecost::model::file::from_json(&tagged).unwrap(), p);
 /// ```

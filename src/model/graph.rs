@@ -1,8 +1,8 @@
 //! The compiled form of a problem that the planners run on: compressed sparse rows of moves
-//! (forward and reverse), costs in a chosen [`CostValue`] type.
+//! (forward and reverse), costs in a chosen [`CostValue`](crate::value::CostValue) type.
 //!
-//! [`ExactGraph::new`] picks the narrowest exact representation that is provably safe
-//! (issue "exact must not mean slow"): all stage costs are scaled to integer multiples of
+//! [`ExactGraph::new`] picks the narrowest exact representation that is provably safe, so
+//! that exact arithmetic costs little speed: all stage costs are scaled to integer multiples of
 //! `1/D` (`D` = lcm of the cost denominators) and stored as [`Units`] when
 //! `(states + 1) × max scaled cost < u64::MAX`; otherwise costs stay big rationals
 //! ([`Extended`]).

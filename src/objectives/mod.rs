@@ -1,4 +1,4 @@
-//! Three objectives, exact, on any stochastic problem (issue 11, item 2): the paper's
+//! Three objectives, exact, on any stochastic problem: the paper's
 //! *truecost* (least expected cost among the policies that reach a goal with probability 1,
 //! SPEC §3), *reach* (the greatest probability of reaching a goal) and *discounted* (the RL
 //! formulation: rewards discounted by `α ∈ (0, 1)`, maximised).
@@ -28,7 +28,6 @@
 
 pub mod parametric;
 pub mod report;
-pub mod roots;
 
 pub use report::facts;
 
@@ -65,7 +64,7 @@ pub struct Model {
     pub reward_source: &'static str,
 }
 
-/// An objective of issue 11, item 2.
+/// One of the three objectives.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Objective {
     /// The paper's: least expected cost among the policies reaching a goal with probability 1.
@@ -155,7 +154,7 @@ impl Model {
         }
     }
 
-    /// The model of a Gymnasium environment (issue 11, item 1): the same states and, at every
+    /// The model of a Gymnasium environment: the same states and, at every
     /// state where the episode runs, the same actions in Gymnasium's order (so an action's
     /// index in `U(x)` is Gymnasium's action number). An action's stage cost is the expected
     /// truecost of its outcomes ([`Environment::truecost_cost`]) and its reward the expected
@@ -574,7 +573,7 @@ pub fn min_reach(
 }
 
 /// The objective named on the command line (`truecost`, `reach`, `discounted`), with `α`'s
-/// exact decimal text for `discounted` (issue 11, item 2).
+/// exact decimal text for `discounted`.
 ///
 /// ```
 /// use truecost::objectives::Objective;
@@ -631,8 +630,8 @@ pub fn parse_alpha(text: &str) -> Result<Rational, String> {
 /// limit on a state's common denominator.
 pub const MAX_ALPHA_DENOMINATOR_BITS: u64 = 62;
 
-/// Where a model comes from: an environment, a paper problem or a problem file (issue 11,
-/// item 1: `--env` wherever `--problem`/`--file` is accepted).
+/// Where a model comes from: an environment, a paper problem or a problem file
+/// (`--env` wherever `--problem`/`--file` is accepted).
 #[derive(Clone, Debug)]
 pub enum Source {
     /// `--env SPEC`.
@@ -705,7 +704,7 @@ impl Source {
 }
 
 impl Model {
-    /// The problem as a problem file can hold it (issue 11, item 1, `export`): with a single
+    /// The problem as a problem file can hold it (`export`): with a single
     /// initial state, the problem itself; with an initial distribution (Taxi), one extra state
     /// (numbered `|X|`, the new initial state) whose single zero-cost action draws the initial
     /// state — truecost and reach values are unchanged, every path is one step longer.
@@ -738,7 +737,7 @@ impl Model {
 
 impl Model {
     /// The model as a deterministic planning problem (SPEC §1) for the claims stated on one
-    /// (C4, `verify --claim C4 --env SPEC`; issue 11, item 1): every action must have a single
+    /// (C4, `verify --claim C4 --env SPEC`): every action must have a single
     /// outcome and the initial state must be a single state; goals keep no action (their
     /// termination), traps their zero-cost self-loop. Refusals are one line naming why.
     ///
@@ -901,7 +900,7 @@ impl Model {
 pub fn failure_set(d: &parametric::DiscountAnalysis) -> crate::claims::discount::DiscountSet {
     use crate::claims::discount::{pieces_of_members, DiscountSet, Point};
     use crate::claims::poly::Algebraic;
-    let point = |r: &roots::Root| -> Point {
+    let point = |r: &crate::claims::poly::roots::Root| -> Point {
         Point::Root(match r.as_rational() {
             Some(q) => Algebraic::from_rational(q.clone()),
             // An open bracket (lo, hi) holding one simple root of the polynomial, not a root
@@ -915,7 +914,6 @@ pub fn failure_set(d: &parametric::DiscountAnalysis) -> crate::claims::discount:
     };
     let fails = |a: &parametric::Achievement| a.success.min < Rational::one();
     // Atoms in increasing order: interval 0, breakpoint 0, interval 1, …, interval k.
-    let ends: Vec<Point> = d.breakpoints.iter().map(|b| point(&b.at)).collect();
     let mut member = Vec::with_capacity(d.intervals.len() + d.breakpoints.len());
     for (i, interval) in d.intervals.iter().enumerate() {
         member.push(fails(&interval.achievement));
@@ -923,6 +921,21 @@ pub fn failure_set(d: &parametric::DiscountAnalysis) -> crate::claims::discount:
             member.push(fails(&b.achievement));
         }
     }
+    // Only a breakpoint where membership changes can end a piece: the others are never
+    // read, so they are not converted (a placeholder keeps the indices).
+    let ends: Vec<Point> = d
+        .breakpoints
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            let k = 2 * i + 1;
+            if member[k - 1] != member[k] || member[k] != member[k + 1] {
+                point(&b.at)
+            } else {
+                Point::Zero
+            }
+        })
+        .collect();
     let pieces = pieces_of_members(&ends, &member);
     DiscountSet {
         pieces,

@@ -1,4 +1,4 @@
-//! The discount question on stochastic problems (issue 11, item 3): the exact breakpoints
+//! The discount question on stochastic problems: the exact breakpoints
 //! `α ∈ (0, 1)` where the set of discount-optimal policies changes, and for every interval
 //! between them (and at every breakpoint) the success probability and truecost of its optimal
 //! policies — the parametric policy analysis of PRISM/Storm's parametric engine, done exactly.
@@ -32,7 +32,7 @@
 //!    `(0, 1)` (with several denominators: `Q_a − V_x` times their product). `π` is optimal
 //!    exactly where every `A ≤ 0`; the optimal actions there are the policy's and those with
 //!    `A = 0`. The roots of every non-zero `A` in `(0, 1)` are isolated
-//!    exactly (Descartes' rule with bisection, [`super::roots`]) and the sign of `A` on each gap
+//!    exactly (Descartes' rule with bisection, [`crate::claims::poly::roots`]) and the sign of `A` on each gap
 //!    between them is evaluated at a rational point, so the maximal interval `[β_L, β_R]` around a point
 //!    where `π` is optimal is exact, and so are the points inside where some `A` touches 0
 //!    without changing sign (a tie at a single `α`: the optimal set changes there too).
@@ -61,8 +61,11 @@ use std::cmp::Ordering;
 use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 
-use super::roots::{between, integer_sign, roots_in_unit_interval, simplest_between, Root};
 use super::{derive, max_reach, min_reach, Bounds, Model, ObjectiveError};
+use crate::claims::poly::roots::{
+    between, integer_sign, no_root_between, roots_in_unit_interval, roots_in_window,
+    simplest_between, Root,
+};
 use crate::claims::poly::Poly;
 use crate::model::StateId;
 use crate::stochastic::policy_iteration::{evaluate, optimum};
@@ -91,6 +94,11 @@ pub const MAX_PROBE_WORK: u128 = 1 << 49;
 /// The most work one probe may take before any work starts: a problem that cannot afford 16
 /// probes within [`MAX_PROBE_WORK`] is refused at once.
 pub const MAX_SINGLE_PROBE_WORK: u128 = MAX_PROBE_WORK / 16;
+
+/// The most work one probe of a deterministic analysis may take before any work starts: a
+/// problem that cannot afford 64 probes within [`MAX_PROBE_WORK`] (grids have about one probe
+/// per running state) is refused at once: at most 1448 running states.
+pub const MAX_DETERMINISTIC_PROBE_WORK: u128 = MAX_PROBE_WORK / 64;
 
 /// The estimated work of one probe of a stochastic analysis: `n⁵·b⁴`, with `n` the running
 /// states (the degree of the rational functions and the size of the exact solve) and `b` the
@@ -125,6 +133,29 @@ fn number_bits(model: &Model, running: &[StateId]) -> u64 {
         }
     }
     probabilities.bits() + rewards.bits() + numerator
+}
+
+/// Wall-clock phases of one analysis on standard error when `TRUECOST_PROFILE` is set (for
+/// profiling; the result does not depend on it).
+struct Timer {
+    start: Option<std::time::Instant>,
+}
+
+impl Timer {
+    fn new() -> Timer {
+        Timer {
+            start: std::env::var_os("TRUECOST_PROFILE").map(|_| std::time::Instant::now()),
+        }
+    }
+
+    fn mark(&self, phase: &str) {
+        if let Some(start) = self.start {
+            eprintln!(
+                "profile: {phase} done at {:.3} s",
+                start.elapsed().as_secs_f64()
+            );
+        }
+    }
 }
 
 /// What [`discount_breakpoints_with`] is doing, for a progress display.
@@ -183,14 +214,14 @@ pub enum ParametricError {
         /// [`MAX_PROBE_WORK`].
         bound: u128,
     },
-    /// One probe of a deterministic model alone would exceed [`MAX_SINGLE_PROBE_WORK`].
-    #[error("one exact probe of this deterministic problem is estimated at {work} units ({states} running states: n^2 2^24); the exact parametric analysis takes at most {bound} per probe (about 7 s), i.e. at most 1448 running states")]
+    /// One probe of a deterministic model alone would exceed [`MAX_DETERMINISTIC_PROBE_WORK`].
+    #[error("one exact probe of this deterministic problem is estimated at {work} units ({states} running states: n^2 2^22); the exact parametric analysis takes at most {bound} per probe (64 probes within the analysis bound), i.e. at most 1448 running states")]
     DeterministicProbeWork {
         /// Running states.
         states: usize,
         /// Estimated units.
         work: u128,
-        /// [`MAX_SINGLE_PROBE_WORK`].
+        /// [`MAX_DETERMINISTIC_PROBE_WORK`].
         bound: u128,
     },
     /// Too many regions: the piece bound.
@@ -434,12 +465,31 @@ fn policy_values(
                 .map(|(k, x)| x * &powers[l - k])
                 .collect()
         };
+        // The numerator coefficients `n_k = Σ_{j≤k} d_j e_{k−j}` (per state) by the recurrence
+        // `n_k = d_k e_0 + (Q·P) n_{k−1}` (since `e_{k+1} = (Q·P) e_k`): one sparse product
+        // per degree instead of a convolution per state.
+        let mut coefficients: Vec<Vec<BigInt>> = vec![Vec::with_capacity(l); m];
+        let mut current: Vec<BigInt> = vec![BigInt::zero(); m];
+        for (k, dk) in d.iter().enumerate().take(l) {
+            let next: Vec<BigInt> = rows
+                .iter()
+                .zip(&krylov[0])
+                .map(|(row, e0)| {
+                    row.iter()
+                        .fold(dk * e0, |acc, (j, w)| acc + w * &current[*j])
+                })
+                .collect();
+            if k == 0 {
+                debug_assert!(next.iter().zip(&krylov[0]).all(|(a, e)| *a == dk * e));
+            }
+            for (c, v) in coefficients.iter_mut().zip(&next) {
+                c.push(v.clone());
+            }
+            current = next;
+        }
         let mut n = vec![Vec::new(); p.states()];
         for (i, &x) in running.iter().enumerate() {
-            let coefficients = (0..l)
-                .map(|k| (0..=k).fold(BigInt::zero(), |acc, j| acc + &d[j] * &krylov[k - j][i]))
-                .collect();
-            n[x] = to_poly(coefficients);
+            n[x] = to_poly(std::mem::take(&mut coefficients[i]));
         }
         let d = to_poly(d.into_iter().map(|x| x * &big_r).collect());
         return Ok(PolicyValues {
@@ -480,23 +530,22 @@ fn poly_add_scaled(acc: &mut Vec<BigInt>, f: &[BigInt], w: &BigInt, shift: usize
 }
 
 /// The estimated work of one probe of a deterministic analysis (module docs, step 1′), in the
-/// units of [`MAX_PROBE_WORK`]: `n²·2^24` with `n` the running states (the advantages are
-/// about proportional to `n`, and so is the degree of their polynomials on grids). Measured in
-/// release on a loaded 2-core machine on benchmark grids with move costs 1–9: 10×10 (99 running
-/// states) 58 ms per probe, 20×20 (399) 0.71 s per probe, i.e. about `n²·2^24` units at the
-/// stochastic rate of 5·10¹² units per second and no less; unit-cost 32×32 (1023) 0.56 s for
-/// its single probe, Taxi (400) 0.2 s. So a deterministic model over 1448 running states is
-/// refused before any work ([`MAX_SINGLE_PROBE_WORK`]), and the probes of one analysis stop at
-/// [`MAX_PROBE_WORK`] (about 210 probes of a 20×20 grid).
+/// units of [`MAX_PROBE_WORK`]: `n²·2^22` with `n` the running states. Measured in release on
+/// 2 cores (load 2–3) on benchmark grids with move costs 1–9 and the pruned search: 15×15 (224
+/// running states) 247 probes in 0.95 s, 20×20 (399) 367 probes in 2.6 s (the whole analysis
+/// 3.1 s and 8.9 s with the breakpoints' reduction and achievements), 30×30 (899) 925 probes
+/// and 135 s in all. So the probes of one analysis stop at [`MAX_PROBE_WORK`] (843 probes of a
+/// 20×20 grid, 166 of a 30×30 one), and a model over 1448 running states (64 probes) is
+/// refused before any work ([`MAX_DETERMINISTIC_PROBE_WORK`]).
 ///
 /// ```
-/// use truecost::objectives::parametric::{deterministic_probe_work, MAX_SINGLE_PROBE_WORK};
-/// assert!(deterministic_probe_work(1448) <= MAX_SINGLE_PROBE_WORK);
-/// assert!(deterministic_probe_work(1449) > MAX_SINGLE_PROBE_WORK);
+/// use truecost::objectives::parametric::{deterministic_probe_work, MAX_DETERMINISTIC_PROBE_WORK};
+/// assert!(deterministic_probe_work(1448) <= MAX_DETERMINISTIC_PROBE_WORK);
+/// assert!(deterministic_probe_work(1449) > MAX_DETERMINISTIC_PROBE_WORK);
 /// ```
 pub fn deterministic_probe_work(running: usize) -> u128 {
     let n = running.max(1) as u128;
-    (n * n) << 24
+    (n * n) << 22
 }
 
 /// Whether every action where the episode runs has a single outcome (probability 1): the
@@ -640,17 +689,11 @@ fn chain_values(
     })
 }
 
-/// An optimal policy of a deterministic model at the rational discount `t`: exact policy
-/// iteration, each policy evaluated along its successor chains, with in-place (Gauss–Seidel)
-/// improvement in order of distance to where the episode ends (so that improvements travel
-/// back along shortest chains in one sweep). An action is replaced only by a strictly better
-/// one against the current values `w`; `w` only grows, and `w ≤ T_π′ w` gives `v_π′ ≥ w ≥ v_π`
-/// with a strict gain where an action changed, so no policy repeats and the loop ends. A
-/// sweep without change leaves `w = v_π` with no improving action: `π` is optimal (Bellman).
-fn deterministic_optimum(model: &Model, running: &[StateId], t: &Rational) -> Vec<Option<usize>> {
+/// The running states breadth-first backwards from where the episode is over, the rest after:
+/// the improvement order of [`deterministic_optimum`] and [`float_optimum`].
+fn sweep_order(model: &Model, running: &[StateId]) -> Vec<StateId> {
     let p = &model.problem;
     let n = p.states();
-    // Sweep order: breadth-first backwards from the ended states, the rest after.
     let mut predecessors: Vec<Vec<StateId>> = vec![Vec::new(); n];
     for &x in running {
         for a in p.actions(x) {
@@ -674,6 +717,20 @@ fn deterministic_optimum(model: &Model, running: &[StateId], t: &Rational) -> Ve
         frontier = next;
     }
     order.extend(running.iter().copied().filter(|&x| !seen[x]));
+    order
+}
+
+/// An optimal policy of a deterministic model at the rational discount `t`: exact policy
+/// iteration, each policy evaluated along its successor chains, with in-place (Gauss–Seidel)
+/// improvement in order of distance to where the episode ends (so that improvements travel
+/// back along shortest chains in one sweep). An action is replaced only by a strictly better
+/// one against the current values `w`; `w` only grows, and `w ≤ T_π′ w` gives `v_π′ ≥ w ≥ v_π`
+/// with a strict gain where an action changed, so no policy repeats and the loop ends. A
+/// sweep without change leaves `w = v_π` with no improving action: `π` is optimal (Bellman).
+fn deterministic_optimum(model: &Model, running: &[StateId], t: &Rational) -> Vec<Option<usize>> {
+    let p = &model.problem;
+    let n = p.states();
+    let order = sweep_order(model, running);
     let mut policy: Vec<Option<usize>> = (0..n)
         .map(|x| (!model.terminal[x]).then(|| p.actions(x).start))
         .collect();
@@ -715,13 +772,26 @@ fn deterministic_optimum(model: &Model, running: &[StateId], t: &Rational) -> Ve
     }
 }
 
-/// A non-zero advantage polynomial with its roots in `(0, 1)` and its sign on each gap.
+/// A non-zero advantage polynomial (integer form) with the roots met in `(0, 1)`: every root
+/// in its probe's region (module docs, step 2), and possibly others.
 struct Advantage {
     /// Global action id.
     action: usize,
     roots: Vec<Root>,
-    /// `signs[i]`: the sign on the gap before `roots[i]` (`signs[roots.len()]`: after the last).
-    signs: Vec<Ordering>,
+}
+
+/// How a probe finds its region's ends (module docs, step 2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Search {
+    /// Every advantage's roots in all of `(0, 1)`; the optimal policy at a probe by exact
+    /// policy iteration from the first actions.
+    Full,
+    /// Only the roots that can bound the region: an advantage is dismissed on an interval
+    /// next to the probe by a derivative bound or by Descartes' rule on the interval, and the
+    /// others are isolated only there, nearest candidates first, the interval shrinking to the
+    /// nearest region end found; the optimal policy at a probe from a floating-point policy
+    /// iteration, corrected by exact policy iteration on the advantages' signs.
+    Pruned,
 }
 
 /// The maximal closed interval around a probe where its optimal policy stays optimal.
@@ -768,8 +838,9 @@ impl Region {
                 .is_none_or(|h| h.cmp_rational(t) == Ordering::Greater)
     }
 
-    /// Per global action: optimal at the point `at`, or on an open interval of the region free
-    /// of breakpoints (`at = None`). Actions where the episode is over count as optimal.
+    /// Per global action: optimal at the point `at` of the region, or on an open interval of
+    /// the region free of breakpoints (`at = None`). Actions where the episode is over count
+    /// as optimal.
     fn optimal(&self, model: &Model, at: Option<&Root>) -> Vec<bool> {
         let p = &model.problem;
         let mut allowed = vec![false; p.action_total()];
@@ -793,50 +864,300 @@ impl Region {
     }
 }
 
-/// The sign of `f` (integer form) on the gap of `(0, 1)` between consecutive roots (`None`: 0
-/// or 1).
-fn gap_sign(f: &[BigInt], lo: Option<&Root>, hi: Option<&Root>) -> Ordering {
-    let lo = lo.cloned().unwrap_or_else(zero_point);
-    let hi = hi.cloned().unwrap_or_else(one_point);
-    integer_sign(f, &between(&lo, &hi))
+/// `Σ a_i n^i m^(d−i)` for `x = n/m` (`a(x)·m^d`, homogeneous Horner).
+fn homogeneous(a: &[BigInt], x: &Rational) -> BigInt {
+    let (n, m) = (x.numer(), x.denom());
+    let mut acc = BigInt::zero();
+    let mut mpow = BigInt::one();
+    for c in a.iter().rev() {
+        acc = acc * n + c * &mpow;
+        mpow *= m;
+    }
+    acc
 }
 
-/// The probe at the rational `t`: `None` if `t` is a root of some non-zero advantage (then the
-/// caller probes elsewhere).
-fn probe(
+/// An advantage negative at the probe `t`, with two bounds that dismiss it cheaply near `t`.
+/// * The polynomial `c`: `|c(t)| = value / scale` and `lipschitz = Σ k |c_k|` bounds `|c′|` on
+///   `[0, 1]`, so `c < 0` on `[t − w, t + w]` whenever `|c(t)| > lipschitz · w`.
+/// * The advantage itself, `A = Q_a − V_x = c / factor` (`factor > 0`): a policy's values are
+///   `V = Σ_k α^k P^k r` with `|r| ≤ R` (the largest reward magnitude) and `P`
+///   substochastic, so `|V| ≤ R/(1 − α)` and `|V′| ≤ R/(1 − α)²`; then
+///   `Q_a′ = Σ p (V_y + α V_y′)` has `|Q_a′| ≤ R/(1 − α)²` and `|A′| ≤ 2R/(1 − α)²`, increasing
+///   in `α`. So `A < 0` on an interval of width `w` next to `t` ending at most at `u` whenever
+///   `|A(t)| (1 − u)² > 2R w`. This one is blind to the size of the coefficients.
+struct Candidate {
+    /// Index in the probe's advantages.
+    index: usize,
+    poly: Vec<BigInt>,
+    value: BigInt,
+    scale: BigInt,
+    lipschitz: BigInt,
+    /// `|A(t)|`.
+    advantage: Rational,
+    /// `2R`.
+    slope: Rational,
+    /// Approximate `log2` of how far from `t` the bounds keep `A < 0`: the order in which
+    /// candidates are tried.
+    radius: f64,
+}
+
+fn log2_big(x: &BigInt) -> f64 {
+    use num_traits::ToPrimitive;
+    let bits = x.bits();
+    if bits == 0 {
+        return f64::NEG_INFINITY;
+    }
+    let shift = bits.saturating_sub(60);
+    (x.abs() >> shift).to_f64().unwrap_or(1.0).log2() + shift as f64
+}
+
+impl Candidate {
+    fn new(
+        index: usize,
+        poly: Vec<BigInt>,
+        factor: &Rational,
+        top: &Rational,
+        t: &Rational,
+    ) -> Candidate {
+        let value = homogeneous(&poly, t).abs();
+        let d = poly.len().saturating_sub(1);
+        let scale = num_traits::pow(t.denom().clone(), d);
+        let lipschitz = poly
+            .iter()
+            .enumerate()
+            .skip(1)
+            .fold(BigInt::zero(), |acc, (k, c)| {
+                acc + c.abs() * BigInt::from(k)
+            });
+        let advantage = Rational::new(value.clone(), scale.clone()) / factor;
+        let slope = top * Rational::from_integer(2.into());
+        let log2_rat = |r: &Rational| log2_big(r.numer()) - log2_big(r.denom());
+        let by_coefficients = log2_big(&value) - log2_big(&scale) - log2_big(&lipschitz);
+        let gap = Rational::one() - t;
+        let by_values = log2_rat(&advantage) - log2_rat(&slope) + 2.0 * log2_rat(&gap);
+        Candidate {
+            index,
+            poly,
+            value,
+            scale,
+            lipschitz,
+            advantage,
+            slope,
+            radius: by_coefficients.max(by_values),
+        }
+    }
+
+    /// Whether `A < 0` on the closed interval of width `w ≥ 0` next to the probe (either
+    /// side) whose far end from 0 is `u`.
+    fn clear(&self, w: &Rational, u: &Rational) -> bool {
+        if &self.value * w.denom() > &self.lipschitz * w.numer() * &self.scale {
+            return true;
+        }
+        let gap = Rational::one() - u;
+        gap.is_positive() && &self.advantage * &gap * &gap > &self.slope * w
+    }
+}
+
+/// Walking right from the probe `t` over the roots of `f` in `(t, b)` (all of them among
+/// `roots`): the first root after which `f` is positive, and the roots before it where `f`
+/// only touches 0. The sign after a root is taken at a point before the next root (or `b`).
+fn walk_right(
+    f: &[BigInt],
+    roots: &[Root],
+    t: &Rational,
+    b: &Rational,
+) -> (Option<Root>, Vec<Root>) {
+    let inside: Vec<&Root> = roots
+        .iter()
+        .filter(|r| r.cmp_rational(t) == Ordering::Greater && r.cmp_rational(b) == Ordering::Less)
+        .collect();
+    let end = Root::rational(b.clone());
+    let mut touches = Vec::new();
+    for (i, r) in inside.iter().enumerate() {
+        let next = inside.get(i + 1).copied().unwrap_or(&end);
+        if integer_sign(f, &between(r, next)) == Ordering::Greater {
+            return (Some((*r).clone()), touches);
+        }
+        touches.push((*r).clone());
+    }
+    (None, touches)
+}
+
+/// Walking left from the probe `t` over the roots of `f` in `(a, t)` (all of them among
+/// `roots`): the first root before which `f` is positive, and the touching roots after it.
+fn walk_left(
+    f: &[BigInt],
+    roots: &[Root],
+    t: &Rational,
+    a: &Rational,
+) -> (Option<Root>, Vec<Root>) {
+    let inside: Vec<&Root> = roots
+        .iter()
+        .filter(|r| r.cmp_rational(a) == Ordering::Greater && r.cmp_rational(t) == Ordering::Less)
+        .collect();
+    let start = Root::rational(a.clone());
+    let mut touches = Vec::new();
+    for i in (0..inside.len()).rev() {
+        let prev = if i == 0 { &start } else { inside[i - 1] };
+        if integer_sign(f, &between(prev, inside[i])) == Ordering::Greater {
+            return (Some(inside[i].clone()), touches);
+        }
+        touches.push(inside[i].clone());
+    }
+    (None, touches)
+}
+
+/// A rational just past the exact point `r` away from `t` (inside `(0, 1)`), so that an open
+/// window ending there still holds `r`.
+fn past(r: &Rational, t: &Rational) -> Rational {
+    let two = Rational::from_integer(2.into());
+    if r > t {
+        let far = r + (r - t);
+        if far < Rational::one() {
+            far
+        } else {
+            (r + Rational::one()) / two
+        }
+    } else {
+        let far = r - (t - r);
+        if far > Rational::zero() {
+            far
+        } else {
+            r / two
+        }
+    }
+}
+
+/// The region's right end by the pruned search (module docs, step 2): candidates in order of
+/// their dismissal radius; each is dismissed on `[t, b]` by its derivative bound or by
+/// Descartes' rule on `(t, b)`, or its roots in `(t, b)` are isolated and walked, and `b`
+/// shrinks to just past the nearest end found. Every root of every advantage in
+/// `(t, end]` is recorded.
+fn right_end(
+    candidates: &[Candidate],
+    advantages: &mut [Advantage],
+    t: &Rational,
+    touches: &mut Vec<Root>,
+) -> Option<Root> {
+    let mut b = Rational::one();
+    let mut best: Option<Root> = None;
+    for c in candidates {
+        if c.clear(&(&b - t), &b) || no_root_between(&c.poly, t, &b) {
+            continue;
+        }
+        let roots = roots_in_window(&int_poly(&c.poly), Some((t, &b)));
+        let (end, mut met) = walk_right(&c.poly, &roots, t, &b);
+        touches.append(&mut met);
+        advantages[c.index].roots.extend(roots);
+        if let Some(h) = end {
+            if best.as_ref().is_none_or(|x| h.compare(x) == Ordering::Less) {
+                b = if h.exact {
+                    past(&h.lo, t)
+                } else {
+                    // Narrowed to about its distance from t, so the window shrinks with it.
+                    let mut n = h.clone();
+                    while !n.exact && &n.hi - &n.lo > &n.lo - t {
+                        n.halve();
+                    }
+                    if n.exact {
+                        past(&n.lo, t)
+                    } else {
+                        n.hi
+                    }
+                };
+                best = Some(h);
+            }
+        }
+    }
+    best
+}
+
+/// The region's left end by the pruned search, from `a` (every region end lies right of it):
+/// as [`right_end`], mirrored. `None` means no end in `(a, t)`.
+fn left_end(
+    candidates: &[Candidate],
+    advantages: &mut [Advantage],
+    t: &Rational,
+    a: &Rational,
+    touches: &mut Vec<Root>,
+) -> Option<Root> {
+    let mut a = a.clone();
+    let mut best: Option<Root> = None;
+    for c in candidates {
+        if c.clear(&(t - &a), t) || no_root_between(&c.poly, &a, t) {
+            continue;
+        }
+        let roots = roots_in_window(&int_poly(&c.poly), Some((&a, t)));
+        let (end, mut met) = walk_left(&c.poly, &roots, t, &a);
+        touches.append(&mut met);
+        advantages[c.index].roots.extend(roots);
+        if let Some(l) = end {
+            if best
+                .as_ref()
+                .is_none_or(|x| l.compare(x) == Ordering::Greater)
+            {
+                a = if l.exact {
+                    past(&l.lo, t)
+                } else {
+                    let mut n = l.clone();
+                    while !n.exact && &n.hi - &n.lo > t - &n.hi {
+                        n.halve();
+                    }
+                    if n.exact {
+                        past(&n.lo, t)
+                    } else {
+                        n.lo
+                    }
+                };
+                best = Some(l);
+            }
+        }
+    }
+    best
+}
+
+/// The integer polynomial as a [`Poly`].
+fn int_poly(c: &[BigInt]) -> Poly {
+    Poly::new(c.iter().cloned().map(Rational::from_integer).collect())
+}
+
+/// The advantage of one state-action pair over the policy (module docs, step 2).
+enum Found {
+    Persistent(usize),
+    /// Negative at the probe: the action, its polynomial and the positive factor at `t`
+    /// between the polynomial and the advantage `Q_a − V_x` itself.
+    Negative(usize, Vec<BigInt>, Rational),
+    AtRoot,
+    /// Positive at the probe: the state and the action.
+    Positive(StateId, usize),
+}
+
+/// Every other action's advantage polynomial over the policy with the given values and its
+/// sign at `t` (in parallel: each pair is independent).
+fn advantages_at(
     model: &Model,
     running: &[StateId],
-    index: &[Option<usize>],
+    policy: &[Option<usize>],
+    values: &PolicyValues,
     t: &Rational,
-    degree: &mut usize,
-    deterministic: bool,
-) -> Result<Option<Region>, ParametricError> {
+) -> Vec<Found> {
     let p = &model.problem;
-    let (policy, values) = if deterministic {
-        let policy = deterministic_optimum(model, running, t);
-        let values = chain_values(model, running, &policy)?;
-        (policy, values)
-    } else {
-        let (_, policy, _) = model.discounted(t)?;
-        let values = policy_values(model, running, index, &policy)?;
-        (policy, values)
-    };
-    *degree = (*degree).max(values.degree);
-    // The advantages of every other action, their roots and signs (in parallel: each is
-    // independent).
     let pairs: Vec<(StateId, usize)> = running
         .iter()
         .flat_map(|&x| p.actions(x).map(move |a| (x, a)))
         .filter(|&(x, a)| Some(a) != policy[x])
         .collect();
-    enum Found {
-        Persistent(usize),
-        Advantage(Advantage),
-        AtRoot,
-        Positive,
-    }
+    // Each denominator at t (positive).
+    let dens_at: Vec<Rational> = values
+        .dens
+        .iter()
+        .map(|d| {
+            let m = num_traits::pow(t.denom().clone(), d.len().saturating_sub(1));
+            Rational::new(homogeneous(d, t), m)
+        })
+        .collect();
     use rayon::prelude::*;
-    let found: Vec<Found> = pairs
+    pairs
         .par_iter()
         .map(|&(x, a)| {
             // A = r_a D + α Σ p N_y − N_x, times the lcm of the denominators.
@@ -881,76 +1202,205 @@ fn probe(
                 return Found::Persistent(a);
             }
             match integer_sign(&c, t) {
-                Ordering::Equal => return Found::AtRoot,
-                Ordering::Greater => return Found::Positive,
-                Ordering::Less => {}
+                Ordering::Equal => Found::AtRoot,
+                Ordering::Greater => Found::Positive(x, a),
+                Ordering::Less => {
+                    let factor = involved
+                        .iter()
+                        .fold(Rational::from_integer(scale.clone()), |f, &k| {
+                            f * &dens_at[k]
+                        });
+                    Found::Negative(a, c, factor)
+                }
             }
-            let poly = Poly::new(c.iter().cloned().map(Rational::from_integer).collect());
-            let roots = roots_in_unit_interval(&poly);
-            let mut signs = Vec::with_capacity(roots.len() + 1);
-            for i in 0..=roots.len() {
-                let lo = i.checked_sub(1).map(|j| &roots[j]);
-                signs.push(gap_sign(&c, lo, roots.get(i)));
-            }
-            Found::Advantage(Advantage {
-                action: a,
-                roots,
-                signs,
-            })
         })
+        .collect()
+}
+
+/// The most floating-point sweeps of [`float_optimum`].
+const FLOAT_SWEEPS: usize = 400;
+
+/// A candidate optimal policy of a deterministic model at `t` in floating point: policy
+/// iteration evaluated along the successor chains, improving only by more than a relative
+/// `10⁻⁹`, at most [`FLOAT_SWEEPS`] sweeps. Only a starting point: the probe corrects it by
+/// exact policy iteration on the exact advantages' signs.
+fn float_optimum(model: &Model, running: &[StateId], t: &Rational) -> Vec<Option<usize>> {
+    use num_traits::ToPrimitive;
+    let p = &model.problem;
+    let n = p.states();
+    let tf = t.to_f64().unwrap_or(0.5);
+    let reward: Vec<f64> = model
+        .reward
+        .iter()
+        .map(|r| r.to_f64().unwrap_or(0.0))
         .collect();
+    let order = sweep_order(model, running);
+    let mut policy: Vec<Option<usize>> = (0..n)
+        .map(|x| (!model.terminal[x]).then(|| p.actions(x).start))
+        .collect();
+    for _ in 0..FLOAT_SWEEPS {
+        let mut w = vec![0.0f64; n];
+        for (x, cycle) in chains(model, running, &policy) {
+            let a = policy[x].expect("acts");
+            w[x] = match cycle {
+                Some(cycle) => {
+                    let (mut sum, mut power) = (0.0, 1.0);
+                    for &c in &cycle {
+                        sum += power * reward[policy[c].expect("acts")];
+                        power *= tf;
+                    }
+                    sum / (1.0 - power)
+                }
+                None => reward[a] + tf * w[successor(model, a)],
+            };
+        }
+        let mut changed = false;
+        for &x in &order {
+            let q = |w: &[f64], a: usize| reward[a] + tf * w[successor(model, a)];
+            let mut best = q(&w, policy[x].expect("acts"));
+            for a in p.actions(x) {
+                let qa = q(&w, a);
+                if qa > best + 1e-9 * (1.0 + best.abs()) {
+                    best = qa;
+                    policy[x] = Some(a);
+                    changed = true;
+                }
+            }
+            w[x] = best;
+        }
+        if !changed {
+            break;
+        }
+    }
+    policy
+}
+
+/// The probe at the rational `t`: `None` if `t` is a root of some non-zero advantage (then the
+/// caller probes elsewhere). `left`: the end of the gap `t` lies in (every region end found
+/// from `t` lies right of it; the pruned search starts there).
+#[allow(clippy::too_many_arguments)]
+fn probe(
+    model: &Model,
+    running: &[StateId],
+    index: &[Option<usize>],
+    t: &Rational,
+    degree: &mut usize,
+    deterministic: bool,
+    left: Option<&Root>,
+    search: Search,
+) -> Result<Option<Region>, ParametricError> {
+    let p = &model.problem;
+    let (policy, values, found) = if deterministic {
+        let mut policy = match search {
+            Search::Full => deterministic_optimum(model, running, t),
+            Search::Pruned => float_optimum(model, running, t),
+        };
+        let mut exact_start = search == Search::Full;
+        loop {
+            let values = match chain_values(model, running, &policy) {
+                Ok(v) => v,
+                // A floating-point start too far off: start again from exact iteration.
+                Err(ParametricError::ChainDegree { .. }) if !exact_start => {
+                    exact_start = true;
+                    policy = deterministic_optimum(model, running, t);
+                    continue;
+                }
+                Err(e) => return Err(e),
+            };
+            let found = advantages_at(model, running, &policy, &values, t);
+            // Exact policy iteration: switch every state with an improving action to one
+            // (the values grow strictly, so no policy repeats).
+            let mut improved = vec![false; p.states()];
+            for f in &found {
+                if let Found::Positive(x, a) = *f {
+                    if !improved[x] {
+                        improved[x] = true;
+                        policy[x] = Some(a);
+                    }
+                }
+            }
+            if !improved.contains(&true) {
+                break (policy, values, found);
+            }
+        }
+    } else {
+        let (_, policy, _) = model.discounted(t)?;
+        let values = policy_values(model, running, index, &policy)?;
+        let found = advantages_at(model, running, &policy, &values, t);
+        (policy, values, found)
+    };
+    *degree = (*degree).max(values.degree);
     let mut persistent = Vec::new();
     let mut advantages = Vec::new();
+    let mut polys = Vec::new();
     for f in found {
         match f {
             Found::Persistent(a) => persistent.push(a),
-            Found::Advantage(adv) => advantages.push(adv),
+            Found::Negative(a, c, factor) => {
+                advantages.push(Advantage {
+                    action: a,
+                    roots: Vec::new(),
+                });
+                polys.push((c, factor));
+            }
             Found::AtRoot => return Ok(None),
-            Found::Positive => {
+            Found::Positive(..) => {
                 return Err(ParametricError::Internal(format!(
                     "the policy optimal at alpha = {t} has a positive advantage there"
                 )))
             }
         }
     }
-    // The region's ends and the touching points.
-    let mut lo: Option<Root> = None;
-    let mut hi: Option<Root> = None;
     let mut touches: Vec<Root> = Vec::new();
-    for adv in &advantages {
-        let g = adv
-            .roots
-            .iter()
-            .filter(|r| r.cmp_rational(t) == Ordering::Less)
-            .count();
-        // Right: the first root after which the advantage is positive.
-        let mut j = g;
-        while j < adv.roots.len() && adv.signs[j + 1] != Ordering::Greater {
-            touches.push(adv.roots[j].clone());
-            j += 1;
+    let (lo, hi) = match search {
+        Search::Full => {
+            let polys: Vec<Vec<BigInt>> = polys.into_iter().map(|(c, _)| c).collect();
+            full_ends(&polys, &mut advantages, t, &mut touches)
         }
-        if j < adv.roots.len() {
-            let r = &adv.roots[j];
-            if hi.as_ref().is_none_or(|h| r.compare(h) == Ordering::Less) {
-                hi = Some(r.clone());
+        Search::Pruned => {
+            use rayon::prelude::*;
+            let top = model
+                .reward
+                .iter()
+                .map(|r| r.abs())
+                .fold(Rational::zero(), |m, r| if r > m { r } else { m });
+            let mut candidates: Vec<Candidate> = polys
+                .into_par_iter()
+                .enumerate()
+                .map(|(i, (c, factor))| Candidate::new(i, c, &factor, &top, t))
+                .collect();
+            candidates.sort_by(|a, b| a.radius.total_cmp(&b.radius));
+            let hi = right_end(&candidates, &mut advantages, t, &mut touches);
+            // Every region end from t lies right of the gap's end `l` (two policies optimal
+            // on a common open interval have equal values, so equal regions): the search
+            // starts left of `l`'s bracket; with nothing found there, again from 0.
+            let start = left.map_or_else(Rational::zero, |l| {
+                // The bracket of `l` narrowed to about its distance from t.
+                let mut l = l.clone();
+                while !l.exact && &l.hi - &l.lo > t - &l.hi {
+                    l.halve();
+                }
+                let lo = &l.lo;
+                let far = lo - (t - lo);
+                if far > Rational::zero() {
+                    far
+                } else {
+                    Rational::zero()
+                }
+            });
+            let mut lo = left_end(&candidates, &mut advantages, t, &start, &mut touches);
+            if lo.is_none() && start.is_positive() {
+                lo = left_end(
+                    &candidates,
+                    &mut advantages,
+                    t,
+                    &Rational::zero(),
+                    &mut touches,
+                );
             }
+            (lo, hi)
         }
-        // Left: the last root before which it is positive.
-        let mut j = g;
-        while j > 0 && adv.signs[j - 1] != Ordering::Greater {
-            touches.push(adv.roots[j - 1].clone());
-            j -= 1;
-        }
-        if j > 0 {
-            let r = &adv.roots[j - 1];
-            if lo
-                .as_ref()
-                .is_none_or(|l| r.compare(l) == Ordering::Greater)
-            {
-                lo = Some(r.clone());
-            }
-        }
-    }
+    };
     let mut region = Region {
         lo,
         hi,
@@ -975,6 +1425,43 @@ fn probe(
     Ok(Some(region))
 }
 
+/// The region's ends by the full search: every advantage's roots in `(0, 1)` (in parallel),
+/// walked from `t` both ways.
+fn full_ends(
+    polys: &[Vec<BigInt>],
+    advantages: &mut [Advantage],
+    t: &Rational,
+    touches: &mut Vec<Root>,
+) -> (Option<Root>, Option<Root>) {
+    use rayon::prelude::*;
+    let all: Vec<Vec<Root>> = polys
+        .par_iter()
+        .map(|c| roots_in_unit_interval(&int_poly(c)))
+        .collect();
+    let (mut lo, mut hi): (Option<Root>, Option<Root>) = (None, None);
+    for ((c, roots), adv) in polys.iter().zip(all).zip(advantages.iter_mut()) {
+        let (h, mut met) = walk_right(c, &roots, t, &Rational::one());
+        touches.append(&mut met);
+        if let Some(h) = h {
+            if hi.as_ref().is_none_or(|x| h.compare(x) == Ordering::Less) {
+                hi = Some(h);
+            }
+        }
+        let (l, mut met) = walk_left(c, &roots, t, &Rational::zero());
+        touches.append(&mut met);
+        if let Some(l) = l {
+            if lo
+                .as_ref()
+                .is_none_or(|x| l.compare(x) == Ordering::Greater)
+            {
+                lo = Some(l);
+            }
+        }
+        adv.roots = roots;
+    }
+    (lo, hi)
+}
+
 /// Rationals strictly between `l` and `r` (`None`: 0, 1), the first ones close to `l`, each
 /// the simplest rational of a sub-interval (small denominators keep the exact solves small).
 fn probe_points(l: Option<&Root>, r: Option<&Root>) -> impl Iterator<Item = Rational> {
@@ -983,6 +1470,13 @@ fn probe_points(l: Option<&Root>, r: Option<&Root>) -> impl Iterator<Item = Rati
     let mid = between(&la, &ra);
     let mut la = la;
     while la.hi >= mid {
+        la.halve();
+    }
+    // The bracket of `l` narrowed to 2^-20 of its distance from `mid`, so that the first
+    // probe lies close to `l` itself (the pruned search then looks left of the probe only
+    // over a short interval).
+    let scale = Rational::from_integer(BigInt::one() << 20u32);
+    while !la.exact && (&la.hi - &la.lo) * &scale > &mid - &la.hi {
         la.halve();
     }
     let base = la.hi;
@@ -1092,7 +1586,7 @@ fn most_truecost(
 
 /// The exact breakpoints `α ∈ (0, 1)` where the set of discount-optimal policies changes, and
 /// for every interval between them and every breakpoint the success probability and truecost
-/// of the optimal policies (issue 11, item 3; the paper's Proposition 3 on any stochastic
+/// of the optimal policies (the paper's Proposition 3 on any stochastic
 /// problem). Method in the module docs.
 ///
 /// ```
@@ -1127,6 +1621,17 @@ pub fn discount_breakpoints_with(
     model: &Model,
     progress: &mut dyn FnMut(ProbeProgress),
 ) -> Result<DiscountAnalysis, ParametricError> {
+    discount_breakpoints_search(model, Search::Pruned, progress)
+}
+
+/// [`discount_breakpoints_with`] with the given [`Search`]: both give the same breakpoints,
+/// intervals, optimal sets and achievements (the full search is the reference the pruned one
+/// is tested against).
+pub fn discount_breakpoints_search(
+    model: &Model,
+    search: Search,
+    progress: &mut dyn FnMut(ProbeProgress),
+) -> Result<DiscountAnalysis, ParametricError> {
     let p = &model.problem;
     let running: Vec<StateId> = (0..p.states()).filter(|&x| !model.terminal[x]).collect();
     let deterministic = is_deterministic(model);
@@ -1137,14 +1642,14 @@ pub fn discount_breakpoints_with(
         });
     }
     // Deterministic problems: the chain degree is checked while running, and each probe
-    // counts `n²·2^24` units of the same work bounds (`deterministic_probe_work`).
+    // counts `n²·2^22` units of the same work bounds (`deterministic_probe_work`).
     let per_probe = if deterministic {
         let work = deterministic_probe_work(running.len());
-        if work > MAX_SINGLE_PROBE_WORK {
+        if work > MAX_DETERMINISTIC_PROBE_WORK {
             return Err(ParametricError::DeterministicProbeWork {
                 states: running.len(),
                 work,
-                bound: MAX_SINGLE_PROBE_WORK,
+                bound: MAX_DETERMINISTIC_PROBE_WORK,
             });
         }
         work
@@ -1161,6 +1666,7 @@ pub fn discount_breakpoints_with(
         }
         work
     };
+    let timer = Timer::new();
     let mut work = 0u128;
     let mut index = vec![None; p.states()];
     for (i, &x) in running.iter().enumerate() {
@@ -1192,7 +1698,16 @@ pub fn discount_breakpoints_with(
             });
             work += per_probe;
             probes += 1;
-            if let Some(region) = probe(model, &running, &index, &t, &mut degree, deterministic)? {
+            if let Some(region) = probe(
+                model,
+                &running,
+                &index,
+                &t,
+                &mut degree,
+                deterministic,
+                l.as_ref(),
+                search,
+            )? {
                 found = Some(region);
                 break;
             }
@@ -1221,13 +1736,17 @@ pub fn discount_breakpoints_with(
         points.extend(region.hi.iter().cloned());
         points.extend(region.touches.iter().cloned());
     }
+    timer.mark("probes");
     points.sort_by(|a, b| a.compare(b));
     // Equal points met through different polynomials keep their common factor.
     points.dedup_by(|a, b| b.absorb_if_equal(a));
-    for b in &mut points {
+    use rayon::prelude::*;
+    // Each point on its own (in parallel): rational or reduced polynomial.
+    points.par_iter_mut().for_each(|b| {
         b.recognise_rational();
         b.reduce();
-    }
+    });
+    timer.mark("breakpoints reduced");
     let indices = |allowed: &[bool]| -> Vec<Vec<usize>> {
         (0..p.states())
             .map(|x| {
@@ -1241,55 +1760,62 @@ pub fn discount_breakpoints_with(
             })
             .collect()
     };
-    let mut intervals = Vec::with_capacity(points.len() + 1);
-    for i in 0..=points.len() {
-        let lo = i.checked_sub(1).map(|j| points[j].clone());
-        let hi = points.get(i).cloned();
-        let sample = between(
-            lo.as_ref().unwrap_or(&zero_point()),
-            hi.as_ref().unwrap_or(&one_point()),
-        );
-        let region = regions
-            .iter()
-            .find(|g| g.contains_rational(&sample))
-            .expect("the regions cover (0,1)");
-        let allowed = region.optimal(model, None);
-        let policy = (0..p.states())
-            .map(|x| {
-                region.policy[x]
-                    .filter(|_| !model.terminal[x])
-                    .map(|a| a - p.actions(x).start)
+    // The intervals and breakpoints in parallel, each on its own; the first error in order
+    // is reported.
+    let intervals: Vec<Result<Interval, ParametricError>> = (0..=points.len())
+        .into_par_iter()
+        .map(|i| {
+            let lo = i.checked_sub(1).map(|j| points[j].clone());
+            let hi = points.get(i).cloned();
+            let sample = between(
+                lo.as_ref().unwrap_or(&zero_point()),
+                hi.as_ref().unwrap_or(&one_point()),
+            );
+            let region = regions
+                .iter()
+                .find(|g| g.contains_rational(&sample))
+                .expect("the regions cover (0,1)");
+            let allowed = region.optimal(model, None);
+            let optimal = indices(&allowed);
+            // The reported policy: the first optimal action at every state (any choice among
+            // the optimal actions is optimal; this one does not depend on the search).
+            let policy = optimal.iter().map(|o| o.first().copied()).collect();
+            Ok(Interval {
+                lo,
+                hi,
+                sample,
+                policy,
+                optimal,
+                achievement: achievement(model, &allowed)?,
             })
-            .collect();
-        intervals.push(Interval {
-            lo,
-            hi,
-            sample,
-            policy,
-            optimal: indices(&allowed),
-            achievement: achievement(model, &allowed)?,
-        });
-    }
-    let mut breakpoints = Vec::with_capacity(points.len());
-    for (i, b) in points.iter().enumerate() {
-        let region = regions
-            .iter()
-            .find(|g| g.contains(b))
-            .expect("the regions cover (0,1)");
-        let allowed = region.optimal(model, Some(b));
-        let at = indices(&allowed);
-        let (left, right) = (&intervals[i].optimal, &intervals[i + 1].optimal);
-        let ties = (0..p.states())
-            .filter(|&x| at[x] != left[x] || at[x] != right[x])
-            .map(|x| (x, at[x].clone()))
-            .collect();
-        breakpoints.push(Breakpoint {
-            at: b.clone(),
-            touch: left == right,
-            ties,
-            achievement: achievement(model, &allowed)?,
-        });
-    }
+        })
+        .collect();
+    let intervals: Vec<Interval> = intervals.into_iter().collect::<Result<_, _>>()?;
+    let breakpoints: Vec<Result<Breakpoint, ParametricError>> = points
+        .par_iter()
+        .enumerate()
+        .map(|(i, b)| {
+            let region = regions
+                .iter()
+                .find(|g| g.contains(b))
+                .expect("the regions cover (0,1)");
+            let allowed = region.optimal(model, Some(b));
+            let at = indices(&allowed);
+            let (left, right) = (&intervals[i].optimal, &intervals[i + 1].optimal);
+            let ties = (0..p.states())
+                .filter(|&x| at[x] != left[x] || at[x] != right[x])
+                .map(|x| (x, at[x].clone()))
+                .collect();
+            Ok(Breakpoint {
+                at: b.clone(),
+                touch: left == right,
+                ties,
+                achievement: achievement(model, &allowed)?,
+            })
+        })
+        .collect();
+    let breakpoints: Vec<Breakpoint> = breakpoints.into_iter().collect::<Result<_, _>>()?;
+    timer.mark("achievements");
     Ok(DiscountAnalysis {
         breakpoints,
         intervals,

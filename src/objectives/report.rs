@@ -341,7 +341,7 @@ pub fn facts(model: &Model) -> Result<Value, ObjectiveError> {
 /// A breakpoint's exact description: a rational, or the unique root of a primitive integer
 /// polynomial in a rational bracket of width at most `2^-100 < 1e-30`, with its decimal
 /// correctly rounded to 30 digits. The polynomial is the factor vanishing at the point
-/// ([`super::roots::Root::reduce`]): the minimal polynomial when proved irreducible, else
+/// ([`crate::claims::poly::roots::Root::reduce`]): the minimal polynomial when proved irreducible, else
 /// square-free without rational roots.
 pub struct PointText {
     /// The value correctly rounded to 30 digits after the point (the exact value when it
@@ -365,7 +365,7 @@ pub struct PointText {
 pub const SHORT_DIGITS: usize = 12;
 
 /// The text of a breakpoint (refined to a bracket of width at most `2^-100`).
-pub fn point_text(r: &super::roots::Root) -> PointText {
+pub fn point_text(r: &crate::claims::poly::roots::Root) -> PointText {
     let mut r = r.clone();
     r.reduce();
     r.refine_to(&Rational::new(
@@ -383,7 +383,7 @@ pub fn point_text(r: &super::roots::Root) -> PointText {
         } else {
             r.polynomial().degree().unwrap_or(0)
         },
-        minimal: r.exact || r.reduction == super::roots::Reduction::Minimal,
+        minimal: r.exact || r.reduction == crate::claims::poly::roots::Reduction::Minimal,
         bracket: (rat(&r.lo), rat(&r.hi)),
     }
 }
@@ -400,7 +400,7 @@ fn achievement_json(a: &super::parametric::Achievement) -> Value {
     })
 }
 
-fn end_json(r: Option<&super::roots::Root>, none: &str) -> Value {
+fn end_json(r: Option<&crate::claims::poly::roots::Root>, none: &str) -> Value {
     match r {
         None => json!(none),
         Some(r) => {
@@ -482,7 +482,7 @@ fn truecost_text(a: &super::parametric::Achievement) -> String {
     }
 }
 
-fn short_point(r: Option<&super::roots::Root>, none: &str) -> String {
+fn short_point(r: Option<&crate::claims::poly::roots::Root>, none: &str) -> String {
     match r {
         None => none.into(),
         Some(r) => {

@@ -453,7 +453,7 @@ pub fn reference_coordinates() -> [f64; SIDE] {
     c
 }
 
-/// The summary facts of a problem (issue 2's `problems` listing).
+/// The summary facts of a problem (the `problems` listing).
 #[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub struct Facts {
     /// Problem id.

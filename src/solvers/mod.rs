@@ -2,7 +2,7 @@
 //! exact policy evaluation, and the model-free exploration that precedes them.
 //!
 //! They live in the bignum-free kernel (`truecost_kernel::solvers`, verified by the Kani
-//! harnesses in `proofs/`; issue 10, item 3) and are re-exported here under their old paths:
+//! harnesses in `proofs/`) and are re-exported here under their old paths:
 //! `truecost::solvers::dijkstra::to_goals`, `truecost::solvers::value_iteration`, … Every
 //! planner is a function over a [`crate::model::Graph`] generic in its
 //! [`crate::value::CostValue`]; none reads a clock.

@@ -1,4 +1,4 @@
-//! The benchmark grid files of issue 12, item 3 ("large models"): an `R × C` 4-neighbour grid
+//! The benchmark grid files of the large-model benchmarks: an `R × C` 4-neighbour grid
 //! whose every move has a stage cost drawn from `{1, 2, 3, 4}`, deterministic from a seed.
 //!
 //! Layout: state `i = C·row + col`; the moves of a state, in this order, go up, left, right,

@@ -25,7 +25,7 @@
 //! * The cost is paid whatever the outcome. Costs, goals, `initial`, `states`, `name` and the
 //!   "only goals may have an empty action list" rule are as in the deterministic format.
 //! * `format` is optional; if given it is `truecost-stochastic/1` or `truecost-problem/1`, and a
-//!   file tagged `truecost-problem/1` may not list outcomes (issue 12, failure 8).
+//!   file tagged `truecost-problem/1` may not list outcomes.
 //! * The limits of [`crate::model::file`] apply (file size, number sizes); the file is read once.
 //!
 //! A file without any `outcomes` is a deterministic problem ([`ProblemFile::Deterministic`]), to

@@ -19,7 +19,7 @@
 //!    `N = d·z` come from a few *seeds* (`d·x mod p^K'` on about half the digits, Barrett
 //!    reduction) and exact propagation along rows with a single unknown left (a peel plan from
 //!    the sparsity pattern: a `w×h` grid needs about one seed per band level) — with a general
-//!    fallback that reconstructs every unknown (issue 12: a 100×100 grid in seconds, not hours);
+//!    fallback that reconstructs every unknown (a 100×100 grid in seconds, not hours);
 //! 5. **verification**: the candidate `z = N/d` is accepted only if `A·N = d·r` holds exactly
 //!    in big integers. The answer is therefore exact whatever happened before (every estimate
 //!    above only schedules work); lifting goes on (up to the Hadamard bound, after which
@@ -559,6 +559,81 @@ pub fn reduced(n: &BigInt, d: &BigInt) -> crate::value::Rational {
     crate::value::Rational::new_raw(rn, rd)
 }
 
+/// `nᵢ/d` in lowest terms for many numerators over one denominator `d > 0`, equal to
+/// [`reduced`] of each.
+///
+/// Every `gᵢ = gcd(nᵢ, d)` divides `G = gcd(d, Πᵢ nᵢ)` (over the non-zero `nᵢ`), and `G | d`, so
+/// `gᵢ = gcd(nᵢ mod G, G)`. `Π nᵢ mod d` costs one multiplication and one Barrett reduction a
+/// numerator (in parallel over chunks), then a single gcd of numbers of `d`'s size; the
+/// per-numerator gcds are then with `G`, which on the value functions of policy evaluation
+/// is a few bits (the reduced denominators differ from `d` by small factors). A gcd of two
+/// numbers of 10⁵ bits per numerator, as [`reduced`] does, dominated printing a 100×100 grid.
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use truecost::stochastic::linear::reduced_all;
+/// let n: Vec<BigInt> = [-6, 0, 5, 12].into_iter().map(BigInt::from).collect();
+/// let r = reduced_all(&n.iter().collect::<Vec<_>>(), &BigInt::from(4));
+/// let text: Vec<String> = r.iter().map(|v| v.to_string()).collect();
+/// assert_eq!(text, ["-3/2", "0", "5/4", "3"]);
+/// ```
+pub fn reduced_all(numerators: &[&BigInt], d: &BigInt) -> Vec<crate::value::Rational> {
+    use rayon::prelude::*;
+    assert!(
+        d > &BigInt::zero(),
+        "reduced_all: the denominator must be positive"
+    );
+    let to_ubig = |x: &BigInt| UBig::from_le_bytes(&x.magnitude().to_bytes_le());
+    let back = |x: &UBig| BigInt::from(num_bigint::BigUint::from_bytes_le(&x.to_le_bytes()));
+    let ud = to_ubig(d);
+    let common = if ud == UBig::ONE {
+        UBig::ONE
+    } else {
+        let barrett = Barrett::new(&ud);
+        let chunk = numerators
+            .len()
+            .div_ceil(2 * rayon::current_num_threads())
+            .max(1);
+        let product = numerators
+            .par_chunks(chunk)
+            .map(|part| {
+                let mut acc = UBig::ONE;
+                for n in part.iter().filter(|n| !n.is_zero()) {
+                    let un = to_ubig(n);
+                    // Barrett needs `un < d²`; numerators are far below (|z| ≪ d).
+                    let un = if un.bit_len() + 2 <= 2 * ud.bit_len() {
+                        barrett.reduce(un)
+                    } else {
+                        un % &ud
+                    };
+                    acc = barrett.reduce(acc * un);
+                }
+                acc
+            })
+            .reduce(|| UBig::ONE, |a, b| barrett.reduce(a * b));
+        (&ud).gcd(&product)
+    };
+    numerators
+        .par_iter()
+        .map(|&n| {
+            if n.is_zero() {
+                return crate::value::Rational::new_raw(BigInt::zero(), BigInt::one());
+            }
+            if common == UBig::ONE {
+                return crate::value::Rational::new_raw(n.clone(), d.clone());
+            }
+            let un = to_ubig(n);
+            let g = (&un % &common).gcd(&common);
+            if g == UBig::ONE {
+                return crate::value::Rational::new_raw(n.clone(), d.clone());
+            }
+            let rn = back(&(un / &g));
+            let rn = if n < &BigInt::zero() { -rn } else { rn };
+            crate::value::Rational::new_raw(rn, back(&(&ud / &g)))
+        })
+        .collect()
+}
+
 /// Barrett reduction modulo a fixed `m`: two multiplications instead of a long division
 /// (which is quadratic in `dashu` at these sizes and dominated the conversion of 10⁴ numerators).
 struct Barrett {
@@ -682,6 +757,10 @@ impl PeelPlan {
     }
 }
 
+/// Unknowns spread evenly whose denominators widen the common denominator when the three first
+/// probes' do not give every numerator.
+const EXTRA_PROBES: usize = 32;
+
 /// One reconstruction attempt after `steps` lifting steps (`None`: more lifting is needed).
 ///
 /// 1. Rational reconstruction of a few probe unknowns modulo `m = p^steps` gives a candidate
@@ -691,9 +770,12 @@ impl PeelPlan {
 ///    residue of `d·x_i mod p^K'`, computed this way only for the seeds of a [`PeelPlan`];
 ///    every other numerator follows from one equation of `A·N = d·r` by an exact division by
 ///    a word (a grid needs about one seed per level of the band ordering). Accepted only if
-///    `A·N = d·r` holds exactly.
+///    `A·N = d·r` holds exactly. If it is not, `d` is widened by [`EXTRA_PROBES`] more probes
+///    and the fast path tried once more (the three probes' denominators may all miss a factor
+///    that whole classes of states have, as on grids with many ties: there, the general path
+///    below took 20 s of a 100×100 solve).
 /// 3. Otherwise every numerator modulo `m`, widening `d` by a further reconstruction where a
-///    residue is not small, and the same exact check.
+///    residue is not small, then the fast path with that `d`, else the same exact check.
 fn attempt(
     system: &SparseSystem,
     digits: &mut Digits,
@@ -745,9 +827,12 @@ fn attempt(
         )
     };
     // 2. Fast path on a prefix of the digits (an even number of steps: whole packed digits).
-    let needed_bits = d.bit_len() as f64 + log2_max.max(0.0) + 16.0;
-    let rows = ((needed_bits / (p as f64).log2() / 2.0).ceil() as usize).max(1);
-    if log2_max.is_finite() && 2 * rows < steps {
+    let fast = |d: &UBig| -> Option<Vec<IBig>> {
+        let needed_bits = d.bit_len() as f64 + log2_max.max(0.0) + 16.0;
+        let rows = ((needed_bits / (p as f64).log2() / 2.0).ceil() as usize).max(1);
+        if !(log2_max.is_finite() && 2 * rows < steps) {
+            return None;
+        }
         let m = UBig::from(p).pow(2 * rows);
         let half = &m >> 1usize;
         let barrett = Barrett::new(&m);
@@ -755,13 +840,26 @@ fn attempt(
             .seeds
             .par_iter()
             .map(|&j| {
-                let t = barrett.reduce(&d * digits.prefix(j, rows));
+                let t = barrett.reduce(d * digits.prefix(j, rows));
                 (j, symmetric(t, &m, &half))
             })
             .collect();
-        if let Some(numerators) = plan.propagate(system, seeds, &IBig::from(d.clone())) {
-            if check(&numerators, &d) {
-                return Some(finish(numerators, &d));
+        let numerators = plan.propagate(system, seeds, &IBig::from(d.clone()))?;
+        check(&numerators, d).then_some(numerators)
+    };
+    if let Some(numerators) = fast(&d) {
+        return Some(finish(numerators, &d));
+    }
+    // 2b. The three probes' denominators may all lack a factor of the common one (on regular
+    // grids whole classes of states share one): widen `d` by more probes, spread over the
+    // unknowns, and try the fast path again; a probe that cannot be reconstructed yet leaves
+    // it to the general path.
+    if log2_max.is_finite() {
+        let mut wider = d.clone();
+        let spread = (1..EXTRA_PROBES).map(|k| k * (n - 1) / EXTRA_PROBES);
+        if spread.into_iter().all(|j| widen(j, &mut wider).is_some()) && wider != d {
+            if let Some(numerators) = fast(&wider) {
+                return Some(finish(numerators, &wider));
             }
         }
     }
@@ -780,6 +878,10 @@ fn attempt(
     if !failed.is_empty() {
         for &j in &failed {
             widen(j, &mut d)?;
+        }
+        // The widened `d` may already give every numerator by the fast path.
+        if let Some(numerators) = fast(&d) {
+            return Some(finish(numerators, &d));
         }
         numerators = all(&d);
     }
@@ -1167,7 +1269,7 @@ mod tests {
     }
 
     /// `solve_f64` (warm starts and schedules only) against the system's own rows and against
-    /// the exact solve (issue 14: the band LU's update and substitution mutants survived).
+    /// the exact solve (the band LU's update and substitution mutants survived otherwise).
     #[test]
     fn the_f64_solve_has_a_small_residual_and_agrees_with_the_exact_solve() {
         use num_traits::ToPrimitive;

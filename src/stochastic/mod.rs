@@ -7,8 +7,8 @@
 //! * [`problem`] — [`StochasticProblem`]: per state an ordered action list, each action a stage
 //!   cost and a list of outcomes with exact probabilities (and `f64` cumulative thresholds for
 //!   samplers such as a Q-learner).
-//! * [`benchmark`] — the seeded cost-grid files of the scale benchmarks (issue 12, item 3).
-//! * [`file`] — stochastic extensions of the JSON problem file.
+//! * [`benchmark`] — the seeded cost-grid files of the scale benchmarks (large models).
+//! * [`file`](mod@file) — stochastic extensions of the JSON problem file.
 //! * [`grid`] — the paper's grid problems in the stochastic model, exact and as its code runs them.
 //! * [`properness`] — which states can reach a goal with probability 1 (finite `G*`), which
 //!   actions are safe, proper policies.

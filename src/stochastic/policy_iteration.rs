@@ -95,15 +95,67 @@ impl Optimum {
         }
     }
 
-    /// `G*` for every state (reduced once, then cached).
+    /// `G*` for every state (reduced once, then cached): the common factors with the shared
+    /// denominator are found together ([`super::linear::reduced_all`]), not by one gcd of
+    /// full-size numbers per state.
     pub fn cost_to_go_all(&self) -> &[Extended] {
-        use rayon::prelude::*;
         self.reduced.get_or_init(|| {
-            (0..self.numerators.len())
-                .into_par_iter()
-                .map(|x| self.cost_to_go(x))
+            let finite: Vec<&BigInt> = self.numerators.iter().flatten().collect();
+            let mut values = super::linear::reduced_all(&finite, &self.denominator).into_iter();
+            self.numerators
+                .iter()
+                .map(|n| match n {
+                    Some(_) => Extended::Finite(values.next().expect("one value a numerator")),
+                    None => Extended::Infinite,
+                })
                 .collect()
         })
+    }
+
+    /// Every state's `G*` as [`Extended`]'s text (`"n/d"`, `"n"` or `"inf"`), the same strings
+    /// as `cost_to_go_all()[x].to_string()`, formatted in parallel and each distinct reduced
+    /// denominator only once (the reduced values share a few denominators, `d·C` divided by
+    /// small factors, and printing numbers of 10⁴ digits is the bulk of writing them all).
+    /// Unless [`cost_to_go_all`](Self::cost_to_go_all) has cached them already, the reduced
+    /// values are dropped as they are printed rather than cached (on a 100×100 grid they are
+    /// 300 MB next to the texts).
+    ///
+    /// ```
+    /// use truecost::model::{Move, Problem};
+    /// use truecost::stochastic::{policy_iteration::optimum, NoiseModel, Predictability, StochasticProblem};
+    /// use truecost::value::parse_rational;
+    /// let one = parse_rational("1").unwrap();
+    /// let p = Problem::new(vec![vec![Move { successor: 1, cost: one }], vec![]], 0, vec![1]).unwrap();
+    /// let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::parse("0.9").unwrap()).unwrap();
+    /// assert_eq!(optimum(&s).unwrap().cost_to_go_texts(), ["10/9", "0"]);
+    /// ```
+    pub fn cost_to_go_texts(&self) -> Vec<String> {
+        use rayon::prelude::*;
+        if let Some(values) = self.reduced.get() {
+            let (denominators, slots) = denominator_texts(values);
+            return values
+                .par_iter()
+                .zip(slots)
+                .map(|(v, slot)| value_text(v, slot, &denominators))
+                .collect();
+        }
+        let finite: Vec<&BigInt> = self.numerators.iter().flatten().collect();
+        let mut reduced = super::linear::reduced_all(&finite, &self.denominator).into_iter();
+        let values: Vec<Extended> = self
+            .numerators
+            .iter()
+            .map(|n| match n {
+                Some(_) => Extended::Finite(reduced.next().expect("one value a numerator")),
+                None => Extended::Infinite,
+            })
+            .collect();
+        let (denominators, slots) = denominator_texts(&values);
+        // Consumed while printed: each value is freed once its text exists.
+        values
+            .into_par_iter()
+            .zip(slots)
+            .map(|(v, slot)| value_text(&v, slot, &denominators))
+            .collect()
     }
 
     /// `G*(x)` as the pair (numerator, common denominator) without reduction, `None` if `+∞`.
@@ -164,6 +216,34 @@ impl Optimum {
     /// The reported optimal policy as global action ids (`None` at goals and infinite states).
     pub fn policy_actions(&self) -> &[Option<usize>] {
         &self.policy
+    }
+}
+
+/// The distinct denominators of the non-integer values of `values`, printed once each, and
+/// every value's index among them (`usize::MAX` for integers and `+∞`).
+fn denominator_texts(values: &[Extended]) -> (Vec<String>, Vec<usize>) {
+    use rayon::prelude::*;
+    use std::collections::HashMap;
+    let mut slot: HashMap<&BigInt, usize> = HashMap::new();
+    let mut distinct: Vec<&BigInt> = Vec::new();
+    let slots = values
+        .iter()
+        .map(|v| match v {
+            Extended::Finite(r) if !r.is_integer() => *slot.entry(r.denom()).or_insert_with(|| {
+                distinct.push(r.denom());
+                distinct.len() - 1
+            }),
+            _ => usize::MAX,
+        })
+        .collect();
+    (distinct.par_iter().map(|d| d.to_string()).collect(), slots)
+}
+
+/// `value.to_string()`, with the denominator's text taken from `denominators[slot]`.
+fn value_text(value: &Extended, slot: usize, denominators: &[String]) -> String {
+    match value {
+        Extended::Finite(r) if !r.is_integer() => format!("{}/{}", r.numer(), denominators[slot]),
+        _ => value.to_string(),
     }
 }
 
@@ -273,13 +353,22 @@ pub fn optimum(problem: &StochasticProblem) -> Result<Optimum, StochasticError> 
     optimum_with(problem, &mut |_| {})
 }
 
-/// What [`optimum_with`] is doing, for a progress display (issue 12, item 3).
+/// What [`optimum_with`] is doing, for a progress display.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Progress {
     /// An `f64` policy evaluation of the warm start begins (its round, from 1).
     FloatEvaluation {
         /// The round.
         round: usize,
+    },
+    /// A fixed-point evaluation of the mixed-precision stage ([`super::refine`]) begins: the
+    /// policy's number in that stage (from 1) and the precision in bits after the point (it
+    /// doubles while gaps stay within the certified error bound).
+    Refinement {
+        /// The policy evaluated (1 for the warm start's, then one more per certified round).
+        policy: usize,
+        /// The precision `B` (bits after the point).
+        bits: u64,
     },
     /// An exact policy evaluation begins (its number, from 1).
     ExactEvaluation {
@@ -290,8 +379,8 @@ pub enum Progress {
     Lifting(LiftProgress),
 }
 
-/// [`optimum`], calling `progress` as it goes (evaluations and lifting steps). The result does
-/// not depend on `progress`.
+/// [`optimum`], calling `progress` as it goes (evaluations, refinement precisions and lifting
+/// steps). The result does not depend on `progress`.
 ///
 /// ```
 /// use truecost::model::{Move, Problem};
@@ -366,7 +455,10 @@ pub fn optimum_with(
         &index.of,
         &scaled_costs.exact,
         &mut policy,
-        &|p| build_system(problem, &index, p, &scaled_costs).ok(),
+        super::refine::Hooks {
+            build: &|p| build_system(problem, &index, p, &scaled_costs).ok(),
+            progress: &mut |policy, bits| progress(Progress::Refinement { policy, bits }),
+        },
     );
     stats.refinement_rounds = refined.rounds;
     stats.refinement_bits = refined.bits;
@@ -382,27 +474,14 @@ pub fn optimum_with(
             .map_err(linear_error)?;
         stats.exact_iterations += 1;
         stats.lifting_steps += z.lifting_steps;
-        let numerator = |y: usize| index.of[y].map(|i| &z.numerators[i]);
+        // Per state (in parallel; each verdict depends only on `z`): the first action with
+        // the least exact `Q`, and whether it is strictly below `G_μ`.
+        let verdicts = improvement_check(problem, &properness.safe, &index, &scaled_costs, &z);
         let mut changed = false;
         let mut canonical = policy.clone();
-        for (i, &x) in index.states.iter().enumerate() {
-            let s = problem.denominator(x);
-            let current = &z.numerators[i] * BigInt::from(s);
-            let mut best: Option<(BigInt, usize)> = None;
-            for a in problem.actions(x).filter(|&a| properness.safe[a]) {
-                let mut k = &scaled_costs.exact[a] * BigInt::from(s) * &z.denominator;
-                for (o, &w) in problem.outcomes(a).iter().zip(problem.weights(a)) {
-                    if let Some(nv) = numerator(o.successor) {
-                        k += nv * BigInt::from(w);
-                    }
-                }
-                if best.as_ref().is_none_or(|(b, _)| &k < b) {
-                    best = Some((k, a));
-                }
-            }
-            let (k, a) = best.expect("a finite non-goal state has a safe action");
+        for (&x, &(a, better)) in index.states.iter().zip(&verdicts) {
             canonical[x] = Some(a);
-            if k < current {
+            if better {
                 policy[x] = Some(a);
                 changed = true;
             }
@@ -418,6 +497,42 @@ pub fn optimum_with(
             return Ok(finish(problem, &properness, &index, z, chosen, stats));
         }
     }
+}
+
+/// The exact improvement test of policy iteration at every unknown (in parallel over the
+/// states): the first safe action (in `U(x)` order) with the least `Q_μ(x, a)`, and whether
+/// that `Q` is strictly below `G_μ(x)`. Integer comparisons of `s_x·d·Q`, no rationals.
+fn improvement_check(
+    problem: &StochasticProblem,
+    safe: &[bool],
+    index: &Unknowns,
+    costs: &ScaledCosts,
+    z: &super::linear::ExactSolution,
+) -> Vec<(usize, bool)> {
+    use rayon::prelude::*;
+    index
+        .states
+        .par_iter()
+        .enumerate()
+        .map(|(i, &x)| {
+            let s = problem.denominator(x);
+            let current = &z.numerators[i] * BigInt::from(s);
+            let mut best: Option<(BigInt, usize)> = None;
+            for a in problem.actions(x).filter(|&a| safe[a]) {
+                let mut k = (&costs.exact[a] * BigInt::from(s)) * &z.denominator;
+                for (o, &w) in problem.outcomes(a).iter().zip(problem.weights(a)) {
+                    if let Some(j) = index.of[o.successor] {
+                        k += &z.numerators[j] * BigInt::from(w);
+                    }
+                }
+                if best.as_ref().is_none_or(|(b, _)| &k < b) {
+                    best = Some((k, a));
+                }
+            }
+            let (k, a) = best.expect("a finite non-goal state has a safe action");
+            (a, k < current)
+        })
+        .collect()
 }
 
 /// The exact expected cost `G_μ(x)` of a stationary policy from every state: `policy[x]` is an
@@ -517,7 +632,7 @@ pub fn evaluate(
 }
 
 /// The estimated peak memory of [`optimum`] on a problem, computed from its structure alone
-/// before any work (issue 12, item 3: `--max-memory`).
+/// before any work (`--max-memory`).
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct MemoryEstimate {
     /// Estimated peak bytes.
@@ -537,6 +652,17 @@ pub struct MemoryEstimate {
     /// side and `n` the number of unknowns: Hadamard's bound on the determinant and the
     /// numerators (Cramer's rule), both signs and a margin.
     pub lifted_bits: f64,
+    /// The mixed-precision stage's own peak ([`super::refine`], over before the exact stage
+    /// starts): its `f64` band LU (8 bytes a band entry), the fixed-point unknowns and their
+    /// residuals at the stage's precision cap (two numbers of
+    /// [`refinement_cap_bits`](Self::refinement_cap_bits) a unknown, each with a 32-byte
+    /// header) and four `f64` vectors. The estimate counts the larger of this and the exact
+    /// stage.
+    pub refinement_bytes: u64,
+    /// The mixed-precision stage's precision cap, estimated from above: `Σᵢ ½·log₂ maxₐ
+    /// ‖rowᵢ(a)‖²` (Hadamard's bound on `log₂|det A|`) plus 192 bits (the stage's margins and
+    /// `log₂` of its step bound).
+    pub refinement_cap_bits: f64,
 }
 
 /// Bytes per unknown besides its numbers (indices, policy, the problem's per-state lists,
@@ -577,10 +703,13 @@ pub fn problem_bytes(problem: &StochasticProblem) -> u64 {
 
 /// Estimates the peak memory of [`optimum`] (see [`MemoryEstimate`]); with `all_values`, also
 /// the reduced exact value of every state and its decimal text, as `solve --format json`
-/// prints them. The parts: the problem, two band matrices (`u32`/`u64` modular and `f64`
-/// warm-start LU), the lifted digits (4 bytes per unknown and step), the numerators (three
-/// copies at the peak, each of `⌈lifted_bits / 16⌉ + 32` bytes, half the lifted bits and a
-/// header); with `all_values`, two more copies and four decimal texts (2.41 digits a byte).
+/// prints them. The parts: the problem and per-unknown bookkeeping, then the larger of the two
+/// stages that are never alive together: the exact stage — two band matrices (`u32`/`u64`
+/// modular and `f64` warm-start LU), the lifted digits (4 bytes per unknown and step), the
+/// numerators (three copies at the peak, each of `⌈lifted_bits / 16⌉ + 32` bytes, half the
+/// lifted bits and a header) — and the mixed-precision stage
+/// ([`MemoryEstimate::refinement_bytes`]); with `all_values`, two more copies and four
+/// decimal texts (2.41 digits a byte).
 ///
 /// ```
 /// use truecost::stochastic::benchmark::cost_grid;
@@ -645,12 +774,14 @@ pub fn memory_estimate(problem: &StochasticProblem, all_values: bool) -> MemoryE
     let lifting_steps = (lifted_bits / 31.0).ceil() as usize + 2;
     let u = unknowns as u64;
     let number_bytes = (lifted_bits / 16.0).ceil() as u64 + 32;
-    let mut bytes = BASE_BYTES
-        + problem_bytes(problem)
-        + u * PER_UNKNOWN
-        + u * band_width as u64 * (8 + 4 + 8)
-        + u * lifting_steps as u64 * 4
-        + 3 * u * number_bytes;
+    let exact_bytes =
+        u * band_width as u64 * (8 + 4 + 8) + u * lifting_steps as u64 * 4 + 3 * u * number_bytes;
+    let refinement_cap_bits = bits + 192.0;
+    let refinement_bytes = u * band_width as u64 * 8
+        + 2 * u * ((refinement_cap_bits / 8.0).ceil() as u64 + 32)
+        + 4 * u * 8;
+    let mut bytes =
+        BASE_BYTES + problem_bytes(problem) + u * PER_UNKNOWN + exact_bytes.max(refinement_bytes);
     if all_values {
         // Reduced fractions (numerator and denominator) and their decimal text, twice (the
         // strings and the JSON document).
@@ -662,6 +793,8 @@ pub fn memory_estimate(problem: &StochasticProblem, all_values: bool) -> MemoryE
         band_width,
         lifting_steps,
         lifted_bits,
+        refinement_bytes,
+        refinement_cap_bits,
     }
 }
 

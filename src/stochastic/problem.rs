@@ -178,7 +178,7 @@ impl StochasticProblem {
             },
         )
         .map_err(|e| match e {
-            // The only source of a large denominator here is γ: say so (issue 12).
+            // The only source of a large denominator here is γ: say so.
             StochasticError::DenominatorTooLarge { state } => StochasticError::GammaDenominator {
                 gamma: super::short_text(gamma.value()),
                 state,

@@ -163,9 +163,16 @@ fn refine(
     }
 }
 
+/// What [`improve`] calls back: `build` gives the system of a policy (rows in the order of
+/// `states`), `progress(policy, bits)` is told when an evaluation of the stage's `policy`-th
+/// policy (from 1) at precision `bits` begins.
+pub(crate) struct Hooks<'a> {
+    pub build: &'a dyn Fn(&[Option<usize>]) -> Option<SparseSystem>,
+    pub progress: &'a mut dyn FnMut(usize, u64),
+}
+
 /// Improves `policy` (proper, at every unknown `states[i]` an action) by mixed-precision
-/// policy iteration (module docs). `cost[a]` is the action's scaled integer cost (`C·l`),
-/// `build` the system of a policy (rows in the order of `states`).
+/// policy iteration (module docs). `cost[a]` is the action's scaled integer cost (`C·l`).
 pub(crate) fn improve(
     problem: &StochasticProblem,
     safe: &[bool],
@@ -173,8 +180,9 @@ pub(crate) fn improve(
     of: &[Option<usize>],
     cost: &[BigInt],
     policy: &mut [Option<usize>],
-    build: &dyn Fn(&[Option<usize>]) -> Option<SparseSystem>,
+    hooks: Hooks<'_>,
 ) -> Refinement {
+    let Hooks { build, progress } = hooks;
     let n = states.len();
     let s: Vec<u64> = states.iter().map(|&x| problem.denominator(x)).collect();
     let mut bits = START_BITS;
@@ -198,6 +206,7 @@ pub(crate) fn improve(
         let mut last_unresolved: Vec<bool> = Vec::new();
         let mut stable = 0;
         loop {
+            progress(out.rounds + 1, bits);
             let eval = refine(&system, &factor, &mut x, bits, &s);
             // Per state: the best certified improving action, and whether any is unresolved.
             let verdicts: Vec<(Option<usize>, bool)> = (0..n)

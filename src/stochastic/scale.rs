@@ -1,4 +1,4 @@
-//! Sizes for large models (issue 12, item 3): the `--max-memory` budget of the exact optimum,
+//! Sizes for large models: the `--max-memory` budget of the exact optimum,
 //! parsed exactly, and bytes printed for people.
 
 /// The default memory budget of the exact optimum: 4 GiB.

@@ -1,4 +1,4 @@
-//! Reading back the SMT-LIB files that `verify --smt-out` writes (issue 9, item 6), shared by
+//! Reading back the SMT-LIB files that `verify --smt-out` writes, shared by
 //! the SMT tests.
 
 use truecost::claims::smt::{Obligation, Sort};

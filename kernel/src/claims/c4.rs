@@ -167,8 +167,8 @@ impl Instance {
     /// `D`, the least common multiple of the denominators (averages and bonuses scale by `D`;
     /// the caller divides the thresholds back). Returns the instance and `D`. Generic over the
     /// problem type (see [`ToInstance`]: `truecost::model::Problem`, whose `D` is a `BigInt`),
-    /// so that this crate, which Kani verifies, depends on no big-integer crate (issue 10,
-    /// item 3). Errors are one line (the scaled costs must stay below 2^40).
+    /// so that this crate, which Kani verifies, depends on no big-integer crate.
+    /// Errors are one line (the scaled costs must stay below 2^40).
     pub fn from_problem<P: ToInstance>(problem: &P) -> Result<(Instance, P::Scale), String> {
         problem.to_instance()
     }
@@ -220,7 +220,7 @@ impl Instance {
     }
 
     /// Every simple path from `x1` to a goal as `(L, S)`, or `Err(BonusError::SearchTooLong)`
-    /// once the depth-first search has taken more than `max_steps` steps (issue 12: the bound
+    /// once the depth-first search has taken more than `max_steps` steps (the bound
     /// is checked while the search runs, so a grid refuses at once instead of listing its
     /// astronomically many paths).
     ///
@@ -412,7 +412,7 @@ pub struct BonusSets<I: ExactInt = i128> {
 /// below 2^63.
 pub const MAX_BONUS_STATES: usize = 1024;
 
-/// Why the exact bonus analysis of one problem refuses (issue 12: every search with a
+/// Why the exact bonus analysis of one problem refuses (every search with a
 /// combinatorial blow-up has an effort bound, named in the refusal).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum BonusError {

@@ -1,4 +1,4 @@
-//! Independent oracles (issue 5, item 2): enumeration of every deterministic stationary policy
+//! Independent oracles: enumeration of every deterministic stationary policy
 //! of a tiny problem, the exact cost of each policy's trajectory under every functional of
 //! SPEC §1, exact minimum mean cycles by Karp's algorithm and by enumerating simple cycles.
 //!

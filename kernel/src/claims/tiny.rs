@@ -160,8 +160,7 @@ impl Tiny {
 
     /// The problem in the library's model (`x1 = 0`, goal `n − 1`), for problem files: any
     /// type built `From<Tiny>` — in `truecost`, `truecost::model::Problem` (its exact rational
-    /// costs need big integers, which this crate, verified by Kani, does not depend on: issue
-    /// 10, item 3).
+    /// costs need big integers, which this crate, verified by Kani, does not depend on).
     pub fn to_problem<P: From<Tiny>>(&self) -> P {
         P::from(*self)
     }

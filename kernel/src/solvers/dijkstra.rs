@@ -199,7 +199,7 @@ fn search<'g, V: CostValue, F: Frontier<V>, I: Iterator<Item = (usize, &'g V)>>(
 }
 
 /// `G*` for every node by Dijkstra backwards from the goals, with the policy of
-/// [`greedy_policy`]. `iterations` = heap pops, `actions` = relaxations.
+/// [`greedy_policy`](super::greedy_policy). `iterations` = heap pops, `actions` = relaxations.
 ///
 /// ```
 /// use truecost_kernel::model::Graph;

@@ -1,5 +1,6 @@
 //! Exact univariate polynomials with rational coefficients, Sturm sequences, real-root
-//! isolation and algebraic numbers given by an isolating interval.
+//! isolation and algebraic numbers given by an isolating interval; [`roots`] holds the exact
+//! root finding and minimal polynomials of the discount breakpoints.
 
 use std::cmp::Ordering;
 use std::fmt;
@@ -8,6 +9,8 @@ use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 
 use crate::value::Rational;
+
+pub mod roots;
 
 /// A polynomial `Σ c_i x^i` (coefficients from the constant up; no trailing zeros).
 #[derive(Clone, PartialEq, Eq, Hash, Debug)]
@@ -387,21 +390,23 @@ impl Algebraic {
 
     /// The factor of [`Self::poly`] vanishing at the number, as a primitive integer polynomial
     /// with a positive leading coefficient, and what is proved of it: `x − q` for a rational
-    /// `q`; otherwise the square-free part without rational roots, [`Reduction::Minimal`] when
-    /// proved irreducible over `Q` ([`crate::objectives::roots::reduce_polynomial`]). The
-    /// bracket isolates the number for it too (it divides [`Self::poly`]).
+    /// `q`; otherwise the square-free part without rational roots, [`Reduction::Minimal`]
+    /// when proved irreducible over `Q` ([`crate::claims::poly::roots::reduce_polynomial`]).
+    /// The bracket isolates the number for it too (it divides [`Self::poly`]).
+    ///
+    /// [`Reduction::Minimal`]: crate::claims::poly::roots::Reduction::Minimal
     ///
     /// ```
     /// use truecost::claims::poly::{isolate_roots, Poly};
-    /// use truecost::objectives::roots::Reduction;
+    /// use truecost::claims::poly::roots::Reduction;
     /// // (x^2 − 2)(2x − 3)(x + 1): the root √2 in (1, 29/20) has the minimal polynomial x^2 − 2.
     /// let p = Poly::from_i64(&[-2, 0, 1]).mul(&Poly::from_i64(&[-3, 2])).mul(&Poly::from_i64(&[1, 1]));
     /// let a = isolate_roots(&p, &"1".parse().unwrap(), &"29/20".parse().unwrap()).remove(0);
     /// let (m, how) = a.reduced_polynomial();
     /// assert_eq!((m.to_string(), how), ("x^2 - 2".to_string(), Reduction::Minimal));
     /// ```
-    pub fn reduced_polynomial(&self) -> (Poly, crate::objectives::roots::Reduction) {
-        use crate::objectives::roots::{integer_form, reduce_polynomial, Reduction};
+    pub fn reduced_polynomial(&self) -> (Poly, crate::claims::poly::roots::Reduction) {
+        use crate::claims::poly::roots::{integer_form, reduce_polynomial, Reduction};
         if let Some(q) = self.as_rational() {
             return (
                 Poly::new(vec![-q, Rational::one()]).primitive(),
@@ -411,7 +416,7 @@ impl Algebraic {
         let (g, _, how) = reduce_polynomial(&integer_form(&self.poly));
         let (g, how) = match how {
             Reduction::SquareFree => {
-                match crate::objectives::roots::irreducible_factor_at(&g, &self.lo, &self.hi) {
+                match crate::claims::poly::roots::irreducible_factor_at(&g, &self.lo, &self.hi) {
                     Some(f) => (f, Reduction::Minimal),
                     None => (g, how),
                 }

@@ -1,4 +1,5 @@
-//! Exact real roots in `(0, 1)` for the parametric discount analysis, fast enough for the
+//! Exact real roots in `(0, 1)` for the parametric discount analysis (the breakpoints of
+//! [`crate::objectives::parametric`]), fast enough for the
 //! degree-50 advantage polynomials of FrozenLake 8x8.
 //!
 //! * **Isolation**: Descartes' rule of signs with bisection (Vincent–Collins–Akritas) on the
@@ -35,7 +36,7 @@ use num_bigint::BigInt;
 use num_integer::Integer;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
-use crate::claims::poly::Poly;
+use super::Poly;
 use crate::value::Rational;
 
 /// The deepest bisection before the search restarts on the square-free part.
@@ -158,21 +159,73 @@ fn descartes(q: &[BigInt]) -> usize {
     variations(&r)
 }
 
+/// Whether the integer polynomial `p` (constant first) has no root in the open interval
+/// `(a, b)`, `a < b`, proved by Descartes' rule on `p(a + (b − a)x)` over `(0, 1)` (no sign
+/// variation: no root). `false` means it may have one.
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use truecost::claims::poly::roots::no_root_between;
+/// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+/// let p: Vec<BigInt> = [-1, 0, 2].into_iter().map(BigInt::from).collect(); // 2x^2 - 1
+/// assert!(no_root_between(&p, &q("0"), &q("7/10")));
+/// assert!(!no_root_between(&p, &q("7/10"), &q("3/4")));
+/// ```
+pub fn no_root_between(p: &[BigInt], a: &Rational, b: &Rational) -> bool {
+    if p.iter().all(Zero::is_zero) {
+        return false;
+    }
+    // a = A/E, b − a = W/E; r(x) = E^d p((A + W x)/E) by Horner on polynomials in x.
+    let w = b - a;
+    let e = a.denom().lcm(w.denom());
+    let big_a = a.numer() * (&e / a.denom());
+    let big_w = w.numer() * (&e / w.denom());
+    let d = p.len() - 1;
+    let mut r: Vec<BigInt> = vec![p[d].clone()];
+    let mut epow = BigInt::one();
+    for k in (0..d).rev() {
+        epow *= &e;
+        // r ← r·(A + W x) + p_k E^{d−k}
+        let mut next = vec![BigInt::zero(); r.len() + 1];
+        for (i, ri) in r.iter().enumerate() {
+            if ri.is_zero() {
+                continue;
+            }
+            next[i] += ri * &big_a;
+            next[i + 1] += ri * &big_w;
+        }
+        next[0] += &p[k] * &epow;
+        r = next;
+    }
+    descartes(&r) == 0
+}
+
 enum Isolation {
     Done(Vec<(Rational, Rational)>),
     Midpoint(Rational),
     TooDeep,
 }
 
-/// Isolating open intervals of the roots of `p` (integer, no root at 0, 1) in `(0, 1)`.
-fn isolate(p: &[BigInt]) -> Isolation {
+/// Isolating open intervals of the roots of `p` (integer, no root at 0, 1) in `(0, 1)`; with a
+/// window `(a, b)`, only the dyadic nodes of the bisection that meet it are searched, so the
+/// intervals returned are those of the full search that meet the window (every root in the
+/// window is among them).
+fn isolate(p: &[BigInt], window: Option<(&Rational, &Rational)>) -> Isolation {
     let d = p.len() - 1;
     let mut out = Vec::new();
     // (q, c, k): q(x) = 2^{kd} p((c + x) / 2^k) on x ∈ (0, 1).
     let mut stack: Vec<(Vec<BigInt>, BigInt, u32)> = vec![(p.to_vec(), BigInt::zero(), 0)];
     while let Some((q, c, k)) = stack.pop() {
-        let v = descartes(&q);
         let scale = Rational::from_integer(BigInt::one() << k);
+        if let Some((a, b)) = window {
+            // The node [c/2^k, (c+1)/2^k] misses the open window (a, b).
+            let left = Rational::from_integer(c.clone()) / &scale;
+            let right = Rational::from_integer(&c + 1) / &scale;
+            if &right <= a || &left >= b {
+                continue;
+            }
+        }
+        let v = descartes(&q);
         if v == 0 {
             continue;
         }
@@ -204,7 +257,7 @@ fn isolate(p: &[BigInt]) -> Isolation {
 ///
 /// ```
 /// use truecost::claims::poly::Poly;
-/// use truecost::objectives::roots::roots_in_unit_interval;
+/// use truecost::claims::poly::roots::roots_in_unit_interval;
 /// // (x - 1/2)(3x - 2)(x^2 - 1/2) · x · (x - 1): roots 1/2, √2/2 ≈ 0.7071, 2/3 in (0, 1)
 /// let f = Poly::from_i64(&[-1, 2]).mul(&Poly::from_i64(&[-2, 3])).mul(&Poly::from_i64(&[-1, 0, 2]))
 ///     .mul(&Poly::from_i64(&[0, 1])).mul(&Poly::from_i64(&[-1, 1]));
@@ -218,6 +271,27 @@ fn isolate(p: &[BigInt]) -> Isolation {
 /// assert!(&r[2].lo * &r[2].lo * &two < q("1") && &r[2].hi * &r[2].hi * &two > q("1"));
 /// ```
 pub fn roots_in_unit_interval(f: &Poly) -> Vec<Root> {
+    roots_in_window(f, None)
+}
+
+/// The roots of the non-zero `f` in `(0, 1)` whose isolating intervals (those of
+/// [`roots_in_unit_interval`]'s bisection) meet the open window `(a, b)`, in increasing order:
+/// every root of `f` in `(a, b)` is among them, each with the bracket the full search gives it
+/// unless the full search divides out a rational root outside the window first. `None`: all of
+/// `(0, 1)`.
+///
+/// ```
+/// use truecost::claims::poly::Poly;
+/// use truecost::claims::poly::roots::{roots_in_unit_interval, roots_in_window};
+/// // (4x - 1)(4x - 3)(x^2 - 1/2): roots 1/4, √2/2, 3/4.
+/// let f = Poly::from_i64(&[-1, 4]).mul(&Poly::from_i64(&[-3, 4])).mul(&Poly::from_i64(&[-1, 0, 2]));
+/// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+/// let w = roots_in_window(&f, Some((&q("3/5"), &q("7/10"))));
+/// assert!(w.iter().any(|r| r.cmp_rational(&q("7/10")) == std::cmp::Ordering::Greater
+///     && r.cmp_rational(&q("3/4")) == std::cmp::Ordering::Less));
+/// assert!(w.len() < roots_in_unit_interval(&f).len());
+/// ```
+pub fn roots_in_window(f: &Poly, window: Option<(&Rational, &Rational)>) -> Vec<Root> {
     assert!(!f.is_zero(), "roots of the zero polynomial");
     // Divide out x (drop the zero low coefficients) and x − 1 (while the coefficients sum to 0).
     let low = f.coefficients().iter().take_while(|c| c.is_zero()).count();
@@ -237,7 +311,7 @@ pub fn roots_in_unit_interval(f: &Poly) -> Vec<Root> {
         if p.degree().unwrap_or(0) == 0 {
             break Vec::new();
         }
-        match isolate(&integer_form(&p)) {
+        match isolate(&integer_form(&p), window) {
             Isolation::Done(v) => break v,
             Isolation::Midpoint(r) => {
                 p = p.div_rem(&Poly::new(vec![-r.clone(), Rational::one()])).0;
@@ -296,7 +370,7 @@ pub fn roots_in_unit_interval(f: &Poly) -> Vec<Root> {
 /// (continued fractions).
 ///
 /// ```
-/// use truecost::objectives::roots::simplest_between;
+/// use truecost::claims::poly::roots::simplest_between;
 /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
 /// assert_eq!(simplest_between(&q("3/10"), &q("17/50")), q("1/3"));
 /// assert_eq!(simplest_between(&q("0"), &q("3/10")), q("1/4"));
@@ -451,7 +525,7 @@ fn exact_quotient(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::objectives::roots::squarefree_part;
+/// use truecost::claims::poly::roots::squarefree_part;
 /// // (x − 2)^2 (x + 1) = x^3 − 3x^2 + 4 → (x − 2)(x + 1) = x^2 − x − 2.
 /// let a: Vec<BigInt> = [4, 0, -3, 1].iter().map(|&c| BigInt::from(c)).collect();
 /// let want: Vec<BigInt> = [-2, -1, 1].iter().map(|&c| BigInt::from(c)).collect();
@@ -529,7 +603,7 @@ fn rational_among(
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::objectives::roots::rational_roots;
+/// use truecost::claims::poly::roots::rational_roots;
 /// // (2x − 3)(x + 5)(x^2 − 2)(3x − 1)
 /// let f: Vec<BigInt> = [-30, 104, -23, -64, 19, 6].iter().map(|&c| BigInt::from(c)).collect();
 /// let got: Vec<String> = rational_roots(&f).iter().map(|r| r.to_string()).collect();
@@ -577,7 +651,7 @@ pub fn rational_roots(f: &[BigInt]) -> Vec<Rational> {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::objectives::roots::{reduce_polynomial, Reduction};
+/// use truecost::claims::poly::roots::{reduce_polynomial, Reduction};
 /// let ints = |c: &[i64]| -> Vec<BigInt> { c.iter().map(|&x| BigInt::from(x)).collect() };
 /// // −(2x − 3)(x^2 − x − 1)^2 → x^2 − x − 1, with the rational root 3/2.
 /// let f = ints(&[3, 4, -7, -4, 7, -2]);
@@ -924,7 +998,7 @@ fn hensel(f: &[BigInt], g: &[u64], p: u64, k: u32) -> Vec<BigInt> {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::objectives::roots::irreducible_factor_at;
+/// use truecost::claims::poly::roots::irreducible_factor_at;
 /// let ints = |c: &[i64]| -> Vec<BigInt> { c.iter().map(|&x| BigInt::from(x)).collect() };
 /// // (x^2 + x − 1)(x^3 − 2): the root (√5 − 1)/2 ≈ 0.618 in (3/5, 2/3) is a root of x^2 + x − 1.
 /// let f = ints(&[2, -2, -2, -1, 1, 1]);
@@ -1025,7 +1099,7 @@ fn is_prime(n: u64) -> bool {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::objectives::roots::irreducible_by_degrees;
+/// use truecost::claims::poly::roots::irreducible_by_degrees;
 /// let ints = |c: &[i64]| -> Vec<BigInt> { c.iter().map(|&x| BigInt::from(x)).collect() };
 /// assert!(irreducible_by_degrees(&ints(&[-2, 0, 0, 0, 0, 1]))); // x^5 − 2 (Eisenstein)
 /// assert!(!irreducible_by_degrees(&ints(&[2, 0, -3, 0, 1]))); // (x^2 − 1)(x^2 − 2)
@@ -1172,7 +1246,11 @@ impl Root {
         if self.exact {
             return;
         }
-        let mid = (&self.lo + &self.hi) / Rational::from_integer(2.into());
+        // (lo + hi)/2 with one normalisation.
+        let mid = Rational::new(
+            self.lo.numer() * self.hi.denom() + self.hi.numer() * self.lo.denom(),
+            2 * self.lo.denom() * self.hi.denom(),
+        );
         self.cut(mid);
     }
 
@@ -1198,6 +1276,16 @@ impl Root {
 
     /// Exact comparison (module docs).
     pub fn compare(&self, other: &Root) -> Ordering {
+        // Disjoint brackets (or two exact values) decide without refining.
+        if self.exact && other.exact {
+            return self.lo.cmp(&other.lo);
+        }
+        if self.hi <= other.lo {
+            return Ordering::Less;
+        }
+        if other.hi <= self.lo {
+            return Ordering::Greater;
+        }
         let (mut a, mut b) = (self.clone(), other.clone());
         let mut checked = false;
         loop {
@@ -1211,14 +1299,14 @@ impl Root {
                 return Ordering::Greater;
             }
             if a.exact {
-                if b.poly.poly.eval(&a.lo).is_zero() {
+                if b.poly.sign(&a.lo) == Ordering::Equal {
                     return Ordering::Equal;
                 }
                 b.cut(a.lo.clone());
                 continue;
             }
             if b.exact {
-                if a.poly.poly.eval(&b.lo).is_zero() {
+                if a.poly.sign(&b.lo) == Ordering::Equal {
                     return Ordering::Equal;
                 }
                 a.cut(b.lo.clone());
@@ -1235,10 +1323,9 @@ impl Root {
                 if may_share(&a.poly, &b.poly) {
                     let g = primitive_gcd(&a.poly.ints, &b.poly.ints);
                     if g.len() > 1 {
-                        let g = Poly::new(g.into_iter().map(Rational::from_integer).collect());
                         let lo = if a.lo > b.lo { &a.lo } else { &b.lo };
                         let hi = if a.hi < b.hi { &a.hi } else { &b.hi };
-                        let (sl, sh) = (g.sign_at(lo), g.sign_at(hi));
+                        let (sl, sh) = (integer_sign(&g, lo), integer_sign(&g, hi));
                         if sl != Ordering::Equal && sh != Ordering::Equal && sl != sh {
                             return Ordering::Equal;
                         }
@@ -1251,8 +1338,24 @@ impl Root {
     }
 
     /// Compares with a rational.
+    /// (The bracket decides, else the sign of the integer polynomial at `x`: the same answer as
+    /// [`Root::compare`] with the exact root `x`, without building its polynomial.)
     pub fn cmp_rational(&self, x: &Rational) -> Ordering {
-        self.compare(&Root::rational(x.clone()))
+        if self.exact {
+            return self.lo.cmp(x);
+        }
+        if &self.hi <= x {
+            return Ordering::Less;
+        }
+        if x <= &self.lo {
+            return Ordering::Greater;
+        }
+        match self.poly.sign(x) {
+            Ordering::Equal => Ordering::Equal,
+            // The polynomial keeps its sign at `lo` up to the root.
+            s if s == self.sign_lo => Ordering::Greater,
+            _ => Ordering::Less,
+        }
     }
 
     /// The value correctly rounded to `digits` digits after the point (to nearest; a tie,
@@ -1262,7 +1365,7 @@ impl Root {
     ///
     /// ```
     /// use truecost::claims::poly::Poly;
-    /// use truecost::objectives::roots::roots_in_unit_interval;
+    /// use truecost::claims::poly::roots::roots_in_unit_interval;
     /// // 2x^2 - 1: 1/√2 = 0.70710678118654752440084...; 6 digits: 0.707107 (truncated: 0.707106).
     /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
     /// assert_eq!(r.decimal(6), "0.707107");
@@ -1299,7 +1402,7 @@ impl Root {
 /// A rational strictly between the roots `a < b`.
 ///
 /// ```
-/// use truecost::objectives::roots::{between, Root};
+/// use truecost::claims::poly::roots::{between, Root};
 /// let a = Root::rational("1/3".parse().unwrap());
 /// let b = Root::rational("1/2".parse().unwrap());
 /// let t = between(&a, &b);

@@ -1,4 +1,4 @@
-//! SMT encoding of claim C2 (SPEC §6, cost–reward equivalence; issue 9, item 1), and the lasso
+//! SMT encoding of claim C2 (SPEC §6, cost–reward equivalence), and the lasso
 //! machinery that the C3 encodings share ([`lassos`], [`shape_text`], [`parse_shape`],
 //! [`poly_term`]).
 //!
@@ -195,7 +195,7 @@ pub fn scale_to_u8(values: &[Rational]) -> Option<Vec<u8>> {
     ints.iter().map(|n| u8::try_from(n).ok()).collect()
 }
 
-/// The planted faults of the mutation tests and trust checks (issue 9, item 2).
+/// The planted faults of the mutation tests and trust checks.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Plant {
     /// The claim as stated: rewards `r = −l`, the registry's linear functionals.

@@ -1,4 +1,4 @@
-//! SMT encodings of claim C3 (SPEC §6, the dangers of discounting; issue 9, item 1): the
+//! SMT encodings of claim C3 (SPEC §6, the dangers of discounting): the
 //! worked example for every real `α ∈ (0,1)` (`C3-example`), and each structure's certificate
 //! for every real `α` in a stated interval (`C3`). Both are univariate nonlinear real
 //! arithmetic (QF_NRA) in the one unknown `α`.
@@ -33,7 +33,7 @@ const ABOVE: &str = "threshold > 0: every discount-optimal policy from 0 reaches
 const AT: &str = "threshold = 0: optimal policies of both kinds (a tie)";
 const PRINTED: &str = "printed 1/(1-alpha) < sum i alpha^(i-1) iff threshold < 0";
 
-/// The threshold polynomial of the claim, `5α⁴ − α³ − α² − α − 1` (issue 9), constant first.
+/// The threshold polynomial of the claim, `5α⁴ − α³ − α² − α − 1`, constant first.
 pub const THRESHOLD: [i64; 5] = [-1, -1, -1, -1, 5];
 
 /// `(N, D)` with `V = N(α)/D(α)`: the discounted value of a lasso whose stage costs are given

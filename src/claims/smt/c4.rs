@@ -1,5 +1,5 @@
 //! SMT encodings of C4 (as printed) and C4-corrected (Proposition 4, episodic equivalence;
-//! SPEC §6 C4; issue 9, item 1). The argument is written in `docs/proofs/c4.md`.
+//! SPEC §6 C4). The argument is written in `docs/proofs/c4.md`.
 //!
 //! The *structure* of a problem (which state has which moves) is enumerated outside the
 //! solver with [`crate::claims::tiny::Family`] (one cost value, so it enumerates shapes up to
@@ -257,7 +257,7 @@ impl Shape {
 }
 
 /// The canonical reachable part of a structure (Proposition 4 concerns only what is reachable
-/// from `x1`; issue 9, item 1: structures up to relabelling), given as per-state successor lists (state 0 is
+/// from `x1`: structures up to relabelling), given as per-state successor lists (state 0 is
 /// `x1`, the last state the goal): `None` when the goal is not reachable (no single-shot path,
 /// so no `π*`: the claim says nothing). States other than `x1` and the goal are relabelled
 /// to the lexicographically least adjacency.
@@ -326,7 +326,7 @@ fn permutations(m: usize) -> Vec<Vec<usize>> {
     out
 }
 
-/// The scope of the C4 proofs (issue 9, item 1): every distinct reachable shape of the
+/// The scope of the C4 proofs: every distinct reachable shape of the
 /// structures with `2..=max_states` states (x1 = 0,
 /// goal last with no moves, 1–2 moves per other state, parallel moves and self-loops
 /// allowed), enumerated up to relabelling by [`Family`] with one cost value; with the number
@@ -513,7 +513,7 @@ fn single_shot_optimal(parts: &Parts, p: &Walk) -> Vec<String> {
         .collect()
 }
 
-/// One shape's obligation for Proposition 4 (issue 9, item 1), comparing exact average-cost
+/// One shape's obligation for Proposition 4, comparing exact average-cost
 /// optimality of `π*` with `f`'s interval, for every choice
 /// of `π*` among the optimal single-shot paths (one disjunct per choice), or `None` when no
 /// case can differ syntactically (for `Printed`: no two goal paths of different lengths).
@@ -612,7 +612,7 @@ pub fn corrected_obligations(shapes: &[Shape], f: Formula) -> (Vec<Obligation>, 
     (obs, removed)
 }
 
-/// The SMT encoding of **C4-corrected** (issue 9, item 1): for every reachable shape of the
+/// The SMT encoding of **C4-corrected**: for every reachable shape of the
 /// structures with ≤ 5 states (`Scope::Full` and `Scope::Quick`; smoke: ≤ 3), every real cost ≥ 0 and every real `M < 0`, and
 /// every choice of `π*` among the optimal single-shot paths: `π*` is average-cost optimal ⟺
 /// `M` lies in the corrected interval. With the trust checks (hypotheses satisfiable, the
@@ -733,7 +733,7 @@ fn formula_interval(shape: &Shape, costs: &[Q], p: &Walk, f: Formula) -> Option<
     Some(iv)
 }
 
-/// Replays a `sat` model (exact rationals; issue 9, item 2) through the exact oracle
+/// Replays a `sat` model (exact rationals) through the exact oracle
 /// [`crate::claims::c4::bonus_sets`]: the costs and `M` are scaled by the least common
 /// denominator to integers (the exact set of the scaled instance is the scaled exact set);
 /// the model is confirmed when, for some optimal single-shot path, `π*`'s exact optimality at

@@ -1,4 +1,4 @@
-//! Engine 4: SMT proofs over the reals (issue 9; `../shared/PROOFS.md`).
+//! Engine 4: SMT proofs over the reals (`../shared/PROOFS.md`).
 //!
 //! A claim is *proved* by proof obligations whose **unsatisfiability** is the proof: each
 //! obligation states the hypotheses and the negated conclusion over real (or integer) unknowns —
@@ -357,7 +357,7 @@ pub fn solve(ob: &Obligation, timeout_ms: u32) -> Answer {
     let a = solve_reusing(ob, timeout_ms);
     // A model that is replayed (and may be printed) must not depend on what this thread's
     // Z3 context solved before — the report would then depend on thread scheduling, and a
-    // shard (issue 12, item 4) would see another model than the whole run: re-solve a
+    // shard would see another model than the whole run: re-solve a
     // satisfiable obligation in a fresh context.
     if matches!(a, Answer::Sat(_)) && ob.role != Role::Hypotheses {
         return z3::with_z3_config(&z3::Config::new(), || {
@@ -724,7 +724,7 @@ pub struct Outcome {
 /// Default per-obligation timeout (milliseconds).
 pub const TIMEOUT_MS: u32 = 60_000;
 
-/// An answer as a shard records it (issue 12, item 4): rationals as `n/d` text.
+/// An answer as a shard records it: rationals as `n/d` text.
 #[derive(serde::Serialize, serde::Deserialize)]
 enum AnswerRecord {
     Unsat,
@@ -777,7 +777,7 @@ impl SolvedRecord {
     }
 }
 
-/// [`discharge`] under sharding (issue 12, item 4): each obligation is a unit of the run,
+/// [`discharge`] under sharding: each obligation is a unit of the run,
 /// solved by the shard that owns it and read from its record on merge.
 fn discharge_sharded(claim: &str, obligations: Vec<Obligation>, timeout_ms: u32) -> Vec<Solved> {
     let sites: Vec<String> = (0..obligations.len())

@@ -1,4 +1,4 @@
-//! SMT-LIB 2.6 terms as text (issue 9, item 4): the obligations are written in the standard
+//! SMT-LIB 2.6 terms as text: the obligations are written in the standard
 //! language first, so that the very text Z3 solves is the text `verify --smt-out` writes and
 //! any other solver (cvc5, Yices) can re-check. Only standard theory symbols are produced.
 

@@ -1,0 +1,220 @@
+//! The pruned search of the parametric discount analysis (derivative and Descartes bounds
+//! dismissing advantages near a probe, a floating-point start corrected by exact policy
+//! iteration) against the full search (every advantage's roots in (0, 1), exact policy
+//! iteration from the first actions): the same breakpoints, optimal sets and achievements on
+//! random stochastic and deterministic problems, FrozenLake 4x4 and a benchmark grid; and the
+//! refusal of a deterministic problem above the per-probe work bound before any work.
+
+use std::cmp::Ordering;
+
+use truecost::envs::EnvSpec;
+use truecost::objectives::parametric::{
+    discount_breakpoints_search, DiscountAnalysis, ParametricError, Search,
+};
+use truecost::objectives::Model;
+use truecost::stochastic::file::{from_json, ProblemFile};
+
+/// A small deterministic generator (64-bit LCG).
+struct Lcg(u64);
+
+impl Lcg {
+    fn next(&mut self, n: u64) -> u64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 33) % n
+    }
+}
+
+/// A random problem file: `n` states, the last a goal, 1–3 actions per other state, each with
+/// 1 or 2 outcomes (probabilities k/4) and integer costs 1–6.
+fn random_problem(seed: u64, n: usize, deterministic: bool) -> Model {
+    let mut g = Lcg(seed);
+    let mut states = Vec::new();
+    for x in 0..n - 1 {
+        let mut actions = Vec::new();
+        for _ in 0..1 + g.next(3) {
+            let cost = 1 + g.next(6);
+            let to = g.next(n as u64);
+            if deterministic || g.next(2) == 0 {
+                actions.push(format!(r#"{{"to":{to},"cost":"{cost}"}}"#));
+            } else {
+                let other = g.next(n as u64);
+                let k = 1 + g.next(3);
+                actions.push(format!(
+                    r#"{{"cost":"{cost}","outcomes":[{{"to":{to},"p":"{k}/4"}},{{"to":{other},"p":"{}/4"}}]}}"#,
+                    4 - k
+                ));
+            }
+        }
+        let _ = x;
+        states.push(format!("[{}]", actions.join(",")));
+    }
+    states.push("[]".into());
+    let text = format!(
+        r#"{{"initial":0,"goals":[{}],"actions":[{}]}}"#,
+        n - 1,
+        states.join(",")
+    );
+    model_of(&text, &format!("random {seed}"))
+}
+
+/// The model of a problem file's text (deterministic or stochastic).
+fn model_of(text: &str, name: &str) -> Model {
+    match from_json(text).expect("a valid problem") {
+        ProblemFile::Stochastic(p) => Model::from_problem(*p, name.into()),
+        ProblemFile::Deterministic(p) => {
+            Model::from_deterministic(&p, name.into()).expect("a valid model")
+        }
+    }
+}
+
+fn analyse(m: &Model, search: Search) -> Result<DiscountAnalysis, ParametricError> {
+    discount_breakpoints_search(m, search, &mut |_| {})
+}
+
+/// Same breakpoints (as algebraic numbers), same optimal sets and achievements everywhere.
+fn assert_same(a: &DiscountAnalysis, b: &DiscountAnalysis, label: &str) {
+    assert_eq!(
+        a.breakpoints.len(),
+        b.breakpoints.len(),
+        "{label}: breakpoints"
+    );
+    for (x, y) in a.breakpoints.iter().zip(&b.breakpoints) {
+        assert_eq!(
+            x.at.compare(&y.at),
+            Ordering::Equal,
+            "{label}: a breakpoint"
+        );
+        assert_eq!(x.touch, y.touch, "{label}: touch");
+        assert_eq!(x.ties, y.ties, "{label}: ties");
+        assert_eq!(x.achievement, y.achievement, "{label}: at a breakpoint");
+    }
+    assert_eq!(a.intervals.len(), b.intervals.len());
+    for (x, y) in a.intervals.iter().zip(&b.intervals) {
+        assert_eq!(x.optimal, y.optimal, "{label}: optimal sets");
+        assert_eq!(x.policy, y.policy, "{label}: reported policy");
+        assert_eq!(x.achievement, y.achievement, "{label}: on an interval");
+    }
+}
+
+#[test]
+fn pruned_and_full_searches_agree_on_random_problems() {
+    let mut compared = 0;
+    let mut with_breakpoints = 0;
+    for seed in 0..60u64 {
+        let deterministic = seed % 2 == 0;
+        let m = random_problem(seed, 5 + (seed % 6) as usize, deterministic);
+        let (full, pruned) = (analyse(&m, Search::Full), analyse(&m, Search::Pruned));
+        match (full, pruned) {
+            (Ok(f), Ok(p)) => {
+                assert_same(&p, &f, &format!("seed {seed}"));
+                compared += 1;
+                with_breakpoints += usize::from(!f.breakpoints.is_empty());
+            }
+            (Err(e), Err(g)) => assert_eq!(e, g, "seed {seed}: the same refusal"),
+            (f, p) => panic!(
+                "seed {seed}: one search failed: {:?} / {:?}",
+                f.err(),
+                p.err()
+            ),
+        }
+    }
+    // The comparison is not vacuous: most problems are analysed, many with breakpoints.
+    assert!(compared >= 40, "{compared} problems compared");
+    assert!(
+        with_breakpoints >= 10,
+        "{with_breakpoints} with breakpoints"
+    );
+}
+
+#[test]
+fn pruned_and_full_searches_agree_on_frozenlake_and_a_grid() {
+    let env = EnvSpec::parse("frozenlake")
+        .and_then(|s| s.build())
+        .expect("a valid spec");
+    let m = Model::from_environment(&env).expect("a valid environment");
+    let (f, p) = (
+        analyse(&m, Search::Full).unwrap(),
+        analyse(&m, Search::Pruned).unwrap(),
+    );
+    assert!(!f.breakpoints.is_empty());
+    assert_same(&p, &f, "frozenlake 4x4 slippery");
+    // A 6x6 grid with random costs 1-9 (deterministic: the successor-chain path).
+    let mut g = Lcg(7);
+    let (rows, cols) = (6usize, 6usize);
+    let mut states = Vec::new();
+    for r in 0..rows {
+        for c in 0..cols {
+            if r == rows - 1 && c == cols - 1 {
+                states.push("[]".to_string());
+                continue;
+            }
+            let mut moves = Vec::new();
+            for (dr, dc) in [(0i64, 1i64), (1, 0), (0, -1), (-1, 0)] {
+                let (nr, nc) = (r as i64 + dr, c as i64 + dc);
+                if nr < 0 || nc < 0 || nr >= rows as i64 || nc >= cols as i64 {
+                    continue;
+                }
+                let to = nr as usize * cols + nc as usize;
+                moves.push(format!(r#"{{"to":{to},"cost":"{}"}}"#, 1 + g.next(9)));
+            }
+            states.push(format!("[{}]", moves.join(",")));
+        }
+    }
+    let text = format!(
+        r#"{{"initial":0,"goals":[{}],"actions":[{}]}}"#,
+        rows * cols - 1,
+        states.join(",")
+    );
+    let m = model_of(&text, "grid");
+    let (f, p) = (
+        analyse(&m, Search::Full).unwrap(),
+        analyse(&m, Search::Pruned).unwrap(),
+    );
+    assert!(
+        f.deterministic && f.breakpoints.len() >= 3,
+        "{}",
+        f.breakpoints.len()
+    );
+    assert_same(&p, &f, "6x6 grid");
+}
+
+#[test]
+fn a_deterministic_problem_over_the_probe_bound_is_refused_before_work() {
+    // A chain of 1449 running states: over the per-probe bound (1448), refused at once with
+    // the bound named; 1448 states are within it.
+    let chain = |n: usize| -> Model {
+        let states: Vec<String> = (0..n)
+            .map(|x| format!(r#"[{{"to":{},"cost":"1"}}]"#, x + 1))
+            .chain(std::iter::once("[]".to_string()))
+            .collect();
+        let text = format!(
+            r#"{{"initial":0,"goals":[{n}],"actions":[{}]}}"#,
+            states.join(",")
+        );
+        model_of(&text, "chain")
+    };
+    let mut probes = 0;
+    let err = discount_breakpoints_search(&chain(1449), Search::Pruned, &mut |_| probes += 1)
+        .unwrap_err();
+    assert_eq!(probes, 0, "refused before any probe");
+    assert!(
+        matches!(
+            err,
+            ParametricError::DeterministicProbeWork { states: 1449, .. }
+        ),
+        "{err:?}"
+    );
+    assert!(
+        err.to_string().contains("at most 1448 running states"),
+        "{err}"
+    );
+    // 1448 states pass the check (the chain's degree bound refuses it while running).
+    let err = analyse(&chain(1448), Search::Pruned).unwrap_err();
+    assert!(
+        !matches!(err, ParametricError::DeterministicProbeWork { .. }),
+        "{err:?}"
+    );
+}

@@ -28,7 +28,7 @@
 //! execution reaches is seen too. A harness fails when one of its covers is never satisfied in a
 //! non-pruned execution: without it, nothing shows that the branch the harness is about is
 //! reachable under its `assume`s. (Kani itself reports an unsatisfied cover without failing the
-//! harness; the stand-in is stricter on purpose.) A cover in a helper function that no
+//! harness; the stand-in is stricter on purpose.) A cover in a shared function that no
 //! execution reaches is invisible here.
 //!
 //! **Vacuity.** A harness whose every execution is pruned by `assume` fails.

@@ -63,7 +63,7 @@ use num_traits::{One, Signed, Zero};
 
 use super::{derive, max_reach, min_reach, Bounds, Model, ObjectiveError};
 use crate::claims::poly::roots::{
-    between, integer_sign, no_root_between, roots_in_unit_interval, roots_in_window,
+    between, homogeneous, integer_sign, no_root_between, roots_in_unit_interval, roots_in_window,
     simplest_between, Root,
 };
 use crate::claims::poly::Poly;
@@ -862,18 +862,6 @@ impl Region {
         }
         allowed
     }
-}
-
-/// `Σ a_i n^i m^(d−i)` for `x = n/m` (`a(x)·m^d`, homogeneous Horner).
-fn homogeneous(a: &[BigInt], x: &Rational) -> BigInt {
-    let (n, m) = (x.numer(), x.denom());
-    let mut acc = BigInt::zero();
-    let mut mpow = BigInt::one();
-    for c in a.iter().rev() {
-        acc = acc * n + c * &mpow;
-        mpow *= m;
-    }
-    acc
 }
 
 /// An advantage negative at the probe `t`, with two bounds that dismiss it cheaply near `t`.

@@ -63,8 +63,22 @@ impl RootPoly {
 }
 
 /// The sign at `x = n/m` of the integer polynomial `a` (constant first): the sign of
-/// `Σ a_i n^i m^(d−i)` (homogeneous Horner; `m > 0`), no rational normalisation.
+/// [`homogeneous`] (`m > 0`), no rational normalisation.
 pub fn integer_sign(a: &[BigInt], x: &Rational) -> Ordering {
+    homogeneous(a, x).sign().cmp(&num_bigint::Sign::NoSign)
+}
+
+/// `Σ a_i n^i m^(d−i)` for `x = n/m` and the integer polynomial `a` of degree `d` (constant
+/// first): `a(x)·m^d`, by homogeneous Horner.
+///
+/// ```
+/// use truecost::claims::poly::roots::homogeneous;
+/// use num_bigint::BigInt;
+/// // 1 + 2x + 3x² at x = 1/2: (4 + 4 + 3) = 11 = (1 + 1 + 3/4)·2².
+/// let a: Vec<BigInt> = [1, 2, 3].into_iter().map(BigInt::from).collect();
+/// assert_eq!(homogeneous(&a, &"1/2".parse().unwrap()), BigInt::from(11));
+/// ```
+pub fn homogeneous(a: &[BigInt], x: &Rational) -> BigInt {
     let (n, m) = (x.numer(), x.denom());
     let mut acc = BigInt::zero();
     let mut mpow = BigInt::one();
@@ -72,7 +86,7 @@ pub fn integer_sign(a: &[BigInt], x: &Rational) -> Ordering {
         acc = acc * n + c * &mpow;
         mpow *= m;
     }
-    acc.sign().cmp(&num_bigint::Sign::NoSign)
+    acc
 }
 
 /// A real algebraic number in `(0, 1)` (module docs).

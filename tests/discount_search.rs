@@ -5,27 +5,17 @@
 //! random stochastic and deterministic problems, FrozenLake 4x4 and a benchmark grid; and the
 //! refusal of a deterministic problem above the per-probe work bound before any work.
 
+mod common;
+
 use std::cmp::Ordering;
 
+use common::Lcg;
 use truecost::envs::EnvSpec;
 use truecost::objectives::parametric::{
     discount_breakpoints_search, DiscountAnalysis, ParametricError, Search,
 };
 use truecost::objectives::Model;
 use truecost::stochastic::file::{from_json, ProblemFile};
-
-/// A small deterministic generator (64-bit LCG).
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self, n: u64) -> u64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 33) % n
-    }
-}
 
 /// A random problem file: `n` states, the last a goal, 1–3 actions per other state, each with
 /// 1 or 2 outcomes (probabilities k/4) and integer costs 1–6.
@@ -34,14 +24,14 @@ fn random_problem(seed: u64, n: usize, deterministic: bool) -> Model {
     let mut states = Vec::new();
     for x in 0..n - 1 {
         let mut actions = Vec::new();
-        for _ in 0..1 + g.next(3) {
-            let cost = 1 + g.next(6);
-            let to = g.next(n as u64);
-            if deterministic || g.next(2) == 0 {
+        for _ in 0..1 + g.below(3) {
+            let cost = 1 + g.below(6);
+            let to = g.below(n as u64);
+            if deterministic || g.below(2) == 0 {
                 actions.push(format!(r#"{{"to":{to},"cost":"{cost}"}}"#));
             } else {
-                let other = g.next(n as u64);
-                let k = 1 + g.next(3);
+                let other = g.below(n as u64);
+                let k = 1 + g.below(3);
                 actions.push(format!(
                     r#"{{"cost":"{cost}","outcomes":[{{"to":{to},"p":"{k}/4"}},{{"to":{other},"p":"{}/4"}}]}}"#,
                     4 - k
@@ -158,7 +148,7 @@ fn pruned_and_full_searches_agree_on_frozenlake_and_a_grid() {
                     continue;
                 }
                 let to = nr as usize * cols + nc as usize;
-                moves.push(format!(r#"{{"to":{to},"cost":"{}"}}"#, 1 + g.next(9)));
+                moves.push(format!(r#"{{"to":{to},"cost":"{}"}}"#, 1 + g.below(9)));
             }
             states.push(format!("[{}]", moves.join(",")));
         }

@@ -354,10 +354,9 @@ fn endless_map_files_are_refused_at_the_limit() {
 
 #[test]
 fn figures_draw_the_map_and_every_optimal_action() {
-    use truecost::figures::envs::{
-        intended_cell, optimal_actions, policy_overlay, scene, value_overlay,
-    };
+    use truecost::figures::envs::{intended_cell, policy_overlay, scene, value_overlay};
     use truecost::figures::render::{draw, ActionGlyph, LegendKey, Overlay};
+    use truecost::objectives::actions::optimal_actions;
     let env = EnvSpec::parse("frozenlake:map=8x8")
         .unwrap()
         .build()
@@ -445,8 +444,9 @@ fn map_env(dir: &tempfile::TempDir, rows: &str, slippery: bool) -> truecost::env
 /// G in one step. Gymnasium's actions: 0 LEFT, 1 DOWN, 2 RIGHT, 3 UP.
 #[test]
 fn tied_optimal_actions_are_all_drawn_and_named_in_the_legend() {
-    use truecost::figures::envs::{optimal_actions, policy_overlay, q_value};
+    use truecost::figures::envs::policy_overlay;
     use truecost::figures::render::{ActionGlyph::Move, LegendKey, Overlay};
+    use truecost::objectives::actions::{optimal_actions, q_value};
     let dir = tempfile::tempdir().unwrap();
     let env = map_env(&dir, "SF\nFG\n", false);
     let m = Model::from_environment(&env).unwrap();

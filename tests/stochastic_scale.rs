@@ -451,28 +451,33 @@ fn max_memory_refuses_one_byte_below_the_estimate() {
     for (format, all_values) in [("text", false), ("json", true)] {
         let bytes = memory_estimate(&s, all_values).bytes;
         let run = |budget: u64| -> Vec<String> {
-            [
-                "solve",
-                "--file",
+            exact_solve(
                 &f,
-                "--gamma",
-                "0.99",
-                "--algorithm",
-                "exact",
-                "--format",
-                format,
-                "--max-memory",
-                &budget.to_string(),
-            ]
-            .iter()
-            .map(|s| s.to_string())
-            .collect()
+                &["--format", format, "--max-memory", &budget.to_string()],
+            )
         };
         let err = fails(&run(bytes - 1), 1);
         assert!(err.contains("above the budget --max-memory"), "{err}");
         assert!(err.contains("99 unknowns"), "{err}");
         truecost().args(run(bytes)).assert().success();
     }
+}
+
+/// `solve --file FILE --gamma 0.99 --algorithm exact` followed by `extra`.
+fn exact_solve(file: &str, extra: &[&str]) -> Vec<String> {
+    [
+        "solve",
+        "--file",
+        file,
+        "--gamma",
+        "0.99",
+        "--algorithm",
+        "exact",
+    ]
+    .iter()
+    .chain(extra)
+    .map(|s| s.to_string())
+    .collect()
 }
 
 fn grid_file(dir: &tempfile::TempDir, side: usize) -> String {
@@ -486,18 +491,7 @@ fn grid_file(dir: &tempfile::TempDir, side: usize) -> String {
 fn max_memory_refuses_before_any_work_in_one_line() {
     let dir = tempfile::tempdir().unwrap();
     let f = grid_file(&dir, 10);
-    let base = [
-        "solve",
-        "--file",
-        &f,
-        "--gamma",
-        "0.99",
-        "--algorithm",
-        "exact",
-    ];
-    let with = |extra: &[&str]| -> Vec<String> {
-        base.iter().chain(extra).map(|s| s.to_string()).collect()
-    };
+    let with = |extra: &[&str]| -> Vec<String> { exact_solve(&f, extra) };
     let err = fails(&with(&["--max-memory", "1M"]), 1);
     assert!(err.contains("estimated"), "{err}");
     assert!(err.contains("above the budget --max-memory 1 MiB"), "{err}");

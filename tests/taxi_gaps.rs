@@ -13,6 +13,8 @@ mod common;
 use num_bigint::BigInt;
 use num_traits::{One, Zero};
 
+use common::Lcg;
+
 use truecost::envs::{taxi, EnvSpec, Environment};
 use truecost::figures::envs::{taxi_policy_overlay, taxi_scene, taxi_value_overlay, TaxiSlice};
 use truecost::figures::render::{draw, Overlay};
@@ -41,19 +43,6 @@ fn det(cost: i64, to: usize) -> StochasticAction {
             probability: Rational::one(),
             kind: OutcomeKind::Listed,
         }],
-    }
-}
-
-/// A portable generator (no dependency on the code under test).
-struct Lcg(u64);
-
-impl Lcg {
-    fn below(&mut self, n: u64) -> u64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 33) % n
     }
 }
 

@@ -26,6 +26,7 @@
 //! truecost and number of steps of the policy it reports (`+∞` if that policy is improper).
 //! With an initial distribution (Taxi), values at "the initial state" are expectations over it.
 
+pub mod actions;
 pub mod parametric;
 pub mod report;
 

@@ -546,17 +546,29 @@ pub fn reduced(n: &BigInt, d: &BigInt) -> crate::value::Rational {
         d > &BigInt::zero(),
         "reduced: the denominator must be positive"
     );
-    let to_ubig = |x: &BigInt| UBig::from_le_bytes(&x.magnitude().to_bytes_le());
-    let (un, ud) = (to_ubig(n), to_ubig(d));
+    let (un, ud) = (magnitude(n), magnitude(d));
     let g = (&un).gcd(&ud);
-    let back = |x: UBig| BigInt::from(num_bigint::BigUint::from_bytes_le(&x.to_le_bytes()));
-    let (rn, rd) = if g == UBig::ONE {
-        (n.clone(), d.clone())
-    } else {
-        let rn = back(un / &g);
-        (if n < &BigInt::zero() { -rn } else { rn }, back(ud / &g))
-    };
-    crate::value::Rational::new_raw(rn, rd)
+    divided(n, &un, d, &ud, &g)
+}
+
+/// `|x|` as a `dashu` integer.
+fn magnitude(x: &BigInt) -> UBig {
+    UBig::from_le_bytes(&x.magnitude().to_bytes_le())
+}
+
+/// A `dashu` natural number as a `num-bigint` integer.
+fn from_ubig(x: &UBig) -> BigInt {
+    BigInt::from(num_bigint::BigUint::from_bytes_le(&x.to_le_bytes()))
+}
+
+/// `n/d` (`d > 0`, `un = |n|`, `ud = d`) divided through by their common factor `g`.
+fn divided(n: &BigInt, un: &UBig, d: &BigInt, ud: &UBig, g: &UBig) -> crate::value::Rational {
+    if *g == UBig::ONE {
+        return crate::value::Rational::new_raw(n.clone(), d.clone());
+    }
+    let rn = from_ubig(&(un / g));
+    let rn = if n < &BigInt::zero() { -rn } else { rn };
+    crate::value::Rational::new_raw(rn, from_ubig(&(ud / g)))
 }
 
 /// `nᵢ/d` in lowest terms for many numerators over one denominator `d > 0`, equal to
@@ -583,9 +595,7 @@ pub fn reduced_all(numerators: &[&BigInt], d: &BigInt) -> Vec<crate::value::Rati
         d > &BigInt::zero(),
         "reduced_all: the denominator must be positive"
     );
-    let to_ubig = |x: &BigInt| UBig::from_le_bytes(&x.magnitude().to_bytes_le());
-    let back = |x: &UBig| BigInt::from(num_bigint::BigUint::from_bytes_le(&x.to_le_bytes()));
-    let ud = to_ubig(d);
+    let ud = magnitude(d);
     let common = if ud == UBig::ONE {
         UBig::ONE
     } else {
@@ -599,7 +609,7 @@ pub fn reduced_all(numerators: &[&BigInt], d: &BigInt) -> Vec<crate::value::Rati
             .map(|part| {
                 let mut acc = UBig::ONE;
                 for n in part.iter().filter(|n| !n.is_zero()) {
-                    let un = to_ubig(n);
+                    let un = magnitude(n);
                     // Barrett needs `un < d²`; numerators are far below (|z| ≪ d).
                     let un = if un.bit_len() + 2 <= 2 * ud.bit_len() {
                         barrett.reduce(un)
@@ -622,14 +632,9 @@ pub fn reduced_all(numerators: &[&BigInt], d: &BigInt) -> Vec<crate::value::Rati
             if common == UBig::ONE {
                 return crate::value::Rational::new_raw(n.clone(), d.clone());
             }
-            let un = to_ubig(n);
+            let un = magnitude(n);
             let g = (&un % &common).gcd(&common);
-            if g == UBig::ONE {
-                return crate::value::Rational::new_raw(n.clone(), d.clone());
-            }
-            let rn = back(&(un / &g));
-            let rn = if n < &BigInt::zero() { -rn } else { rn };
-            crate::value::Rational::new_raw(rn, back(&(&ud / &g)))
+            divided(n, &un, d, &ud, &g)
         })
         .collect()
 }

@@ -99,17 +99,20 @@ impl Optimum {
     /// denominator are found together ([`super::linear::reduced_all`]), not by one gcd of
     /// full-size numbers per state.
     pub fn cost_to_go_all(&self) -> &[Extended] {
-        self.reduced.get_or_init(|| {
-            let finite: Vec<&BigInt> = self.numerators.iter().flatten().collect();
-            let mut values = super::linear::reduced_all(&finite, &self.denominator).into_iter();
-            self.numerators
-                .iter()
-                .map(|n| match n {
-                    Some(_) => Extended::Finite(values.next().expect("one value a numerator")),
-                    None => Extended::Infinite,
-                })
-                .collect()
-        })
+        self.reduced.get_or_init(|| self.reduce())
+    }
+
+    /// Every state's `G*`, reduced together by [`super::linear::reduced_all`] (not cached).
+    fn reduce(&self) -> Vec<Extended> {
+        let finite: Vec<&BigInt> = self.numerators.iter().flatten().collect();
+        let mut values = super::linear::reduced_all(&finite, &self.denominator).into_iter();
+        self.numerators
+            .iter()
+            .map(|n| match n {
+                Some(_) => Extended::Finite(values.next().expect("one value a numerator")),
+                None => Extended::Infinite,
+            })
+            .collect()
     }
 
     /// Every state's `G*` as [`Extended`]'s text (`"n/d"`, `"n"` or `"inf"`), the same strings
@@ -139,16 +142,7 @@ impl Optimum {
                 .map(|(v, slot)| value_text(v, slot, &denominators))
                 .collect();
         }
-        let finite: Vec<&BigInt> = self.numerators.iter().flatten().collect();
-        let mut reduced = super::linear::reduced_all(&finite, &self.denominator).into_iter();
-        let values: Vec<Extended> = self
-            .numerators
-            .iter()
-            .map(|n| match n {
-                Some(_) => Extended::Finite(reduced.next().expect("one value a numerator")),
-                None => Extended::Infinite,
-            })
-            .collect();
+        let values = self.reduce();
         let (denominators, slots) = denominator_texts(&values);
         // Consumed while printed: each value is freed once its text exists.
         values

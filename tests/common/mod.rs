@@ -18,6 +18,20 @@ use truecost::value::ExactValue;
 /// Exact rational.
 pub type Q = BigRational;
 
+/// A portable seeded generator (64-bit LCG), independent of the code under test.
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    /// The next number in `0..n`.
+    pub fn below(&mut self, n: u64) -> u64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 33) % n
+    }
+}
+
 /// The problem of a `truecost-stochastic/1` file's text (a test's own file: it must parse).
 pub fn stochastic_file(text: &str) -> truecost::stochastic::StochasticProblem {
     use truecost::stochastic::file::{from_json, ProblemFile};

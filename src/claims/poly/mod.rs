@@ -178,32 +178,11 @@ impl Poly {
 
     /// The primitive integer multiple with a positive leading coefficient (for display).
     pub fn primitive(&self) -> Poly {
-        use num_integer::Integer;
-        let mut l = BigInt::one();
-        for c in &self.c {
-            l = l.lcm(c.denom());
+        let mut ints = roots::integer_form(self);
+        if ints.last().is_some_and(Signed::is_negative) {
+            ints.iter_mut().for_each(|c| *c = -&*c);
         }
-        let scaled: Vec<BigInt> = self
-            .c
-            .iter()
-            .map(|c| (c * Rational::from_integer(l.clone())).to_integer())
-            .collect();
-        let mut g = BigInt::zero();
-        for c in &scaled {
-            g = g.gcd(c);
-        }
-        if g.is_zero() {
-            return Poly::zero();
-        }
-        if scaled.last().is_some_and(|c| c.is_negative()) {
-            g = -g;
-        }
-        Poly::new(
-            scaled
-                .into_iter()
-                .map(|c| Rational::from_integer(c / &g))
-                .collect(),
-        )
+        Poly::new(ints.into_iter().map(Rational::from_integer).collect())
     }
 
     /// The square-free part `p / gcd(p, p')` (monic).

@@ -3,7 +3,8 @@
 //! iteration) against the full search (every advantage's roots in (0, 1), exact policy
 //! iteration from the first actions): the same breakpoints, optimal sets and achievements on
 //! random stochastic and deterministic problems, FrozenLake 4x4 and a benchmark grid; and the
-//! refusal of a deterministic problem above the per-probe work bound before any work.
+//! refusal of a deterministic problem above the state bound before any work, and the measured
+//! work bound of a deterministic analysis.
 
 mod common;
 
@@ -12,7 +13,8 @@ use std::cmp::Ordering;
 use common::Lcg;
 use truecost::envs::EnvSpec;
 use truecost::objectives::parametric::{
-    discount_breakpoints_search, DiscountAnalysis, ParametricError, Search,
+    discount_breakpoints_search, discount_breakpoints_within, DiscountAnalysis, ParametricError,
+    Search, MAX_DETERMINISTIC_RUNNING_STATES,
 };
 use truecost::objectives::Model;
 use truecost::stochastic::file::{from_json, ProblemFile};
@@ -119,21 +121,9 @@ fn pruned_and_full_searches_agree_on_random_problems() {
     );
 }
 
-#[test]
-fn pruned_and_full_searches_agree_on_frozenlake_and_a_grid() {
-    let env = EnvSpec::parse("frozenlake")
-        .and_then(|s| s.build())
-        .expect("a valid spec");
-    let m = Model::from_environment(&env).expect("a valid environment");
-    let (f, p) = (
-        analyse(&m, Search::Full).unwrap(),
-        analyse(&m, Search::Pruned).unwrap(),
-    );
-    assert!(!f.breakpoints.is_empty());
-    assert_same(&p, &f, "frozenlake 4x4 slippery");
-    // A 6x6 grid with random costs 1-9 (deterministic: the successor-chain path).
-    let mut g = Lcg(7);
-    let (rows, cols) = (6usize, 6usize);
+/// A `rows × cols` grid (4 neighbours, goal bottom-right) with move costs 1–9 from `seed`.
+fn grid(rows: usize, cols: usize, seed: u64) -> Model {
+    let mut g = Lcg(seed);
     let mut states = Vec::new();
     for r in 0..rows {
         for c in 0..cols {
@@ -158,7 +148,23 @@ fn pruned_and_full_searches_agree_on_frozenlake_and_a_grid() {
         rows * cols - 1,
         states.join(",")
     );
-    let m = model_of(&text, "grid");
+    model_of(&text, "grid")
+}
+
+#[test]
+fn pruned_and_full_searches_agree_on_frozenlake_and_a_grid() {
+    let env = EnvSpec::parse("frozenlake")
+        .and_then(|s| s.build())
+        .expect("a valid spec");
+    let m = Model::from_environment(&env).expect("a valid environment");
+    let (f, p) = (
+        analyse(&m, Search::Full).unwrap(),
+        analyse(&m, Search::Pruned).unwrap(),
+    );
+    assert!(!f.breakpoints.is_empty());
+    assert_same(&p, &f, "frozenlake 4x4 slippery");
+    // A 6x6 grid with random costs 1-9 (deterministic: the successor-chain path).
+    let m = grid(6, 6, 7);
     let (f, p) = (
         analyse(&m, Search::Full).unwrap(),
         analyse(&m, Search::Pruned).unwrap(),
@@ -172,9 +178,9 @@ fn pruned_and_full_searches_agree_on_frozenlake_and_a_grid() {
 }
 
 #[test]
-fn a_deterministic_problem_over_the_probe_bound_is_refused_before_work() {
-    // A chain of 1449 running states: over the per-probe bound (1448), refused at once with
-    // the bound named; 1448 states are within it.
+fn a_deterministic_problem_over_the_state_bound_is_refused_before_work() {
+    // A chain of 2501 running states: over the bound (2500), refused at once with the bound
+    // named; 2500 states are within it.
     let chain = |n: usize| -> Model {
         let states: Vec<String> = (0..n)
             .map(|x| format!(r#"[{{"to":{},"cost":"1"}}]"#, x + 1))
@@ -187,24 +193,63 @@ fn a_deterministic_problem_over_the_probe_bound_is_refused_before_work() {
         model_of(&text, "chain")
     };
     let mut probes = 0;
-    let err = discount_breakpoints_search(&chain(1449), Search::Pruned, &mut |_| probes += 1)
+    let err = discount_breakpoints_search(&chain(2501), Search::Pruned, &mut |_| probes += 1)
         .unwrap_err();
     assert_eq!(probes, 0, "refused before any probe");
-    assert!(
-        matches!(
-            err,
-            ParametricError::DeterministicProbeWork { states: 1449, .. }
-        ),
-        "{err:?}"
+    assert_eq!(
+        err,
+        ParametricError::DeterministicStates {
+            states: 2501,
+            bound: MAX_DETERMINISTIC_RUNNING_STATES
+        }
     );
-    assert!(
-        err.to_string().contains("at most 1448 running states"),
-        "{err}"
+    assert!(err.to_string().contains("takes at most 2500"), "{err}");
+    // 2500 states pass the check: a star (every state one move from the goal) is answered,
+    // with no breakpoint.
+    let star: Vec<String> = (0..2500)
+        .map(|_| r#"[{"to":2500,"cost":"1"}]"#.to_string())
+        .chain(std::iter::once("[]".to_string()))
+        .collect();
+    let text = format!(
+        r#"{{"initial":0,"goals":[2500],"actions":[{}]}}"#,
+        star.join(",")
     );
-    // 1448 states pass the check (the chain's degree bound refuses it while running).
-    let err = analyse(&chain(1448), Search::Pruned).unwrap_err();
+    let done = analyse(&model_of(&text, "star"), Search::Pruned).expect("within the bound");
+    assert_eq!((done.running_states, done.breakpoints.len()), (2500, 0));
+}
+
+#[test]
+fn a_deterministic_analysis_stops_at_its_measured_work_bound() {
+    let m = grid(8, 8, 3);
+    let done = analyse(&m, Search::Pruned).unwrap();
     assert!(
-        !matches!(err, ParametricError::DeterministicProbeWork { .. }),
-        "{err:?}"
+        done.deterministic && done.work > 0 && done.probes >= 3,
+        "{} probes, {} units",
+        done.probes,
+        done.work
+    );
+    // The work is counted, not timed: the same on a second run, and any bound of twice it
+    // gives the same analysis.
+    let again = discount_breakpoints_within(&m, Search::Pruned, 2 * done.work, &mut |_| {})
+        .expect("within twice its work");
+    assert_eq!(again.work, done.work);
+    assert_same(&again, &done, "8x8 grid within twice its work");
+    // Half its work: stopped while running, the bound named, never passed.
+    let half = done.work / 2;
+    let mut seen = Vec::new();
+    let err =
+        discount_breakpoints_within(&m, Search::Pruned, half, &mut |p| seen.push(p)).unwrap_err();
+    assert!(err.to_string().contains(&half.to_string()), "{err}");
+    match err {
+        ParametricError::Work { bound, probes, .. } => {
+            assert_eq!(bound, half);
+            assert!(probes < done.probes, "{probes} of {}", done.probes);
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(!seen.is_empty());
+    assert!(
+        seen.iter().all(|p| p.bound == half && p.work <= half),
+        "{seen:?}"
     );
 }

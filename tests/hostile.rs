@@ -388,19 +388,18 @@ fn plot_directory_is_checked_before_the_run() {
     assert!(!out.join("deterministic.json").exists());
 }
 
-// `discount` on a 32 × 32 grid is refused with its bound at once (unbounded, it runs minutes
-// and takes 1.35 GB).
+// `discount` on a grid over the deterministic state bound is refused with its bound at once.
 #[test]
 fn discount_of_a_large_grid_is_refused_with_its_bound() {
     let dir = tempfile::tempdir().unwrap();
-    // 39 x 39: 1521 states, 1520 where the episode runs, over the deterministic analysis'
-    // bound of 1448 (one probe estimated at n^2 2^22 units): refused before any work.
-    let grid = write(dir.path(), "grid39.json", &grid_file(39, true, None));
+    // 51 x 51: 2601 states, 2600 where the episode runs, over the deterministic analysis'
+    // bound of 2500: refused before any work.
+    let grid = write(dir.path(), "grid51.json", &grid_file(51, true, None));
     let started = std::time::Instant::now();
     let err = fails_one_line(&["discount", "--file", grid.to_str().unwrap()]);
     assert_contract(&err);
-    assert!(err.contains("1520 running states"), "{err}");
-    assert!(err.contains("at most 1448 running states"), "{err}");
+    assert!(err.contains("2600 states where the episode runs"), "{err}");
+    assert!(err.contains("takes at most 2500"), "{err}");
     assert!(started.elapsed() < std::time::Duration::from_secs(10));
     // A 3 x 3 grid with costs 1-4 (refused by the enumeration of goal paths and lassos: 696
     // pairs of degree 17 took five minutes) is answered by the parametric analysis.

@@ -14,9 +14,7 @@ use serde_json::json;
 
 use truecost::claims::discount::{point_text, set_text, DiscountSet};
 use truecost::echo::printable;
-use truecost::objectives::parametric::{
-    discount_breakpoints_with, DiscountAnalysis, MAX_PROBE_WORK,
-};
+use truecost::objectives::parametric::{discount_breakpoints_with, DiscountAnalysis};
 use truecost::objectives::report::{
     discount_json, discount_latex, discount_markdown, discount_text,
 };
@@ -139,7 +137,7 @@ fn analysis(model: &Model) -> Result<DiscountAnalysis, String> {
         ProgressBar::hidden()
     };
     let d = discount_breakpoints_with(model, &mut |p| {
-        bar.set_position((p.work * 100 / MAX_PROBE_WORK) as u64);
+        bar.set_position((p.work * 100 / p.bound.max(1)) as u64);
         bar.set_message(format!(
             "probe {} ({} regions, {} gaps)",
             p.probes + 1,

@@ -63,8 +63,8 @@ use num_traits::{One, Signed, Zero};
 
 use super::{derive, max_reach, min_reach, Bounds, Model, ObjectiveError};
 use crate::claims::poly::roots::{
-    between, homogeneous, integer_sign, no_root_between, roots_in_unit_interval, roots_in_window,
-    simplest_between, Root,
+    between, content, homogeneous, integer_sign, no_root_between, roots_in_unit_interval,
+    roots_in_window, simplest_between, Root,
 };
 use crate::claims::poly::Poly;
 use crate::model::StateId;
@@ -95,10 +95,14 @@ pub const MAX_PROBE_WORK: u128 = 1 << 49;
 /// probes within [`MAX_PROBE_WORK`] is refused at once.
 pub const MAX_SINGLE_PROBE_WORK: u128 = MAX_PROBE_WORK / 16;
 
-/// The most work one probe of a deterministic analysis may take before any work starts: a
-/// problem that cannot afford 64 probes within [`MAX_PROBE_WORK`] (grids have about one probe
-/// per running state) is refused at once: at most 1448 running states.
-pub const MAX_DETERMINISTIC_PROBE_WORK: u128 = MAX_PROBE_WORK / 64;
+/// The most states where the episode runs of a deterministic model: more are refused before
+/// any work.
+pub const MAX_DETERMINISTIC_RUNNING_STATES: usize = 2_500;
+
+/// The most work the probes of one deterministic analysis may do together, in the units of
+/// [`deterministic_probe_work`] (measured on each probe); checked before every probe with the
+/// last probe's work as the estimate of the next.
+pub const MAX_DETERMINISTIC_WORK: u128 = 3 << 25;
 
 /// The estimated work of one probe of a stochastic analysis: `n⁵·b⁴`, with `n` the running
 /// states (the degree of the rational functions and the size of the exact solve) and `b` the
@@ -167,8 +171,11 @@ pub struct ProbeProgress {
     pub regions: usize,
     /// Gaps of `(0, 1)` still to cover.
     pub gaps: usize,
-    /// Work done, in units of [`probe_work`], and the bound [`MAX_PROBE_WORK`].
+    /// Work done: in units of [`probe_work`] for a stochastic model, of
+    /// [`deterministic_probe_work`] for a deterministic one.
     pub work: u128,
+    /// The bound on `work`: [`MAX_PROBE_WORK`] or [`MAX_DETERMINISTIC_WORK`].
+    pub bound: u128,
 }
 
 /// Why the parametric analysis refused or failed. One line each.
@@ -214,15 +221,13 @@ pub enum ParametricError {
         /// [`MAX_PROBE_WORK`].
         bound: u128,
     },
-    /// One probe of a deterministic model alone would exceed [`MAX_DETERMINISTIC_PROBE_WORK`].
-    #[error("one exact probe of this deterministic problem is estimated at {work} units ({states} running states: n^2 2^22); the exact parametric analysis takes at most {bound} per probe (64 probes within the analysis bound), i.e. at most 1448 running states")]
-    DeterministicProbeWork {
+    /// A deterministic model with more than [`MAX_DETERMINISTIC_RUNNING_STATES`].
+    #[error("{states} states where the episode runs: the exact parametric analysis of a deterministic problem takes at most {bound}")]
+    DeterministicStates {
         /// Running states.
         states: usize,
-        /// Estimated units.
-        work: u128,
-        /// [`MAX_DETERMINISTIC_PROBE_WORK`].
-        bound: u128,
+        /// [`MAX_DETERMINISTIC_RUNNING_STATES`].
+        bound: usize,
     },
     /// Too many regions: the piece bound.
     #[error("the discount-optimal policy changes more than {0} times on (0,1): beyond the bound of the exact parametric analysis")]
@@ -300,6 +305,9 @@ pub struct DiscountAnalysis {
     pub running_states: usize,
     /// Whether the deterministic path (successor chains, module docs step 1′) was taken.
     pub deterministic: bool,
+    /// The work of the probes: units of [`probe_work`] (stochastic, estimated) or of
+    /// [`deterministic_probe_work`] (deterministic, measured).
+    pub work: u128,
 }
 
 /// A policy's discounted values as rational functions `N_x / D_x` (module docs, step 1; the
@@ -359,8 +367,7 @@ fn berlekamp_massey(s: &[BigInt]) -> Vec<BigInt> {
 
 /// Divided by the (positive) gcd of the entries.
 fn content_free(p: Vec<BigInt>) -> Vec<BigInt> {
-    use num_integer::Integer;
-    let g = p.iter().fold(BigInt::zero(), |g, c| g.gcd(c));
+    let g = content(&p);
     if g.is_zero() || g.is_one() {
         return p;
     }
@@ -529,23 +536,21 @@ fn poly_add_scaled(acc: &mut Vec<BigInt>, f: &[BigInt], w: &BigInt, shift: usize
     }
 }
 
-/// The estimated work of one probe of a deterministic analysis (module docs, step 1′), in the
-/// units of [`MAX_PROBE_WORK`]: `n²·2^22` with `n` the running states. Measured in release on
-/// 2 cores (load 2–3) on benchmark grids with move costs 1–9 and the pruned search: 15×15 (224
-/// running states) 247 probes in 0.95 s, 20×20 (399) 367 probes in 2.6 s (the whole analysis
-/// 3.1 s and 8.9 s with the breakpoints' reduction and achievements), 30×30 (899) 925 probes
-/// and 135 s in all. So the probes of one analysis stop at [`MAX_PROBE_WORK`] (843 probes of a
-/// 20×20 grid, 166 of a 30×30 one), and a model over 1448 running states (64 probes) is
-/// refused before any work ([`MAX_DETERMINISTIC_PROBE_WORK`]).
-///
-/// ```
-/// use truecost::objectives::parametric::{deterministic_probe_work, MAX_DETERMINISTIC_PROBE_WORK};
-/// assert!(deterministic_probe_work(1448) <= MAX_DETERMINISTIC_PROBE_WORK);
-/// assert!(deterministic_probe_work(1449) > MAX_DETERMINISTIC_PROBE_WORK);
-/// ```
-pub fn deterministic_probe_work(running: usize) -> u128 {
-    let n = running.max(1) as u128;
-    (n * n) << 22
+/// The work of one probe of a deterministic analysis (module docs, step 1′), measured on the
+/// probe: the words of its advantage polynomials that are negative at the probe (the ones
+/// whose roots the region's ends are searched among), `Σ (degree + 1) · ⌈bits / 64⌉`. It is
+/// counted, not timed, so an analysis stops at the same probe on every machine.
+fn deterministic_probe_work(found: &[Found]) -> u128 {
+    found
+        .iter()
+        .map(|f| match f {
+            Found::Negative(_, c, _) => {
+                let bits = c.iter().map(|x| x.bits()).max().unwrap_or(0);
+                c.len() as u128 * u128::from(bits.div_ceil(64).max(1))
+            }
+            _ => 0,
+        })
+        .sum()
 }
 
 /// Whether every action where the episode runs has a single outcome (probability 1): the
@@ -880,10 +885,9 @@ struct Candidate {
     value: BigInt,
     scale: BigInt,
     lipschitz: BigInt,
-    /// `|A(t)|`.
-    advantage: Rational,
-    /// `2R`.
-    slope: Rational,
+    /// `|A(t)| / 2R` as the fraction `by_values.0 / by_values.1` (not reduced: comparisons
+    /// cross-multiply, so no gcd of large numbers is taken; the second is 0 when `R = 0`).
+    by_values: (BigInt, BigInt),
     /// Approximate `log2` of how far from `t` the bounds keep `A < 0`: the order in which
     /// candidates are tried.
     radius: f64,
@@ -903,7 +907,7 @@ impl Candidate {
     fn new(
         index: usize,
         poly: Vec<BigInt>,
-        factor: &Rational,
+        factor: &(BigInt, BigInt),
         top: &Rational,
         t: &Rational,
     ) -> Candidate {
@@ -917,21 +921,23 @@ impl Candidate {
             .fold(BigInt::zero(), |acc, (k, c)| {
                 acc + c.abs() * BigInt::from(k)
             });
-        let advantage = Rational::new(value.clone(), scale.clone()) / factor;
-        let slope = top * Rational::from_integer(2.into());
-        let log2_rat = |r: &Rational| log2_big(r.numer()) - log2_big(r.denom());
+        // |A(t)| = value / (scale · factor), 2R = 2 top.
+        let by_values = (
+            &value * &factor.1 * top.denom(),
+            &scale * &factor.0 * top.numer() * 2,
+        );
         let by_coefficients = log2_big(&value) - log2_big(&scale) - log2_big(&lipschitz);
         let gap = Rational::one() - t;
-        let by_values = log2_rat(&advantage) - log2_rat(&slope) + 2.0 * log2_rat(&gap);
+        let log2_gap = log2_big(gap.numer()) - log2_big(gap.denom());
+        let radius = log2_big(&by_values.0) - log2_big(&by_values.1) + 2.0 * log2_gap;
         Candidate {
             index,
             poly,
             value,
             scale,
             lipschitz,
-            advantage,
-            slope,
-            radius: by_coefficients.max(by_values),
+            by_values,
+            radius: by_coefficients.max(radius),
         }
     }
 
@@ -942,7 +948,10 @@ impl Candidate {
             return true;
         }
         let gap = Rational::one() - u;
-        gap.is_positive() && &self.advantage * &gap * &gap > &self.slope * w
+        // |A(t)| (1 − u)² > 2R w, cross-multiplied.
+        let (n, d) = &self.by_values;
+        gap.is_positive()
+            && n * gap.numer() * gap.numer() * w.denom() > d * w.numer() * gap.denom() * gap.denom()
     }
 }
 
@@ -1113,8 +1122,8 @@ fn int_poly(c: &[BigInt]) -> Poly {
 enum Found {
     Persistent(usize),
     /// Negative at the probe: the action, its polynomial and the positive factor at `t`
-    /// between the polynomial and the advantage `Q_a − V_x` itself.
-    Negative(usize, Vec<BigInt>, Rational),
+    /// between the polynomial and the advantage `Q_a − V_x` itself (an unreduced fraction).
+    Negative(usize, Vec<BigInt>, (BigInt, BigInt)),
     AtRoot,
     /// Positive at the probe: the state and the action.
     Positive(StateId, usize),
@@ -1135,13 +1144,13 @@ fn advantages_at(
         .flat_map(|&x| p.actions(x).map(move |a| (x, a)))
         .filter(|&(x, a)| Some(a) != policy[x])
         .collect();
-    // Each denominator at t (positive).
-    let dens_at: Vec<Rational> = values
+    // Each denominator at t (positive), as an unreduced fraction.
+    let dens_at: Vec<(BigInt, BigInt)> = values
         .dens
         .iter()
         .map(|d| {
             let m = num_traits::pow(t.denom().clone(), d.len().saturating_sub(1));
-            Rational::new(homogeneous(d, t), m)
+            (homogeneous(d, t), m)
         })
         .collect();
     use rayon::prelude::*;
@@ -1195,8 +1204,8 @@ fn advantages_at(
                 Ordering::Less => {
                     let factor = involved
                         .iter()
-                        .fold(Rational::from_integer(scale.clone()), |f, &k| {
-                            f * &dens_at[k]
+                        .fold((scale.clone(), BigInt::one()), |(n, d), &k| {
+                            (n * &dens_at[k].0, d * &dens_at[k].1)
                         });
                     Found::Negative(a, c, factor)
                 }
@@ -1273,6 +1282,7 @@ fn probe(
     index: &[Option<usize>],
     t: &Rational,
     degree: &mut usize,
+    work: &mut u128,
     deterministic: bool,
     left: Option<&Root>,
     search: Search,
@@ -1318,6 +1328,9 @@ fn probe(
         (policy, values, found)
     };
     *degree = (*degree).max(values.degree);
+    if deterministic {
+        *work += deterministic_probe_work(&found);
+    }
     let mut persistent = Vec::new();
     let mut advantages = Vec::new();
     let mut polys = Vec::new();
@@ -1620,6 +1633,19 @@ pub fn discount_breakpoints_search(
     search: Search,
     progress: &mut dyn FnMut(ProbeProgress),
 ) -> Result<DiscountAnalysis, ParametricError> {
+    discount_breakpoints_within(model, search, MAX_DETERMINISTIC_WORK, progress)
+}
+
+/// [`discount_breakpoints_search`] with the bound on the work of a deterministic analysis
+/// given (in place of [`MAX_DETERMINISTIC_WORK`]; stochastic models keep [`MAX_PROBE_WORK`]).
+/// The work done is [`DiscountAnalysis::work`]; an analysis succeeds within any bound of at
+/// least twice that (the next probe is expected to cost at most as much as all before it).
+pub fn discount_breakpoints_within(
+    model: &Model,
+    search: Search,
+    deterministic_bound: u128,
+    progress: &mut dyn FnMut(ProbeProgress),
+) -> Result<DiscountAnalysis, ParametricError> {
     let p = &model.problem;
     let running: Vec<StateId> = (0..p.states()).filter(|&x| !model.terminal[x]).collect();
     let deterministic = is_deterministic(model);
@@ -1630,17 +1656,16 @@ pub fn discount_breakpoints_search(
         });
     }
     // Deterministic problems: the chain degree is checked while running, and each probe
-    // counts `n²·2^22` units of the same work bounds (`deterministic_probe_work`).
+    // counts the work it measured (`deterministic_probe_work`); the next probe is expected
+    // to cost as much as the last one.
     let per_probe = if deterministic {
-        let work = deterministic_probe_work(running.len());
-        if work > MAX_DETERMINISTIC_PROBE_WORK {
-            return Err(ParametricError::DeterministicProbeWork {
+        if running.len() > MAX_DETERMINISTIC_RUNNING_STATES {
+            return Err(ParametricError::DeterministicStates {
                 states: running.len(),
-                work,
-                bound: MAX_DETERMINISTIC_PROBE_WORK,
+                bound: MAX_DETERMINISTIC_RUNNING_STATES,
             });
         }
-        work
+        None
     } else {
         let bits = number_bits(model, &running);
         let work = probe_work(running.len(), bits);
@@ -1652,10 +1677,16 @@ pub fn discount_breakpoints_search(
                 bound: MAX_SINGLE_PROBE_WORK,
             });
         }
-        work
+        Some(work)
+    };
+    let bound = if deterministic {
+        deterministic_bound
+    } else {
+        MAX_PROBE_WORK
     };
     let timer = Timer::new();
     let mut work = 0u128;
+    let mut last = 0u128;
     let mut index = vec![None; p.states()];
     for (i, &x) in running.iter().enumerate() {
         index[x] = Some(i);
@@ -1670,12 +1701,12 @@ pub fn discount_breakpoints_search(
         }
         let mut found = None;
         for t in probe_points(l.as_ref(), r.as_ref()) {
-            if work + per_probe > MAX_PROBE_WORK {
+            if work + per_probe.unwrap_or(last) > bound {
                 return Err(ParametricError::Work {
                     probes,
                     regions: regions.len(),
                     gaps: gaps.len() + 1,
-                    bound: MAX_PROBE_WORK,
+                    bound,
                 });
             }
             progress(ProbeProgress {
@@ -1683,19 +1714,32 @@ pub fn discount_breakpoints_search(
                 regions: regions.len(),
                 gaps: gaps.len() + 1,
                 work,
+                bound,
             });
-            work += per_probe;
+            let before = work;
+            work += per_probe.unwrap_or(0);
             probes += 1;
-            if let Some(region) = probe(
+            let region = probe(
                 model,
                 &running,
                 &index,
                 &t,
                 &mut degree,
+                &mut work,
                 deterministic,
                 l.as_ref(),
                 search,
-            )? {
+            )?;
+            last = work - before;
+            if work > bound {
+                return Err(ParametricError::Work {
+                    probes,
+                    regions: regions.len(),
+                    gaps: gaps.len() + 1,
+                    bound,
+                });
+            }
+            if let Some(region) = region {
                 found = Some(region);
                 break;
             }
@@ -1724,7 +1768,23 @@ pub fn discount_breakpoints_search(
         points.extend(region.hi.iter().cloned());
         points.extend(region.touches.iter().cloned());
     }
-    timer.mark("probes");
+    timer.mark(&format!("probes ({probes}, {work} units)"));
+    // The regions in order of their left ends (they meet only at their ends): the region of a
+    // point is found by bisection.
+    regions.sort_by(|a, b| match (&a.lo, &b.lo) {
+        (None, None) => Ordering::Equal,
+        (None, Some(_)) => Ordering::Less,
+        (Some(_), None) => Ordering::Greater,
+        (Some(x), Some(y)) => x.compare(y),
+    });
+    let region_of = |contains: &dyn Fn(&Region) -> bool, left_of: &dyn Fn(&Root) -> bool| {
+        let k = regions.partition_point(|g| g.lo.as_ref().is_none_or(left_of));
+        (k.saturating_sub(1)..regions.len())
+            .chain(0..k.saturating_sub(1))
+            .map(|i| &regions[i])
+            .find(|g| contains(g))
+            .expect("the regions cover (0,1)")
+    };
     points.sort_by(|a, b| a.compare(b));
     // Equal points met through different polynomials keep their common factor.
     points.dedup_by(|a, b| b.absorb_if_equal(a));
@@ -1759,10 +1819,9 @@ pub fn discount_breakpoints_search(
                 lo.as_ref().unwrap_or(&zero_point()),
                 hi.as_ref().unwrap_or(&one_point()),
             );
-            let region = regions
-                .iter()
-                .find(|g| g.contains_rational(&sample))
-                .expect("the regions cover (0,1)");
+            let region = region_of(&|g| g.contains_rational(&sample), &|l| {
+                l.cmp_rational(&sample) != Ordering::Greater
+            });
             let allowed = region.optimal(model, None);
             let optimal = indices(&allowed);
             // The reported policy: the first optimal action at every state (any choice among
@@ -1783,10 +1842,7 @@ pub fn discount_breakpoints_search(
         .par_iter()
         .enumerate()
         .map(|(i, b)| {
-            let region = regions
-                .iter()
-                .find(|g| g.contains(b))
-                .expect("the regions cover (0,1)");
+            let region = region_of(&|g| g.contains(b), &|l| l.compare(b) != Ordering::Greater);
             let allowed = region.optimal(model, Some(b));
             let at = indices(&allowed);
             let (left, right) = (&intervals[i].optimal, &intervals[i + 1].optimal);
@@ -1811,6 +1867,7 @@ pub fn discount_breakpoints_search(
         degree,
         running_states: running.len(),
         deterministic,
+        work,
     })
 }
 

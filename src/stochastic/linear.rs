@@ -551,6 +551,22 @@ pub fn reduced(n: &BigInt, d: &BigInt) -> crate::value::Rational {
     divided(n, &un, d, &ud, &g)
 }
 
+/// `gcd(a, b) ≥ 0` by `dashu`'s gcd (`gcd(0, 0) = 0`): `num-bigint`'s binary gcd takes a
+/// step per bit even when one operand is small, quadratic in the other's length.
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use truecost::stochastic::linear::gcd;
+/// let big = BigInt::from(3).pow(5000) * 14;
+/// assert_eq!(gcd(&big, &BigInt::from(-21)), BigInt::from(21));
+/// assert_eq!(gcd(&BigInt::from(0), &BigInt::from(-4)), BigInt::from(4));
+/// assert_eq!(gcd(&BigInt::from(0), &BigInt::from(0)), BigInt::from(0));
+/// ```
+pub fn gcd(a: &BigInt, b: &BigInt) -> BigInt {
+    let (ua, ub) = (magnitude(a), magnitude(b));
+    from_ubig(&(&ua).gcd(&ub))
+}
+
 /// `|x|` as a `dashu` integer.
 fn magnitude(x: &BigInt) -> UBig {
     UBig::from_le_bytes(&x.magnitude().to_bytes_le())

@@ -128,14 +128,35 @@ pub fn integer_form(p: &Poly) -> Vec<BigInt> {
         .iter()
         .map(|c| (c * Rational::from_integer(l.clone())).to_integer())
         .collect();
-    let mut g = BigInt::zero();
-    for c in &scaled {
-        g = g.gcd(c);
-    }
+    let g = content(&scaled);
     if g.is_zero() {
         return scaled;
     }
     scaled.into_iter().map(|c| c / &g).collect()
+}
+
+/// The content of integer coefficients: their gcd (`≥ 0`; `0` when all are zero). Taken from
+/// the smallest non-zero magnitude up, stopping at 1, each gcd by
+/// [`crate::stochastic::linear::gcd`].
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use truecost::claims::poly::roots::content;
+/// let c: Vec<BigInt> = [0, -12, 18, 30].into_iter().map(BigInt::from).collect();
+/// assert_eq!(content(&c), BigInt::from(6));
+/// assert_eq!(content(&[BigInt::from(0)]), BigInt::from(0));
+/// ```
+pub fn content(coefficients: &[BigInt]) -> BigInt {
+    let mut order: Vec<&BigInt> = coefficients.iter().filter(|c| !c.is_zero()).collect();
+    order.sort_by_key(|c| c.bits());
+    let mut g = BigInt::zero();
+    for c in order {
+        if g.is_one() {
+            break;
+        }
+        g = crate::stochastic::linear::gcd(&g, c);
+    }
+    g
 }
 
 fn variations(c: &[BigInt]) -> usize {
@@ -160,8 +181,8 @@ fn taylor_shift(q: &mut [BigInt]) {
     let n = q.len();
     for i in 0..n {
         for j in (i..n - 1).rev() {
-            let t = q[j + 1].clone();
-            q[j] += t;
+            let (low, high) = q.split_at_mut(j + 1);
+            low[j] += &high[0];
         }
     }
 }
@@ -171,6 +192,49 @@ fn descartes(q: &[BigInt]) -> usize {
     let mut r: Vec<BigInt> = q.iter().rev().cloned().collect();
     taylor_shift(&mut r);
     variations(&r)
+}
+
+/// Whether [`descartes`] of `q` is 0, decided first on `q` truncated to `deg q + 64`
+/// significant bits. With `lᵢ = ⌊qᵢ / 2^s⌋`, `qᵢ / 2^s ∈ [lᵢ, lᵢ + 1]`; reversing and shifting
+/// (`c_j = Σ_{i≥j} C(i, j) cᵢ`) is linear with non-negative weights, so every shifted
+/// coefficient over `2^s` lies in `[L_j, L_j + C(d + 1, j + 1)]` (`Σ_{i≥j} C(i, j) =
+/// C(d + 1, j + 1)`) with `L` the shifted `l`. All intervals in `[0, ∞)` (or all in
+/// `(−∞, 0]`): no sign variation; one interval positive and one negative: a variation;
+/// otherwise the exact test decides.
+fn descartes_is_zero(q: &[BigInt]) -> bool {
+    let d = q.len().saturating_sub(1);
+    let bits = q.iter().map(|c| c.bits()).max().unwrap_or(0);
+    let keep = d as u64 + 64;
+    if bits <= 2 * keep {
+        return descartes(q) == 0;
+    }
+    let s = bits - keep;
+    // Arithmetic shift: rounds towards −∞.
+    let mut low: Vec<BigInt> = q.iter().rev().map(|c| c >> s).collect();
+    taylor_shift(&mut low);
+    // C(d + 1, j + 1) for j = 0..=d.
+    let mut width = Vec::with_capacity(d + 1);
+    let mut c = BigInt::from(d + 1);
+    for j in 0..=d {
+        width.push(c.clone());
+        c = c * (d - j) / (j + 2);
+    }
+    let (mut non_negative, mut non_positive) = (true, true);
+    let (mut positive, mut negative) = (false, false);
+    for (l, w) in low.iter().zip(&width) {
+        let h = l + w;
+        non_negative &= !l.is_negative();
+        non_positive &= !h.is_positive();
+        positive |= l.is_positive();
+        negative |= h.is_negative();
+    }
+    if non_negative || non_positive {
+        return true;
+    }
+    if positive && negative {
+        return false;
+    }
+    descartes(q) == 0
 }
 
 /// Whether the integer polynomial `p` (constant first) has no root in the open interval
@@ -211,7 +275,7 @@ pub fn no_root_between(p: &[BigInt], a: &Rational, b: &Rational) -> bool {
         next[0] += &p[k] * &epow;
         r = next;
     }
-    descartes(&r) == 0
+    descartes_is_zero(&r)
 }
 
 enum Isolation {
@@ -456,16 +520,16 @@ fn common_mod(a: &[BigInt], b: &[BigInt], m: u64) -> Option<bool> {
     }
 }
 
-fn narrow() -> Rational {
-    Rational::new(BigInt::one(), BigInt::one() << 64u32)
+/// Whether the bracket is narrower than `2^-64` (cross-multiplied: no gcd).
+fn narrower_than_2_64(r: &Root) -> bool {
+    let (lo, hi) = (&r.lo, &r.hi);
+    let width = hi.numer() * lo.denom() - lo.numer() * hi.denom();
+    (width << 64u32) < hi.denom() * lo.denom()
 }
 
 /// The primitive part (content removed, sign kept).
 fn primitive_part(p: Vec<BigInt>) -> Vec<BigInt> {
-    let mut g = BigInt::zero();
-    for c in &p {
-        g = g.gcd(c);
-    }
+    let g = content(&p);
     if g.is_zero() || g.is_one() {
         return p;
     }
@@ -712,53 +776,64 @@ mod modp {
         r
     }
 
+    /// Long division of `a` by `b` (`b` non-zero, coefficients below `p < 2^32`): the
+    /// quotient and the remainder. The working coefficients are `u128` sums of products
+    /// `< 2^64`, reduced only where a leading coefficient is read and at the end (one `%` per
+    /// step instead of one per term).
+    fn divide(a: &[u64], b: &[u64], p: u64) -> (Vec<u64>, Vec<u64>) {
+        let lb = inv(*b.last().expect("non-zero divisor"), p);
+        let db = b.len();
+        let wide = u128::from(p);
+        let negated: Vec<u128> = b[..db - 1]
+            .iter()
+            .map(|&c| u128::from((p - c % p) % p))
+            .collect();
+        let mut r: Vec<u128> = a.iter().map(|&x| u128::from(x)).collect();
+        let mut q = vec![0u64; r.len().saturating_sub(db - 1)];
+        let mut top = r.len();
+        while top >= db {
+            let lead = (r[top - 1] % wide) as u64;
+            if lead != 0 {
+                let f = lead * lb % p;
+                let shift = top - db;
+                q[shift] = f;
+                let f = u128::from(f);
+                for (ri, c) in r[shift..top - 1].iter_mut().zip(&negated) {
+                    *ri += f * c;
+                }
+            }
+            top -= 1;
+        }
+        r.truncate(top.min(db - 1));
+        let mut rem: Vec<u64> = r.into_iter().map(|x| (x % wide) as u64).collect();
+        trim(&mut rem);
+        trim(&mut q);
+        (q, rem)
+    }
+
     /// `a mod b` (`b` non-zero).
     pub fn rem(a: &[u64], b: &[u64], p: u64) -> Vec<u64> {
-        let mut r = a.to_vec();
-        trim(&mut r);
-        let lb = inv(*b.last().expect("non-zero divisor"), p);
-        while r.len() >= b.len() {
-            let f = r[r.len() - 1] * lb % p;
-            let shift = r.len() - b.len();
-            for (i, c) in b.iter().enumerate() {
-                r[i + shift] = (r[i + shift] + p - f * c % p) % p;
-            }
-            trim(&mut r);
-        }
-        r
+        divide(a, b, p).1
     }
 
     /// `a / b`, exact or not (the quotient).
     pub fn quo(a: &[u64], b: &[u64], p: u64) -> Vec<u64> {
-        let mut r = a.to_vec();
-        trim(&mut r);
-        if r.len() < b.len() {
-            return Vec::new();
-        }
-        let lb = inv(*b.last().expect("non-zero divisor"), p);
-        let mut q = vec![0u64; r.len() - b.len() + 1];
-        while r.len() >= b.len() {
-            let f = r[r.len() - 1] * lb % p;
-            let shift = r.len() - b.len();
-            q[shift] = f;
-            for (i, c) in b.iter().enumerate() {
-                r[i + shift] = (r[i + shift] + p - f * c % p) % p;
-            }
-            trim(&mut r);
-        }
-        q
+        divide(a, b, p).0
     }
 
     pub fn mul(a: &[u64], b: &[u64], p: u64) -> Vec<u64> {
         if a.is_empty() || b.is_empty() {
             return Vec::new();
         }
-        let mut c = vec![0u64; a.len() + b.len() - 1];
-        for (i, x) in a.iter().enumerate() {
-            for (j, y) in b.iter().enumerate() {
-                c[i + j] = (c[i + j] + x * y) % p;
+        let mut c = vec![0u128; a.len() + b.len() - 1];
+        for (i, &x) in a.iter().enumerate() {
+            let x = u128::from(x);
+            for (ci, &y) in c[i..].iter_mut().zip(b) {
+                *ci += x * u128::from(y);
             }
         }
+        let wide = u128::from(p);
+        let mut c: Vec<u64> = c.into_iter().map(|x| (x % wide) as u64).collect();
         trim(&mut c);
         c
     }
@@ -796,6 +871,45 @@ mod modp {
         r
     }
 
+    /// The Frobenius map `h ↦ h^p mod f` of the monic `f` of degree `d ≥ 1` as the rows
+    /// `x^(jp) mod f`, `j < d` (`h^p = Σ h_j x^(jp)` modulo `p`): one power and `d`
+    /// products build it, then each application is `d²` products.
+    fn frobenius(f: &[u64], p: u64) -> Vec<Vec<u64>> {
+        let d = f.len() - 1;
+        let xp = pow_mod(&[0, 1], p, f, p);
+        let mut rows: Vec<Vec<u64>> = Vec::with_capacity(d);
+        rows.push(rem(&[1], f, p));
+        for j in 1..d {
+            let next = rem(&mul(&rows[j - 1], &xp, p), f, p);
+            rows.push(next);
+        }
+        rows
+    }
+
+    /// `h^p mod f` (`f` monic) by the rows of [`frobenius`] (for the tests).
+    #[cfg(test)]
+    pub fn frobenius_power(h: &[u64], f: &[u64], p: u64) -> Vec<u64> {
+        apply(&rem(h, f, p), &frobenius(f, p), p)
+    }
+
+    /// `h^p mod f` for `h` of degree below `deg f`, by the rows of [`frobenius`].
+    fn apply(h: &[u64], rows: &[Vec<u64>], p: u64) -> Vec<u64> {
+        let mut out = vec![0u128; rows.len()];
+        for (&hj, row) in h.iter().zip(rows) {
+            if hj == 0 {
+                continue;
+            }
+            let hj = u128::from(hj);
+            for (o, &c) in out.iter_mut().zip(row) {
+                *o += hj * u128::from(c);
+            }
+        }
+        let wide = u128::from(p);
+        let mut out: Vec<u64> = out.into_iter().map(|x| (x % wide) as u64).collect();
+        trim(&mut out);
+        out
+    }
+
     /// The distinct-degree factorisation of `f` modulo `p`: for each `i`, the product of the
     /// irreducible factors of degree `i` (monic), or `None` when `p` divides the leading
     /// coefficient or `f` is not square-free modulo `p`.
@@ -818,11 +932,13 @@ mod modp {
             *c = *c * l % p;
         }
         let mut classes = Vec::new();
+        // h = x^(p^i) modulo the original f (so modulo every factor of it left in f).
+        let frobenius = frobenius(&f, p);
         let mut h = vec![0u64, 1];
         let mut i = 0;
         while 2 * (i + 1) < f.len() {
             i += 1;
-            h = pow_mod(&h, p, &f, p);
+            h = apply(&h, &frobenius, p);
             let mut t = h.clone();
             t.resize(t.len().max(2), 0);
             t[1] = (t[1] + p - 1) % p;
@@ -830,7 +946,6 @@ mod modp {
             let g = gcd(&t, &f, p);
             if g.len() > 1 {
                 f = quo(&f, &g, p);
-                h = rem(&h, &f, p);
                 classes.push((i, g));
             }
         }
@@ -1260,10 +1375,11 @@ impl Root {
         if self.exact {
             return;
         }
-        // (lo + hi)/2 with one normalisation.
-        let mid = Rational::new(
-            self.lo.numer() * self.hi.denom() + self.hi.numer() * self.lo.denom(),
-            2 * self.lo.denom() * self.hi.denom(),
+        // (lo + hi)/2 with one normalisation (dashu's gcd: the binary gcd of num-bigint is
+        // quadratic when one side is small).
+        let mid = crate::stochastic::linear::reduced(
+            &(self.lo.numer() * self.hi.denom() + self.hi.numer() * self.lo.denom()),
+            &(2 * self.lo.denom() * self.hi.denom()),
         );
         self.cut(mid);
     }
@@ -1328,7 +1444,7 @@ impl Root {
             }
             // Distinct roots separate by bisection; the gcd is consulted once, when the
             // brackets are narrow (roots closer than 2^-64 are rare).
-            if !checked && &a.hi - &a.lo < narrow() && &b.hi - &b.lo < narrow() {
+            if !checked && narrower_than_2_64(&a) && narrower_than_2_64(&b) {
                 checked = true;
                 if Arc::ptr_eq(&a.poly, &b.poly) {
                     // One polynomial: its distinct roots have disjoint brackets.
@@ -1452,5 +1568,120 @@ pub fn between(a: &Root, b: &Root) -> Rational {
         }
         a.halve();
         b.halve();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::modp;
+    use num_bigint::BigInt;
+
+    /// The truncated Descartes test decides as the exact one: on products of linear factors
+    /// with roots inside and outside (0, 1), scaled by large integers so that truncation
+    /// happens, and on their negations.
+    #[test]
+    fn truncated_descartes_decides_as_the_exact_test() {
+        let mut seed = 11u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            seed >> 33
+        };
+        let (mut zero, mut some) = (0, 0);
+        for case in 0..60 {
+            // Factors (m x − n): root n/m; in (0, 1) when 0 < n < m.
+            let mut p = vec![BigInt::from(1)];
+            let degree = 3 + case % 12;
+            for _ in 0..degree {
+                let m = BigInt::from(next() % 1000 + 1);
+                let n = BigInt::from(next() % 3000) - BigInt::from(1000);
+                let factor = [-n, m];
+                let mut q = vec![BigInt::from(0); p.len() + 1];
+                for (i, a) in p.iter().enumerate() {
+                    for (j, b) in factor.iter().enumerate() {
+                        q[i + j] += a * b;
+                    }
+                }
+                p = q;
+            }
+            let scale = BigInt::from(3).pow(200 + (next() % 400) as u32);
+            for sign in [1, -1] {
+                let q: Vec<BigInt> = p.iter().map(|c| c * &scale * sign).collect();
+                let exact = super::descartes(&q) == 0;
+                assert_eq!(super::descartes_is_zero(&q), exact, "case {case}");
+                if exact {
+                    zero += 1;
+                } else {
+                    some += 1;
+                }
+            }
+        }
+        assert!(zero > 0 && some > 0, "both outcomes met: {zero} {some}");
+    }
+
+    /// Schoolbook products and long division with a reduction after every operation: the
+    /// lazily reduced ones must agree.
+    fn naive_mul(a: &[u64], b: &[u64], p: u64) -> Vec<u64> {
+        let mut c = vec![0u64; (a.len() + b.len()).saturating_sub(1)];
+        for (i, x) in a.iter().enumerate() {
+            for (j, y) in b.iter().enumerate() {
+                c[i + j] = (c[i + j] + x * y % p) % p;
+            }
+        }
+        modp::trim(&mut c);
+        c
+    }
+
+    fn random(seed: &mut u64, len: usize, p: u64) -> Vec<u64> {
+        (0..len)
+            .map(|_| {
+                *seed = seed
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                (*seed >> 33) % p
+            })
+            .collect()
+    }
+
+    #[test]
+    fn lazy_products_and_division_agree_with_reduction_at_every_step() {
+        let p = (1u64 << 31) - 1;
+        let mut seed = 7;
+        for (la, lb) in [(1, 1), (5, 3), (40, 17), (200, 199), (300, 2), (3, 9)] {
+            let a = random(&mut seed, la, p);
+            let mut b = random(&mut seed, lb, p);
+            if b.last() == Some(&0) || b.is_empty() {
+                b.push(1);
+            }
+            let mut ta = a.clone();
+            modp::trim(&mut ta);
+            assert_eq!(modp::mul(&a, &b, p), naive_mul(&a, &b, p), "{la} x {lb}");
+            let (q, r) = (modp::quo(&a, &b, p), modp::rem(&a, &b, p));
+            assert!(r.len() < b.len(), "remainder degree, {la} / {lb}");
+            let mut back = naive_mul(&q, &b, p);
+            back.resize(back.len().max(r.len()), 0);
+            for (x, y) in back.iter_mut().zip(&r) {
+                *x = (*x + y) % p;
+            }
+            modp::trim(&mut back);
+            assert_eq!(back, ta, "q b + r = a, {la} / {lb}");
+        }
+    }
+
+    #[test]
+    fn the_frobenius_rows_give_the_pth_power() {
+        // f = x^5 + 3x + 7 modulo p; h^p by repeated squaring against the rows.
+        let p = 1_000_000_007u64;
+        let f = [7u64, 3, 0, 0, 0, 1];
+        let mut seed = 3;
+        for _ in 0..4 {
+            let h = random(&mut seed, 5, p);
+            assert_eq!(
+                modp::frobenius_power(&h, &f, p),
+                modp::pow_mod(&h, p, &f, p),
+                "{h:?}"
+            );
+        }
     }
 }

@@ -10,8 +10,11 @@
 //!   brute-force oracle written here: deterministic files — enumeration of simple paths
 //!   (`common::simple_paths`) against Dijkstra; stochastic files — enumeration of every
 //!   deterministic stationary policy, its proper states and its exact cost by Gaussian
-//!   elimination, against the exact optimum (policy iteration).
-//! * Generated tiny problems in both formats (whitespace, tags and number spellings varied)
+//!   elimination, against the exact optimum (policy iteration); both — the discounted values
+//!   at `α = 1/2` of the file's rewards (or negated costs) and terminal states, by enumeration
+//!   of every stationary policy, against the objective's exact solve.
+//! * Generated tiny problems in both formats (whitespace, tags and number spellings varied,
+//!   with or without rewards, a terminal state or a mix of actions with and without a reward)
 //!   make sure accepted files are frequent, not only the corpus.
 //!
 //! Budget: `FUZZ_CASES` cases per property (default 600, ~3 s in the test profile). Add a file
@@ -25,10 +28,11 @@ use proptest::test_runner::Config;
 
 use common::{exact_all, simple_paths, Ext, Q};
 use truecost::model::{file, ExactGraph};
+use truecost::objectives::{Model, Objective};
 use truecost::solvers::dijkstra;
-use truecost::stochastic::file::{self as sfile, ProblemFile};
+use truecost::stochastic::file::{self as sfile, FileRewards, ProblemFile};
 use truecost::stochastic::policy_iteration::optimum;
-use truecost::stochastic::StochasticProblem;
+use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
 use truecost::value::parse_rational;
 
 /// The committed corpus (each file embedded, so the target needs no working directory).
@@ -64,6 +68,8 @@ const TOKENS: &[&str] = &[
     "\"to\": 99",
     "\"p\": \"2\"",
     "\"format\": \"truecost-problem/1\"",
+    "\"reward\": \"-1/2\",",
+    "\"terminal\": [0],",
     "\"format\": \"truecost-stochastic/1\"",
     "18446744073709551616",
     "\"states\": 0",
@@ -166,6 +172,119 @@ fn read_everything(text: &str) -> Result<(), TestCaseError> {
             if small(s.states(), (0..s.states()).map(|x| s.actions(x).len())) {
                 check_stochastic(&s)?;
             }
+        }
+        Err(e) => clean(&e.to_string())?,
+    }
+    match sfile::from_json_with_rewards(text) {
+        Ok((problem, extra)) => {
+            let p = match problem {
+                ProblemFile::Deterministic(d) => StochasticProblem::from_deterministic(
+                    &d,
+                    NoiseModel::Paper,
+                    &Predictability::one(),
+                )
+                .expect("a deterministic problem is a stochastic one"),
+                ProblemFile::Stochastic(s) => *s,
+            };
+            if small(p.states(), (0..p.states()).map(|x| p.actions(x).len())) {
+                check_discounted(p, &extra)?;
+            }
+        }
+        Err(e) => clean(&e.to_string())?,
+    }
+    Ok(())
+}
+
+/// The discounted values at `α` by brute force: the greatest value, per state, over every
+/// deterministic stationary policy (`V = r + α P V` on the states where the episode runs, by
+/// Gaussian elimination; `0` where it is over: goals, states without actions and the file's
+/// terminal states), with the file's rewards, or the negated costs where it gives none.
+fn brute_force_discounted(s: &StochasticProblem, extra: &FileRewards, alpha: &Q) -> Vec<Q> {
+    let n = s.states();
+    let ended: Vec<bool> = (0..n)
+        .map(|x| s.is_goal(x) || s.actions(x).is_empty() || extra.terminal.contains(&x))
+        .collect();
+    let reward = |a: usize| match &extra.rewards {
+        Some(r) => r[a].clone(),
+        None => -s.cost(a).clone(),
+    };
+    let running: Vec<usize> = (0..n).filter(|&x| !ended[x]).collect();
+    let mut best: Vec<Option<Q>> = (0..n).map(|x| ended[x].then(Q::zero)).collect();
+    let mut choice = vec![0usize; n];
+    loop {
+        let k = running.len();
+        let mut a = vec![vec![Q::zero(); k + 1]; k];
+        for (i, &x) in running.iter().enumerate() {
+            let act = s.actions(x).nth(choice[x]).expect("a running state acts");
+            a[i][i] += Q::one();
+            for o in s.outcomes(act) {
+                if let Some(j) = running.iter().position(|&y| y == o.successor) {
+                    a[i][j] -= &o.probability * alpha;
+                }
+            }
+            a[i][k] = reward(act);
+        }
+        for col in 0..k {
+            let pivot = (col..k)
+                .find(|&r| !a[r][col].is_zero())
+                .expect("I - alpha P is regular");
+            a.swap(col, pivot);
+            let inv = Q::one() / &a[col][col];
+            let row: Vec<Q> = a[col].iter().map(|v| v * &inv).collect();
+            for (r, other) in a.iter_mut().enumerate() {
+                if r != col && !other[col].is_zero() {
+                    let f = other[col].clone();
+                    for (o, p) in other.iter_mut().zip(&row).skip(col) {
+                        *o -= p * &f;
+                    }
+                }
+            }
+            a[col] = row;
+        }
+        for (i, &x) in running.iter().enumerate() {
+            if best[x].as_ref().is_none_or(|b| a[i][k] > *b) {
+                best[x] = Some(a[i][k].clone());
+            }
+        }
+        // Next policy.
+        let mut i = 0;
+        loop {
+            if i == running.len() {
+                return best
+                    .into_iter()
+                    .map(|v| v.expect("every state valued"))
+                    .collect();
+            }
+            let x = running[i];
+            choice[x] += 1;
+            if choice[x] < s.actions(x).len() {
+                break;
+            }
+            choice[x] = 0;
+            i += 1;
+        }
+    }
+}
+
+/// The exact discounted solve at `α = 1/2` of the model that `--file` builds (the problem with
+/// the file's rewards and terminal states) against [`brute_force_discounted`].
+fn check_discounted(s: StochasticProblem, extra: &FileRewards) -> Result<(), TestCaseError> {
+    let half = Q::new(1.into(), 2.into());
+    let oracle = brute_force_discounted(&s, extra, &half);
+    let m = Model::from_problem(s, "fuzz".into()).with_file_rewards(extra);
+    match m.solve(&Objective::Discounted(half)) {
+        Ok(solution) => {
+            let got: Vec<Option<Q>> = solution
+                .values
+                .iter()
+                .map(|v| v.finite().cloned())
+                .collect();
+            let oracle: Vec<Option<Q>> = oracle.into_iter().map(Some).collect();
+            prop_assert_eq!(
+                got,
+                oracle,
+                "discounted solve disagrees with policy enumeration"
+            );
         }
         Err(e) => clean(&e.to_string())?,
     }
@@ -334,43 +453,66 @@ fn check_stochastic(s: &StochasticProblem) -> Result<(), TestCaseError> {
     Ok(())
 }
 
-/// A tiny problem as file text: per state a list of actions, each `(cost, outcomes)` with
-/// outcomes `(successor, weight)` (weights normalised to probabilities), rendered in one of
-/// several spellings.
+/// A tiny problem as file text: per state a list of actions, each `(cost, outcomes, reward)`
+/// with outcomes `(successor, weight)` (weights normalised to probabilities), rendered in one
+/// of several spellings; `rewards` 0 to 6 write no reward, 7 to 14 a reward on every action,
+/// 15 on every action but the last (refused); `terminal` lists one state (`true`: its actions
+/// replaced by a zero-cost self-loop and, unless it is the only goal, removed from the goals,
+/// so that it is accepted).
 fn tiny_file() -> impl Strategy<Value = String> {
     (1usize..=4)
         .prop_flat_map(|n| {
             let outcome = (0..n, 1u32..4);
-            let action = (0u32..5, proptest::collection::vec(outcome, 1..3));
+            let action = (0u32..5, proptest::collection::vec(outcome, 1..3), -2i32..3);
             (
                 Just(n),
                 proptest::collection::vec(proptest::collection::vec(action, 0..3), n),
                 proptest::collection::vec(0..n, 1..3),
                 0..n,
                 0u8..6,
+                0u8..16,
+                proptest::option::weighted(0.2, (0..n, proptest::bool::weighted(0.9))),
             )
         })
-        .prop_map(|(n, lists, goals, initial, style)| {
+        .prop_map(|(n, mut lists, mut goals, initial, style, rewards, terminal)| {
+            if let Some((x, true)) = terminal {
+                lists[x] = vec![(0, vec![(x, 1)], 0)];
+                if goals.iter().any(|&g| g != x) {
+                    goals.retain(|&g| g != x);
+                }
+            }
+            let last = lists.iter().flatten().count();
+            let mut index = 0;
             let lists: Vec<String> = lists
                 .iter()
                 .map(|list| {
                     let actions: Vec<String> = list
                         .iter()
-                        .map(|(cost, outs)| {
+                        .map(|(cost, outs, reward)| {
+                            index += 1;
                             let cost = match style % 3 {
                                 0 => format!("{cost}"),
                                 1 => format!("{cost}/2"),
                                 _ => format!("{cost}e-1"),
                             };
+                            let reward = match rewards {
+                                7..=13 => format!(r#", "reward": "{reward}""#),
+                                14 => format!(r#", "reward": "{reward}/3""#),
+                                15 if index < last => format!(r#", "reward": "{reward}""#),
+                                _ => String::new(),
+                            };
                             if outs.len() == 1 || style >= 4 {
-                                format!(r#"{{"to": {}, "cost": "{cost}"}}"#, outs[0].0)
+                                format!(r#"{{"to": {}, "cost": "{cost}"{reward}}}"#, outs[0].0)
                             } else {
                                 let total: u32 = outs.iter().map(|o| o.1).sum();
                                 let outs: Vec<String> = outs
                                     .iter()
                                     .map(|(to, w)| format!(r#"{{"to":{to},"p":"{w}/{total}"}}"#))
                                     .collect();
-                                format!(r#"{{"cost":"{cost}","outcomes":[{}]}}"#, outs.join(","))
+                                format!(
+                                    r#"{{"cost":"{cost}"{reward},"outcomes":[{}]}}"#,
+                                    outs.join(",")
+                                )
                             }
                         })
                         .collect();
@@ -382,9 +524,13 @@ fn tiny_file() -> impl Strategy<Value = String> {
                 1 => r#""format": "truecost-problem/1","#,
                 _ => "",
             };
+            let terminal = match terminal {
+                Some((x, _)) => format!(r#""terminal": [{x}], "#),
+                None => String::new(),
+            };
             let goals: Vec<String> = goals.iter().map(|g| g.to_string()).collect();
             format!(
-                "{{{tag} \"states\": {n}, \"initial\": {initial}, \"goals\": [{}],\n \"actions\": [{}]}}",
+                "{{{tag} \"states\": {n}, \"initial\": {initial}, \"goals\": [{}], {terminal}\n \"actions\": [{}]}}",
                 goals.join(","),
                 lists.join(",\n  ")
             )
@@ -415,6 +561,7 @@ proptest! {
 fn generated_tiny_files() {
     use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
     let (deterministic, stochastic) = (AtomicU32::new(0), AtomicU32::new(0));
+    let (rewarded, terminal) = (AtomicU32::new(0), AtomicU32::new(0));
     let mut runner = proptest::test_runner::TestRunner::new(config());
     runner
         .run(
@@ -424,11 +571,18 @@ fn generated_tiny_files() {
                     Some(m) => String::from_utf8_lossy(&mutate(text.into_bytes(), &m)).into_owned(),
                     None => text,
                 };
-                match sfile::from_json(&text) {
-                    Ok(ProblemFile::Deterministic(_)) => deterministic.fetch_add(1, Relaxed),
-                    Ok(ProblemFile::Stochastic(_)) => stochastic.fetch_add(1, Relaxed),
-                    Err(_) => 0,
-                };
+                if let Ok((problem, extra)) = sfile::from_json_with_rewards(&text) {
+                    match problem {
+                        ProblemFile::Deterministic(_) => deterministic.fetch_add(1, Relaxed),
+                        ProblemFile::Stochastic(_) => stochastic.fetch_add(1, Relaxed),
+                    };
+                    if extra.rewards.is_some() {
+                        rewarded.fetch_add(1, Relaxed);
+                    }
+                    if !extra.terminal.is_empty() {
+                        terminal.fetch_add(1, Relaxed);
+                    }
+                }
                 read_everything(&text)
             },
         )
@@ -436,6 +590,12 @@ fn generated_tiny_files() {
     let (d, s) = (deterministic.into_inner(), stochastic.into_inner());
     assert!(d * 10 >= cases(), "only {d} deterministic files accepted");
     assert!(s * 10 >= cases(), "only {s} stochastic files accepted");
+    let (r, t) = (rewarded.into_inner(), terminal.into_inner());
+    assert!(r * 10 >= cases(), "only {r} files with rewards accepted");
+    assert!(
+        t * 100 >= cases(),
+        "only {t} files with a terminal state accepted"
+    );
 }
 
 /// The corpus itself is read without mutation, and its valid files are accepted (so the
@@ -486,4 +646,25 @@ fn brute_force_oracle_by_hand() {
     };
     let two = Q::from_integer(2.into());
     assert_eq!(brute_force_optimum(&s), vec![Some(two), Some(Q::zero())]);
+}
+
+/// Guards the discounted oracle on a hand-solved file with rewards: from 0, "try" has reward
+/// 1/2 and reaches the goal with probability 1/2 (else stays), "quit" enters the terminal
+/// trap 2 with reward 1/4. At alpha = 1/2 trying forever gives V = 1/2 + V/4, V = 2/3 > 1/4.
+#[test]
+fn discounted_oracle_by_hand() {
+    let text = r#"{"initial":0,"goals":[1],"terminal":[2],"actions":[
+        [{"cost":"1","reward":"1/2","outcomes":[{"to":1,"p":"1/2"},{"to":0,"p":"1/2"}]},
+         {"to":2,"cost":"1","reward":"1/4"}],
+        [],
+        [{"to":2,"cost":"0","reward":"0"}]]}"#;
+    let (ProblemFile::Stochastic(s), extra) = sfile::from_json_with_rewards(text).unwrap() else {
+        panic!("a stochastic file")
+    };
+    let half = Q::new(1.into(), 2.into());
+    assert_eq!(
+        brute_force_discounted(&s, &extra, &half),
+        vec![Q::new(2.into(), 3.into()), Q::zero(), Q::zero()]
+    );
+    check_discounted(*s, &extra).unwrap();
 }

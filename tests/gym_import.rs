@@ -2,8 +2,10 @@
 //! the exact answers of the built-in `--env` benchmarks (docs/guide/gymnasium.md).
 //!
 //! The fixtures in `tests/data/gym_import/` were written by the importer from Gymnasium 1.4.0's
-//! own tables (`python/tests/test_fixtures.py` regenerates and compares them when Gymnasium is
-//! installed); this file needs no Python. `mud_corridor.json` is the guide's environment, whose
+//! own tables (`python/tests/test_guide_and_fixtures.py` regenerates and compares them when
+//! Gymnasium is installed); this file needs no Python. The files carry Gymnasium's expected
+//! rewards (`reward` on every action) and the holes as `terminal` states, so the discounted
+//! objective of `--file` is that of `--env`. `mud_corridor.json` is the guide's environment, whose
 //! optimum and discount breakpoint are derived by hand below.
 
 mod common;
@@ -181,21 +183,30 @@ fn solve_file_gives_the_exact_answers_of_solve_env() {
     }
 }
 
-/// `discount --format json` on a source, without the keys that name the source.
-fn discount(source: &[&str]) -> Value {
+/// `discount --format json` on a source.
+fn discount_full(source: &[&str]) -> Value {
     let mut args = vec!["discount"];
     args.extend_from_slice(source);
     args.extend_from_slice(&["--format", "json"]);
-    without(json(&args), &["source", "rewards"])
+    json(&args)
+}
+
+/// `discount --format json` on a source, without the keys that name the source.
+fn discount(source: &[&str]) -> Value {
+    without(discount_full(source), &["source", "rewards"])
 }
 
 #[test]
-fn discount_file_gives_the_breakpoints_of_discount_env_when_rewards_are_negated_costs() {
-    // CliffWalking's rewards are -1 per step and -100 per fall, exactly the negated truecost
-    // stage costs that `discount --file` discounts: the whole analysis must coincide.
-    // Deterministic CliffWalking has no breakpoint (every discount factor walks the shortest
-    // path along the cliff); on the slippery one the discount-optimal path changes with alpha.
+fn discount_file_of_an_import_equals_discount_env() {
+    // The files carry Gymnasium's rewards (FrozenLake: 0 per step, +1 on entering the goal;
+    // CliffWalking: -1 per step, -100 per fall) and FrozenLake's holes as terminal states, so
+    // the whole analysis must coincide with `--env`'s (breakpoints, brackets, polynomials, optimal
+    // actions, achievements, method and its counts of running states). Deterministic CliffWalking
+    // has no breakpoint (every discount factor walks the shortest path along the cliff); on the
+    // slippery one the discount-optimal path changes with alpha. Taxi is checked below.
     for (name, spec, has_breakpoints) in [
+        ("frozenlake_4x4_slippery.json", "frozenlake", true),
+        ("frozenlake_4x4.json", "frozenlake:slippery=false", false),
         ("cliffwalking.json", "cliffwalking", false),
         (
             "cliffwalking_slippery.json",
@@ -203,7 +214,10 @@ fn discount_file_gives_the_breakpoints_of_discount_env_when_rewards_are_negated_
             true,
         ),
     ] {
-        let ours = discount(&["--file", fixture(name).to_str().unwrap()]);
+        let path = fixture(name);
+        let full = discount_full(&["--file", path.to_str().unwrap()]);
+        assert_eq!(full["rewards"], "the file's rewards", "{name}");
+        let ours = without(full, &["source", "rewards"]);
         let env = discount(&["--env", spec]);
         assert_eq!(ours, env, "{name} against --env {spec}");
         assert_eq!(
@@ -214,21 +228,134 @@ fn discount_file_gives_the_breakpoints_of_discount_env_when_rewards_are_negated_
     }
 }
 
+/// The fixture's JSON with every `reward` removed (the importer's `--rewards costs`).
+fn without_rewards(name: &str, dir: &Path) -> PathBuf {
+    let mut file = read_json(&fixture(name));
+    for list in file["actions"].as_array_mut().unwrap() {
+        for action in list.as_array_mut().unwrap() {
+            action.as_object_mut().unwrap().remove("reward").unwrap();
+        }
+    }
+    let out = dir.join(name);
+    std::fs::write(&out, file.to_string()).unwrap();
+    out
+}
+
 #[test]
-fn discount_file_of_an_import_equals_that_of_the_export() {
-    // FrozenLake's rewards (0 per step, 1 at the goal) are not negated costs, so `discount
-    // --env` and `discount --file` analyse different rewards; the imported and the exported
-    // file must still give the same analysis.
+fn discount_file_without_rewards_discounts_the_negated_costs() {
+    // Without `reward` (the importer's `--rewards costs`) the discounted objective rewards the
+    // negated stage costs: on FrozenLake -1 per step until the episode ends, another objective
+    // than Gymnasium's (0 per step, +1 on entering the goal). Every value is then negative
+    // (each step from a running state costs 1), where Gymnasium's are positive (some policy
+    // reaches the goal with positive probability, and no reward is negative).
     let dir = tempfile::tempdir().unwrap();
+    let path = without_rewards("frozenlake_4x4_slippery.json", dir.path());
+    let file = path.to_str().unwrap();
+    let full = discount_full(&["--file", file]);
+    assert_eq!(full["rewards"], "negated stage costs");
+    assert_ne!(
+        without(full, &["source", "rewards"]),
+        discount(&["--env", "frozenlake"])
+    );
+    let value = |v: Value| -> num_rational::BigRational {
+        v["discounted_value_initial"]
+            .as_str()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    let zero = num_rational::BigRational::from_integer(0.into());
+    assert!(value(solve_discounted(&["--file", file], "9/10")) < zero);
+    assert!(value(solve_discounted(&["--env", "frozenlake"], "9/10")) > zero);
+}
+
+/// `solve --objective discounted --alpha A --format json` on a source.
+fn solve_discounted(source: &[&str], alpha: &str) -> Value {
+    let mut args = vec!["solve"];
+    args.extend_from_slice(source);
+    args.extend_from_slice(&[
+        "--algorithm",
+        "exact",
+        "--objective",
+        "discounted",
+        "--alpha",
+        alpha,
+        "--format",
+        "json",
+    ]);
+    json(&args)
+}
+
+#[test]
+fn solve_file_discounted_gives_the_values_of_solve_env() {
     for (name, spec) in [
         ("frozenlake_4x4_slippery.json", "frozenlake"),
         ("frozenlake_4x4.json", "frozenlake:slippery=false"),
     ] {
-        let out = dir.path().join(format!("{name}.export.json"));
-        json_free(&["export", "--env", spec, "--out", out.to_str().unwrap()]);
-        let ours = discount(&["--file", fixture(name).to_str().unwrap()]);
-        assert_eq!(ours, discount(&["--file", out.to_str().unwrap()]), "{name}");
-        assert!(!ours["intervals"].as_array().unwrap().is_empty(), "{name}");
+        let path = fixture(name);
+        for alpha in ["1/2", "9/10"] {
+            let ours = solve_discounted(&["--file", path.to_str().unwrap()], alpha);
+            let env = solve_discounted(&["--env", spec], alpha);
+            assert_eq!(ours["rewards"], "the file's rewards");
+            for k in [
+                "discounted_value_initial",
+                "values",
+                "policy",
+                "success_probability",
+                "policy_success_probability",
+                "expected_truecost",
+                "expected_steps",
+            ] {
+                assert_eq!(ours[k], env[k], "{name} at alpha {alpha}: {k}");
+            }
+        }
+    }
+    // By hand: without slipping the goal is 6 steps from the start and only the step into it is
+    // rewarded (+1), so V(0) = alpha^5: 1/32 at 1/2, 59049/100000 at 9/10.
+    let path = fixture("frozenlake_4x4.json");
+    for (alpha, value) in [("1/2", "1/32"), ("9/10", "59049/100000")] {
+        let ours = solve_discounted(&["--file", path.to_str().unwrap()], alpha);
+        assert_eq!(ours["discounted_value_initial"], value, "alpha {alpha}");
+    }
+}
+
+#[test]
+fn taxi_file_discounted_values_are_those_of_the_env() {
+    // `discount --file` refuses the imported Taxi (its extra initial state makes it stochastic,
+    // with 497 states where the episode runs, above the stochastic analysis' bound of 160), so
+    // the discounted values are compared at rational alphas instead. At every state where an
+    // episode runs the values and optimal actions must be those of `--env taxi`; the extra
+    // initial state 500 draws the initial state with reward 0, one discounted step before
+    // Gymnasium's initial distribution, so its value is alpha times the environment's.
+    let path = fixture("taxi.json");
+    let running = running_states(&read_json(&path));
+    for alpha in ["1/2", "9/10", "99/100"] {
+        let ours = solve_discounted(&["--file", path.to_str().unwrap()], alpha);
+        let env = solve_discounted(&["--env", "taxi"], alpha);
+        for &x in running.iter().filter(|&&x| x < 500) {
+            assert_eq!(
+                ours["values"][x], env["values"][x],
+                "alpha {alpha}: value of {x}"
+            );
+            assert_eq!(
+                ours["policy"][x], env["policy"][x],
+                "alpha {alpha}: policy at {x}"
+            );
+        }
+        let q = |v: &Value| -> num_rational::BigRational { v.as_str().unwrap().parse().unwrap() };
+        let a: num_rational::BigRational = alpha.parse().unwrap();
+        assert_eq!(
+            q(&ours["discounted_value_initial"]),
+            a * q(&env["discounted_value_initial"]),
+            "alpha {alpha}"
+        );
+        for k in [
+            "success_probability",
+            "policy_success_probability",
+            "expected_truecost",
+        ] {
+            assert_eq!(ours[k], env[k], "alpha {alpha}: {k}");
+        }
     }
 }
 
@@ -265,6 +392,25 @@ fn a_deterministic_table_imported_as_moves_is_a_deterministic_problem() {
         c4(&["--file", file]),
         c4(&["--env", "frozenlake:slippery=false"])
     );
+}
+
+#[test]
+fn discount_file_of_moves_discounts_gymnasiums_rewards() {
+    // The deterministic file gives `discount` its failure set. With Gymnasium's rewards (0 per
+    // step, +1 on entering the goal) a policy that reaches the goal in k steps returns
+    // alpha^(k-1) > 0 and one that does not returns 0, so no discount factor makes an optimal
+    // policy fail: the set is empty. With the negated costs (the file without rewards) the
+    // hole at state 5, two steps away, returns -1 - alpha, more than the goal six steps away
+    // (-(1 + alpha + ... + alpha^5)): every discount factor fails.
+    let path = fixture("frozenlake_4x4_moves.json");
+    let ours = discount_full(&["--file", path.to_str().unwrap()]);
+    assert_eq!(ours["rewards"], "the file's rewards");
+    assert_eq!(ours["set"], "empty", "{ours}");
+    let dir = tempfile::tempdir().unwrap();
+    let costs = without_rewards("frozenlake_4x4_moves.json", dir.path());
+    let theirs = discount_full(&["--file", costs.to_str().unwrap()]);
+    assert_eq!(theirs["rewards"], "negated stage costs");
+    assert_eq!(theirs["set"], "(0, 1)", "{theirs}");
 }
 
 /// The guide's MudCorridor under the always-right policy, discounted by `a`, from cell `from`

@@ -367,3 +367,264 @@ fn cost_with_i64_min_exponent_is_refused_without_panicking() {
         Err(_) => panic!("from_json panicked instead of returning Err"),
     }
 }
+
+/// A file's text written to a fresh temporary directory (kept alive by the returned guard).
+fn on_disk(text: &str) -> (tempfile::TempDir, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("problem.json");
+    std::fs::write(&path, text).unwrap();
+    let path = path.to_str().unwrap().to_string();
+    (dir, path)
+}
+
+/// The two-route file of the reward tests: from 0, move to 1 and then into the goal 3 (reward
+/// 0, then +1 on entering the goal), or step into the trap 2 (reward 1/2), where the episode
+/// ends; every move costs 1, the trap's self-loop 0. `actions` and `terminal` may be replaced.
+fn two_routes(actions: &str, terminal: &str) -> String {
+    format!(
+        r#"{{"format": "truecost-problem/1", "initial": 0, "goals": [3], "terminal": {terminal},
+  "actions": {actions}}}"#
+    )
+}
+
+const TWO_ROUTES_ACTIONS: &str = r#"[
+    [{"to": 1, "cost": "1", "reward": "0"}, {"to": 2, "cost": "1", "reward": "1/2"}],
+    [{"to": 3, "cost": "1", "reward": "1"}],
+    [{"to": 2, "cost": "0", "reward": "0"}],
+    []]"#;
+
+#[test]
+fn rewards_and_terminal_states_are_read_in_the_global_action_order() {
+    use truecost::stochastic::file::{from_json_with_rewards, FileRewards, ProblemFile};
+    let (problem, extra) = from_json_with_rewards(&two_routes(TWO_ROUTES_ACTIONS, "[2]")).unwrap();
+    assert!(matches!(problem, ProblemFile::Deterministic(_)));
+    assert_eq!(
+        extra,
+        FileRewards {
+            rewards: Some(vec![int(0), frac(1, 2), int(1), int(0)]),
+            terminal: vec![2],
+        }
+    );
+    // The deterministic reader (learn, verify) checks and ignores them.
+    assert_eq!(
+        from_json(&two_routes(TWO_ROUTES_ACTIONS, "[2]"))
+            .unwrap()
+            .states(),
+        4
+    );
+    // Without the fields: no rewards, no terminal state.
+    let plain = from_json_with_rewards(&with("format", &format!("\"{FORMAT}\""))).unwrap();
+    assert_eq!(plain.1, FileRewards::default());
+    // A stochastic file: negative rewards and fractions, read exactly; terminal sorted.
+    let text = r#"{"initial": 0, "goals": [3], "terminal": [2, 1], "actions": [
+        [{"cost": "1", "reward": "-0.25", "outcomes": [{"to": 3, "p": "1/3"}, {"to": 1, "p": "2/3"}]},
+         {"to": 2, "cost": "2", "reward": "-1e-3"}],
+        [{"cost": "0", "reward": "0", "outcomes": [{"to": 1, "p": "1/2"}, {"to": 1, "p": "1/2"}]}],
+        [{"to": 2, "cost": "0", "reward": "-0"}],
+        []]}"#;
+    let (ProblemFile::Stochastic(_), extra) = from_json_with_rewards(text).unwrap() else {
+        panic!("a stochastic file")
+    };
+    assert_eq!(
+        extra.rewards.unwrap(),
+        vec![frac(-1, 4), frac(-1, 1000), int(0), int(0)]
+    );
+    assert_eq!(extra.terminal, vec![1, 2]);
+}
+
+#[test]
+fn bad_rewards_and_terminal_states_are_refused_in_one_line() {
+    let mixed = r#"[
+        [{"to": 1, "cost": "1"}, {"to": 2, "cost": "1", "reward": "1/2"}],
+        [{"to": 3, "cost": "1", "reward": "1"}],
+        [{"to": 2, "cost": "0"}],
+        []]"#;
+    let number = TWO_ROUTES_ACTIONS.replace(r#""reward": "1/2""#, r#""reward": 0.5"#);
+    let text = TWO_ROUTES_ACTIONS.replace(r#""reward": "1/2""#, r#""reward": "half""#);
+    let leaky = TWO_ROUTES_ACTIONS.replace(
+        r#"[{"to": 2, "cost": "0", "reward": "0"}]"#,
+        r#"[{"to": 2, "cost": "0", "reward": "0"}, {"to": 0, "cost": "0", "reward": "0"}]"#,
+    );
+    let costly = TWO_ROUTES_ACTIONS.replace(
+        r#"{"to": 2, "cost": "0", "reward": "0"}"#,
+        r#"{"to": 2, "cost": "1/4", "reward": "0"}"#,
+    );
+    let rewarding = TWO_ROUTES_ACTIONS.replace(
+        r#"{"to": 2, "cost": "0", "reward": "0"}"#,
+        r#"{"to": 2, "cost": "0", "reward": "-1"}"#,
+    );
+    let cases: Vec<(String, Vec<&str>)> = vec![
+        // Some actions with a reward, some without: the first without one is named (state 0,
+        // action 0, before the first reward of the file).
+        (
+            two_routes(mixed, "[2]"),
+            vec!["state 0, action 0 has no \"reward\"", "every action"],
+        ),
+        // A JSON number would pass through f64, as for costs.
+        (
+            two_routes(&number, "[2]"),
+            vec!["invalid type", "expected a string"],
+        ),
+        (
+            two_routes(&text, "[2]"),
+            vec!["state 0, action 1: reward 'half'", "not an exact number"],
+        ),
+        (
+            two_routes(TWO_ROUTES_ACTIONS, "[3]"),
+            vec!["terminal state 3 is a goal"],
+        ),
+        (
+            two_routes(TWO_ROUTES_ACTIONS, "[2, 4]"),
+            vec!["terminal state 4 is not a state", "0 to 3"],
+        ),
+        (
+            two_routes(TWO_ROUTES_ACTIONS, "[2, 2]"),
+            vec!["terminal state 2 is listed twice"],
+        ),
+        (
+            two_routes(&leaky, "[2]"),
+            vec!["terminal state 2, action 1", "zero-cost self-loops"],
+        ),
+        (
+            two_routes(&costly, "[2]"),
+            vec!["terminal state 2, action 0", "zero-cost self-loops"],
+        ),
+        (
+            two_routes(&rewarding, "[2]"),
+            vec!["terminal state 2, action 0: reward -1", "reward 0"],
+        ),
+        // A state with real moves is no trap.
+        (
+            two_routes(TWO_ROUTES_ACTIONS, "[1]"),
+            vec!["terminal state 1, action 0", "zero-cost self-loops"],
+        ),
+        (
+            two_routes(TWO_ROUTES_ACTIONS, "[-1]"),
+            vec!["not valid", "invalid value: integer `-1`"],
+        ),
+    ];
+    for (text, needles) in cases {
+        // The library readers (the deterministic one of learn and verify too) and every command
+        // that reads a file refuse it, in one line.
+        refused(&text, &needles);
+        let (_dir, path) = on_disk(&text);
+        for command in [
+            vec!["discount", "--file", &path],
+            vec!["solve", "--file", &path, "--algorithm", "dijkstra"],
+            vec![
+                "solve",
+                "--file",
+                &path,
+                "--algorithm",
+                "exact",
+                "--objective",
+                "discounted",
+                "--alpha",
+                "1/2",
+            ],
+            vec!["compare", "--file", &path],
+        ] {
+            let err = cli::fails_one_line(&command);
+            for n in &needles {
+                assert!(
+                    err.contains(n),
+                    "{command:?}: {err:?} does not mention {n:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_tiny_file_with_rewards_has_its_hand_computed_discounted_values() {
+    // Stochastic: from 0, "try" (reward 1/2: +1 on entering the goal 1, which it does with
+    // probability 1/2; else it stays) or "quit" into the trap 2 (reward 1/4, then the episode
+    // is over). At alpha = 1/2: try forever gives V = 1/2 + alpha (1/2 V) = 1/2 + V/4, so
+    // V = 2/3 > 1/4 (quit): V(0) = 2/3, action 0. With the negated stage costs (both cost 1)
+    // instead: try gives V = -1 + V/4 = -4/3, quit -1: quitting is optimal.
+    let text = r#"{"initial": 0, "goals": [1], "terminal": [2], "actions": [
+        [{"cost": "1", "reward": "1/2", "outcomes": [{"to": 1, "p": "1/2"}, {"to": 0, "p": "1/2"}]},
+         {"to": 2, "cost": "1", "reward": "1/4"}],
+        [],
+        [{"to": 2, "cost": "0", "reward": "0"}]]}"#;
+    let discounted = |path: &str| {
+        cli::json(&[
+            "solve",
+            "--file",
+            path,
+            "--algorithm",
+            "exact",
+            "--objective",
+            "discounted",
+            "--alpha",
+            "1/2",
+            "--format",
+            "json",
+        ])
+    };
+    let (_dir, path) = on_disk(text);
+    let v = discounted(&path);
+    assert_eq!(v["rewards"], "the file's rewards");
+    assert_eq!(v["discounted_value_initial"], "2/3");
+    assert_eq!(v["values"], serde_json::json!(["2/3", "0", "0"]));
+    // Nothing is prescribed where the episode is over (the goal and the terminal trap).
+    assert_eq!(v["policy"], serde_json::json!([0, null, null]));
+    let costs = text
+        .replace(r#", "reward": "1/2""#, "")
+        .replace(r#", "reward": "1/4""#, "")
+        .replace(r#", "reward": "0""#, "");
+    let (_dir2, path2) = on_disk(&costs);
+    let c = discounted(&path2);
+    assert_eq!(c["rewards"], "negated stage costs");
+    assert_eq!(c["discounted_value_initial"], "-1");
+    assert_eq!(c["policy"][0], 1);
+}
+
+#[test]
+fn discount_file_uses_a_deterministic_files_rewards() {
+    // The two routes: the goal route returns 0 + alpha * 1 = alpha, the trap 1/2, so a
+    // discount-optimal policy fails to reach the goal exactly for alpha <= 1/2 (at 1/2 both
+    // routes are optimal). With the negated costs the goal route returns -1 - alpha and the
+    // trap -1 (the episode ends there): it fails for every alpha.
+    let (_dir, path) = on_disk(&two_routes(TWO_ROUTES_ACTIONS, "[2]"));
+    let d = cli::json(&["discount", "--file", &path, "--format", "json"]);
+    assert_eq!(d["rewards"], "the file's rewards");
+    assert_eq!(d["set"], "(0, 1/2]");
+    let costs = two_routes(TWO_ROUTES_ACTIONS, "[2]")
+        .replace(r#", "reward": "0""#, "")
+        .replace(r#", "reward": "1/2""#, "")
+        .replace(r#", "reward": "1""#, "");
+    let (_dir2, path2) = on_disk(&costs);
+    let c = cli::json(&["discount", "--file", &path2, "--format", "json"]);
+    assert_eq!(c["rewards"], "negated stage costs");
+    assert_eq!(c["set"], "(0, 1)");
+}
+
+#[test]
+fn noise_keeps_each_actions_reward() {
+    // `--gamma 1/2` (paper noise: the commanded successor 1/2, the rest spread over the state's
+    // other moves and staying) on the two routes, at alpha = 1/2. V(3) = 0 (goal), V(2) = 0
+    // (terminal). State 1 (one move): V1 = 1 + alpha (V1/2), so V1 = 4/3. State 0 (two moves:
+    // the commanded one 1/2, the other 1/4, stay 1/4): towards 1, 0 + alpha (V1/2 + V0/4) =
+    // 1/3 + V0/8; towards the trap, 1/2 + alpha (V1/4 + V0/4) = 2/3 + V0/8, the better one, so
+    // V0 = 2/3 + V0/8: V0 = 16/21.
+    let (_dir, path) = on_disk(&two_routes(TWO_ROUTES_ACTIONS, "[2]"));
+    let v = cli::json(&[
+        "solve",
+        "--file",
+        &path,
+        "--gamma",
+        "1/2",
+        "--algorithm",
+        "exact",
+        "--objective",
+        "discounted",
+        "--alpha",
+        "1/2",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(v["discounted_value_initial"], "16/21");
+    assert_eq!(v["values"], serde_json::json!(["16/21", "4/3", "0", "0"]));
+    assert_eq!(v["policy"], serde_json::json!([1, 0, null, null]));
+}

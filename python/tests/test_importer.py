@@ -100,6 +100,41 @@ def optimum_by_enumeration_moves(problem):
     return optimum_by_enumeration(as_outcomes)
 
 
+def discounted_by_enumeration(problem, alpha):
+    """The greatest discounted value of the file's rewards at the initial state over the
+    stationary deterministic policies (exact Gaussian elimination of V = r + alpha P V per
+    policy; goals and ``terminal`` states have value 0): an oracle independent of truecost."""
+    n = problem["states"]
+    ended = set(problem["goals"]) | set(problem.get("terminal", []))
+    acts = problem["actions"]
+    choices = [range(len(acts[x])) if x not in ended else [None] for x in range(n)]
+    xs = [x for x in range(n) if x not in ended]
+    idx = {x: i for i, x in enumerate(xs)}
+    best = None
+    for policy in itertools.product(*choices):
+        m = len(xs)
+        a = [[Fraction(int(i == j)) for j in range(m)] + [Fraction(acts[x][policy[x]]["reward"])]
+             for i, x in enumerate(xs)]
+        for i, x in enumerate(xs):
+            act = acts[x][policy[x]]
+            outcomes = act["outcomes"] if "outcomes" in act else [{"to": act["to"], "p": "1"}]
+            for o in outcomes:
+                if o["to"] in idx:
+                    a[i][idx[o["to"]]] -= alpha * Fraction(o["p"])
+        for c in range(m):
+            r = next(r for r in range(c, m) if a[r][c] != 0)
+            a[c], a[r] = a[r], a[c]
+            for r in range(m):
+                if r != c and a[r][c] != 0:
+                    f = a[r][c] / a[c][c]
+                    a[r] = [u - f * v for u, v in zip(a[r], a[c])]
+        i = idx[problem["initial"]]
+        v = a[i][m] / a[i][i]
+        if best is None or v > best:
+            best = v
+    return best
+
+
 def truecost_binary():
     for build in ("release", "debug"):
         path = os.path.join(REPO, "target", build, "truecost")
@@ -119,17 +154,65 @@ class TinyTable(unittest.TestCase):
         self.assertEqual(self.report["traps"], [3])
         acts = p["actions"]
         # Walk: the two entries to the corridor merged; reward -1 costs 1.
-        self.assertEqual(acts[0][0], {"cost": "1", "outcomes": [{"to": 1, "p": "1"}]})
-        # Jump: 2/3 * 1 (a positive reward costs one step) + 1/3 * 5 = 7/3.
-        self.assertEqual(acts[0][1], {"cost": "7/3", "outcomes": [{"to": 2, "p": "2/3"},
-                                                                   {"to": 3, "p": "1/3"}]})
-        # Push: 1/3 * 2 + 2/3 * 1 = 4/3.
-        self.assertEqual(acts[1][0]["cost"], "4/3")
+        self.assertEqual(acts[0][0], {"cost": "1", "reward": "-1",
+                                      "outcomes": [{"to": 1, "p": "1"}]})
+        # Jump: 2/3 * 1 (a positive reward costs one step) + 1/3 * 5 = 7/3; its expected
+        # reward 2/3 * 10 + 1/3 * (-5) = 5.
+        self.assertEqual(acts[0][1], {"cost": "7/3", "reward": "5",
+                                      "outcomes": [{"to": 2, "p": "2/3"}, {"to": 3, "p": "1/3"}]})
+        # Push: 1/3 * 2 + 2/3 * 1 = 4/3; reward 1/3 * (-2) + 2/3 * 10 = 6.
+        self.assertEqual((acts[1][0]["cost"], acts[1][0]["reward"]), ("4/3", "6"))
+        self.assertEqual(acts[1][1]["reward"], "-1")
         self.assertEqual(acts[2], [], "the goal terminates")
-        self.assertEqual(acts[3], [{"cost": "0", "outcomes": [{"to": 3, "p": "1"}]}], "a trap")
-        self.assertEqual(acts[4], [{"cost": "0", "outcomes": [{"to": 0, "p": "3/4"},
-                                                              {"to": 1, "p": "1/4"}]}])
+        self.assertEqual(acts[3], [{"cost": "0", "reward": "0",
+                                    "outcomes": [{"to": 3, "p": "1"}]}], "a trap")
+        self.assertEqual(p["terminal"], [3], "the trap ends the episode")
+        self.assertEqual(acts[4], [{"cost": "0", "reward": "0",
+                                    "outcomes": [{"to": 0, "p": "3/4"}, {"to": 1, "p": "1/4"}]}])
+        self.assertEqual(list(p), ["format", "name", "states", "initial", "goals", "terminal",
+                                   "actions"], "the key order of truecost export")
         self.assertEqual(self.report["merged_outcomes"], 1)
+        self.assertEqual(self.report["rewards"], "gymnasium")
+
+    def test_rewards_costs_writes_no_reward(self):
+        p, report = import_table(TINY_P, 4, 2, TINY_ISD, env_name="tiny", rewards="costs")
+        self.assertFalse(any("reward" in a for row in p["actions"] for a in row))
+        # Everything else is the default's file without its rewards.
+        stripped = [[{k: v for k, v in a.items() if k != "reward"} for a in row]
+                    for row in self.problem["actions"]]
+        self.assertEqual(p["actions"], stripped)
+        self.assertEqual(p["terminal"], [3])
+        self.assertEqual(p["name"], "tiny (truecost stage costs)")
+        self.assertEqual(self.problem["name"], "tiny (truecost stage costs, Gymnasium's rewards)")
+        self.assertEqual(report["rewards"], "costs")
+        with self.assertRaises(ValueError):
+            import_table(TINY_P, 4, 2, TINY_ISD, rewards="negated")
+
+    def test_discounted_value_known_by_hand(self):
+        # At alpha = 1/2, with the expected rewards above (the goal and the trap end the
+        # episode: value 0). Corridor: push gives V(1) = 6 + (1/2)(1/3) V(1), so V(1) = 36/5
+        # (back: -1 + V(0)/2 is less). Start: jump 5, walk -1 + V(1)/2 = 13/5: V(0) = 5. The
+        # extra state draws the start with 3/4 and the corridor with 1/4, one discounted step:
+        # V(4) = (1/2)(3/4 * 5 + 1/4 * 36/5) = 111/40.
+        alpha = Fraction(1, 2)
+        self.assertEqual(discounted_by_enumeration(self.problem, alpha), Fraction(111, 40))
+        binary = truecost_binary()
+        if binary is None:
+            self.skipTest("no truecost binary built")
+        import json
+        import tempfile
+
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "tiny.json")
+            with open(path, "w") as f:
+                f.write(to_json(self.problem))
+            out = subprocess.run([binary, "solve", "--file", path, "--algorithm", "exact",
+                                  "--objective", "discounted", "--alpha", "1/2", "--format",
+                                  "json"], capture_output=True, text=True, check=True)
+            v = json.loads(out.stdout)
+            self.assertEqual(v["discounted_value_initial"], "111/40")
+            self.assertEqual(v["values"][:2], ["5", "36/5"])
+            self.assertEqual(v["rewards"], "the file's rewards")
 
     def test_optimum_known_by_hand(self):
         # Corridor: G(1) = 4/3 + G(1)/3, so G(1) = 2; start: walk 1 + G(1) = 3 (the jump may
@@ -165,10 +248,13 @@ class TinyTable(unittest.TestCase):
     def test_single_outcomes_as_moves(self):
         p, report = import_table(TINY_P, 4, 2, TINY_ISD, deterministic_moves=True)
         acts = p["actions"]
-        self.assertEqual(acts[0][0], {"to": 1, "cost": "1"}, "merged to one outcome: a move")
+        self.assertEqual(acts[0][0], {"to": 1, "cost": "1", "reward": "-1"},
+                         "merged to one outcome: a move")
         self.assertIn("outcomes", acts[0][1], "the jump stays stochastic")
-        self.assertEqual(acts[1][1], {"to": 0, "cost": "1"})
-        self.assertEqual(acts[3], [{"to": 3, "cost": "0"}], "the trap's self-loop")
+        self.assertEqual(acts[1][1], {"to": 0, "cost": "1", "reward": "-1"})
+        self.assertEqual(acts[3], [{"to": 3, "cost": "0", "reward": "0"}], "the trap's self-loop")
+        costs, _ = import_table(TINY_P, 4, 2, TINY_ISD, deterministic_moves=True, rewards="costs")
+        self.assertEqual(costs["actions"][3], [{"to": 3, "cost": "0"}])
         self.assertTrue(report["deterministic_moves"])
         self.assertEqual(optimum_by_enumeration_moves(p), Fraction(11, 4))
 
@@ -320,13 +406,33 @@ class WithGymnasium(unittest.TestCase):
     def test_usage_errors_are_one_line_exit_2(self):
         for args in (["export", "FrozenLake-v1"], ["export", "NoSuchEnv-v0", "--out", "-"],
                      ["export", "FrozenLake-v1", "--kwargs", "[1]", "--out", "-"],
-                     ["export", "FrozenLake-v1", "--max-denominator", "0", "--out", "-"]):
+                     ["export", "FrozenLake-v1", "--max-denominator", "0", "--out", "-"],
+                     ["export", "FrozenLake-v1", "--rewards", "negated", "--out", "-"]):
             with self.subTest(args=args):
                 out = run_cli(*args)
                 self.assertEqual(out.returncode, 2, out.stderr)
                 self.assertEqual(len(out.stderr.strip().splitlines()), 1, out.stderr)
                 self.assertTrue(out.stderr.startswith("error: "), out.stderr)
                 self.assertEqual(out.stdout, "")
+
+    def test_rewards_option(self):
+        import json
+
+        default = run_cli("export", "FrozenLake-v1", "--quiet", "--out", "-")
+        costs = run_cli("export", "FrozenLake-v1", "--quiet", "--rewards", "costs", "--out", "-")
+        for out in (default, costs):
+            self.assertEqual(out.returncode, 0, out.stderr)
+        g, c = json.loads(default.stdout), json.loads(costs.stdout)
+        # FrozenLake: +1 on entering the goal only. From state 14, RIGHT slips to 10 (up),
+        # 15 (right) or 14 (down), a third each: expected reward 1/3. The holes end the episode.
+        self.assertEqual(g["actions"][14][2]["reward"], "1/3")
+        self.assertEqual(g["actions"][0][0]["reward"], "0")
+        self.assertEqual((g["terminal"], c["terminal"]), ([5, 7, 11, 12], [5, 7, 11, 12]))
+        self.assertIn("Gymnasium's rewards", g["name"])
+        self.assertNotIn("reward", costs.stdout)
+        self.assertEqual(
+            c["actions"],
+            [[{k: v for k, v in a.items() if k != "reward"} for a in row] for row in g["actions"]])
 
     def test_exact_binary_refuses_slippery_frozenlake_naming_the_row(self):
         out = run_cli("export", "FrozenLake-v1", "--exact-binary", "--out", "-")

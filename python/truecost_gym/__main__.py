@@ -13,7 +13,7 @@ import os
 import sys
 import tempfile
 
-from .importer import BAD_TABLE, UNSUPPORTED, ImportRefused, to_json
+from .importer import BAD_TABLE, REWARDS, UNSUPPORTED, ImportRefused, name_note, to_json
 from .rational import BINARY, DEFAULT_MAX_DENOMINATOR, DEFAULT_ULPS, EXACT
 
 SHOWN = 20  # recovered values listed on stderr (all of them are in --report)
@@ -72,8 +72,9 @@ def parser():
         "export",
         help="write ENV_ID's transition table as a truecost-stochastic/1 file",
         description="Write the environment's transition table env.unwrapped.P as a "
-        "truecost-stochastic/1 problem file with exact probabilities and truecost stage costs "
-        "(reward r < 0 costs -r, r >= 0 costs 1), for truecost solve|compare|discount --file.",
+        "truecost-stochastic/1 problem file with exact probabilities, truecost stage costs "
+        "(reward r < 0 costs -r, r >= 0 costs 1) and Gymnasium's expected rewards, for truecost "
+        "solve|compare|discount --file.",
     )
     e.add_argument("env_id", metavar="ENV_ID",
                    help="a registered id (FrozenLake-v1), or module:Id (Gymnasium imports the module)")
@@ -105,6 +106,11 @@ def parser():
                    help="write an action with a single outcome as a move {to, cost}: a table "
                    "without randomness becomes a deterministic problem file (for verify --claim "
                    "C4, learn, solve --algorithm dijkstra)")
+    e.add_argument("--rewards", choices=REWARDS, default="gymnasium",
+                   help="gymnasium (default): write every action's expected Gymnasium reward, "
+                   "which truecost's discounted objective maximises (discount|compare --file "
+                   "then answer as --env); costs: write no reward (the discounted objective "
+                   "rewards the negated stage costs)")
     e.add_argument("--compact", action="store_true",
                    help="one state's actions per line (default: the layout of truecost export)")
     e.add_argument("--quiet", action="store_true",
@@ -168,7 +174,8 @@ def export(args):
         problem, report = from_env(env, args.env_id, initial=args.initial,
                                    max_denominator=args.max_denominator, ulps=args.ulps,
                                    exact_binary=args.exact_binary, goals=args.goals,
-                                   deterministic_moves=args.deterministic_moves)
+                                   deterministic_moves=args.deterministic_moves,
+                                   rewards=args.rewards)
     except ImportRefused as e:
         fail(str(e), e.status)
     options = "" if not kwargs else " " + json.dumps(kwargs, separators=(",", ":"))
@@ -176,7 +183,7 @@ def export(args):
     name = f"{args.env_id}{options} (Gymnasium {gymnasium.__version__}"
     if extra is not None:
         name += f"; state {extra['extra_state']} draws the initial state"
-    name += "; truecost stage costs)"
+    name += f"; {name_note(args.rewards)})"
     problem["name"] = name
     report["gymnasium_version"] = gymnasium.__version__
     report["env_id"] = args.env_id

@@ -22,6 +22,12 @@ way ``truecost export --env`` builds the built-in environments:
   0 and +1, Taxi's +20 delivery, whose reward is a terminal bonus, not a cost). An action costs
   the expectation over its outcomes: the file's cost is paid whatever the outcome, and equal
   expectations give equal expected totals.
+* **rewards** (``rewards="gymnasium"``, the default): every action's ``reward`` is its
+  expected Gymnasium reward ``Σ p·r`` over its outcomes, exactly (the reward the discounted
+  objective maximises, as ``truecost discount|compare --env`` use it); a trap's self-loop and
+  the extra initial state (below) have reward 0. The file's ``terminal`` lists the traps, so
+  that the episode ends there as in Gymnasium. ``rewards="costs"`` writes no reward: the
+  discounted objective then rewards the negated stage costs.
 * **outcomes**: zero-probability entries are dropped, entries to the same next state merged
   (probabilities added, first appearance order), as ``truecost export --env`` does.
 * **initial state**: a single state of probability 1 is the file's ``initial``; a distribution
@@ -44,6 +50,9 @@ from .rational import (
 )
 
 FORMAT = "truecost-stochastic/1"
+
+#: The values of ``rewards``: Gymnasium's expected rewards, or none (negated stage costs).
+REWARDS = ("gymnasium", "costs")
 
 #: Exit status of a refusal: 2 for an environment truecost cannot import (its kind: spaces,
 #: no transition table), 1 for a table that is malformed or inconsistent.
@@ -143,7 +152,8 @@ def truecost_cost(reward):
 
 def import_table(P, n_states, n_actions, initial, *, env_name="environment",
                  max_denominator=DEFAULT_MAX_DENOMINATOR, ulps=DEFAULT_ULPS,
-                 exact_binary=False, goals=None, deterministic_moves=False):
+                 exact_binary=False, goals=None, deterministic_moves=False,
+                 rewards="gymnasium"):
     """Builds the problem from a transition table (module docs).
 
     ``P[s][a]``: lists of ``(p, s', r, terminated)``; ``initial``: a sequence of ``n_states``
@@ -153,9 +163,13 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
     choice made. ``deterministic_moves`` writes an action with a single outcome as a move
     ``{"to": y, "cost": c}``: a table without randomness then makes a deterministic problem
     file, which the commands on deterministic problems also read (``verify --claim C4``,
-    ``learn``, ``solve --algorithm dijkstra``). Raises :class:`ImportRefused` (one line, naming
-    the state and action).
+    ``learn``, ``solve --algorithm dijkstra``). ``rewards``: ``"gymnasium"`` writes every
+    action's expected reward, ``"costs"`` none (module docs). Raises :class:`ImportRefused`
+    (one line, naming the state and action).
     """
+    if rewards not in REWARDS:
+        raise ValueError(f"rewards must be one of {REWARDS}, got {rewards!r}")
+    with_rewards = rewards == "gymnasium"
     values = _Values(env_name, max_denominator, ulps, exact_binary)
     after = "in exact binary" if exact_binary else "after recovery"
     # Pass 1: read and recover every entry with positive probability.
@@ -262,7 +276,17 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
     traps = sorted(terminal - goal_set)
     running = len(entered_running)
 
-    # Pass 2: actions with merged outcomes and expected costs.
+    def action(cost, by_next, reward):
+        """One action of the file, in the key order of ``truecost export``."""
+        out = {"to": next(iter(by_next))} if deterministic_moves and len(by_next) == 1 else {}
+        out["cost"] = str(cost)
+        if with_rewards:
+            out["reward"] = str(reward)
+        if "to" not in out:
+            out["outcomes"] = [{"to": x, "p": str(p)} for x, p in by_next.items()]
+        return out
+
+    # Pass 2: actions with merged outcomes, expected costs and expected rewards.
     actions = []
     merged = 0
     for s in range(n_states):
@@ -270,8 +294,7 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
             actions.append([])
             continue
         if s in terminal:
-            actions.append([{"to": s, "cost": "0"}] if deterministic_moves else
-                           [{"cost": "0", "outcomes": [{"to": s, "p": "1"}]}])
+            actions.append([action(Fraction(0), {s: Fraction(1)}, Fraction(0))])
             continue
         row = []
         for a in range(n_actions):
@@ -287,16 +310,13 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
                     f"{_off_one(total)} {after}, not exactly 1"
                 )
             cost = sum((p * truecost_cost(r) for p, _, r, _, _ in entries), Fraction(0))
+            reward = sum((p * r for p, _, r, _, _ in entries), Fraction(0))
             by_next = {}
             for p, nxt, *_ in entries:
                 if nxt in by_next:
                     merged += 1
                 by_next[nxt] = by_next.get(nxt, Fraction(0)) + p
-            if deterministic_moves and len(by_next) == 1:
-                row.append({"to": next(iter(by_next)), "cost": str(cost)})
-            else:
-                row.append({"cost": str(cost),
-                            "outcomes": [{"to": x, "p": str(p)} for x, p in by_next.items()]})
+            row.append(action(cost, by_next, reward))
         actions.append(row)
 
     states = n_states
@@ -305,16 +325,20 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
     else:
         x1 = n_states
         states += 1
-        actions.append([{"cost": "0", "outcomes": [{"to": x, "p": str(p)} for x, p in start]}])
+        draw = {"cost": "0", "reward": "0"} if with_rewards else {"cost": "0"}
+        draw["outcomes"] = [{"to": x, "p": str(p)} for x, p in start]
+        actions.append([draw])
 
     problem = {
         "format": FORMAT,
-        "name": f"{env_name} (truecost stage costs)",
+        "name": f"{env_name} ({name_note(rewards)})",
         "states": states,
         "initial": x1,
         "goals": sorted(goal_set),
-        "actions": actions,
     }
+    if traps:
+        problem["terminal"] = traps
+    problem["actions"] = actions
     recovered = values.report()
     report = {
         "environment": env_name,
@@ -329,6 +353,11 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
         "traps": traps,
         "cost_rule": "an outcome with reward r < 0 costs -r, with r >= 0 costs 1 (one step); "
                      "an action costs the expectation over its outcomes",
+        "rewards": rewards,
+        "reward_rule": "an action's reward is the expectation of Gymnasium's rewards over its "
+                       "outcomes (traps and the extra initial state: 0)" if with_rewards else
+                       "no reward written: the discounted objective rewards the negated stage "
+                       "costs",
         "merged_outcomes": merged,
         "max_denominator": max_denominator,
         "ulps": ulps,
@@ -338,6 +367,16 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
         "binary": [v for v in recovered if v["how"] == BINARY],
     }
     return problem, report
+
+
+def name_note(rewards):
+    """What the file's name says about its costs and rewards.
+
+    >>> name_note("gymnasium"), name_note("costs")
+    ("truecost stage costs, Gymnasium's rewards", 'truecost stage costs')
+    """
+    return "truecost stage costs, Gymnasium's rewards" if rewards == "gymnasium" else \
+        "truecost stage costs"
 
 
 def to_json(problem, compact=False):

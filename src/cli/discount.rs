@@ -20,7 +20,7 @@ use truecost::objectives::report::{
 };
 use truecost::objectives::{failure_set, Model, Source};
 use truecost::problems::{GridLayout, StepCost};
-use truecost::stochastic::file::{read, ProblemFile};
+use truecost::stochastic::file::{read_with_rewards, FileRewards, ProblemFile};
 
 use super::compare::CompareFormat;
 use super::env::{pretty, EnvArg};
@@ -54,18 +54,20 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
     if args.step_cost.is_some() && args.problem.is_none() {
         return Err("--step-cost applies to the paper's problems (--problem N)".into());
     }
-    let (problem, source) = match (&args.env.env, &args.file, args.problem) {
+    let (problem, source, extra) = match (&args.env.env, &args.file, args.problem) {
         (Some(spec), _, _) => {
             let model = Source::Env(spec.clone()).load()?;
             return analysis(&model).map(|d| breakpoints(&model, &d, args.format));
         }
-        (None, Some(path), _) => match read(path).map_err(|e| e.to_string())? {
-            ProblemFile::Deterministic(p) => (
+        (None, Some(path), _) => match read_with_rewards(path).map_err(|e| e.to_string())? {
+            (ProblemFile::Deterministic(p), extra) => (
                 p,
                 format!("file {}", printable(&path.display().to_string())),
+                extra,
             ),
-            ProblemFile::Stochastic(p) => {
-                let model = Model::from_problem(*p, format!("file {}", path.display()));
+            (ProblemFile::Stochastic(p), extra) => {
+                let model = Model::from_problem(*p, format!("file {}", path.display()))
+                    .with_file_rewards(&extra);
                 return analysis(&model).map(|d| breakpoints(&model, &d, args.format));
             }
         },
@@ -74,10 +76,13 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
                 .map_err(|e| e.to_string())?
                 .to_problem(args.step_cost.unwrap_or_default()),
             format!("paper problem {id}"),
+            FileRewards::default(),
         ),
         (None, None, None) => return Err("give --problem N, --file FILE or --env SPEC".into()),
     };
-    let model = Model::from_deterministic(&problem, source.clone()).map_err(|e| e.to_string())?;
+    let model = Model::from_deterministic_file(&problem, source.clone(), &extra)
+        .map_err(|e| e.to_string())?;
+    let rewards = model.reward_source;
     let set = failure_set(&analysis(&model)?);
     Ok(match args.format {
         CompareFormat::Json => {
@@ -93,22 +98,23 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
                 .collect();
             pretty(&json!({
                 "problem": source,
+                "rewards": rewards,
                 "set": set_text(&set),
                 "pieces": pieces,
                 "method": set.method,
             }))
         }
         CompareFormat::Text => format!(
-            "problem  {source}\nalpha in (0,1) where a discount-optimal policy fails to reach the goal from x1:\n  {}\nmethod   {}\n",
+            "problem  {source}\nrewards  {rewards} (discounted, maximised)\nalpha in (0,1) where a discount-optimal policy fails to reach the goal from x1:\n  {}\nmethod   {}\n",
             set_text(&set),
             set.method
         ),
         CompareFormat::Markdown => format!(
-            "**{source}**: alpha in (0,1) where a discount-optimal policy fails to reach the goal from x1\n\n| set | method |\n|---|---|\n| {} | {} |\n",
+            "**{source}** ({rewards}): alpha in (0,1) where a discount-optimal policy fails to reach the goal from x1\n\n| set | method |\n|---|---|\n| {} | {} |\n",
             set_text(&set),
             set.method
         ),
-        CompareFormat::Latex => latex_set(&source, &set),
+        CompareFormat::Latex => latex_set(&format!("{source} ({rewards})"), &set),
     })
 }
 

@@ -21,6 +21,17 @@
 //!   self-loop, if it is a trap).
 //! * Costs are **strings** holding exact non-negative numbers: `"1"`, `"0.25"`, `"800/19"`,
 //!   `"1e-3"`. JSON numbers are refused: they would pass through `f64`.
+//! * Optional, for the discounted objective (what a reinforcement-learning agent maximises):
+//!   a `"reward": "r"` on an action, an exact number as a string like costs (it may be
+//!   negative; JSON numbers are refused), is the action's expected reward, received whatever
+//!   the outcome; either every action of the file has one or none has (the first action without
+//!   one is named). Without rewards the discounted objective rewards the negated stage costs.
+//!   A top-level `"terminal": [x, ...]` lists non-goal states where the episode ends (no reward
+//!   any more, like Gymnasium's holes); each must be a state, not a goal, listed once, and every
+//!   action it has must be a zero-cost self-loop (with reward 0 when rewards are given). Goals,
+//!   and states without actions, always end the episode. The readers that need them return both
+//!   in a [`FileRewards`] ([`crate::stochastic::file::from_json_with_rewards`]); every other
+//!   command checks and ignores them.
 //! * `format`, `name` and `states` are optional; `states`, if given, must equal the number of
 //!   action lists. Unknown fields are refused. The format tag may also be
 //!   `truecost-stochastic/1` (the stochastic format, [`crate::stochastic::file`], of which a
@@ -34,9 +45,10 @@
 
 use std::path::Path;
 
+use num_traits::Zero;
 use serde::{Deserialize, Serialize};
 
-use super::{ModelError, Move, Problem};
+use super::{ModelError, Move, Problem, StateId};
 use crate::echo::echo;
 use crate::value::{parse_rational, Extended, ParseRationalError, Rational};
 
@@ -122,6 +134,56 @@ pub enum FileError {
     /// A non-goal state without actions.
     #[error("state {0} has an empty action set (only goals may have none; model a trap with a self-loop)")]
     EmptyActions(usize),
+    /// A reward that is not an exact number.
+    #[error("state {state}, action {action}: reward {source}")]
+    Reward {
+        /// The state.
+        state: usize,
+        /// The action index.
+        action: usize,
+        /// The cause.
+        source: ParseRationalError,
+    },
+    /// Some actions have a reward, this one has none.
+    #[error("state {state}, action {action} has no \"reward\" while other actions of this file have one: give every action a reward, or none (the discounted objective then rewards the negated stage costs)")]
+    MissingReward {
+        /// The state of the first action without a reward.
+        state: usize,
+        /// Its index.
+        action: usize,
+    },
+    /// A `terminal` entry that is not a state.
+    #[error("terminal state {state} is not a state of this problem (states 0 to {last})")]
+    TerminalOutOfRange {
+        /// The entry.
+        state: usize,
+        /// The last state.
+        last: usize,
+    },
+    /// A `terminal` entry that is a goal.
+    #[error("terminal state {0} is a goal: goals always end the episode, list only non-goal states in \"terminal\"")]
+    TerminalGoal(usize),
+    /// A `terminal` entry listed twice.
+    #[error("terminal state {0} is listed twice")]
+    TerminalDuplicate(usize),
+    /// An action of a terminal state that is not a zero-cost self-loop.
+    #[error("terminal state {state}, action {action}: the actions of a terminal state must be zero-cost self-loops (the episode is over there)")]
+    TerminalAction {
+        /// The terminal state.
+        state: usize,
+        /// The action index.
+        action: usize,
+    },
+    /// An action of a terminal state with a nonzero reward.
+    #[error("terminal state {state}, action {action}: reward {reward}, but the actions of a terminal state must have reward 0 (the episode is over there)")]
+    TerminalReward {
+        /// The terminal state.
+        state: usize,
+        /// The action index.
+        action: usize,
+        /// The reward, shortened.
+        reward: String,
+    },
     /// The problem itself is ill formed.
     #[error("{0}")]
     Model(#[from] ModelError),
@@ -139,6 +201,8 @@ pub(crate) struct FileProblem<A> {
     pub(crate) states: Option<usize>,
     pub(crate) initial: usize,
     pub(crate) goals: Vec<usize>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) terminal: Option<Vec<usize>>,
     pub(crate) actions: Vec<Vec<A>>,
 }
 
@@ -192,6 +256,8 @@ pub(crate) struct FileAction {
     pub(crate) to: Option<usize>,
     pub(crate) cost: String,
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) reward: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub(crate) outcomes: Option<Vec<FileOutcome>>,
 }
 
@@ -224,6 +290,123 @@ impl NumberBudget {
     }
 }
 
+/// What a problem file says about the discounted objective besides its costs (module docs):
+/// the actions' rewards, if the file gives them, and the non-goal states it lists as terminal.
+/// The default (no rewards, no terminal state) is a file without these fields.
+///
+/// ```
+/// use truecost::stochastic::file::from_json_with_rewards;
+/// let text = r#"{"initial": 0, "goals": [1], "terminal": [2], "actions": [
+///     [{"to": 1, "cost": "1", "reward": "1"}, {"to": 2, "cost": "1", "reward": "-1/2"}],
+///     [],
+///     [{"to": 2, "cost": "0", "reward": "0"}]]}"#;
+/// let (_, extra) = from_json_with_rewards(text).unwrap();
+/// let rewards: Vec<String> = extra.rewards.unwrap().iter().map(|r| r.to_string()).collect();
+/// assert_eq!(rewards, ["1", "-1/2", "0"]);
+/// assert_eq!(extra.terminal, [2]);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct FileRewards {
+    /// The expected reward of every action in the problem's global action order (state by
+    /// state, each state's actions in the file's order), or `None` if the file gives no
+    /// reward (the discounted objective then rewards the negated stage costs).
+    pub rewards: Option<Vec<Rational>>,
+    /// The non-goal states the file lists as terminal, in increasing order.
+    pub terminal: Vec<StateId>,
+}
+
+/// Collects the optional rewards of a file's actions as they are parsed (all or none).
+#[derive(Default)]
+pub(crate) struct RewardReader {
+    given: Vec<Rational>,
+    first_missing: Option<(usize, usize)>,
+}
+
+impl RewardReader {
+    /// Reads the reward of action `action` of `state`, if it has one.
+    pub(crate) fn take(
+        &mut self,
+        entry: &FileAction,
+        state: usize,
+        action: usize,
+        budget: &mut NumberBudget,
+    ) -> Result<(), FileError> {
+        match &entry.reward {
+            Some(text) => {
+                let r = parse_rational(text).map_err(|source| FileError::Reward {
+                    state,
+                    action,
+                    source,
+                })?;
+                budget.take(&r, state, action)?;
+                self.given.push(r);
+            }
+            None => {
+                self.first_missing.get_or_insert((state, action));
+            }
+        }
+        match self.first_missing {
+            // The first action without a reward, once some action has one.
+            Some((state, action)) if !self.given.is_empty() => {
+                Err(FileError::MissingReward { state, action })
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// The rewards of every action, or `None` if no action has one.
+    pub(crate) fn finish(self) -> Option<Vec<Rational>> {
+        (!self.given.is_empty()).then_some(self.given)
+    }
+}
+
+/// Checks a file's `terminal` list against its problem (module docs) and returns it sorted:
+/// `actions(x)` is the range of global ids of the actions of `x`, `zero_self_loop(a)` whether
+/// action `a` is a zero-cost self-loop of its state.
+pub(crate) fn check_terminal(
+    listed: Option<&[usize]>,
+    states: usize,
+    is_goal: impl Fn(usize) -> bool,
+    actions: impl Fn(usize) -> std::ops::Range<usize>,
+    zero_self_loop: impl Fn(usize) -> bool,
+    rewards: Option<&[Rational]>,
+) -> Result<Vec<StateId>, FileError> {
+    let mut seen = vec![false; states];
+    for &x in listed.unwrap_or_default() {
+        if x >= states {
+            return Err(FileError::TerminalOutOfRange {
+                state: x,
+                last: states - 1,
+            });
+        }
+        if is_goal(x) {
+            return Err(FileError::TerminalGoal(x));
+        }
+        if seen[x] {
+            return Err(FileError::TerminalDuplicate(x));
+        }
+        seen[x] = true;
+        let range = actions(x);
+        let first = range.start;
+        for a in range {
+            if !zero_self_loop(a) {
+                return Err(FileError::TerminalAction {
+                    state: x,
+                    action: a - first,
+                });
+            }
+            if let Some(r) = rewards.and_then(|r| r.get(a)).filter(|r| !r.is_zero()) {
+                return Err(FileError::TerminalReward {
+                    state: x,
+                    action: a - first,
+                    reward: crate::echo::echo(&Extended::Finite(r.clone()).to_string()),
+                });
+            }
+        }
+    }
+    Ok((0..states).filter(|&x| seen[x]).collect())
+}
+
 /// Parses a problem file's text (a deterministic problem: no action may list outcomes).
 ///
 /// ```
@@ -236,14 +419,18 @@ impl NumberBudget {
 /// assert_eq!(truecost::model::file::from_json(&tagged).unwrap(), p);
 /// ```
 pub fn from_json(text: &str) -> Result<Problem, FileError> {
-    from_file(FileProblem::<FileAction>::parse(text)?)
+    from_file(FileProblem::<FileAction>::parse(text)?).map(|(problem, _)| problem)
 }
 
-/// Builds the deterministic problem of a parsed file (shared with the stochastic reader).
-pub(crate) fn from_file(file: FileProblem<FileAction>) -> Result<Problem, FileError> {
+/// Builds the deterministic problem of a parsed file, with its rewards and terminal states
+/// (shared with the stochastic reader).
+pub(crate) fn from_file(
+    file: FileProblem<FileAction>,
+) -> Result<(Problem, FileRewards), FileError> {
     file.check_format()?;
     file.check_states()?;
     let mut budget = NumberBudget::default();
+    let mut rewards = RewardReader::default();
     let mut moves = Vec::with_capacity(file.actions.len());
     for (x, list) in file.actions.iter().enumerate() {
         let mut row = Vec::with_capacity(list.len());
@@ -260,6 +447,7 @@ pub(crate) fn from_file(file: FileProblem<FileAction>) -> Result<Problem, FileEr
             })?;
             let cost = parse_cost(x, a, &action.cost)?;
             budget.take(&cost, x, a)?;
+            rewards.take(action, x, a, &mut budget)?;
             row.push(Move { successor, cost });
         }
         moves.push(row);
@@ -270,7 +458,26 @@ pub(crate) fn from_file(file: FileProblem<FileAction>) -> Result<Problem, FileEr
     {
         return Err(FileError::EmptyActions(x));
     }
-    Ok(problem)
+    let rewards = rewards.finish();
+    let mut first = Vec::with_capacity(problem.states() + 1);
+    first.push(0);
+    for x in 0..problem.states() {
+        first.push(first[x] + problem.moves(x).len());
+    }
+    let state_of = |a: usize| first.partition_point(|&f| f <= a) - 1;
+    let terminal = check_terminal(
+        file.terminal.as_deref(),
+        problem.states(),
+        |x| problem.is_goal(x),
+        |x| first[x]..first[x + 1],
+        |a| {
+            let x = state_of(a);
+            let m = &problem.moves(x)[a - first[x]];
+            m.successor == x && m.cost.is_zero()
+        },
+        rewards.as_deref(),
+    )?;
+    Ok((problem, FileRewards { rewards, terminal }))
 }
 
 /// Reads a problem file's text **once**, at most [`MAX_FILE_BYTES`] bytes (so standard input,
@@ -321,6 +528,7 @@ pub fn to_json(problem: &Problem, name: Option<&str>) -> String {
         states: Some(problem.states()),
         initial: problem.initial(),
         goals: problem.goals().to_vec(),
+        terminal: None,
         actions: (0..problem.states())
             .map(|x| {
                 problem
@@ -329,6 +537,7 @@ pub fn to_json(problem: &Problem, name: Option<&str>) -> String {
                     .map(|m| FileAction {
                         to: Some(m.successor),
                         cost: Extended::Finite(m.cost.clone()).to_string(),
+                        reward: None,
                         outcomes: None,
                     })
                     .collect()

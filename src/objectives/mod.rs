@@ -35,6 +35,7 @@ pub use report::facts;
 use num_traits::{One, Signed, Zero};
 
 use crate::envs::Environment;
+use crate::model::file::FileRewards;
 use crate::model::StateId;
 use crate::stochastic::policy_iteration::{evaluate, optimum};
 use crate::stochastic::{
@@ -52,9 +53,11 @@ pub struct Model {
     /// have a single zero-cost self-loop.
     pub problem: StochasticProblem,
     /// Per action of [`Self::problem`]: the expected reward of the discounted objective
-    /// (Gymnasium's rewards for environments, the negated stage cost otherwise).
+    /// (Gymnasium's rewards for environments, a problem file's own rewards when it gives them,
+    /// the negated stage cost otherwise).
     pub reward: Vec<Rational>,
-    /// Per state: the episode is over (goals and traps): no reward any more.
+    /// Per state: the episode is over (goals, traps, the terminal states a problem file
+    /// lists): no reward any more.
     pub terminal: Vec<bool>,
     /// The initial state distribution (a single state with probability 1 for paper problems
     /// and files).
@@ -64,6 +67,9 @@ pub struct Model {
     /// Where the rewards come from (said in every output).
     pub reward_source: &'static str,
 }
+
+/// [`Model::reward_source`] of a model whose rewards a problem file gives.
+pub const FILE_REWARDS: &str = "the file's rewards";
 
 /// One of the three objectives.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -153,6 +159,45 @@ impl Model {
             terminal_bonus: None,
             reward_source: "negated stage costs",
         }
+    }
+
+    /// The model with what a problem file says about the discounted objective ([`FileRewards`],
+    /// read with the file's problem, of which `self` must keep every action in order): the
+    /// file's rewards replace the negated stage costs (and [`Self::reward_source`] says so),
+    /// and the listed states end the episode.
+    ///
+    /// # Panics
+    ///
+    /// If the file's rewards are not one per action of [`Self::problem`].
+    ///
+    /// ```
+    /// use truecost::objectives::{Model, Objective};
+    /// use truecost::stochastic::file::{from_json_with_rewards, ProblemFile};
+    /// // 0 -> 1 (goal): reward 1 on the way in; staying at 0 has reward 0.
+    /// let text = r#"{"initial": 0, "goals": [1], "actions": [
+    ///     [{"to": 0, "cost": "1", "reward": "0"}, {"to": 1, "cost": "5", "reward": "1"}], []]}"#;
+    /// let (ProblemFile::Deterministic(d), extra) = from_json_with_rewards(text).unwrap() else { panic!() };
+    /// let p = truecost::stochastic::StochasticProblem::from_deterministic(
+    ///     &d, truecost::stochastic::NoiseModel::Paper, &truecost::stochastic::Predictability::one()).unwrap();
+    /// let m = Model::from_problem(p, "file".into()).with_file_rewards(&extra);
+    /// assert_eq!(m.reward_source, "the file's rewards");
+    /// let v = m.solve(&Objective::Discounted("1/2".parse().unwrap())).unwrap();
+    /// assert_eq!(v.value_initial.to_string(), "1"); // straight in: reward 1
+    /// ```
+    pub fn with_file_rewards(mut self, file: &FileRewards) -> Self {
+        if let Some(rewards) = &file.rewards {
+            assert_eq!(
+                rewards.len(),
+                self.problem.action_total(),
+                "one reward per action"
+            );
+            self.reward = rewards.clone();
+            self.reward_source = FILE_REWARDS;
+        }
+        for &x in &file.terminal {
+            self.terminal[x] = true;
+        }
+        self
     }
 
     /// The model of a Gymnasium environment: the same states and, at every
@@ -663,7 +708,7 @@ pub enum Source {
 impl Source {
     /// Builds the model (reads files, builds environments). Errors are one line.
     pub fn load(&self) -> Result<Model, String> {
-        use crate::stochastic::file::{read, ProblemFile};
+        use crate::stochastic::file::{read_with_rewards, ProblemFile};
         match self {
             Source::Env(spec) => {
                 let env = crate::envs::EnvSpec::parse(spec)
@@ -682,7 +727,10 @@ impl Source {
                 Ok(Model::from_problem(p, format!("paper problem {id}")))
             }
             Source::File { path, noise, gamma } => {
-                let p = match read(path).map_err(|e| e.to_string())? {
+                // Noise keeps one action per move, in order: the file's rewards (paid whatever
+                // the outcome, like the costs) and its terminal self-loops carry over.
+                let (file, extra) = read_with_rewards(path).map_err(|e| e.to_string())?;
+                let p = match file {
                     ProblemFile::Deterministic(d) => StochasticProblem::from_deterministic(
                         &d,
                         *noise,
@@ -698,31 +746,43 @@ impl Source {
                         *s
                     }
                 };
-                Ok(Model::from_problem(p, format!("file {}", path.display())))
+                Ok(Model::from_problem(p, format!("file {}", path.display()))
+                    .with_file_rewards(&extra))
             }
         }
     }
 }
 
 impl Model {
-    /// The problem as a problem file can hold it (`export`): with a single
+    /// The problem as a problem file can hold it (`export`), with its rewards and its terminal
+    /// non-goal states (traps) as the file's `reward` and `terminal` fields: with a single
     /// initial state, the problem itself; with an initial distribution (Taxi), one extra state
-    /// (numbered `|X|`, the new initial state) whose single zero-cost action draws the initial
-    /// state — truecost and reach values are unchanged, every path is one step longer.
+    /// (numbered `|X|`, the new initial state) whose single zero-cost, zero-reward action draws
+    /// the initial state — truecost and reach values are unchanged, every path is one step
+    /// longer (and a discounted value is discounted once more).
     ///
     /// ```
     /// use truecost::envs::EnvSpec;
     /// use truecost::objectives::Model;
     /// let m = Model::from_environment(&EnvSpec::parse("taxi").unwrap().build().unwrap()).unwrap();
-    /// let p = m.exportable().unwrap();
+    /// let (p, extra) = m.exportable().unwrap();
     /// assert_eq!((p.states(), p.initial(), p.outcomes(p.actions(500).start).len()), (501, 500, 300));
+    /// assert_eq!(extra.rewards.unwrap().len(), p.action_total());
+    /// let lake = Model::from_environment(&EnvSpec::parse("frozenlake").unwrap().build().unwrap()).unwrap();
+    /// assert_eq!(lake.exportable().unwrap().1.terminal, [5, 7, 11, 12]); // the holes
     /// ```
-    pub fn exportable(&self) -> Result<StochasticProblem, StochasticError> {
-        if self.initial.len() == 1 {
-            return Ok(self.problem.clone());
-        }
+    pub fn exportable(&self) -> Result<(StochasticProblem, FileRewards), StochasticError> {
         let p = &self.problem;
         let n = p.states();
+        let mut extra = FileRewards {
+            rewards: Some(self.reward.clone()),
+            terminal: (0..n)
+                .filter(|&x| self.terminal[x] && !p.is_goal(x))
+                .collect(),
+        };
+        if self.initial.len() == 1 {
+            return Ok((p.clone(), extra));
+        }
         let mut actions = p.action_lists();
         actions.push(vec![StochasticAction {
             cost: Rational::zero(),
@@ -732,7 +792,13 @@ impl Model {
                 .map(|(x, q)| listed(*x, q.clone()))
                 .collect(),
         }]);
-        StochasticProblem::new(actions, n, p.goals().to_vec())
+        if let Some(r) = &mut extra.rewards {
+            r.push(Rational::zero());
+        }
+        Ok((
+            StochasticProblem::new(actions, n, p.goals().to_vec())?,
+            extra,
+        ))
     }
 }
 
@@ -848,6 +914,36 @@ impl Model {
         problem: &crate::model::Problem,
         name: String,
     ) -> Result<Self, StochasticError> {
+        Self::from_deterministic_file(problem, name, &FileRewards::default())
+    }
+
+    /// [`Self::from_deterministic`] for a deterministic problem file with what it says about the
+    /// discounted objective ([`FileRewards`], read with `problem`): the file's rewards (those of
+    /// the moves removed with the dead ends dropped) and terminal states, as
+    /// [`Self::with_file_rewards`].
+    ///
+    /// ```
+    /// use truecost::model::file::FileRewards;
+    /// use truecost::model::{Move, Problem};
+    /// use truecost::objectives::{Model, Objective};
+    /// // 0 -> 1 (a dead end, which files refuse but paper problems may have), 0 -> 2 (a trap,
+    /// // terminal), 0 -> 3 (the goal, reward 2 on the way in).
+    /// let q = |n: i64| truecost::value::Rational::from_integer(n.into());
+    /// let mv = |successor, cost| Move { successor, cost: q(cost) };
+    /// let p = Problem::new(vec![vec![mv(1, 1), mv(2, 1), mv(3, 1)], vec![], vec![mv(2, 0)], vec![]], 0, vec![3]).unwrap();
+    /// let extra = FileRewards { rewards: Some(vec![q(9), q(1), q(2), q(0)]), terminal: vec![2] };
+    /// let m = Model::from_deterministic_file(&p, "example".into(), &extra).unwrap();
+    /// assert_eq!(m.problem.actions(0).len(), 2); // the move into the dead end is removed
+    /// assert_eq!(m.reward, [q(1), q(2), q(0)]); // and its reward with it
+    /// assert!(m.terminal[2]);
+    /// let v = m.solve(&Objective::Discounted("1/2".parse().unwrap())).unwrap();
+    /// assert_eq!(v.value_initial.to_string(), "2");
+    /// ```
+    pub fn from_deterministic_file(
+        problem: &crate::model::Problem,
+        name: String,
+        file: &FileRewards,
+    ) -> Result<Self, StochasticError> {
         let n = problem.states();
         let mut dead: Vec<bool> = (0..n)
             .map(|x| !problem.is_goal(x) && problem.moves(x).is_empty())
@@ -867,14 +963,22 @@ impl Model {
                 break;
             }
         }
+        // The rewards of the moves kept, in order (one action per move).
+        let mut kept_rewards = Vec::new();
+        let mut a = 0;
         let moves = (0..n)
             .map(|x| {
-                problem
-                    .moves(x)
-                    .iter()
-                    .filter(|m| !dead[m.successor])
-                    .cloned()
-                    .collect()
+                let mut row = Vec::new();
+                for m in problem.moves(x) {
+                    if !dead[m.successor] {
+                        row.push(m.clone());
+                        if let Some(r) = &file.rewards {
+                            kept_rewards.push(r[a].clone());
+                        }
+                    }
+                    a += 1;
+                }
+                row
             })
             .collect();
         let pruned = crate::model::Problem::new(moves, problem.initial(), problem.goals().to_vec())
@@ -884,7 +988,11 @@ impl Model {
             crate::stochastic::NoiseModel::Paper,
             &crate::stochastic::Predictability::one(),
         )?;
-        Ok(Model::from_problem(stochastic, name))
+        let kept = FileRewards {
+            rewards: file.rewards.as_ref().map(|_| kept_rewards),
+            terminal: file.terminal.clone(),
+        };
+        Ok(Model::from_problem(stochastic, name).with_file_rewards(&kept))
     }
 }
 

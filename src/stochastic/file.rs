@@ -26,6 +26,11 @@
 //!   "only goals may have an empty action list" rule are as in the deterministic format.
 //! * `format` is optional; if given it is `truecost-stochastic/1` or `truecost-problem/1`, and a
 //!   file tagged `truecost-problem/1` may not list outcomes.
+//! * The discounted objective's optional fields are as in the deterministic format: a
+//!   `"reward": "r"` on every action or on none (the action's expected reward, received
+//!   whatever the outcome, like the cost), and `"terminal": [x, ...]`, non-goal states where the
+//!   episode ends, whose actions must all be zero-cost self-loops (every outcome back to the
+//!   state) with reward 0. [`from_json_with_rewards`] returns them in a [`FileRewards`].
 //! * The limits of [`crate::model::file`] apply (file size, number sizes); the file is read once.
 //!
 //! A file without any `outcomes` is a deterministic problem ([`ProblemFile::Deterministic`]), to
@@ -34,9 +39,14 @@
 
 use std::path::Path;
 
+use num_traits::Zero;
+
 use super::problem::{StochasticAction, StochasticProblem};
 use super::{Outcome, OutcomeKind, StochasticError};
-use crate::model::file::{self as det_file, FileAction, FileError, FileOutcome, NumberBudget};
+pub use crate::model::file::FileRewards;
+use crate::model::file::{
+    self as det_file, FileAction, FileError, FileOutcome, NumberBudget, RewardReader,
+};
 use crate::model::Problem;
 use crate::value::{parse_rational, Extended, ParseRationalError};
 
@@ -108,6 +118,32 @@ type FileProblem = det_file::FileProblem<FileAction>;
 /// assert!(matches!(from_json(det).unwrap(), ProblemFile::Deterministic(_)));
 /// ```
 pub fn from_json(text: &str) -> Result<ProblemFile, StochasticFileError> {
+    from_json_with_rewards(text).map(|(problem, _)| problem)
+}
+
+/// [`from_json`] with what the file says about the discounted objective: the actions'
+/// rewards (in the global action order of the problem returned) and the terminal states.
+///
+/// ```
+/// use truecost::stochastic::file::{from_json_with_rewards, ProblemFile};
+/// let text = r#"{"initial": 0, "goals": [1], "terminal": [2], "actions": [
+///     [{"cost": "1", "reward": "1/2", "outcomes": [{"to": 1, "p": "1/2"}, {"to": 2, "p": "1/2"}]}],
+///     [],
+///     [{"cost": "0", "reward": "0", "outcomes": [{"to": 2, "p": "1"}]}]]}"#;
+/// let (ProblemFile::Stochastic(_), extra) = from_json_with_rewards(text).unwrap() else { panic!() };
+/// assert_eq!(extra.rewards.unwrap()[0].to_string(), "1/2");
+/// assert_eq!(extra.terminal, [2]);
+/// // All or none: the second action has no reward.
+/// let mixed = text.replace(r#""cost": "0", "reward": "0""#, r#""cost": "0""#);
+/// let e = from_json_with_rewards(&mixed).unwrap_err().to_string();
+/// assert!(e.starts_with("state 2, action 0 has no \"reward\""), "{e}");
+/// // A terminal state's actions are zero-cost self-loops.
+/// let leaky = text.replace(r#"[{"to": 2, "p": "1"}]"#, r#"[{"to": 0, "p": "1"}]"#);
+/// assert!(from_json_with_rewards(&leaky).unwrap_err().to_string().contains("zero-cost self-loops"));
+/// ```
+pub fn from_json_with_rewards(
+    text: &str,
+) -> Result<(ProblemFile, FileRewards), StochasticFileError> {
     let file = FileProblem::parse(text)?;
     file.check_format()?;
     let first_listing = file.actions.iter().enumerate().find_map(|(x, list)| {
@@ -117,19 +153,22 @@ pub fn from_json(text: &str) -> Result<ProblemFile, StochasticFileError> {
     });
     let Some((state, action)) = first_listing else {
         // No outcomes: a deterministic problem, whichever of the two tags it carries.
-        return Ok(ProblemFile::Deterministic(det_file::from_file(file)?));
+        let (problem, extra) = det_file::from_file(file)?;
+        return Ok((ProblemFile::Deterministic(problem), extra));
     };
     if file.format.as_deref() == Some(det_file::FORMAT) {
         return Err(StochasticFileError::TaggedDeterministic { state, action });
     }
     file.check_states()?;
     let mut budget = NumberBudget::default();
+    let mut rewards = RewardReader::default();
     let mut actions = Vec::with_capacity(file.actions.len());
     for (x, list) in file.actions.iter().enumerate() {
         let mut row = Vec::with_capacity(list.len());
         for (a, action) in list.iter().enumerate() {
             let cost = det_file::parse_cost(x, a, &action.cost)?;
             budget.take(&cost, x, a)?;
+            rewards.take(action, x, a, &mut budget)?;
             let outcomes = match (&action.to, &action.outcomes) {
                 (Some(to), None) => vec![Outcome {
                     successor: *to,
@@ -173,7 +212,22 @@ pub fn from_json(text: &str) -> Result<ProblemFile, StochasticFileError> {
     {
         return Err(FileError::EmptyActions(x).into());
     }
-    Ok(ProblemFile::Stochastic(Box::new(problem)))
+    let rewards = rewards.finish();
+    let terminal = det_file::check_terminal(
+        file.terminal.as_deref(),
+        problem.states(),
+        |x| problem.is_goal(x),
+        |x| problem.actions(x),
+        |a| {
+            let x = problem.state_of(a);
+            problem.cost(a).is_zero() && problem.outcomes(a).iter().all(|o| o.successor == x)
+        },
+        rewards.as_deref(),
+    )?;
+    Ok((
+        ProblemFile::Stochastic(Box::new(problem)),
+        FileRewards { rewards, terminal },
+    ))
 }
 
 /// Reads and parses a problem file (either format).
@@ -181,6 +235,12 @@ pub fn from_json(text: &str) -> Result<ProblemFile, StochasticFileError> {
 /// The file is read once ([`det_file::read_text`]): standard input and pipes work.
 pub fn read(path: &Path) -> Result<ProblemFile, StochasticFileError> {
     from_json(&det_file::read_text(path)?)
+}
+
+/// Reads and parses a problem file (either format) with its rewards and terminal states
+/// ([`from_json_with_rewards`]); read once, as [`read`].
+pub fn read_with_rewards(path: &Path) -> Result<(ProblemFile, FileRewards), StochasticFileError> {
+    from_json_with_rewards(&det_file::read_text(path)?)
 }
 
 /// Whether a file's text lists outcomes anywhere (it needs the stochastic solvers), without
@@ -206,12 +266,44 @@ pub fn lists_outcomes(text: &str) -> bool {
 /// assert_eq!(back.outcomes(0)[1].probability.to_string(), "1/4");
 /// ```
 pub fn to_json(problem: &StochasticProblem, name: Option<&str>) -> String {
+    to_json_with_rewards(problem, name, &FileRewards::default())
+}
+
+/// [`to_json`] with the discounted objective's fields: every action's `reward` (if
+/// `extra.rewards` is given) and the `terminal` list (if not empty); [`from_json_with_rewards`]
+/// reads them back.
+///
+/// # Panics
+///
+/// If `extra.rewards` does not hold one reward per action of `problem`.
+///
+/// ```
+/// use truecost::stochastic::file::{from_json_with_rewards, to_json_with_rewards, FileRewards};
+/// use truecost::stochastic::{Outcome, OutcomeKind, StochasticAction, StochasticProblem};
+/// let q = |n: i64| truecost::value::Rational::from_integer(n.into());
+/// let one = |to| vec![Outcome { successor: to, probability: q(1), kind: OutcomeKind::Listed }];
+/// let act = |cost, to| StochasticAction { cost: q(cost), outcomes: one(to) };
+/// let p = StochasticProblem::new(vec![vec![act(1, 1), act(1, 2)], vec![], vec![act(0, 2)]], 0, vec![1]).unwrap();
+/// let extra = FileRewards { rewards: Some(vec![q(1), q(-1), q(0)]), terminal: vec![2] };
+/// let text = to_json_with_rewards(&p, None, &extra);
+/// assert!(text.contains(r#""reward": "-1""#));
+/// assert_eq!(from_json_with_rewards(&text).unwrap().1, extra);
+/// ```
+pub fn to_json_with_rewards(
+    problem: &StochasticProblem,
+    name: Option<&str>,
+    extra: &FileRewards,
+) -> String {
+    if let Some(r) = &extra.rewards {
+        assert_eq!(r.len(), problem.action_total(), "one reward per action");
+    }
     let file = FileProblem {
         format: Some(FORMAT.to_string()),
         name: name.map(str::to_string),
         states: Some(problem.states()),
         initial: problem.initial(),
         goals: problem.goals().to_vec(),
+        terminal: (!extra.terminal.is_empty()).then(|| extra.terminal.clone()),
         actions: (0..problem.states())
             .map(|x| {
                 problem
@@ -219,6 +311,10 @@ pub fn to_json(problem: &StochasticProblem, name: Option<&str>) -> String {
                     .map(|a| FileAction {
                         to: None,
                         cost: Extended::Finite(problem.cost(a).clone()).to_string(),
+                        reward: extra
+                            .rewards
+                            .as_ref()
+                            .map(|r| Extended::Finite(r[a].clone()).to_string()),
                         outcomes: Some(
                             problem
                                 .outcomes(a)

@@ -62,24 +62,36 @@ fn grid_file(n: usize, varied: bool, format: Option<&str>) -> String {
 
 const LINE: &str = include_str!("../problems/line.json");
 
-// `verify --claim C4` on a grid is refused with its bound before any simple path is listed.
+// `verify --claim C4` on a grid is beyond the enumeration oracle's bound (refused before any
+// simple path is listed): the violated-cycle search answers, naming the oracle's refusal. On
+// unit-cost grids every cycle costs at least 1 per stage and the cheapest path is the one with
+// fewest states, so every bonus M < 0 keeps pi* average-cost optimal: (-inf, 0).
 #[test]
-fn c4_bonus_set_of_a_grid_is_refused_with_its_bound() {
-    for problem in ["10", "0"] {
-        let err = fails_one_line(&["verify", "--claim", "C4", "--problem", problem]);
-        assert_contract(&err);
+fn c4_bonus_set_of_a_grid_beyond_the_oracle_comes_from_the_cycle_search() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = write(dir.path(), "grid7.json", &grid_file(7, false, None));
+    for source in [
+        ["--problem", "10"],
+        ["--problem", "0"],
+        ["--file", grid.to_str().unwrap()],
+    ] {
+        let mut args = vec!["verify", "--claim", "C4", "--format", "json"];
+        args.extend_from_slice(&source);
+        let v = json(&args);
+        let method = v["method"].as_str().expect("a method");
+        assert!(method.contains("violated-cycle search"), "{method}");
         assert!(
-            err.contains("stationary policies from x1 (the bound"),
-            "{err}"
+            method.contains("stationary policies from x1 (the bound"),
+            "{method}"
         );
+        let sets = v["bonus_sets"].as_array().expect("bonus sets");
+        assert_eq!(sets.len(), 1, "{v}");
+        assert_eq!(sets[0]["exact"], "(-inf, 0)", "{source:?}");
+        assert_eq!(sets[0]["printed"], Value::Null, "{v}");
     }
     let err = fails_one_line(&["verify", "--claim", "C4", "--problem", "6"]);
     assert!(err.contains("no goal is reachable"), "{err}");
-    let dir = tempfile::tempdir().unwrap();
-    let grid = write(dir.path(), "grid7.json", &grid_file(7, false, None));
-    let err = fails_one_line(&["verify", "--claim", "C4", "--file", grid.to_str().unwrap()]);
-    assert!(err.contains("stationary policies"), "{err}");
-    // A small file is still analysed.
+    // A small file is analysed by the oracle, with both formulas.
     let v = json(&[
         "verify",
         "--claim",
@@ -93,6 +105,7 @@ fn c4_bonus_set_of_a_grid_is_refused_with_its_bound() {
         v["bonus_sets"].as_array().is_some_and(|a| !a.is_empty()),
         "{v}"
     );
+    assert_eq!(v["bonus_sets"][0]["corrected_agrees"], true, "{v}");
 }
 
 /// A chain of `states` states (goal last) whose first `branching` states have a second,
@@ -121,27 +134,42 @@ fn branching_chain(states: usize, branching: usize) -> String {
 }
 
 // The policy bound of the exact bonus analysis counts states too: on 1,021 states 2^22 policies
-// took minutes, so a large problem gets a smaller bound (policies x states <= 2^30), refused at
-// once with the bound named; a small problem keeps 2^22.
+// took minutes, so a large problem gets a smaller bound (policies x states <= 2^30), checked
+// at once; beyond it the violated-cycle search answers, naming the bound. On a branching chain
+// every goal path passes every state once and costs at least L* = states - 1 (each move 1 or
+// 2), so every bonus M < 0 is in the set: (-inf, 0).
 #[test]
 fn c4_policy_bound_shrinks_with_the_number_of_states() {
     let dir = tempfile::tempdir().unwrap();
-    let big = write(dir.path(), "big.json", &branching_chain(1021, 21));
-    let started = std::time::Instant::now();
-    let err = fails_one_line(&["verify", "--claim", "C4", "--file", big.to_str().unwrap()]);
-    assert_contract(&err);
-    assert!(
-        err.contains("more than 1048576 stationary policies"),
-        "{err}"
-    );
-    assert!(started.elapsed() < std::time::Duration::from_secs(30));
-    // 300 states: 2^30 / 300 gives 2^21; 22 branching states are 2^22 policies, refused.
-    let mid = write(dir.path(), "mid.json", &branching_chain(300, 22));
-    let err = fails_one_line(&["verify", "--claim", "C4", "--file", mid.to_str().unwrap()]);
-    assert!(
-        err.contains("more than 2097152 stationary policies"),
-        "{err}"
-    );
+    for (states, branching, bound) in [(1021, 21, "1048576"), (300, 22, "2097152")] {
+        let file = write(
+            dir.path(),
+            &format!("chain{states}.json"),
+            &branching_chain(states, branching),
+        );
+        let started = std::time::Instant::now();
+        let v = json(&[
+            "verify",
+            "--claim",
+            "C4",
+            "--file",
+            file.to_str().unwrap(),
+            "--format",
+            "json",
+        ]);
+        assert!(started.elapsed() < std::time::Duration::from_secs(30));
+        let method = v["method"].as_str().expect("a method");
+        assert!(
+            method.contains(&format!("more than {bound} stationary policies")),
+            "{method}"
+        );
+        assert_eq!(v["bonus_sets"][0]["exact"], "(-inf, 0)", "{v}");
+        assert_eq!(
+            v["bonus_sets"][0]["optimal_cost"],
+            (states - 1).to_string(),
+            "{v}"
+        );
+    }
     // A long chain with 2^16 policies is analysed (the cross-check's cycle enumeration enters
     // only nodes on a cycle: it was exponential in the branching on such chains).
     let long = write(dir.path(), "long.json", &branching_chain(1021, 16));

@@ -356,9 +356,9 @@ fn bonus_by_cycles(
     })
 }
 
-/// The bonus sets of one problem. With `environment` (`--env`: the environment's own bonus, if
-/// it has one), a problem beyond the enumeration oracle's bounds is answered by the
-/// violated-cycle search; files and paper problems keep the oracle's refusal.
+/// The bonus sets of one problem; a problem beyond the enumeration oracle's bounds is answered
+/// by the violated-cycle search. `environment`: `--env`, with the environment's own bonus if it
+/// has one (then said to be in the set or not).
 fn bonus(
     problem: &Problem,
     format: VerifyFormat,
@@ -366,19 +366,13 @@ fn bonus(
 ) -> Result<String, String> {
     use truecost::claims::c4::BonusError;
     let (inst, d) = Instance::from_problem(problem)?;
-    let sets = match (
-        bonus_analysis(&inst, bonus_policy_limit(inst.moves.len())),
-        environment,
-    ) {
-        (
-            Err(
-                e @ (BonusError::TooManyPolicies { .. }
-                | BonusError::SearchTooLong { .. }
-                | BonusError::TooManyStates { .. }),
-            ),
-            Some(terminal_bonus),
-        ) => return bonus_by_cycles(&inst, &d, format, &e.to_string(), terminal_bonus),
-        (other, _) => other.map_err(|e| e.to_string())?,
+    let sets = match bonus_analysis(&inst, bonus_policy_limit(inst.moves.len())) {
+        Err(
+            e @ (BonusError::TooManyPolicies { .. }
+            | BonusError::SearchTooLong { .. }
+            | BonusError::TooManyStates { .. }),
+        ) => return bonus_by_cycles(&inst, &d, format, &e.to_string(), environment.flatten()),
+        other => other.map_err(|e| e.to_string())?,
     }
     .ok_or("no goal is reachable from x1: there is no single-shot path and no bonus set")?;
     let rows: Vec<_> = sets

@@ -65,12 +65,64 @@ fn values_and_policy_overlays_are_present() {
         &dir.path().join("v10.svg"),
     );
     assert_eq!(count(&svg, "value"), 339, "x1's component");
+    // Every optimal move: Problem 0 is an open 20x20 grid with unit moves to its 4 neighbours,
+    // so neighbours' distances to the goal differ by exactly 1 and every one of the
+    // 2·20·19 = 760 edges is optimal in one direction: one arrow at the 38 points in the goal's
+    // row or column, two tied arrows at the other 361.
     let svg = render(
         &["--problem", "0", "--overlay", "policy"],
         &dir.path().join("p.svg"),
     );
-    assert_eq!(count(&svg, "arrowhead"), 399, "every state but the goal");
-    assert_eq!(count(&svg, "policy"), 399);
+    assert_eq!(count(&svg, "arrowhead"), 760);
+    assert_eq!(count(&svg, "policy"), 760);
+    assert_eq!(count(&svg, "legend"), 2, "an arrow, and tied arrows");
+    assert!(svg.contains("several at one grid point: tied optimal actions"));
+    // The reference mode (the paper's code, f64) draws its one policy.
+    let svg = render(
+        &[
+            "--problem",
+            "0",
+            "--mode",
+            "reference",
+            "--overlay",
+            "policy",
+        ],
+        &dir.path().join("r.svg"),
+    );
+    assert_eq!(count(&svg, "policy"), 399, "every state but the goal");
+    assert_eq!(count(&svg, "legend"), 0);
+}
+
+#[test]
+fn a_files_tied_moves_are_drawn() {
+    // 0 -> 1 -> 3 and 0 -> 2 -> 3, every move costing 1: G* = 2, 1, 1, 0, and both moves of
+    // state 0 are optimal; 1 and 2 have one move each.
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("tie.json");
+    std::fs::write(
+        &file,
+        r#"{"initial":0,"goals":[3],"actions":[[{"to":1,"cost":"1"},{"to":2,"cost":"1"}],[{"to":3,"cost":"1"}],[{"to":3,"cost":"1"}],[]]}"#,
+    )
+    .unwrap();
+    let svg = render(
+        &["--file", file.to_str().unwrap(), "--overlay", "policy"],
+        &dir.path().join("t.svg"),
+    );
+    assert_eq!(count(&svg, "policy"), 4);
+    assert!(svg.contains("several at one state: tied optimal actions"));
+    assert!(svg.contains("every optimal move (exact; several arrows: tied moves)"));
+    // With one move of cost 2 at state 0 there is no tie and no tie legend.
+    std::fs::write(
+        &file,
+        r#"{"initial":0,"goals":[3],"actions":[[{"to":1,"cost":"1"},{"to":2,"cost":"2"}],[{"to":3,"cost":"1"}],[{"to":3,"cost":"1"}],[]]}"#,
+    )
+    .unwrap();
+    let svg = render(
+        &["--file", file.to_str().unwrap(), "--overlay", "policy"],
+        &dir.path().join("u.svg"),
+    );
+    assert_eq!(count(&svg, "policy"), 3);
+    assert!(!svg.contains("several at one state"));
 }
 
 #[test]
@@ -313,7 +365,10 @@ fn gamma_draws_the_stochastic_optimum() {
         ],
         &dir.path().join("p.svg"),
     );
-    assert_eq!(count(&svg, "policy"), 399, "every state but the goal");
+    // Every state but the goal has an optimal action; tied ones add arrows.
+    assert!(count(&svg, "policy") >= 399, "{}", count(&svg, "policy"));
+    assert_eq!(count(&svg, "policy"), count(&svg, "arrowhead"));
+    assert!(svg.contains("every optimal action"));
     assert!(svg.contains("reference noise, γ = 0.5"));
     // The noise makes expected costs larger than the deterministic 17 of Problem 0.
     let g: f64 = svg

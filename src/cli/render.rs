@@ -7,11 +7,13 @@ use clap::{Args, ValueEnum};
 use truecost::echo::echo;
 use truecost::experiments::visits::visit_counts;
 use truecost::figures::canvas::Canvas;
+use truecost::figures::policy::actions_overlay;
 use truecost::figures::render::{draw, Overlay, Scene};
 use truecost::figures::{file_scene, grid_scene, stochastic_file_scene};
 use truecost::learning::plan::Probability;
 use truecost::learning::q_learning::LearningValue;
 use truecost::model::{ExactGraph, Graph};
+use truecost::objectives::{Model, Objective};
 use truecost::planning::{plan_exact, plan_reference, Algorithm, Mode, PlanReport};
 use truecost::problems::{GridLayout, StepCost};
 use truecost::solvers::dijkstra;
@@ -216,13 +218,17 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         return stochastic(args, loaded);
     }
     let mut visits: Option<PairCounts> = None;
+    // The exact problem (none in the reference mode) and what its states are called.
+    let mut exact: Option<(truecost::model::Problem, &str)> = None;
     let (mut scene, report, what) = match (loaded, args.problem) {
         (Some(ProblemFile::Deterministic(problem)), _) => {
             let path = args.file.as_deref().expect("a file was read");
             let report = plan_exact(&problem, Algorithm::Dijkstra, false);
             visits = exact_visits(&problem, visits_run.as_ref())?;
+            let scene = file_scene(&problem);
+            exact = Some((problem, "state"));
             (
-                file_scene(&problem),
+                scene,
                 report,
                 format!("file {}", echo(&path.display().to_string())),
             )
@@ -235,6 +241,7 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
                 let problem = layout.to_problem(step);
                 let report = plan_exact(&problem, Algorithm::Dijkstra, false);
                 visits = exact_visits(&problem, visits_run.as_ref())?;
+                exact = Some((problem, "grid point"));
                 (
                     grid_scene(&layout, Mode::Exact),
                     report,
@@ -260,7 +267,6 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         },
         (None, None) => return Err("give --problem N or --file FILE".into()),
     };
-    scene.title = what;
     scene.caption = caption(&report, args.overlay);
     if let Some(run) = &visits_run {
         scene.caption = format!(
@@ -290,9 +296,27 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
                 .collect(),
             label: "G*".into(),
         },
-        OverlayKind::Policy => Overlay::Policy(report.policy.clone()),
+        OverlayKind::Policy => match &exact {
+            Some((problem, place)) => {
+                let model =
+                    Model::from_deterministic(problem, what.clone()).map_err(|e| e.to_string())?;
+                let s = model
+                    .solve(&Objective::Truecost)
+                    .map_err(|e| e.to_string())?;
+                let to = |a: usize| model.problem.outcomes(a)[0].successor;
+                actions_overlay(&model, &s, to, place)
+            }
+            None => Overlay::Policy(report.policy.clone()),
+        },
         OverlayKind::Visits => Overlay::Visits(visits.unwrap_or_default()),
     };
+    if args.overlay == OverlayKind::Policy && exact.is_some() {
+        scene.caption = scene.caption.replace(
+            POLICY_CAPTION,
+            "; overlay: every optimal move (exact; several arrows: tied moves)",
+        );
+    }
+    scene.title = what;
     save(&scene, &overlay, args)
 }
 
@@ -387,10 +411,21 @@ fn stochastic(args: &RenderArgs, loaded: Option<ProblemFile>) -> Result<String, 
             },
             "; overlay: optimal expected cost-to-go G*",
         ),
-        OverlayKind::Policy => (
-            Overlay::Policy((0..problem.states()).map(successor).collect()),
-            "; overlay: the optimal policy (arrow to the commanded or else the most likely successor)",
-        ),
+        OverlayKind::Policy => {
+            let model = Model::from_problem(problem.clone(), what.clone());
+            let s = model
+                .solve(&Objective::Truecost)
+                .map_err(|e| e.to_string())?;
+            let place = if args.problem.is_some() {
+                "grid point"
+            } else {
+                "state"
+            };
+            (
+                actions_overlay(&model, &s, |a| intended(&problem, a), place),
+                "; overlay: every optimal action (arrow to the commanded or else the most likely successor; several arrows: tied actions)",
+            )
+        }
         OverlayKind::Path => (
             Overlay::Path(intended_path(&problem, &values[problem.initial()], successor)?),
             "; overlay: the optimal policy's intended path (every action reaching its commanded or else most likely successor)",
@@ -508,6 +543,9 @@ fn pair_counts<V: CostValue>(graph: &Graph<V>, counts: Vec<Vec<u64>>) -> PairCou
     pairs.into_iter().collect()
 }
 
+/// The caption of the policy overlay of one policy (the reference mode's).
+const POLICY_CAPTION: &str = "; overlay: the optimal policy";
+
 fn caption(report: &PlanReport, overlay: OverlayKind) -> String {
     let g = if report.reachable {
         format!("G*(x1) = {}", report.cost_to_go_initial)
@@ -522,7 +560,7 @@ fn caption(report: &PlanReport, overlay: OverlayKind) -> String {
         OverlayKind::None => "",
         OverlayKind::Path => "; overlay: the optimal path",
         OverlayKind::Values => "; overlay: optimal cost-to-go G*",
-        OverlayKind::Policy => "; overlay: the optimal policy",
+        OverlayKind::Policy => POLICY_CAPTION,
         OverlayKind::Visits => "; overlay: move visits of one seeded Q-learning run",
     };
     format!(

@@ -17,7 +17,8 @@
 
 use num_traits::Signed;
 
-use super::render::{ActionGlyph, LegendEntry, LegendKey, Mark, Overlay, Scene};
+use super::policy::legend;
+use super::render::{ActionGlyph, Mark, Overlay, Scene};
 use crate::envs::{cliffwalking, taxi, Environment, Layout};
 use crate::objectives::actions::optimal_actions;
 use crate::objectives::{Model, Solution};
@@ -299,7 +300,7 @@ pub fn taxi_actions_overlay(
         }
         actions.push(glyphs);
     }
-    let legend = legend(&actions, tied, "a wall or the border", false);
+    let legend = legend(&actions, tied, "cell", "a wall or the border", false);
     (Overlay::Actions { actions, legend }, marks)
 }
 
@@ -397,48 +398,6 @@ pub fn intended_cell(env: &Environment, x: usize, a: usize) -> usize {
     nr * ncol + nc
 }
 
-/// The legend of an optimal-actions overlay: an entry for each kind of glyph the figure
-/// shows — arrows, several glyphs at one cell (tied actions), bars (moves into a wall or the
-/// border) — and none for what it does not show.
-fn legend(
-    actions: &[Vec<ActionGlyph>],
-    tied: bool,
-    obstacle: &str,
-    slippery: bool,
-) -> Vec<LegendEntry> {
-    let shown = |blocked: bool| {
-        actions
-            .iter()
-            .flatten()
-            .any(|g| matches!(g, ActionGlyph::Blocked { .. }) == blocked)
-    };
-    let mut legend = Vec::new();
-    if shown(false) {
-        legend.push(LegendEntry {
-            key: LegendKey::Arrow,
-            text: "arrow: an optimal action, towards the cell its move aims at (alone at a cell: the only optimal action)"
-                .into(),
-        });
-    }
-    if tied {
-        legend.push(LegendEntry {
-            key: LegendKey::Tie,
-            text: "several at one cell: tied optimal actions (exactly equal Q-values), each chosen by some optimal policy"
-                .into(),
-        });
-    }
-    if shown(true) {
-        legend.push(LegendEntry {
-            key: LegendKey::Blocked,
-            text: format!(
-                "bar: an optimal action whose move aims into {obstacle}: the agent stays in place{}",
-                if slippery { " unless it slips" } else { "" }
-            ),
-        });
-    }
-    legend
-}
-
 /// Whether some action of the environment has more than one outcome (slippery FrozenLake,
 /// slippery CliffWalking).
 fn slippery(env: &Environment) -> bool {
@@ -491,7 +450,7 @@ pub fn policy_overlay(env: &Environment, model: &Model, s: &Solution) -> Overlay
         })
         .collect();
     let tied = optimal.iter().any(|list| list.len() > 1);
-    let legend = legend(&actions, tied, "the border", slippery(env));
+    let legend = legend(&actions, tied, "cell", "the border", slippery(env));
     Overlay::Actions { actions, legend }
 }
 

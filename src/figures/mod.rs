@@ -7,6 +7,7 @@ pub mod canvas;
 pub mod chart;
 pub mod envs;
 pub mod plots;
+pub mod policy;
 pub mod render;
 
 use crate::model::Problem;

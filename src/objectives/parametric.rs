@@ -1031,6 +1031,37 @@ fn past(r: &Rational, t: &Rational) -> Rational {
     }
 }
 
+/// Whether candidate `i` may have a root in the window whose moving end is `end`, as the
+/// sequential search decides it (`may_have_root`), with the later candidates screened in
+/// parallel once the first region end is found: the window only shrinks, and a candidate
+/// cleared on a window is cleared on every window inside it (its bounds hold on the smaller
+/// interval, and Descartes' variations do not grow on a subinterval), so a candidate screened
+/// out is skipped and one screened in on the same window is taken without a second test.
+fn screen(
+    screened: &mut Option<(Rational, Vec<bool>)>,
+    candidates: &[Candidate],
+    i: usize,
+    end: &Rational,
+    best: &Option<Root>,
+    may_have_root: impl Fn(&Candidate, &Rational) -> bool + Sync,
+) -> bool {
+    use rayon::prelude::*;
+    if screened.is_none() && best.is_some() {
+        let flags = candidates[i..]
+            .par_iter()
+            .map(|c| may_have_root(c, end))
+            .collect();
+        *screened = Some((end.clone(), flags));
+    }
+    match screened {
+        Some((at, flags)) => {
+            let first = candidates.len() - flags.len();
+            flags[i - first] && (at == end || may_have_root(&candidates[i], end))
+        }
+        None => may_have_root(&candidates[i], end),
+    }
+}
+
 /// The region's right end by the pruned search (module docs, step 2): candidates in order of
 /// their dismissal radius; each is dismissed on `[t, b]` by its derivative bound or by
 /// Descartes' rule on `(t, b)`, or its roots in `(t, b)` are isolated and walked, and `b`
@@ -1044,8 +1075,11 @@ fn right_end(
 ) -> Option<Root> {
     let mut b = Rational::one();
     let mut best: Option<Root> = None;
-    for c in candidates {
-        if c.clear(&(&b - t), &b) || no_root_between(&c.poly, t, &b) {
+    let may_have_root =
+        |c: &Candidate, b: &Rational| !(c.clear(&(b - t), b) || no_root_between(&c.poly, t, b));
+    let mut screened: Option<(Rational, Vec<bool>)> = None;
+    for (i, c) in candidates.iter().enumerate() {
+        if !screen(&mut screened, candidates, i, &b, &best, may_have_root) {
             continue;
         }
         let roots = roots_in_window(&int_poly(&c.poly), Some((t, &b)));
@@ -1086,8 +1120,11 @@ fn left_end(
 ) -> Option<Root> {
     let mut a = a.clone();
     let mut best: Option<Root> = None;
-    for c in candidates {
-        if c.clear(&(t - &a), t) || no_root_between(&c.poly, &a, t) {
+    let may_have_root =
+        |c: &Candidate, a: &Rational| !(c.clear(&(t - a), t) || no_root_between(&c.poly, a, t));
+    let mut screened: Option<(Rational, Vec<bool>)> = None;
+    for (i, c) in candidates.iter().enumerate() {
+        if !screen(&mut screened, candidates, i, &a, &best, may_have_root) {
             continue;
         }
         let roots = roots_in_window(&int_poly(&c.poly), Some((&a, t)));

@@ -12,10 +12,14 @@
 //!   deterministic stationary policy, its proper states and its exact cost by Gaussian
 //!   elimination, against the exact optimum (policy iteration); both — the discounted values
 //!   at `α = 1/2` of the file's rewards (or negated costs) and terminal states, by enumeration
-//!   of every stationary policy, against the objective's exact solve.
+//!   of every stationary policy, against the objective's exact solve, and its value at the
+//!   initial distribution against the probability-weighted oracle values (for a file with an
+//!   initial distribution, the truecost value there too). The readers that return a single
+//!   initial state accept exactly the files the others accept without a distribution, and
+//!   refuse the others with the same message.
 //! * Generated tiny problems in both formats (whitespace, tags and number spellings varied,
-//!   with or without rewards, a terminal state or a mix of actions with and without a reward)
-//!   make sure accepted files are frequent, not only the corpus.
+//!   with or without rewards, a terminal state, an initial distribution or a mix of actions
+//!   with and without a reward) make sure accepted files are frequent, not only the corpus.
 //!
 //! Budget: `FUZZ_CASES` cases per property (default 600, ~3 s in the test profile). Add a file
 //! to the corpus to fuzz around it.
@@ -30,7 +34,7 @@ use common::{exact_all, simple_paths, Ext, Q};
 use truecost::model::{file, ExactGraph};
 use truecost::objectives::{Model, Objective};
 use truecost::solvers::dijkstra;
-use truecost::stochastic::file::{self as sfile, FileRewards, ProblemFile};
+use truecost::stochastic::file::{self as sfile, FileObjective, ProblemFile};
 use truecost::stochastic::policy_iteration::optimum;
 use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
 use truecost::value::parse_rational;
@@ -41,6 +45,7 @@ const CORPUS: &[&str] = &[
     include_str!("fuzz_corpus/counterexample.json"),
     include_str!("fuzz_corpus/discount-example.json"),
     include_str!("fuzz_corpus/fractions-and-stay.json"),
+    include_str!("fuzz_corpus/initial-distribution.json"),
     include_str!("fuzz_corpus/line.json"),
     include_str!("fuzz_corpus/slippery.json"),
     include_str!("fuzz_corpus/stochastic-tag-deterministic.json"),
@@ -70,6 +75,8 @@ const TOKENS: &[&str] = &[
     "\"format\": \"truecost-problem/1\"",
     "\"reward\": \"-1/2\",",
     "\"terminal\": [0],",
+    "[{\"state\": 0, \"p\": \"1/2\"}, {\"state\": 1, \"p\": \"1/2\"}]",
+    "{\"state\": 1, \"p\": \"1\"}",
     "\"format\": \"truecost-stochastic/1\"",
     "18446744073709551616",
     "\"states\": 0",
@@ -175,7 +182,23 @@ fn read_everything(text: &str) -> Result<(), TestCaseError> {
         }
         Err(e) => clean(&e.to_string())?,
     }
-    match sfile::from_json_with_rewards(text) {
+    let with_objective = sfile::from_json_with_objective(text);
+    // The reader of a single initial state: the same file, unless it draws the initial state
+    // from two or more states; the same refusal otherwise.
+    match (&with_objective, sfile::from_json(text)) {
+        (Ok((_, extra)), Ok(_)) => prop_assert!(extra.initial.is_none()),
+        (Ok((_, extra)), Err(e)) => {
+            prop_assert!(extra.initial.is_some(), "refused: {}", e);
+            prop_assert!(
+                e.to_string().contains("needs a single initial state"),
+                "{}",
+                e
+            );
+        }
+        (Err(e), Ok(_)) => prop_assert!(false, "accepted, while refused with: {}", e),
+        (Err(e), Err(f)) => prop_assert_eq!(e.to_string(), f.to_string()),
+    }
+    match with_objective {
         Ok((problem, extra)) => {
             let p = match problem {
                 ProblemFile::Deterministic(d) => StochasticProblem::from_deterministic(
@@ -187,9 +210,48 @@ fn read_everything(text: &str) -> Result<(), TestCaseError> {
                 ProblemFile::Stochastic(s) => *s,
             };
             if small(p.states(), (0..p.states()).map(|x| p.actions(x).len())) {
+                if extra.initial.is_some() {
+                    check_truecost_at_initial(&p, &extra)?;
+                }
                 check_discounted(p, &extra)?;
             }
         }
+        Err(e) => clean(&e.to_string())?,
+    }
+    Ok(())
+}
+
+/// The initial distribution the objectives' model takes from a file: its list, or its single
+/// initial state with probability 1.
+fn initial_of(s: &StochasticProblem, extra: &FileObjective) -> Vec<(usize, Q)> {
+    extra
+        .initial
+        .clone()
+        .unwrap_or_else(|| vec![(s.initial(), Q::one())])
+}
+
+/// The expected truecost optimum at the file's initial distribution (`--file` with
+/// `--objective truecost`) against the probability-weighted [`brute_force_optimum`] (`+∞` if
+/// a state of the distribution has `+∞`).
+fn check_truecost_at_initial(
+    s: &StochasticProblem,
+    extra: &FileObjective,
+) -> Result<(), TestCaseError> {
+    let oracle = brute_force_optimum(s);
+    let mut expected = Some(Q::zero());
+    for (x, p) in initial_of(s, extra) {
+        expected = match (expected, &oracle[x]) {
+            (Some(sum), Some(g)) => Some(sum + g * p),
+            _ => None,
+        };
+    }
+    let m = Model::from_problem(s.clone(), "fuzz".into()).with_file_objective(extra);
+    match m.solve(&Objective::Truecost) {
+        Ok(solution) => prop_assert_eq!(
+            solution.value_initial.finite().cloned(),
+            expected,
+            "truecost at the initial distribution disagrees with policy enumeration"
+        ),
         Err(e) => clean(&e.to_string())?,
     }
     Ok(())
@@ -199,7 +261,7 @@ fn read_everything(text: &str) -> Result<(), TestCaseError> {
 /// deterministic stationary policy (`V = r + α P V` on the states where the episode runs, by
 /// Gaussian elimination; `0` where it is over: goals, states without actions and the file's
 /// terminal states), with the file's rewards, or the negated costs where it gives none.
-fn brute_force_discounted(s: &StochasticProblem, extra: &FileRewards, alpha: &Q) -> Vec<Q> {
+fn brute_force_discounted(s: &StochasticProblem, extra: &FileObjective, alpha: &Q) -> Vec<Q> {
     let n = s.states();
     let ended: Vec<bool> = (0..n)
         .map(|x| s.is_goal(x) || s.actions(x).is_empty() || extra.terminal.contains(&x))
@@ -268,10 +330,14 @@ fn brute_force_discounted(s: &StochasticProblem, extra: &FileRewards, alpha: &Q)
 
 /// The exact discounted solve at `α = 1/2` of the model that `--file` builds (the problem with
 /// the file's rewards and terminal states) against [`brute_force_discounted`].
-fn check_discounted(s: StochasticProblem, extra: &FileRewards) -> Result<(), TestCaseError> {
+fn check_discounted(s: StochasticProblem, extra: &FileObjective) -> Result<(), TestCaseError> {
     let half = Q::new(1.into(), 2.into());
     let oracle = brute_force_discounted(&s, extra, &half);
-    let m = Model::from_problem(s, "fuzz".into()).with_file_rewards(extra);
+    let at_initial = initial_of(&s, extra)
+        .iter()
+        .map(|(x, p)| &oracle[*x] * p)
+        .fold(Q::zero(), |a, b| a + b);
+    let m = Model::from_problem(s, "fuzz".into()).with_file_objective(extra);
     match m.solve(&Objective::Discounted(half)) {
         Ok(solution) => {
             let got: Vec<Option<Q>> = solution
@@ -284,6 +350,11 @@ fn check_discounted(s: StochasticProblem, extra: &FileRewards) -> Result<(), Tes
                 got,
                 oracle,
                 "discounted solve disagrees with policy enumeration"
+            );
+            prop_assert_eq!(
+                solution.value_initial.finite(),
+                Some(&at_initial),
+                "discounted value at the initial distribution"
             );
         }
         Err(e) => clean(&e.to_string())?,
@@ -458,7 +529,9 @@ fn check_stochastic(s: &StochasticProblem) -> Result<(), TestCaseError> {
 /// of several spellings; `rewards` 0 to 6 write no reward, 7 to 14 a reward on every action,
 /// 15 on every action but the last (refused); `terminal` lists one state (`true`: its actions
 /// replaced by a zero-cost self-loop and, unless it is the only goal, removed from the goals,
-/// so that it is accepted).
+/// so that it is accepted); `drawn`, if given, replaces `initial` by a distribution over its
+/// states (an entry whose state an earlier one lists is dropped; weights normalised to
+/// probabilities, so that a single entry has probability 1).
 fn tiny_file() -> impl Strategy<Value = String> {
     (1usize..=4)
         .prop_flat_map(|n| {
@@ -472,9 +545,13 @@ fn tiny_file() -> impl Strategy<Value = String> {
                 0u8..6,
                 0u8..16,
                 proptest::option::weighted(0.2, (0..n, proptest::bool::weighted(0.9))),
+                proptest::option::weighted(
+                    0.5,
+                    proptest::collection::vec((0..n, 1u32..4), 1..4),
+                ),
             )
         })
-        .prop_map(|(n, mut lists, mut goals, initial, style, rewards, terminal)| {
+        .prop_map(|(n, mut lists, mut goals, initial, style, rewards, terminal, drawn)| {
             if let Some((x, true)) = terminal {
                 lists[x] = vec![(0, vec![(x, 1)], 0)];
                 if goals.iter().any(|&g| g != x) {
@@ -529,6 +606,23 @@ fn tiny_file() -> impl Strategy<Value = String> {
                 None => String::new(),
             };
             let goals: Vec<String> = goals.iter().map(|g| g.to_string()).collect();
+            let initial = match drawn {
+                Some(mut entries) => {
+                    let mut seen = Vec::new();
+                    entries.retain(|(x, _)| {
+                        let first = !seen.contains(x);
+                        seen.push(*x);
+                        first
+                    });
+                    let total: u32 = entries.iter().map(|e| e.1).sum();
+                    let entries: Vec<String> = entries
+                        .iter()
+                        .map(|(x, w)| format!(r#"{{"state": {x}, "p": "{w}/{total}"}}"#))
+                        .collect();
+                    format!("[{}]", entries.join(", "))
+                }
+                None => initial.to_string(),
+            };
             format!(
                 "{{{tag} \"states\": {n}, \"initial\": {initial}, \"goals\": [{}], {terminal}\n \"actions\": [{}]}}",
                 goals.join(","),
@@ -562,6 +656,7 @@ fn generated_tiny_files() {
     use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
     let (deterministic, stochastic) = (AtomicU32::new(0), AtomicU32::new(0));
     let (rewarded, terminal) = (AtomicU32::new(0), AtomicU32::new(0));
+    let drawn = AtomicU32::new(0);
     let mut runner = proptest::test_runner::TestRunner::new(config());
     runner
         .run(
@@ -571,7 +666,7 @@ fn generated_tiny_files() {
                     Some(m) => String::from_utf8_lossy(&mutate(text.into_bytes(), &m)).into_owned(),
                     None => text,
                 };
-                if let Ok((problem, extra)) = sfile::from_json_with_rewards(&text) {
+                if let Ok((problem, extra)) = sfile::from_json_with_objective(&text) {
                     match problem {
                         ProblemFile::Deterministic(_) => deterministic.fetch_add(1, Relaxed),
                         ProblemFile::Stochastic(_) => stochastic.fetch_add(1, Relaxed),
@@ -581,6 +676,9 @@ fn generated_tiny_files() {
                     }
                     if !extra.terminal.is_empty() {
                         terminal.fetch_add(1, Relaxed);
+                    }
+                    if extra.initial.is_some() {
+                        drawn.fetch_add(1, Relaxed);
                     }
                 }
                 read_everything(&text)
@@ -596,6 +694,11 @@ fn generated_tiny_files() {
         t * 100 >= cases(),
         "only {t} files with a terminal state accepted"
     );
+    let i = drawn.into_inner();
+    assert!(
+        i * 100 >= cases(),
+        "only {i} files with an initial distribution accepted"
+    );
 }
 
 /// The corpus itself is read without mutation, and its valid files are accepted (so the
@@ -605,7 +708,7 @@ fn corpus_files_are_read() {
     let mut accepted = 0;
     for text in CORPUS {
         read_everything(text).unwrap();
-        if sfile::from_json(text).is_ok() {
+        if sfile::from_json_with_objective(text).is_ok() {
             accepted += 1;
         }
     }
@@ -658,7 +761,7 @@ fn discounted_oracle_by_hand() {
          {"to":2,"cost":"1","reward":"1/4"}],
         [],
         [{"to":2,"cost":"0","reward":"0"}]]}"#;
-    let (ProblemFile::Stochastic(s), extra) = sfile::from_json_with_rewards(text).unwrap() else {
+    let (ProblemFile::Stochastic(s), extra) = sfile::from_json_with_objective(text).unwrap() else {
         panic!("a stochastic file")
     };
     let half = Q::new(1.into(), 2.into());

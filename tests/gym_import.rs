@@ -4,9 +4,10 @@
 //! The fixtures in `tests/data/gym_import/` were written by the importer from Gymnasium 1.4.0's
 //! own tables (`python/tests/test_guide_and_fixtures.py` regenerates and compares them when
 //! Gymnasium is installed); this file needs no Python. The files carry Gymnasium's expected
-//! rewards (`reward` on every action) and the holes as `terminal` states, so the discounted
-//! objective of `--file` is that of `--env`. `mud_corridor.json` is the guide's environment, whose
-//! optimum and discount breakpoint are derived by hand below.
+//! rewards (`reward` on every action), the holes as `terminal` states and Taxi's initial
+//! distribution as the `initial` list, so every objective of `--file` is that of `--env`.
+//! `mud_corridor.json` is the guide's environment, whose optimum and discount breakpoint are
+//! derived by hand below.
 
 mod common;
 
@@ -47,8 +48,19 @@ fn json_free(args: &[&str]) {
     common::cli::stdout(args);
 }
 
-/// The states where an episode of the file's problem runs: reachable from `initial` along
-/// outcomes, not expanding goals (computed from the file's JSON alone).
+/// The file's initial states: its `initial` state, or the states its `initial` list draws.
+fn initial_states(file: &Value) -> Vec<usize> {
+    match &file["initial"] {
+        Value::Array(list) => list
+            .iter()
+            .map(|e| e["state"].as_u64().unwrap() as usize)
+            .collect(),
+        x => vec![x.as_u64().unwrap() as usize],
+    }
+}
+
+/// The states where an episode of the file's problem runs: reachable from the initial states
+/// along outcomes, not expanding goals (computed from the file's JSON alone).
 fn running_states(file: &Value) -> BTreeSet<usize> {
     let goals: BTreeSet<usize> = file["goals"]
         .as_array()
@@ -57,7 +69,7 @@ fn running_states(file: &Value) -> BTreeSet<usize> {
         .map(|g| g.as_u64().unwrap() as usize)
         .collect();
     let mut seen = BTreeSet::new();
-    let mut stack = vec![file["initial"].as_u64().unwrap() as usize];
+    let mut stack = initial_states(file);
     while let Some(x) = stack.pop() {
         if goals.contains(&x) || !seen.insert(x) {
             continue;
@@ -88,25 +100,28 @@ fn imported_files_hold_the_problems_that_export_env_writes() {
             assert_eq!(ours, theirs, "{name} against export --env {spec}");
             continue;
         }
-        // Taxi: the same 501 states (500 and the extra state drawing Gymnasium's initial
-        // distribution), the same actions wherever an episode runs. Gymnasium's table enters only
-        // the 4 delivered states with the taxi at the destination (terminated=True); the other
-        // 96 "passenger at the destination" states, which `--env` also makes goals, no episode
-        // reaches, and the importer keeps Gymnasium's actions there.
+        // Taxi: the same 500 states, the same initial distribution (uniform over the 300
+        // states with the passenger waiting at a depot other than the destination), the same
+        // actions wherever an episode runs. Gymnasium's table enters only the 4 delivered states
+        // with the taxi at the destination (terminated=True); the other 96 "passenger at the
+        // destination" states, which `--env` also makes goals, no episode reaches, and the
+        // importer keeps Gymnasium's actions there.
         for key in ["format", "states", "initial"] {
             assert_eq!(ours[key], theirs[key], "taxi: {key}");
         }
+        assert_eq!(ours["states"], 500, "no state beyond Gymnasium's");
+        // 25 taxi cells x 4 waiting places x 3 other destinations, 1/300 each.
+        let initial = ours["initial"].as_array().unwrap();
+        assert_eq!(initial.len(), 25 * 4 * 3);
+        assert!(initial.iter().all(|e| e["p"] == "1/300"), "uniform");
         let running = running_states(&ours);
         assert_eq!(
             running,
             running_states(&theirs),
             "taxi: the same running states"
         );
-        assert_eq!(
-            running.len(),
-            401,
-            "taxi: 400 running states and the extra initial state"
-        );
+        // The initial states and the 100 states with the passenger in the taxi.
+        assert_eq!(running.len(), 400, "taxi: 400 running states");
         for &x in &running {
             assert_eq!(ours["actions"][x], theirs["actions"][x], "taxi: state {x}");
         }
@@ -149,7 +164,6 @@ fn solve_file_gives_the_exact_answers_of_solve_env() {
         let path = fixture(name);
         let file = read_json(&path);
         let running = running_states(&file);
-        let extra_state = spec == "taxi";
         for (objective, key) in [
             ("truecost", "cost_to_go_initial"),
             ("reach", "reach_probability_initial"),
@@ -159,25 +173,17 @@ fn solve_file_gives_the_exact_answers_of_solve_env() {
             let what = format!("{name} against --env {spec}, {objective}");
             assert_eq!(ours[key], env[key], "{what}");
             for k in [
+                "initial_states",
                 "success_probability",
                 "policy_success_probability",
                 "expected_truecost",
+                "expected_steps",
             ] {
                 assert_eq!(ours[k], env[k], "{what}: {k}");
             }
-            for &x in running.iter().filter(|&&x| x < 500 || !extra_state) {
+            for &x in &running {
                 assert_eq!(ours["values"][x], env["values"][x], "{what}: value of {x}");
                 assert_eq!(ours["policy"][x], env["policy"][x], "{what}: policy at {x}");
-            }
-            if extra_state {
-                // Drawing the initial state is one more step on every path.
-                let steps = |v: &Value| -> num_rational::BigRational {
-                    v["expected_steps"].as_str().unwrap().parse().unwrap()
-                };
-                let one = num_rational::BigRational::from_integer(1.into());
-                assert_eq!(steps(&ours), steps(&env) + one, "{what}: steps");
-            } else {
-                assert_eq!(ours["expected_steps"], env["expected_steps"], "{what}");
             }
         }
     }
@@ -203,7 +209,28 @@ fn discount_file_of_an_import_equals_discount_env() {
     // the whole analysis must coincide with `--env`'s (breakpoints, brackets, polynomials, optimal
     // actions, achievements, method and its counts of running states). Deterministic CliffWalking
     // has no breakpoint (every discount factor walks the shortest path along the cliff); on the
-    // slippery one the discount-optimal path changes with alpha. Taxi is checked below.
+    // slippery one the discount-optimal path changes with alpha. Taxi's file draws the initial
+    // state from Gymnasium's 300 as `--env` does, and its actions have one outcome each, so the
+    // analysis takes the deterministic path of `--env taxi`: no breakpoint (every discount
+    // factor delivers). The exported Taxi, which has `--env`'s states, goals and actions, is
+    // compared whole. The imported one differs from it only at the 96 states no episode reaches
+    // (see above): their optimal actions and policy are left out of the comparison, and the
+    // method counts them among the states where the episode runs (496 = 400 + 96: it counts
+    // every state that is not a goal, and they are goals only in `--env`).
+    let dir = tempfile::tempdir().unwrap();
+    let exported_taxi = dir.path().join("taxi.json");
+    json_free(&[
+        "export",
+        "--env",
+        "taxi",
+        "--out",
+        exported_taxi.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        discount(&["--file", exported_taxi.to_str().unwrap()]),
+        discount(&["--env", "taxi"]),
+        "exported taxi"
+    );
     for (name, spec, has_breakpoints) in [
         ("frozenlake_4x4_slippery.json", "frozenlake", true),
         ("frozenlake_4x4.json", "frozenlake:slippery=false", false),
@@ -213,12 +240,33 @@ fn discount_file_of_an_import_equals_discount_env() {
             "cliffwalking:slippery=true",
             true,
         ),
+        ("taxi.json", "taxi", false),
     ] {
         let path = fixture(name);
         let full = discount_full(&["--file", path.to_str().unwrap()]);
         assert_eq!(full["rewards"], "the file's rewards", "{name}");
-        let ours = without(full, &["source", "rewards"]);
-        let env = discount(&["--env", spec]);
+        let mut ours = without(full, &["source", "rewards"]);
+        let mut env = discount(&["--env", spec]);
+        if spec == "taxi" {
+            let running = running_states(&read_json(&path));
+            assert_eq!(ours["intervals"].as_array().unwrap().len(), 1, "{ours}");
+            for v in [&mut ours, &mut env] {
+                for key in ["optimal_actions", "policy"] {
+                    let per_state = v["intervals"][0][key].as_array_mut().unwrap();
+                    assert_eq!(per_state.len(), 500, "{key}");
+                    for (x, a) in per_state.iter_mut().enumerate() {
+                        if !running.contains(&x) {
+                            *a = Value::Null;
+                        }
+                    }
+                }
+            }
+            let count = |n: usize| format!(", {n} states where the episode runs,");
+            let method = env["method"].as_str().unwrap().to_string();
+            assert!(method.contains(&count(400)), "{method}");
+            env["method"] = Value::from(method.replace(&count(400), &count(496)));
+            assert_eq!(ours["initial_states"], 300);
+        }
         assert_eq!(ours, env, "{name} against --env {spec}");
         assert_eq!(
             !ours["breakpoints"].as_array().unwrap().is_empty(),
@@ -321,18 +369,17 @@ fn solve_file_discounted_gives_the_values_of_solve_env() {
 
 #[test]
 fn taxi_file_discounted_values_are_those_of_the_env() {
-    // `discount --file` refuses the imported Taxi (its extra initial state makes it stochastic,
-    // with 497 states where the episode runs, above the stochastic analysis' bound of 160), so
-    // the discounted values are compared at rational alphas instead. At every state where an
-    // episode runs the values and optimal actions must be those of `--env taxi`; the extra
-    // initial state 500 draws the initial state with reward 0, one discounted step before
-    // Gymnasium's initial distribution, so its value is alpha times the environment's.
+    // The file draws the initial state from Gymnasium's 300 as `--env taxi` does, so at every
+    // state where an episode runs the discounted values and optimal actions are the
+    // environment's, and so is everything at the initial distribution (its value, the
+    // success probabilities, the expected truecost and steps).
     let path = fixture("taxi.json");
     let running = running_states(&read_json(&path));
-    for alpha in ["1/2", "9/10", "99/100"] {
+    for alpha in ["1/2", "99/100"] {
         let ours = solve_discounted(&["--file", path.to_str().unwrap()], alpha);
         let env = solve_discounted(&["--env", "taxi"], alpha);
-        for &x in running.iter().filter(|&&x| x < 500) {
+        assert_eq!(ours["rewards"], "the file's rewards");
+        for &x in &running {
             assert_eq!(
                 ours["values"][x], env["values"][x],
                 "alpha {alpha}: value of {x}"
@@ -342,20 +389,25 @@ fn taxi_file_discounted_values_are_those_of_the_env() {
                 "alpha {alpha}: policy at {x}"
             );
         }
-        let q = |v: &Value| -> num_rational::BigRational { v.as_str().unwrap().parse().unwrap() };
-        let a: num_rational::BigRational = alpha.parse().unwrap();
-        assert_eq!(
-            q(&ours["discounted_value_initial"]),
-            a * q(&env["discounted_value_initial"]),
-            "alpha {alpha}"
-        );
         for k in [
+            "discounted_value_initial",
+            "initial_states",
             "success_probability",
             "policy_success_probability",
             "expected_truecost",
+            "expected_steps",
         ] {
             assert_eq!(ours[k], env[k], "alpha {alpha}: {k}");
         }
+        // The value at the initial distribution is the mean of the initial states' values.
+        let q = |v: &Value| -> num_rational::BigRational { v.as_str().unwrap().parse().unwrap() };
+        let initial = initial_states(&read_json(&path));
+        let mean = initial
+            .iter()
+            .map(|&x| q(&ours["values"][x]))
+            .sum::<num_rational::BigRational>()
+            / num_rational::BigRational::from_integer(initial.len().into());
+        assert_eq!(q(&ours["discounted_value_initial"]), mean, "alpha {alpha}");
     }
 }
 

@@ -395,14 +395,16 @@ const TWO_ROUTES_ACTIONS: &str = r#"[
 
 #[test]
 fn rewards_and_terminal_states_are_read_in_the_global_action_order() {
-    use truecost::stochastic::file::{from_json_with_rewards, FileRewards, ProblemFile};
-    let (problem, extra) = from_json_with_rewards(&two_routes(TWO_ROUTES_ACTIONS, "[2]")).unwrap();
+    use truecost::stochastic::file::{from_json_with_objective, FileObjective, ProblemFile};
+    let (problem, extra) =
+        from_json_with_objective(&two_routes(TWO_ROUTES_ACTIONS, "[2]")).unwrap();
     assert!(matches!(problem, ProblemFile::Deterministic(_)));
     assert_eq!(
         extra,
-        FileRewards {
+        FileObjective {
             rewards: Some(vec![int(0), frac(1, 2), int(1), int(0)]),
             terminal: vec![2],
+            initial: None,
         }
     );
     // The deterministic reader (learn, verify) checks and ignores them.
@@ -413,8 +415,8 @@ fn rewards_and_terminal_states_are_read_in_the_global_action_order() {
         4
     );
     // Without the fields: no rewards, no terminal state.
-    let plain = from_json_with_rewards(&with("format", &format!("\"{FORMAT}\""))).unwrap();
-    assert_eq!(plain.1, FileRewards::default());
+    let plain = from_json_with_objective(&with("format", &format!("\"{FORMAT}\""))).unwrap();
+    assert_eq!(plain.1, FileObjective::default());
     // A stochastic file: negative rewards and fractions, read exactly; terminal sorted.
     let text = r#"{"initial": 0, "goals": [3], "terminal": [2, 1], "actions": [
         [{"cost": "1", "reward": "-0.25", "outcomes": [{"to": 3, "p": "1/3"}, {"to": 1, "p": "2/3"}]},
@@ -422,7 +424,7 @@ fn rewards_and_terminal_states_are_read_in_the_global_action_order() {
         [{"cost": "0", "reward": "0", "outcomes": [{"to": 1, "p": "1/2"}, {"to": 1, "p": "1/2"}]}],
         [{"to": 2, "cost": "0", "reward": "-0"}],
         []]}"#;
-    let (ProblemFile::Stochastic(_), extra) = from_json_with_rewards(text).unwrap() else {
+    let (ProblemFile::Stochastic(_), extra) = from_json_with_objective(text).unwrap() else {
         panic!("a stochastic file")
     };
     assert_eq!(
@@ -627,4 +629,318 @@ fn noise_keeps_each_actions_reward() {
     assert_eq!(v["discounted_value_initial"], "16/21");
     assert_eq!(v["values"], serde_json::json!(["16/21", "4/3", "0", "0"]));
     assert_eq!(v["policy"], serde_json::json!([1, 0, null, null]));
+}
+
+/// The initial-distribution file of the tests below: 1/3 on state 0, two from the goal 3 at
+/// cost 2, and 2/3 on state 1, which goes on to state 2 (cost 3) or straight into the goal
+/// (cost 6); state 2 enters the goal (cost 2) or stays (cost 1). `initial` may be replaced.
+fn drawn(initial: &str) -> String {
+    format!(
+        r#"{{"format": "truecost-problem/1", "initial": {initial}, "goals": [3], "actions": [
+    [{{"to": 3, "cost": "2"}}],
+    [{{"to": 2, "cost": "3"}}, {{"to": 3, "cost": "6"}}],
+    [{{"to": 3, "cost": "2"}}, {{"to": 2, "cost": "1"}}],
+    []]}}"#
+    )
+}
+
+const ONE_THIRD_TWO_THIRDS: &str = r#"[{"state": 0, "p": "1/3"}, {"state": 1, "p": "2/3"}]"#;
+
+#[test]
+fn an_initial_distribution_is_read_exactly_and_a_single_entry_is_the_state() {
+    use truecost::model::file::from_json_with_objective;
+    use truecost::stochastic::file::{self as sfile, ProblemFile};
+    let text = drawn(ONE_THIRD_TWO_THIRDS);
+    let (problem, extra) = from_json_with_objective(&text).unwrap();
+    // The problem keeps the first listed state; the distribution is returned beside it.
+    assert_eq!(problem.initial(), 0);
+    assert_eq!(extra.initial, Some(vec![(0, frac(1, 3)), (1, frac(2, 3))]));
+    // Listed in another order, with other spellings of the same numbers: the first listed
+    // state is the problem's.
+    let (problem, extra) = from_json_with_objective(&drawn(
+        r#"[{"p": "4/6", "state": 1}, {"state": 0, "p": "0.25e0"}, {"state": 2, "p": "1/12"}]"#,
+    ))
+    .unwrap();
+    assert_eq!(
+        extra.initial,
+        Some(vec![(1, frac(2, 3)), (0, frac(1, 4)), (2, frac(1, 12))])
+    );
+    assert_eq!(problem.initial(), 1);
+    // A decimal close to 1/3 is not 1/3: 2/3 + 3333333333/10^10 = 29999999999/(3 * 10^10).
+    let close = drawn(r#"[{"state": 1, "p": "4/6"}, {"state": 0, "p": "0.3333333333"}]"#);
+    let e = from_json_with_objective(&close).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "the initial probabilities sum to 29999999999/30000000000, not 1"
+    );
+    // The stochastic reader gives the same.
+    let (ProblemFile::Deterministic(_), s_extra) = sfile::from_json_with_objective(&text).unwrap()
+    else {
+        panic!("no outcomes: a deterministic file")
+    };
+    assert_eq!(
+        s_extra.initial,
+        Some(vec![(0, frac(1, 3)), (1, frac(2, 3))])
+    );
+    // One entry of probability 1 is the state number.
+    let single = from_json_with_objective(&drawn(r#"[{"state": 2, "p": "1"}]"#)).unwrap();
+    assert_eq!(single.0, from_json(&drawn("2")).unwrap());
+    assert_eq!(single.1.initial, None);
+    // The readers that return a single initial state refuse the distribution.
+    refused(
+        &text,
+        &[
+            "draws its initial state from 2 states",
+            "this command needs a single initial state",
+        ],
+    );
+    let e = sfile::from_json(&text).unwrap_err().to_string();
+    assert!(
+        e.contains("from 2 states; this command needs a single"),
+        "{e}"
+    );
+}
+
+#[test]
+fn bad_initial_distributions_are_refused_in_one_line() {
+    let cases: Vec<(&str, Vec<&str>)> = vec![
+        (
+            r#"[{"state": 0, "p": "1/3"}, {"state": 1, "p": "1/3"}]"#,
+            vec!["the initial probabilities sum to 2/3, not 1"],
+        ),
+        (
+            r#"[{"state": 0, "p": "1/2"}, {"state": 1, "p": "1/2"}, {"state": 2, "p": "1/2"}]"#,
+            vec!["the initial probabilities sum to 3/2, not 1"],
+        ),
+        (
+            r#"[{"state": 1, "p": "1/2"}, {"state": 1, "p": "1/2"}]"#,
+            vec!["initial entry 1: state 1 is listed twice (first in entry 0)"],
+        ),
+        (
+            r#"[{"state": 0, "p": "1/2"}, {"state": 4, "p": "1/2"}]"#,
+            vec!["initial entry 1: state 4 is not a state of this problem (states 0 to 3)"],
+        ),
+        (
+            r#"[{"state": 0, "p": "0"}, {"state": 1, "p": "1"}]"#,
+            vec!["initial entry 0 (state 0): probability 0 is not in (0, 1]"],
+        ),
+        (
+            r#"[{"state": 0, "p": "3/2"}, {"state": 1, "p": "-1/2"}]"#,
+            vec!["initial entry 0 (state 0): probability 3/2 is not in (0, 1]"],
+        ),
+        (
+            r#"[{"state": 0, "p": "1/2"}, {"state": 1, "p": 0.5}]"#,
+            vec!["initial entry 1 (state 1): probability 0.5 is not a string"],
+        ),
+        (
+            r#"[{"state": 0, "p": "half"}, {"state": 1, "p": "1/2"}]"#,
+            vec![
+                "initial entry 0 (state 0): probability 'half'",
+                "not an exact number",
+            ],
+        ),
+        ("[]", vec![r#""initial" is an empty list"#]),
+        (r#"[{"state": 0}]"#, vec!["not valid", "missing field `p`"]),
+        (
+            r#""0""#,
+            vec!["not valid", "expected a state number or a list"],
+        ),
+    ];
+    for (initial, needles) in cases {
+        let text = drawn(initial);
+        // The library readers, with the distribution and without, refuse it in one line...
+        refused(&text, &needles);
+        let e = truecost::model::file::from_json_with_objective(&text)
+            .unwrap_err()
+            .to_string();
+        let s = truecost::stochastic::file::from_json_with_objective(&text)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(e, s, "{initial}");
+        // ...and so does every command that reads the file, with exit 1.
+        let (_dir, path) = on_disk(&text);
+        for command in [
+            vec!["compare", "--file", &path],
+            vec!["discount", "--file", &path],
+            vec![
+                "solve",
+                "--file",
+                &path,
+                "--algorithm",
+                "exact",
+                "--objective",
+                "truecost",
+            ],
+            vec!["solve", "--file", &path, "--algorithm", "dijkstra"],
+        ] {
+            let err = cli::fails(&command, 1);
+            assert_eq!(err.lines().count(), 1, "{command:?}: {err}");
+            for n in &needles {
+                assert!(
+                    err.contains(n),
+                    "{command:?}: {err:?} does not mention {n:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_objectives_take_the_initial_distribution_by_hand() {
+    // G*(0) = 2; G*(1) = min(3 + G*(2), 6) = 5 with G*(2) = 2 (staying at 2 never ends): at
+    // the distribution, 1/3 * 2 + 2/3 * 5 = 4, in 1/3 * 1 + 2/3 * 2 = 5/3 expected steps.
+    let (_dir, path) = on_disk(&drawn(ONE_THIRD_TWO_THIRDS));
+    let solve = |objective: &str, alpha: Option<&str>| {
+        let mut args = vec![
+            "solve",
+            "--file",
+            &path,
+            "--algorithm",
+            "exact",
+            "--objective",
+            objective,
+            "--format",
+            "json",
+        ];
+        if let Some(a) = alpha {
+            args.extend_from_slice(&["--alpha", a]);
+        }
+        cli::json(&args)
+    };
+    let t = solve("truecost", None);
+    assert_eq!(t["cost_to_go_initial"], "4");
+    let text = cli::stdout(&[
+        "solve",
+        "--file",
+        &path,
+        "--algorithm",
+        "exact",
+        "--objective",
+        "truecost",
+    ]);
+    assert!(
+        text.contains("drawn from 2 states (values are expectations)"),
+        "not uniform: {text}"
+    );
+    assert_eq!(t["values"], serde_json::json!(["2", "5", "2", "0"]));
+    assert_eq!(t["expected_steps"], "5/3");
+    assert_eq!(t["initial_states"], 2);
+    // Every policy that moves on reaches the goal: reach 1.
+    let r = solve("reach", None);
+    assert_eq!(r["reach_probability_initial"], "1");
+    // Discounted, the negated costs: staying at 2 returns -1/(1 - a), entering the goal -2.
+    // At a = 1/4: V(2) = max(-2, -4/3) = -4/3 (stay: the goal is never reached from 1),
+    // V(1) = max(-3 + V(2)/4, -6) = -10/3, V(0) = -2; at the distribution
+    // 1/3 * (-2) + 2/3 * (-10/3) = -26/9, and the policy reaches the goal with probability 1/3.
+    let d = solve("discounted", Some("1/4"));
+    assert_eq!(d["discounted_value_initial"], "-26/9");
+    assert_eq!(d["values"], serde_json::json!(["-2", "-10/3", "-4/3", "0"]));
+    assert_eq!(d["success_probability"], "1/3");
+    // At a = 9/10: V(2) = max(-2, -10) = -2, V(1) = -3 - 9/10 * 2 = -24/5: at the distribution
+    // 1/3 * (-2) + 2/3 * (-24/5) = -58/15, every policy optimal there reaching the goal.
+    let d = solve("discounted", Some("9/10"));
+    assert_eq!(d["discounted_value_initial"], "-58/15");
+    assert_eq!(d["success_probability"], "1");
+    // `discount`: staying at 2 is optimal iff 1/(1 - a) <= 2, i.e. a <= 1/2 (at 1/2 both
+    // are). Only an episode started at 1 passes through 2, so a discount-optimal policy fails
+    // from the distribution for a in (0, 1/2], and from state 0 alone never.
+    let set = |initial: &str| {
+        let (_dir, path) = on_disk(&drawn(initial));
+        cli::json(&["discount", "--file", &path, "--format", "json"])["set"].clone()
+    };
+    assert_eq!(set(ONE_THIRD_TWO_THIRDS), "(0, 1/2]");
+    assert_eq!(set("0"), "empty");
+    assert_eq!(set("1"), "(0, 1/2]");
+    let text = cli::stdout(&["discount", "--file", &path]);
+    assert!(
+        text.contains("fails to reach the goal from some of the 2 initial states:\n  (0, 1/2]"),
+        "{text}"
+    );
+    // `compare` values every objective at the distribution too.
+    let c = cli::json(&[
+        "compare", "--file", &path, "--alphas", "1/4", "--format", "json",
+    ]);
+    assert_eq!(c["initial_states"], 2);
+    assert_eq!(c["rows"][0]["value_initial"], "4");
+    assert_eq!(c["rows"][2]["value_initial"], "-26/9");
+}
+
+#[test]
+fn commands_of_a_single_initial_state_refuse_a_distribution_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let (_d, path) = on_disk(&drawn(ONE_THIRD_TWO_THIRDS));
+    let figure = dir.path().join("figure.svg");
+    let figure_text = figure.to_str().unwrap();
+    for (command, name) in [
+        (
+            vec!["solve", "--file", &path, "--algorithm", "dijkstra"],
+            "solve without --objective",
+        ),
+        (
+            vec!["solve", "--file", &path, "--algorithm", "exact"],
+            "solve without --objective",
+        ),
+        (
+            vec![
+                "solve",
+                "--file",
+                &path,
+                "--gamma",
+                "0.9",
+                "--algorithm",
+                "vi",
+            ],
+            "solve without --objective",
+        ),
+        (
+            vec!["render", "--file", &path, "--out", figure_text],
+            "render",
+        ),
+        (
+            vec![
+                "render",
+                "--file",
+                &path,
+                "--overlay",
+                "values",
+                "--out",
+                figure_text,
+            ],
+            "render",
+        ),
+        (
+            vec!["verify", "--claim", "C4", "--file", &path],
+            "this command",
+        ),
+    ] {
+        let err = cli::fails(&command, 1);
+        assert_eq!(
+            err.trim_end(),
+            format!(
+                "error: this file draws its initial state from 2 states; {name} needs a single initial state (solve --objective, compare and discount take the distribution)"
+            ),
+            "{command:?}"
+        );
+    }
+    assert!(!figure.exists(), "no figure drawn");
+    // The same file with a single initial state is accepted by each of them.
+    let (_d1, single) = on_disk(&drawn("1"));
+    cli::stdout(&["solve", "--file", &single, "--algorithm", "dijkstra"]);
+    cli::stdout(&["render", "--file", &single, "--out", figure_text]);
+    assert!(figure.exists());
+    cli::stdout(&["verify", "--claim", "C4", "--file", &single]);
+    // `learn` updates every state-action pair against Q*, whatever the initial state: it reads
+    // the distribution and replays exactly as from a single initial state.
+    let learn = |file: &str| {
+        cli::stdout(&[
+            "learn", "--file", file, "--q0", "0", "--order", "cyclic", "--rounds", "6",
+        ])
+    };
+    let replay = learn(&path);
+    assert_eq!(replay, learn(&single));
+    // Q*(1, ->2) = 3 + G*(2) = 5, Q*(2, ->2) = 1 + G*(2) = 3.
+    assert!(
+        replay.contains("Q(1->2)=5") && replay.contains("Q(2->2)=3"),
+        "{replay}"
+    );
 }

@@ -35,10 +35,20 @@ TINY_P = {
 TINY_ISD = [0.75, 0.25, 0.0, 0.0]
 
 
+def initial_distribution(problem):
+    """The file's initial distribution as ``[(state, Fraction)]``: a state number is that state
+    with probability 1, a list its entries."""
+    initial = problem["initial"]
+    if isinstance(initial, int):
+        return [(initial, Fraction(1))]
+    return [(e["state"], Fraction(e["p"])) for e in initial]
+
+
 def optimum_by_enumeration(problem):
-    """The least expected cost from the initial state over the stationary deterministic
-    policies that reach a goal with probability 1 (exact Gaussian elimination per policy):
-    an oracle independent of the importer and of truecost's solvers."""
+    """The least expected cost at the initial distribution over the stationary deterministic
+    policies that reach a goal with probability 1 from every initial state (exact Gaussian
+    elimination per policy): an oracle independent of the importer and of truecost's
+    solvers."""
     n = problem["states"]
     goals = set(problem["goals"])
     acts = problem["actions"]
@@ -47,8 +57,9 @@ def optimum_by_enumeration(problem):
     for policy in itertools.product(*choices):
         succ = {x: [(o["to"], Fraction(o["p"])) for o in acts[x][policy[x]]["outcomes"]]
                 for x in range(n) if x not in goals}
-        # Proper from the initial state: every state it reaches can reach a goal.
-        reach = {problem["initial"]}
+        # Proper from the initial states: every state it reaches can reach a goal.
+        start = initial_distribution(problem)
+        reach = {x for x, _ in start}
         stack = list(reach)
         while stack:
             x = stack.pop()
@@ -83,7 +94,8 @@ def optimum_by_enumeration(problem):
                 if r != c and a[r][c] != 0:
                     f = a[r][c] / a[c][c]
                     a[r] = [u - f * v for u, v in zip(a[r], a[c])]
-        g = a[idx[problem["initial"]]][m] / a[idx[problem["initial"]]][idx[problem["initial"]]]
+        g = sum((p * (a[idx[x]][m] / a[idx[x]][idx[x]]) if x in idx else Fraction(0)
+                 for x, p in start), Fraction(0))
         if best is None or g < best:
             best = g
     return best
@@ -101,7 +113,7 @@ def optimum_by_enumeration_moves(problem):
 
 
 def discounted_by_enumeration(problem, alpha):
-    """The greatest discounted value of the file's rewards at the initial state over the
+    """The greatest discounted value of the file's rewards at the initial distribution over the
     stationary deterministic policies (exact Gaussian elimination of V = r + alpha P V per
     policy; goals and ``terminal`` states have value 0): an oracle independent of truecost."""
     n = problem["states"]
@@ -128,8 +140,8 @@ def discounted_by_enumeration(problem, alpha):
                 if r != c and a[r][c] != 0:
                     f = a[r][c] / a[c][c]
                     a[r] = [u - f * v for u, v in zip(a[r], a[c])]
-        i = idx[problem["initial"]]
-        v = a[i][m] / a[i][i]
+        v = sum((p * (a[idx[x]][m] / a[idx[x]][idx[x]]) if x in idx else Fraction(0)
+                 for x, p in initial_distribution(problem)), Fraction(0))
         if best is None or v > best:
             best = v
     return best
@@ -149,8 +161,10 @@ class TinyTable(unittest.TestCase):
 
     def test_file_contents_by_hand(self):
         p = self.problem
-        self.assertEqual((p["format"], p["states"], p["initial"], p["goals"]),
-                         ("truecost-stochastic/1", 5, 4, [2]))
+        # The initial distribution, 3/4 on the start and 1/4 in the corridor, as a list.
+        self.assertEqual((p["format"], p["states"], p["goals"]), ("truecost-stochastic/1", 4, [2]))
+        self.assertEqual(p["initial"], [{"state": 0, "p": "3/4"}, {"state": 1, "p": "1/4"}])
+        self.assertEqual(self.report["initial_distribution"], {"support": 2})
         self.assertEqual(self.report["traps"], [3])
         acts = p["actions"]
         # Walk: the two entries to the corridor merged; reward -1 costs 1.
@@ -167,8 +181,7 @@ class TinyTable(unittest.TestCase):
         self.assertEqual(acts[3], [{"cost": "0", "reward": "0",
                                     "outcomes": [{"to": 3, "p": "1"}]}], "a trap")
         self.assertEqual(p["terminal"], [3], "the trap ends the episode")
-        self.assertEqual(acts[4], [{"cost": "0", "reward": "0",
-                                    "outcomes": [{"to": 0, "p": "3/4"}, {"to": 1, "p": "1/4"}]}])
+        self.assertEqual(len(acts), 4, "no state beyond the table's")
         self.assertEqual(list(p), ["format", "name", "states", "initial", "goals", "terminal",
                                    "actions"], "the key order of truecost export")
         self.assertEqual(self.report["merged_outcomes"], 1)
@@ -191,11 +204,11 @@ class TinyTable(unittest.TestCase):
     def test_discounted_value_known_by_hand(self):
         # At alpha = 1/2, with the expected rewards above (the goal and the trap end the
         # episode: value 0). Corridor: push gives V(1) = 6 + (1/2)(1/3) V(1), so V(1) = 36/5
-        # (back: -1 + V(0)/2 is less). Start: jump 5, walk -1 + V(1)/2 = 13/5: V(0) = 5. The
-        # extra state draws the start with 3/4 and the corridor with 1/4, one discounted step:
-        # V(4) = (1/2)(3/4 * 5 + 1/4 * 36/5) = 111/40.
+        # (back: -1 + V(0)/2 is less). Start: jump 5, walk -1 + V(1)/2 = 13/5: V(0) = 5. At the
+        # initial distribution (3/4 on the start, 1/4 in the corridor): 3/4 * 5 + 1/4 * 36/5 =
+        # 111/20.
         alpha = Fraction(1, 2)
-        self.assertEqual(discounted_by_enumeration(self.problem, alpha), Fraction(111, 40))
+        self.assertEqual(discounted_by_enumeration(self.problem, alpha), Fraction(111, 20))
         binary = truecost_binary()
         if binary is None:
             self.skipTest("no truecost binary built")
@@ -210,8 +223,8 @@ class TinyTable(unittest.TestCase):
                                   "--objective", "discounted", "--alpha", "1/2", "--format",
                                   "json"], capture_output=True, text=True, check=True)
             v = json.loads(out.stdout)
-            self.assertEqual(v["discounted_value_initial"], "111/40")
-            self.assertEqual(v["values"][:2], ["5", "36/5"])
+            self.assertEqual(v["discounted_value_initial"], "111/20")
+            self.assertEqual(v["values"], ["5", "36/5", "0", "0"])
             self.assertEqual(v["rewards"], "the file's rewards")
 
     def test_optimum_known_by_hand(self):
@@ -229,8 +242,29 @@ class TinyTable(unittest.TestCase):
             with open(path, "w") as f:
                 f.write(to_json(self.problem))
             out = subprocess.run([binary, "solve", "--file", path, "--algorithm", "exact",
-                                  "--format", "json"], capture_output=True, text=True, check=True)
+                                  "--objective", "truecost", "--format", "json"],
+                                 capture_output=True, text=True, check=True)
             self.assertEqual(json.loads(out.stdout)["cost_to_go_initial"], "11/4")
+            # The solvers of one initial state x1 refuse the distribution, in one line.
+            out = subprocess.run([binary, "solve", "--file", path, "--algorithm", "exact"],
+                                 capture_output=True, text=True)
+            self.assertEqual(out.returncode, 1)
+            self.assertEqual(out.stderr.count("\n"), 1, out.stderr)
+            self.assertIn("draws its initial state from 2 states", out.stderr)
+
+    def test_initial_state_chosen_or_single(self):
+        # initial=STATE writes that state, and so does a distribution of one state.
+        for initial in (1, [0.0, 1.0, 0.0, 0.0]):
+            with self.subTest(initial=initial):
+                p, report = import_table(TINY_P, 4, 2, initial)
+                self.assertEqual((p["states"], p["initial"]), (4, 1))
+                self.assertIsNone(report["initial_distribution"])
+        # From the corridor alone: G(1) = 2 (by hand above).
+        self.assertEqual(optimum_by_enumeration(p), Fraction(2))
+        # The states of probability 0 are left out, the others listed in increasing order (a
+        # goal may be one of them).
+        p, _ = import_table(TINY_P, 4, 2, [0.0, 0.5, 0.0, 0.5], goals=[2, 3])
+        self.assertEqual(p["initial"], [{"state": 1, "p": "1/2"}, {"state": 3, "p": "1/2"}])
 
     def test_every_recovered_value_is_reported(self):
         by_float = {(v["kind"], v["float"]): v for v in self.report["values"]}

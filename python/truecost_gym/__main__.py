@@ -101,7 +101,9 @@ def parser():
                    help="the goal states (default: the terminal states entered with the greatest "
                    "terminal reward)")
     e.add_argument("--initial", metavar="STATE", type=_non_negative,
-                   help="the initial state (default: the environment's initial_state_distrib or isd)")
+                   help="the initial state (default: the environment's initial_state_distrib "
+                   "or isd, written as the file's initial distribution when it has two or more "
+                   "states)")
     e.add_argument("--deterministic-moves", action="store_true",
                    help="write an action with a single outcome as a move {to, cost}: a table "
                    "without randomness becomes a deterministic problem file (for verify --claim "
@@ -179,11 +181,8 @@ def export(args):
     except ImportRefused as e:
         fail(str(e), e.status)
     options = "" if not kwargs else " " + json.dumps(kwargs, separators=(",", ":"))
-    extra = report["initial_distribution"]
-    name = f"{args.env_id}{options} (Gymnasium {gymnasium.__version__}"
-    if extra is not None:
-        name += f"; state {extra['extra_state']} draws the initial state"
-    name += f"; {name_note(args.rewards)})"
+    name = f"{args.env_id}{options} (Gymnasium {gymnasium.__version__}; " \
+        f"{name_note(args.rewards)})"
     problem["name"] = name
     report["gymnasium_version"] = gymnasium.__version__
     report["env_id"] = args.env_id

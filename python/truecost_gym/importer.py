@@ -24,15 +24,18 @@ way ``truecost export --env`` builds the built-in environments:
   expectations give equal expected totals.
 * **rewards** (``rewards="gymnasium"``, the default): every action's ``reward`` is its
   expected Gymnasium reward ``Σ p·r`` over its outcomes, exactly (the reward the discounted
-  objective maximises, as ``truecost discount|compare --env`` use it); a trap's self-loop and
-  the extra initial state (below) have reward 0. The file's ``terminal`` lists the traps, so
-  that the episode ends there as in Gymnasium. ``rewards="costs"`` writes no reward: the
-  discounted objective then rewards the negated stage costs.
+  objective maximises, as ``truecost discount|compare --env`` use it); a trap's self-loop has
+  reward 0. The file's ``terminal`` lists the traps, so that the episode ends there as in
+  Gymnasium. ``rewards="costs"`` writes no reward: the discounted objective then rewards the
+  negated stage costs.
 * **outcomes**: zero-probability entries are dropped, entries to the same next state merged
   (probabilities added, first appearance order), as ``truecost export --env`` does.
-* **initial state**: a single state of probability 1 is the file's ``initial``; a distribution
-  becomes one extra state (numbered ``|X|``, the new initial state) whose single zero-cost action
-  draws the initial state (truecost and reach values unchanged, every path one step longer).
+* **initial state**: a single state of probability 1 is the file's ``initial`` (a state
+  number); a distribution over two or more states is the file's ``initial`` list
+  ``[{"state": x, "p": "q"}, ...]`` of the states of positive probability, in increasing order
+  (Taxi's 300 states, 1/300 each), over which ``truecost solve --objective``, ``compare`` and
+  ``discount --file`` take expectations, as ``--env`` does. ``initial=STATE`` chooses one
+  state instead.
 
 Every float is recovered as an exact fraction by :mod:`truecost_gym.rational`; a probability row
 that does not sum to exactly 1 after recovery is refused, naming the state and action.
@@ -157,8 +160,9 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
     """Builds the problem from a transition table (module docs).
 
     ``P[s][a]``: lists of ``(p, s', r, terminated)``; ``initial``: a sequence of ``n_states``
-    probabilities, or one state (an ``int``); ``goals``: the goal states, overriding the rule of
-    the module docs. Returns ``(problem, report)``: ``problem`` is a dict in the file's key
+    probabilities (written as the file's initial distribution when two or more are positive),
+    or one state (an ``int``); ``goals``: the goal states, overriding the rule of the module
+    docs. Returns ``(problem, report)``: ``problem`` is a dict in the file's key
     order with exact strings, ``report`` a dict describing every recovered value and every
     choice made. ``deterministic_moves`` writes an action with a single outcome as a move
     ``{"to": y, "cost": c}``: a table without randomness then makes a deterministic problem
@@ -319,20 +323,15 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
             row.append(action(cost, by_next, reward))
         actions.append(row)
 
-    states = n_states
     if len(start) == 1:
         x1 = start[0][0]
     else:
-        x1 = n_states
-        states += 1
-        draw = {"cost": "0", "reward": "0"} if with_rewards else {"cost": "0"}
-        draw["outcomes"] = [{"to": x, "p": str(p)} for x, p in start]
-        actions.append([draw])
+        x1 = [{"state": x, "p": str(p)} for x, p in start]
 
     problem = {
         "format": FORMAT,
         "name": f"{env_name} ({name_note(rewards)})",
-        "states": states,
+        "states": n_states,
         "initial": x1,
         "goals": sorted(goal_set),
     }
@@ -342,11 +341,10 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
     recovered = values.report()
     report = {
         "environment": env_name,
-        "states": states,
+        "states": n_states,
         "actions": sum(len(r) for r in actions),
         "initial": x1,
-        "initial_distribution": None if len(start) == 1 else
-        {"extra_state": n_states, "support": len(start)},
+        "initial_distribution": None if len(start) == 1 else {"support": len(start)},
         "running_states": running,
         "goals": sorted(goal_set),
         "goal_rule": goal_rule,
@@ -355,7 +353,7 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
                      "an action costs the expectation over its outcomes",
         "rewards": rewards,
         "reward_rule": "an action's reward is the expectation of Gymnasium's rewards over its "
-                       "outcomes (traps and the extra initial state: 0)" if with_rewards else
+                       "outcomes (traps: 0)" if with_rewards else
                        "no reward written: the discounted objective rewards the negated stage "
                        "costs",
         "merged_outcomes": merged,

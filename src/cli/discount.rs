@@ -20,7 +20,7 @@ use truecost::objectives::report::{
 };
 use truecost::objectives::{failure_set, Model, Source};
 use truecost::problems::{GridLayout, StepCost};
-use truecost::stochastic::file::{read_with_rewards, FileRewards, ProblemFile};
+use truecost::stochastic::file::{read_with_objective, FileObjective, ProblemFile};
 
 use super::compare::CompareFormat;
 use super::env::{pretty, EnvArg};
@@ -59,7 +59,7 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
             let model = Source::Env(spec.clone()).load()?;
             return analysis(&model).map(|d| breakpoints(&model, &d, args.format));
         }
-        (None, Some(path), _) => match read_with_rewards(path).map_err(|e| e.to_string())? {
+        (None, Some(path), _) => match read_with_objective(path).map_err(|e| e.to_string())? {
             (ProblemFile::Deterministic(p), extra) => (
                 p,
                 format!("file {}", printable(&path.display().to_string())),
@@ -67,7 +67,7 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
             ),
             (ProblemFile::Stochastic(p), extra) => {
                 let model = Model::from_problem(*p, format!("file {}", path.display()))
-                    .with_file_rewards(&extra);
+                    .with_file_objective(&extra);
                 return analysis(&model).map(|d| breakpoints(&model, &d, args.format));
             }
         },
@@ -76,13 +76,19 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
                 .map_err(|e| e.to_string())?
                 .to_problem(args.step_cost.unwrap_or_default()),
             format!("paper problem {id}"),
-            FileRewards::default(),
+            FileObjective::default(),
         ),
         (None, None, None) => return Err("give --problem N, --file FILE or --env SPEC".into()),
     };
     let model = Model::from_deterministic_file(&problem, source.clone(), &extra)
         .map_err(|e| e.to_string())?;
     let rewards = model.reward_source;
+    // With an initial distribution, a policy fails if it misses the goal from any of its
+    // states (its success probability at the distribution is below 1).
+    let from = match model.initial.len() {
+        1 => "x1".to_string(),
+        k => format!("some of the {k} initial states"),
+    };
     let set = failure_set(&analysis(&model)?);
     Ok(match args.format {
         CompareFormat::Json => {
@@ -105,22 +111,22 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
             }))
         }
         CompareFormat::Text => format!(
-            "problem  {source}\nrewards  {rewards} (discounted, maximised)\nalpha in (0,1) where a discount-optimal policy fails to reach the goal from x1:\n  {}\nmethod   {}\n",
+            "problem  {source}\nrewards  {rewards} (discounted, maximised)\nalpha in (0,1) where a discount-optimal policy fails to reach the goal from {from}:\n  {}\nmethod   {}\n",
             set_text(&set),
             set.method
         ),
         CompareFormat::Markdown => format!(
-            "**{source}** ({rewards}): alpha in (0,1) where a discount-optimal policy fails to reach the goal from x1\n\n| set | method |\n|---|---|\n| {} | {} |\n",
+            "**{source}** ({rewards}): alpha in (0,1) where a discount-optimal policy fails to reach the goal from {from}\n\n| set | method |\n|---|---|\n| {} | {} |\n",
             set_text(&set),
             set.method
         ),
-        CompareFormat::Latex => latex_set(&format!("{source} ({rewards})"), &set),
+        CompareFormat::Latex => latex_set(&format!("{source} ({rewards})"), &from, &set),
     })
 }
 
-fn latex_set(source: &str, set: &DiscountSet) -> String {
+fn latex_set(source: &str, from: &str, set: &DiscountSet) -> String {
     format!(
-        "% {source}: alpha in (0,1) where a discount-optimal policy fails to reach the goal from x1\n\\begin{{tabular}}{{ll}}\n\\hline\nset & method \\\\\n\\hline\n{} & {} \\\\\n\\hline\n\\end{{tabular}}\n",
+        "% {source}: alpha in (0,1) where a discount-optimal policy fails to reach the goal from {from}\n\\begin{{tabular}}{{ll}}\n\\hline\nset & method \\\\\n\\hline\n{} & {} \\\\\n\\hline\n\\end{{tabular}}\n",
         set_text(set).replace('U', "$\\cup$"),
         set.method
     )

@@ -1,14 +1,13 @@
 //! `truecost export --env SPEC --out F.json`: an environment as a
-//! stochastic problem file (truecost stage costs, Gymnasium's rewards and the terminal
-//! non-goal states; an initial distribution becomes one extra zero-cost initial state, see
-//! [`truecost::objectives::Model::exportable`]).
+//! stochastic problem file (truecost stage costs, Gymnasium's rewards, the terminal non-goal
+//! states and the initial distribution, see [`truecost::objectives::Model::exportable`]).
 
 use std::path::PathBuf;
 
 use clap::Args;
 
 use truecost::objectives::Source;
-use truecost::stochastic::file::to_json_with_rewards;
+use truecost::stochastic::file::to_json_with_objective;
 
 /// Arguments of `export`.
 #[derive(Args, Debug)]
@@ -52,21 +51,12 @@ pub fn run(args: &ExportArgs) -> Result<String, String> {
     }
     let env = args.env.clone().expect("clap requires --env or --grid");
     let model = Source::Env(env).load()?;
-    let (problem, extra) = model.exportable().map_err(|e| e.to_string())?;
-    let name = if model.initial.len() > 1 {
-        format!(
-            "{} (state {} draws the initial state uniformly; truecost stage costs, {})",
-            model.name,
-            problem.initial(),
-            model.reward_source
-        )
-    } else {
-        format!(
-            "{} (truecost stage costs, {})",
-            model.name, model.reward_source
-        )
-    };
-    let text = to_json_with_rewards(&problem, Some(&name), &extra);
+    let (problem, extra) = model.exportable();
+    let name = format!(
+        "{} (truecost stage costs, {})",
+        model.name, model.reward_source
+    );
+    let text = to_json_with_objective(&problem, Some(&name), &extra);
     truecost::atomic::write(&args.out, (text + "\n").as_bytes())?;
     Ok(format!(
         "wrote {} ({} states, {} actions)\n",

@@ -74,7 +74,9 @@ pub fn learn(args: &LearnArgs) -> Result<String, String> {
         TerminalName::Updated => Terminal::Updated,
         TerminalName::Held => Terminal::HeldAtZero,
     };
-    let problem = file::read(&args.file).map_err(|e| e.to_string())?;
+    // The replay updates every state-action pair and compares with Q*, neither of which
+    // depends on the initial state: a file's initial distribution is accepted and not used.
+    let (problem, _) = file::read_with_objective(&args.file).map_err(|e| e.to_string())?;
     let q0 = InitialValues::parse(&args.q0)?;
     let r = replay(&problem, &q0, order, terminal, args.rounds)?;
     Ok(match args.format {

@@ -264,6 +264,15 @@ fn problems(args: &ProblemsArgs) -> Result<String, String> {
     Ok(output::problems(&facts, args.format, args.mode))
 }
 
+/// Reads a problem file (either format, once) for `command`, which needs a single initial
+/// state: a file that draws its initial state from two or more states is refused in one line
+/// naming the command, before any work.
+fn read_single_initial(path: &std::path::Path, command: &str) -> Result<ProblemFile, String> {
+    let (file, extra) = stochastic_file::read_with_objective(path).map_err(|e| e.to_string())?;
+    extra.single_initial(command).map_err(|e| e.to_string())?;
+    Ok(file)
+}
+
 fn solve(args: &SolveArgs) -> Result<String, String> {
     if env::wants(args) {
         return env::solve(args);
@@ -274,9 +283,11 @@ fn solve(args: &SolveArgs) -> Result<String, String> {
     if args.file.is_some() && args.step_cost.is_some() {
         return Err("--step-cost applies to the paper's grid problems (--problem N); a problem file gives its own costs".into());
     }
-    // A file is read once, in either format (pipes and FIFOs can be read only once).
+    // A file is read once, in either format (pipes and FIFOs can be read only once). The
+    // planners and the stochastic solvers answer from one initial state x1; the objectives
+    // (env::solve above) take an initial distribution.
     let loaded = match &args.file {
-        Some(path) => Some(stochastic_file::read(path).map_err(|e| e.to_string())?),
+        Some(path) => Some(read_single_initial(path, "solve without --objective")?),
         None => None,
     };
     let Some(algorithm) = stochastic::deterministic_algorithm(args, loaded.as_ref()) else {

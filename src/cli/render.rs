@@ -17,7 +17,7 @@ use truecost::objectives::{Model, Objective};
 use truecost::planning::{plan_exact, plan_reference, Algorithm, Mode, PlanReport};
 use truecost::problems::{GridLayout, StepCost};
 use truecost::solvers::dijkstra;
-use truecost::stochastic::file::{self as stochastic_file, ProblemFile};
+use truecost::stochastic::file::ProblemFile;
 use truecost::stochastic::policy_iteration::optimum;
 use truecost::stochastic::problem::Provenance;
 use truecost::stochastic::{decimal, NoiseModel, Predictability, StochasticProblem};
@@ -206,9 +206,10 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
     if args.file.is_some() && args.step_cost.is_some() {
         return Err("--step-cost applies to the paper's grid problems (--problem N)".into());
     }
-    // The file is read once, in either format (pipes and FIFOs can be read only once).
+    // The file is read once, in either format (pipes and FIFOs can be read only once); the
+    // figure's path, values and visits start from one initial state.
     let loaded = match &args.file {
-        Some(path) => Some(stochastic_file::read(path).map_err(|e| e.to_string())?),
+        Some(path) => Some(super::read_single_initial(path, "render")?),
         None => None,
     };
     if args.gamma.is_some()

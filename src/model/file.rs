@@ -21,6 +21,17 @@
 //!   self-loop, if it is a trap).
 //! * Costs are **strings** holding exact non-negative numbers: `"1"`, `"0.25"`, `"800/19"`,
 //!   `"1e-3"`. JSON numbers are refused: they would pass through `f64`.
+//! * `initial` is the initial state `x1` (a state number), or an initial **distribution**: a
+//!   list `[{"state": x, "p": "q"}, ...]` of distinct states with probabilities that are
+//!   **strings** holding exact numbers in `(0, 1]` (JSON numbers are refused, as for costs) and
+//!   sum to exactly 1; each violation is refused naming the entry (numbered from 0). A list of
+//!   one entry (probability 1) is the same as the number. The problem read keeps the first
+//!   listed state as its initial state; the distribution itself is returned in a
+//!   [`FileObjective`] by [`from_json_with_objective`] and
+//!   [`crate::stochastic::file::from_json_with_objective`], for the objectives' model, whose
+//!   values at the initial state are expectations over it. [`from_json`] and [`read`] refuse a
+//!   distribution of two or more states ([`FileError::InitialDistribution`]): what they return
+//!   has a single initial state, and their callers use it.
 //! * Optional, for the discounted objective (what a reinforcement-learning agent maximises):
 //!   a `"reward": "r"` on an action, an exact number as a string like costs (it may be
 //!   negative; JSON numbers are refused), is the action's expected reward, received whatever
@@ -30,7 +41,7 @@
 //!   any more, like Gymnasium's holes); each must be a state, not a goal, listed once, and every
 //!   action it has must be a zero-cost self-loop (with reward 0 when rewards are given). Goals,
 //!   and states without actions, always end the episode. The readers that need them return both
-//!   in a [`FileRewards`] ([`crate::stochastic::file::from_json_with_rewards`]); every other
+//!   in a [`FileObjective`] ([`crate::stochastic::file::from_json_with_objective`]); every other
 //!   command checks and ignores them.
 //! * `format`, `name` and `states` are optional; `states`, if given, must equal the number of
 //!   action lists. Unknown fields are refused. The format tag may also be
@@ -41,11 +52,12 @@
 //! Limits, each refusal naming its bound: a file of at most [`MAX_FILE_BYTES`]
 //! bytes, read **once** (so `/dev/stdin`, pipes and FIFOs work); each number as in
 //! [`crate::value::parse_rational`] (at most 4096 bytes, exponents within ±10000); the exact
-//! numbers of one file at most [`MAX_NUMBER_BITS`] bits in all.
+//! numbers of one file (costs, rewards, probabilities, the initial distribution's included) at
+//! most [`MAX_NUMBER_BITS`] bits in all.
 
 use std::path::Path;
 
-use num_traits::Zero;
+use num_traits::{One, Zero};
 use serde::{Deserialize, Serialize};
 
 use super::{ModelError, Move, Problem, StateId};
@@ -184,6 +196,83 @@ pub enum FileError {
         /// The reward, shortened.
         reward: String,
     },
+    /// The exact numbers of the file exceed [`MAX_NUMBER_BITS`] in the initial distribution.
+    #[error("initial entry {entry}: the exact numbers of this file take more than 2^28 bits in all, the limit of this reader")]
+    InitialNumbersTooLarge {
+        /// The entry of the `initial` list where the budget ran out.
+        entry: usize,
+    },
+    /// An empty `initial` list.
+    #[error("\"initial\" is an empty list: give a state number or at least one {{\"state\": x, \"p\": \"q\"}} entry")]
+    InitialEmpty,
+    /// An `initial` entry whose state is not a state of the problem.
+    #[error(
+        "initial entry {entry}: state {state} is not a state of this problem (states 0 to {last})"
+    )]
+    InitialOutOfRange {
+        /// The entry (numbered from 0).
+        entry: usize,
+        /// Its state.
+        state: usize,
+        /// The last state.
+        last: usize,
+    },
+    /// An `initial` entry whose state an earlier entry lists.
+    #[error("initial entry {entry}: state {state} is listed twice (first in entry {first})")]
+    InitialDuplicate {
+        /// The entry (numbered from 0).
+        entry: usize,
+        /// Its state.
+        state: usize,
+        /// The earlier entry listing it.
+        first: usize,
+    },
+    /// An `initial` probability that is not a string.
+    #[error("initial entry {entry} (state {state}): probability {found} is not a string: write it as an exact number in a string (\"1/3\", \"0.25\"), a JSON number would pass through f64")]
+    InitialNotText {
+        /// The entry (numbered from 0).
+        entry: usize,
+        /// Its state.
+        state: usize,
+        /// The JSON value found, shortened.
+        found: String,
+    },
+    /// An `initial` probability that is not an exact number.
+    #[error("initial entry {entry} (state {state}): probability {source}")]
+    InitialProbability {
+        /// The entry (numbered from 0).
+        entry: usize,
+        /// Its state.
+        state: usize,
+        /// The cause.
+        source: ParseRationalError,
+    },
+    /// An `initial` probability outside `(0, 1]`.
+    #[error("initial entry {entry} (state {state}): probability {probability} is not in (0, 1]")]
+    InitialRange {
+        /// The entry (numbered from 0).
+        entry: usize,
+        /// Its state.
+        state: usize,
+        /// The probability, shortened.
+        probability: String,
+    },
+    /// `initial` probabilities that do not sum to 1.
+    #[error("the initial probabilities sum to {sum}, not 1")]
+    InitialSum {
+        /// The sum, shortened.
+        sum: String,
+    },
+    /// A file that draws its initial state from several states, read by a command that needs a
+    /// single initial state ([`FileObjective::single_initial`]; [`from_json`] and [`read`]
+    /// refuse it for any command).
+    #[error("this file draws its initial state from {states} states; {command} needs a single initial state (solve --objective, compare and discount take the distribution)")]
+    InitialDistribution {
+        /// The number of states of the distribution.
+        states: usize,
+        /// The command, or "this command".
+        command: String,
+    },
     /// The problem itself is ill formed.
     #[error("{0}")]
     Model(#[from] ModelError),
@@ -199,7 +288,7 @@ pub(crate) struct FileProblem<A> {
     pub(crate) name: Option<String>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub(crate) states: Option<usize>,
-    pub(crate) initial: usize,
+    pub(crate) initial: FileInitial,
     pub(crate) goals: Vec<usize>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub(crate) terminal: Option<Vec<usize>>,
@@ -232,6 +321,133 @@ impl<A> FileProblem<A> {
             _ => Ok(()),
         }
     }
+}
+
+/// A file's `initial`: a state number, or a list of `{"state": x, "p": "q"}` entries (module
+/// docs; checked by [`read_initial`]).
+#[derive(Serialize)]
+#[serde(untagged)]
+pub(crate) enum FileInitial {
+    /// `"initial": x`.
+    State(usize),
+    /// `"initial": [{"state": x, "p": "q"}, ...]`.
+    Distribution(Vec<FileInitialEntry>),
+}
+
+/// One entry `{"state": x, "p": "q"}` of an initial distribution. The probability is kept as
+/// the JSON value given, so that a JSON number is refused naming its entry.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct FileInitialEntry {
+    pub(crate) state: usize,
+    pub(crate) p: serde_json::Value,
+}
+
+impl<'de> Deserialize<'de> for FileInitial {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Initial;
+        impl<'de> serde::de::Visitor<'de> for Initial {
+            type Value = FileInitial;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str(r#"a state number or a list of {"state": x, "p": "q"} entries"#)
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<FileInitial, E> {
+                usize::try_from(v)
+                    .map(FileInitial::State)
+                    .map_err(|_| E::invalid_value(serde::de::Unexpected::Unsigned(v), &self))
+            }
+            fn visit_seq<S: serde::de::SeqAccess<'de>>(
+                self,
+                mut seq: S,
+            ) -> Result<FileInitial, S::Error> {
+                let mut entries = Vec::new();
+                while let Some(entry) = seq.next_element()? {
+                    entries.push(entry);
+                }
+                Ok(FileInitial::Distribution(entries))
+            }
+        }
+        deserializer.deserialize_any(Initial)
+    }
+}
+
+/// An initial distribution: `(state, probability)` in the file's order.
+type Distribution = Vec<(StateId, Rational)>;
+
+/// A file's initial state as [`Problem::new`] takes it (the first listed state of a
+/// distribution) and, for a distribution of two or more states, the distribution in the
+/// file's order. `states` is the number of action lists; a state number is checked by the
+/// problem itself, each entry of a list here (module docs), its probabilities counted in
+/// `budget`.
+pub(crate) fn read_initial(
+    initial: &FileInitial,
+    states: usize,
+    budget: &mut NumberBudget,
+) -> Result<(StateId, Option<Distribution>), FileError> {
+    let list = match initial {
+        FileInitial::State(x) => return Ok((*x, None)),
+        FileInitial::Distribution(list) => list,
+    };
+    if states == 0 {
+        return Err(ModelError::NoStates.into());
+    }
+    let Some(first) = list.first() else {
+        return Err(FileError::InitialEmpty);
+    };
+    let mut listed_in: Vec<Option<usize>> = vec![None; states];
+    let mut distribution = Vec::with_capacity(list.len());
+    let mut sum = Rational::zero();
+    for (entry, e) in list.iter().enumerate() {
+        let state = e.state;
+        if state >= states {
+            return Err(FileError::InitialOutOfRange {
+                entry,
+                state,
+                last: states - 1,
+            });
+        }
+        if let Some(first) = listed_in[state] {
+            return Err(FileError::InitialDuplicate {
+                entry,
+                state,
+                first,
+            });
+        }
+        listed_in[state] = Some(entry);
+        let serde_json::Value::String(text) = &e.p else {
+            return Err(FileError::InitialNotText {
+                entry,
+                state,
+                found: echo(&e.p.to_string()),
+            });
+        };
+        let p = parse_rational(text).map_err(|source| FileError::InitialProbability {
+            entry,
+            state,
+            source,
+        })?;
+        if budget.over(&p) {
+            return Err(FileError::InitialNumbersTooLarge { entry });
+        }
+        if !crate::value::in_unit_interval_open_closed(&p) {
+            return Err(FileError::InitialRange {
+                entry,
+                state,
+                probability: echo(&Extended::Finite(p).to_string()),
+            });
+        }
+        sum += &p;
+        distribution.push((state, p));
+    }
+    if !sum.is_one() {
+        return Err(FileError::InitialSum {
+            sum: echo(&Extended::Finite(sum).to_string()),
+        });
+    }
+    Ok((
+        first.state,
+        (distribution.len() > 1).then_some(distribution),
+    ))
 }
 
 /// Parses the exact cost text of action `action` of `state`.
@@ -282,37 +498,75 @@ impl NumberBudget {
         state: usize,
         action: usize,
     ) -> Result<(), FileError> {
-        self.0 += r.numer().bits() + r.denom().bits();
-        if self.0 > MAX_NUMBER_BITS {
+        if self.over(r) {
             return Err(FileError::NumbersTooLarge { state, action });
         }
         Ok(())
     }
+
+    /// Counts `r`; whether the total has passed the bound.
+    pub(crate) fn over(&mut self, r: &Rational) -> bool {
+        self.0 += r.numer().bits() + r.denom().bits();
+        self.0 > MAX_NUMBER_BITS
+    }
 }
 
-/// What a problem file says about the discounted objective besides its costs (module docs):
-/// the actions' rewards, if the file gives them, and the non-goal states it lists as terminal.
-/// The default (no rewards, no terminal state) is a file without these fields.
+/// What a problem file says besides its problem, for the objectives' model (module docs): the
+/// actions' rewards, if the file gives them, the non-goal states it lists as terminal, and
+/// its initial distribution, if it draws the initial state from two or more states. The
+/// default (no rewards, no terminal state, a single initial state) is a file without these.
 ///
 /// ```
-/// use truecost::stochastic::file::from_json_with_rewards;
-/// let text = r#"{"initial": 0, "goals": [1], "terminal": [2], "actions": [
+/// use truecost::stochastic::file::from_json_with_objective;
+/// let text = r#"{"initial": [{"state": 2, "p": "1/4"}, {"state": 0, "p": "3/4"}], "goals": [1],
+///     "terminal": [2], "actions": [
 ///     [{"to": 1, "cost": "1", "reward": "1"}, {"to": 2, "cost": "1", "reward": "-1/2"}],
 ///     [],
 ///     [{"to": 2, "cost": "0", "reward": "0"}]]}"#;
-/// let (_, extra) = from_json_with_rewards(text).unwrap();
+/// let (_, extra) = from_json_with_objective(text).unwrap();
 /// let rewards: Vec<String> = extra.rewards.unwrap().iter().map(|r| r.to_string()).collect();
 /// assert_eq!(rewards, ["1", "-1/2", "0"]);
 /// assert_eq!(extra.terminal, [2]);
+/// let initial: Vec<(usize, String)> =
+///     extra.initial.unwrap().iter().map(|(x, p)| (*x, p.to_string())).collect();
+/// assert_eq!(initial, [(2, "1/4".to_string()), (0, "3/4".to_string())]);
 /// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct FileRewards {
+pub struct FileObjective {
     /// The expected reward of every action in the problem's global action order (state by
     /// state, each state's actions in the file's order), or `None` if the file gives no
     /// reward (the discounted objective then rewards the negated stage costs).
     pub rewards: Option<Vec<Rational>>,
     /// The non-goal states the file lists as terminal, in increasing order.
     pub terminal: Vec<StateId>,
+    /// The initial distribution in the file's order (distinct states, probabilities in
+    /// `(0, 1]` summing to 1), if the file draws the initial state from two or more states;
+    /// the problem read with it has the first listed state as its initial state. `None`: the
+    /// problem's own initial state, with probability 1.
+    pub initial: Option<Vec<(StateId, Rational)>>,
+}
+
+impl FileObjective {
+    /// Refuses a file that draws its initial state from two or more states, for `command`,
+    /// which needs a single initial state (one line naming it; module docs).
+    ///
+    /// ```
+    /// use truecost::stochastic::file::from_json_with_objective;
+    /// let text = r#"{"initial": [{"state": 0, "p": "1/2"}, {"state": 1, "p": "1/2"}],
+    ///     "goals": [2], "actions": [[{"to": 2, "cost": "1"}], [{"to": 2, "cost": "1"}], []]}"#;
+    /// let (_, extra) = from_json_with_objective(text).unwrap();
+    /// let e = extra.single_initial("render").unwrap_err().to_string();
+    /// assert!(e.starts_with("this file draws its initial state from 2 states; render needs a single initial state"), "{e}");
+    /// ```
+    pub fn single_initial(&self, command: &str) -> Result<(), FileError> {
+        match &self.initial {
+            Some(d) => Err(FileError::InitialDistribution {
+                states: d.len(),
+                command: command.to_string(),
+            }),
+            None => Ok(()),
+        }
+    }
 }
 
 /// Collects the optional rewards of a file's actions as they are parsed (all or none).
@@ -407,7 +661,9 @@ pub(crate) fn check_terminal(
     Ok((0..states).filter(|&x| seen[x]).collect())
 }
 
-/// Parses a problem file's text (a deterministic problem: no action may list outcomes).
+/// Parses a problem file's text (a deterministic problem: no action may list outcomes, and
+/// the initial state is a single state: a distribution of two or more states is refused,
+/// [`FileError::InitialDistribution`]).
 ///
 /// ```
 /// let text = r#"{"initial": 0, "goals": [1], "actions": [[{"to": 1, "cost": "800/19"}], []]}"#;
@@ -417,16 +673,40 @@ pub(crate) fn check_terminal(
 /// // The stochastic tag is accepted when no action lists outcomes.
 /// let tagged = text.replace("{\"initial\"", "{\"format\": \"truecost-stochastic/1\", \"initial\"");
 /// assert_eq!(truecost::model::file::from_json(&tagged).unwrap(), p);
+/// // A one-entry distribution is the state itself.
+/// let listed = text.replace("\"initial\": 0", r#""initial": [{"state": 0, "p": "1"}]"#);
+/// assert_eq!(truecost::model::file::from_json(&listed).unwrap(), p);
 /// ```
 pub fn from_json(text: &str) -> Result<Problem, FileError> {
-    from_file(FileProblem::<FileAction>::parse(text)?).map(|(problem, _)| problem)
+    let (problem, extra) = from_json_with_objective(text)?;
+    extra.single_initial("this command")?;
+    Ok(problem)
 }
 
-/// Builds the deterministic problem of a parsed file, with its rewards and terminal states
-/// (shared with the stochastic reader).
+/// Parses a deterministic problem file's text with what it says besides the problem
+/// ([`FileObjective`]: rewards, terminal states, initial distribution); the problem's
+/// initial state is the first listed state of a distribution.
+///
+/// ```
+/// use truecost::model::file::from_json_with_objective;
+/// let text = r#"{"initial": [{"state": 1, "p": "1/3"}, {"state": 0, "p": "2/3"}], "goals": [2],
+///     "actions": [[{"to": 2, "cost": "1"}], [{"to": 0, "cost": "1"}], []]}"#;
+/// let (p, extra) = from_json_with_objective(text).unwrap();
+/// assert_eq!(p.initial(), 1);
+/// assert_eq!(extra.initial.unwrap().len(), 2);
+/// let short = text.replace(r#""2/3""#, r#""1/3""#);
+/// let e = from_json_with_objective(&short).unwrap_err().to_string();
+/// assert_eq!(e, "the initial probabilities sum to 2/3, not 1");
+/// ```
+pub fn from_json_with_objective(text: &str) -> Result<(Problem, FileObjective), FileError> {
+    from_file(FileProblem::<FileAction>::parse(text)?)
+}
+
+/// Builds the deterministic problem of a parsed file, with its rewards, terminal states and
+/// initial distribution (shared with the stochastic reader).
 pub(crate) fn from_file(
     file: FileProblem<FileAction>,
-) -> Result<(Problem, FileRewards), FileError> {
+) -> Result<(Problem, FileObjective), FileError> {
     file.check_format()?;
     file.check_states()?;
     let mut budget = NumberBudget::default();
@@ -452,7 +732,8 @@ pub(crate) fn from_file(
         }
         moves.push(row);
     }
-    let problem = Problem::new(moves, file.initial, file.goals)?;
+    let (x1, initial) = read_initial(&file.initial, file.actions.len(), &mut budget)?;
+    let problem = Problem::new(moves, x1, file.goals)?;
     if let Some(x) =
         (0..problem.states()).find(|&x| problem.moves(x).is_empty() && !problem.is_goal(x))
     {
@@ -477,7 +758,14 @@ pub(crate) fn from_file(
         },
         rewards.as_deref(),
     )?;
-    Ok((problem, FileRewards { rewards, terminal }))
+    Ok((
+        problem,
+        FileObjective {
+            rewards,
+            terminal,
+            initial,
+        },
+    ))
 }
 
 /// Reads a problem file's text **once**, at most [`MAX_FILE_BYTES`] bytes (so standard input,
@@ -507,9 +795,16 @@ pub fn read_text(path: &Path) -> Result<String, FileError> {
     })
 }
 
-/// Reads and parses a deterministic problem file (read once, see [`read_text`]).
+/// Reads and parses a deterministic problem file (read once, see [`read_text`]); a
+/// distribution of two or more initial states is refused, as by [`from_json`].
 pub fn read(path: &Path) -> Result<Problem, FileError> {
     from_json(&read_text(path)?)
+}
+
+/// Reads and parses a deterministic problem file with what it says besides the problem
+/// ([`from_json_with_objective`]; read once, see [`read_text`]).
+pub fn read_with_objective(path: &Path) -> Result<(Problem, FileObjective), FileError> {
+    from_json_with_objective(&read_text(path)?)
 }
 
 /// Writes a problem in the file format (costs as exact strings); `from_json` reads it back.
@@ -526,7 +821,7 @@ pub fn to_json(problem: &Problem, name: Option<&str>) -> String {
         format: Some(FORMAT.to_string()),
         name: name.map(str::to_string),
         states: Some(problem.states()),
-        initial: problem.initial(),
+        initial: FileInitial::State(problem.initial()),
         goals: problem.goals().to_vec(),
         terminal: None,
         actions: (0..problem.states())

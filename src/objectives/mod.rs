@@ -35,7 +35,7 @@ pub use report::facts;
 use num_traits::{One, Signed, Zero};
 
 use crate::envs::Environment;
-use crate::model::file::FileRewards;
+use crate::model::file::FileObjective;
 use crate::model::StateId;
 use crate::stochastic::policy_iteration::{evaluate, optimum};
 use crate::stochastic::{
@@ -60,7 +60,7 @@ pub struct Model {
     /// lists): no reward any more.
     pub terminal: Vec<bool>,
     /// The initial state distribution (a single state with probability 1 for paper problems
-    /// and files).
+    /// and for files that name one initial state).
     pub initial: Vec<(StateId, Rational)>,
     /// The terminal bonus `M` of Proposition 4, if the benchmark has one (Taxi's +20).
     pub terminal_bonus: Option<Rational>,
@@ -161,10 +161,12 @@ impl Model {
         }
     }
 
-    /// The model with what a problem file says about the discounted objective ([`FileRewards`],
-    /// read with the file's problem, of which `self` must keep every action in order): the
-    /// file's rewards replace the negated stage costs (and [`Self::reward_source`] says so),
-    /// and the listed states end the episode.
+    /// The model with what a problem file says besides its problem ([`FileObjective`], read
+    /// with the file's problem, of which `self` must keep every state and every action in
+    /// order): the file's rewards replace the negated stage costs (and [`Self::reward_source`]
+    /// says so), the listed states end the episode, and the file's initial distribution
+    /// replaces the problem's single initial state (every value "at the initial state" is then
+    /// the expectation over it, as for an environment's).
     ///
     /// # Panics
     ///
@@ -172,19 +174,26 @@ impl Model {
     ///
     /// ```
     /// use truecost::objectives::{Model, Objective};
-    /// use truecost::stochastic::file::{from_json_with_rewards, ProblemFile};
+    /// use truecost::stochastic::file::{from_json_with_objective, ProblemFile};
     /// // 0 -> 1 (goal): reward 1 on the way in; staying at 0 has reward 0.
     /// let text = r#"{"initial": 0, "goals": [1], "actions": [
     ///     [{"to": 0, "cost": "1", "reward": "0"}, {"to": 1, "cost": "5", "reward": "1"}], []]}"#;
-    /// let (ProblemFile::Deterministic(d), extra) = from_json_with_rewards(text).unwrap() else { panic!() };
+    /// let (ProblemFile::Deterministic(d), extra) = from_json_with_objective(text).unwrap() else { panic!() };
     /// let p = truecost::stochastic::StochasticProblem::from_deterministic(
     ///     &d, truecost::stochastic::NoiseModel::Paper, &truecost::stochastic::Predictability::one()).unwrap();
-    /// let m = Model::from_problem(p, "file".into()).with_file_rewards(&extra);
+    /// let m = Model::from_problem(p.clone(), "file".into()).with_file_objective(&extra);
     /// assert_eq!(m.reward_source, "the file's rewards");
     /// let v = m.solve(&Objective::Discounted("1/2".parse().unwrap())).unwrap();
     /// assert_eq!(v.value_initial.to_string(), "1"); // straight in: reward 1
+    /// // Started at 0 or at the goal with probability 1/2 each: 1/2 * 1 + 1/2 * 0.
+    /// let drawn = text.replace(r#""initial": 0"#, r#""initial": [{"state": 0, "p": "1/2"}, {"state": 1, "p": "1/2"}]"#);
+    /// let (_, extra) = from_json_with_objective(&drawn).unwrap();
+    /// let m = Model::from_problem(p, "file".into()).with_file_objective(&extra);
+    /// assert_eq!(m.initial.len(), 2);
+    /// let v = m.solve(&Objective::Discounted("1/2".parse().unwrap())).unwrap();
+    /// assert_eq!(v.value_initial.to_string(), "1/2");
     /// ```
-    pub fn with_file_rewards(mut self, file: &FileRewards) -> Self {
+    pub fn with_file_objective(mut self, file: &FileObjective) -> Self {
         if let Some(rewards) = &file.rewards {
             assert_eq!(
                 rewards.len(),
@@ -196,6 +205,9 @@ impl Model {
         }
         for &x in &file.terminal {
             self.terminal[x] = true;
+        }
+        if let Some(initial) = &file.initial {
+            self.initial = initial.clone();
         }
         self
     }
@@ -708,7 +720,7 @@ pub enum Source {
 impl Source {
     /// Builds the model (reads files, builds environments). Errors are one line.
     pub fn load(&self) -> Result<Model, String> {
-        use crate::stochastic::file::{read_with_rewards, ProblemFile};
+        use crate::stochastic::file::{read_with_objective, ProblemFile};
         match self {
             Source::Env(spec) => {
                 let env = crate::envs::EnvSpec::parse(spec)
@@ -727,9 +739,10 @@ impl Source {
                 Ok(Model::from_problem(p, format!("paper problem {id}")))
             }
             Source::File { path, noise, gamma } => {
-                // Noise keeps one action per move, in order: the file's rewards (paid whatever
-                // the outcome, like the costs) and its terminal self-loops carry over.
-                let (file, extra) = read_with_rewards(path).map_err(|e| e.to_string())?;
+                // Noise keeps the states and one action per move, in order: the file's rewards
+                // (paid whatever the outcome, like the costs), its terminal self-loops and its
+                // initial distribution carry over.
+                let (file, extra) = read_with_objective(path).map_err(|e| e.to_string())?;
                 let p = match file {
                     ProblemFile::Deterministic(d) => StochasticProblem::from_deterministic(
                         &d,
@@ -747,58 +760,43 @@ impl Source {
                     }
                 };
                 Ok(Model::from_problem(p, format!("file {}", path.display()))
-                    .with_file_rewards(&extra))
+                    .with_file_objective(&extra))
             }
         }
     }
 }
 
 impl Model {
-    /// The problem as a problem file can hold it (`export`), with its rewards and its terminal
-    /// non-goal states (traps) as the file's `reward` and `terminal` fields: with a single
-    /// initial state, the problem itself; with an initial distribution (Taxi), one extra state
-    /// (numbered `|X|`, the new initial state) whose single zero-cost, zero-reward action draws
-    /// the initial state — truecost and reach values are unchanged, every path is one step
-    /// longer (and a discounted value is discounted once more).
+    /// The problem as a problem file holds it (`export`), with what the file says besides the
+    /// problem: the rewards as the file's `reward` fields, the terminal non-goal states (traps)
+    /// as its `terminal` list and an initial distribution of two or more states (Taxi's 300) as
+    /// its `initial` list (the problem's own initial state is the first of them), so that
+    /// reading the file back gives this model.
     ///
     /// ```
     /// use truecost::envs::EnvSpec;
     /// use truecost::objectives::Model;
     /// let m = Model::from_environment(&EnvSpec::parse("taxi").unwrap().build().unwrap()).unwrap();
-    /// let (p, extra) = m.exportable().unwrap();
-    /// assert_eq!((p.states(), p.initial(), p.outcomes(p.actions(500).start).len()), (501, 500, 300));
+    /// let (p, extra) = m.exportable();
+    /// assert_eq!(p.states(), 500);
+    /// let initial = extra.initial.unwrap();
+    /// assert_eq!((initial.len(), initial[0].0, initial[0].1.to_string()), (300, p.initial(), "1/300".to_string()));
     /// assert_eq!(extra.rewards.unwrap().len(), p.action_total());
     /// let lake = Model::from_environment(&EnvSpec::parse("frozenlake").unwrap().build().unwrap()).unwrap();
-    /// assert_eq!(lake.exportable().unwrap().1.terminal, [5, 7, 11, 12]); // the holes
+    /// let (_, extra) = lake.exportable();
+    /// assert_eq!(extra.terminal, [5, 7, 11, 12]); // the holes
+    /// assert_eq!(extra.initial, None); // the start, state 0
     /// ```
-    pub fn exportable(&self) -> Result<(StochasticProblem, FileRewards), StochasticError> {
+    pub fn exportable(&self) -> (StochasticProblem, FileObjective) {
         let p = &self.problem;
-        let n = p.states();
-        let mut extra = FileRewards {
+        let extra = FileObjective {
             rewards: Some(self.reward.clone()),
-            terminal: (0..n)
+            terminal: (0..p.states())
                 .filter(|&x| self.terminal[x] && !p.is_goal(x))
                 .collect(),
+            initial: (self.initial.len() > 1).then(|| self.initial.clone()),
         };
-        if self.initial.len() == 1 {
-            return Ok((p.clone(), extra));
-        }
-        let mut actions = p.action_lists();
-        actions.push(vec![StochasticAction {
-            cost: Rational::zero(),
-            outcomes: self
-                .initial
-                .iter()
-                .map(|(x, q)| listed(*x, q.clone()))
-                .collect(),
-        }]);
-        if let Some(r) = &mut extra.rewards {
-            r.push(Rational::zero());
-        }
-        Ok((
-            StochasticProblem::new(actions, n, p.goals().to_vec())?,
-            extra,
-        ))
+        (p.clone(), extra)
     }
 }
 
@@ -914,16 +912,16 @@ impl Model {
         problem: &crate::model::Problem,
         name: String,
     ) -> Result<Self, StochasticError> {
-        Self::from_deterministic_file(problem, name, &FileRewards::default())
+        Self::from_deterministic_file(problem, name, &FileObjective::default())
     }
 
-    /// [`Self::from_deterministic`] for a deterministic problem file with what it says about the
-    /// discounted objective ([`FileRewards`], read with `problem`): the file's rewards (those of
-    /// the moves removed with the dead ends dropped) and terminal states, as
-    /// [`Self::with_file_rewards`].
+    /// [`Self::from_deterministic`] for a deterministic problem file with what it says besides
+    /// the problem ([`FileObjective`], read with `problem`): the file's rewards (those of the
+    /// moves removed with the dead ends dropped), terminal states and initial distribution, as
+    /// [`Self::with_file_objective`].
     ///
     /// ```
-    /// use truecost::model::file::FileRewards;
+    /// use truecost::model::file::FileObjective;
     /// use truecost::model::{Move, Problem};
     /// use truecost::objectives::{Model, Objective};
     /// // 0 -> 1 (a dead end, which files refuse but paper problems may have), 0 -> 2 (a trap,
@@ -931,7 +929,7 @@ impl Model {
     /// let q = |n: i64| truecost::value::Rational::from_integer(n.into());
     /// let mv = |successor, cost| Move { successor, cost: q(cost) };
     /// let p = Problem::new(vec![vec![mv(1, 1), mv(2, 1), mv(3, 1)], vec![], vec![mv(2, 0)], vec![]], 0, vec![3]).unwrap();
-    /// let extra = FileRewards { rewards: Some(vec![q(9), q(1), q(2), q(0)]), terminal: vec![2] };
+    /// let extra = FileObjective { rewards: Some(vec![q(9), q(1), q(2), q(0)]), terminal: vec![2], initial: None };
     /// let m = Model::from_deterministic_file(&p, "example".into(), &extra).unwrap();
     /// assert_eq!(m.problem.actions(0).len(), 2); // the move into the dead end is removed
     /// assert_eq!(m.reward, [q(1), q(2), q(0)]); // and its reward with it
@@ -942,7 +940,7 @@ impl Model {
     pub fn from_deterministic_file(
         problem: &crate::model::Problem,
         name: String,
-        file: &FileRewards,
+        file: &FileObjective,
     ) -> Result<Self, StochasticError> {
         let n = problem.states();
         let mut dead: Vec<bool> = (0..n)
@@ -988,11 +986,12 @@ impl Model {
             crate::stochastic::NoiseModel::Paper,
             &crate::stochastic::Predictability::one(),
         )?;
-        let kept = FileRewards {
+        let kept = FileObjective {
             rewards: file.rewards.as_ref().map(|_| kept_rewards),
             terminal: file.terminal.clone(),
+            initial: file.initial.clone(),
         };
-        Ok(Model::from_problem(stochastic, name).with_file_rewards(&kept))
+        Ok(Model::from_problem(stochastic, name).with_file_objective(&kept))
     }
 }
 
@@ -1004,8 +1003,10 @@ impl Model {
 /// intervals tie, so a point can belong to the set while neither neighbour does, or the
 /// reverse). In a deterministic model a policy's success from `x1` is 0 or 1, and a policy
 /// using only optimal actions follows a discount-optimal trajectory, so this is the set of
-/// [`crate::claims::discount::discount_set`] (checked in `tests/discount_engines.rs`).
-/// Consecutive members are merged into maximal pieces.
+/// [`crate::claims::discount::discount_set`] (checked in `tests/discount_engines.rs`). With an
+/// initial distribution (a problem file's) the least success probability is taken at the
+/// distribution: `α` belongs to the set iff a discount-optimal policy fails from some of its
+/// states. Consecutive members are merged into maximal pieces.
 pub fn failure_set(d: &parametric::DiscountAnalysis) -> crate::claims::discount::DiscountSet {
     use crate::claims::discount::{pieces_of_members, DiscountSet, Point};
     use crate::claims::poly::Algebraic;

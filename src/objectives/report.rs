@@ -92,13 +92,11 @@ pub fn solution_text(model: &Model, s: &Solution) -> String {
         Objective::Discounted(a) => format!("discounted, alpha = {a} ({})", model.reward_source),
         o => o.name().to_string(),
     };
-    let initial = if model.initial.len() == 1 {
-        format!("state {}", model.initial[0].0)
-    } else {
-        format!(
-            "uniform over {} states (values are expectations)",
-            model.initial.len()
-        )
+    let uniform = model.initial.iter().all(|(_, p)| *p == model.initial[0].1);
+    let initial = match model.initial.len() {
+        1 => format!("state {}", model.initial[0].0),
+        k if uniform => format!("uniform over {k} states (values are expectations)"),
+        k => format!("drawn from {k} states (values are expectations)"),
     };
     let value = exact(&s.value_initial);
     let value = if value.len() > 60 {

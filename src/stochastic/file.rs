@@ -24,13 +24,19 @@
 //!   through `f64`). Outcomes are kept in the order given (a sampler draws them in that order).
 //! * The cost is paid whatever the outcome. Costs, goals, `initial`, `states`, `name` and the
 //!   "only goals may have an empty action list" rule are as in the deterministic format.
+//! * `initial` is a state number or an initial distribution
+//!   `[{"state": x, "p": "q"}, ...]`, as in the deterministic format: distinct states,
+//!   probabilities strings holding exact numbers in `(0, 1]` summing to exactly 1, a one-entry
+//!   list the same as the number. The problem read has the first listed state as its initial
+//!   state; [`from_json_with_objective`] returns the distribution (for the objectives' model),
+//!   while [`from_json`] and [`read`] refuse a distribution of two or more states.
 //! * `format` is optional; if given it is `truecost-stochastic/1` or `truecost-problem/1`, and a
 //!   file tagged `truecost-problem/1` may not list outcomes.
 //! * The discounted objective's optional fields are as in the deterministic format: a
 //!   `"reward": "r"` on every action or on none (the action's expected reward, received
 //!   whatever the outcome, like the cost), and `"terminal": [x, ...]`, non-goal states where the
 //!   episode ends, whose actions must all be zero-cost self-loops (every outcome back to the
-//!   state) with reward 0. [`from_json_with_rewards`] returns them in a [`FileRewards`].
+//!   state) with reward 0. [`from_json_with_objective`] returns them in a [`FileObjective`].
 //! * The limits of [`crate::model::file`] apply (file size, number sizes); the file is read once.
 //!
 //! A file without any `outcomes` is a deterministic problem ([`ProblemFile::Deterministic`]), to
@@ -43,9 +49,10 @@ use num_traits::Zero;
 
 use super::problem::{StochasticAction, StochasticProblem};
 use super::{Outcome, OutcomeKind, StochasticError};
-pub use crate::model::file::FileRewards;
+pub use crate::model::file::FileObjective;
 use crate::model::file::{
-    self as det_file, FileAction, FileError, FileOutcome, NumberBudget, RewardReader,
+    self as det_file, FileAction, FileError, FileInitial, FileInitialEntry, FileOutcome,
+    NumberBudget, RewardReader,
 };
 use crate::model::Problem;
 use crate::value::{parse_rational, Extended, ParseRationalError};
@@ -104,7 +111,9 @@ pub enum StochasticFileError {
 /// A stochastic problem file: the deterministic file's shape (its actions may list outcomes).
 type FileProblem = det_file::FileProblem<FileAction>;
 
-/// Parses a problem file's text (either format).
+/// Parses a problem file's text (either format); a distribution of two or more initial
+/// states is refused ([`FileError::InitialDistribution`]: the problem returned has a single
+/// initial state, and callers use it).
 ///
 /// ```
 /// use truecost::stochastic::file::{from_json, ProblemFile};
@@ -118,32 +127,42 @@ type FileProblem = det_file::FileProblem<FileAction>;
 /// assert!(matches!(from_json(det).unwrap(), ProblemFile::Deterministic(_)));
 /// ```
 pub fn from_json(text: &str) -> Result<ProblemFile, StochasticFileError> {
-    from_json_with_rewards(text).map(|(problem, _)| problem)
+    let (problem, extra) = from_json_with_objective(text)?;
+    extra.single_initial("this command")?;
+    Ok(problem)
 }
 
-/// [`from_json`] with what the file says about the discounted objective: the actions'
-/// rewards (in the global action order of the problem returned) and the terminal states.
+/// [`from_json`] with what the file says besides the problem, for the objectives' model: the
+/// actions' rewards (in the global action order of the problem returned), the terminal
+/// states and the initial distribution (the problem returned has its first listed state as
+/// initial state).
 ///
 /// ```
-/// use truecost::stochastic::file::{from_json_with_rewards, ProblemFile};
+/// use truecost::stochastic::file::{from_json, from_json_with_objective, ProblemFile};
 /// let text = r#"{"initial": 0, "goals": [1], "terminal": [2], "actions": [
 ///     [{"cost": "1", "reward": "1/2", "outcomes": [{"to": 1, "p": "1/2"}, {"to": 2, "p": "1/2"}]}],
 ///     [],
 ///     [{"cost": "0", "reward": "0", "outcomes": [{"to": 2, "p": "1"}]}]]}"#;
-/// let (ProblemFile::Stochastic(_), extra) = from_json_with_rewards(text).unwrap() else { panic!() };
+/// let (ProblemFile::Stochastic(_), extra) = from_json_with_objective(text).unwrap() else { panic!() };
 /// assert_eq!(extra.rewards.unwrap()[0].to_string(), "1/2");
 /// assert_eq!(extra.terminal, [2]);
+/// assert_eq!(extra.initial, None);
 /// // All or none: the second action has no reward.
 /// let mixed = text.replace(r#""cost": "0", "reward": "0""#, r#""cost": "0""#);
-/// let e = from_json_with_rewards(&mixed).unwrap_err().to_string();
+/// let e = from_json_with_objective(&mixed).unwrap_err().to_string();
 /// assert!(e.starts_with("state 2, action 0 has no \"reward\""), "{e}");
 /// // A terminal state's actions are zero-cost self-loops.
 /// let leaky = text.replace(r#"[{"to": 2, "p": "1"}]"#, r#"[{"to": 0, "p": "1"}]"#);
-/// assert!(from_json_with_rewards(&leaky).unwrap_err().to_string().contains("zero-cost self-loops"));
+/// assert!(from_json_with_objective(&leaky).unwrap_err().to_string().contains("zero-cost self-loops"));
+/// // An initial distribution: read here, refused by `from_json`.
+/// let drawn = text.replace(r#""initial": 0"#, r#""initial": [{"state": 0, "p": "0.9"}, {"state": 2, "p": "0.1"}]"#);
+/// let (ProblemFile::Stochastic(p), extra) = from_json_with_objective(&drawn).unwrap() else { panic!() };
+/// assert_eq!((p.initial(), extra.initial.unwrap()[1].1.to_string()), (0, "1/10".to_string()));
+/// assert!(from_json(&drawn).unwrap_err().to_string().contains("from 2 states; this command needs a single initial state"));
 /// ```
-pub fn from_json_with_rewards(
+pub fn from_json_with_objective(
     text: &str,
-) -> Result<(ProblemFile, FileRewards), StochasticFileError> {
+) -> Result<(ProblemFile, FileObjective), StochasticFileError> {
     let file = FileProblem::parse(text)?;
     file.check_format()?;
     let first_listing = file.actions.iter().enumerate().find_map(|(x, list)| {
@@ -206,7 +225,8 @@ pub fn from_json_with_rewards(
         }
         actions.push(row);
     }
-    let problem = StochasticProblem::new(actions, file.initial, file.goals)?;
+    let (x1, initial) = det_file::read_initial(&file.initial, file.actions.len(), &mut budget)?;
+    let problem = StochasticProblem::new(actions, x1, file.goals)?;
     if let Some(x) =
         (0..problem.states()).find(|&x| problem.actions(x).is_empty() && !problem.is_goal(x))
     {
@@ -226,21 +246,28 @@ pub fn from_json_with_rewards(
     )?;
     Ok((
         ProblemFile::Stochastic(Box::new(problem)),
-        FileRewards { rewards, terminal },
+        FileObjective {
+            rewards,
+            terminal,
+            initial,
+        },
     ))
 }
 
-/// Reads and parses a problem file (either format).
+/// Reads and parses a problem file (either format); a distribution of two or more initial
+/// states is refused, as by [`from_json`].
 ///
 /// The file is read once ([`det_file::read_text`]): standard input and pipes work.
 pub fn read(path: &Path) -> Result<ProblemFile, StochasticFileError> {
     from_json(&det_file::read_text(path)?)
 }
 
-/// Reads and parses a problem file (either format) with its rewards and terminal states
-/// ([`from_json_with_rewards`]); read once, as [`read`].
-pub fn read_with_rewards(path: &Path) -> Result<(ProblemFile, FileRewards), StochasticFileError> {
-    from_json_with_rewards(&det_file::read_text(path)?)
+/// Reads and parses a problem file (either format) with its rewards, terminal states and
+/// initial distribution ([`from_json_with_objective`]); read once, as [`read`].
+pub fn read_with_objective(
+    path: &Path,
+) -> Result<(ProblemFile, FileObjective), StochasticFileError> {
+    from_json_with_objective(&det_file::read_text(path)?)
 }
 
 /// Whether a file's text lists outcomes anywhere (it needs the stochastic solvers), without
@@ -266,42 +293,61 @@ pub fn lists_outcomes(text: &str) -> bool {
 /// assert_eq!(back.outcomes(0)[1].probability.to_string(), "1/4");
 /// ```
 pub fn to_json(problem: &StochasticProblem, name: Option<&str>) -> String {
-    to_json_with_rewards(problem, name, &FileRewards::default())
+    to_json_with_objective(problem, name, &FileObjective::default())
 }
 
-/// [`to_json`] with the discounted objective's fields: every action's `reward` (if
-/// `extra.rewards` is given) and the `terminal` list (if not empty); [`from_json_with_rewards`]
-/// reads them back.
+/// [`to_json`] with what the objectives' model reads besides the problem: every action's
+/// `reward` (if `extra.rewards` is given), the `terminal` list (if not empty) and the initial
+/// distribution as the `initial` list (if `extra.initial` is given; its first state should be
+/// the problem's initial state, which [`from_json_with_objective`] gives the problem it reads
+/// back); [`from_json_with_objective`] reads them back.
 ///
 /// # Panics
 ///
 /// If `extra.rewards` does not hold one reward per action of `problem`.
 ///
 /// ```
-/// use truecost::stochastic::file::{from_json_with_rewards, to_json_with_rewards, FileRewards};
+/// use truecost::stochastic::file::{from_json_with_objective, to_json_with_objective, FileObjective};
 /// use truecost::stochastic::{Outcome, OutcomeKind, StochasticAction, StochasticProblem};
 /// let q = |n: i64| truecost::value::Rational::from_integer(n.into());
 /// let one = |to| vec![Outcome { successor: to, probability: q(1), kind: OutcomeKind::Listed }];
 /// let act = |cost, to| StochasticAction { cost: q(cost), outcomes: one(to) };
 /// let p = StochasticProblem::new(vec![vec![act(1, 1), act(1, 2)], vec![], vec![act(0, 2)]], 0, vec![1]).unwrap();
-/// let extra = FileRewards { rewards: Some(vec![q(1), q(-1), q(0)]), terminal: vec![2] };
-/// let text = to_json_with_rewards(&p, None, &extra);
+/// let half = truecost::value::Rational::new(1.into(), 2.into());
+/// let extra = FileObjective {
+///     rewards: Some(vec![q(1), q(-1), q(0)]),
+///     terminal: vec![2],
+///     initial: Some(vec![(0, half.clone()), (2, half)]),
+/// };
+/// let text = to_json_with_objective(&p, None, &extra);
 /// assert!(text.contains(r#""reward": "-1""#));
-/// assert_eq!(from_json_with_rewards(&text).unwrap().1, extra);
+/// assert!(text.contains(r#""p": "1/2""#));
+/// assert_eq!(from_json_with_objective(&text).unwrap().1, extra);
 /// ```
-pub fn to_json_with_rewards(
+pub fn to_json_with_objective(
     problem: &StochasticProblem,
     name: Option<&str>,
-    extra: &FileRewards,
+    extra: &FileObjective,
 ) -> String {
     if let Some(r) = &extra.rewards {
         assert_eq!(r.len(), problem.action_total(), "one reward per action");
     }
+    let initial = match &extra.initial {
+        Some(d) => FileInitial::Distribution(
+            d.iter()
+                .map(|(x, p)| FileInitialEntry {
+                    state: *x,
+                    p: serde_json::Value::String(Extended::Finite(p.clone()).to_string()),
+                })
+                .collect(),
+        ),
+        None => FileInitial::State(problem.initial()),
+    };
     let file = FileProblem {
         format: Some(FORMAT.to_string()),
         name: name.map(str::to_string),
         states: Some(problem.states()),
-        initial: problem.initial(),
+        initial,
         goals: problem.goals().to_vec(),
         terminal: (!extra.terminal.is_empty()).then(|| extra.terminal.clone()),
         actions: (0..problem.states())

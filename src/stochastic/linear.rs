@@ -28,7 +28,7 @@
 use dashu_base::{BitTest, DivRem, Gcd, SquareRoot, UnsignedAbs};
 use dashu_int::{IBig, UBig};
 use num_bigint::BigInt;
-use num_traits::{One, Zero};
+use num_traits::{One, Signed, Zero};
 
 /// A square sparse integer system `A·z = r`.
 #[derive(Clone, Debug, Default)]
@@ -563,6 +563,9 @@ pub fn reduced(n: &BigInt, d: &BigInt) -> crate::value::Rational {
 /// assert_eq!(gcd(&BigInt::from(0), &BigInt::from(0)), BigInt::from(0));
 /// ```
 pub fn gcd(a: &BigInt, b: &BigInt) -> BigInt {
+    if a.is_zero() || b.is_zero() {
+        return (a + b).abs();
+    }
     let (ua, ub) = (magnitude(a), magnitude(b));
     from_ubig(&(&ua).gcd(&ub))
 }

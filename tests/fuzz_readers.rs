@@ -257,6 +257,27 @@ fn check_truecost_at_initial(
     Ok(())
 }
 
+/// Solves the `k × (k + 1)` augmented system `a` in place by Gauss–Jordan elimination with
+/// exact rationals: afterwards `a[i][k]` is unknown `i`. `regular` says why a pivot exists.
+fn gauss_jordan(a: &mut [Vec<Q>], regular: &str) {
+    let k = a.len();
+    for col in 0..k {
+        let pivot = (col..k).find(|&r| !a[r][col].is_zero()).expect(regular);
+        a.swap(col, pivot);
+        let inv = Q::one() / &a[col][col];
+        let row: Vec<Q> = a[col].iter().map(|v| v * &inv).collect();
+        for (r, other) in a.iter_mut().enumerate() {
+            if r != col && !other[col].is_zero() {
+                let f = other[col].clone();
+                for (o, p) in other.iter_mut().zip(&row).skip(col) {
+                    *o -= p * &f;
+                }
+            }
+        }
+        a[col] = row;
+    }
+}
+
 /// The discounted values at `α` by brute force: the greatest value, per state, over every
 /// deterministic stationary policy (`V = r + α P V` on the states where the episode runs, by
 /// Gaussian elimination; `0` where it is over: goals, states without actions and the file's
@@ -286,23 +307,7 @@ fn brute_force_discounted(s: &StochasticProblem, extra: &FileObjective, alpha: &
             }
             a[i][k] = reward(act);
         }
-        for col in 0..k {
-            let pivot = (col..k)
-                .find(|&r| !a[r][col].is_zero())
-                .expect("I - alpha P is regular");
-            a.swap(col, pivot);
-            let inv = Q::one() / &a[col][col];
-            let row: Vec<Q> = a[col].iter().map(|v| v * &inv).collect();
-            for (r, other) in a.iter_mut().enumerate() {
-                if r != col && !other[col].is_zero() {
-                    let f = other[col].clone();
-                    for (o, p) in other.iter_mut().zip(&row).skip(col) {
-                        *o -= p * &f;
-                    }
-                }
-            }
-            a[col] = row;
-        }
+        gauss_jordan(&mut a, "I - alpha P is regular");
         for (i, &x) in running.iter().enumerate() {
             if best[x].as_ref().is_none_or(|b| a[i][k] > *b) {
                 best[x] = Some(a[i][k].clone());
@@ -463,23 +468,7 @@ fn brute_force_optimum(s: &StochasticProblem) -> Vec<Ext> {
             }
             a[i][m] = s.cost(act).clone();
         }
-        for col in 0..m {
-            let pivot = (col..m)
-                .find(|&r| !a[r][col].is_zero())
-                .expect("a proper policy's system is regular");
-            a.swap(col, pivot);
-            let inv = Q::one() / &a[col][col];
-            let row: Vec<Q> = a[col].iter().map(|v| v * &inv).collect();
-            for (r, other) in a.iter_mut().enumerate() {
-                if r != col && !other[col].is_zero() {
-                    let f = other[col].clone();
-                    for (o, p) in other.iter_mut().zip(&row).skip(col) {
-                        *o -= p * &f;
-                    }
-                }
-            }
-            a[col] = row;
-        }
+        gauss_jordan(&mut a, "a proper policy's system is regular");
         for (i, &x) in idx.iter().enumerate() {
             let v = a[i][m].clone();
             if best[x].as_ref().is_none_or(|b| &v < b) {

@@ -319,19 +319,9 @@ fn discount_file_without_rewards_discounts_the_negated_costs() {
 
 /// `solve --objective discounted --alpha A --format json` on a source.
 fn solve_discounted(source: &[&str], alpha: &str) -> Value {
-    let mut args = vec!["solve"];
-    args.extend_from_slice(source);
-    args.extend_from_slice(&[
-        "--algorithm",
-        "exact",
-        "--objective",
-        "discounted",
-        "--alpha",
-        alpha,
-        "--format",
-        "json",
-    ]);
-    json(&args)
+    let mut with_alpha = source.to_vec();
+    with_alpha.extend_from_slice(&["--alpha", alpha]);
+    solve(&with_alpha, "discounted")
 }
 
 #[test]

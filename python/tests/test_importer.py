@@ -1,10 +1,12 @@
 """The importer on hand-written toy-text tables (no Gymnasium needed for most tests)."""
 
 import itertools
+import json
 import os
 import shutil
 import subprocess
 import sys
+import tempfile
 import unittest
 from fractions import Fraction
 
@@ -209,48 +211,36 @@ class TinyTable(unittest.TestCase):
         # 111/20.
         alpha = Fraction(1, 2)
         self.assertEqual(discounted_by_enumeration(self.problem, alpha), Fraction(111, 20))
-        binary = truecost_binary()
-        if binary is None:
-            self.skipTest("no truecost binary built")
-        import json
-        import tempfile
-
-        with tempfile.TemporaryDirectory() as d:
-            path = os.path.join(d, "tiny.json")
-            with open(path, "w") as f:
-                f.write(to_json(self.problem))
-            out = subprocess.run([binary, "solve", "--file", path, "--algorithm", "exact",
-                                  "--objective", "discounted", "--alpha", "1/2", "--format",
-                                  "json"], capture_output=True, text=True, check=True)
-            v = json.loads(out.stdout)
-            self.assertEqual(v["discounted_value_initial"], "111/20")
-            self.assertEqual(v["values"], ["5", "36/5", "0", "0"])
-            self.assertEqual(v["rewards"], "the file's rewards")
+        v = json.loads(self.solve_with_binary("--objective", "discounted", "--alpha", "1/2",
+                                              "--format", "json").stdout)
+        self.assertEqual(v["discounted_value_initial"], "111/20")
+        self.assertEqual(v["values"], ["5", "36/5", "0", "0"])
+        self.assertEqual(v["rewards"], "the file's rewards")
 
     def test_optimum_known_by_hand(self):
         # Corridor: G(1) = 4/3 + G(1)/3, so G(1) = 2; start: walk 1 + G(1) = 3 (the jump may
         # fall into the pit: not proper). From the initial distribution 3/4 * 3 + 1/4 * 2.
         self.assertEqual(optimum_by_enumeration(self.problem), Fraction(11, 4))
+        out = self.solve_with_binary("--objective", "truecost", "--format", "json")
+        self.assertEqual(json.loads(out.stdout)["cost_to_go_initial"], "11/4")
+        # The solvers of one initial state x1 refuse the distribution, in one line.
+        out = self.solve_with_binary(check=False)
+        self.assertEqual(out.returncode, 1)
+        self.assertEqual(out.stderr.count("\n"), 1, out.stderr)
+        self.assertIn("draws its initial state from 2 states", out.stderr)
+
+    def solve_with_binary(self, *args, check=True):
+        """`truecost solve --file F --algorithm exact ARGS` on the tiny problem written to a
+        temporary file (the test is skipped without a built binary)."""
         binary = truecost_binary()
         if binary is None:
             self.skipTest("no truecost binary built")
-        import json
-        import tempfile
-
         with tempfile.TemporaryDirectory() as d:
             path = os.path.join(d, "tiny.json")
             with open(path, "w") as f:
                 f.write(to_json(self.problem))
-            out = subprocess.run([binary, "solve", "--file", path, "--algorithm", "exact",
-                                  "--objective", "truecost", "--format", "json"],
-                                 capture_output=True, text=True, check=True)
-            self.assertEqual(json.loads(out.stdout)["cost_to_go_initial"], "11/4")
-            # The solvers of one initial state x1 refuse the distribution, in one line.
-            out = subprocess.run([binary, "solve", "--file", path, "--algorithm", "exact"],
-                                 capture_output=True, text=True)
-            self.assertEqual(out.returncode, 1)
-            self.assertEqual(out.stderr.count("\n"), 1, out.stderr)
-            self.assertIn("draws its initial state from 2 states", out.stderr)
+            return subprocess.run([binary, "solve", "--file", path, "--algorithm", "exact",
+                                   *args], capture_output=True, text=True, check=check)
 
     def test_initial_state_chosen_or_single(self):
         # initial=STATE writes that state, and so does a distribution of one state.
@@ -274,7 +264,6 @@ class TinyTable(unittest.TestCase):
         self.assertEqual(by_float[("reward", "-5.0")]["value"], "-5")
 
     def test_compact_and_pretty_texts_hold_the_same_problem(self):
-        import json
 
         self.assertEqual(json.loads(to_json(self.problem, compact=True)), self.problem)
         self.assertEqual(json.loads(to_json(self.problem)), self.problem)
@@ -408,8 +397,6 @@ gym.register("BoxWorld-v0", entry_point=Continuous)
 @unittest.skipUnless(HAVE_GYM, "gymnasium is not installed")
 class WithGymnasium(unittest.TestCase):
     def test_box_space_refused_in_one_line_exit_2(self):
-        import tempfile
-
         with tempfile.TemporaryDirectory() as d:
             with open(os.path.join(d, "boxworld.py"), "w") as f:
                 f.write(BOX_MODULE)
@@ -450,8 +437,6 @@ class WithGymnasium(unittest.TestCase):
                 self.assertEqual(out.stdout, "")
 
     def test_rewards_option(self):
-        import json
-
         default = run_cli("export", "FrozenLake-v1", "--quiet", "--out", "-")
         costs = run_cli("export", "FrozenLake-v1", "--quiet", "--rewards", "costs", "--out", "-")
         for out in (default, costs):

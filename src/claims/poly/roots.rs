@@ -1618,6 +1618,28 @@ mod tests {
             }
         }
         assert!(zero > 0 && some > 0, "both outcomes met: {zero} {some}");
+        // A variation only in a tiny last coefficient: after the shift the coefficients are
+        // -M, ..., -M, 1 (M = 3^300), so the truncated bounds of the last one straddle 0 and
+        // the exact test must decide (one variation).
+        let d = 10;
+        let big = BigInt::from(3).pow(300);
+        let mut shifted: Vec<BigInt> = vec![-big; d];
+        shifted.push(BigInt::from(1));
+        // Undo the shift: T(x - 1) by Horner, then reverse.
+        let mut unshifted = vec![BigInt::from(0)];
+        for c in shifted.iter().rev() {
+            let mut next = vec![BigInt::from(0); unshifted.len() + 1];
+            for (i, u) in unshifted.iter().enumerate() {
+                next[i + 1] += u;
+                next[i] -= u;
+            }
+            next[0] += c;
+            unshifted = next;
+        }
+        unshifted.truncate(d + 1);
+        let q: Vec<BigInt> = unshifted.into_iter().rev().collect();
+        assert_eq!(super::descartes(&q), 1);
+        assert!(!super::descartes_is_zero(&q));
     }
 
     /// Schoolbook products and long division with a reduction after every operation: the

@@ -1683,7 +1683,8 @@ pub fn discount_breakpoints_search(
 /// [`discount_breakpoints_search`] with the bound on the work of a deterministic analysis
 /// given (in place of [`MAX_DETERMINISTIC_WORK`]; stochastic models keep [`MAX_PROBE_WORK`]).
 /// The work done is [`DiscountAnalysis::work`]; an analysis succeeds within any bound of at
-/// least twice that (the next probe is expected to cost at most as much as all before it).
+/// least twice that (before a probe, the check adds the last probe's work to the work done:
+/// at most twice the total).
 pub fn discount_breakpoints_within(
     model: &Model,
     search: Search,

@@ -95,32 +95,25 @@ fn values_and_policy_overlays_are_present() {
 
 #[test]
 fn a_files_tied_moves_are_drawn() {
-    // 0 -> 1 -> 3 and 0 -> 2 -> 3, every move costing 1: G* = 2, 1, 1, 0, and both moves of
-    // state 0 are optimal; 1 and 2 have one move each.
+    // 0 -> 1 -> 3 and 0 -> 2 -> 3, moves costing 1 but 0 -> 2 costing `second`: with 1,
+    // G* = 2, 1, 1, 0 and both moves of state 0 are optimal; with 2 only 0 -> 1 is. 1 and 2
+    // have one move each.
     let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("tie.json");
-    std::fs::write(
-        &file,
-        r#"{"initial":0,"goals":[3],"actions":[[{"to":1,"cost":"1"},{"to":2,"cost":"1"}],[{"to":3,"cost":"1"}],[{"to":3,"cost":"1"}],[]]}"#,
-    )
-    .unwrap();
-    let svg = render(
-        &["--file", file.to_str().unwrap(), "--overlay", "policy"],
-        &dir.path().join("t.svg"),
-    );
+    let policy_of = |second: &str| {
+        let file = dir.path().join(format!("tie{second}.json"));
+        let text = r#"{"initial":0,"goals":[3],"actions":[[{"to":1,"cost":"1"},{"to":2,"cost":"C"}],[{"to":3,"cost":"1"}],[{"to":3,"cost":"1"}],[]]}"#;
+        std::fs::write(&file, text.replace('C', second)).unwrap();
+        render(
+            &["--file", file.to_str().unwrap(), "--overlay", "policy"],
+            &dir.path().join(format!("t{second}.svg")),
+        )
+    };
+    let svg = policy_of("1");
     assert_eq!(count(&svg, "policy"), 4);
     assert!(svg.contains("several at one state: tied optimal actions"));
     assert!(svg.contains("every optimal move (exact; several arrows: tied moves)"));
-    // With one move of cost 2 at state 0 there is no tie and no tie legend.
-    std::fs::write(
-        &file,
-        r#"{"initial":0,"goals":[3],"actions":[[{"to":1,"cost":"1"},{"to":2,"cost":"2"}],[{"to":3,"cost":"1"}],[{"to":3,"cost":"1"}],[]]}"#,
-    )
-    .unwrap();
-    let svg = render(
-        &["--file", file.to_str().unwrap(), "--overlay", "policy"],
-        &dir.path().join("u.svg"),
-    );
+    // No tie: no tie legend.
+    let svg = policy_of("2");
     assert_eq!(count(&svg, "policy"), 3);
     assert!(!svg.contains("several at one state"));
 }

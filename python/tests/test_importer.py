@@ -89,18 +89,31 @@ def optimum_by_enumeration(problem):
             for y, p in succ[x]:
                 if y in idx:
                     a[i][idx[y]] -= p
-        for c in range(m):
-            r = next(r for r in range(c, m) if a[r][c] != 0)
-            a[c], a[r] = a[r], a[c]
-            for r in range(m):
-                if r != c and a[r][c] != 0:
-                    f = a[r][c] / a[c][c]
-                    a[r] = [u - f * v for u, v in zip(a[r], a[c])]
-        g = sum((p * (a[idx[x]][m] / a[idx[x]][idx[x]]) if x in idx else Fraction(0)
-                 for x, p in start), Fraction(0))
+        g = expectation(solved(a), idx, start)
         if best is None or g < best:
             best = g
     return best
+
+
+def solved(a):
+    """The unknowns of the augmented system ``a`` (``m`` rows of ``m + 1`` Fractions), by exact
+    Gauss-Jordan elimination."""
+    m = len(a)
+    for c in range(m):
+        r = next(r for r in range(c, m) if a[r][c] != 0)
+        a[c], a[r] = a[r], a[c]
+        for r in range(m):
+            if r != c and a[r][c] != 0:
+                f = a[r][c] / a[c][c]
+                a[r] = [u - f * v for u, v in zip(a[r], a[c])]
+    return [a[i][m] / a[i][i] for i in range(m)]
+
+
+def expectation(values, idx, distribution):
+    """The expectation over ``distribution`` ((state, probability) pairs) of ``values`` (by the
+    positions ``idx``; 0 at a state without one)."""
+    return sum((p * values[idx[x]] if x in idx else Fraction(0) for x, p in distribution),
+               Fraction(0))
 
 
 def optimum_by_enumeration_moves(problem):
@@ -135,15 +148,7 @@ def discounted_by_enumeration(problem, alpha):
             for o in outcomes:
                 if o["to"] in idx:
                     a[i][idx[o["to"]]] -= alpha * Fraction(o["p"])
-        for c in range(m):
-            r = next(r for r in range(c, m) if a[r][c] != 0)
-            a[c], a[r] = a[r], a[c]
-            for r in range(m):
-                if r != c and a[r][c] != 0:
-                    f = a[r][c] / a[c][c]
-                    a[r] = [u - f * v for u, v in zip(a[r], a[c])]
-        v = sum((p * (a[idx[x]][m] / a[idx[x]][idx[x]]) if x in idx else Fraction(0)
-                 for x, p in initial_distribution(problem)), Fraction(0))
+        v = expectation(solved(a), idx, initial_distribution(problem))
         if best is None or v > best:
             best = v
     return best

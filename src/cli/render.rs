@@ -268,7 +268,7 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         },
         (None, None) => return Err("give --problem N or --file FILE".into()),
     };
-    scene.caption = caption(&report, args.overlay);
+    scene.caption = caption(&report, args.overlay, exact.is_some());
     if let Some(run) = &visits_run {
         scene.caption = format!(
             "{} (ε = {}, seed {}, ρ = 1, Q0 = 0, up to {} episodes x {} steps, stops at convergence)",
@@ -311,12 +311,6 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         },
         OverlayKind::Visits => Overlay::Visits(visits.unwrap_or_default()),
     };
-    if args.overlay == OverlayKind::Policy && exact.is_some() {
-        scene.caption = scene.caption.replace(
-            POLICY_CAPTION,
-            "; overlay: every optimal move (exact; several arrows: tied moves)",
-        );
-    }
     scene.title = what;
     save(&scene, &overlay, args)
 }
@@ -383,13 +377,33 @@ fn stochastic(args: &RenderArgs, loaded: Option<ProblemFile>) -> Result<String, 
         }
         (None, None) => return Err("give --problem N or --file FILE".into()),
     };
-    let optimum = optimum(&problem).map_err(|e| e.to_string())?;
-    let values = optimum.cost_to_go_all();
+    // One exact optimum: the objectives' solution where the policy overlay needs its optimal
+    // actions, else policy iteration alone.
+    let solved = match args.overlay {
+        OverlayKind::Policy => {
+            let model = Model::from_problem(problem.clone(), what.clone());
+            let s = model
+                .solve(&Objective::Truecost)
+                .map_err(|e| e.to_string())?;
+            Some((model, s))
+        }
+        _ => None,
+    };
+    let (values, policy) = match &solved {
+        Some((_, s)) => (s.values.clone(), s.policy.clone()),
+        None => {
+            let optimum = optimum(&problem).map_err(|e| e.to_string())?;
+            (
+                optimum.cost_to_go_all().to_vec(),
+                optimum.policy_actions().to_vec(),
+            )
+        }
+    };
     let successor = |x: usize| {
         if problem.is_goal(x) {
             Some(x)
         } else {
-            optimum.policy_actions()[x].map(|a| intended(&problem, a))
+            policy[x].map(|a| intended(&problem, a))
         }
     };
     let model = match (problem.provenance(), &args.gamma) {
@@ -413,17 +427,14 @@ fn stochastic(args: &RenderArgs, loaded: Option<ProblemFile>) -> Result<String, 
             "; overlay: optimal expected cost-to-go G*",
         ),
         OverlayKind::Policy => {
-            let model = Model::from_problem(problem.clone(), what.clone());
-            let s = model
-                .solve(&Objective::Truecost)
-                .map_err(|e| e.to_string())?;
+            let (model, s) = solved.as_ref().expect("solved for the policy overlay");
             let place = if args.problem.is_some() {
                 "grid point"
             } else {
                 "state"
             };
             (
-                actions_overlay(&model, &s, |a| intended(&problem, a), place),
+                actions_overlay(model, s, |a| intended(&problem, a), place),
                 "; overlay: every optimal action (arrow to the commanded or else the most likely successor; several arrows: tied actions)",
             )
         }
@@ -544,10 +555,9 @@ fn pair_counts<V: CostValue>(graph: &Graph<V>, counts: Vec<Vec<u64>>) -> PairCou
     pairs.into_iter().collect()
 }
 
-/// The caption of the policy overlay of one policy (the reference mode's).
-const POLICY_CAPTION: &str = "; overlay: the optimal policy";
-
-fn caption(report: &PlanReport, overlay: OverlayKind) -> String {
+/// The caption: `G*(x1)`, the planner, the overlay (`exact`: the policy overlay draws every
+/// optimal move; the reference mode draws its one policy).
+fn caption(report: &PlanReport, overlay: OverlayKind, exact: bool) -> String {
     let g = if report.reachable {
         format!("G*(x1) = {}", report.cost_to_go_initial)
     } else {
@@ -561,7 +571,10 @@ fn caption(report: &PlanReport, overlay: OverlayKind) -> String {
         OverlayKind::None => "",
         OverlayKind::Path => "; overlay: the optimal path",
         OverlayKind::Values => "; overlay: optimal cost-to-go G*",
-        OverlayKind::Policy => POLICY_CAPTION,
+        OverlayKind::Policy if exact => {
+            "; overlay: every optimal move (exact; several arrows: tied moves)"
+        }
+        OverlayKind::Policy => "; overlay: the optimal policy",
         OverlayKind::Visits => "; overlay: move visits of one seeded Q-learning run",
     };
     format!(

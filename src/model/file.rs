@@ -615,14 +615,14 @@ impl RewardReader {
 }
 
 /// Checks a file's `terminal` list against its problem (module docs) and returns it sorted:
-/// `actions(x)` is the range of global ids of the actions of `x`, `zero_self_loop(a)` whether
-/// action `a` is a zero-cost self-loop of its state.
+/// `actions(x)` is the range of global ids of the actions of `x`, `zero_self_loop(x, a)`
+/// whether action `a` of `x` is a zero-cost self-loop.
 pub(crate) fn check_terminal(
     listed: Option<&[usize]>,
     states: usize,
     is_goal: impl Fn(usize) -> bool,
     actions: impl Fn(usize) -> std::ops::Range<usize>,
-    zero_self_loop: impl Fn(usize) -> bool,
+    zero_self_loop: impl Fn(usize, usize) -> bool,
     rewards: Option<&[Rational]>,
 ) -> Result<Vec<StateId>, FileError> {
     let mut seen = vec![false; states];
@@ -643,7 +643,7 @@ pub(crate) fn check_terminal(
         let range = actions(x);
         let first = range.start;
         for a in range {
-            if !zero_self_loop(a) {
+            if !zero_self_loop(x, a) {
                 return Err(FileError::TerminalAction {
                     state: x,
                     action: a - first,
@@ -745,14 +745,12 @@ pub(crate) fn from_file(
     for x in 0..problem.states() {
         first.push(first[x] + problem.moves(x).len());
     }
-    let state_of = |a: usize| first.partition_point(|&f| f <= a) - 1;
     let terminal = check_terminal(
         file.terminal.as_deref(),
         problem.states(),
         |x| problem.is_goal(x),
         |x| first[x]..first[x + 1],
-        |a| {
-            let x = state_of(a);
+        |x, a| {
             let m = &problem.moves(x)[a - first[x]];
             m.successor == x && m.cost.is_zero()
         },

@@ -238,10 +238,7 @@ pub fn from_json_with_objective(
         problem.states(),
         |x| problem.is_goal(x),
         |x| problem.actions(x),
-        |a| {
-            let x = problem.state_of(a);
-            problem.cost(a).is_zero() && problem.outcomes(a).iter().all(|o| o.successor == x)
-        },
+        |x, a| problem.cost(a).is_zero() && problem.outcomes(a).iter().all(|o| o.successor == x),
         rewards.as_deref(),
     )?;
     Ok((

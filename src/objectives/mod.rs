@@ -1014,9 +1014,13 @@ pub fn failure_set(d: &parametric::DiscountAnalysis) -> crate::claims::discount:
         Point::Root(match r.as_rational() {
             Some(q) => Algebraic::from_rational(q.clone()),
             // An open bracket (lo, hi) holding one simple root of the polynomial, not a root
-            // at hi: the unique root of the square-free part in (lo, hi].
+            // at hi: the unique root of the square-free part in (lo, hi] (the polynomial
+            // itself once reduced).
             None => Algebraic {
-                poly: r.poly.poly.squarefree(),
+                poly: match r.reduction {
+                    crate::claims::poly::roots::Reduction::AsMet => r.poly.poly.squarefree(),
+                    _ => r.poly.poly.clone(),
+                },
                 lo: r.lo.clone(),
                 hi: r.hi.clone(),
             },

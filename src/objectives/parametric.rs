@@ -26,7 +26,10 @@
 //!    not the number of states, and the states of one policy have different denominators
 //!    (each positive on `(0, 1)`). The optimal policy at a probe is found by exact policy
 //!    iteration evaluated along the same chains. [`MAX_RUNNING_STATES`] does not apply;
-//!    [`MAX_CHAIN_DEGREE`] bounds the chains met, checked while running.
+//!    [`MAX_CHAIN_DEGREE`] bounds the chains met, checked while running. The probes keep
+//!    what they built: values, advantage polynomials with all their roots, and the roots
+//!    themselves, shared by equal chains and reused by the next probe (module `chains`:
+//!    neighbouring regions' policies differ at a few states).
 //! 2. *Optimality region of a policy.* The advantage of action `a` at `x` over `π`,
 //!    `Q_a − V_x`, has the sign of the polynomial `A = r_a D + α Σ_y p_a(y) N_y − N_x` on
 //!    `(0, 1)` (with several denominators: `Q_a − V_x` times their product). `π` is optimal
@@ -50,13 +53,15 @@
 //!    ([`super::max_reach`]/[`super::min_reach`] restricted to the optimal actions) and their
 //!    truecost `{min, max}` (least: exact SSP optimum restricted to them; greatest: `+∞` if one
 //!    of them fails with positive probability, else exact policy iteration maximising the cost,
-//!    all restricted policies being proper) at the initial distribution.
+//!    all restricted policies being proper) at the initial distribution. On a deterministic
+//!    model with non-negative stage costs the same four numbers come from searches of the
+//!    graph of the optimal actions (module `paths`).
 //!
 //! Effort is bounded: [`MAX_RUNNING_STATES`] bounds the degree of every rational function of a
 //! stochastic model and [`probe_work`] estimates each of its probes ([`MAX_PROBE_WORK`] in
 //! all); a deterministic model has at most [`MAX_DETERMINISTIC_RUNNING_STATES`], chains of
-//! degree at most [`MAX_CHAIN_DEGREE`] (checked while running) and probes whose measured work
-//! (`deterministic_probe_work`) stays within [`MAX_DETERMINISTIC_WORK`]; [`MAX_REGIONS`]
+//! degree at most [`MAX_CHAIN_DEGREE`] (checked while running) and probes whose counted work
+//! stays within [`MAX_DETERMINISTIC_WORK`]; [`MAX_REGIONS`]
 //! bounds the number of probes. Each refusal names its bound.
 
 use std::cmp::Ordering;
@@ -75,6 +80,9 @@ use crate::stochastic::policy_iteration::{evaluate, optimum};
 use crate::stochastic::StochasticAction;
 use crate::value::{Extended, Rational};
 
+mod chains;
+mod paths;
+
 /// The most states where the episode runs: a policy's values are rational functions of `α`
 /// of degree at most this, and so are the advantages whose roots are isolated.
 pub const MAX_RUNNING_STATES: usize = 160;
@@ -85,7 +93,7 @@ pub const MAX_RUNNING_STATES: usize = 160;
 pub const MAX_CHAIN_DEGREE: usize = 200;
 
 /// The most probes (regions of optimal policies) the covering of `(0, 1)` may take.
-pub const MAX_REGIONS: usize = 2_000;
+pub const MAX_REGIONS: usize = 4_000;
 
 /// The most work the probes of one stochastic analysis may do together, in units of
 /// [`probe_work`] (`n⁵·b⁴` per probe). Measured on random stochastic problems (release, a
@@ -102,12 +110,14 @@ pub const MAX_SINGLE_PROBE_WORK: u128 = MAX_PROBE_WORK / 16;
 /// any work.
 pub const MAX_DETERMINISTIC_RUNNING_STATES: usize = 2_500;
 
-/// The most work the probes of one deterministic analysis may do together, in the units of
-/// `deterministic_probe_work` (measured on each probe: words of its advantage polynomials);
-/// checked before every probe with the last probe's work as the estimate of the next, and
-/// after it. Measured in release on 2 cores (6 Dec 2026), grids of `export --grid NxN
-/// --pattern random --costs 1-9 --seed 0`: 20×20 4.6·10⁶ units (385 probes), 30×30 3.6·10⁷
-/// (1003 probes, the whole analysis 46 s); a 50×50 grid stops after 1578 probes.
+/// The most work the probes of one deterministic analysis may do together, counted in words
+/// of the polynomials built (the pruned search: values and advantages built anew, plus one
+/// unit per advantage read from the probes' memory; the full search:
+/// `deterministic_probe_work`); checked before every probe with the last probe's work as the
+/// estimate of the next, and after it. Measured in release on 2 cores (6 Dec 2026), grids of
+/// `export --grid NxN --pattern random --costs 1-9 --seed 0`, pruned search: 20×20 9.8·10⁵
+/// units (385 probes), 30×30 5.6·10⁶ (1003 probes), 50×50 3.9·10⁷ (2534 probes, about 20 s
+/// of probes); the bound leaves room for about a minute of probes.
 pub const MAX_DETERMINISTIC_WORK: u128 = 3 << 25;
 
 /// The estimated work of one probe of a stochastic analysis: `n⁵·b⁴`, with `n` the running
@@ -801,7 +811,10 @@ pub enum Search {
     /// next to the probe by a derivative bound or by Descartes' rule on the interval, and the
     /// others are isolated only there, nearest candidates first, the interval shrinking to the
     /// nearest region end found; the optimal policy at a probe from a floating-point policy
-    /// iteration, corrected by exact policy iteration on the advantages' signs.
+    /// iteration, corrected by exact policy iteration on the advantages' signs. On a
+    /// deterministic model the probes keep their values, advantages and roots instead (module
+    /// docs, step 1′): each advantage met is isolated in all of `(0, 1)` once, and policy
+    /// iteration starts from the last probe's policy.
     Pruned,
 }
 
@@ -1200,44 +1213,8 @@ fn advantages_at(
     pairs
         .par_iter()
         .map(|&(x, a)| {
-            // A = r_a D + α Σ p N_y − N_x, times the lcm of the denominators.
-            let mut scale = model.reward[a].denom().clone();
-            for o in p.outcomes(a) {
-                scale = num_integer::Integer::lcm(&scale, o.probability.denom());
-            }
-            let times = |q: &Rational| (q * Rational::from_integer(scale.clone())).to_integer();
-            // With several denominators (the deterministic path), times their product: every
-            // denominator is positive on (0, 1), so the sign is kept.
-            let mut involved = vec![values.den_of[x]];
-            for o in p.outcomes(a) {
-                let k = values.den_of[o.successor];
-                if !model.terminal[o.successor] && !involved.contains(&k) {
-                    involved.push(k);
-                }
-            }
-            let product = |skip: Option<usize>| -> Vec<BigInt> {
-                involved
-                    .iter()
-                    .filter(|&&k| Some(k) != skip)
-                    .fold(vec![BigInt::one()], |acc, &k| {
-                        poly_mul(&acc, &values.dens[k])
-                    })
-            };
-            let mut c: Vec<BigInt> = Vec::new();
-            let ra = times(&model.reward[a]);
-            if !ra.is_zero() {
-                poly_add_scaled(&mut c, &product(None), &ra, 0);
-            }
-            for o in p.outcomes(a) {
-                if model.terminal[o.successor] {
-                    continue;
-                }
-                let w = times(&o.probability);
-                let rest = product(Some(values.den_of[o.successor]));
-                poly_add_scaled(&mut c, &poly_mul(&values.n[o.successor], &rest), &w, 1);
-            }
-            let rest = product(Some(values.den_of[x]));
-            poly_add_scaled(&mut c, &poly_mul(&values.n[x], &rest), &-&scale, 0);
+            let value = |y: StateId| (values.den_of[y], values.n[y].as_slice());
+            let (c, scale, involved) = advantage_polynomial(model, x, a, &value, &values.dens);
             if c.iter().all(Zero::is_zero) {
                 return Found::Persistent(a);
             }
@@ -1255,6 +1232,60 @@ fn advantages_at(
             }
         })
         .collect()
+}
+
+/// The advantage polynomial of action `a` at `x` over a policy (module docs, step 2):
+/// `A = r_a D + α Σ p N_y − N_x` times the lcm `scale` of the denominators of `r_a` and of
+/// the probabilities, and — with several denominators (the deterministic path) — times the
+/// product of the distinct ones involved (each positive on `(0, 1)`, so the sign is kept).
+/// `value(y)` gives the index of `y`'s denominator in `dens` and its numerator. Returns the
+/// polynomial, `scale` and the indices of the denominators involved.
+fn advantage_polynomial<'v>(
+    model: &Model,
+    x: StateId,
+    a: usize,
+    value: &dyn Fn(StateId) -> (usize, &'v [BigInt]),
+    dens: &[Vec<BigInt>],
+) -> (Vec<BigInt>, BigInt, Vec<usize>) {
+    let p = &model.problem;
+    let mut scale = model.reward[a].denom().clone();
+    for o in p.outcomes(a) {
+        scale = num_integer::Integer::lcm(&scale, o.probability.denom());
+    }
+    let times = |q: &Rational| (q * Rational::from_integer(scale.clone())).to_integer();
+    let (den_x, num_x) = value(x);
+    let mut involved = vec![den_x];
+    for o in p.outcomes(a) {
+        if !model.terminal[o.successor] {
+            let k = value(o.successor).0;
+            if !involved.contains(&k) {
+                involved.push(k);
+            }
+        }
+    }
+    let product = |skip: Option<usize>| -> Vec<BigInt> {
+        involved
+            .iter()
+            .filter(|&&k| Some(k) != skip)
+            .fold(vec![BigInt::one()], |acc, &k| poly_mul(&acc, &dens[k]))
+    };
+    let mut c: Vec<BigInt> = Vec::new();
+    let ra = times(&model.reward[a]);
+    if !ra.is_zero() {
+        poly_add_scaled(&mut c, &product(None), &ra, 0);
+    }
+    for o in p.outcomes(a) {
+        if model.terminal[o.successor] {
+            continue;
+        }
+        let (den_y, num_y) = value(o.successor);
+        let w = times(&o.probability);
+        let rest = product(Some(den_y));
+        poly_add_scaled(&mut c, &poly_mul(num_y, &rest), &w, 1);
+    }
+    let rest = product(Some(den_x));
+    poly_add_scaled(&mut c, &poly_mul(num_x, &rest), &-&scale, 0);
+    (c, scale, involved)
 }
 
 /// The most floating-point sweeps of [`float_optimum`].
@@ -1329,25 +1360,17 @@ fn probe(
     deterministic: bool,
     left: Option<&Root>,
     search: Search,
+    memory: Option<&mut chains::ChainMemory>,
 ) -> Result<Option<Region>, ParametricError> {
+    if let Some(memory) = memory {
+        return memory.probe(model, running, t, degree, work);
+    }
     let p = &model.problem;
     let (policy, values, found) = if deterministic {
-        let mut policy = match search {
-            Search::Full => deterministic_optimum(model, running, t),
-            Search::Pruned => float_optimum(model, running, t),
-        };
-        let mut exact_start = search == Search::Full;
+        // The full search (the pruned one has memory): exact policy iteration.
+        let mut policy = deterministic_optimum(model, running, t);
         loop {
-            let values = match chain_values(model, running, &policy) {
-                Ok(v) => v,
-                // A floating-point start too far off: start again from exact iteration.
-                Err(ParametricError::ChainDegree { .. }) if !exact_start => {
-                    exact_start = true;
-                    policy = deterministic_optimum(model, running, t);
-                    continue;
-                }
-                Err(e) => return Err(e),
-            };
+            let values = chain_values(model, running, &policy)?;
             let found = advantages_at(model, running, &policy, &values, t);
             // Exact policy iteration: switch every state with an improving action to one
             // (the values grow strictly, so no policy repeats).
@@ -1737,6 +1760,17 @@ pub fn discount_breakpoints_within(
         index[x] = Some(i);
     }
     let mut degree = 0;
+    // Achievements by graph search where that is exact (deterministic, costs non-negative).
+    let graph = deterministic && paths::costs_non_negative(model);
+    let achieve = |allowed: &[bool]| {
+        if graph {
+            Ok(paths::achievement(model, allowed))
+        } else {
+            achievement(model, allowed)
+        }
+    };
+    let mut memory = (deterministic && search == Search::Pruned)
+        .then(|| chains::ChainMemory::new(model, &running));
     let mut regions: Vec<Region> = Vec::new();
     let mut gaps: Vec<(Option<Root>, Option<Root>)> = vec![(None, None)];
     let mut probes = 0;
@@ -1774,6 +1808,7 @@ pub fn discount_breakpoints_within(
                 deterministic,
                 l.as_ref(),
                 search,
+                memory.as_mut(),
             )?;
             last = work - before;
             if work > bound {
@@ -1878,7 +1913,7 @@ pub fn discount_breakpoints_within(
                 sample,
                 policy,
                 optimal,
-                achievement: achievement(model, &allowed)?,
+                achievement: achieve(&allowed)?,
             })
         })
         .collect();
@@ -1899,7 +1934,7 @@ pub fn discount_breakpoints_within(
                 at: b.clone(),
                 touch: left == right,
                 ties,
-                achievement: achievement(model, &allowed)?,
+                achievement: achieve(&allowed)?,
             })
         })
         .collect();

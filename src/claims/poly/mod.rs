@@ -242,6 +242,22 @@ pub struct Algebraic {
 impl Algebraic {
     /// Halves the bracket until its width is at most `width`.
     pub fn refine_to(&mut self, width: &Rational) {
+        let ints = crate::claims::poly::roots::integer_form(&self.poly);
+        if let Some(sign_lo) = self.sign_bracket(&ints) {
+            // The same halves as Sturm's count: the root lies in (lo, mid] iff the sign at
+            // mid is 0 or differs from the sign at lo.
+            let two = r(2);
+            while &(&self.hi - &self.lo) > width {
+                let mid = (&self.lo + &self.hi) / &two;
+                let s = crate::claims::poly::roots::integer_sign(&ints, &mid);
+                if s == Ordering::Equal || s != sign_lo {
+                    self.hi = mid;
+                } else {
+                    self.lo = mid;
+                }
+            }
+            return;
+        }
         let seq = self.poly.sturm();
         let two = r(2);
         while &(&self.hi - &self.lo) > width {
@@ -252,6 +268,16 @@ impl Algebraic {
                 self.lo = mid;
             }
         }
+    }
+
+    /// The sign of the polynomial (integer form `ints`) at `lo` when the bracket can be halved
+    /// by signs alone: non-zero at both ends, of opposite signs — then the one root in the
+    /// bracket is a simple root strictly inside (the polynomial is square-free), where the
+    /// sign changes. `None`: Sturm's theorem decides.
+    fn sign_bracket(&self, ints: &[BigInt]) -> Option<Ordering> {
+        use crate::claims::poly::roots::integer_sign;
+        let (l, h) = (integer_sign(ints, &self.lo), integer_sign(ints, &self.hi));
+        (l != Ordering::Equal && h != Ordering::Equal && l != h).then_some(l)
     }
 
     /// The rational `q` as an algebraic number (the root of `x − q` in `(q − 1, q]`).
@@ -331,10 +357,18 @@ impl Algebraic {
             return Ordering::Greater;
         }
         // lo < x <= hi: is the root in (lo, x]?
-        let seq = self.poly.sturm();
         if self.poly.eval(x).is_zero() {
             return Ordering::Equal;
         }
+        let ints = crate::claims::poly::roots::integer_form(&self.poly);
+        if let Some(sign_lo) = self.sign_bracket(&ints) {
+            return if crate::claims::poly::roots::integer_sign(&ints, x) != sign_lo {
+                Ordering::Less
+            } else {
+                Ordering::Greater
+            };
+        }
+        let seq = self.poly.sturm();
         if count_roots(&seq, &self.lo, x) == 1 {
             Ordering::Less
         } else {

@@ -1416,6 +1416,11 @@ impl Root {
         if other.hi <= self.lo {
             return Ordering::Greater;
         }
+        // Brackets from one isolation (one shared polynomial) are disjoint and refinement only
+        // narrows them: overlapping ones hold the same root.
+        if Arc::ptr_eq(&self.poly, &other.poly) {
+            return Ordering::Equal;
+        }
         let (mut a, mut b) = (self.clone(), other.clone());
         let mut checked = false;
         loop {

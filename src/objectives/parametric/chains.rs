@@ -1,0 +1,583 @@
+//! Probes of a deterministic model with memory (module docs of [`super`], steps 1′–3).
+//!
+//! A deterministic policy's value at a state is a rational function fixed by the actions along
+//! the state's successor chain, and an advantage polynomial is fixed by the action and the two
+//! values it compares. Neighbouring regions of `(0, 1)` have policies that differ at a few
+//! states, so nearly every advantage polynomial of a probe was met at the probe before (on
+//! the benchmark grids of `export --grid`, over 99 % of them). [`ChainMemory`] keeps them
+//! between probes:
+//!
+//! * **Values** are interned: a state's value is named by its action and its successor's
+//!   value (a chain ending where the episode is over), or by the actions around its cycle
+//!   from the state (a state on a cycle). Equal names have equal values, so each value
+//!   polynomial is built once, from its successor's.
+//! * **Advantages** are keyed by the action and the names of the two values; each polynomial
+//!   is built once (as in the search without memory) and its roots in `(0, 1)` are all
+//!   isolated, with the sign of the polynomial on every gap between them. The sign at a probe
+//!   `t` is read off the roots (a probe at a root is refused, as without memory), and the
+//!   region's ends are the walks from `t` over all of `(0, 1)` — the region of the full
+//!   search, found without evaluating the advantages again.
+//! * **Roots** are kept once each with a floating-point window around their bracket; a
+//!   comparison that the windows cannot decide narrows the brackets for good (by halving, so
+//!   they stay the brackets of the bisection), and roots found equal join one class, so each
+//!   equality is decided once and equal roots leave the probe as clones of one root.
+//! * **The optimal policy at `t`** is found by exact policy iteration on these signs, started
+//!   from the policy of the probe before (a neighbouring region's, usually a few switches
+//!   away) or, at the first probe, from the floating-point policy iteration.
+//!
+//! The memory is cleared when it holds more than [`MAX_MEMORY_WORDS`] words of polynomial
+//! coefficients (counted, so the analysis is the same on every machine). The work of a probe
+//! is counted as the words of the polynomials it builds plus one unit per advantage it reads
+//! from memory.
+
+use std::cmp::Ordering;
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use num_bigint::BigInt;
+use num_traits::{One, Zero};
+
+use super::{
+    advantage_polynomial, between, chains, float_optimum, int_poly, one_point, poly_add_scaled,
+    successor, zero_point, Advantage, ParametricError, Region, MAX_CHAIN_DEGREE,
+};
+use crate::claims::poly::roots::{integer_sign, roots_in_unit_interval, Root};
+use crate::model::StateId;
+use crate::objectives::Model;
+use crate::value::Rational;
+
+/// The most words of polynomial coefficients [`ChainMemory`] keeps (about 256 MiB); past it
+/// the memory is cleared before the next probe.
+pub const MAX_MEMORY_WORDS: usize = 1 << 25;
+
+/// The name of a value (module docs): equal names, equal rational functions.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+enum Name {
+    /// The state's action and its successor's value (`None`: the episode is over there).
+    Path(usize, Option<u32>),
+    /// The actions around the state's cycle, from the state.
+    Cycle(Vec<usize>),
+}
+
+/// A value `N / D`: the index of its denominator (`R`, or `R (1 − α^k)`) and its numerator.
+struct Value {
+    den: usize,
+    num: Vec<BigInt>,
+}
+
+/// The margin of the floating-point windows of [`Points`]: far above the error of rounding a
+/// rational in `[0, 1]` to the nearest `f64` (at most `2^-54`).
+const MARGIN: f64 = 1.0 / (1u64 << 50) as f64;
+
+/// The most halvings spent separating two distinct roots' windows, or a root's window from a
+/// probe, before the exact comparison is left to decide each time.
+const MAX_SEPARATION: usize = 96;
+
+/// Halvings of two overlapping windows before [`Root::compare`] decides (it tells equal roots
+/// apart from distinct ones closer than the windows).
+const SEPARATION_BEFORE_EXACT: usize = 24;
+
+/// A root with its bracket in floating point, widened by [`MARGIN`]: windows apart decide a
+/// comparison without rational arithmetic.
+struct Located {
+    root: Root,
+    lo: f64,
+    hi: f64,
+}
+
+impl Located {
+    fn new(root: Root) -> Located {
+        use num_traits::ToPrimitive;
+        let lo = root.lo.to_f64().unwrap_or(0.0) - MARGIN;
+        let hi = root.hi.to_f64().unwrap_or(1.0) + MARGIN;
+        Located { root, lo, hi }
+    }
+
+    fn halve(&mut self) {
+        let root = std::mem::replace(&mut self.root, zero_point());
+        let mut root = root;
+        root.halve();
+        *self = Located::new(root);
+    }
+}
+
+/// The roots met (module docs), each with a window that comparisons narrow for good (by
+/// halving, so the brackets stay those of the bisection), and the classes of roots found
+/// equal (union–find), so that each equality is decided once.
+struct Points {
+    points: Vec<Located>,
+    class: Vec<u32>,
+}
+
+impl Points {
+    fn new() -> Points {
+        Points {
+            points: Vec::new(),
+            class: Vec::new(),
+        }
+    }
+
+    fn insert(&mut self, root: Root) -> u32 {
+        let id = u32::try_from(self.points.len()).expect("fewer than 2^32 roots");
+        self.points.push(Located::new(root));
+        self.class.push(id);
+        id
+    }
+
+    fn find(&mut self, mut id: u32) -> u32 {
+        while self.class[id as usize] != id {
+            let up = self.class[self.class[id as usize] as usize];
+            self.class[id as usize] = up;
+            id = up;
+        }
+        id
+    }
+
+    /// Entry `id` against the rational `t` (`tf`: `t` in floating point).
+    fn cmp_rational(&mut self, id: u32, t: &Rational, tf: f64) -> Ordering {
+        let p = &self.points[id as usize];
+        if p.hi < tf {
+            return Ordering::Less;
+        }
+        if tf < p.lo {
+            return Ordering::Greater;
+        }
+        let order = p.root.cmp_rational(t);
+        // Narrowed past t, so the next probes near t decide by the window.
+        let mut rounds = 0;
+        while order != Ordering::Equal && rounds < MAX_SEPARATION && {
+            let p = &self.points[id as usize];
+            p.lo <= tf && tf <= p.hi && !p.root.exact
+        } {
+            self.points[id as usize].halve();
+            rounds += 1;
+        }
+        order
+    }
+
+    fn compare(&mut self, a: u32, b: u32) -> Ordering {
+        let apart = |p: &Located, q: &Located| {
+            if p.hi < q.lo {
+                Some(Ordering::Less)
+            } else if q.hi < p.lo {
+                Some(Ordering::Greater)
+            } else {
+                None
+            }
+        };
+        if let Some(o) = apart(&self.points[a as usize], &self.points[b as usize]) {
+            return o;
+        }
+        if self.find(a) == self.find(b) {
+            return Ordering::Equal;
+        }
+        // Distinct roots part after a few halvings; equal ones are decided exactly, once.
+        for _ in 0..SEPARATION_BEFORE_EXACT {
+            self.points[a as usize].halve();
+            self.points[b as usize].halve();
+            if let Some(o) = apart(&self.points[a as usize], &self.points[b as usize]) {
+                return o;
+            }
+        }
+        let order = self.points[a as usize]
+            .root
+            .compare(&self.points[b as usize].root);
+        if order == Ordering::Equal {
+            let (ra, rb) = (self.find(a), self.find(b));
+            self.class[ra as usize] = rb;
+        }
+        order
+    }
+
+    /// Whether root `r` lies inside `(lo, hi)` (`None`: 0, 1), or in its closure.
+    fn within(&mut self, r: u32, lo: Option<u32>, hi: Option<u32>, closed: bool) -> bool {
+        let keep = |o: Ordering, away: Ordering| o == away || (closed && o == Ordering::Equal);
+        lo.is_none_or(|l| keep(self.compare(r, l), Ordering::Greater))
+            && hi.is_none_or(|h| keep(self.compare(r, h), Ordering::Less))
+    }
+
+    /// The root of `id`'s class: equal roots come out as clones of one root, which
+    /// [`Root::compare`] finds equal without refining.
+    fn root(&mut self, id: u32) -> Root {
+        let id = self.find(id);
+        self.points[id as usize].root.clone()
+    }
+}
+
+/// An advantage polynomial's roots in `(0, 1)` (ids in [`Points`]), increasing, and its sign
+/// on the `roots + 1` gaps they leave.
+struct Isolated {
+    roots: Vec<u32>,
+    signs: Vec<Ordering>,
+}
+
+impl Isolated {
+    /// How many roots lie left of `t`, and the sign at `t` (`None`: `t` is a root).
+    fn locate(&self, points: &mut Points, t: &Rational, tf: f64) -> (usize, Option<Ordering>) {
+        for (i, &r) in self.roots.iter().enumerate() {
+            match points.cmp_rational(r, t, tf) {
+                Ordering::Less => continue,
+                Ordering::Equal => return (i, None),
+                Ordering::Greater => return (i, Some(self.signs[i])),
+            }
+        }
+        (self.roots.len(), Some(self.signs[self.roots.len()]))
+    }
+}
+
+/// Values and advantage polynomials of the policies met so far (module docs).
+pub struct ChainMemory {
+    /// The lcm of the stage rewards' denominators over every action where the episode runs.
+    big_r: BigInt,
+    names: HashMap<Name, u32>,
+    values: Vec<Value>,
+    /// Denominators `R`, `R (1 − α^k)`, by cycle length `k` (0: `R`).
+    dens: Vec<Vec<BigInt>>,
+    den_index: HashMap<usize, usize>,
+    advantages: HashMap<(usize, u32, Option<u32>), Option<Arc<Isolated>>>,
+    points: Points,
+    words: usize,
+    /// The optimal policy of the last probe: the next probe starts from it.
+    last: Option<Vec<Option<usize>>>,
+}
+
+/// Words of an integer polynomial's coefficients.
+fn words(p: &[BigInt]) -> usize {
+    p.iter()
+        .map(|c| c.bits().div_ceil(64).max(1) as usize)
+        .sum()
+}
+
+impl ChainMemory {
+    /// An empty memory for `model`'s running states.
+    pub fn new(model: &Model, running: &[StateId]) -> ChainMemory {
+        use num_integer::Integer;
+        let mut big_r = BigInt::one();
+        for &x in running {
+            for a in model.problem.actions(x) {
+                big_r = big_r.lcm(model.reward[a].denom());
+            }
+        }
+        let mut memory = ChainMemory {
+            big_r,
+            names: HashMap::new(),
+            values: Vec::new(),
+            dens: Vec::new(),
+            den_index: HashMap::new(),
+            advantages: HashMap::new(),
+            points: Points::new(),
+            words: 0,
+            last: None,
+        };
+        memory.clear();
+        memory
+    }
+
+    fn clear(&mut self) {
+        self.names.clear();
+        self.values.clear();
+        self.advantages.clear();
+        self.points = Points::new();
+        self.dens = vec![vec![self.big_r.clone()]];
+        self.den_index = HashMap::from([(0, 0)]);
+        self.words = 0;
+    }
+
+    /// The index of the denominator `R (1 − α^k)` (`R` for `k = 0`).
+    fn den(&mut self, k: usize) -> usize {
+        if let Some(&i) = self.den_index.get(&k) {
+            return i;
+        }
+        let mut d = vec![BigInt::zero(); k + 1];
+        d[0] = self.big_r.clone();
+        d[k] = -self.big_r.clone();
+        self.dens.push(d);
+        self.den_index.insert(k, self.dens.len() - 1);
+        self.dens.len() - 1
+    }
+
+    /// The names of a policy's values (per state; unused where the episode is over), the
+    /// largest degree among them, and the words of the values built. Refuses a chain longer
+    /// than [`MAX_CHAIN_DEGREE`].
+    fn evaluate(
+        &mut self,
+        model: &Model,
+        running: &[StateId],
+        policy: &[Option<usize>],
+    ) -> Result<(Vec<u32>, usize, u128), ParametricError> {
+        let n = model.problem.states();
+        let action = |x: StateId| policy[x].expect("a policy acts where the episode runs");
+        let too_long = |degree: usize| {
+            (degree > MAX_CHAIN_DEGREE).then_some(ParametricError::ChainDegree {
+                degree,
+                bound: MAX_CHAIN_DEGREE,
+            })
+        };
+        let reward = |a: usize, big_r: &BigInt| -> BigInt {
+            (&model.reward[a] * Rational::from_integer(big_r.clone())).to_integer()
+        };
+        let mut id = vec![0u32; n];
+        let (mut degree, mut built) = (0usize, 0u128);
+        for (x, cycle) in chains(model, running, policy) {
+            let name = match &cycle {
+                Some(cycle) => Name::Cycle(cycle.iter().map(|&c| action(c)).collect()),
+                None => {
+                    let y = successor(model, action(x));
+                    Name::Path(action(x), (!model.terminal[y]).then(|| id[y]))
+                }
+            };
+            let known = self.names.get(&name).copied();
+            let i = match known {
+                Some(i) => i,
+                None => {
+                    let value = match &cycle {
+                        Some(cycle) => {
+                            if let Some(e) = too_long(cycle.len()) {
+                                return Err(e);
+                            }
+                            Value {
+                                den: self.den(cycle.len()),
+                                num: cycle
+                                    .iter()
+                                    .map(|&c| reward(action(c), &self.big_r))
+                                    .collect(),
+                            }
+                        }
+                        None => {
+                            let y = successor(model, action(x));
+                            let (den, k) = if model.terminal[y] {
+                                (0, 0)
+                            } else {
+                                let den = self.values[id[y] as usize].den;
+                                (den, self.dens[den].len() - 1)
+                            };
+                            // N_x = r_x (D / R) + α N_y.
+                            let unscaled: Vec<BigInt> = if k == 0 {
+                                vec![BigInt::one()]
+                            } else {
+                                let mut u = vec![BigInt::zero(); k + 1];
+                                u[0] = BigInt::one();
+                                u[k] = -BigInt::one();
+                                u
+                            };
+                            let mut num: Vec<BigInt> = Vec::new();
+                            poly_add_scaled(
+                                &mut num,
+                                &unscaled,
+                                &reward(action(x), &self.big_r),
+                                0,
+                            );
+                            if !model.terminal[y] {
+                                let ny = &self.values[id[y] as usize].num;
+                                poly_add_scaled(&mut num, ny, &BigInt::one(), 1);
+                            }
+                            let deg = num.len().saturating_sub(1).max(k);
+                            if let Some(e) = too_long(deg) {
+                                return Err(e);
+                            }
+                            Value { den, num }
+                        }
+                    };
+                    let w = words(&value.num);
+                    built += w as u128;
+                    self.words += w;
+                    self.values.push(value);
+                    let i = u32::try_from(self.values.len() - 1).expect("fewer than 2^32 values");
+                    self.names.insert(name, i);
+                    i
+                }
+            };
+            let v = &self.values[i as usize];
+            degree = degree
+                .max(v.num.len().saturating_sub(1))
+                .max(self.dens[v.den].len() - 1);
+            id[x] = i;
+        }
+        Ok((id, degree, built))
+    }
+
+    /// The isolated advantage of `a` at `x` (a state where the episode runs) under the values
+    /// `id`, built if new; the words built.
+    fn advantage(
+        &mut self,
+        model: &Model,
+        x: StateId,
+        a: usize,
+        id: &[u32],
+    ) -> (Option<Arc<Isolated>>, u128) {
+        let y = successor(model, a);
+        let key = (a, id[x], (!model.terminal[y]).then(|| id[y]));
+        if let Some(found) = self.advantages.get(&key) {
+            return (found.clone(), 1);
+        }
+        let value = |z: StateId| {
+            let v = &self.values[id[z] as usize];
+            (v.den, v.num.as_slice())
+        };
+        let (c, _, _) = advantage_polynomial(model, x, a, &value, &self.dens);
+        let built = words(&c);
+        let isolated = (!c.iter().all(Zero::is_zero)).then(|| {
+            let roots = roots_in_unit_interval(&int_poly(&c));
+            let signs = (0..=roots.len())
+                .map(|i| {
+                    let lo = if i == 0 {
+                        zero_point()
+                    } else {
+                        roots[i - 1].clone()
+                    };
+                    let hi = roots.get(i).cloned().unwrap_or_else(one_point);
+                    integer_sign(&c, &between(&lo, &hi))
+                })
+                .collect();
+            let roots = roots.into_iter().map(|r| self.points.insert(r)).collect();
+            Arc::new(Isolated { roots, signs })
+        });
+        self.words += built;
+        self.advantages.insert(key, isolated.clone());
+        (isolated, built as u128 + 1)
+    }
+
+    /// The probe at the rational `t` (module docs of [`super`], step 3): `None` if `t` is a root
+    /// of some non-zero advantage of the optimal policy there. Adds the probe's counted work
+    /// to `work` and the largest value degree of its policy to `degree`.
+    pub fn probe(
+        &mut self,
+        model: &Model,
+        running: &[StateId],
+        t: &Rational,
+        degree: &mut usize,
+        work: &mut u128,
+    ) -> Result<Option<Region>, ParametricError> {
+        let p = &model.problem;
+        if self.words > MAX_MEMORY_WORDS {
+            self.clear();
+        }
+        let mut policy = match self.last.take() {
+            Some(policy) => policy,
+            None => float_optimum(model, running, t),
+        };
+        let tf = {
+            use num_traits::ToPrimitive;
+            t.to_f64().unwrap_or(0.5)
+        };
+        let mut restarted = false;
+        // Exact policy iteration on the advantages' signs at t: every state with an improving
+        // action switches to its first one (the values grow strictly, so no policy repeats).
+        let found = loop {
+            let r = self.evaluate(model, running, &policy);
+            let (id, deg, built) = match r {
+                Ok(v) => v,
+                // A start too far off: start again from exact iteration.
+                Err(ParametricError::ChainDegree { .. }) if !restarted => {
+                    restarted = true;
+                    policy = super::deterministic_optimum(model, running, t);
+                    continue;
+                }
+                Err(e) => return Err(e),
+            };
+            *work += built;
+            let mut improved = false;
+            let mut found = Vec::new();
+            for &x in running {
+                for a in p.actions(x).filter(|&a| Some(a) != policy[x]) {
+                    let (isolated, built) = self.advantage(model, x, a, &id);
+                    *work += built;
+                    found.push((x, a, isolated));
+                }
+            }
+            let mut switched = vec![false; p.states()];
+            for (x, a, isolated) in &found {
+                let positive = isolated.as_ref().is_some_and(|i| {
+                    i.locate(&mut self.points, t, tf).1 == Some(Ordering::Greater)
+                });
+                if positive && !switched[*x] {
+                    switched[*x] = true;
+                    policy[*x] = Some(*a);
+                    improved = true;
+                }
+            }
+            if !improved {
+                *degree = (*degree).max(deg);
+                break found;
+            }
+        };
+        self.last = Some(policy.clone());
+        // The region: every advantage negative at t, walked both ways over all its roots.
+        let mut persistent = Vec::new();
+        let mut walks: Vec<(usize, Arc<Isolated>, usize)> = Vec::new();
+        for (_, a, isolated) in found {
+            let Some(isolated) = isolated else {
+                persistent.push(a);
+                continue;
+            };
+            let (first, sign) = isolated.locate(&mut self.points, t, tf);
+            match sign {
+                None => return Ok(None),
+                Some(Ordering::Less) => {}
+                Some(_) => {
+                    return Err(ParametricError::Internal(format!(
+                        "the policy optimal at alpha = {t} has a positive advantage there"
+                    )))
+                }
+            }
+            if !isolated.roots.is_empty() {
+                walks.push((a, isolated, first));
+            }
+        }
+        let points = &mut self.points;
+        let (mut lo, mut hi): (Option<u32>, Option<u32>) = (None, None);
+        let mut touches: Vec<u32> = Vec::new();
+        for (_, isolated, first) in &walks {
+            let (roots, signs) = (&isolated.roots, &isolated.signs);
+            for i in *first..roots.len() {
+                if signs[i + 1] == Ordering::Greater {
+                    if hi.is_none_or(|h| points.compare(roots[i], h) == Ordering::Less) {
+                        hi = Some(roots[i]);
+                    }
+                    break;
+                }
+                touches.push(roots[i]);
+            }
+            for i in (0..*first).rev() {
+                if signs[i] == Ordering::Greater {
+                    if lo.is_none_or(|l| points.compare(roots[i], l) == Ordering::Greater) {
+                        lo = Some(roots[i]);
+                    }
+                    break;
+                }
+                touches.push(roots[i]);
+            }
+        }
+        // Only the roots in the region's closure matter to its optimal sets.
+        let mut advantages = Vec::new();
+        for (a, isolated, _) in &walks {
+            let mut roots = Vec::new();
+            for &r in &isolated.roots {
+                if points.within(r, lo, hi, true) {
+                    roots.push(points.root(r));
+                }
+            }
+            if !roots.is_empty() {
+                advantages.push(Advantage { action: *a, roots });
+            }
+        }
+        touches.sort_unstable();
+        touches.dedup();
+        let mut inside = Vec::new();
+        for r in touches {
+            if points.within(r, lo, hi, false) {
+                inside.push(points.root(r));
+            }
+        }
+        let touches = inside;
+        let (lo, hi) = (lo.map(|l| points.root(l)), hi.map(|h| points.root(h)));
+        Ok(Some(Region {
+            lo,
+            hi,
+            policy,
+            persistent,
+            advantages,
+            touches,
+        }))
+    }
+}

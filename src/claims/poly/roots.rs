@@ -42,6 +42,12 @@ use crate::value::Rational;
 /// The deepest bisection before the search restarts on the square-free part.
 const MAX_DEPTH: u32 = 400;
 
+/// Halvings [`Root::refine_to`] makes one by one before taking the rest at once.
+const PLAIN_HALVINGS: usize = 16;
+
+/// The most Newton steps of a guess in [`Root::refine_to`].
+const NEWTON_STEPS: usize = 40;
+
 /// A polynomial with its primitive integer multiple (same sign of the leading coefficient).
 #[derive(Debug)]
 pub struct RootPoly {
@@ -1359,7 +1365,7 @@ impl Root {
         self.refine_to(&Rational::new(BigInt::one(), BigInt::one() << 100u32));
         if !self.exact {
             let r = simplest_between(&self.lo, &self.hi);
-            if self.poly.poly.eval(&r).is_zero() {
+            if self.poly.sign(&r) == Ordering::Equal {
                 *self = Root::rational(r);
             }
         }
@@ -1397,11 +1403,125 @@ impl Root {
         }
     }
 
-    /// Refines until the bracket is at most `width` wide.
+    /// Refines until the bracket is at most `width` wide: the bracket of bisection (halving
+    /// until narrow enough, exact if a midpoint is the root). After [`PLAIN_HALVINGS`]
+    /// halvings the remaining ones are taken at once where they can be ([`Root::leap`]).
     pub fn refine_to(&mut self, width: &Rational) {
+        let mut plain = 0;
         while !self.exact && &(&self.hi - &self.lo) > width {
+            if plain == PLAIN_HALVINGS && self.leap(width) {
+                return;
+            }
             self.halve();
+            plain += 1;
         }
+    }
+
+    /// The outcome of the `s` halvings bisection would still make to reach `width`, in one
+    /// step: after `s` halvings of `(lo, hi)` (width `w`) the bracket is the cell
+    /// `(lo + j w/2^s, lo + (j + 1) w/2^s)` holding the root, unless a cell end is the root
+    /// (then some midpoint was, and the root is exact). A Newton iteration guesses `j`; the
+    /// signs of the polynomial at the cell's ends confirm it exactly (a simple root lies where
+    /// the sign changes). `false` (nothing changed) when the guess is not confirmed.
+    fn leap(&mut self, width: &Rational) -> bool {
+        let w = &self.hi - &self.lo;
+        let mut s = 0u32;
+        let mut cell = w.clone();
+        while &cell > width {
+            cell /= Rational::from_integer(2.into());
+            s += 1;
+        }
+        let Some(x) = self.newton(&cell) else {
+            return false;
+        };
+        let last = (BigInt::one() << s) - 1;
+        let guess = ((&x - &self.lo) / &cell).floor().to_integer();
+        for j in [guess.clone(), &guess - 1, &guess + 1] {
+            if j.is_negative() || j > last {
+                continue;
+            }
+            let a = &self.lo + &cell * Rational::from_integer(j.clone());
+            let b = &a + &cell;
+            let sa = if j.is_zero() {
+                self.sign_lo
+            } else {
+                self.poly.sign(&a)
+            };
+            if sa == Ordering::Equal {
+                *self = Root {
+                    lo: a.clone(),
+                    hi: a,
+                    exact: true,
+                    ..self.clone()
+                };
+                return true;
+            }
+            if sa != self.sign_lo {
+                continue;
+            }
+            match self.poly.sign(&b) {
+                Ordering::Equal => {
+                    *self = Root {
+                        lo: b.clone(),
+                        hi: b,
+                        exact: true,
+                        ..self.clone()
+                    };
+                    return true;
+                }
+                sb if sb != self.sign_lo => {
+                    self.lo = a;
+                    self.hi = b;
+                    return true;
+                }
+                _ => {}
+            }
+        }
+        false
+    }
+
+    /// The root to within about `cell / 8` by Newton's iteration from the bracket's midpoint,
+    /// on dyadic rationals of fixed precision; `None` if an iterate leaves the bracket (the
+    /// caller then bisects). Only a guess: [`Root::leap`] confirms it.
+    fn newton(&self, cell: &Rational) -> Option<Rational> {
+        let f = &self.poly.ints;
+        let derivative: Vec<BigInt> = f
+            .iter()
+            .enumerate()
+            .skip(1)
+            .map(|(i, c)| c * BigInt::from(i))
+            .collect();
+        // 2^-bits below cell / 2^8.
+        let bits = cell.denom().bits() - cell.numer().bits() + 10;
+        let scale = BigInt::one() << bits;
+        let dyadic = |y: &Rational| -> Rational {
+            Rational::new(
+                (y * Rational::from_integer(scale.clone()))
+                    .floor()
+                    .to_integer(),
+                scale.clone(),
+            )
+        };
+        let mut x = dyadic(&((&self.lo + &self.hi) / Rational::from_integer(2.into())));
+        let tolerance = cell / Rational::from_integer(BigInt::from(8));
+        for _ in 0..NEWTON_STEPS {
+            let (value, slope) = (homogeneous(f, &x), homogeneous(&derivative, &x));
+            if slope.is_zero() {
+                return None;
+            }
+            // p(x) / p'(x) = (value / m^d) / (slope / m^(d−1)).
+            let step = Rational::new(value, slope * x.denom());
+            let next = dyadic(&(&x - &step));
+            if next <= self.lo || next >= self.hi {
+                return None;
+            }
+            let moved = (&next - &x).abs();
+            x = next;
+            if moved < tolerance {
+                return Some(x);
+            }
+        }
+        Some(x)
     }
 
     /// Exact comparison (module docs).
@@ -1710,5 +1830,104 @@ mod tests {
                 "{h:?}"
             );
         }
+    }
+
+    /// Plain bisection: what `refine_to` must end with.
+    fn bisected(mut r: super::Root, width: &crate::value::Rational) -> super::Root {
+        while !r.exact && &(&r.hi - &r.lo) > width {
+            r.halve();
+        }
+        r
+    }
+
+    /// The refinement that takes the last halvings at once ends where plain bisection does:
+    /// on the roots of random integer polynomials (products of linear and quadratic factors),
+    /// to binary and decimal widths, and on dyadic roots deep in the bisection (exact there).
+    #[test]
+    fn refine_to_ends_where_bisection_does() {
+        use super::{int_poly, roots_in_unit_interval};
+        use crate::value::Rational;
+        let mut seed = 5u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            seed >> 33
+        };
+        let widths = [
+            Rational::new(BigInt::from(1), BigInt::from(1) << 100u32),
+            Rational::new(BigInt::from(1), num_traits::pow(BigInt::from(10), 30)),
+            Rational::new(BigInt::from(1), BigInt::from(1) << 20u32),
+        ];
+        let mut checked = 0;
+        for case in 0..40 {
+            let mut p = vec![BigInt::from(1)];
+            for k in 0..2 + case % 6 {
+                let factor: Vec<BigInt> = if k % 2 == 0 {
+                    vec![
+                        -BigInt::from(next() % 997 + 1),
+                        BigInt::from(next() % 997 + 998),
+                    ]
+                } else {
+                    vec![
+                        -BigInt::from(next() % 50 + 1),
+                        BigInt::from(next() % 7) - 3,
+                        BigInt::from(next() % 90 + 60),
+                    ]
+                };
+                let mut q = vec![BigInt::from(0); p.len() + factor.len() - 1];
+                for (i, a) in p.iter().enumerate() {
+                    for (j, b) in factor.iter().enumerate() {
+                        q[i + j] += a * b;
+                    }
+                }
+                p = q;
+            }
+            for root in roots_in_unit_interval(&int_poly(&p)) {
+                for width in &widths {
+                    let (mut fast, slow) = (root.clone(), bisected(root.clone(), width));
+                    fast.refine_to(width);
+                    assert_eq!(
+                        (fast.exact, &fast.lo, &fast.hi),
+                        (slow.exact, &slow.lo, &slow.hi),
+                        "case {case}"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 100, "{checked} refinements compared");
+        // 2^40 x − c: bracket (0, 1) at once, the root c/2^40 a midpoint at depth 40.
+        for c in [1u64, 3, 0x5_5555_5555, (1 << 40) - 1] {
+            let p = vec![-BigInt::from(c), BigInt::from(1u64 << 40)];
+            let root = roots_in_unit_interval(&int_poly(&p)).remove(0);
+            for width in &widths {
+                let (mut fast, slow) = (root.clone(), bisected(root.clone(), width));
+                fast.refine_to(width);
+                assert_eq!(
+                    (fast.exact, &fast.lo, &fast.hi),
+                    (slow.exact, &slow.lo, &slow.hi),
+                    "c = {c}"
+                );
+            }
+        }
+    }
+
+    /// The square-free part with and without the modular shortcut: a square-free polynomial
+    /// with large coefficients is its own (primitive, leading coefficient positive), and a
+    /// product with a squared factor loses one copy of it.
+    #[test]
+    fn square_free_parts() {
+        use super::squarefree_part;
+        let ints = |c: &[i64]| -> Vec<BigInt> { c.iter().map(|&x| BigInt::from(x)).collect() };
+        let big: BigInt = BigInt::from(1u64 << 62) * BigInt::from(1u64 << 62) + 1;
+        let f = vec![-big.clone(), BigInt::from(3), -BigInt::from(7)];
+        assert_eq!(
+            squarefree_part(&f),
+            vec![big, BigInt::from(-3), BigInt::from(7)]
+        );
+        // (x − 2)^2 (x + 3) = x^3 − x^2 − 8x + 12 → (x − 2)(x + 3) = x^2 + x − 6.
+        assert_eq!(squarefree_part(&ints(&[12, -8, -1, 1])), ints(&[-6, 1, 1]));
+        assert_eq!(squarefree_part(&ints(&[6, -5, 1])), ints(&[6, -5, 1]));
     }
 }

@@ -613,6 +613,25 @@ fn exact_quotient(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
     integer_form(&q)
 }
 
+/// The primes tried by [`squarefree_part`] before the exact gcd: the three largest below
+/// `2^31` (`2^31 − 1`, `2^31 − 19`, `2^31 − 61`).
+const SQUAREFREE_PRIMES: [u64; 3] = [2_147_483_647, 2_147_483_629, 2_147_483_587];
+
+/// Whether `a` (degree ≥ 1, derivative `d`) is proved square-free by a prime `p` not dividing
+/// its leading coefficient with `gcd(a mod p, a′ mod p) = 1`: a repeated factor `f²` of `a`
+/// over `Z` (`f` primitive, so `p` does not divide its leading coefficient either) would give
+/// `f mod p`, of degree at least 1, dividing both. `false` means not proved.
+fn squarefree_modulo_a_prime(a: &[BigInt], d: &[BigInt]) -> bool {
+    let lead = a.last().expect("non-zero");
+    SQUAREFREE_PRIMES
+        .into_iter()
+        .filter(|&p| !(lead % p).is_zero())
+        .any(|p| {
+            let (ap, dp) = (to_modp(a, p), to_modp(d, p));
+            !dp.is_empty() && modp::gcd(&ap, &dp, p).len() == 1
+        })
+}
+
 /// The square-free part of the integer polynomial `a` (`a / gcd(a, a')`, primitive, with a
 /// positive leading coefficient).
 ///
@@ -635,11 +654,10 @@ pub fn squarefree_part(a: &[BigInt]) -> Vec<BigInt> {
     if d.iter().all(Zero::is_zero) {
         return a;
     }
-    let g = primitive_gcd(&a, &d);
-    let s = if g.len() <= 1 {
-        a
-    } else {
-        exact_quotient(&a, &g)
+    let g = (!squarefree_modulo_a_prime(&a, &d)).then(|| primitive_gcd(&a, &d));
+    let s = match g {
+        Some(g) if g.len() > 1 => exact_quotient(&a, &g),
+        _ => a,
     };
     if s.last().is_some_and(Signed::is_negative) {
         s.into_iter().map(|c| -c).collect()
@@ -1590,6 +1608,78 @@ pub fn between(a: &Root, b: &Root) -> Rational {
 mod tests {
     use super::modp;
     use num_bigint::BigInt;
+
+    /// `squarefree_part` of `c·Π fᵢ^eᵢ` for distinct linear factors `fᵢ = kᵢx − mᵢ`
+    /// (`gcd(kᵢ, mᵢ) = 1`) is `Π fᵢ` with a positive leading coefficient, whether the modular
+    /// proof or the exact gcd answers; the modular proof never accepts a square factor.
+    #[test]
+    fn squarefree_part_of_products_of_linear_factors() {
+        use num_integer::Integer;
+        use num_traits::{One, Signed};
+        let mul = |a: &[BigInt], b: &[BigInt]| super::int_mul(a, b);
+        let derivative = |a: &[BigInt]| -> Vec<BigInt> {
+            a.iter()
+                .enumerate()
+                .skip(1)
+                .map(|(i, c)| c * BigInt::from(i))
+                .collect()
+        };
+        let mut seed = 5u64;
+        let mut next = |k: u64| {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) % k
+        };
+        let mut squares = 0;
+        for case in 0..200 {
+            let mut factors: Vec<(i64, i64)> = Vec::new();
+            // The first factor's k a multiple of 2^31 − 1 in some cases (that prime is skipped).
+            while factors.len() < 1 + next(5) as usize {
+                let k = 1 + next(30) as i64;
+                let k = if case % 5 == 0 && factors.is_empty() {
+                    k * 2_147_483_647
+                } else {
+                    k
+                };
+                let m = next(61) as i64 - 30;
+                if k.gcd(&m) == 1 && !factors.iter().any(|&(k2, m2)| k2 * m == m2 * k) {
+                    factors.push((k, m));
+                }
+            }
+            let (mut a, mut want) = (vec![BigInt::from(1 + next(9) as i64)], vec![BigInt::one()]);
+            let mut square = false;
+            for &(k, m) in &factors {
+                let f = [BigInt::from(-m), BigInt::from(k)];
+                want = mul(&want, &f);
+                for _ in 0..1 + next(3) {
+                    a = mul(&a, &f);
+                }
+                square |= a.len() > want.len();
+            }
+            if case % 2 == 1 {
+                a = a.into_iter().map(|c| -c).collect();
+            }
+            if want.last().is_some_and(Signed::is_negative) {
+                want = want.into_iter().map(|c| -c).collect();
+            }
+            assert_eq!(super::squarefree_part(&a), want, "case {case}");
+            if square {
+                squares += 1;
+                assert!(
+                    !super::squarefree_modulo_a_prime(&a, &derivative(&a)),
+                    "case {case}"
+                );
+            }
+        }
+        assert!(squares > 50, "{squares}");
+        // A square-free polynomial whose leading coefficient the first prime divides.
+        let a: Vec<BigInt> = mul(
+            &[BigInt::from(-1), BigInt::from(2_147_483_647)],
+            &[BigInt::from(-2), BigInt::one()],
+        );
+        assert!(super::squarefree_modulo_a_prime(&a, &derivative(&a)));
+    }
 
     /// `no_root_between` agrees with Descartes' rule applied as stated: the sign variations of
     /// `(1 + x)^d r(1/(1 + x))` for `r(x) = p(a + (b − a)x)`, here computed in rationals

@@ -8,14 +8,15 @@
 //!
 //! 1. *A policy's value is a rational function of `α`.* For a stationary policy `π` with reward
 //!    vector `r` and transition matrix `P` on the running states, `V = Σ_k α^k P^k r`. The
-//!    Krylov vectors `c_k = P^k r` are computed exactly for `k < 2m` (`m` running states);
-//!    Berlekamp–Massey on a projection `u·c_k` gives a polynomial `D(α) = Σ_{j≤L} d_j α^j`,
-//!    `d_0 = 1`, which is then **verified** on the vectors: `Σ_j d_j c_{L−j} = 0` exactly
-//!    (so `q(P) r = 0` for `q(t) = t^L D(1/t)`, hence `Σ_j d_j c_{k−j} = 0` for every `k ≥ L`).
-//!    Then `N = D·V` is a polynomial vector of degree `< L`, read off the first `L` terms. A
-//!    failed verification tries another projection. `D` has no root in `(0, 1)` (its roots are
-//!    `1/λ` for eigenvalues `λ` of a substochastic matrix, `|λ| ≤ 1`) and `D(0) = 1`, so `D > 0`
-//!    on `(0, 1)`.
+//!    Krylov vectors `c_k = P^k r` (`m` running states) satisfy a shortest linear recurrence
+//!    `D(α) = Σ_{j≤L} d_j α^j`, `d_0 = 1`, found modulo primes (Berlekamp–Massey on a
+//!    projection of the first `2m` vectors, Chinese remaindering; `annihilator`) and then
+//!    **verified** exactly: `Σ_j d_j c_{L−j} = 0` (so `q(P) r = 0` for `q(t) = t^L D(1/t)`,
+//!    hence `Σ_j d_j c_{k−j} = 0` for every `k ≥ L`), computed as the last step of the
+//!    numerator recurrence. Then `N = D·V` is a polynomial vector of degree `< L`, read off
+//!    the first `L` terms. A failed verification asks for more primes. `D` has no root in
+//!    `(0, 1)` (its roots are `1/λ` for eigenvalues `λ` of a substochastic matrix, `|λ| ≤ 1`)
+//!    and `D(0) = 1`, so `D > 0` on `(0, 1)`.
 //!
 //!    **1′.** *Deterministic models* (every action where the episode runs has one outcome: Taxi,
 //!    CliffWalking, FrozenLake unslippery, single-outcome files). A stationary policy follows
@@ -71,8 +72,8 @@ use num_traits::{One, Signed, Zero};
 
 use super::{derive, max_reach, min_reach, Bounds, Model, ObjectiveError};
 use crate::claims::poly::roots::{
-    between, content, homogeneous, integer_sign, no_root_between, roots_in_unit_interval,
-    roots_in_window, simplest_between, Root,
+    between, homogeneous, integer_sign, no_root_between, roots_in_unit_interval, roots_in_window,
+    simplest_between, Root,
 };
 use crate::claims::poly::Poly;
 use crate::model::StateId;
@@ -80,6 +81,7 @@ use crate::stochastic::policy_iteration::{evaluate, optimum};
 use crate::stochastic::StochasticAction;
 use crate::value::{Extended, Rational};
 
+mod annihilator;
 mod chains;
 mod paths;
 
@@ -339,57 +341,11 @@ struct PolicyValues {
     degree: usize,
 }
 
-/// A positive multiple (`C[0] > 0`) of the connection polynomial of the shortest linear
-/// recurrence of the integer sequence `s` (Berlekamp–Massey without division: each update is
-/// scaled by the previous discrepancy, the content removed).
-fn berlekamp_massey(s: &[BigInt]) -> Vec<BigInt> {
-    let mut c = vec![BigInt::one()];
-    let mut b = vec![BigInt::one()];
-    let (mut l, mut m) = (0usize, 1usize);
-    let mut last = BigInt::one();
-    for n in 0..s.len() {
-        let mut d = BigInt::zero();
-        for (i, ci) in c.iter().enumerate().take(l + 1) {
-            d += ci * &s[n - i];
-        }
-        if d.is_zero() {
-            m += 1;
-            continue;
-        }
-        let mut next: Vec<BigInt> = c.iter().map(|x| x * &last).collect();
-        if next.len() < b.len() + m {
-            next.resize(b.len() + m, BigInt::zero());
-        }
-        for (i, bi) in b.iter().enumerate() {
-            next[i + m] -= &d * bi;
-        }
-        let next = content_free(next);
-        if 2 * l <= n {
-            b = std::mem::replace(&mut c, next);
-            l = n + 1 - l;
-            last = d;
-            m = 1;
-        } else {
-            c = next;
-            m += 1;
-        }
-    }
-    c.resize(l + 1, BigInt::zero());
-    if c[0].is_negative() {
-        c.iter_mut().for_each(|x| *x = -&*x);
-    }
-    c
-}
-
-/// Divided by the (positive) gcd of the entries.
-fn content_free(p: Vec<BigInt>) -> Vec<BigInt> {
-    let g = content(&p);
-    if g.is_zero() || g.is_one() {
-        return p;
-    }
-    p.into_iter().map(|c| c / &g).collect()
-}
-
+/// A policy's values (module docs, step 1): the denominator `D` from `annihilator::Search`
+/// (modular Krylov sequences, Berlekamp–Massey and Chinese remaindering), **verified exactly**
+/// through the numerator recurrence — `n_L = Σ_{j≤L} d_j e_{L−j}` is zero exactly when `D`
+/// annihilates the Krylov sequence — so the result is exact whatever the primes and
+/// projections chose; it is the minimal recurrence of the sequence.
 fn policy_values(
     model: &Model,
     running: &[StateId],
@@ -424,54 +380,44 @@ fn policy_values(
                 .collect()
         })
         .collect();
-    let mut krylov: Vec<Vec<BigInt>> = Vec::with_capacity(2 * m + 1);
-    krylov.push(
-        (0..m)
-            .map(|i| int(&model.reward[action(i)] * &r_scale))
-            .collect(),
-    );
-    for k in 0..2 * m {
-        let prev = &krylov[k];
-        let next: Vec<BigInt> = rows
-            .iter()
-            .map(|row| {
-                row.iter()
-                    .fold(BigInt::zero(), |acc, (j, w)| acc + w * &prev[*j])
-            })
-            .collect();
-        krylov.push(next);
-    }
-    const PROJECTIONS: usize = 4;
-    for attempt in 0..PROJECTIONS {
-        // Deterministic pseudo-random small weights (the first projection is all ones).
-        let mut seed: u64 = 0x9E37_79B9 ^ attempt as u64;
-        let u: Vec<BigInt> = (0..m)
-            .map(|_| {
-                if attempt == 0 {
-                    return BigInt::one();
-                }
-                seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
-                BigInt::from((seed >> 33) % 997 + 1)
-            })
-            .collect();
-        let s: Vec<BigInt> = krylov[..2 * m]
-            .iter()
-            .map(|c| {
-                c.iter()
-                    .zip(&u)
-                    .fold(BigInt::zero(), |acc, (x, w)| acc + x * w)
-            })
-            .collect();
-        // The recurrence of e in integers (a positive multiple: D(0) > 0 is kept).
-        let d = berlekamp_massey(&s);
+    let start: Vec<BigInt> = (0..m)
+        .map(|i| int(&model.reward[action(i)] * &r_scale))
+        .collect();
+    let mut search = annihilator::search(&rows, &start);
+    // Each failed verification asks for a larger degree; a few failures already mean every
+    // prime met so far was unlucky (never expected).
+    const ATTEMPTS: usize = 4;
+    for _ in 0..ATTEMPTS {
+        // The recurrence of e in integers, d_0 = 1.
+        let Some(d) = search.candidate() else {
+            break;
+        };
         let l = d.len() - 1;
-        let verified = (0..m).all(|i| {
-            d.iter()
-                .enumerate()
-                .fold(BigInt::zero(), |acc, (j, dj)| acc + dj * &krylov[l - j][i])
-                .is_zero()
-        });
-        if !verified {
+        // The numerator coefficients `n_k = Σ_{j≤k} d_j e_{k−j}` (per state) by the recurrence
+        // `n_k = d_k e_0 + (Q·P) n_{k−1}` (since `e_{k+1} = (Q·P) e_k`): one sparse product
+        // per degree instead of a convolution per state; `n_L` is the verification.
+        let mut coefficients: Vec<Vec<BigInt>> = vec![Vec::with_capacity(l); m];
+        let mut current: Vec<BigInt> = vec![BigInt::zero(); m];
+        for (k, dk) in d.iter().enumerate() {
+            let next: Vec<BigInt> = rows
+                .iter()
+                .zip(&start)
+                .map(|(row, e0)| {
+                    row.iter()
+                        .fold(dk * e0, |acc, (j, w)| acc + w * &current[*j])
+                })
+                .collect();
+            if k == 0 {
+                debug_assert!(next.iter().zip(&start).all(|(a, e)| *a == dk * e));
+            }
+            if k < l {
+                for (c, v) in coefficients.iter_mut().zip(&next) {
+                    c.push(v.clone());
+                }
+            }
+            current = next;
+        }
+        if !current.iter().all(Zero::is_zero) {
             continue;
         }
         // Back to α: coefficient k of D_e(α/Q), of N_e(α/Q)/R, times R·Q^L.
@@ -488,28 +434,6 @@ fn policy_values(
                 .map(|(k, x)| x * &powers[l - k])
                 .collect()
         };
-        // The numerator coefficients `n_k = Σ_{j≤k} d_j e_{k−j}` (per state) by the recurrence
-        // `n_k = d_k e_0 + (Q·P) n_{k−1}` (since `e_{k+1} = (Q·P) e_k`): one sparse product
-        // per degree instead of a convolution per state.
-        let mut coefficients: Vec<Vec<BigInt>> = vec![Vec::with_capacity(l); m];
-        let mut current: Vec<BigInt> = vec![BigInt::zero(); m];
-        for (k, dk) in d.iter().enumerate().take(l) {
-            let next: Vec<BigInt> = rows
-                .iter()
-                .zip(&krylov[0])
-                .map(|(row, e0)| {
-                    row.iter()
-                        .fold(dk * e0, |acc, (j, w)| acc + w * &current[*j])
-                })
-                .collect();
-            if k == 0 {
-                debug_assert!(next.iter().zip(&krylov[0]).all(|(a, e)| *a == dk * e));
-            }
-            for (c, v) in coefficients.iter_mut().zip(&next) {
-                c.push(v.clone());
-            }
-            current = next;
-        }
         let mut n = vec![Vec::new(); p.states()];
         for (i, &x) in running.iter().enumerate() {
             n[x] = to_poly(std::mem::take(&mut coefficients[i]));
@@ -522,7 +446,7 @@ fn policy_values(
             degree: l,
         });
     }
-    Err(ParametricError::Annihilator(PROJECTIONS))
+    Err(ParametricError::Annihilator(annihilator::PROJECTIONS))
 }
 
 /// The product of two integer polynomials (constant first).

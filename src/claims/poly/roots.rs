@@ -247,6 +247,12 @@ fn descartes_is_zero(q: &[BigInt]) -> bool {
 /// `(a, b)`, `a < b`, proved by Descartes' rule on `p(a + (b − a)x)` over `(0, 1)` (no sign
 /// variation: no root). `false` means it may have one.
 ///
+/// With `a = A/E`, `b − a = W/E`, the test runs on a non-zero constant multiple of
+/// `E^d p(a + (b − a)x)` (the same sign variations), built with `O(d)` products and a Taylor
+/// shift (additions only): for `A ≠ 0`, `g(z) = E^d p(A z / E)` has coefficients
+/// `p_k A^k E^(d−k)`, `h(u) = g(1 + u)`, and `A^d h(W x / A) = Σ h_i W^i A^(d−i) x^i` is
+/// `A^d E^d p((A + W x)/E)`; for `A = 0` the coefficients are `p_k W^k E^(d−k)`.
+///
 /// ```
 /// use num_bigint::BigInt;
 /// use truecost::claims::poly::roots::no_root_between;
@@ -254,33 +260,42 @@ fn descartes_is_zero(q: &[BigInt]) -> bool {
 /// let p: Vec<BigInt> = [-1, 0, 2].into_iter().map(BigInt::from).collect(); // 2x^2 - 1
 /// assert!(no_root_between(&p, &q("0"), &q("7/10")));
 /// assert!(!no_root_between(&p, &q("7/10"), &q("3/4")));
+/// assert!(!no_root_between(&p, &q("-3/4"), &q("-7/10")));
 /// ```
 pub fn no_root_between(p: &[BigInt], a: &Rational, b: &Rational) -> bool {
     if p.iter().all(Zero::is_zero) {
         return false;
     }
-    // a = A/E, b − a = W/E; r(x) = E^d p((A + W x)/E) by Horner on polynomials in x.
     let w = b - a;
     let e = a.denom().lcm(w.denom());
     let big_a = a.numer() * (&e / a.denom());
     let big_w = w.numer() * (&e / w.denom());
     let d = p.len() - 1;
-    let mut r: Vec<BigInt> = vec![p[d].clone()];
-    let mut epow = BigInt::one();
-    for k in (0..d).rev() {
-        epow *= &e;
-        // r ← r·(A + W x) + p_k E^{d−k}
-        let mut next = vec![BigInt::zero(); r.len() + 1];
-        for (i, ri) in r.iter().enumerate() {
-            if ri.is_zero() {
-                continue;
-            }
-            next[i] += ri * &big_a;
-            next[i + 1] += ri * &big_w;
+    // powers(x)[k] = x^k, k ≤ d.
+    let powers = |x: &BigInt| -> Vec<BigInt> {
+        let mut out = Vec::with_capacity(d + 1);
+        out.push(BigInt::one());
+        for k in 1..=d {
+            let next = &out[k - 1] * x;
+            out.push(next);
         }
-        next[0] += &p[k] * &epow;
-        r = next;
+        out
+    };
+    let epow = powers(&e);
+    if big_a.is_zero() {
+        let wpow = powers(&big_w);
+        let r: Vec<BigInt> = (0..=d).map(|k| &p[k] * &wpow[k] * &epow[d - k]).collect();
+        return descartes_is_zero(&r);
     }
+    let apow = powers(&big_a);
+    let mut h: Vec<BigInt> = (0..=d).map(|k| &p[k] * &apow[k] * &epow[d - k]).collect();
+    taylor_shift(&mut h);
+    let wpow = powers(&big_w);
+    let r: Vec<BigInt> = h
+        .iter()
+        .enumerate()
+        .map(|(i, hi)| hi * &wpow[i] * &apow[d - i])
+        .collect();
     descartes_is_zero(&r)
 }
 
@@ -604,6 +619,25 @@ fn exact_quotient(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
     integer_form(&q)
 }
 
+/// The primes tried by [`squarefree_part`] before the exact gcd: the three largest below
+/// `2^31` (`2^31 − 1`, `2^31 − 19`, `2^31 − 61`).
+const SQUAREFREE_PRIMES: [u64; 3] = [2_147_483_647, 2_147_483_629, 2_147_483_587];
+
+/// Whether `a` (degree ≥ 1, derivative `d`) is proved square-free by a prime `p` not dividing
+/// its leading coefficient with `gcd(a mod p, a′ mod p) = 1`: a repeated factor `f²` of `a`
+/// over `Z` (`f` primitive, so `p` does not divide its leading coefficient either) would give
+/// `f mod p`, of degree at least 1, dividing both. `false` means not proved.
+fn squarefree_modulo_a_prime(a: &[BigInt], d: &[BigInt]) -> bool {
+    let lead = a.last().expect("non-zero");
+    SQUAREFREE_PRIMES
+        .into_iter()
+        .filter(|&p| !(lead % p).is_zero())
+        .any(|p| {
+            let (ap, dp) = (to_modp(a, p), to_modp(d, p));
+            !dp.is_empty() && modp::gcd(&ap, &dp, p).len() == 1
+        })
+}
+
 /// The square-free part of the integer polynomial `a` (`a / gcd(a, a')`, primitive, with a
 /// positive leading coefficient).
 ///
@@ -626,11 +660,10 @@ pub fn squarefree_part(a: &[BigInt]) -> Vec<BigInt> {
     if d.iter().all(Zero::is_zero) {
         return a;
     }
-    let g = primitive_gcd(&a, &d);
-    let s = if g.len() <= 1 {
-        a
-    } else {
-        exact_quotient(&a, &g)
+    let g = (!squarefree_modulo_a_prime(&a, &d)).then(|| primitive_gcd(&a, &d));
+    let s = match g {
+        Some(g) if g.len() > 1 => exact_quotient(&a, &g),
+        _ => a,
     };
     if s.last().is_some_and(Signed::is_negative) {
         s.into_iter().map(|c| -c).collect()
@@ -1700,6 +1733,145 @@ pub fn between(a: &Root, b: &Root) -> Rational {
 mod tests {
     use super::modp;
     use num_bigint::BigInt;
+
+    /// `squarefree_part` of `c·Π fᵢ^eᵢ` for distinct linear factors `fᵢ = kᵢx − mᵢ`
+    /// (`gcd(kᵢ, mᵢ) = 1`) is `Π fᵢ` with a positive leading coefficient, whether the modular
+    /// proof or the exact gcd answers; the modular proof never accepts a square factor.
+    #[test]
+    fn squarefree_part_of_products_of_linear_factors() {
+        use num_integer::Integer;
+        use num_traits::{One, Signed};
+        let mul = |a: &[BigInt], b: &[BigInt]| super::int_mul(a, b);
+        let derivative = |a: &[BigInt]| -> Vec<BigInt> {
+            a.iter()
+                .enumerate()
+                .skip(1)
+                .map(|(i, c)| c * BigInt::from(i))
+                .collect()
+        };
+        let mut seed = 5u64;
+        let mut next = |k: u64| {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) % k
+        };
+        let mut squares = 0;
+        for case in 0..200 {
+            let mut factors: Vec<(i64, i64)> = Vec::new();
+            // The first factor's k a multiple of 2^31 − 1 in some cases (that prime is skipped).
+            while factors.len() < 1 + next(5) as usize {
+                let k = 1 + next(30) as i64;
+                let k = if case % 5 == 0 && factors.is_empty() {
+                    k * 2_147_483_647
+                } else {
+                    k
+                };
+                let m = next(61) as i64 - 30;
+                if k.gcd(&m) == 1 && !factors.iter().any(|&(k2, m2)| k2 * m == m2 * k) {
+                    factors.push((k, m));
+                }
+            }
+            let (mut a, mut want) = (vec![BigInt::from(1 + next(9) as i64)], vec![BigInt::one()]);
+            let mut square = false;
+            for &(k, m) in &factors {
+                let f = [BigInt::from(-m), BigInt::from(k)];
+                want = mul(&want, &f);
+                for _ in 0..1 + next(3) {
+                    a = mul(&a, &f);
+                }
+                square |= a.len() > want.len();
+            }
+            if case % 2 == 1 {
+                a = a.into_iter().map(|c| -c).collect();
+            }
+            if want.last().is_some_and(Signed::is_negative) {
+                want = want.into_iter().map(|c| -c).collect();
+            }
+            assert_eq!(super::squarefree_part(&a), want, "case {case}");
+            if square {
+                squares += 1;
+                assert!(
+                    !super::squarefree_modulo_a_prime(&a, &derivative(&a)),
+                    "case {case}"
+                );
+            }
+        }
+        assert!(squares > 50, "{squares}");
+        // A square-free polynomial whose leading coefficient the first prime divides.
+        let a: Vec<BigInt> = mul(
+            &[BigInt::from(-1), BigInt::from(2_147_483_647)],
+            &[BigInt::from(-2), BigInt::one()],
+        );
+        assert!(super::squarefree_modulo_a_prime(&a, &derivative(&a)));
+    }
+
+    /// `no_root_between` agrees with Descartes' rule applied as stated: the sign variations of
+    /// `(1 + x)^d r(1/(1 + x))` for `r(x) = p(a + (b − a)x)`, here computed in rationals
+    /// (Horner's rule for `r`, the reversal and the shift by 1 term by term), on pseudo-random
+    /// integer polynomials and windows, negative, at 0 and inside (0, 1).
+    #[test]
+    fn no_root_between_is_descartes_rule_on_the_window() {
+        use crate::value::Rational;
+        use num_traits::{Signed, Zero};
+        let q = |n: i64, d: i64| Rational::new(n.into(), d.into());
+        let variations_on = |p: &[BigInt], a: &Rational, b: &Rational| -> usize {
+            let w = b - a;
+            let mut r: Vec<Rational> = vec![Rational::from_integer(p[p.len() - 1].clone())];
+            for k in (0..p.len() - 1).rev() {
+                let mut next = vec![Rational::zero(); r.len() + 1];
+                for (i, ri) in r.iter().enumerate() {
+                    next[i] += ri * a;
+                    next[i + 1] += ri * &w;
+                }
+                next[0] += Rational::from_integer(p[k].clone());
+                r = next;
+            }
+            let mut c: Vec<Rational> = r.into_iter().rev().collect();
+            for i in 0..c.len() {
+                for j in (i..c.len() - 1).rev() {
+                    let high = c[j + 1].clone();
+                    c[j] += high;
+                }
+            }
+            let signs: Vec<bool> = c
+                .iter()
+                .filter(|x| !x.is_zero())
+                .map(|x| x.is_positive())
+                .collect();
+            signs.windows(2).filter(|s| s[0] != s[1]).count()
+        };
+        let mut seed = 11u64;
+        let mut next = |k: u64| {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) % k
+        };
+        let (mut with, mut without) = (0, 0);
+        for case in 0..400 {
+            let d = 1 + next(9) as usize;
+            let p: Vec<BigInt> = (0..=d)
+                .map(|_| BigInt::from(next(2001) as i64 - 1000) << (next(3) * 40))
+                .collect();
+            let den = 1 + next(60) as i64;
+            let lo = match case % 4 {
+                0 => q(0, 1),
+                1 => q(-(next(3 * den as u64) as i64), den),
+                _ => q(next(den as u64) as i64, den),
+            };
+            let hi = &lo + q(1 + next(1000) as i64, 1 + next(5000) as i64);
+            let want = variations_on(&p, &lo, &hi) == 0;
+            assert_eq!(super::no_root_between(&p, &lo, &hi), want, "case {case}");
+            if want {
+                without += 1;
+            } else {
+                with += 1;
+            }
+        }
+        // Both answers are exercised.
+        assert!(with > 50 && without > 50, "{with} {without}");
+    }
 
     /// The truncated Descartes test decides as the exact one: on products of linear factors
     /// with roots inside and outside (0, 1), scaled by large integers so that truncation

@@ -505,17 +505,17 @@ fn discount_env_on_the_command_line() {
         "json",
     ]);
     assert_eq!(v["breakpoints"][0]["alpha"], "5/6");
-    // Refusals: one line each. A stochastic model with 168 running states (slippery
-    // FrozenLake on a 13x13 map) is beyond the degree bound; Taxi, deterministic, is not
-    // (tests/taxi_gaps.rs).
-    let map = dir.join("13x13.txt");
-    let mut rows = vec!["F".repeat(13); 13];
+    // Refusals: one line each. A stochastic model with 288 running states (slippery
+    // FrozenLake on a 17x17 map without holes) is beyond the degree bound; Taxi,
+    // deterministic, is not (tests/taxi_gaps.rs).
+    let map = dir.join("17x17.txt");
+    let mut rows = vec!["F".repeat(17); 17];
     rows[0].replace_range(0..1, "S");
-    rows[12].replace_range(12..13, "G");
+    rows[16].replace_range(16..17, "G");
     std::fs::write(&map, rows.join("\n")).unwrap();
     let spec = format!("frozenlake:map={}", map.display());
     let e = fails_one_line(&["discount", "--env", &spec]);
-    assert!(e.contains("at most 160"), "{e}");
+    assert!(e.contains("288 states") && e.contains("at most 256"), "{e}");
     // --env with --problem: a usage error (exit 2).
     let e = common::cli::fails(&["discount", "--env", "frozenlake", "--problem", "3"], 2);
     assert!(e.contains("cannot be used with"), "{e}");

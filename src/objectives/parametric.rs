@@ -87,7 +87,7 @@ mod paths;
 
 /// The most states where the episode runs: a policy's values are rational functions of `α`
 /// of degree at most this, and so are the advantages whose roots are isolated.
-pub const MAX_RUNNING_STATES: usize = 160;
+pub const MAX_RUNNING_STATES: usize = 256;
 
 /// The deterministic path's degree bound: the longest successor chain (steps to where the
 /// episode ends, or to and around a cycle) of a policy met while covering `(0, 1)`; checked
@@ -98,11 +98,12 @@ pub const MAX_CHAIN_DEGREE: usize = 200;
 pub const MAX_REGIONS: usize = 4_000;
 
 /// The most work the probes of one stochastic analysis may do together, in units of
-/// [`probe_work`] (`n⁵·b⁴` per probe). Measured on random stochastic problems (release, a
-/// loaded 2-core machine, 30–50 running states, probabilities with denominators 4, 97 and
-/// 997): a probe takes about one second per 5·10¹² units, so this bound (≈ 5.6·10¹⁴) keeps an
-/// analysis to about two minutes; checked before every probe.
-pub const MAX_PROBE_WORK: u128 = 1 << 49;
+/// [`probe_work`] (`n⁵·b⁴` per probe); checked before every probe. Measured in release on 2
+/// idle cores (6 Dec 2026): a slippery FrozenLake-style 16×16 map (195 running states, 47
+/// probes, 8.3·10¹⁵ units) takes 77 s of processor time, about 10¹⁴ units a second; a random
+/// 40-state problem with probabilities `k/997` about 3·10¹³ a second. This bound (≈ 9·10¹⁵)
+/// keeps an analysis to between about one and five minutes of processor time.
+pub const MAX_PROBE_WORK: u128 = 1 << 53;
 
 /// The most work one probe may take before any work starts: a problem that cannot afford 16
 /// probes within [`MAX_PROBE_WORK`] is refused at once.
@@ -216,7 +217,7 @@ pub enum ParametricError {
         bound: usize,
     },
     /// One probe alone would exceed [`MAX_SINGLE_PROBE_WORK`].
-    #[error("one exact probe of this problem is estimated at {work} units ({states} running states, numbers of {bits} bits: n^5 b^4); the exact parametric analysis takes at most {bound} per probe (about 7 s)")]
+    #[error("one exact probe of this problem is estimated at {work} units ({states} running states, numbers of {bits} bits: n^5 b^4); the exact parametric analysis takes at most {bound} per probe (about 5 to 20 s)")]
     ProbeWork {
         /// Running states.
         states: usize,
@@ -228,7 +229,7 @@ pub enum ParametricError {
         bound: u128,
     },
     /// The probes together would exceed [`MAX_PROBE_WORK`].
-    #[error("the exact parametric analysis stopped after {probes} probes ({regions} regions of (0,1) covered, {gaps} gaps left): the next probe would pass its work bound of {bound} units (about two minutes); the problem has too many breakpoints for numbers this size")]
+    #[error("the exact parametric analysis stopped after {probes} probes ({regions} regions of (0,1) covered, {gaps} gaps left): the next probe would pass its work bound of {bound} units (a few minutes of work); the problem has too many breakpoints for numbers this size")]
     Work {
         /// Probes run.
         probes: usize,

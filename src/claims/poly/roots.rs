@@ -1437,8 +1437,9 @@ impl Root {
     }
 
     /// Refines until the bracket is at most `width` wide: the bracket of bisection (halving
-    /// until narrow enough, exact if a midpoint is the root). After [`PLAIN_HALVINGS`]
-    /// halvings the remaining ones are taken at once where they can be ([`Root::leap`]).
+    /// until narrow enough, exact if a midpoint is the root). After 16 halvings the remaining
+    /// ones are taken at once where a Newton guess of the final cell is confirmed by the signs
+    /// at its ends.
     pub fn refine_to(&mut self, width: &Rational) {
         let mut plain = 0;
         while !self.exact && &(&self.hi - &self.lo) > width {

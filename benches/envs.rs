@@ -60,7 +60,7 @@ fn discount(c: &mut Criterion) {
             b.iter(|| discount_breakpoints(black_box(&model)).expect("within the bounds"))
         });
     }
-    for n in [10, 15, 20] {
+    for n in [10, 15, 20, 30] {
         let range = CostRange { lo: 1, hi: 9 };
         let grid = pattern_grid(n, n, GridPattern::Random, range, 0).expect("a valid grid");
         let model = Model::from_deterministic(&grid, format!("grid {n}x{n}")).expect("a model");

@@ -651,12 +651,7 @@ fn squarefree_modulo_a_prime(a: &[BigInt], d: &[BigInt]) -> bool {
 /// ```
 pub fn squarefree_part(a: &[BigInt]) -> Vec<BigInt> {
     let a = primitive_part(a.to_vec());
-    let d: Vec<BigInt> = a
-        .iter()
-        .enumerate()
-        .skip(1)
-        .map(|(i, c)| c * BigInt::from(i))
-        .collect();
+    let d = int_derivative(&a);
     if d.iter().all(Zero::is_zero) {
         return a;
     }
@@ -1085,6 +1080,15 @@ fn symmetric(v: &BigInt, m: &BigInt) -> BigInt {
     } else {
         r
     }
+}
+
+/// The derivative of an integer polynomial (constant first).
+fn int_derivative(a: &[BigInt]) -> Vec<BigInt> {
+    a.iter()
+        .enumerate()
+        .skip(1)
+        .map(|(i, c)| c * BigInt::from(i))
+        .collect()
 }
 
 fn int_mul(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
@@ -1519,12 +1523,7 @@ impl Root {
     /// caller then bisects). Only a guess: [`Root::leap`] confirms it.
     fn newton(&self, cell: &Rational) -> Option<Rational> {
         let f = &self.poly.ints;
-        let derivative: Vec<BigInt> = f
-            .iter()
-            .enumerate()
-            .skip(1)
-            .map(|(i, c)| c * BigInt::from(i))
-            .collect();
+        let derivative = int_derivative(f);
         // 2^-bits below cell / 2^8.
         let bits = cell.denom().bits() - cell.numer().bits() + 10;
         let scale = BigInt::one() << bits;
@@ -1743,20 +1742,9 @@ mod tests {
         use num_integer::Integer;
         use num_traits::{One, Signed};
         let mul = |a: &[BigInt], b: &[BigInt]| super::int_mul(a, b);
-        let derivative = |a: &[BigInt]| -> Vec<BigInt> {
-            a.iter()
-                .enumerate()
-                .skip(1)
-                .map(|(i, c)| c * BigInt::from(i))
-                .collect()
-        };
+        let derivative = |a: &[BigInt]| super::int_derivative(a);
         let mut seed = 5u64;
-        let mut next = |k: u64| {
-            seed = seed
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 33) % k
-        };
+        let mut next = |k: u64| step(&mut seed) % k;
         let mut squares = 0;
         for case in 0..200 {
             let mut factors: Vec<(i64, i64)> = Vec::new();
@@ -1843,12 +1831,7 @@ mod tests {
             signs.windows(2).filter(|s| s[0] != s[1]).count()
         };
         let mut seed = 11u64;
-        let mut next = |k: u64| {
-            seed = seed
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 33) % k
-        };
+        let mut next = |k: u64| step(&mut seed) % k;
         let (mut with, mut without) = (0, 0);
         for case in 0..400 {
             let d = 1 + next(9) as usize;
@@ -1880,12 +1863,7 @@ mod tests {
     #[test]
     fn truncated_descartes_decides_as_the_exact_test() {
         let mut seed = 11u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            seed >> 33
-        };
+        let mut next = || step(&mut seed);
         let (mut zero, mut some) = (0, 0);
         for case in 0..60 {
             // Factors (m x − n): root n/m; in (0, 1) when 0 < n < m.
@@ -1894,14 +1872,7 @@ mod tests {
             for _ in 0..degree {
                 let m = BigInt::from(next() % 1000 + 1);
                 let n = BigInt::from(next() % 3000) - BigInt::from(1000);
-                let factor = [-n, m];
-                let mut q = vec![BigInt::from(0); p.len() + 1];
-                for (i, a) in p.iter().enumerate() {
-                    for (j, b) in factor.iter().enumerate() {
-                        q[i + j] += a * b;
-                    }
-                }
-                p = q;
+                p = super::int_mul(&p, &[-n, m]);
             }
             let scale = BigInt::from(3).pow(200 + (next() % 400) as u32);
             for sign in [1, -1] {
@@ -1954,14 +1925,15 @@ mod tests {
     }
 
     fn random(seed: &mut u64, len: usize, p: u64) -> Vec<u64> {
-        (0..len)
-            .map(|_| {
-                *seed = seed
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                (*seed >> 33) % p
-            })
-            .collect()
+        (0..len).map(|_| step(seed) % p).collect()
+    }
+
+    /// The next number of a 64-bit linear congruential generator (its top 31 bits).
+    fn step(seed: &mut u64) -> u64 {
+        *seed = seed
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        *seed >> 33
     }
 
     #[test]
@@ -2021,17 +1993,23 @@ mod tests {
         use super::{int_poly, roots_in_unit_interval};
         use crate::value::Rational;
         let mut seed = 5u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            seed >> 33
-        };
+        let mut next = || step(&mut seed);
         let widths = [
             Rational::new(BigInt::from(1), BigInt::from(1) << 100u32),
             Rational::new(BigInt::from(1), num_traits::pow(BigInt::from(10), 30)),
             Rational::new(BigInt::from(1), BigInt::from(1) << 20u32),
         ];
+        let compare = |root: &super::Root, label: &str| {
+            for width in &widths {
+                let (mut fast, slow) = (root.clone(), bisected(root.clone(), width));
+                fast.refine_to(width);
+                assert_eq!(
+                    (fast.exact, &fast.lo, &fast.hi),
+                    (slow.exact, &slow.lo, &slow.hi),
+                    "{label}"
+                );
+            }
+        };
         let mut checked = 0;
         for case in 0..40 {
             let mut p = vec![BigInt::from(1)];
@@ -2048,41 +2026,21 @@ mod tests {
                         BigInt::from(next() % 90 + 60),
                     ]
                 };
-                let mut q = vec![BigInt::from(0); p.len() + factor.len() - 1];
-                for (i, a) in p.iter().enumerate() {
-                    for (j, b) in factor.iter().enumerate() {
-                        q[i + j] += a * b;
-                    }
-                }
-                p = q;
+                p = super::int_mul(&p, &factor);
             }
             for root in roots_in_unit_interval(&int_poly(&p)) {
-                for width in &widths {
-                    let (mut fast, slow) = (root.clone(), bisected(root.clone(), width));
-                    fast.refine_to(width);
-                    assert_eq!(
-                        (fast.exact, &fast.lo, &fast.hi),
-                        (slow.exact, &slow.lo, &slow.hi),
-                        "case {case}"
-                    );
-                    checked += 1;
-                }
+                compare(&root, &format!("case {case}"));
+                checked += widths.len();
             }
         }
         assert!(checked > 100, "{checked} refinements compared");
         // 2^40 x − c: bracket (0, 1) at once, the root c/2^40 a midpoint at depth 40.
         for c in [1u64, 3, 0x5_5555_5555, (1 << 40) - 1] {
             let p = vec![-BigInt::from(c), BigInt::from(1u64 << 40)];
-            let root = roots_in_unit_interval(&int_poly(&p)).remove(0);
-            for width in &widths {
-                let (mut fast, slow) = (root.clone(), bisected(root.clone(), width));
-                fast.refine_to(width);
-                assert_eq!(
-                    (fast.exact, &fast.lo, &fast.hi),
-                    (slow.exact, &slow.lo, &slow.hi),
-                    "c = {c}"
-                );
-            }
+            compare(
+                &roots_in_unit_interval(&int_poly(&p))[0],
+                &format!("c = {c}"),
+            );
         }
     }
 

@@ -1639,6 +1639,24 @@ pub fn discount_breakpoints_within(
     deterministic_bound: u128,
     progress: &mut dyn FnMut(ProbeProgress),
 ) -> Result<DiscountAnalysis, ParametricError> {
+    analyse(
+        model,
+        search,
+        deterministic_bound,
+        chains::MAX_MEMORY_WORDS,
+        progress,
+    )
+}
+
+/// [`discount_breakpoints_within`] with the deterministic probes' memory cleared past
+/// `memory_words` words.
+fn analyse(
+    model: &Model,
+    search: Search,
+    deterministic_bound: u128,
+    memory_words: usize,
+    progress: &mut dyn FnMut(ProbeProgress),
+) -> Result<DiscountAnalysis, ParametricError> {
     let p = &model.problem;
     let running: Vec<StateId> = (0..p.states()).filter(|&x| !model.terminal[x]).collect();
     let deterministic = is_deterministic(model);
@@ -1695,7 +1713,7 @@ pub fn discount_breakpoints_within(
         }
     };
     let mut memory = (deterministic && search == Search::Pruned)
-        .then(|| chains::ChainMemory::new(model, &running));
+        .then(|| chains::ChainMemory::new(model, &running, memory_words));
     let mut regions: Vec<Region> = Vec::new();
     let mut gaps: Vec<(Option<Root>, Option<Root>)> = vec![(None, None)];
     let mut probes = 0;
@@ -1896,6 +1914,39 @@ mod tests {
         p.iter().rev().fold(Rational::zero(), |acc, c| {
             acc * a + Rational::from_integer(c.clone())
         })
+    }
+
+    /// The deterministic probes' memory cleared before every probe (nothing kept) gives the
+    /// same analysis as the memory kept, with more work: on random benchmark grids.
+    #[test]
+    fn a_cleared_memory_gives_the_same_analysis() {
+        use crate::stochastic::benchmark::{pattern_grid, CostRange, GridPattern};
+        let decimals = |d: &DiscountAnalysis| -> Vec<String> {
+            d.breakpoints.iter().map(|b| b.at.decimal(40)).collect()
+        };
+        for seed in 0..3 {
+            let range = CostRange { lo: 1, hi: 9 };
+            let grid = pattern_grid(6, 6, GridPattern::Random, range, seed).unwrap();
+            let m = Model::from_deterministic(&grid, format!("grid {seed}")).unwrap();
+            let run = |words| {
+                analyse(
+                    &m,
+                    Search::Pruned,
+                    MAX_DETERMINISTIC_WORK,
+                    words,
+                    &mut |_| {},
+                )
+                .unwrap()
+            };
+            let (kept, cleared) = (run(chains::MAX_MEMORY_WORDS), run(0));
+            assert!(!kept.breakpoints.is_empty(), "seed {seed}");
+            assert_eq!(decimals(&kept), decimals(&cleared), "seed {seed}");
+            for (a, b) in kept.intervals.iter().zip(&cleared.intervals) {
+                assert_eq!((&a.optimal, &a.achievement), (&b.optimal, &b.achievement));
+            }
+            assert_eq!(kept.probes, cleared.probes, "seed {seed}");
+            assert!(cleared.work > kept.work, "seed {seed}");
+        }
     }
 
     /// A lasso and a path: 0 → 1 → 2 → 1 (costs 1, 2, 3) and 3 → goal 4 (cost 5). By hand at

@@ -237,6 +237,8 @@ pub struct ChainMemory {
     advantages: HashMap<(usize, u32, Option<u32>), Option<Arc<Isolated>>>,
     points: Points,
     words: usize,
+    /// Cleared past this many words ([`MAX_MEMORY_WORDS`] in the analysis).
+    max_words: usize,
     /// The optimal policy of the last probe: the next probe starts from it.
     last: Option<Vec<Option<usize>>>,
 }
@@ -249,8 +251,8 @@ fn words(p: &[BigInt]) -> usize {
 }
 
 impl ChainMemory {
-    /// An empty memory for `model`'s running states.
-    pub fn new(model: &Model, running: &[StateId]) -> ChainMemory {
+    /// An empty memory for `model`'s running states, cleared past `max_words` words.
+    pub fn new(model: &Model, running: &[StateId], max_words: usize) -> ChainMemory {
         use num_integer::Integer;
         let mut big_r = BigInt::one();
         for &x in running {
@@ -267,6 +269,7 @@ impl ChainMemory {
             advantages: HashMap::new(),
             points: Points::new(),
             words: 0,
+            max_words,
             last: None,
         };
         memory.clear();
@@ -449,7 +452,7 @@ impl ChainMemory {
         work: &mut u128,
     ) -> Result<Option<Region>, ParametricError> {
         let p = &model.problem;
-        if self.words > MAX_MEMORY_WORDS {
+        if self.words > self.max_words {
             self.clear();
         }
         let mut policy = match self.last.take() {

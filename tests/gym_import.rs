@@ -14,7 +14,7 @@ mod common;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
-use common::cli::json;
+use common::cli::{json, solve_json as solve};
 use serde_json::Value;
 
 /// (fixture, `--env` SPEC): the importer's file and the built-in benchmark it must match.
@@ -141,21 +141,6 @@ fn imported_files_hold_the_problems_that_export_env_writes() {
         );
         assert!(our_goals.is_subset(&their_goals), "{our_goals:?}");
     }
-}
-
-/// `solve --algorithm exact --objective OBJ --format json` on `--env SPEC` or `--file F`.
-fn solve(source: &[&str], objective: &str) -> Value {
-    let mut args = vec!["solve"];
-    args.extend_from_slice(source);
-    args.extend_from_slice(&[
-        "--algorithm",
-        "exact",
-        "--objective",
-        objective,
-        "--format",
-        "json",
-    ]);
-    json(&args)
 }
 
 #[test]

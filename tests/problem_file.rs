@@ -377,6 +377,46 @@ fn on_disk(text: &str) -> (tempfile::TempDir, String) {
     (dir, path)
 }
 
+/// Every command that reads a problem file refuses `text` in one line (exit 1) mentioning
+/// each needle.
+fn every_command_refuses(text: &str, needles: &[&str]) {
+    let (_dir, path) = on_disk(text);
+    for command in [
+        vec!["compare", "--file", &path],
+        vec!["discount", "--file", &path],
+        vec!["solve", "--file", &path, "--algorithm", "dijkstra"],
+        vec![
+            "solve",
+            "--file",
+            &path,
+            "--algorithm",
+            "exact",
+            "--objective",
+            "truecost",
+        ],
+        vec![
+            "solve",
+            "--file",
+            &path,
+            "--algorithm",
+            "exact",
+            "--objective",
+            "discounted",
+            "--alpha",
+            "1/2",
+        ],
+    ] {
+        let err = cli::fails(&command, 1);
+        assert_eq!(err.lines().count(), 1, "{command:?}: {err}");
+        for n in needles {
+            assert!(
+                err.contains(n),
+                "{command:?}: {err:?} does not mention {n:?}"
+            );
+        }
+    }
+}
+
 /// The two-route file of the reward tests: from 0, move to 1 and then into the goal 3 (reward
 /// 0, then +1 on entering the goal), or step into the trap 2 (reward 1/2), where the episode
 /// ends; every move costs 1, the trap's self-loop 0. `actions` and `terminal` may be replaced.
@@ -509,31 +549,7 @@ fn bad_rewards_and_terminal_states_are_refused_in_one_line() {
         // The library readers (the deterministic one of learn and verify too) and every command
         // that reads a file refuse it, in one line.
         refused(&text, &needles);
-        let (_dir, path) = on_disk(&text);
-        for command in [
-            vec!["discount", "--file", &path],
-            vec!["solve", "--file", &path, "--algorithm", "dijkstra"],
-            vec![
-                "solve",
-                "--file",
-                &path,
-                "--algorithm",
-                "exact",
-                "--objective",
-                "discounted",
-                "--alpha",
-                "1/2",
-            ],
-            vec!["compare", "--file", &path],
-        ] {
-            let err = cli::fails_one_line(&command);
-            for n in &needles {
-                assert!(
-                    err.contains(n),
-                    "{command:?}: {err:?} does not mention {n:?}"
-                );
-            }
-        }
+        every_command_refuses(&text, &needles);
     }
 }
 
@@ -758,30 +774,7 @@ fn bad_initial_distributions_are_refused_in_one_line() {
             .to_string();
         assert_eq!(e, s, "{initial}");
         // ...and so does every command that reads the file, with exit 1.
-        let (_dir, path) = on_disk(&text);
-        for command in [
-            vec!["compare", "--file", &path],
-            vec!["discount", "--file", &path],
-            vec![
-                "solve",
-                "--file",
-                &path,
-                "--algorithm",
-                "exact",
-                "--objective",
-                "truecost",
-            ],
-            vec!["solve", "--file", &path, "--algorithm", "dijkstra"],
-        ] {
-            let err = cli::fails(&command, 1);
-            assert_eq!(err.lines().count(), 1, "{command:?}: {err}");
-            for n in &needles {
-                assert!(
-                    err.contains(n),
-                    "{command:?}: {err:?} does not mention {n:?}"
-                );
-            }
-        }
+        every_command_refuses(&text, &needles);
     }
 }
 
@@ -791,21 +784,11 @@ fn the_objectives_take_the_initial_distribution_by_hand() {
     // the distribution, 1/3 * 2 + 2/3 * 5 = 4, in 1/3 * 1 + 2/3 * 2 = 5/3 expected steps.
     let (_dir, path) = on_disk(&drawn(ONE_THIRD_TWO_THIRDS));
     let solve = |objective: &str, alpha: Option<&str>| {
-        let mut args = vec![
-            "solve",
-            "--file",
-            &path,
-            "--algorithm",
-            "exact",
-            "--objective",
-            objective,
-            "--format",
-            "json",
-        ];
+        let mut source = vec!["--file", path.as_str()];
         if let Some(a) = alpha {
-            args.extend_from_slice(&["--alpha", a]);
+            source.extend_from_slice(&["--alpha", a]);
         }
-        cli::json(&args)
+        cli::solve_json(&source, objective)
     };
     let t = solve("truecost", None);
     assert_eq!(t["cost_to_go_initial"], "4");

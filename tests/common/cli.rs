@@ -24,6 +24,22 @@ pub fn json(args: &[&str]) -> Value {
     serde_json::from_str(&stdout(args)).unwrap()
 }
 
+/// `solve --algorithm exact --objective OBJ --format json` on `source` (`--env SPEC` or
+/// `--file F`, possibly with `--alpha A`).
+pub fn solve_json(source: &[&str], objective: &str) -> Value {
+    let mut args = vec!["solve"];
+    args.extend_from_slice(source);
+    args.extend_from_slice(&[
+        "--algorithm",
+        "exact",
+        "--objective",
+        objective,
+        "--format",
+        "json",
+    ]);
+    json(&args)
+}
+
 /// Runs a command that must fail cleanly with exit `code` (no panic, no backtrace, nothing on
 /// stdout); our own errors (exit 1) are exactly one line starting with `error: `. Returns stderr.
 pub fn fails<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S], code: i32) -> String {

@@ -87,17 +87,25 @@ struct Located {
 
 impl Located {
     fn new(root: Root) -> Located {
+        let mut located = Located {
+            root,
+            lo: 0.0,
+            hi: 1.0,
+        };
+        located.window();
+        located
+    }
+
+    /// The window of the current bracket.
+    fn window(&mut self) {
         use num_traits::ToPrimitive;
-        let lo = root.lo.to_f64().unwrap_or(0.0) - MARGIN;
-        let hi = root.hi.to_f64().unwrap_or(1.0) + MARGIN;
-        Located { root, lo, hi }
+        self.lo = self.root.lo.to_f64().unwrap_or(0.0) - MARGIN;
+        self.hi = self.root.hi.to_f64().unwrap_or(1.0) + MARGIN;
     }
 
     fn halve(&mut self) {
-        let root = std::mem::replace(&mut self.root, zero_point());
-        let mut root = root;
-        root.halve();
-        *self = Located::new(root);
+        self.root.halve();
+        self.window();
     }
 }
 
@@ -467,8 +475,7 @@ impl ChainMemory {
         // Exact policy iteration on the advantages' signs at t: every state with an improving
         // action switches to its first one (the values grow strictly, so no policy repeats).
         let found = loop {
-            let r = self.evaluate(model, running, &policy);
-            let (id, deg, built) = match r {
+            let (id, deg, built) = match self.evaluate(model, running, &policy) {
                 Ok(v) => v,
                 // A start too far off: start again from exact iteration.
                 Err(ParametricError::ChainDegree { .. }) if !restarted => {
@@ -479,23 +486,29 @@ impl ChainMemory {
                 Err(e) => return Err(e),
             };
             *work += built;
-            let mut improved = false;
+            // Per other action: its advantage (`None`: identically zero) with the number of
+            // its roots left of t and its sign at t (`None`: t is a root).
             let mut found = Vec::new();
+            let mut improved = false;
             for &x in running {
+                let mut better = None;
                 for a in p.actions(x).filter(|&a| Some(a) != policy[x]) {
                     let (isolated, built) = self.advantage(model, x, a, &id);
                     *work += built;
-                    found.push((x, a, isolated));
+                    let located = isolated.map(|i| {
+                        let (first, sign) = i.locate(&mut self.points, t, tf);
+                        (i, first, sign)
+                    });
+                    if located
+                        .as_ref()
+                        .is_some_and(|l| l.2 == Some(Ordering::Greater))
+                    {
+                        better = better.or(Some(a));
+                    }
+                    found.push((a, located));
                 }
-            }
-            let mut switched = vec![false; p.states()];
-            for (x, a, isolated) in &found {
-                let positive = isolated.as_ref().is_some_and(|i| {
-                    i.locate(&mut self.points, t, tf).1 == Some(Ordering::Greater)
-                });
-                if positive && !switched[*x] {
-                    switched[*x] = true;
-                    policy[*x] = Some(*a);
+                if better.is_some() {
+                    policy[x] = better;
                     improved = true;
                 }
             }
@@ -508,12 +521,11 @@ impl ChainMemory {
         // The region: every advantage negative at t, walked both ways over all its roots.
         let mut persistent = Vec::new();
         let mut walks: Vec<(usize, Arc<Isolated>, usize)> = Vec::new();
-        for (_, a, isolated) in found {
-            let Some(isolated) = isolated else {
+        for (a, located) in found {
+            let Some((isolated, first, sign)) = located else {
                 persistent.push(a);
                 continue;
             };
-            let (first, sign) = isolated.locate(&mut self.points, t, tf);
             match sign {
                 None => return Ok(None),
                 Some(Ordering::Less) => {}

@@ -628,14 +628,9 @@ const SQUAREFREE_PRIMES: [u64; 3] = [2_147_483_647, 2_147_483_629, 2_147_483_587
 /// over `Z` (`f` primitive, so `p` does not divide its leading coefficient either) would give
 /// `f mod p`, of degree at least 1, dividing both. `false` means not proved.
 fn squarefree_modulo_a_prime(a: &[BigInt], d: &[BigInt]) -> bool {
-    let lead = a.last().expect("non-zero");
     SQUAREFREE_PRIMES
         .into_iter()
-        .filter(|&p| !(lead % p).is_zero())
-        .any(|p| {
-            let (ap, dp) = (to_modp(a, p), to_modp(d, p));
-            !dp.is_empty() && modp::gcd(&ap, &dp, p).len() == 1
-        })
+        .any(|p| common_mod(a, d, p) == Some(false))
 }
 
 /// The square-free part of the integer polynomial `a` (`a / gcd(a, a')`, primitive, with a

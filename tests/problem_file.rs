@@ -381,30 +381,21 @@ fn on_disk(text: &str) -> (tempfile::TempDir, String) {
 /// each needle.
 fn every_command_refuses(text: &str, needles: &[&str]) {
     let (_dir, path) = on_disk(text);
+    let path = path.as_str();
+    let exact = [
+        "solve",
+        "--file",
+        path,
+        "--algorithm",
+        "exact",
+        "--objective",
+    ];
     for command in [
-        vec!["compare", "--file", &path],
-        vec!["discount", "--file", &path],
-        vec!["solve", "--file", &path, "--algorithm", "dijkstra"],
-        vec![
-            "solve",
-            "--file",
-            &path,
-            "--algorithm",
-            "exact",
-            "--objective",
-            "truecost",
-        ],
-        vec![
-            "solve",
-            "--file",
-            &path,
-            "--algorithm",
-            "exact",
-            "--objective",
-            "discounted",
-            "--alpha",
-            "1/2",
-        ],
+        vec!["compare", "--file", path],
+        vec!["discount", "--file", path],
+        vec!["solve", "--file", path, "--algorithm", "dijkstra"],
+        [&exact[..], &["truecost"]].concat(),
+        [&exact[..], &["discounted", "--alpha", "1/2"]].concat(),
     ] {
         let err = cli::fails(&command, 1);
         assert_eq!(err.lines().count(), 1, "{command:?}: {err}");
@@ -565,21 +556,8 @@ fn a_tiny_file_with_rewards_has_its_hand_computed_discounted_values() {
          {"to": 2, "cost": "1", "reward": "1/4"}],
         [],
         [{"to": 2, "cost": "0", "reward": "0"}]]}"#;
-    let discounted = |path: &str| {
-        cli::json(&[
-            "solve",
-            "--file",
-            path,
-            "--algorithm",
-            "exact",
-            "--objective",
-            "discounted",
-            "--alpha",
-            "1/2",
-            "--format",
-            "json",
-        ])
-    };
+    let discounted =
+        |path: &str| cli::solve_json(&["--file", path, "--alpha", "1/2"], "discounted");
     let (_dir, path) = on_disk(text);
     let v = discounted(&path);
     assert_eq!(v["rewards"], "the file's rewards");

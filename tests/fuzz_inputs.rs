@@ -444,7 +444,7 @@ fn a_long_alpha_is_refused_naming_the_digits() {
 }
 
 /// `--samples` at its maximum with `--shard`: refused before any run (a shard lists every
-/// site, far more than `reproduce merge` reads), in well under a second — it used to build
+/// site, far more than `reproduce merge` reads), in well under a second, without building
 /// every task first (gigabytes).
 #[test]
 fn the_largest_sample_count_is_refused_for_shards_before_work() {

@@ -103,7 +103,7 @@ fn the_fast_path_finds_the_plain_exact_optimum_on_every_pattern() {
 }
 
 /// A unit-cost grid large enough for gaps far below `f64` resolution (exact policy iteration
-/// from the float stage's policy used to need 8 exact evaluations here): one exact evaluation.
+/// started from the `f64` policy needs 8 exact evaluations here): one exact evaluation.
 #[test]
 fn ties_below_f64_resolution_need_one_exact_evaluation() {
     for pattern in [GridPattern::Unit, GridPattern::Ties] {

@@ -4,10 +4,10 @@
 //! Why it exists: on grids whose deterministic optimum has many ties (unit costs, regular cost
 //! patterns), the stochastic `Q`-values of two actions differ by amounts like `((1−γ)/k)^d`
 //! (`d` the distance to where the two paths' noise first differs): relative gaps of `10⁻¹⁰`
-//! to `10⁻³⁰⁰` on a 50×50 grid. No `f64` evaluation resolves them, so exact policy iteration
-//! used to start from a policy that needed one exact evaluation per "layer" of such gaps
-//! (8 on a 20×20 grid, 23 on a 50×50 grid). This stage resolves them at a fraction of an
-//! exact solve's cost.
+//! to `10⁻³⁰⁰` on a 50×50 grid. No `f64` evaluation resolves them: exact policy iteration
+//! started from the `f64` policy needs one exact evaluation per "layer" of such gaps (8 on a
+//! 20×20 grid, 23 on a 50×50 grid). This stage resolves them at a fraction of an exact
+//! solve's cost.
 //!
 //! Each policy `μ` is evaluated in fixed point: `z ≈ X / 2^B` (integers `X`, the unknowns of
 //! `A·z = r`, `A = diag(s)(I − P_μ)`) by **iterative refinement**: the residual

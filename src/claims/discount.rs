@@ -713,4 +713,38 @@ mod tests {
             ("0".into(), "1".into())
         );
     }
+
+    /// The pieces of a membership that is not closed (`objectives::failure_set` gives such: a
+    /// point may belong while neither neighbour does, or the reverse), by hand. Points 1/4, 1/2,
+    /// 3/4; atoms gap, 1/4, gap, 1/2, gap, 3/4, gap. A run that starts at a gap after a point
+    /// is open at that point; one that ends at a gap before a point is open at that point, and
+    /// one that ends at the last gap at 1.
+    #[test]
+    fn pieces_start_and_end_at_gaps_between_points() {
+        let q = |n: i64, d: i64| {
+            Point::Root(Algebraic::from_rational(Rational::new(n.into(), d.into())))
+        };
+        let points = [q(1, 4), q(1, 2), q(3, 4)];
+        let piece = |lo: &Point, lo_closed, hi: &Point, hi_closed| Piece {
+            lo: lo.clone(),
+            lo_closed,
+            hi: hi.clone(),
+            hi_closed,
+        };
+        // The gap (1/4, 1/2) alone.
+        let gap = [false, false, true, false, false, false, false];
+        assert_eq!(
+            pieces_of_members(&points, &gap),
+            [piece(&points[0], false, &points[1], false)]
+        );
+        // The point 1/4 alone, then (1/2, 3/4), 3/4 and (3/4, 1).
+        let two = [false, true, false, false, true, true, true];
+        assert_eq!(
+            pieces_of_members(&points, &two),
+            [
+                piece(&points[0], true, &points[0], true),
+                piece(&points[1], false, &Point::One, false)
+            ]
+        );
+    }
 }

@@ -5,6 +5,8 @@
       ([problems/counterexamples/c4-as-printed.json]): at the bonus [M = -3] the printed
       interval excludes [M], yet [pi*] is average-cost optimal against every run of the
       average-cost problem (every policy, stationary or not).
+    - [c4_as_printed_refuted_positive_costs]: it fails also with every move cost positive
+      ([c4pos]: for every bonus [-5 <= M < -5/27]).
     - [c4_corrected]: C4-corrected (the registry's [c4::CORRECTED]) for every finite
       deterministic problem with rational costs and bonus: [pi*] is average-cost optimal iff
       [M] lies in the corrected interval ([corrected_interval]). Its two halves are
@@ -310,6 +312,230 @@ Proof.
     apply Rle_trans with (M / 3); [lra|].
     apply (Rmult_le_reg_r (INR (S N))); [auto|].
     unfold Rdiv at 2; rewrite Rmult_assoc, Rinv_l by lra; lra.
+Qed.
+
+(** ** C4 as printed, refuted with positive move costs *)
+
+(** The counterexample with every move cost positive: states 0, 1, 2, [x1 = 0], goal 2 (no
+    moves); moves [0 -> 1] (cost 1), [0 -> 2] (cost 3), [1 -> 2] (cost 1). *)
+Definition c4pos : problem := {|
+  nstates := 3;
+  goal := 2;
+  moves := fun x => match x with
+                    | O => [(1%nat, 1%Q); (2%nat, 3%Q)]
+                    | 1%nat => [(2%nat, 1%Q)]
+                    | _ => []
+                    end
+|}.
+
+Lemma c4pos_costs_pos x i :
+  (x < nstates c4pos)%nat -> (i < length (moves c4pos x))%nat -> (0 < cost c4pos x (Move i))%Q.
+Proof.
+  intros Hx Hi; simpl in Hx; unfold cost.
+  destruct x as [|[|[|x]]]; simpl in Hi; try lia;
+    [destruct i as [|[|i]] | destruct i as [|i]]; try lia; reflexivity.
+Qed.
+
+(** The single-shot optimum: [G*(x1) = 2]. *)
+Lemma c4pos_Gstar : Gstar c4pos 0 = Some 2%Q.
+Proof. vm_compute; reflexivity. Qed.
+
+(** The goal paths from [x1]: [0 -> 1 -> 2] (3 states, cost 2: [pi*]) and [0 -> 2] (2 states,
+    cost 3). *)
+Lemma c4pos_goal_paths w : reaches c4pos 0 w -> w = [0; 0]%nat \/ w = [1%nat].
+Proof.
+  intros [Hw He]; unfold target in *.
+  destruct w as [|a w]; step; [discriminate|].
+  destruct Hw as [Ha Hw]; destruct a as [|[|a]]; step; try lia.
+  - destruct w as [|b w]; step; [discriminate|].
+    destruct Hw as [Hb Hw]; destruct b as [|b]; step; try lia.
+    destruct w as [|c w]; [auto|]; step; destruct Hw as [Hc _]; step; lia.
+  - destruct w as [|b w]; [auto|]; step; destruct Hw as [Hb _]; step; lia.
+Qed.
+
+Lemma c4pos_pistar : reaches c4pos 0 [0; 0]%nat /\ (wcost c4pos 0 [0; 0]%nat == 2)%Q.
+Proof. split; [split; [simpl; unfold target; simpl; lia | reflexivity] | reflexivity]. Qed.
+
+Lemma c4pos_other_path : reaches c4pos 0 [1%nat] /\ (wcost c4pos 0 [1%nat] == 3)%Q.
+Proof. split; [split; [simpl; lia | reflexivity] | reflexivity]. Qed.
+
+(** No cycle avoids the goal (no cycle at all without the reset): [Lav(C^) = +oo]. *)
+Lemma c4pos_no_cycle x w :
+  w <> [] -> wvalid c4pos x w -> wend c4pos x w <> x.
+Proof.
+  intros Hne Hw; unfold target in *.
+  destruct w as [|a w]; [congruence|]; step; destruct Hw as [Ha Hw].
+  destruct x as [|[|x]]; step.
+  - destruct a as [|[|a]]; step; try lia.
+    + destruct w as [|b w]; step; [lia|].
+      destruct Hw as [Hb Hw]; destruct b; step; try lia.
+      destruct w as [|c w]; step; [lia|]; destruct Hw as [Hc _]; step; lia.
+    + destruct w as [|b w]; step; [lia|]; destruct Hw as [Hb _]; step; lia.
+  - destruct a; step; try lia.
+    destruct w as [|b w]; step; [lia|]; destruct Hw as [Hb _]; step; lia.
+  - destruct x; step; lia.
+Qed.
+
+(** [pi*]'s run in [c4pos]: states [0, 1, 2, 0, 1, 2, ...] ([pistar_x]) with stage costs
+    [1, 1, M, 1, 1, M, ...]; its average is [g = (2 + M) / 3]. *)
+Definition pos_c (M : R) (k : nat) : R := if Nat.eqb (k mod 3) 2 then M else 1.
+
+Definition pos_g (M : R) : R := (2 + M) / 3.
+
+Lemma pos_run M : reset_run c4pos M pistar_x (pos_c M).
+Proof.
+  split; [reflexivity|]; intros k; unfold step_ok, pistar_x, pos_c; simpl goal.
+  rewrite mod3_S.
+  destruct (mod3_cases k) as [E|[E|E]]; rewrite E; simpl.
+  - right; split; [lia|]; exists 0%nat; unfold target, cost; simpl.
+    repeat split; [lia | unfold Q2R; simpl; lra].
+  - right; split; [lia|]; exists 0%nat; unfold target, cost; simpl.
+    repeat split; [lia | unfold Q2R; simpl; lra].
+  - left; repeat split; lia.
+Qed.
+
+Lemma pos_c_at M q r :
+  (r < 3)%nat -> pos_c M (3 * q + r) = if Nat.eqb r 2 then M else 1.
+Proof.
+  intros Hr; unfold pos_c; rewrite (Nat.add_comm (3 * q)), (Nat.mul_comm 3 q).
+  rewrite Nat.mod_add by lia; rewrite Nat.mod_small by lia; reflexivity.
+Qed.
+
+Lemma pos_partial M q :
+  partial (pos_c M) (3 * q) = INR q * (2 + M) /\
+  partial (pos_c M) (3 * q + 1) = INR q * (2 + M) + 1 /\
+  partial (pos_c M) (3 * q + 2) = INR q * (2 + M) + 2.
+Proof.
+  induction q as [|q IH].
+  - simpl; unfold pos_c; simpl; repeat split; ring.
+  - destruct IH as (_ & _ & I2).
+    assert (C0 : pos_c M (3 * q + 2) = M) by (rewrite pos_c_at by lia; reflexivity).
+    assert (C1 : pos_c M (3 * S q) = 1).
+    { rewrite <- (Nat.add_0_r (3 * S q)), pos_c_at by lia; reflexivity. }
+    assert (C2 : pos_c M (3 * S q + 1) = 1) by (rewrite pos_c_at by lia; reflexivity).
+    assert (P0 : partial (pos_c M) (3 * S q) = INR (S q) * (2 + M)).
+    { replace (3 * S q)%nat with (S (3 * q + 2)) by lia.
+      rewrite partial_S, I2, C0, S_INR; ring. }
+    assert (P1 : partial (pos_c M) (3 * S q + 1) = INR (S q) * (2 + M) + 1).
+    { replace (3 * S q + 1)%nat with (S (3 * S q)) by lia; rewrite partial_S, P0, C1; ring. }
+    assert (P2 : partial (pos_c M) (3 * S q + 2) = INR (S q) * (2 + M) + 2).
+    { replace (3 * S q + 2)%nat with (S (3 * S q + 1)) by lia; rewrite partial_S, P1, C2; ring. }
+    auto.
+Qed.
+
+(** For [-5 <= M < 0], [pi*]'s partial sums stay within [4] above [N g]. *)
+Lemma pos_partial_bounds M N :
+  -5 <= M < 0 -> INR N * pos_g M <= partial (pos_c M) N <= INR N * pos_g M + 4.
+Proof.
+  intros HM; unfold pos_g.
+  destruct (Nat.lt_ge_cases (N mod 3) 3) as [Hr|]; [|pose proof (Nat.mod_upper_bound N 3); lia].
+  pose proof (Nat.div_mod N 3 ltac:(lia)) as HN.
+  set (q := (N / 3)%nat) in *; set (r := (N mod 3)%nat) in *.
+  destruct (pos_partial M q) as (P0 & P1 & P2).
+  assert (Hr3 : (r = 0 \/ r = 1 \/ r = 2)%nat) by lia.
+  destruct Hr3 as [E|[E|E]]; rewrite E in HN; rewrite HN.
+  - rewrite Nat.add_0_r, P0, mult_INR; simpl; split; lra.
+  - rewrite P1, plus_INR, mult_INR; simpl; split; lra.
+  - rewrite P2, plus_INR, mult_INR; simpl; split; lra.
+Qed.
+
+Lemma pos_average M : -5 <= M < 0 -> average (pos_c M) (pos_g M).
+Proof.
+  intros HM eps Heps.
+  destruct (nat_above (4 / eps)) as (N0 & HN0).
+  exists N0; intros N HN; unfold R_dist.
+  pose proof (pos_partial_bounds M (S N) HM) as [Lo Hi].
+  assert (Hpos : 0 < INR (S N)) by (apply lt_0_INR; lia).
+  assert (HNge : INR N0 <= INR (S N)) by (apply le_INR; lia).
+  assert (Hdiff : 0 <= partial (pos_c M) (S N) / INR (S N) - pos_g M <= 4 / INR (S N)).
+  { split.
+    - apply (Rmult_le_reg_r (INR (S N))); [auto|].
+      unfold Rdiv; rewrite Rmult_minus_distr_r, Rmult_assoc, Rinv_l by lra; lra.
+    - apply (Rmult_le_reg_r (INR (S N))); [auto|].
+      unfold Rdiv; rewrite Rmult_minus_distr_r, !Rmult_assoc, Rinv_l by lra; lra. }
+  rewrite Rabs_right by lra.
+  apply Rle_lt_trans with (4 / INR (S N)); [lra|].
+  apply (Rmult_lt_reg_r (INR (S N))); [auto|].
+  unfold Rdiv; rewrite Rmult_assoc, Rinv_l by lra.
+  assert (4 / eps < INR (S N)) as H by lra.
+  apply (Rmult_lt_compat_r eps) in H; [|auto].
+  unfold Rdiv in H; rewrite Rmult_assoc, Rinv_l in H by lra; lra.
+Qed.
+
+(** The potential [h(0) = 0], [h(1) = g - 1], [h(2) = 2 g - 2]: for [-5 <= M], every stage of
+    every run satisfies [c k + h(x (S k)) - h(x k) >= g] (equality on [pi*]'s cycle; on the
+    other reset cycle [0 -> 2 -> 0] the slack is [1 + g], zero exactly at [M = -5]). *)
+Definition c4pos_h (M : R) (x : nat) : R :=
+  match x with O => 0 | 1%nat => pos_g M - 1 | _ => 2 * pos_g M - 2 end.
+
+Lemma c4pos_step_bound M x c k :
+  -5 <= M -> step_ok c4pos M x c k -> pos_g M <= c k + c4pos_h M (x (S k)) - c4pos_h M (x k).
+Proof.
+  intros HM [(E & E' & Ec)|(Ne & i & Hi & E' & Ec)].
+  - rewrite E, E', Ec; simpl; unfold pos_g; lra.
+  - rewrite E', Ec; simpl goal in Ne.
+    destruct (x k) as [|[|[|y]]]; simpl in Hi; try lia.
+    + destruct i as [|[|i]]; try lia; unfold target, cost; simpl; unfold Q2R, pos_g; simpl; lra.
+    + destruct i as [|i]; try lia; unfold target, cost; simpl; unfold Q2R, pos_g; simpl; lra.
+Qed.
+
+(** For [-5 <= M < 0], no run's running mean is ever below [g]. *)
+Lemma c4pos_runs_bound M x c :
+  -5 <= M < 0 -> reset_run c4pos M x c -> forall N, INR N * pos_g M <= partial c N.
+Proof.
+  intros HM [H0 Hs] N.
+  pose proof (potential_bound x c (c4pos_h M) (pos_g M)
+                (fun k => c4pos_step_bound M x c k ltac:(lra) (Hs k)) N) as H.
+  rewrite H0 in H; simpl c4pos_h at 1 in H.
+  assert (c4pos_h M (x N) <= 0) by (destruct (x N) as [|[|y]]; simpl; unfold pos_g; lra).
+  lra.
+Qed.
+
+Lemma A_printed_pos : A_printed 3 2 2 3 = - (5 / 27).
+Proof. unfold A_printed; field. Qed.
+
+(** C4 as printed, refuted with every move cost positive (the paper's Proposition 4 as
+    printed; SPEC §6 C4; the claims registry's [c4::STATEMENT]), so the failure is not an
+    artefact of zero-cost moves. In [c4pos] (moves [0 -> 1] and [1 -> 2] of cost 1, [0 -> 2]
+    of cost 3, goal 2): the single-shot optimum is [G*(x1) = 2], attained by
+    [pi* = 0 -> 1 -> 2] ([S* = 3] states, [L* = 2]); the only other goal path is [0 -> 2]
+    ([S = 2], [L = 3], so [a = A(0 -> 2) = -5/27], and [b = +oo]); no cycle avoids the goal
+    ([Lav(C^) = +oo]). For every bonus [M] with [-5 <= M < -5/27] the printed interval
+    excludes [M], yet [pi*]'s run (the stationary policy [0 -> 1 -> 2 -> reset]) is
+    average-cost optimal: its average is [(2 + M)/3] and no run of the average-cost problem --
+    no policy, stationary or not -- has a running mean below it at any horizon (a potential
+    argument, [c4pos_h]). The corrected interval's lower end is
+    [T(0 -> 2) = (3 * 3 - 2 * 2) / (2 - 3) = -5]. *)
+Theorem c4_as_printed_refuted_positive_costs :
+  (forall x i, (x < nstates c4pos)%nat -> (i < length (moves c4pos x))%nat ->
+               (0 < cost c4pos x (Move i))%Q) /\
+  Gstar c4pos 0 = Some 2%Q /\
+  (reaches c4pos 0 [0; 0]%nat /\ (wcost c4pos 0 [0; 0]%nat == 2)%Q) /\
+  (reaches c4pos 0 [1%nat] /\ (wcost c4pos 0 [1%nat] == 3)%Q) /\
+  (forall w, reaches c4pos 0 w -> w = [0; 0]%nat \/ w = [1%nat]) /\
+  (forall x w, w <> [] -> wvalid c4pos x w -> wend c4pos x w <> x) /\
+  forall M, -5 <= M < - (5 / 27) ->
+    ~ printed_interval 3 2 [(3, 2); (2, 3)] None M /\
+    average_optimal c4pos M pistar_x (pos_c M).
+Proof.
+  split; [apply c4pos_costs_pos|].
+  split; [apply c4pos_Gstar|].
+  split; [apply c4pos_pistar|].
+  split; [apply c4pos_other_path|].
+  split; [apply c4pos_goal_paths|].
+  split; [apply c4pos_no_cycle|].
+  intros M HM; split.
+  - intros (_ & Ha & _ & _).
+    specialize (Ha (2, 3) ltac:(simpl; auto) ltac:(simpl; lra)); simpl in Ha.
+    rewrite A_printed_pos in Ha; lra.
+  - split; [apply pos_run|].
+    exists (pos_g M); split; [apply pos_average; lra|].
+    intros x' c' Hrun eps Heps; exists O; intros N _.
+    pose proof (c4pos_runs_bound M x' c' ltac:(lra) Hrun (S N)) as H.
+    assert (Hpos : 0 < INR (S N)) by (apply lt_0_INR; lia).
+    apply Rle_trans with (pos_g M); [lra|].
+    apply (Rmult_le_reg_r (INR (S N))); [auto|].
+    unfold Rdiv; rewrite Rmult_assoc, Rinv_l by lra; lra.
 Qed.
 
 (** ** C4-corrected for every finite deterministic problem *)

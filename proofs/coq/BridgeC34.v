@@ -25,6 +25,7 @@ From Coq Require Import String Reals Lra Lia QArith Qreals List.
 From Coq Require Lqa.
 From Truecost Require Import Model Paths C2 C3 C4.
 From Truecost Require Bridge.
+From Truecost Require Export BridgeCommon.
 Import ListNotations.
 
 Open Scope Q_scope.
@@ -582,11 +583,6 @@ Qed.
 
 Open Scope Q_scope.
 
-(** The problem with states [0 .. n-1], goal [n - 1], [x1 = 0] and the move lists [ms]
-    (the kernel's [Tiny]). *)
-Definition mk (n : nat) (ms : list (list (nat * Q))) : problem :=
-  {| nstates := n; goal := Nat.pred n; moves := fun x => nth x ms [] |}.
-
 (** What the kernel computed for one problem. *)
 Record expected := {
   e_Lstar : option Q;
@@ -596,11 +592,6 @@ Record expected := {
   e_core : list bool;
   e_certs : list (Q * option (list (list Q)))%type   (** [alpha0] and the certificate's costs *)
 }.
-
-Definition mismatch := (nat * string * nat)%type.
-
-Definition oq_eqb (a b : option Q) : bool :=
-  match a, b with Some u, Some v => Qeq_bool u v | None, None => true | _, _ => false end.
 
 Definition end_eqb (a b : iend) : bool :=
   match a, b with
@@ -618,31 +609,12 @@ Definition set_eqb (a b : (Q * nat * option Q * (iend * iend * bool))%type) : bo
   let '(l, s, lv, iv) := a in let '(l', s', lv', iv') := b in
   Qeq_bool l l' && Nat.eqb s s' && oq_eqb lv lv' && iv_eqb iv iv'.
 
-Fixpoint list_eqb {A} (eqb : A -> A -> bool) (l r : list A) : bool :=
-  match l, r with
-  | [], [] => true
-  | a :: l', b :: r' => eqb a b && list_eqb eqb l' r'
-  | _, _ => false
-  end.
-
 Definition cert_eqb (a b : option (list (list Q))) : bool :=
   match a, b with
   | Some u, Some v => list_eqb (list_eqb Qeq_bool) u v
   | None, None => true
   | _, _ => false
   end.
-
-(** The positions where two lists differ (and the position where the shorter one ends). *)
-Fixpoint positions_differ {A} (eqb : A -> A -> bool) (k : nat) (l r : list A) : list nat :=
-  match l, r with
-  | [], [] => []
-  | a :: l', b :: r' =>
-      let rest := positions_differ eqb (S k) l' r' in if eqb a b then rest else k :: rest
-  | _, _ => [k]
-  end.
-
-Definition tag (i : nat) (what : string) (ks : list nat) : list mismatch :=
-  map (fun k => (i, what, k)) ks.
 
 (** Mismatches of problem number [i], and the number of values compared. *)
 Definition check_problem (i : nat) (P : problem) (e : expected) : list mismatch * nat :=
@@ -656,32 +628,8 @@ Definition check_problem (i : nat) (P : problem) (e : expected) : list mismatch 
    (2 + List.length (e_paths e) + List.length (e_sets e) + List.length (e_core e)
     + List.length (e_certs e))%nat).
 
-Fixpoint check_from (i : nat) (ps : list (problem * expected)) : nat * nat * list mismatch :=
-  match ps with
-  | [] => (O, O, [])
-  | (P, e) :: ps' =>
-      let '(m, c) := check_problem i P e in
-      let '(n', c', ms) := check_from (S i) ps' in
-      (S n', (c + c')%nat, m ++ ms)
-  end.
-
 Definition check_all (ps : list (problem * expected)) : nat * nat * list mismatch :=
-  check_from 0 ps.
-
-(** No reported position means equal lists, element by element. *)
-Lemma positions_differ_nil :
-  forall A (eqb : A -> A -> bool) k l r,
-  positions_differ eqb k l r = [] -> Forall2 (fun a b => eqb a b = true) l r.
-Proof.
-  intros A eqb k l; revert k; induction l as [|a l IH]; intros k [|b r] H; simpl in H;
-    try discriminate; [constructor|].
-  destruct (eqb a b) eqn:E; [|discriminate]; constructor; [exact E|exact (IH _ _ H)].
-Qed.
-
-Lemma bool_list_eq l r : Forall2 (fun a b => Bool.eqb a b = true) l r -> l = r.
-Proof.
-  intros H; induction H; [reflexivity|f_equal; [apply Bool.eqb_prop|]; assumption].
-Qed.
+  check_from check_problem 0 ps.
 
 (** When [check_problem] reports no mismatch, C3.v's and C4.v's values (through this file's
     exact enumerations) are the kernel's: [G*(x1)], [Lav(C^)] and every simple goal path's

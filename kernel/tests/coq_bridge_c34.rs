@@ -36,7 +36,7 @@ use truecost_kernel::claims::c4::{bonus_analysis, End, Instance, Interval};
 use truecost_kernel::claims::exact::Q;
 use truecost_kernel::claims::tiny::{Family, FamilySpec, Tiny};
 
-use coq_support::{coq_dir, list, parse, run, Verdict, NO_COQC};
+use coq_support::{coq_dir, list, make, parse, run, Verdict, NO_COQC};
 
 /// The policy bound of the bonus analysis (as `verify` runs it).
 const LIMIT: u64 = 1 << 20;
@@ -253,10 +253,7 @@ fn prepare() -> (PathBuf, PathBuf) {
     }
     let dir = coq_dir();
     // Only what the checker needs (Model.v … C4.v, BridgeC34.v).
-    run(
-        Command::new("make").arg("-C").arg(&dir).arg("BridgeC34.vo"),
-        "make -C proofs/coq BridgeC34.vo",
-    );
+    make(&dir, "BridgeC34.vo");
     let work = std::env::temp_dir().join(format!(
         "truecost-coq-bridge-c34-{}-{:?}",
         std::process::id(),

@@ -23,7 +23,7 @@
 
 From Coq Require Import String Reals Lra Lia QArith Qreals List.
 From Coq Require Lqa.
-From Truecost Require Import Model Paths C2 C3 C4.
+From Truecost Require Import Model Paths C2 QReal C3 C4.
 From Truecost Require Bridge.
 From Truecost Require Export BridgeCommon.
 Import ListNotations.
@@ -411,16 +411,13 @@ Open Scope R_scope.
 Lemma Q2R_qnat k : Q2R (qnat k) = INR k.
 Proof. apply Q2R_nat. Qed.
 
-Lemma Q2R_zero : Q2R 0 = 0.
-Proof. unfold Q2R; simpl; lra. Qed.
-
 Lemma T_Q_R P s Ls u :
   S (length u) <> s ->
   Q2R (T_Q s Ls (wcost P 0 u) (S (length u))) = T_of P (INR s) (Q2R Ls) u.
 Proof.
   intros Hne; unfold T_Q, T_of, L_of, S_of.
   assert (Hd : ~ (qnat (S (length u)) - qnat s == 0)%Q).
-  { intros E; apply Qeq_eqR in E; rewrite Q2R_minus, !Q2R_qnat, Q2R_zero in E.
+  { intros E; apply Qeq_eqR in E; rewrite Q2R_minus, !Q2R_qnat, Q2R_0 in E.
     apply Hne, INR_eq; lra. }
   rewrite Q2R_div, Q2R_minus, !Q2R_mult, Q2R_minus, !Q2R_qnat by exact Hd; reflexivity.
 Qed.
@@ -430,7 +427,7 @@ Lemma mean_R P x c :
 Proof.
   intros Hne; unfold mean_of.
   assert (Hd : ~ (qnat (length c) == 0)%Q).
-  { intros E; apply Qeq_eqR in E; rewrite Q2R_qnat, Q2R_zero in E.
+  { intros E; apply Qeq_eqR in E; rewrite Q2R_qnat, Q2R_0 in E.
     destruct c; [congruence|]; simpl length in E; rewrite S_INR in E.
     pose proof (pos_INR (length c)); lra. }
   rewrite Q2R_div, Q2R_qnat by exact Hd; reflexivity.
@@ -573,7 +570,7 @@ Theorem neg_interval_spec lo hi m :
 Proof.
   rewrite neg_interval_Q; unfold in_bounds.
   assert (R0 : (m < 0)%Q <-> Q2R m < 0).
-  { split; intros H; [apply Qlt_Rlt in H|apply Rlt_Qlt]; rewrite Q2R_zero in *; auto. }
+  { split; intros H; [apply Qlt_Rlt in H|apply Rlt_Qlt]; rewrite Q2R_0 in *; auto. }
   rewrite R0; split; intros (H1 & H2 & H3); (split; [exact H1|split]);
     intros q E; [apply Qle_Rle, H2 | apply Qle_Rle, H3 | apply Rle_Qle, H2 | apply Rle_Qle, H3];
     exact E.

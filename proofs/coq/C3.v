@@ -31,7 +31,7 @@
     the series ([C2.discounted]), not closed forms. *)
 
 From Coq Require Import Reals Lra Lia QArith Qround Qreals List.
-From Truecost Require Import Model Paths C1 C2.
+From Truecost Require Import Model Paths C1 C2 QReal.
 Import ListNotations.
 
 Open Scope R_scope.
@@ -80,7 +80,7 @@ Proof.
   unfold quartic_Q, quartic.
   rewrite !Q2R_minus, !Q2R_mult.
   replace (Q2R 5) with 5 by (unfold Q2R; simpl; lra).
-  replace (Q2R 1) with 1 by (unfold Q2R; simpl; lra).
+  rewrite Q2R_1.
   simpl; ring.
 Qed.
 
@@ -94,20 +94,20 @@ Proof. vm_compute; reflexivity. Qed.
 
 Lemma quartic_lo : quartic (Q2R alpha_lo) < 0.
 Proof.
-  rewrite <- quartic_Q_R; replace 0 with (Q2R 0) by (unfold Q2R; simpl; lra).
+  rewrite <- quartic_Q_R; rewrite <- Q2R_0.
   apply Qlt_Rlt; vm_compute; reflexivity.
 Qed.
 
 Lemma quartic_hi : 0 < quartic (Q2R alpha_hi).
 Proof.
-  rewrite <- quartic_Q_R; replace 0 with (Q2R 0) by (unfold Q2R; simpl; lra).
+  rewrite <- quartic_Q_R; rewrite <- Q2R_0.
   apply Qlt_Rlt; vm_compute; reflexivity.
 Qed.
 
 Lemma bracket_in_01 : 0 < Q2R alpha_lo /\ Q2R alpha_lo < Q2R alpha_hi /\ Q2R alpha_hi < 1.
 Proof.
-  replace 0 with (Q2R 0) by (unfold Q2R; simpl; lra).
-  replace 1 with (Q2R 1) by (unfold Q2R; simpl; lra).
+  rewrite <- Q2R_0.
+  rewrite <- Q2R_1.
   repeat split; apply Qlt_Rlt; vm_compute; reflexivity.
 Qed.
 
@@ -196,9 +196,6 @@ Definition infinite_true_cost (P : problem) (pi : spolicy) : Prop :=
   forall B, exists K, B < partial (stages P pi 0) K.
 
 (** ** Discounted sums *)
-
-Lemma Q2R_inject_Z z : Q2R (inject_Z z) = IZR z.
-Proof. unfold Q2R; simpl; field. Qed.
 
 Lemma discounted_const a : 0 <= a < 1 -> discounted a (fun _ => 1) (/ (1 - a)).
 Proof.
@@ -646,7 +643,7 @@ Notation C := (certificate P mark K).
 
 Lemma K_pos : (0 < K)%Q.
 Proof.
-  apply Rlt_Qlt; replace (Q2R 0) with 0 by (unfold Q2R; simpl; lra).
+  apply Rlt_Qlt; rewrite Q2R_0.
   assert (0 < / (1 - alpha)) by (apply Rinv_0_lt_compat; lra); lra.
 Qed.
 
@@ -656,7 +653,7 @@ Proof.
   - unfold cost, Q2R; simpl; lra.
   - simpl in Hi; rewrite recost_length in Hi.
     pose proof (cert_positive P mark K x i K_pos Hi) as H.
-    apply Qlt_Rlt in H; replace (Q2R 0) with 0 in H by (unfold Q2R; simpl; lra); lra.
+    apply Qlt_Rlt in H; rewrite Q2R_0 in H; lra.
 Qed.
 
 (** [r] follows the marks at stage [k]. *)
@@ -847,8 +844,8 @@ Lemma cert_K_large alpha0 n alpha :
 Proof.
   intros [H0 H1] Ha.
   apply Qlt_Rlt in H0; apply Qlt_Rlt in H1.
-  replace (Q2R 0) with 0 in H0 by (unfold Q2R; simpl; lra).
-  replace (Q2R 1) with 1 in H1 by (unfold Q2R; simpl; lra).
+  rewrite Q2R_0 in H0.
+  rewrite Q2R_1 in H1.
   set (a := Q2R alpha0) in *.
   assert (Hfl := Qlt_floor (cert_bound alpha0 n)); apply Qlt_Rlt in Hfl.
   unfold cert_K.
@@ -858,11 +855,11 @@ Proof.
     assert (0 <= a ^ m) by (apply pow_le; lra); nra. }
   assert (Hne : ~ ((1 - alpha0) * qpow alpha0 (n - 2) == 0)%Q).
   { intros E; apply Qeq_eqR in E; rewrite Q2R_mult, Q2R_minus, qpow_R in E.
-    replace (Q2R 0) with 0 in E by (unfold Q2R; simpl; lra).
-    replace (Q2R 1) with 1 in E by (unfold Q2R; simpl; lra).
+    rewrite Q2R_0 in E.
+    rewrite Q2R_1 in E.
     fold a in E; nra. }
   unfold cert_bound in Hfl; rewrite Q2R_div, Q2R_mult, Q2R_minus, qpow_R in Hfl by auto.
-  replace (Q2R 1) with 1 in Hfl by (unfold Q2R; simpl; lra); fold a in Hfl.
+  rewrite Q2R_1 in Hfl; fold a in Hfl.
   apply Rle_lt_trans with (1 / ((1 - a) * a ^ (n - 2))); [|exact Hfl].
   unfold Rdiv; rewrite Rmult_1_l.
   apply Rinv_le_contravar; [apply Rmult_lt_0_compat; lra|].
@@ -889,7 +886,7 @@ Proof.
   assert (HK : / (1 - alpha) < Q2R (cert_K alpha0 n)) by (apply cert_K_large; auto).
   assert (Ha1 : 0 < alpha < 1).
   { destruct Ha0 as [_ H1]; apply Qlt_Rlt in H1.
-    replace (Q2R 1) with 1 in H1 by (unfold Q2R; simpl; lra); lra. }
+    rewrite Q2R_1 in H1; lra. }
   split; [|apply c3_certificate; auto].
   intros x i Hi; apply cert_positive; auto.
   eapply K_pos; eauto.

@@ -29,7 +29,7 @@
 
 From Coq Require Import Reals Lra Lia QArith Qreals List.
 From Coq Require Lqa ListDec Permutation.
-From Truecost Require Import Model Paths C2 C3.
+From Truecost Require Import Model Paths C2 QReal C3.
 Import ListNotations.
 
 Open Scope R_scope.
@@ -909,17 +909,14 @@ Proof.
       * simpl; unfold target; rewrite PM_moves_goal; simpl; auto.
       * rewrite (Qeq_eqR _ _ (wcost_app PM 0 w [0%nat])), Q2R_plus, He, Eg, Hc, partial_S, Ec.
         simpl wcost; unfold cost; rewrite PM_moves_goal; simpl.
-        rewrite Q2R_plus; replace (Q2R 0) with 0 by (unfold Q2R; simpl; lra); ring.
+        rewrite Q2R_plus; rewrite Q2R_0; ring.
     + exists (w ++ [i]); rewrite app_length, wvalid_app, wend_app, He; simpl length.
       repeat split; [lia | auto | rewrite PM_moves_other by auto; auto | |].
       * simpl; rewrite PM_target_other by auto; auto.
       * rewrite (Qeq_eqR _ _ (wcost_app PM 0 w [i])), Q2R_plus, He, Hc, partial_S, Ec.
         simpl wcost; rewrite PM_cost_other by auto.
-        rewrite Q2R_plus; replace (Q2R 0) with 0 by (unfold Q2R; simpl; lra); ring.
+        rewrite Q2R_plus; rewrite Q2R_0; ring.
 Qed.
-
-Lemma Q2R_nat k : Q2R (inject_Z (Z.of_nat k)) = INR k.
-Proof. rewrite Q2R_inject_Z, <- INR_IZR_INZ; reflexivity. Qed.
 
 (** Every run pays at least [g] per stage, up to the constant [n D]. *)
 Lemma run_lower x c :
@@ -1101,7 +1098,7 @@ Proof.
   intros HG Hsn Hg (HT1 & HT2 & Hcyc) x c Hx Hsc.
   assert (HS : 0 < INR sn) by (apply lt_0_INR; auto).
   assert (H0n : (0 < n)%nat) by (destruct HP; lia).
-  apply Rle_Qle; replace (Q2R 0) with 0 by (unfold Q2R; simpl; lra).
+  apply Rle_Qle; rewrite Q2R_0.
   destruct (in_dec Nat.eq_dec (goal P) (tl (trace PM x c))) as [Hin|Hout].
   - destruct (cycle_through_goal x c Hsc Hin) as (u & Hsp & E); rewrite E, Hg.
     destruct (Gstar_least P HP 0 u H0n (proj1 Hsp)) as (gl & Egl & Hgl).
@@ -1210,7 +1207,7 @@ Proof.
   rewrite partial_S, IH by lia.
   rewrite firstn_snoc by lia; rewrite (Qeq_eqR _ _ (wcost_app PM x0 _ _)), Q2R_plus.
   unfold cyc_c, cyc_x, cyc_a; rewrite Nat.mod_small by lia; simpl wcost.
-  rewrite Q2R_plus; replace (Q2R 0) with 0 by (unfold Q2R; simpl; lra); ring.
+  rewrite Q2R_plus; rewrite Q2R_0; ring.
 Qed.
 
 Lemma cyc_partial_period : partial (cyc_c x0 cyc) (length cyc) = Q2R (wcost PM x0 cyc).
@@ -1254,7 +1251,7 @@ Proof.
     rewrite PM_moves_goal; simpl; auto.
   - rewrite wend_app, He', He; cbn [wend]; exact Ht0.
   - rewrite (Qeq_eqR _ _ (wcost_app PM 0 u [0%nat])), Q2R_plus, He', He, Hc'; simpl wcost.
-    rewrite Hc0, Q2R_plus; replace (Q2R 0) with 0 by (unfold Q2R; simpl; lra); ring.
+    rewrite Hc0, Q2R_plus; rewrite Q2R_0; ring.
   - rewrite app_length; simpl; lia.
 Qed.
 
@@ -1312,7 +1309,7 @@ Proof.
   rewrite partial_S, IH by lia.
   rewrite firstn_snoc by lia; rewrite (Qeq_eqR _ _ (wcost_app PM 0 _ _)), Q2R_plus.
   unfold las_c, las_x, las_a; rewrite (proj2 (Nat.ltb_lt _ _)) by lia; simpl wcost.
-  rewrite Q2R_plus; replace (Q2R 0) with 0 by (unfold Q2R; simpl; lra); ring.
+  rewrite Q2R_plus; rewrite Q2R_0; ring.
 Qed.
 
 (** The lasso's cost after the prefix and [m] turns of the cycle. *)
@@ -1377,7 +1374,7 @@ Proof.
   set (g := ((Lstar + M) / inject_Z (Z.of_nat sn))%Q).
   assert (Hsn0 : ~ (inject_Z (Z.of_nat sn) == 0)%Q).
   { intros E; apply Qeq_eqR in E; rewrite Q2R_nat in E.
-    replace (Q2R 0) with 0 in E by (unfold Q2R; simpl; lra).
+    rewrite Q2R_0 in E.
     pose proof (lt_0_INR sn Hsn); lra. }
   assert (Hg : Q2R g = (Q2R Lstar + Q2R M) / INR sn).
   { unfold g; rewrite Q2R_div, Q2R_plus, Q2R_nat by auto; reflexivity. }
@@ -1395,7 +1392,7 @@ Proof.
   - intros x' c' Hrun eps Heps.
     apply (mean_lower c' (Q2R g) (Q2R (inject_Z (Z.of_nat (nstates P)) * D))); auto.
     + rewrite Q2R_mult, Q2R_nat; apply Rmult_le_pos; [apply pos_INR|].
-      apply Qle_Rle in HD0; replace (Q2R 0) with 0 in HD0 by (unfold Q2R; simpl; lra); auto.
+      apply Qle_Rle in HD0; rewrite Q2R_0 in HD0; auto.
     + apply (run_lower P HP M g D HD x' c' HD0 HC Hrun).
 Qed.
 

@@ -302,6 +302,7 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("BridgeCommon.v", include_str!("../../proofs/coq/BridgeCommon.v")),
     ("Bridge.v", include_str!("../../proofs/coq/Bridge.v")),
     ("BridgeRun.v", include_str!("../../proofs/coq/BridgeRun.v")),
+    ("QReal.v", include_str!("../../proofs/coq/QReal.v")),
     ("C3.v", include_str!("../../proofs/coq/C3.v")),
     ("C4.v", include_str!("../../proofs/coq/C4.v")),
     ("BridgeC34.v", include_str!("../../proofs/coq/BridgeC34.v")),

@@ -2,9 +2,9 @@
 
     The theorems of C4.v ([c4_corrected], [c4_corrected_sufficient], [c4_corrected_necessary])
     are about [corrected_interval], a bound over every simple goal path from [x1] and every
-    goal-avoiding simple cycle reachable from [x1]; those of C3.v ([c3_engine],
-    [c3_engine_lasso], [c3_certificate_engine]) about [in_core], [core_pi], [lasso_marks],
-    [cert_K] and [engine_certificate]. This file gives computable enumerations of the simple
+    goal-avoiding simple cycle reachable from [x1]; those of C3 ([C3.c3_engine],
+    [C3Engine.c3_engine_lasso], [C3Certificate.c3_certificate_engine]) about [in_core],
+    [core_pi], [lasso_marks], [cert_K] and [engine_certificate]. This file gives computable enumerations of the simple
     goal paths ([goal_paths]) and of the goal-avoiding simple cycles ([avoid_cycles]), proves
     them exact ([goal_paths_spec], [avoid_cycles_spec]), and computes from them [L* = G*(x1)],
     the values of [S*] ([sstars]), [Lav(C^)] ([Lav]) and the corrected interval's ends

@@ -13,7 +13,7 @@
       [c4_corrected_sufficient] and [c4_corrected_necessary]; the facts they rest on:
       the average of a lasso is its cycle's mean ([las_average], [cyc_average],
       [average_periodic], [average_shift]; a stationary policy's path is a lasso:
-      [C3.st_lasso]),
+      [C3Engine.st_lasso]),
       every run's cost is at least the least simple-cycle mean per stage up to a constant
       ([closed_nonneg], [walk_bound], [run_lower]: the cycle decomposition of walks), and
       the simple cycles of the average-cost problem are the simple goal paths closed by the

@@ -6,7 +6,9 @@
 //! `QProblem::optimal_steps` and the round bound of C1-corrected from `QProblem::round_bound`
 //! for three initial vectors — and `Bridge.v`'s checker, evaluated by `coqc`, compares them
 //! with Model.v's definitions. Coq prints how many problems and values it compared and the list
-//! of mismatches; the test requires none, and at least 1,000 problems.
+//! of mismatches; the test requires none, and at least 1,000 problems. A second test plants
+//! wrong values (`G*`, `Q*`, `h`, `R1`, a round bound, as a wrong oracle would produce them)
+//! and requires Coq to report exactly those.
 //!
 //! Without `coqc` on `PATH` the test fails with the install line (no silent skip). The Coq
 //! development is `../proofs/coq` from this crate, or the directory in `TRUECOST_COQ_DIR`

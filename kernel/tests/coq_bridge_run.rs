@@ -121,6 +121,9 @@ fn check_run_verdict(q: &QProblem, q0: &[i64], order: Order, after: &[(Vec<i64>,
     }
 }
 
+/// Initial values, the rounds (pair indices), and the kernel's `Order` they are, if any.
+type Plan = (Vec<i64>, Vec<Vec<usize>>, Option<Order>);
+
 fn case(t: &Tiny, seed: u64) -> Case {
     let mut rng = Rng(seed);
     let mut runs = Vec::new();
@@ -133,7 +136,7 @@ fn case(t: &Tiny, seed: u64) -> Case {
             || -> Vec<i64> { (0..q.len()).map(|_| rng.below(61) as i64 - 30).collect() };
         let (r1, r2, r3) = (random(), random(), random());
         let shuffled: Vec<Vec<usize>> = (0..ROUNDS).map(|_| rng.shuffled(&seq)).collect();
-        let plans: Vec<(Vec<i64>, Vec<Vec<usize>>, Option<Order>)> = vec![
+        let plans: Vec<Plan> = vec![
             (zero, vec![seq.clone(); ROUNDS], Some(Order::Cyclic)),
             (r1, vec![seq.clone(); ROUNDS], Some(Order::Cyclic)),
             (r2, vec![rev; ROUNDS], Some(Order::Reverse)),

@@ -1,10 +1,10 @@
 (** * C3, the worked example: the printed inequality, the threshold [alpha_star], the example over all policies
 
-    The worked example of the paper's discounting proposition (SPEC §6, C3; the claims
+    The worked example of the paper's discounting proposition (the claims
     registry's C3-example): the printed inequality and its quartic ([printed_iff_quartic]), the
     bracket of the quartic's root ([alpha_lo], [alpha_hi], [quartic_lo], [quartic_hi]), the
     example's stationary policies ([c3_example_threshold]) and all its policies (section
-    [ExampleAll]). [C3.v] states the main theorems ([printed_iff_quartic], [c3_alpha_star],
+    [ExampleAll]). [C3.v] states the main theorems ([c3_printed_iff_quartic], [c3_alpha_star],
     [c3_example_threshold_all]). *)
 
 From Coq Require Import Reals Lra Lia QArith Qround Qreals List.

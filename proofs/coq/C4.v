@@ -495,7 +495,7 @@ Lemma A_printed_pos : A_printed 3 2 2 3 = - (5 / 27).
 Proof. unfold A_printed; field. Qed.
 
 (** C4 as printed, refuted with every move cost positive (the paper's Proposition 4 as
-    printed; SPEC §6 C4; the claims registry's [c4::STATEMENT]), so the failure is not an
+    printed; the claims registry's [c4::STATEMENT]), so the failure is not an
     artefact of zero-cost moves. In [c4pos] (moves [0 -> 1] and [1 -> 2] of cost 1, [0 -> 2]
     of cost 3, goal 2): the single-shot optimum is [G*(x1) = 2], attained by
     [pi* = 0 -> 1 -> 2] ([S* = 3] states, [L* = 2]); the only other goal path is [0 -> 2]

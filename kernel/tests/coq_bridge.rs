@@ -6,7 +6,9 @@
 //! `QProblem::optimal_steps` and the round bound of C1-corrected from `QProblem::round_bound`
 //! for three initial vectors — and `Bridge.v`'s checker, evaluated by `coqc`, compares them
 //! with Model.v's definitions. Coq prints how many problems and values it compared and the list
-//! of mismatches; the test requires none, and at least 1,000 problems.
+//! of mismatches; the test requires none, and at least 1,000 problems. A second test plants
+//! wrong values (`G*`, `Q*`, `h`, `R1`, a round bound, as a wrong oracle would produce them)
+//! and requires Coq to report exactly those.
 //!
 //! Without `coqc` on `PATH` the test fails with the install line (no silent skip). The Coq
 //! development is `../proofs/coq` from this crate, or the directory in `TRUECOST_COQ_DIR`
@@ -18,6 +20,7 @@ mod coq_support;
 
 use std::fmt::Write as _;
 
+use std::path::Path;
 use std::process::Command;
 use std::time::Instant;
 
@@ -25,7 +28,7 @@ use truecost_kernel::claims::oracle::optimal_cost_to_go;
 use truecost_kernel::claims::qlearning::{QProblem, Terminal, Values, MAX_PAIRS};
 use truecost_kernel::claims::tiny::{Family, FamilySpec, Tiny};
 
-use coq_support::{coq_dir, list, parse, run, NO_COQC};
+use coq_support::{coq_dir, list, make, parse, run, Verdict, NO_COQC};
 
 /// The scopes, and the stride at which each one's labelled problems are sampled (every
 /// `stride`-th labelled problem, kept if it is its class's representative).
@@ -51,6 +54,7 @@ fn scopes() -> Vec<(FamilySpec, u64)> {
 }
 
 /// One problem and what the kernel computes for it.
+#[derive(Clone)]
 struct Case {
     tiny: Tiny,
     gstar: Vec<Option<i64>>,
@@ -128,6 +132,33 @@ fn coq_term(c: &Case) -> String {
     )
 }
 
+/// Writes `cases` as a Coq file in `work` and evaluates `check_all` on them with `coqc`.
+fn coq_check(dir: &Path, work: &Path, name: &str, cases: &[Case]) -> Verdict {
+    let mut file = String::from(
+        "From Coq Require Import QArith List String.\nFrom Truecost Require Import Model Bridge.\n\
+         Import ListNotations.\nOpen Scope Q_scope.\n\n\
+         Definition problems : list (problem * expected) := [\n",
+    );
+    for (i, c) in cases.iter().enumerate() {
+        let sep = if i + 1 < cases.len() { ";" } else { "" };
+        writeln!(file, "  {}{sep}", coq_term(c)).unwrap();
+    }
+    file.push_str("].\n\nEval vm_compute in check_all problems.\n");
+    let path = work.join(format!("{name}.v"));
+    std::fs::write(&path, file).unwrap();
+    let out = run(
+        Command::new("coqc")
+            .arg("-q")
+            .arg("-R")
+            .arg(dir)
+            .arg("Truecost")
+            .arg(&path)
+            .current_dir(work),
+        &format!("coqc {}", path.display()),
+    );
+    parse(&out).unwrap_or_else(|| panic!("unreadable Coq output:\n{out}"))
+}
+
 /// The kernel's value at a mismatch, for the failure message.
 fn kernel_value(c: &Case, what: &str, k: usize) -> String {
     let get = |v: Option<String>| v.unwrap_or_else(|| "(no entry)".into());
@@ -152,10 +183,7 @@ fn model_definitions_equal_the_kernel_oracles_on_enumerated_problems() {
     let started = Instant::now();
     // Only what the checker needs (Model.v, Bridge.v): the other proofs are built and checked
     // by `make -C proofs/coq` in CI and by the crate `truecost`'s Coq test.
-    run(
-        Command::new("make").arg("-C").arg(&dir).arg("Bridge.vo"),
-        "make -C proofs/coq Bridge.vo",
-    );
+    make(&dir, "Bridge.vo");
     eprintln!(
         "make -C {}: {:.1} s",
         dir.display(),
@@ -175,29 +203,7 @@ fn model_definitions_equal_the_kernel_oracles_on_enumerated_problems() {
             .filter(|t| family.is_canonical(t))
             .map(|t| case(&t))
             .collect();
-        let mut file = String::from(
-            "From Coq Require Import QArith List String.\nFrom Truecost Require Import Model Bridge.\n\
-             Import ListNotations.\nOpen Scope Q_scope.\n\n\
-             Definition problems : list (problem * expected) := [\n",
-        );
-        for (i, c) in cases.iter().enumerate() {
-            let sep = if i + 1 < cases.len() { ";" } else { "" };
-            writeln!(file, "  {}{sep}", coq_term(c)).unwrap();
-        }
-        file.push_str("].\n\nEval vm_compute in check_all problems.\n");
-        let path = work.join(format!("bridge_{f}.v"));
-        std::fs::write(&path, file).unwrap();
-        let out = run(
-            Command::new("coqc")
-                .arg("-q")
-                .arg("-R")
-                .arg(&dir)
-                .arg("Truecost")
-                .arg(&path)
-                .current_dir(&work),
-            &format!("coqc {}", path.display()),
-        );
-        let v = parse(&out).unwrap_or_else(|| panic!("unreadable Coq output:\n{out}"));
+        let v = coq_check(&dir, &work, &format!("bridge_{f}"), &cases);
         assert_eq!(v.problems, cases.len() as u64, "{}", spec.describe());
         for (i, what, k) in &v.mismatches {
             mismatches += 1;
@@ -259,6 +265,63 @@ fn model_definitions_equal_the_kernel_oracles_on_enumerated_problems() {
     let some = bounds.iter().filter(|b| b.is_some()).count();
     assert!(some >= 100 && bounds.len() - some >= 100, "{some}");
     assert!(all.iter().filter(|c| c.r1.is_some_and(|r| r >= 3)).count() >= 10);
+}
+
+/// The checker can fail: planted wrong values (as a wrong oracle would produce them) are
+/// reported by Coq at exactly their places.
+#[test]
+fn planted_wrong_values_are_reported() {
+    if Command::new("coqc").arg("--version").output().is_err() {
+        panic!("{NO_COQC}");
+    }
+    let dir = coq_dir();
+    make(&dir, "Bridge.vo");
+    let work = std::env::temp_dir().join(format!(
+        "truecost-coq-bridge-planted-{}",
+        std::process::id()
+    ));
+    std::fs::create_dir_all(&work).unwrap();
+    // 0 -> 1 (cost 1), 0 -> 2 (cost 4), 1 -> 2 (cost 1), the goal 2: G* = (2, 1, 0), the
+    // pairs (0,0->1) (0,0->2) (1,1->2) (2,uT), h = (2, 1, 0).
+    let t = Tiny::from_lists(&[vec![(1, 1), (2, 4)], vec![(2, 1)], vec![]]);
+    let good = case(&t);
+    assert_eq!(good.gstar, vec![Some(2), Some(1), Some(0)]);
+    assert_eq!(good.h, vec![Some(2), Some(1), Some(0)]);
+    let mut planted = Vec::new();
+    // G*(x1) off by one.
+    let mut c = good.clone();
+    c.gstar[0] = Some(3);
+    planted.push(c);
+    // Q* of the second pair off by one.
+    let mut c = good.clone();
+    c.qstar[1] = Some(5);
+    planted.push(c);
+    // h of state 1 wrong.
+    let mut c = good.clone();
+    c.h[1] = Some(2);
+    planted.push(c);
+    // R1 wrong.
+    let mut c = good.clone();
+    c.r1 = c.r1.map(|r| r + 1);
+    planted.push(c);
+    // The round bound of the third initial vector wrong.
+    let mut c = good.clone();
+    c.rounds[2].1 = Some(c.rounds[2].1.map_or(0, |r| r + 1));
+    planted.push(c);
+    planted.push(good);
+    let v = coq_check(&dir, &work, "bridge_planted", &planted);
+    std::fs::remove_dir_all(&work).ok();
+    assert_eq!(v.problems, 6);
+    assert_eq!(
+        v.mismatches,
+        vec![
+            (0, "Gstar".into(), 0),
+            (1, "Qstar".into(), 1),
+            (2, "h".into(), 1),
+            (3, "R1".into(), 0),
+            (4, "round_bound".into(), 2),
+        ]
+    );
 }
 
 /// The parser reads Coq's printing of `check_all`, with and without mismatches.

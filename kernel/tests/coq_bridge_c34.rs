@@ -36,7 +36,7 @@ use truecost_kernel::claims::c4::{bonus_analysis, End, Instance, Interval};
 use truecost_kernel::claims::exact::Q;
 use truecost_kernel::claims::tiny::{Family, FamilySpec, Tiny};
 
-use coq_support::{coq_dir, list, parse, run, Verdict, NO_COQC};
+use coq_support::{coq_dir, list, make, parse, run, Verdict, NO_COQC};
 
 /// The policy bound of the bonus analysis (as `verify` runs it).
 const LIMIT: u64 = 1 << 20;
@@ -107,6 +107,16 @@ fn case(t: &Tiny) -> Case {
         .unwrap_or_default()
         .into_iter()
         .map(|s| {
+            // The exact oracle (every stationary policy's average cost) gives the set the
+            // corrected formula gives, which Coq checks against its interval: the exact
+            // oracle agrees with C4.v's `corrected_interval` (`c4_corrected`).
+            assert!(
+                s.exact.same_set(&s.corrected),
+                "{}: exact {} vs corrected {}",
+                t.describe(),
+                s.exact,
+                s.corrected
+            );
             (
                 s.optimal_cost,
                 s.optimal_states,
@@ -253,10 +263,7 @@ fn prepare() -> (PathBuf, PathBuf) {
     }
     let dir = coq_dir();
     // Only what the checker needs (Model.v … C4.v, BridgeC34.v).
-    run(
-        Command::new("make").arg("-C").arg(&dir).arg("BridgeC34.vo"),
-        "make -C proofs/coq BridgeC34.vo",
-    );
+    make(&dir, "BridgeC34.vo");
     let work = std::env::temp_dir().join(format!(
         "truecost-coq-bridge-c34-{}-{:?}",
         std::process::id(),
@@ -415,6 +422,41 @@ fn planted_wrong_values_are_reported() {
             (4, "core".into(), 2),
         ]
     );
+}
+
+/// The numbers of `C4.c4_as_printed_refuted_positive_costs` are the kernel's: on `c4pos`
+/// (0 -> 1 cost 1, 1 -> 2 cost 1, 0 -> 2 cost 3, goal 2) `L* = 2`, `S* = 3`, no goal-avoiding
+/// cycle; the printed lower end is `A(0 -> 2) = (1 - 2/3)(2*2/(3*3) - 1) = -5/27`, the
+/// corrected one `T(0 -> 2) = (3*3 - 2*2)/(2 - 3) = -5`, and the exact oracle's set starts at
+/// `-5` too (the average `(2 + M)/3` of pi* against `(3 + M)/2` of 0 -> 2 -> reset). Coq's
+/// checker finds no mismatch on the problem.
+#[test]
+fn the_positive_cost_counterexample_of_c4_is_the_kernels() {
+    let (dir, work) = prepare();
+    let t = Tiny::from_lists(&[vec![(1, 1), (2, 3)], vec![(2, 1)], vec![]]);
+    let sets = bonus_analysis(&Instance::from_tiny(&t), LIMIT)
+        .unwrap()
+        .unwrap();
+    assert_eq!(sets.len(), 1);
+    let s = &sets[0];
+    assert_eq!(
+        (s.optimal_cost, s.optimal_states, s.least_mean_cycle),
+        (2, 3, None)
+    );
+    let printed = s.printed.expect("the printed formula applies (L(u) > 0)");
+    assert_eq!(printed.lo, End::Closed(Q::new(-5, 27)));
+    assert_eq!(s.corrected.lo, End::Closed(Q::int(-5)));
+    for m in [Q::int(-5), Q::new(-1, 5)] {
+        assert!(s.exact.contains(m) && !printed.contains(m), "{m}");
+    }
+    assert!(!s.exact.contains(Q::new(-51, 10)));
+    // A planted wrong exact set is told apart from the corrected one.
+    let mut wrong = s.exact;
+    wrong.lo = End::Closed(Q::new(-5, 27));
+    assert!(!wrong.same_set(&s.corrected));
+    let v = coq_check(&dir, &work, "bridge_c34_c4pos", &[case(&t)]);
+    std::fs::remove_dir_all(&work).ok();
+    assert_eq!((v.problems, v.mismatches.len()), (1, 0), "{v:?}");
 }
 
 /// The parser reads Coq's printing of `check_all`, with and without mismatches.

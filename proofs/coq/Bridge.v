@@ -17,27 +17,10 @@
 
 From Coq Require Import QArith List String.
 From Truecost Require Import Model.
+From Truecost Require Export BridgeCommon.
 Import ListNotations.
 
 Open Scope Q_scope.
-
-(** ** Building problems and value vectors from the test's data *)
-
-(** The problem with states [0 .. n-1], goal [n - 1] and the move lists [ms] (state by state),
-    as the kernel's [Tiny] (goal = last state, [x1 = 0]). *)
-Definition mk (n : nat) (ms : list (list (nat * Q))) : problem :=
-  {| nstates := n; goal := Nat.pred n; moves := fun x => nth x ms [] |}.
-
-Fixpoint index_of (p : nat * action) (ps : list (nat * action)) : nat :=
-  match ps with
-  | [] => O
-  | q :: ps' => if Nat.eqb (fst p) (fst q) && action_eqb (snd p) (snd q) then O
-                else S (index_of p ps')
-  end.
-
-(** The value vector giving the [k]-th pair of [pairs P] the [k]-th entry of [l]. *)
-Definition qvec_of (P : problem) (l : list Q) : qvec :=
-  fun x a => nth (index_of (x, a) (pairs P)) l 0.
 
 (** ** The values, from Model.v's definitions *)
 
@@ -173,28 +156,6 @@ Record expected := {
   e_rounds : list (list Q * option nat)   (** [q0] in [pairs] order, and its round bound *)
 }.
 
-(** A mismatch: the problem's index, the field, and the position in the field ([length] of the
-    shorter list for a length mismatch). *)
-Definition mismatch := (nat * string * nat)%type.
-
-Definition oq_eqb (a b : option Q) : bool :=
-  match a, b with Some u, Some v => Qeq_bool u v | None, None => true | _, _ => false end.
-
-Definition on_eqb (a b : option nat) : bool :=
-  match a, b with Some u, Some v => Nat.eqb u v | None, None => true | _, _ => false end.
-
-(** The positions where two lists differ (and the position where the shorter one ends). *)
-Fixpoint positions_differ {A} (eqb : A -> A -> bool) (k : nat) (l r : list A) : list nat :=
-  match l, r with
-  | [], [] => []
-  | a :: l', b :: r' =>
-      let rest := positions_differ eqb (S k) l' r' in if eqb a b then rest else k :: rest
-  | _, _ => [k]
-  end.
-
-Definition tag (i : nat) (what : string) (ks : list nat) : list mismatch :=
-  map (fun k => (i, what, k)) ks.
-
 (** Mismatches of problem number [i], and the number of values compared. *)
 Definition check_problem (i : nat) (P : problem) (e : expected) : list mismatch * nat :=
   let v := shared_values P (map (fun r => qvec_of P (fst r)) (e_rounds e)) in
@@ -206,42 +167,8 @@ Definition check_problem (i : nat) (P : problem) (e : expected) : list mismatch 
    (List.length (e_Gstar e) + List.length (e_Qstar e) + List.length (e_h e) + 1
     + List.length (e_rounds e))%nat).
 
-(** Every problem of the list: (problems checked, values compared, mismatches). *)
-Fixpoint check_from (i : nat) (ps : list (problem * expected)) : nat * nat * list mismatch :=
-  match ps with
-  | [] => (O, O, [])
-  | (P, e) :: ps' =>
-      let '(m, c) := check_problem i P e in
-      let '(n', c', ms) := check_from (S i) ps' in
-      (S n', (c + c')%nat, m ++ ms)
-  end.
-
 Definition check_all (ps : list (problem * expected)) : nat * nat * list mismatch :=
-  check_from 0 ps.
-
-(** No reported position means equal lists, element by element. *)
-Lemma positions_differ_nil :
-  forall A (eqb : A -> A -> bool) k l r,
-  positions_differ eqb k l r = [] -> Forall2 (fun a b => eqb a b = true) l r.
-Proof.
-  intros A eqb k l; revert k; induction l as [|a l IH]; intros k [|b r] H; simpl in H;
-    try discriminate; [constructor|].
-  destruct (eqb a b) eqn:E; [|discriminate]; constructor; [exact E|exact (IH _ _ H)].
-Qed.
-
-Lemma oq_eqb_eq : forall a b, oq_eqb a b = true ->
-  match a, b with Some u, Some v => u == v | None, None => True | _, _ => False end.
-Proof. intros [u|] [v|]; simpl; try discriminate; auto; apply Qeq_bool_iff. Qed.
-
-Lemma on_eqb_eq : forall a b, on_eqb a b = true -> a = b.
-Proof.
-  intros [u|] [v|]; simpl; try discriminate; auto.
-  intro H; apply Nat.eqb_eq in H; subst; reflexivity.
-Qed.
-
-Lemma on_eqb_list_eq :
-  forall l r, Forall2 (fun a b => on_eqb a b = true) l r -> l = r.
-Proof. intros l r H; induction H; [reflexivity|f_equal; [apply on_eqb_eq|]; assumption]. Qed.
+  check_from check_problem 0 ps.
 
 (** When [check_problem] reports no mismatch, Model.v's values are the expected ones: [G*] and
     [Q*] equal as rationals (state by state, pair by pair), [h], [R1] and every round bound

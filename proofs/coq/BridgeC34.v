@@ -2,9 +2,9 @@
 
     The theorems of C4.v ([c4_corrected], [c4_corrected_sufficient], [c4_corrected_necessary])
     are about [corrected_interval], a bound over every simple goal path from [x1] and every
-    goal-avoiding simple cycle reachable from [x1]; those of C3.v ([c3_engine],
-    [c3_engine_lasso], [c3_certificate_engine]) about [in_core], [core_pi], [lasso_marks],
-    [cert_K] and [engine_certificate]. This file gives computable enumerations of the simple
+    goal-avoiding simple cycle reachable from [x1]; those of C3 ([C3.c3_engine],
+    [C3Engine.c3_engine_lasso], [C3Certificate.c3_certificate_engine]) about [in_core],
+    [core_pi], [lasso_marks], [cert_K] and [engine_certificate]. This file gives computable enumerations of the simple
     goal paths ([goal_paths]) and of the goal-avoiding simple cycles ([avoid_cycles]), proves
     them exact ([goal_paths_spec], [avoid_cycles_spec]), and computes from them [L* = G*(x1)],
     the values of [S*] ([sstars]), [Lav(C^)] ([Lav]) and the corrected interval's ends
@@ -23,8 +23,9 @@
 
 From Coq Require Import String Reals Lra Lia QArith Qreals List.
 From Coq Require Lqa.
-From Truecost Require Import Model Paths C2 C3 C4.
+From Truecost Require Import Model Paths C2 QReal C3 C4.
 From Truecost Require Bridge.
+From Truecost Require Export BridgeCommon.
 Import ListNotations.
 
 Open Scope Q_scope.
@@ -410,16 +411,13 @@ Open Scope R_scope.
 Lemma Q2R_qnat k : Q2R (qnat k) = INR k.
 Proof. apply Q2R_nat. Qed.
 
-Lemma Q2R_zero : Q2R 0 = 0.
-Proof. unfold Q2R; simpl; lra. Qed.
-
 Lemma T_Q_R P s Ls u :
   S (length u) <> s ->
   Q2R (T_Q s Ls (wcost P 0 u) (S (length u))) = T_of P (INR s) (Q2R Ls) u.
 Proof.
   intros Hne; unfold T_Q, T_of, L_of, S_of.
   assert (Hd : ~ (qnat (S (length u)) - qnat s == 0)%Q).
-  { intros E; apply Qeq_eqR in E; rewrite Q2R_minus, !Q2R_qnat, Q2R_zero in E.
+  { intros E; apply Qeq_eqR in E; rewrite Q2R_minus, !Q2R_qnat, Q2R_0 in E.
     apply Hne, INR_eq; lra. }
   rewrite Q2R_div, Q2R_minus, !Q2R_mult, Q2R_minus, !Q2R_qnat by exact Hd; reflexivity.
 Qed.
@@ -429,7 +427,7 @@ Lemma mean_R P x c :
 Proof.
   intros Hne; unfold mean_of.
   assert (Hd : ~ (qnat (length c) == 0)%Q).
-  { intros E; apply Qeq_eqR in E; rewrite Q2R_qnat, Q2R_zero in E.
+  { intros E; apply Qeq_eqR in E; rewrite Q2R_qnat, Q2R_0 in E.
     destruct c; [congruence|]; simpl length in E; rewrite S_INR in E.
     pose proof (pos_INR (length c)); lra. }
   rewrite Q2R_div, Q2R_qnat by exact Hd; reflexivity.
@@ -572,7 +570,7 @@ Theorem neg_interval_spec lo hi m :
 Proof.
   rewrite neg_interval_Q; unfold in_bounds.
   assert (R0 : (m < 0)%Q <-> Q2R m < 0).
-  { split; intros H; [apply Qlt_Rlt in H|apply Rlt_Qlt]; rewrite Q2R_zero in *; auto. }
+  { split; intros H; [apply Qlt_Rlt in H|apply Rlt_Qlt]; rewrite Q2R_0 in *; auto. }
   rewrite R0; split; intros (H1 & H2 & H3); (split; [exact H1|split]);
     intros q E; [apply Qle_Rle, H2 | apply Qle_Rle, H3 | apply Rle_Qle, H2 | apply Rle_Qle, H3];
     exact E.
@@ -581,11 +579,6 @@ Qed.
 (** ** The checker *)
 
 Open Scope Q_scope.
-
-(** The problem with states [0 .. n-1], goal [n - 1], [x1 = 0] and the move lists [ms]
-    (the kernel's [Tiny]). *)
-Definition mk (n : nat) (ms : list (list (nat * Q))) : problem :=
-  {| nstates := n; goal := Nat.pred n; moves := fun x => nth x ms [] |}.
 
 (** What the kernel computed for one problem. *)
 Record expected := {
@@ -596,11 +589,6 @@ Record expected := {
   e_core : list bool;
   e_certs : list (Q * option (list (list Q)))%type   (** [alpha0] and the certificate's costs *)
 }.
-
-Definition mismatch := (nat * string * nat)%type.
-
-Definition oq_eqb (a b : option Q) : bool :=
-  match a, b with Some u, Some v => Qeq_bool u v | None, None => true | _, _ => false end.
 
 Definition end_eqb (a b : iend) : bool :=
   match a, b with
@@ -618,31 +606,12 @@ Definition set_eqb (a b : (Q * nat * option Q * (iend * iend * bool))%type) : bo
   let '(l, s, lv, iv) := a in let '(l', s', lv', iv') := b in
   Qeq_bool l l' && Nat.eqb s s' && oq_eqb lv lv' && iv_eqb iv iv'.
 
-Fixpoint list_eqb {A} (eqb : A -> A -> bool) (l r : list A) : bool :=
-  match l, r with
-  | [], [] => true
-  | a :: l', b :: r' => eqb a b && list_eqb eqb l' r'
-  | _, _ => false
-  end.
-
 Definition cert_eqb (a b : option (list (list Q))) : bool :=
   match a, b with
   | Some u, Some v => list_eqb (list_eqb Qeq_bool) u v
   | None, None => true
   | _, _ => false
   end.
-
-(** The positions where two lists differ (and the position where the shorter one ends). *)
-Fixpoint positions_differ {A} (eqb : A -> A -> bool) (k : nat) (l r : list A) : list nat :=
-  match l, r with
-  | [], [] => []
-  | a :: l', b :: r' =>
-      let rest := positions_differ eqb (S k) l' r' in if eqb a b then rest else k :: rest
-  | _, _ => [k]
-  end.
-
-Definition tag (i : nat) (what : string) (ks : list nat) : list mismatch :=
-  map (fun k => (i, what, k)) ks.
 
 (** Mismatches of problem number [i], and the number of values compared. *)
 Definition check_problem (i : nat) (P : problem) (e : expected) : list mismatch * nat :=
@@ -656,32 +625,8 @@ Definition check_problem (i : nat) (P : problem) (e : expected) : list mismatch 
    (2 + List.length (e_paths e) + List.length (e_sets e) + List.length (e_core e)
     + List.length (e_certs e))%nat).
 
-Fixpoint check_from (i : nat) (ps : list (problem * expected)) : nat * nat * list mismatch :=
-  match ps with
-  | [] => (O, O, [])
-  | (P, e) :: ps' =>
-      let '(m, c) := check_problem i P e in
-      let '(n', c', ms) := check_from (S i) ps' in
-      (S n', (c + c')%nat, m ++ ms)
-  end.
-
 Definition check_all (ps : list (problem * expected)) : nat * nat * list mismatch :=
-  check_from 0 ps.
-
-(** No reported position means equal lists, element by element. *)
-Lemma positions_differ_nil :
-  forall A (eqb : A -> A -> bool) k l r,
-  positions_differ eqb k l r = [] -> Forall2 (fun a b => eqb a b = true) l r.
-Proof.
-  intros A eqb k l; revert k; induction l as [|a l IH]; intros k [|b r] H; simpl in H;
-    try discriminate; [constructor|].
-  destruct (eqb a b) eqn:E; [|discriminate]; constructor; [exact E|exact (IH _ _ H)].
-Qed.
-
-Lemma bool_list_eq l r : Forall2 (fun a b => Bool.eqb a b = true) l r -> l = r.
-Proof.
-  intros H; induction H; [reflexivity|f_equal; [apply Bool.eqb_prop|]; assumption].
-Qed.
+  check_from check_problem 0 ps.
 
 (** When [check_problem] reports no mismatch, C3.v's and C4.v's values (through this file's
     exact enumerations) are the kernel's: [G*(x1)], [Lav(C^)] and every simple goal path's

@@ -1,7 +1,9 @@
 (** * Claim C1: finite-time convergence of derandomized Q-learning (the paper's Proposition 1)
 
     - [c1_as_printed_refuted]: C1 as printed (SPEC §6; the claims registry's
-      [c1::STATEMENT]) fails on the minimal counterexample [loop2].
+      [c1::STATEMENT]) fails on the minimal counterexample [loop2];
+      [c1_as_printed_refuted_positive_costs]: it fails also with every move cost positive and
+      [Q0(xg, uT) = 0] ([back2]).
     - [c1_corrected]: C1-corrected (the claims registry's [c1::corrected_statement] with [c1::ROUND_BOUND];
       [docs/proofs/c1.md]) for EVERY well-formed finite problem, with the round bound
       [round_bound] that [truecost verify] prints; its two parts are
@@ -138,6 +140,89 @@ Proof.
   vm_compute in Ev; inversion Ev; subst v.
   destruct (loop2_rounds_inv k q_zero ltac:(unfold loop2_inv, q_zero; lra)) as (E & _).
   rewrite E in Hv; discriminate Hv.
+Qed.
+
+(** ** C1 as printed: refuted with positive move costs *)
+
+(** Two states, every move of cost 1: [0 -> 1] and [1 -> 0], the goal 1. *)
+Definition back2 : problem := {|
+  nstates := 2;
+  goal := 1;
+  moves := fun x => match x with O => [(1%nat, 1)] | 1%nat => [(0%nat, 1)] | _ => [] end
+|}.
+
+(** The cyclic order: every pair of [back2] once per round, the termination pair included. *)
+Definition back2_round : list (nat * action) := pairs back2.
+
+(** [Q0]: [-1] at the goal's move, [0] elsewhere, so [Q0(xg, uT) = 0] as (H0) asks. *)
+Definition q_back : qvec :=
+  fun x a => match x, a with 1%nat, Move _ => -1 | _, _ => 0 end.
+
+Lemma back2_wf : wf back2.
+Proof.
+  split; [simpl; lia|].
+  intros x Hx y l H; simpl in Hx.
+  destruct x as [|[|x]]; simpl in H; [| | lia];
+    destruct H as [E|[]]; inversion E; simpl; split; try lia; lra.
+Qed.
+
+Lemma back2_reaches : forall x, (x < nstates back2)%nat -> Gstar back2 x <> None.
+Proof. intros x Hx; simpl in Hx; destruct x as [|[|x]]; [discriminate | discriminate | lia]. Qed.
+
+Lemma back2_costs_pos : forall x i, In (x, Move i) (pairs back2) -> 0 < cost back2 x (Move i).
+Proof.
+  intros x i H; vm_compute in H.
+  destruct H as [E|[E|[E|[]]]]; inversion E; subst; reflexivity.
+Qed.
+
+(** Some value at the goal is negative. *)
+Definition back2_inv (q : qvec) : Prop := q 1%nat Term < 0 \/ q 1%nat (Move 0) < 0.
+
+(** The printed rule sets [Q(xg, uT)] to [min(Q(xg, uT), Q(xg, 1 -> 0))], which is negative. *)
+Lemma back2_round_inv q : back2_inv q -> back2_inv (run_printed back2 q back2_round).
+Proof.
+  intros H; left.
+  unfold run_printed, back2_round, pairs; simpl.
+  unfold update_printed, qset, V, target, cost; simpl.
+  pose proof (Qmin2_l (q 1%nat (Move 0)) (q 1%nat Term)).
+  pose proof (Qmin2_r (q 1%nat (Move 0)) (q 1%nat Term)).
+  destruct H; lra.
+Qed.
+
+Lemma back2_rounds_inv k q :
+  back2_inv q -> back2_inv (run_printed back2 q (concat (repeat back2_round k))).
+Proof.
+  revert q; induction k as [|k IH]; intros q Hq; [exact Hq|].
+  change (concat (repeat back2_round (S k))) with (back2_round ++ concat (repeat back2_round k)).
+  rewrite run_printed_app.
+  apply IH, back2_round_inv, Hq.
+Qed.
+
+(** C1 as printed (the paper's Proposition 1 as printed; the claims registry's
+    [c1::STATEMENT]) is false also when every move cost is positive and [Q0(xg, uT) = 0]: on
+    [back2] (well-formed, every state reaching the goal, every move of cost 1), from [Q0] with
+    [-1] at the goal's move [1 -> 0] and [0] elsewhere, updating every pair (the termination pair
+    included, by the printed rule) once per round in the cyclic order, [Q] differs from [Q*]
+    after every number [k] of rounds: the printed rule updates the termination pair by
+    [Q(xg, uT) <- 0 + min_u Q(xg, u)], so from the first round on [Q(xg, uT) < 0 = Q*(xg, uT)]
+    and no later update can raise it. *)
+Theorem c1_as_printed_refuted_positive_costs :
+  wf back2 /\ (forall x, (x < nstates back2)%nat -> Gstar back2 x <> None) /\
+  (forall x i, In (x, Move i) (pairs back2) -> 0 < cost back2 x (Move i)) /\
+  q_back (goal back2) Term == 0 /\
+  (forall p, In p (pairs back2) -> In p back2_round) /\
+  forall k, ~ (forall x a, In (x, a) (pairs back2) ->
+                 exists v, Qstar back2 x a = Some v /\
+                           run_printed back2 q_back (concat (repeat back2_round k)) x a == v).
+Proof.
+  split; [exact back2_wf|]; split; [exact back2_reaches|]; split; [exact back2_costs_pos|].
+  split; [reflexivity|]; split; [auto|].
+  intros k H.
+  destruct (H 1%nat Term ltac:(vm_compute; auto)) as (v & Ev & Hv).
+  destruct (H 1%nat (Move 0) ltac:(vm_compute; auto)) as (w & Ew & Hw).
+  vm_compute in Ev, Ew; inversion Ev; inversion Ew; subst v w.
+  destruct (back2_rounds_inv k q_back ltac:(right; reflexivity)) as [E|E];
+    [rewrite Hv in E | rewrite Hw in E]; discriminate E.
 Qed.
 
 (** [ceil(gap / c)] rounds of [c] cover [gap] (the integer ceiling of the round bound). *)

@@ -5,13 +5,15 @@
       ([problems/counterexamples/c4-as-printed.json]): at the bonus [M = -3] the printed
       interval excludes [M], yet [pi*] is average-cost optimal against every run of the
       average-cost problem (every policy, stationary or not).
+    - [c4_as_printed_refuted_positive_costs]: it fails also with every move cost positive
+      ([c4pos]: for every bonus [-5 <= M < -5/27]).
     - [c4_corrected]: C4-corrected (the registry's [c4::CORRECTED]) for every finite
       deterministic problem with rational costs and bonus: [pi*] is average-cost optimal iff
       [M] lies in the corrected interval ([corrected_interval]). Its two halves are
       [c4_corrected_sufficient] and [c4_corrected_necessary]; the facts they rest on:
       the average of a lasso is its cycle's mean ([las_average], [cyc_average],
       [average_periodic], [average_shift]; a stationary policy's path is a lasso:
-      [C3.st_lasso]),
+      [C3Engine.st_lasso]),
       every run's cost is at least the least simple-cycle mean per stage up to a constant
       ([closed_nonneg], [walk_bound], [run_lower]: the cycle decomposition of walks), and
       the simple cycles of the average-cost problem are the simple goal paths closed by the
@@ -27,7 +29,7 @@
 
 From Coq Require Import Reals Lra Lia QArith Qreals List.
 From Coq Require Lqa ListDec Permutation.
-From Truecost Require Import Model Paths C2 C3.
+From Truecost Require Import Model Paths C2 QReal C3.
 Import ListNotations.
 
 Open Scope R_scope.
@@ -310,6 +312,230 @@ Proof.
     apply Rle_trans with (M / 3); [lra|].
     apply (Rmult_le_reg_r (INR (S N))); [auto|].
     unfold Rdiv at 2; rewrite Rmult_assoc, Rinv_l by lra; lra.
+Qed.
+
+(** ** C4 as printed, refuted with positive move costs *)
+
+(** The counterexample with every move cost positive: states 0, 1, 2, [x1 = 0], goal 2 (no
+    moves); moves [0 -> 1] (cost 1), [0 -> 2] (cost 3), [1 -> 2] (cost 1). *)
+Definition c4pos : problem := {|
+  nstates := 3;
+  goal := 2;
+  moves := fun x => match x with
+                    | O => [(1%nat, 1%Q); (2%nat, 3%Q)]
+                    | 1%nat => [(2%nat, 1%Q)]
+                    | _ => []
+                    end
+|}.
+
+Lemma c4pos_costs_pos x i :
+  (x < nstates c4pos)%nat -> (i < length (moves c4pos x))%nat -> (0 < cost c4pos x (Move i))%Q.
+Proof.
+  intros Hx Hi; simpl in Hx; unfold cost.
+  destruct x as [|[|[|x]]]; simpl in Hi; try lia;
+    [destruct i as [|[|i]] | destruct i as [|i]]; try lia; reflexivity.
+Qed.
+
+(** The single-shot optimum: [G*(x1) = 2]. *)
+Lemma c4pos_Gstar : Gstar c4pos 0 = Some 2%Q.
+Proof. vm_compute; reflexivity. Qed.
+
+(** The goal paths from [x1]: [0 -> 1 -> 2] (3 states, cost 2: [pi*]) and [0 -> 2] (2 states,
+    cost 3). *)
+Lemma c4pos_goal_paths w : reaches c4pos 0 w -> w = [0; 0]%nat \/ w = [1%nat].
+Proof.
+  intros [Hw He]; unfold target in *.
+  destruct w as [|a w]; step; [discriminate|].
+  destruct Hw as [Ha Hw]; destruct a as [|[|a]]; step; try lia.
+  - destruct w as [|b w]; step; [discriminate|].
+    destruct Hw as [Hb Hw]; destruct b as [|b]; step; try lia.
+    destruct w as [|c w]; [auto|]; step; destruct Hw as [Hc _]; step; lia.
+  - destruct w as [|b w]; [auto|]; step; destruct Hw as [Hb _]; step; lia.
+Qed.
+
+Lemma c4pos_pistar : reaches c4pos 0 [0; 0]%nat /\ (wcost c4pos 0 [0; 0]%nat == 2)%Q.
+Proof. split; [split; [simpl; unfold target; simpl; lia | reflexivity] | reflexivity]. Qed.
+
+Lemma c4pos_other_path : reaches c4pos 0 [1%nat] /\ (wcost c4pos 0 [1%nat] == 3)%Q.
+Proof. split; [split; [simpl; lia | reflexivity] | reflexivity]. Qed.
+
+(** No cycle avoids the goal (no cycle at all without the reset): [Lav(C^) = +oo]. *)
+Lemma c4pos_no_cycle x w :
+  w <> [] -> wvalid c4pos x w -> wend c4pos x w <> x.
+Proof.
+  intros Hne Hw; unfold target in *.
+  destruct w as [|a w]; [congruence|]; step; destruct Hw as [Ha Hw].
+  destruct x as [|[|x]]; step.
+  - destruct a as [|[|a]]; step; try lia.
+    + destruct w as [|b w]; step; [lia|].
+      destruct Hw as [Hb Hw]; destruct b; step; try lia.
+      destruct w as [|c w]; step; [lia|]; destruct Hw as [Hc _]; step; lia.
+    + destruct w as [|b w]; step; [lia|]; destruct Hw as [Hb _]; step; lia.
+  - destruct a; step; try lia.
+    destruct w as [|b w]; step; [lia|]; destruct Hw as [Hb _]; step; lia.
+  - destruct x; step; lia.
+Qed.
+
+(** [pi*]'s run in [c4pos]: states [0, 1, 2, 0, 1, 2, ...] ([pistar_x]) with stage costs
+    [1, 1, M, 1, 1, M, ...]; its average is [g = (2 + M) / 3]. *)
+Definition pos_c (M : R) (k : nat) : R := if Nat.eqb (k mod 3) 2 then M else 1.
+
+Definition pos_g (M : R) : R := (2 + M) / 3.
+
+Lemma pos_run M : reset_run c4pos M pistar_x (pos_c M).
+Proof.
+  split; [reflexivity|]; intros k; unfold step_ok, pistar_x, pos_c; simpl goal.
+  rewrite mod3_S.
+  destruct (mod3_cases k) as [E|[E|E]]; rewrite E; simpl.
+  - right; split; [lia|]; exists 0%nat; unfold target, cost; simpl.
+    repeat split; [lia | unfold Q2R; simpl; lra].
+  - right; split; [lia|]; exists 0%nat; unfold target, cost; simpl.
+    repeat split; [lia | unfold Q2R; simpl; lra].
+  - left; repeat split; lia.
+Qed.
+
+Lemma pos_c_at M q r :
+  (r < 3)%nat -> pos_c M (3 * q + r) = if Nat.eqb r 2 then M else 1.
+Proof.
+  intros Hr; unfold pos_c; rewrite (Nat.add_comm (3 * q)), (Nat.mul_comm 3 q).
+  rewrite Nat.mod_add by lia; rewrite Nat.mod_small by lia; reflexivity.
+Qed.
+
+Lemma pos_partial M q :
+  partial (pos_c M) (3 * q) = INR q * (2 + M) /\
+  partial (pos_c M) (3 * q + 1) = INR q * (2 + M) + 1 /\
+  partial (pos_c M) (3 * q + 2) = INR q * (2 + M) + 2.
+Proof.
+  induction q as [|q IH].
+  - simpl; unfold pos_c; simpl; repeat split; ring.
+  - destruct IH as (_ & _ & I2).
+    assert (C0 : pos_c M (3 * q + 2) = M) by (rewrite pos_c_at by lia; reflexivity).
+    assert (C1 : pos_c M (3 * S q) = 1).
+    { rewrite <- (Nat.add_0_r (3 * S q)), pos_c_at by lia; reflexivity. }
+    assert (C2 : pos_c M (3 * S q + 1) = 1) by (rewrite pos_c_at by lia; reflexivity).
+    assert (P0 : partial (pos_c M) (3 * S q) = INR (S q) * (2 + M)).
+    { replace (3 * S q)%nat with (S (3 * q + 2)) by lia.
+      rewrite partial_S, I2, C0, S_INR; ring. }
+    assert (P1 : partial (pos_c M) (3 * S q + 1) = INR (S q) * (2 + M) + 1).
+    { replace (3 * S q + 1)%nat with (S (3 * S q)) by lia; rewrite partial_S, P0, C1; ring. }
+    assert (P2 : partial (pos_c M) (3 * S q + 2) = INR (S q) * (2 + M) + 2).
+    { replace (3 * S q + 2)%nat with (S (3 * S q + 1)) by lia; rewrite partial_S, P1, C2; ring. }
+    auto.
+Qed.
+
+(** For [-5 <= M < 0], [pi*]'s partial sums stay within [4] above [N g]. *)
+Lemma pos_partial_bounds M N :
+  -5 <= M < 0 -> INR N * pos_g M <= partial (pos_c M) N <= INR N * pos_g M + 4.
+Proof.
+  intros HM; unfold pos_g.
+  destruct (Nat.lt_ge_cases (N mod 3) 3) as [Hr|]; [|pose proof (Nat.mod_upper_bound N 3); lia].
+  pose proof (Nat.div_mod N 3 ltac:(lia)) as HN.
+  set (q := (N / 3)%nat) in *; set (r := (N mod 3)%nat) in *.
+  destruct (pos_partial M q) as (P0 & P1 & P2).
+  assert (Hr3 : (r = 0 \/ r = 1 \/ r = 2)%nat) by lia.
+  destruct Hr3 as [E|[E|E]]; rewrite E in HN; rewrite HN.
+  - rewrite Nat.add_0_r, P0, mult_INR; simpl; split; lra.
+  - rewrite P1, plus_INR, mult_INR; simpl; split; lra.
+  - rewrite P2, plus_INR, mult_INR; simpl; split; lra.
+Qed.
+
+Lemma pos_average M : -5 <= M < 0 -> average (pos_c M) (pos_g M).
+Proof.
+  intros HM eps Heps.
+  destruct (nat_above (4 / eps)) as (N0 & HN0).
+  exists N0; intros N HN; unfold R_dist.
+  pose proof (pos_partial_bounds M (S N) HM) as [Lo Hi].
+  assert (Hpos : 0 < INR (S N)) by (apply lt_0_INR; lia).
+  assert (HNge : INR N0 <= INR (S N)) by (apply le_INR; lia).
+  assert (Hdiff : 0 <= partial (pos_c M) (S N) / INR (S N) - pos_g M <= 4 / INR (S N)).
+  { split.
+    - apply (Rmult_le_reg_r (INR (S N))); [auto|].
+      unfold Rdiv; rewrite Rmult_minus_distr_r, Rmult_assoc, Rinv_l by lra; lra.
+    - apply (Rmult_le_reg_r (INR (S N))); [auto|].
+      unfold Rdiv; rewrite Rmult_minus_distr_r, !Rmult_assoc, Rinv_l by lra; lra. }
+  rewrite Rabs_right by lra.
+  apply Rle_lt_trans with (4 / INR (S N)); [lra|].
+  apply (Rmult_lt_reg_r (INR (S N))); [auto|].
+  unfold Rdiv; rewrite Rmult_assoc, Rinv_l by lra.
+  assert (4 / eps < INR (S N)) as H by lra.
+  apply (Rmult_lt_compat_r eps) in H; [|auto].
+  unfold Rdiv in H; rewrite Rmult_assoc, Rinv_l in H by lra; lra.
+Qed.
+
+(** The potential [h(0) = 0], [h(1) = g - 1], [h(2) = 2 g - 2]: for [-5 <= M], every stage of
+    every run satisfies [c k + h(x (S k)) - h(x k) >= g] (equality on [pi*]'s cycle; on the
+    other reset cycle [0 -> 2 -> 0] the slack is [1 + g], zero exactly at [M = -5]). *)
+Definition c4pos_h (M : R) (x : nat) : R :=
+  match x with O => 0 | 1%nat => pos_g M - 1 | _ => 2 * pos_g M - 2 end.
+
+Lemma c4pos_step_bound M x c k :
+  -5 <= M -> step_ok c4pos M x c k -> pos_g M <= c k + c4pos_h M (x (S k)) - c4pos_h M (x k).
+Proof.
+  intros HM [(E & E' & Ec)|(Ne & i & Hi & E' & Ec)].
+  - rewrite E, E', Ec; simpl; unfold pos_g; lra.
+  - rewrite E', Ec; simpl goal in Ne.
+    destruct (x k) as [|[|[|y]]]; simpl in Hi; try lia.
+    + destruct i as [|[|i]]; try lia; unfold target, cost; simpl; unfold Q2R, pos_g; simpl; lra.
+    + destruct i as [|i]; try lia; unfold target, cost; simpl; unfold Q2R, pos_g; simpl; lra.
+Qed.
+
+(** For [-5 <= M < 0], no run's running mean is ever below [g]. *)
+Lemma c4pos_runs_bound M x c :
+  -5 <= M < 0 -> reset_run c4pos M x c -> forall N, INR N * pos_g M <= partial c N.
+Proof.
+  intros HM [H0 Hs] N.
+  pose proof (potential_bound x c (c4pos_h M) (pos_g M)
+                (fun k => c4pos_step_bound M x c k ltac:(lra) (Hs k)) N) as H.
+  rewrite H0 in H; simpl c4pos_h at 1 in H.
+  assert (c4pos_h M (x N) <= 0) by (destruct (x N) as [|[|y]]; simpl; unfold pos_g; lra).
+  lra.
+Qed.
+
+Lemma A_printed_pos : A_printed 3 2 2 3 = - (5 / 27).
+Proof. unfold A_printed; field. Qed.
+
+(** C4 as printed, refuted with every move cost positive (the paper's Proposition 4 as
+    printed; the claims registry's [c4::STATEMENT]), so the failure is not an
+    artefact of zero-cost moves. In [c4pos] (moves [0 -> 1] and [1 -> 2] of cost 1, [0 -> 2]
+    of cost 3, goal 2): the single-shot optimum is [G*(x1) = 2], attained by
+    [pi* = 0 -> 1 -> 2] ([S* = 3] states, [L* = 2]); the only other goal path is [0 -> 2]
+    ([S = 2], [L = 3], so [a = A(0 -> 2) = -5/27], and [b = +oo]); no cycle avoids the goal
+    ([Lav(C^) = +oo]). For every bonus [M] with [-5 <= M < -5/27] the printed interval
+    excludes [M], yet [pi*]'s run (the stationary policy [0 -> 1 -> 2 -> reset]) is
+    average-cost optimal: its average is [(2 + M)/3] and no run of the average-cost problem --
+    no policy, stationary or not -- has a running mean below it at any horizon (a potential
+    argument, [c4pos_h]). The corrected interval's lower end is
+    [T(0 -> 2) = (3 * 3 - 2 * 2) / (2 - 3) = -5]. *)
+Theorem c4_as_printed_refuted_positive_costs :
+  (forall x i, (x < nstates c4pos)%nat -> (i < length (moves c4pos x))%nat ->
+               (0 < cost c4pos x (Move i))%Q) /\
+  Gstar c4pos 0 = Some 2%Q /\
+  (reaches c4pos 0 [0; 0]%nat /\ (wcost c4pos 0 [0; 0]%nat == 2)%Q) /\
+  (reaches c4pos 0 [1%nat] /\ (wcost c4pos 0 [1%nat] == 3)%Q) /\
+  (forall w, reaches c4pos 0 w -> w = [0; 0]%nat \/ w = [1%nat]) /\
+  (forall x w, w <> [] -> wvalid c4pos x w -> wend c4pos x w <> x) /\
+  forall M, -5 <= M < - (5 / 27) ->
+    ~ printed_interval 3 2 [(3, 2); (2, 3)] None M /\
+    average_optimal c4pos M pistar_x (pos_c M).
+Proof.
+  split; [apply c4pos_costs_pos|].
+  split; [apply c4pos_Gstar|].
+  split; [apply c4pos_pistar|].
+  split; [apply c4pos_other_path|].
+  split; [apply c4pos_goal_paths|].
+  split; [apply c4pos_no_cycle|].
+  intros M HM; split.
+  - intros (_ & Ha & _ & _).
+    specialize (Ha (2, 3) ltac:(simpl; auto) ltac:(simpl; lra)); simpl in Ha.
+    rewrite A_printed_pos in Ha; lra.
+  - split; [apply pos_run|].
+    exists (pos_g M); split; [apply pos_average; lra|].
+    intros x' c' Hrun eps Heps; exists O; intros N _.
+    pose proof (c4pos_runs_bound M x' c' ltac:(lra) Hrun (S N)) as H.
+    assert (Hpos : 0 < INR (S N)) by (apply lt_0_INR; lia).
+    apply Rle_trans with (pos_g M); [lra|].
+    apply (Rmult_le_reg_r (INR (S N))); [auto|].
+    unfold Rdiv; rewrite Rmult_assoc, Rinv_l by lra; lra.
 Qed.
 
 (** ** C4-corrected for every finite deterministic problem *)
@@ -683,17 +909,14 @@ Proof.
       * simpl; unfold target; rewrite PM_moves_goal; simpl; auto.
       * rewrite (Qeq_eqR _ _ (wcost_app PM 0 w [0%nat])), Q2R_plus, He, Eg, Hc, partial_S, Ec.
         simpl wcost; unfold cost; rewrite PM_moves_goal; simpl.
-        rewrite Q2R_plus; replace (Q2R 0) with 0 by (unfold Q2R; simpl; lra); ring.
+        rewrite Q2R_plus; rewrite Q2R_0; ring.
     + exists (w ++ [i]); rewrite app_length, wvalid_app, wend_app, He; simpl length.
       repeat split; [lia | auto | rewrite PM_moves_other by auto; auto | |].
       * simpl; rewrite PM_target_other by auto; auto.
       * rewrite (Qeq_eqR _ _ (wcost_app PM 0 w [i])), Q2R_plus, He, Hc, partial_S, Ec.
         simpl wcost; rewrite PM_cost_other by auto.
-        rewrite Q2R_plus; replace (Q2R 0) with 0 by (unfold Q2R; simpl; lra); ring.
+        rewrite Q2R_plus; rewrite Q2R_0; ring.
 Qed.
-
-Lemma Q2R_nat k : Q2R (inject_Z (Z.of_nat k)) = INR k.
-Proof. rewrite Q2R_inject_Z, <- INR_IZR_INZ; reflexivity. Qed.
 
 (** Every run pays at least [g] per stage, up to the constant [n D]. *)
 Lemma run_lower x c :
@@ -875,7 +1098,7 @@ Proof.
   intros HG Hsn Hg (HT1 & HT2 & Hcyc) x c Hx Hsc.
   assert (HS : 0 < INR sn) by (apply lt_0_INR; auto).
   assert (H0n : (0 < n)%nat) by (destruct HP; lia).
-  apply Rle_Qle; replace (Q2R 0) with 0 by (unfold Q2R; simpl; lra).
+  apply Rle_Qle; rewrite Q2R_0.
   destruct (in_dec Nat.eq_dec (goal P) (tl (trace PM x c))) as [Hin|Hout].
   - destruct (cycle_through_goal x c Hsc Hin) as (u & Hsp & E); rewrite E, Hg.
     destruct (Gstar_least P HP 0 u H0n (proj1 Hsp)) as (gl & Egl & Hgl).
@@ -984,7 +1207,7 @@ Proof.
   rewrite partial_S, IH by lia.
   rewrite firstn_snoc by lia; rewrite (Qeq_eqR _ _ (wcost_app PM x0 _ _)), Q2R_plus.
   unfold cyc_c, cyc_x, cyc_a; rewrite Nat.mod_small by lia; simpl wcost.
-  rewrite Q2R_plus; replace (Q2R 0) with 0 by (unfold Q2R; simpl; lra); ring.
+  rewrite Q2R_plus; rewrite Q2R_0; ring.
 Qed.
 
 Lemma cyc_partial_period : partial (cyc_c x0 cyc) (length cyc) = Q2R (wcost PM x0 cyc).
@@ -1028,7 +1251,7 @@ Proof.
     rewrite PM_moves_goal; simpl; auto.
   - rewrite wend_app, He', He; cbn [wend]; exact Ht0.
   - rewrite (Qeq_eqR _ _ (wcost_app PM 0 u [0%nat])), Q2R_plus, He', He, Hc'; simpl wcost.
-    rewrite Hc0, Q2R_plus; replace (Q2R 0) with 0 by (unfold Q2R; simpl; lra); ring.
+    rewrite Hc0, Q2R_plus; rewrite Q2R_0; ring.
   - rewrite app_length; simpl; lia.
 Qed.
 
@@ -1086,7 +1309,7 @@ Proof.
   rewrite partial_S, IH by lia.
   rewrite firstn_snoc by lia; rewrite (Qeq_eqR _ _ (wcost_app PM 0 _ _)), Q2R_plus.
   unfold las_c, las_x, las_a; rewrite (proj2 (Nat.ltb_lt _ _)) by lia; simpl wcost.
-  rewrite Q2R_plus; replace (Q2R 0) with 0 by (unfold Q2R; simpl; lra); ring.
+  rewrite Q2R_plus; rewrite Q2R_0; ring.
 Qed.
 
 (** The lasso's cost after the prefix and [m] turns of the cycle. *)
@@ -1151,7 +1374,7 @@ Proof.
   set (g := ((Lstar + M) / inject_Z (Z.of_nat sn))%Q).
   assert (Hsn0 : ~ (inject_Z (Z.of_nat sn) == 0)%Q).
   { intros E; apply Qeq_eqR in E; rewrite Q2R_nat in E.
-    replace (Q2R 0) with 0 in E by (unfold Q2R; simpl; lra).
+    rewrite Q2R_0 in E.
     pose proof (lt_0_INR sn Hsn); lra. }
   assert (Hg : Q2R g = (Q2R Lstar + Q2R M) / INR sn).
   { unfold g; rewrite Q2R_div, Q2R_plus, Q2R_nat by auto; reflexivity. }
@@ -1169,7 +1392,7 @@ Proof.
   - intros x' c' Hrun eps Heps.
     apply (mean_lower c' (Q2R g) (Q2R (inject_Z (Z.of_nat (nstates P)) * D))); auto.
     + rewrite Q2R_mult, Q2R_nat; apply Rmult_le_pos; [apply pos_INR|].
-      apply Qle_Rle in HD0; replace (Q2R 0) with 0 in HD0 by (unfold Q2R; simpl; lra); auto.
+      apply Qle_Rle in HD0; rewrite Q2R_0 in HD0; auto.
     + apply (run_lower P HP M g D HD x' c' HD0 HC Hrun).
 Qed.
 

@@ -242,6 +242,25 @@ over simple goal paths u from x1 and goal-avoiding cycles C reachable from x1",
 c4_corrected applies to every such problem",
         weaker: None,
     },
+    Theorem {
+        claim: "C1",
+        kind: Kind::Refutes,
+        name: "Truecost.C1.c1_as_printed_refuted_positive_costs",
+        file: "proofs/coq/C1.v",
+        statement: "on back2 (0->goal and goal->0, each at cost 1; well-formed, every state reaching the goal, every \
+move cost positive), from Q0 = -1 at the goal's move and 0 elsewhere (so Q0(xg,uT) = 0) with every pair updated once \
+per round in the cyclic order (the termination pair by the printed rule), Q != Q* after every number of rounds",
+        weaker: None,
+    },
+    Theorem {
+        claim: "C4",
+        kind: Kind::Refutes,
+        name: "Truecost.C4.c4_as_printed_refuted_positive_costs",
+        file: "proofs/coq/C4.v",
+        statement: "on 0 -> 1 cost 1, 1 -> goal cost 1, 0 -> goal cost 3 (x1 = 0; every move cost positive) and for \
+every bonus M in [-5, -5/27): the printed interval excludes M, yet pi* is average-cost optimal against every run",
+        weaker: None,
+    },
 ];
 
 /// What the C1 theorems are weaker than the paper's statement in.
@@ -280,7 +299,23 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("Paths.v", include_str!("../../proofs/coq/Paths.v")),
     ("C1.v", include_str!("../../proofs/coq/C1.v")),
     ("C2.v", include_str!("../../proofs/coq/C2.v")),
+    (
+        "BridgeCommon.v",
+        include_str!("../../proofs/coq/BridgeCommon.v"),
+    ),
     ("Bridge.v", include_str!("../../proofs/coq/Bridge.v")),
+    ("BridgeRun.v", include_str!("../../proofs/coq/BridgeRun.v")),
+    ("QReal.v", include_str!("../../proofs/coq/QReal.v")),
+    (
+        "C3Policies.v",
+        include_str!("../../proofs/coq/C3Policies.v"),
+    ),
+    (
+        "C3Certificate.v",
+        include_str!("../../proofs/coq/C3Certificate.v"),
+    ),
+    ("C3Example.v", include_str!("../../proofs/coq/C3Example.v")),
+    ("C3Engine.v", include_str!("../../proofs/coq/C3Engine.v")),
     ("C3.v", include_str!("../../proofs/coq/C3.v")),
     ("C4.v", include_str!("../../proofs/coq/C4.v")),
     ("BridgeC34.v", include_str!("../../proofs/coq/BridgeC34.v")),

@@ -71,3 +71,14 @@ pub fn run(cmd: &mut Command, what: &str) -> String {
     );
     stdout
 }
+
+/// Runs `make -C <dir> <target>`, one at a time within the test process (the tests of one
+/// binary run in parallel and build in the same directory).
+pub fn make(dir: &Path, target: &str) {
+    static LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    let _guard = LOCK.lock().unwrap_or_else(|e| e.into_inner());
+    run(
+        Command::new("make").arg("-C").arg(dir).arg(target),
+        &format!("make -C {} {target}", dir.display()),
+    );
+}

@@ -259,7 +259,7 @@ impl QProblem {
 }
 
 /// The guarantee of [`QProblem::update`] on pair `p`, from the values `before` the update to
-/// the pair's value `after` it (SPEC's `ρ = 1` rule, stated as a minimum rather than
+/// the pair's value `after` it (the `ρ = 1` rule, stated as a minimum rather than
 /// computed): a held termination pair keeps its value; otherwise the new value is
 /// `l(x,u) + Q̂(f(x,u), u')` for some pair `u'` of the successor and at most that for every one.
 /// No other value changes: the contract's `modifies(&v[p])`, which Kani checks (the stand-in's

@@ -61,7 +61,7 @@ fn any_small_q() -> Q<i16> {
 /// `Q::<i16>::checked_add` on any two fractions with parts in `[-127, 127]` and on any two
 /// integers (`i16`, so that the overflow branch is reached): a `Some` is normalised and exactly
 /// the sum, `None` only when the unreduced sum does not fit. `Q::ratio` is its contract (no
-/// Euclid here). Domain 2^64.
+/// Euclid here). Domain 2^33 (which kind of operands, then 32 bits).
 #[kani::proof_for_contract(Q::<i16>::checked_add)]
 #[kani::stub_verified(Q::<i16>::ratio)]
 #[kani::unwind(24)]
@@ -80,7 +80,7 @@ pub fn checked_add_is_exact() {
 
 /// `Q::<i16>::checked_mul` on any two fractions with parts in `[-127, 127]` (every product
 /// fits) and on any two integers (`i16`: products that do not fit): a `Some` is normalised and
-/// exactly the product, `None` only when the product in lowest terms does not fit. Domain 2^64.
+/// exactly the product, `None` only when the product in lowest terms does not fit. Domain 2^33.
 /// Unwind 24: Euclid in the cross-cancelling `gcd`s (operands up to 32767).
 #[kani::proof_for_contract(Q::<i16>::checked_mul)]
 #[kani::stub_verified(Q::<i16>::ratio)]

@@ -1,5 +1,4 @@
-//! A stand-in for Kani's `kani` crate (see `../shared/KANI.md`), used only when not compiling
-//! under Kani. Same public names and signatures as Kani's API (`any`, `any_where`, `assume`,
+//! A stand-in for Kani's `kani` crate, used only when not compiling under Kani. Same public names and signatures as Kani's API (`any`, `any_where`, `assume`,
 //! `assert`, `cover`, `Arbitrary`, the attributes); different engine: every `kani::any()` is a
 //! choice point, and [`Harness::explore`] re-executes the harness body.
 //!
@@ -25,26 +24,46 @@
 //! **Covers.** `kani::cover!(cond, "msg")` records, per call site, in how many non-pruned
 //! executions it was reached and its condition held; the `cover!` calls written in a harness
 //! body are also known statically (`#[kani::proof]` lists their messages), so a cover that no
-//! execution reaches is seen too. A harness fails when one of its covers is never satisfied in a
-//! non-pruned execution: without it, nothing shows that the branch the harness is about is
-//! reachable under its `assume`s. (Kani itself reports an unsatisfied cover without failing the
-//! harness; the stand-in is stricter on purpose.) A cover in a shared function that no
-//! execution reaches is invisible here.
+//! execution reaches is seen too. The stand-in judges covers as Kani does with
+//! `--fail-uncoverable` ([`FAIL_UNCOVERABLE`]): a harness fails when one of its covers is never
+//! satisfied in a non-pruned execution. Kani without that flag only reports an unsatisfiable or
+//! unreachable cover; the project's Kani workflow and `proofs/Cargo.toml` pass the flag, because
+//! a cover is what shows that the branch a harness is about is reachable under its `assume`s.
+//! One difference remains: a cover in a shared function that no execution reaches is invisible
+//! here (Kani reports it unreachable and, with the flag, fails).
+//!
+//! **Contracts.** `#[kani::requires(cond)]`, `#[kani::ensures(|result| cond)]` (with `old(e)`)
+//! and `#[kani::modifies(…)]` wrap a function. Outside a harness run the wrapper costs one
+//! thread-local read per call and changes nothing. Inside a run, at every call: the
+//! precondition is *assumed* when the harness is `#[kani::proof_for_contract]` of that function
+//! (as Kani assumes it for the function under verification) and *asserted* otherwise (a caller
+//! that violates it fails, as at a `#[kani::stub_verified]` call under Kani); every
+//! postcondition is asserted after the body. `#[kani::stub_verified(f)]` therefore runs the real
+//! `f` with its contract checked — where Kani *assumes* the postcondition, the stand-in checks
+//! that the assumption holds on every path it runs. `#[kani::stub(f, g)]` is not applied (the
+//! stand-in cannot replace a call made in another crate): the real `f` runs, and the summary
+//! lists the stub. A `proof_for_contract` run that never calls its function fails.
 //!
 //! **Vacuity.** A harness whose every execution is pruned by `assume` fails.
 //!
-//! Nothing here is symbolic: it is not Kani. As under Kani's `#[kani::should_panic]`, only an
-//! assertion failure (a `kani::assert`, `assert!` or `panic!`) counts as the expected failure:
-//! an arithmetic overflow (`attempt to ...`) fails every harness.
+//! Nothing here is symbolic: it is not Kani. As under Kani's `#[kani::should_panic]`, a panic is
+//! the expected failure: Kani turns `kani::assert`, `assert!`, `panic!` and Rust's arithmetic
+//! overflow checks (`attempt to …`, compiled in by `-C overflow-checks=on`) into checks of class
+//! `assertion`, and `should_panic` passes when every failed check is of that class. (Kani's other
+//! classes — unwinding assertions, pointer and undefined-behaviour checks — have no counterpart
+//! in a stand-in run.) An overflow is still recorded in [`Summary::overflow`].
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::collections::HashSet;
 use std::fmt;
 use std::hash::{Hash, Hasher};
 use std::panic::{catch_unwind, AssertUnwindSafe, Location};
 use std::sync::Once;
 
-pub use kani_standin_macros::{proof, samples, should_panic, solver, unwind, Arbitrary};
+pub use kani_standin_macros::{
+    ensures, modifies, proof, proof_for_contract, requires, samples, should_panic, solver, stub,
+    stub_verified, unwind, Arbitrary,
+};
 
 /// Executions allowed in exhaustive mode before the stand-in refuses (size the harness down).
 pub const MAX_EXHAUSTIVE: u64 = 5_000_000;
@@ -57,6 +76,9 @@ pub const EXHAUSTIVE_CHOICE: u128 = 1 << 16;
 /// An execution whose choices span more than 2^this many combinations switches the harness to
 /// sampling (about [`MAX_EXHAUSTIVE`]).
 pub const EXHAUSTIVE_BITS: f64 = 22.0;
+/// The stand-in judges covers as `cargo kani --fail-uncoverable` does: an unsatisfied cover
+/// fails the harness (see the crate docs).
+pub const FAIL_UNCOVERABLE: bool = true;
 
 struct AssumeFailed;
 
@@ -83,6 +105,10 @@ struct Explorer {
     covers: Vec<CoverSite>,
     /// This execution's cover events: (site, condition).
     pending: Vec<(usize, bool)>,
+    /// Calls of the contract's function in this execution.
+    pending_target_calls: u64,
+    /// Calls of the contract's function in non-pruned executions.
+    target_calls: u64,
 }
 
 impl Explorer {
@@ -109,9 +135,11 @@ impl Explorer {
     /// Ends an execution: its cover events count unless it was pruned.
     fn settle_covers(&mut self, pruned: bool) {
         let pending = std::mem::take(&mut self.pending);
+        let calls = std::mem::take(&mut self.pending_target_calls);
         if pruned {
             return;
         }
+        self.target_calls += calls;
         let mut reached = vec![false; self.covers.len()];
         let mut satisfied = vec![false; self.covers.len()];
         for (i, cond) in pending {
@@ -133,6 +161,94 @@ thread_local! {
     static EXPLORER: RefCell<Option<Explorer>> = const { RefCell::new(None) };
     static QUIET: RefCell<bool> = const { RefCell::new(false) };
     static LAST_PANIC: RefCell<Option<String>> = const { RefCell::new(None) };
+    /// Inside a harness run (contracts are checked).
+    static CHECKING: Cell<bool> = const { Cell::new(false) };
+    /// The function whose contract the running harness proves (`proof_for_contract`).
+    static TARGET: Cell<Option<&'static str>> = const { Cell::new(None) };
+}
+
+/// Whether contracts are checked: inside a stand-in harness run. Called by every function
+/// carrying a contract attribute; outside a run this read is all the wrapper costs.
+#[doc(hidden)]
+#[inline]
+pub fn __contract_checks() -> bool {
+    CHECKING.with(Cell::get)
+}
+
+/// Whether `name` in module `module` is the function named by the running harness's
+/// `proof_for_contract(path)`: the path's last segment is `name`, and each of its other
+/// lower-case segments (modules; type names and generic arguments are skipped) is a segment of
+/// `module`. Records the call.
+#[doc(hidden)]
+pub fn __contract_is_target(module: &str, name: &str) -> bool {
+    let Some(target) = TARGET.with(Cell::get) else {
+        return false;
+    };
+    let is = path_names(target, module, name);
+    if is {
+        EXPLORER.with(|e| {
+            if let Some(x) = e.borrow_mut().as_mut() {
+                x.pending_target_calls += 1;
+            }
+        });
+    }
+    is
+}
+
+fn path_names(target: &str, module: &str, name: &str) -> bool {
+    let mut segments: Vec<&str> = Vec::new();
+    let mut depth = 0usize;
+    let mut start = 0usize;
+    let bytes = target.as_bytes();
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'<' => depth += 1,
+            b'>' => depth = depth.saturating_sub(1),
+            b':' if depth == 0 && bytes.get(i + 1) == Some(&b':') => {
+                segments.push(&target[start..i]);
+                i += 2;
+                start = i;
+                continue;
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    segments.push(&target[start..]);
+    let strip = |s: &str| s.split('<').next().unwrap_or("").to_string();
+    let Some((last, rest)) = segments.split_last() else {
+        return false;
+    };
+    if strip(last) != name {
+        return false;
+    }
+    let modules: Vec<&str> = module.split("::").collect();
+    rest.iter()
+        .map(|s| strip(s))
+        .filter(|s| s.starts_with(|c: char| c.is_ascii_lowercase()))
+        .all(|s| s == "crate" || s == "self" || s == "super" || modules.contains(&s.as_str()))
+}
+
+/// A precondition at a call inside a harness run: assumed for the function under
+/// `proof_for_contract`, asserted otherwise.
+#[doc(hidden)]
+#[track_caller]
+pub fn __contract_requires(cond: bool, target: bool, function: &str, text: &str) {
+    if target {
+        assume(cond);
+    } else if !cond {
+        panic!("precondition of {function} violated by its caller: {text}");
+    }
+}
+
+/// A postcondition after a call inside a harness run: asserted.
+#[doc(hidden)]
+#[track_caller]
+pub fn __contract_ensures(cond: bool, function: &str, text: &str) {
+    if !cond {
+        panic!("postcondition of {function} violated: {text}");
+    }
 }
 
 fn next_random(state: &mut u64) -> u64 {
@@ -326,7 +442,8 @@ pub fn assume(cond: bool) {
     }
 }
 
-/// Fails the harness unless `cond` holds.
+/// Fails the harness unless `cond` holds (the failure is reported at the caller's location).
+#[track_caller]
 pub fn assert(cond: bool, msg: &'static str) {
     if !cond {
         panic!("{msg}");
@@ -436,8 +553,15 @@ pub struct Summary {
     pub covers: Vec<Cover>,
     /// The first failing execution.
     pub first_failure: Option<Failure>,
-    /// The first arithmetic overflow (never the expected failure of a `should_panic` harness).
+    /// The first arithmetic overflow (a failure like any other: under Kani an overflow check is
+    /// of class `assertion`, so it is also an expected failure of a `should_panic` harness).
     pub overflow: Option<String>,
+    /// The function whose contract the harness proves (`proof_for_contract`).
+    pub contract: Option<String>,
+    /// Calls of that function in non-pruned executions (0 fails the run).
+    pub contract_calls: u64,
+    /// `#[kani::stub(f, g)]` of the harness: not applied by the stand-in (the real `f` ran).
+    pub stubs_not_applied: Vec<String>,
     /// Why the run stopped early (too many executions for exhaustive mode).
     pub stopped: Option<String>,
 }
@@ -448,9 +572,9 @@ impl Summary {
         self.covers.iter().filter(|c| c.hit()).count()
     }
 
-    /// `Ok` when the harness did what it states: no failure (or, `should_panic`, an assertion
-    /// failure and no overflow), not every execution pruned, every cover satisfied. `Err` says
-    /// why not.
+    /// `Ok` when the harness did what it states: no failure (or, `should_panic`, some failure),
+    /// not every execution pruned, every cover satisfied, and a `proof_for_contract` harness's
+    /// function called in some non-pruned execution. `Err` says why not.
     pub fn verdict(&self) -> Result<(), String> {
         let name = &self.name;
         if let Some(why) = &self.stopped {
@@ -473,14 +597,12 @@ impl Summary {
                 ))
             }
             (None, true) => return Err(format!("{name} was expected to fail but passed")),
-            (Some(_), true) => {
-                if let Some(o) = &self.overflow {
-                    return Err(format!(
-                        "{name}: an arithmetic overflow is not the expected failure: {o}"
-                    ));
-                }
-            }
-            (None, false) => {}
+            (Some(_), true) | (None, false) => {}
+        }
+        if let (Some(f), 0) = (&self.contract, self.contract_calls) {
+            return Err(format!(
+                "{name} proves the contract of {f} but no non-pruned execution calls it"
+            ));
         }
         let live = self.executions - self.pruned;
         if let Some(c) = self.covers.iter().find(|c| !c.hit()) {
@@ -521,7 +643,22 @@ impl fmt::Display for Summary {
             self.covers_hit(),
             self.covers.len(),
             self.choice_bits
-        )
+        )?;
+        if let Some(c) = &self.contract {
+            write!(
+                f,
+                "; contract of {c}: {} calls checked",
+                self.contract_calls
+            )?;
+        }
+        if !self.stubs_not_applied.is_empty() {
+            write!(
+                f,
+                "; stubs not applied by the stand-in (the real function ran): {}",
+                self.stubs_not_applied.join(", ")
+            )?;
+        }
+        Ok(())
     }
 }
 
@@ -570,6 +707,12 @@ pub struct Harness {
     pub samples: u64,
     /// Messages of the `cover!` calls written in the body (each must be satisfied).
     pub covers: &'static [&'static str],
+    /// `proof_for_contract(path)`: the path of the function whose contract it proves.
+    pub contract: Option<&'static str>,
+    /// `stub_verified(path)` of the harness (under Kani: the function replaced by its contract).
+    pub stub_verified: &'static [&'static str],
+    /// `stub(f, g)` of the harness, as written (not applied by the stand-in).
+    pub stubs: &'static [&'static str],
     /// The body.
     pub body: fn(),
 }
@@ -615,6 +758,9 @@ pub fn __run_with(name: &'static str, should_panic: bool, samples: u64, body: fn
         should_panic,
         samples,
         covers: &[],
+        contract: None,
+        stub_verified: &[],
+        stubs: &[],
         body,
     }
     .check()
@@ -648,6 +794,9 @@ fn explore(h: &Harness, samples: u64) -> Summary {
         covers: Vec::new(),
         first_failure: None,
         overflow: None,
+        contract: h.contract.map(str::to_string),
+        contract_calls: 0,
+        stubs_not_applied: h.stubs.iter().map(|s| s.to_string()).collect(),
         stopped: None,
     };
     let mut summary = fresh(Mode::Exhaustive);
@@ -657,6 +806,8 @@ fn explore(h: &Harness, samples: u64) -> Summary {
         "kani-standin: {name}: a harness run inside a harness run"
     );
     let quiet_before = QUIET.with(|q| std::mem::replace(&mut *q.borrow_mut(), true));
+    CHECKING.with(|c| c.set(true));
+    TARGET.with(|t| t.set(h.contract));
     let mut seen: HashSet<u64> = HashSet::new();
     loop {
         EXPLORER.with(|e| {
@@ -746,6 +897,9 @@ fn explore(h: &Harness, samples: u64) -> Summary {
     }
     let x = EXPLORER.with(|e| e.borrow_mut().take()).expect("explorer");
     QUIET.with(|q| *q.borrow_mut() = quiet_before);
+    CHECKING.with(|c| c.set(false));
+    TARGET.with(|t| t.set(None));
+    summary.contract_calls = x.target_calls;
     summary.choice_bits = x.max_bits.floor() as u32;
     summary.distinct = match summary.mode {
         Mode::Exhaustive => summary.executions,
@@ -774,6 +928,10 @@ fn explore(h: &Harness, samples: u64) -> Summary {
     summary
 }
 
+// The macros name the stand-in `::kani`, as the crates that use it do (its own tests too).
+#[cfg(test)]
+extern crate self as kani;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -784,6 +942,9 @@ mod tests {
             should_panic: false,
             samples: 200,
             covers,
+            contract: None,
+            stub_verified: &[],
+            stubs: &[],
             body,
         }
     }
@@ -896,14 +1057,16 @@ mod tests {
         assert!(s.verdict().unwrap_err().contains("vacuous"));
     }
 
-    /// A failing assertion names its message, location and choices; a should_panic harness
-    /// that fails by an assertion passes, one that never fails or overflows does not.
+    /// A failing assertion names its message, its caller's location and choices; a
+    /// should_panic harness that fails by an assertion or by an overflow passes (both are
+    /// assertion-class checks under Kani), one that never fails does not.
     #[test]
     fn failures_and_should_panic() {
         fn bad() {
             let v: u8 = any();
             assert(v != 3, "three is bad");
         }
+        const BAD_LINE: u32 = line!() - 2;
         let s = harness("bad", &[], bad).explore();
         assert_eq!(s.failures, 1);
         let why = s.verdict().unwrap_err();
@@ -911,12 +1074,9 @@ mod tests {
             why.contains("three is bad") && why.contains("choice sequence [3]"),
             "{why}"
         );
-        assert!(s
-            .first_failure
-            .unwrap()
-            .location
-            .unwrap()
-            .contains("lib.rs"));
+        // #[track_caller]: the location is the call in `bad`, not the body of `assert`.
+        let at = s.first_failure.unwrap().location.unwrap();
+        assert!(at.contains(&format!("lib.rs:{BAD_LINE}:")), "{at}");
         let mut expected = harness("bad", &[], bad);
         expected.should_panic = true;
         assert_eq!(expected.explore().verdict(), Ok(()));
@@ -939,7 +1099,125 @@ mod tests {
         }) {
             let mut o = harness("overflows", &[], overflows);
             o.should_panic = true;
-            assert!(o.explore().verdict().unwrap_err().contains("overflow"));
+            let s = o.explore();
+            assert_eq!(s.verdict(), Ok(()), "{s}");
+            assert!(s.overflow.as_deref().unwrap().starts_with("attempt to add"));
+            // Not should_panic: the overflow fails the harness.
+            let s = harness("overflows", &[], overflows).explore();
+            assert!(s.verdict().unwrap_err().contains("attempt to add"));
         }
+    }
+
+    /// `halve(x)` guarantees an exact half of an even input (a wrong variant breaks it).
+    #[requires(x % 2 == 0)]
+    #[ensures(|r: &i32| *r + *r == x)]
+    fn halve(x: i32) -> i32 {
+        x / 2
+    }
+
+    #[requires(x % 2 == 0)]
+    #[ensures(|r: &i32| *r + *r == x)]
+    fn halve_wrongly(x: i32) -> i32 {
+        if x == 6 {
+            return 2; // planted: `return` inside the body is checked too
+        }
+        x / 2
+    }
+
+    /// `bump(v, i)` adds one to `v[i]` and leaves the rest (`old` is the value before the call).
+    #[requires(i < v.len())]
+    #[modifies(v)]
+    #[ensures(|_| (0..v.len()).all(|k| v[k] == old(*v)[k] + u8::from(k == i)))]
+    fn bump(v: &mut [u8; 3], i: usize) {
+        v[i] += 1;
+    }
+
+    fn with_contract(name: &'static str, contract: Option<&'static str>, body: fn()) -> Summary {
+        Harness {
+            contract,
+            ..harness(name, &[], body)
+        }
+        .explore()
+    }
+
+    /// Outside a run a contract changes nothing (no check: `halve(3)` is `1`); inside a run a
+    /// caller that violates the precondition fails, a body that breaks the postcondition
+    /// fails, and under `proof_for_contract` the precondition prunes instead.
+    #[test]
+    fn contracts_are_checked_only_inside_runs() {
+        assert_eq!(halve(3), 1);
+        assert_eq!(halve_wrongly(6), 2);
+        assert!(!__contract_checks());
+        fn caller_violates() {
+            let x: u8 = any();
+            let _ = halve(i32::from(x));
+        }
+        let s = with_contract("caller_violates", None, caller_violates);
+        assert!(
+            s.verdict()
+                .unwrap_err()
+                .contains("precondition of halve violated"),
+            "{s}"
+        );
+        assert_eq!(s.failures, 128);
+        fn proves_halve() {
+            let x: u8 = any();
+            let _ = halve(i32::from(x));
+        }
+        let s = with_contract("proves_halve", Some("halve"), proves_halve);
+        assert_eq!(s.verdict(), Ok(()), "{s}");
+        assert_eq!((s.pruned, s.contract_calls), (128, 128), "{s}");
+        fn proves_wrong() {
+            let x: u8 = any();
+            let _ = halve_wrongly(i32::from(x));
+        }
+        let s = with_contract("proves_wrong", Some("self::halve_wrongly"), proves_wrong);
+        let why = s.verdict().unwrap_err();
+        assert!(
+            why.contains("postcondition of halve_wrongly violated"),
+            "{why}"
+        );
+        assert_eq!((s.failures, s.first_failure.unwrap().choices), (1, vec![6]));
+        // A proof_for_contract run that never calls its function proves nothing.
+        fn never_calls() {
+            let _: bool = any();
+        }
+        let s = with_contract("never_calls", Some("halve"), never_calls);
+        assert!(s
+            .verdict()
+            .unwrap_err()
+            .contains("no non-pruned execution calls it"));
+        // The target is matched by name and module: another module's `halve` is not it.
+        let s = with_contract("other", Some("elsewhere::halve"), proves_halve);
+        assert!(s.verdict().is_err(), "{s}");
+    }
+
+    /// `old(e)` is `e` before the call: the frame condition of `bump` holds, and a body that
+    /// writes a second entry would break it.
+    #[test]
+    fn old_values_are_taken_before_the_body() {
+        fn bumps() {
+            let mut v: [u8; 3] = [any::<bool>().into(), 5, 7];
+            let i = usize::from(any::<bool>());
+            bump(&mut v, i);
+            assert(v[2] == 7, "v[2] untouched");
+        }
+        let s = with_contract("bumps", Some("bump"), bumps);
+        assert_eq!((s.verdict(), s.contract_calls), (Ok(()), 4), "{s}");
+        assert!(path_names(
+            "crate::tests::bump",
+            "kani_standin::tests",
+            "bump"
+        ));
+        assert!(path_names(
+            "truecost_kernel::claims::exact::Q::<i16>::checked_add",
+            "truecost_kernel::claims::exact",
+            "checked_add"
+        ));
+        assert!(!path_names(
+            "truecost_kernel::value::Units::checked_add",
+            "truecost_kernel::claims::exact",
+            "checked_add"
+        ));
     }
 }

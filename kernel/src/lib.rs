@@ -3,8 +3,11 @@
 //! The bignum-free computational kernel of `truecost` (the exact re-implementation of
 //! *Relating Reinforcement Learning to Dynamic Programming-Based Planning*, Georgiev, Timperi,
 //! Sakçak, LaValle): exactly the code that the Kani harnesses in `proofs/` verify, in a crate
-//! with **no dependencies**, so that `cargo kani -p truecost-proofs` compiles
-//! neither big integers nor clap, rayon, plotters, indicatif or z3.
+//! with **no dependencies under Kani**, so that `cargo kani -p truecost-proofs` compiles
+//! neither big integers nor clap, rayon, plotters, indicatif or z3. Without Kani it depends on
+//! the Kani stand-in only, for the contract attributes of `claims::exact::{gcd, Q::ratio,
+//! Q::checked_add, Q::checked_mul}`, `value::Units::checked_plus` and
+//! `claims::qlearning::QProblem::update` (checked inside stand-in harness runs, inert outside).
 //!
 //! * [`value`] — the [`value::CostValue`] trait's arithmetic core and [`value::Units`];
 //! * [`model`] — the planning graph (its unit left to the caller) and policy decisions;

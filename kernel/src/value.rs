@@ -72,6 +72,10 @@ impl Units {
     /// assert_eq!(Units(u64::MAX - 1).checked_plus(&Units(1)), None);
     /// assert_eq!(Units(7).checked_plus(&Units::infinity()), Some(Units::infinity()));
     /// ```
+    ///
+    /// Contract (proved by `proofs::contracts::units_checked_plus_is_exact`): stated on the
+    /// sum taken in `u128`, where it cannot wrap.
+    #[kani::ensures(|r: &Option<Units>| units_plus_spec(self.0, other.0, *r))]
     #[inline]
     pub fn checked_plus(&self, other: &Units) -> Option<Units> {
         if self.0 == u64::MAX || other.0 == u64::MAX {
@@ -81,6 +85,18 @@ impl Units {
             Some(s) if s != u64::MAX => Some(Units(s)),
             _ => None,
         }
+    }
+}
+
+/// The guarantee of [`Units::checked_plus`] on counts `a`, `b` (`u64::MAX` is `+∞`): `+∞` if
+/// either is `+∞`; otherwise the exact sum when it is below `u64::MAX`, and `None` exactly when
+/// it is not (computed in `u128`).
+pub fn units_plus_spec(a: u64, b: u64, r: Option<Units>) -> bool {
+    let exact = a as u128 + b as u128;
+    match r {
+        _ if a == u64::MAX || b == u64::MAX => r == Some(Units(u64::MAX)),
+        Some(s) => s.0 as u128 == exact && exact < u64::MAX as u128,
+        None => exact >= u64::MAX as u128,
     }
 }
 

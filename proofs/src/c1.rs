@@ -16,8 +16,17 @@
 //! printed, 7 updates per round, 6 rounds and the element-wise round comparison over 7 pairs
 //! (unwind 8). Values are compared element by element, never with `==` on `[i64; 24]`: that
 //! would become CBMC's `memcmp`, one loop iteration per byte (192).
+//!
+//! Each harness runs its statement with truecost's `QProblem::update`, which Kani replaces by
+//! its proven contract (`#[kani::stub_verified]`, proved by
+//! `contracts::update_is_the_rho_one_rule`): the `ρ = 1` rule as a minimum over the successor's
+//! pairs. The statements take the update as a parameter ([`Update`]) so that a test can run
+//! them against a wrong update and see them fail (`tests/planted_update_bug.rs`).
 
-use truecost_kernel::claims::qlearning::Terminal;
+/// The signature of the `ρ = 1` update the statements run (`QProblem::update` in every harness).
+pub type Update = fn(&QProblem, &mut Values, usize);
+
+use truecost_kernel::claims::qlearning::{QProblem, Terminal, Values};
 
 use crate::symbolic::{
     any_round, any_structure, cost_to_go, learner, optimal_steps, optimum, values, MOVES, N,
@@ -34,7 +43,13 @@ use crate::symbolic::{
 #[kani::proof]
 #[kani::unwind(19)]
 #[kani::solver(kissat)]
+#[kani::stub_verified(truecost_kernel::claims::qlearning::QProblem::update)]
 pub fn c1_corrected_round_lifts_the_exact_level() {
+    lifts_the_exact_level(QProblem::update);
+}
+
+/// The statement of [`c1_corrected_round_lifts_the_exact_level`], run with `update`.
+pub fn lifts_the_exact_level(update: Update) {
     let s = any_structure(0);
     let g = cost_to_go(&s);
     kani::assume(g.iter().all(Option::is_some)); // H1
@@ -51,7 +66,7 @@ pub fn c1_corrected_round_lifts_the_exact_level() {
     let before = v;
     let (order, len) = any_round();
     for k in 0..len {
-        q.update(&mut v, order[k]);
+        update(&q, &mut v, order[k]);
     }
     kani::assert(v[TERMINAL] == 0, "the termination pair stays 0 (H0)");
     let (mut changed, mut lifted) = (false, false);
@@ -81,7 +96,13 @@ pub fn c1_corrected_round_lifts_the_exact_level() {
 #[kani::proof]
 #[kani::unwind(19)]
 #[kani::solver(kissat)]
+#[kani::stub_verified(truecost_kernel::claims::qlearning::QProblem::update)]
 pub fn c1_corrected_round_raises_the_floor_by_c() {
+    raises_the_floor_by_c(QProblem::update);
+}
+
+/// The statement of [`c1_corrected_round_raises_the_floor_by_c`], run with `update`.
+pub fn raises_the_floor_by_c(update: Update) {
     let s = any_structure(1);
     let g = cost_to_go(&s);
     kani::assume(g.iter().all(Option::is_some)); // H1
@@ -96,7 +117,7 @@ pub fn c1_corrected_round_raises_the_floor_by_c() {
     let before = v;
     let (order, len) = any_round();
     for k in 0..len {
-        q.update(&mut v, order[k]);
+        update(&q, &mut v, order[k]);
     }
     let (mut rises, mut tight) = (false, false);
     for p in 0..MOVES {
@@ -117,7 +138,13 @@ pub fn c1_corrected_round_raises_the_floor_by_c() {
 #[kani::proof]
 #[kani::unwind(19)]
 #[kani::solver(kissat)]
+#[kani::stub_verified(truecost_kernel::claims::qlearning::QProblem::update)]
 pub fn c1_corrected_round_is_monotone_below_q_star() {
+    is_monotone_below_q_star(QProblem::update);
+}
+
+/// The statement of [`c1_corrected_round_is_monotone_below_q_star`], run with `update`.
+pub fn is_monotone_below_q_star(update: Update) {
     let s = any_structure(0);
     let g = cost_to_go(&s);
     kani::assume(g.iter().all(Option::is_some)); // H1
@@ -131,8 +158,8 @@ pub fn c1_corrected_round_is_monotone_below_q_star() {
     let start = low;
     let (order, len) = any_round();
     for k in 0..len {
-        q.update(&mut low, order[k]);
-        q.update(&mut high, order[k]);
+        update(&q, &mut low, order[k]);
+        update(&q, &mut high, order[k]);
     }
     let (mut apart, mut reaches) = (false, false);
     for p in 0..MOVES {
@@ -156,7 +183,13 @@ pub const PRINTED_ROUNDS: usize = 6;
 #[kani::proof]
 #[kani::unwind(8)]
 #[kani::should_panic]
+#[kani::stub_verified(truecost_kernel::claims::qlearning::QProblem::update)]
 pub fn c1_as_printed_round_fixed_points_are_optimal() {
+    as_printed_round_fixed_points_are_optimal(QProblem::update);
+}
+
+/// The statement of [`c1_as_printed_round_fixed_points_are_optimal`], run with `update`.
+pub fn as_printed_round_fixed_points_are_optimal(update: Update) {
     let s = any_structure(0);
     let g = cost_to_go(&s);
     kani::assume(g.iter().all(Option::is_some)); // H1 (the failure does not need it absent)
@@ -169,7 +202,7 @@ pub fn c1_as_printed_round_fixed_points_are_optimal() {
     for _round in 0..PRINTED_ROUNDS {
         let before = v;
         for p in 0..=TERMINAL {
-            q.update(&mut v, p);
+            update(&q, &mut v, p);
         }
         // Element-wise over the 7 pairs in use (not `v == before`: see the module comment).
         let (mut unchanged, mut optimal, mut below) = (true, v[TERMINAL] == 0, false);

@@ -41,6 +41,9 @@ fn check<I: ExactInt>(trs: &[Trajectory], f: Functional<I>) {
 /// constants (1/2, 9/10) are concrete, so no Euclid loop runs on a symbolic value: the
 /// largest loop is the 8 policies (unwind 9). `kissat` for the symbolic products.
 #[kani::proof]
+#[kani::stub_verified(Q::<i16>::ratio)]
+#[kani::stub_verified(Q::<i16>::checked_add)]
+#[kani::stub_verified(Q::<i16>::checked_mul)]
 #[kani::unwind(9)]
 #[kani::solver(kissat)]
 #[cfg_attr(not(kani), kani::samples(4000))]

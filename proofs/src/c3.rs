@@ -58,6 +58,9 @@ fn check_at<I: ExactInt>(t: &Tiny, alpha: Q<I>, hypotheses: bool) {
 /// Lamé's bound for operands below 1000 is `1 + 15 = 16`: unwind 17. `kissat` for the
 /// symbolic products of the oracle.
 #[kani::proof]
+#[kani::stub_verified(Q::<i16>::ratio)]
+#[kani::stub_verified(Q::<i16>::checked_add)]
+#[kani::stub_verified(Q::<i16>::checked_mul)]
 #[kani::unwind(17)]
 #[kani::solver(kissat)]
 #[cfg_attr(not(kani), kani::samples(4000))]

@@ -51,6 +51,9 @@ fn any_bonus_corrected() -> Q<i16> {
 /// most `1 + 5 = 6` iterations (Fibonacci numbers 1, 2, 3, 5, 8 are at most 8). The largest
 /// loop is the enumeration of the 8 policies: unwind 9.
 #[kani::proof]
+#[kani::stub_verified(Q::<i16>::ratio)]
+#[kani::stub_verified(Q::<i16>::checked_add)]
+#[kani::stub_verified(Q::<i16>::checked_mul)]
 #[kani::unwind(9)]
 #[kani::solver(kissat)]
 #[cfg_attr(not(kani), kani::samples(4000))]
@@ -113,6 +116,9 @@ fn any_small_tiny() -> Tiny {
 /// iterations (Fibonacci numbers 1, 2, 3, …, 89 are at most 128): unwind 12 (the 8 policies
 /// need 9).
 #[kani::proof]
+#[kani::stub_verified(Q::<i16>::ratio)]
+#[kani::stub_verified(Q::<i16>::checked_add)]
+#[kani::stub_verified(Q::<i16>::checked_mul)]
 #[kani::unwind(12)]
 #[kani::solver(kissat)]
 #[kani::should_panic]

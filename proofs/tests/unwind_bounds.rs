@@ -36,7 +36,8 @@ use truecost_proofs::c3::EXAMPLE_POLICIES;
 use truecost_proofs::solvers::{SLOTS, STATES};
 use truecost_proofs::symbolic::{D, MOVES, N, ROUND, TERMINAL, TINY_STATES};
 
-/// `#[kani::unwind(N)]` of every harness in `proofs/src/` (`None`: no attribute).
+/// `#[kani::unwind(N)]` of every harness in `proofs/src/` (`#[kani::proof]` and
+/// `#[kani::proof_for_contract(…)]`; `None`: no attribute).
 fn unwinds() -> BTreeMap<String, Option<u64>> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut out = BTreeMap::new();
@@ -44,7 +45,7 @@ fn unwinds() -> BTreeMap<String, Option<u64>> {
         let text = std::fs::read_to_string(entry.expect("entry").path()).expect("source");
         let mut current: Option<Option<u64>> = None;
         for line in text.lines().map(str::trim) {
-            if line == "#[kani::proof]" {
+            if line == "#[kani::proof]" || line.starts_with("#[kani::proof_for_contract(") {
                 current = Some(None);
             } else if let (Some(u), Some(rest)) =
                 (current.as_mut(), line.strip_prefix("#[kani::unwind("))
@@ -424,7 +425,58 @@ fn value_and_claim_unwinds_cover_their_loops() {
     }
     assert_eq!(
         u.len(),
-        16,
-        "every harness is audited in one of the two tests"
+        16 + CONTRACT_HARNESSES.len(),
+        "every harness is audited in one of the three tests"
     );
+}
+
+/// The contract proofs of `contracts.rs`.
+const CONTRACT_HARNESSES: [&str; 6] = [
+    "gcd_divides_both",
+    "ratio_is_exact_and_normalised",
+    "checked_add_is_exact",
+    "checked_mul_is_exact",
+    "units_checked_plus_is_exact",
+    "update_is_the_rho_one_rule",
+];
+
+/// The contract proofs: Euclid on 16-bit magnitudes (in `gcd`, and in the clauses'
+/// coprimality check on a 16-bit result) and the update harness's frame check over the values.
+#[test]
+fn contract_unwinds_cover_their_loops() {
+    use truecost_kernel::claims::qlearning::MAX_PAIRS;
+    let u = unwinds();
+    let euclid16 = euclid_iterations(i16::MAX as u128);
+    assert_eq!(euclid16, 23);
+    for h in &CONTRACT_HARNESSES[..4] {
+        check(&u, h, &[("Euclid on i16 magnitudes", euclid16)], true);
+    }
+    assert_eq!(u["units_checked_plus_is_exact"], None, "no loop");
+    let mut update = c1_common();
+    update.extend([
+        ("initial values: every pair", TERMINAL as u64 + 1),
+        ("the frame check: every value", MAX_PAIRS as u64),
+    ]);
+    check(&u, "update_is_the_rho_one_rule", &update, true);
+}
+
+/// The check rejects an unwind below a loop's count and, where exactness is asked, one above
+/// the count plus one.
+#[test]
+fn a_planted_unwind_too_small_or_loose_is_rejected() {
+    let planted: BTreeMap<String, Option<u64>> = [
+        ("too_small".to_string(), Some(12)),
+        ("loose".to_string(), Some(40)),
+        ("none".to_string(), None),
+    ]
+    .into();
+    let loops: [Loop; 2] = [("a round", 18), ("a sweep", 5)];
+    let run = |name: &'static str, exact: bool| {
+        let p = planted.clone();
+        std::panic::catch_unwind(move || check(&p, name, &loops, exact))
+    };
+    assert!(run("too_small", false).is_err());
+    assert!(run("loose", false).is_ok());
+    assert!(run("loose", true).is_err());
+    assert!(run("none", false).is_err());
 }

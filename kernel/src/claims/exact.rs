@@ -139,7 +139,13 @@ exact_int!(i128, |a: i128, b: i128| {
 /// The greatest common divisor of `|a|` and `|b|` by Euclid's algorithm (`gcd(0, 0) = 0`).
 /// By Lamé's theorem the loop runs at most `1 + k` times when the smaller magnitude is below
 /// the Fibonacci number `F(k+2)` (the `1` for a first iteration that only swaps the operands).
-fn gcd<I: ExactInt>(a: I, b: I) -> I {
+///
+/// Contract (proved once by `proofs::contracts::gcd_divides_both`): for operands whose
+/// magnitude fits `I`, the result is non-negative, zero exactly when both operands are, and
+/// divides both.
+#[kani::requires(a.checked_abs().is_some() && b.checked_abs().is_some())]
+#[kani::ensures(|g: &I| spec::is_common_divisor(a, b, *g))]
+pub fn gcd<I: ExactInt>(a: I, b: I) -> I {
     let mut a = a.checked_abs().unwrap_or_else(|| overflow());
     let mut b = b.checked_abs().unwrap_or_else(|| overflow());
     while b != I::ZERO {
@@ -186,6 +192,12 @@ impl<I: ExactInt> Q<I> {
     }
 
     /// `n/d`, normalised. Panics if `d == 0` (a bug, never input) or on overflow.
+    ///
+    /// Contract (proved by `proofs::contracts::ratio_is_exact_and_normalised`): for `d ≠ 0`
+    /// and operands whose magnitude fits `I`, the result has the value `n/d` (checked by
+    /// cross-multiplication, exactly), a positive denominator and coprime parts.
+    #[kani::requires(d != I::ZERO && n.checked_abs().is_some() && d.checked_abs().is_some())]
+    #[kani::ensures(|q: &Self| spec::is_normalised(q.n, q.d) && spec::same_value(q.n, q.d, n, d))]
     pub fn ratio(n: I, d: I) -> Self {
         assert!(d != I::ZERO, "zero denominator");
         let g = gcd(n, d).max(I::ONE);
@@ -228,6 +240,53 @@ impl<I: ExactInt> Q<I> {
         self.n.signum()
     }
 
+    /// `self + o`, `None` on overflow: the sum is exact, and `None` only when the unreduced sum
+    /// `(n₁d₂ + n₂d₁)/(d₁d₂)` has a part outside `±I::MAX`.
+    ///
+    /// Contract (proved by `proofs::contracts::checked_add_is_exact`): for operands with
+    /// positive denominators, a `Some` is normalised with the exact value of the sum
+    /// (cross-multiplied), and `None` only when the unreduced sum does not fit.
+    #[kani::requires(self.d > I::ZERO && o.d > I::ZERO)]
+    #[kani::ensures(|r: &Option<Self>| match r {
+        Some(q) => spec::is_normalised(q.n, q.d) && spec::is_sum(self.n, self.d, o.n, o.d, q.n, q.d),
+        None => !spec::unreduced_sum_fits::<I>(self.n, self.d, o.n, o.d),
+    })]
+    pub fn checked_add(self, o: Q<I>) -> Option<Q<I>> {
+        let fits = |v: I| v.checked_abs().is_some();
+        let (n, d) = if self.d == o.d {
+            (self.n.checked_add(o.n)?, self.d)
+        } else {
+            let n = self
+                .n
+                .checked_mul(o.d)?
+                .checked_add(o.n.checked_mul(self.d)?)?;
+            (n, self.d.checked_mul(o.d)?)
+        };
+        (fits(n) && fits(d)).then(|| Q::ratio(n, d))
+    }
+
+    /// `self · o`, `None` on overflow: the product is exact, and `None` only when the product
+    /// in lowest terms has a part outside `±I::MAX`.
+    ///
+    /// Contract (proved by `proofs::contracts::checked_mul_is_exact`): for normalised operands
+    /// whose numerators' magnitudes fit `I`, a `Some` is normalised with the exact value of the
+    /// product (cross-multiplied), and `None` only when the product in lowest terms does not
+    /// fit.
+    #[kani::requires(spec::is_normalised(self.n, self.d) && spec::is_normalised(o.n, o.d)
+        && self.n.checked_abs().is_some() && o.n.checked_abs().is_some())]
+    #[kani::ensures(|r: &Option<Self>| match r {
+        Some(q) => spec::is_normalised(q.n, q.d) && spec::is_product(self.n, self.d, o.n, o.d, q.n, q.d),
+        None => !spec::lowest_product_fits::<I>(self.n, self.d, o.n, o.d),
+    })]
+    pub fn checked_mul(self, o: Q<I>) -> Option<Q<I>> {
+        let g1 = gcd(self.n, o.d).max(I::ONE);
+        let g2 = gcd(o.n, self.d).max(I::ONE);
+        let n = self.n.checked_div(g1)?.checked_mul(o.n.checked_div(g2)?)?;
+        let d = self.d.checked_div(g2)?.checked_mul(o.d.checked_div(g1)?)?;
+        n.checked_abs()?;
+        Some(Q::ratio(n, d))
+    }
+
     /// `self^k`.
     pub fn pow(self, k: u32) -> Self {
         let mut r = Self::one();
@@ -266,11 +325,7 @@ impl Q {
 impl<I: ExactInt> std::ops::Add for Q<I> {
     type Output = Q<I>;
     fn add(self, o: Q<I>) -> Q<I> {
-        if self.d == o.d {
-            return Q::ratio(self.n.add_exact(o.n), self.d);
-        }
-        let n = self.n.mul_exact(o.d).add_exact(o.n.mul_exact(self.d));
-        Q::ratio(n, self.d.mul_exact(o.d))
+        self.checked_add(o).unwrap_or_else(|| overflow())
     }
 }
 
@@ -294,13 +349,7 @@ impl<I: ExactInt> std::ops::Sub for Q<I> {
 impl<I: ExactInt> std::ops::Mul for Q<I> {
     type Output = Q<I>;
     fn mul(self, o: Q<I>) -> Q<I> {
-        let g1 = gcd(self.n, o.d).max(I::ONE);
-        let g2 = gcd(o.n, self.d).max(I::ONE);
-        let div = |a: I, g: I| a.checked_div(g).unwrap_or_else(|| overflow());
-        Q::ratio(
-            div(self.n, g1).mul_exact(div(o.n, g2)),
-            div(self.d, g2).mul_exact(div(o.d, g1)),
-        )
+        self.checked_mul(o).unwrap_or_else(|| overflow())
     }
 }
 
@@ -332,6 +381,114 @@ impl<I: ExactInt> fmt::Display for Q<I> {
         } else {
             write!(f, "{}/{}", self.n, self.d)
         }
+    }
+}
+
+/// The guarantees of [`gcd`], [`Q::ratio`], [`Q::checked_add`] and [`Q::checked_mul`] (their
+/// contracts' clauses), stated independently of how those functions compute: values are
+/// compared by cross-multiplication in 256 bits (exact for every width), coprimality by a
+/// Euclid loop of its own on `u128` magnitudes. The "does not fit" statements are computed in
+/// `i128`: exact for every width up to `i64`; for `i128` operands whose products leave `i128`
+/// they hold trivially (they then claim nothing).
+pub mod spec {
+    use super::ExactInt;
+
+    /// `g ≥ 0`, `g = 0` exactly when `a = b = 0`, and `g` divides `a` and `b` (`gcd`'s contract).
+    pub fn is_common_divisor<I: ExactInt>(a: I, b: I, g: I) -> bool {
+        let (a, b, g) = (a.to_i128(), b.to_i128(), g.to_i128());
+        g >= 0 && ((g == 0) == (a == 0 && b == 0)) && (g == 0 || (a % g == 0 && b % g == 0))
+    }
+
+    /// `d > 0` and `gcd(|n|, d) = 1` (Euclid written here, on magnitudes).
+    pub fn is_normalised<I: ExactInt>(n: I, d: I) -> bool {
+        let (n, d) = (n.to_i128(), d.to_i128());
+        d > 0 && coprime(n.unsigned_abs(), d.unsigned_abs())
+    }
+
+    fn coprime(mut a: u128, mut b: u128) -> bool {
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        a == 1
+    }
+
+    /// The 256-bit magnitude of `a · b` as (high, low) halves, and whether it is negative.
+    fn product(a: i128, b: i128) -> (bool, u128, u128) {
+        let (x, y) = (a.unsigned_abs(), b.unsigned_abs());
+        let (x1, x0, y1, y0) = (x >> 64, x & u64::MAX as u128, y >> 64, y & u64::MAX as u128);
+        let (lo, mid1, mid2, hi) = (x0 * y0, x0 * y1, x1 * y0, x1 * y1);
+        let (mid, carry_mid) = mid1.overflowing_add(mid2);
+        let (low, carry_low) = lo.overflowing_add(mid << 64);
+        let high = hi + (mid >> 64) + ((carry_mid as u128) << 64) + carry_low as u128;
+        let zero = high == 0 && low == 0;
+        (!zero && ((a < 0) != (b < 0)), high, low)
+    }
+
+    /// `a · b = c · d`, exactly.
+    fn products_equal(a: i128, b: i128, c: i128, d: i128) -> bool {
+        product(a, b) == product(c, d)
+    }
+
+    /// `n1/d1 = n2/d2` (non-zero denominators), by cross-multiplication.
+    pub fn same_value<I: ExactInt>(n1: I, d1: I, n2: I, d2: I) -> bool {
+        products_equal(n1.to_i128(), d2.to_i128(), n2.to_i128(), d1.to_i128())
+    }
+
+    /// `n/d = n1/d1 + n2/d2`: `n·d1·d2 = (n1·d2 + n2·d1)·d`, checked as
+    /// `(n·d1 − n1·d)·d2 = n2·d1·d` in 128-bit values where they fit (widths up to `i32`
+    /// always), else `false`.
+    pub fn is_sum<I: ExactInt>(n1: I, d1: I, n2: I, d2: I, n: I, d: I) -> bool {
+        let [n1, d1, n2, d2, n, d] = [n1, d1, n2, d2, n, d].map(ExactInt::to_i128);
+        let lhs = n
+            .checked_mul(d1)
+            .zip(n1.checked_mul(d))
+            .and_then(|(a, b)| a.checked_sub(b));
+        let rhs = n2.checked_mul(d1);
+        match (lhs, rhs) {
+            (Some(l), Some(r)) => products_equal(l, d2, r, d),
+            _ => false,
+        }
+    }
+
+    /// `n/d = (n1/d1)·(n2/d2)`: `n·d1·d2 = n1·n2·d`, in 128-bit values where they fit (widths
+    /// up to `i32` always), else `false`.
+    pub fn is_product<I: ExactInt>(n1: I, d1: I, n2: I, d2: I, n: I, d: I) -> bool {
+        let [n1, d1, n2, d2, n, d] = [n1, d1, n2, d2, n, d].map(ExactInt::to_i128);
+        match (n.checked_mul(d1), n1.checked_mul(n2)) {
+            (Some(l), Some(r)) => products_equal(l, d2, r, d),
+            _ => false,
+        }
+    }
+
+    /// `v` lies in `±I::MAX`.
+    fn fits<I: ExactInt>(v: i128) -> bool {
+        I::from_i128(v).is_some_and(|x| x.checked_abs().is_some())
+    }
+
+    /// The unreduced sum `(n1·d2 + n2·d1)/(d1·d2)` has both parts in `±I::MAX`.
+    pub fn unreduced_sum_fits<I: ExactInt>(n1: I, d1: I, n2: I, d2: I) -> bool {
+        let [n1, d1, n2, d2] = [n1, d1, n2, d2].map(ExactInt::to_i128);
+        let n = n1
+            .checked_mul(d2)
+            .zip(n2.checked_mul(d1))
+            .and_then(|(a, b)| a.checked_add(b));
+        let d = d1.checked_mul(d2);
+        n.zip(d).is_some_and(|(n, d)| fits::<I>(n) && fits::<I>(d))
+    }
+
+    /// The product `(n1·n2)/(d1·d2)` in lowest terms has both parts in `±I::MAX`.
+    pub fn lowest_product_fits<I: ExactInt>(n1: I, d1: I, n2: I, d2: I) -> bool {
+        let [n1, d1, n2, d2] = [n1, d1, n2, d2].map(ExactInt::to_i128);
+        let (Some(n), Some(d)) = (n1.checked_mul(n2), d1.checked_mul(d2)) else {
+            return false;
+        };
+        let (mut a, mut b) = (n.unsigned_abs(), d.unsigned_abs());
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        let g = a.max(1);
+        let (n, d) = (n.unsigned_abs() / g, d.unsigned_abs() / g);
+        i128::try_from(n).is_ok_and(fits::<I>) && i128::try_from(d).is_ok_and(fits::<I>)
     }
 }
 
@@ -436,6 +593,28 @@ mod tests {
                 assert_eq!(a.cmp(&b), wa.cmp(&wb));
             }
         }
+    }
+
+    /// The contracts' clauses on hand-checked values: a wrong sum, product or unreduced result
+    /// is rejected; the 256-bit cross product is exact where `i128` would overflow.
+    #[test]
+    fn spec_clauses_reject_wrong_results() {
+        assert!(spec::is_sum(1i16, 2, 1, 3, 5, 6));
+        assert!(!spec::is_sum(1i16, 2, 1, 3, 2, 5));
+        assert!(spec::is_product(2i16, 3, 3, 4, 1, 2));
+        assert!(!spec::is_product(2i16, 3, 3, 4, 1, 3));
+        assert!(spec::is_normalised(-3i8, 4) && !spec::is_normalised(2i8, 4));
+        assert!(!spec::is_normalised(1i8, -1));
+        assert!(spec::is_common_divisor(12i32, -18, 6) && spec::is_common_divisor(0i32, 0, 0));
+        assert!(!spec::is_common_divisor(12i32, 18, 4) && !spec::is_common_divisor(0i32, 5, 0));
+        // (2^100)·(2^100) = (2^101)·(2^99), far beyond i128.
+        let (a, b) = (1i128 << 100, 1i128 << 99);
+        assert!(spec::same_value(a, b, 2 * a, 2 * b));
+        assert!(!spec::same_value(a, b, 2 * a + 1, 2 * b));
+        assert!(spec::unreduced_sum_fits(100i8, 1, 27, 1));
+        assert!(!spec::unreduced_sum_fits(100i8, 1, 28, 1));
+        assert!(spec::lowest_product_fits(100i8, 3, 3, 100));
+        assert!(!spec::lowest_product_fits(16i8, 1, 8, 1));
     }
 
     /// An overflow at a narrow width panics, never wraps: 100 + 100 does not fit an `i8`, nor

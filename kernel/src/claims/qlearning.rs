@@ -122,7 +122,11 @@ impl QProblem {
         !(self.pairs[p].terminal && self.terminal == Terminal::HeldAtZero)
     }
 
-    /// The `ρ = 1` update of pair `p`, in place.
+    /// The `ρ = 1` update of pair `p`, in place: `Q̂(x,u) ← l(x,u) + min_{u'} Q̂(f(x,u), u')`.
+    ///
+    /// Contract (proved by `proofs::contracts::update_is_the_rho_one_rule`): for a pair `p`
+    /// whose successor has pairs and whose new value fits an `i64`, [`update_spec`] holds
+    /// between the values before and after.
     ///
     /// ```
     /// use truecost_kernel::claims::qlearning::{QProblem, Terminal};
@@ -134,6 +138,9 @@ impl QProblem {
     /// q.update(&mut v, 0);
     /// assert_eq!(v[0], 2);
     /// ```
+    #[kani::requires(self.update_is_defined(v, p))]
+    #[kani::modifies(&v[p])]
+    #[kani::ensures(|_| update_spec(self, &old(*v), v[p], p))]
     #[inline]
     pub fn update(&self, v: &mut Values, p: usize) {
         if !self.updatable(p) {
@@ -146,6 +153,22 @@ impl QProblem {
             best = best.min(value);
         }
         v[p] = pair.cost + best;
+    }
+
+    /// The precondition of [`QProblem::update`]: `p` is a pair, the pair ranges of its
+    /// successor lie within the values, are non-empty, and `l(x,u) + min` fits an `i64`.
+    pub fn update_is_defined(&self, v: &Values, p: usize) -> bool {
+        let Some(pair) = self.pairs.get(p) else {
+            return false;
+        };
+        if !self.updatable(p) {
+            return true;
+        }
+        let y = pair.to as usize;
+        let (Some(&from), Some(&to)) = (self.first.get(y), self.first.get(y + 1)) else {
+            return false;
+        };
+        from < to && to <= MAX_PAIRS && (from..to).all(|q| pair.cost.checked_add(v[q]).is_some())
     }
 
     /// Whether `v` equals `Q*` on every pair (false if some `Q*` is `+∞`).
@@ -233,6 +256,26 @@ impl QProblem {
         };
         Some(r1.max(r2))
     }
+}
+
+/// The guarantee of [`QProblem::update`] on pair `p`, from the values `before` the update to
+/// the pair's value `after` it (the `ρ = 1` rule, stated as a minimum rather than
+/// computed): a held termination pair keeps its value; otherwise the new value is
+/// `l(x,u) + Q̂(f(x,u), u')` for some pair `u'` of the successor and at most that for every one.
+/// No other value changes: the contract's `modifies(&v[p])`, which Kani checks (the stand-in's
+/// proof harness asserts it).
+pub fn update_spec(q: &QProblem, before: &Values, after: i64, p: usize) -> bool {
+    if !q.updatable(p) {
+        return after == before[p];
+    }
+    let pair = q.pairs[p];
+    let y = pair.to as usize;
+    let successors = q.first[y]..q.first[y + 1];
+    let candidate = |k: usize| pair.cost.checked_add(before[k]);
+    successors
+        .clone()
+        .all(|k| candidate(k).is_some_and(|c| after <= c))
+        && successors.clone().any(|k| candidate(k) == Some(after))
 }
 
 /// A fair update order made of rounds; in each round every updatable pair is updated.
@@ -399,25 +442,37 @@ pub fn all_orders(q: &QProblem, q0: &Values, limit: usize) -> AllOrders {
             return AllOrders::TooLarge;
         }
     }
-    // Longest path to a Q* vertex; a cycle among non-Q* vertices = divergence.
-    let mut depth: HashMap<u128, Option<u64>> = HashMap::new(); // None = on the DFS stack
-    fn longest(
-        k: u128,
-        succ: &HashMap<u128, Vec<u128>>,
-        depth: &mut HashMap<u128, Option<u64>>,
-    ) -> Option<u64> {
-        if let Some(d) = depth.get(&k) {
-            return *d; // None while on the stack: a cycle
+    // Longest path to a Q* vertex; a cycle among non-Q* vertices = divergence. Depth-first
+    // with an explicit stack (no recursion): a vertex is on the stack (`None`) until every
+    // successor has its depth.
+    let mut depth: HashMap<u128, Option<u64>> = HashMap::new();
+    let longest = |start: u128, depth: &mut HashMap<u128, Option<u64>>| -> Option<u64> {
+        let mut stack: Vec<(u128, usize, u64)> = vec![(start, 0, 0)];
+        depth.insert(start, None);
+        while let Some(&mut (k, ref mut next, ref mut best)) = stack.last_mut() {
+            let list = &succ[&k];
+            if let Some(&e) = list.get(*next) {
+                *next += 1;
+                match depth.get(&e) {
+                    Some(None) => return None, // on the stack: a cycle
+                    Some(Some(d)) => *best = (*best).max(d + 1),
+                    None => {
+                        depth.insert(e, None);
+                        stack.push((e, 0, 0));
+                    }
+                }
+            } else {
+                let d = *best;
+                depth.insert(k, Some(d));
+                stack.pop();
+                if let Some(parent) = stack.last_mut() {
+                    parent.2 = parent.2.max(d + 1);
+                }
+            }
         }
-        depth.insert(k, None);
-        let mut best = 0u64;
-        for &e in &succ[&k] {
-            best = best.max(longest(e, succ, depth)? + 1);
-        }
-        depth.insert(k, Some(best));
-        Some(best)
-    }
-    match longest(start, &succ, &mut depth) {
+        depth[&start]
+    };
+    match longest(start, &mut depth) {
         Some(d) => AllOrders::Converges(d),
         None => AllOrders::Diverges,
     }

@@ -199,12 +199,18 @@ impl Instance {
             return (n, Vec::new());
         }
         seen[self.initial] = true;
-        let mut stack = vec![self.initial];
-        while let Some(x) = stack.pop() {
+        // A stack of fixed capacity: every state enters it at most once.
+        let mut stack = vec![0usize; n];
+        stack[0] = self.initial;
+        let mut len = 1;
+        while len > 0 {
+            len -= 1;
+            let x = stack[len];
             for &(y, _) in &self.moves[x] {
                 if !self.is_goal[y] && !seen[y] {
                     seen[y] = true;
-                    stack.push(y);
+                    stack[len] = y;
+                    len += 1;
                 }
             }
         }
@@ -283,15 +289,21 @@ impl Instance {
         let n = self.moves.len();
         let mut reach = vec![false; n];
         reach[self.initial] = true;
-        let mut stack = vec![self.initial];
-        while let Some(x) = stack.pop() {
+        // A stack of fixed capacity: every state enters it at most once.
+        let mut stack = vec![0usize; n];
+        stack[0] = self.initial;
+        let mut len = 1;
+        while len > 0 {
+            len -= 1;
+            let x = stack[len];
             if self.is_goal[x] {
                 continue;
             }
             for &(y, _) in &self.moves[x] {
                 if !reach[y] {
                     reach[y] = true;
-                    stack.push(y);
+                    stack[len] = y;
+                    len += 1;
                 }
             }
         }

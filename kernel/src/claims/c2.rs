@@ -5,6 +5,8 @@
 //! never by negating the cost. The claim runner (scopes, the parallel enumeration, the report)
 //! is `truecost::claims::c2`.
 
+use std::fmt;
+
 use super::exact::{ExactInt, FracExt, Q};
 use super::oracle::{evaluate_fast, policies, trajectory, Functional, Trajectory};
 use super::tiny::Tiny;
@@ -48,14 +50,40 @@ pub fn optimisers<I: ExactInt>(trs: &[Trajectory], f: Functional<I>) -> (u128, u
     (argmin, argmax)
 }
 
-/// Checks one problem from the start states `0..starts`; `None` if the equivalence holds for
-/// each of them and every functional, else a description of the failure. Also returns the
-/// number of comparisons made.
-pub fn check_problem<I: ExactInt>(
+/// A failure of C2 on one problem: from `start`, under `functional`, the cost minimisers
+/// (`argmin`, a bit mask over the policies) differ from the reward maximisers (`argmax`).
+/// Formatted only when printed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Failure<I: ExactInt = i128> {
+    /// The start state.
+    pub start: usize,
+    /// The functional.
+    pub functional: Functional<I>,
+    /// The cost-minimising policies.
+    pub argmin: u128,
+    /// The reward-maximising policies.
+    pub argmax: u128,
+}
+
+impl<I: ExactInt> fmt::Display for Failure<I> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "from state {}, {}: cost minimisers {:#b} differ from reward maximisers {:#b}",
+            self.start, self.functional, self.argmin, self.argmax
+        )
+    }
+}
+
+/// Checks one problem from the start states `0..starts` (C2: for each functional, the
+/// policies minimising the cost are those maximising the reward): the first [`Failure`], or
+/// `None` if the equivalence holds for each start and every functional. Also returns the number
+/// of comparisons made.
+pub fn first_failure<I: ExactInt>(
     t: &Tiny,
     fs: &[Functional<I>],
     starts: usize,
-) -> (Option<String>, u64) {
+) -> (Option<Failure<I>>, u64) {
     let ps = policies(t, true);
     assert!(ps.len() <= 128);
     let mut comparisons = 0;
@@ -65,17 +93,27 @@ pub fn check_problem<I: ExactInt>(
             let (argmin, argmax) = optimisers(&trs, f);
             comparisons += 1;
             if argmin != argmax {
-                return (
-                    Some(format!(
-                        "from state {start}, {}: cost minimisers {argmin:#b} differ from reward maximisers {argmax:#b}",
-                        f.describe()
-                    )),
-                    comparisons,
-                );
+                let failure = Failure {
+                    start,
+                    functional: f,
+                    argmin,
+                    argmax,
+                };
+                return (Some(failure), comparisons);
             }
         }
     }
     (None, comparisons)
+}
+
+/// [`first_failure`] with the failure described in one line.
+pub fn check_problem<I: ExactInt>(
+    t: &Tiny,
+    fs: &[Functional<I>],
+    starts: usize,
+) -> (Option<String>, u64) {
+    let (failure, comparisons) = first_failure(t, fs, starts);
+    (failure.map(|f| f.to_string()), comparisons)
 }
 
 #[cfg(test)]

@@ -39,17 +39,22 @@ pub fn goal_avoiding_core(t: &Tiny) -> [bool; MAX_STATES] {
 
 /// Whether the goal is reachable from `x1 = 0`.
 pub fn goal_reachable(t: &Tiny) -> bool {
+    // A stack of fixed capacity: every state enters it at most once.
     let mut seen = [false; MAX_STATES];
-    let mut stack = vec![0usize];
+    let mut stack = [0usize; MAX_STATES];
+    let mut len = 1;
     seen[0] = true;
-    while let Some(x) = stack.pop() {
+    while len > 0 {
+        len -= 1;
+        let x = stack[len];
         if t.is_goal(x) {
             return true;
         }
         for m in t.moves(x) {
             if !seen[m.to as usize] {
                 seen[m.to as usize] = true;
-                stack.push(m.to as usize);
+                stack[len] = m.to as usize;
+                len += 1;
             }
         }
     }

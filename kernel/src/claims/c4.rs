@@ -16,7 +16,9 @@
 use std::fmt;
 
 use super::exact::{ExactInt, Q};
-use super::oracle::{karp_minimum_mean_cycle_in, simple_cycles};
+use super::oracle::{
+    karp_minimum_mean_cycle_in, simple_cycles, simple_paths, with_search_space, Step,
+};
 use super::tiny::Tiny;
 
 /// A problem type that converts to an [`Instance`] with integer costs and its scale `D`
@@ -197,12 +199,18 @@ impl Instance {
             return (n, Vec::new());
         }
         seen[self.initial] = true;
-        let mut stack = vec![self.initial];
-        while let Some(x) = stack.pop() {
+        // A stack of fixed capacity: every state enters it at most once.
+        let mut stack = vec![0usize; n];
+        stack[0] = self.initial;
+        let mut len = 1;
+        while len > 0 {
+            len -= 1;
+            let x = stack[len];
             for &(y, _) in &self.moves[x] {
                 if !self.is_goal[y] && !seen[y] {
                     seen[y] = true;
-                    stack.push(y);
+                    stack[len] = y;
+                    len += 1;
                 }
             }
         }
@@ -219,10 +227,11 @@ impl Instance {
         (n, arcs)
     }
 
-    /// Every simple path from `x1` to a goal as `(L, S)`, or `Err(BonusError::SearchTooLong)`
-    /// once the depth-first search has taken more than `max_steps` steps (the bound
-    /// is checked while the search runs, so a grid refuses at once instead of listing its
-    /// astronomically many paths).
+    /// Every simple path from `x1` to a goal as `(L, S)`, in depth-first order (moves in each
+    /// state's order), or `Err(BonusError::SearchTooLong)` once the depth-first search has
+    /// taken more than `max_steps` steps (one per node of its search tree; the bound is checked
+    /// while the search runs, so a grid refuses at once instead of listing its astronomically
+    /// many paths). The search is iterative, on a stack of fixed capacity.
     ///
     /// ```
     /// use truecost_kernel::claims::c4::{BonusError, Instance};
@@ -235,41 +244,44 @@ impl Instance {
     /// assert_eq!(inst.goal_paths(2), Err(BonusError::SearchTooLong { steps: 2 }));
     /// ```
     pub fn goal_paths(&self, max_steps: u64) -> Result<Vec<(i64, i64)>, BonusError> {
-        struct Search<'a> {
-            inst: &'a Instance,
-            on: Vec<bool>,
-            out: Vec<(i64, i64)>,
-            steps: u64,
-            max_steps: u64,
+        // One step per node of the search tree: x1, then every arc that ends or extends a path.
+        let too_long = BonusError::SearchTooLong { steps: max_steps };
+        let mut steps = 1u64;
+        if steps > max_steps {
+            return Err(too_long);
         }
-        fn dfs(s: &mut Search, x: usize, cost: i64, states: i64) -> Result<(), BonusError> {
-            s.steps += 1;
-            if s.steps > s.max_steps {
-                return Err(BonusError::SearchTooLong { steps: s.max_steps });
-            }
-            if s.inst.is_goal[x] {
-                s.out.push((cost, states));
-                return Ok(());
-            }
-            for &(y, c) in &s.inst.moves[x] {
-                if !s.on[y] {
-                    s.on[y] = true;
-                    dfs(s, y, cost + c, states + 1)?;
-                    s.on[y] = false;
-                }
-            }
-            Ok(())
+        if self.is_goal[self.initial] {
+            return Ok(vec![(0, 1)]);
         }
-        let mut search = Search {
-            inst: self,
-            on: vec![false; self.moves.len()],
-            out: Vec::new(),
-            steps: 0,
-            max_steps,
-        };
-        search.on[self.initial] = true;
-        dfs(&mut search, self.initial, 0, 1)?;
-        Ok(search.out)
+        let mut out = Vec::new();
+        with_search_space(self.moves.len(), |frames, on| {
+            simple_paths(
+                frames,
+                on,
+                self.initial,
+                |x, k| self.moves[x].get(k).copied(),
+                |y, on| {
+                    if on {
+                        Step::Skip
+                    } else if self.is_goal[y] {
+                        Step::End
+                    } else {
+                        Step::Enter
+                    }
+                },
+                |s, cost, moves| {
+                    steps += 1;
+                    if steps > max_steps {
+                        return Err(too_long.clone());
+                    }
+                    if s == Step::End {
+                        out.push((cost, moves as i64 + 1));
+                    }
+                    Ok(())
+                },
+            )
+        })?;
+        Ok(out)
     }
 
     /// The states reachable from `x1` without passing through a goal (goals reached included).
@@ -277,15 +289,21 @@ impl Instance {
         let n = self.moves.len();
         let mut reach = vec![false; n];
         reach[self.initial] = true;
-        let mut stack = vec![self.initial];
-        while let Some(x) = stack.pop() {
+        // A stack of fixed capacity: every state enters it at most once.
+        let mut stack = vec![0usize; n];
+        stack[0] = self.initial;
+        let mut len = 1;
+        while len > 0 {
+            len -= 1;
+            let x = stack[len];
             if self.is_goal[x] {
                 continue;
             }
             for &(y, _) in &self.moves[x] {
                 if !reach[y] {
                     reach[y] = true;
-                    stack.push(y);
+                    stack[len] = y;
+                    len += 1;
                 }
             }
         }
@@ -368,11 +386,12 @@ impl Instance {
     /// `Lav(Ĉ)` by Karp's algorithm, cross-checked against simple-cycle enumeration
     /// (`Err` on disagreement: an internal error).
     pub fn least_mean_cycle(&self) -> Result<Option<Q>, String> {
-        self.least_mean_cycle_in()
+        self.least_mean_cycle_in().map_err(|e| e.to_string())
     }
 
-    /// [`Instance::least_mean_cycle`] in exact rationals over `I`.
-    pub fn least_mean_cycle_in<I: ExactInt>(&self) -> Result<Option<Q<I>>, String> {
+    /// [`Instance::least_mean_cycle`] in exact rationals over `I`; a disagreement is returned
+    /// with the two values, formatted only when printed.
+    pub fn least_mean_cycle_in<I: ExactInt>(&self) -> Result<Option<Q<I>>, InternalError> {
         let (n, arcs) = self.tiny_like();
         let karp = karp_minimum_mean_cycle_in::<I>(n, &arcs);
         let enumerated = simple_cycles(n, &arcs)
@@ -380,9 +399,10 @@ impl Instance {
             .map(|(w, l)| Q::from_i64s(w, l as i64))
             .min();
         if karp != enumerated {
-            return Err(format!(
-                "Karp {karp:?} disagrees with cycle enumeration {enumerated:?}"
-            ));
+            return Err(InternalError::KarpVersusCycles {
+                karp: wide(karp),
+                enumerated: wide(enumerated),
+            });
         }
         Ok(karp)
     }
@@ -432,7 +452,75 @@ pub enum BonusError {
         states: usize,
     },
     /// A cross-check failed (a truecost bug).
-    Internal(String),
+    Internal(InternalError),
+}
+
+/// A failed cross-check of the exact bonus analysis (a truecost bug), with the values that
+/// disagree: exact rationals as `(numerator, denominator)` in `i128` (every width widens
+/// exactly), formatted only when printed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum InternalError {
+    /// Karp's least mean cycle differs from the least mean over the enumerated simple cycles.
+    KarpVersusCycles {
+        /// Karp's `Lav(Ĉ)` (`None`: no cycle).
+        karp: Option<(i128, i128)>,
+        /// The enumeration's.
+        enumerated: Option<(i128, i128)>,
+    },
+    /// Karp's least mean cycle differs from the least average of the goal-avoiding policies.
+    KarpVersusPolicies {
+        /// Karp's `Lav(Ĉ)` (`None`: no cycle).
+        karp: Option<(i128, i128)>,
+        /// The policies'.
+        policies: Option<(i128, i128)>,
+    },
+    /// Any other, as a message.
+    Message(String),
+}
+
+/// `q`'s numerator and denominator in `i128`.
+fn wide<I: ExactInt>(q: Option<Q<I>>) -> Option<(i128, i128)> {
+    q.map(|q| (q.numer().to_i128(), q.denom().to_i128()))
+}
+
+/// Writes `q` as `{:?}` writes an `Option<Q>` (`Some(Q { n: 3, d: 2 })`, `None`).
+fn write_rational(f: &mut fmt::Formatter<'_>, q: Option<(i128, i128)>) -> fmt::Result {
+    match q {
+        Some((n, d)) => write!(f, "Some(Q {{ n: {n}, d: {d} }})"),
+        None => write!(f, "None"),
+    }
+}
+
+impl fmt::Display for InternalError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            InternalError::KarpVersusCycles { karp, enumerated } => {
+                write!(f, "Karp ")?;
+                write_rational(f, *karp)?;
+                write!(f, " disagrees with cycle enumeration ")?;
+                write_rational(f, *enumerated)
+            }
+            InternalError::KarpVersusPolicies { karp, policies } => {
+                write!(f, "Karp ")?;
+                write_rational(f, *karp)?;
+                write!(f, " disagrees with the policies' cycles ")?;
+                write_rational(f, *policies)
+            }
+            InternalError::Message(m) => write!(f, "{m}"),
+        }
+    }
+}
+
+impl From<&str> for InternalError {
+    fn from(m: &str) -> InternalError {
+        InternalError::Message(m.to_string())
+    }
+}
+
+impl From<String> for InternalError {
+    fn from(m: String) -> InternalError {
+        InternalError::Message(m)
+    }
 }
 
 /// Computes the bonus sets for every distinct `S*` of an optimal single-shot path. `Ok(None)`
@@ -440,7 +528,7 @@ pub enum BonusError {
 pub fn bonus_sets(inst: &Instance, limit: u64) -> Result<Option<Vec<BonusSets>>, String> {
     match bonus_analysis(inst, limit) {
         Ok(sets) => Ok(sets),
-        Err(BonusError::Internal(e)) => Err(e),
+        Err(BonusError::Internal(e)) => Err(e.to_string()),
         Err(_) => Ok(None),
     }
 }
@@ -508,15 +596,22 @@ pub fn bonus_analysis_in<I: ExactInt>(
         .map(|a| Q::from_i64s(a.0, a.2))
         .min();
     if from_policies != lav {
-        return Err(BonusError::Internal(format!(
-            "Karp {lav:?} disagrees with the policies' cycles {from_policies:?}"
-        )));
+        return Err(BonusError::Internal(InternalError::KarpVersusPolicies {
+            karp: wide(lav),
+            policies: wide(from_policies),
+        }));
     }
-    let mut sstars: Vec<i64> = paths.iter().filter(|p| p.0 == lstar).map(|p| p.1).collect();
-    sstars.sort_unstable();
-    sstars.dedup();
     let mut out = Vec::new();
-    for &s in &sstars {
+    // The distinct `S*` in increasing order: each the least `S` of an optimal path above the
+    // previous one (a scan of the paths per value; nothing is sorted).
+    let mut previous = None;
+    while let Some(s) = paths
+        .iter()
+        .filter(|p| p.0 == lstar && previous.is_none_or(|q| p.1 > q))
+        .map(|p| p.1)
+        .min()
+    {
+        previous = Some(s);
         // Exact: (L*+M)/S* <= (c + rM)/k for every policy, i.e. M(k − r S*) <= c S* − L* k.
         let mut exact = Interval::negative();
         for &(c, r, k) in &averages {
@@ -622,6 +717,34 @@ impl std::error::Error for BonusError {}
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A failed cross-check prints the values as `{:?}` prints them (`Some(Q { n: .., d: .. })`),
+    /// in the message the CLI shows.
+    #[test]
+    fn internal_errors_print_the_values_that_disagree() {
+        let (a, b) = (Some(Q::<i16>::ratio(-3, 2)), None::<Q<i16>>);
+        let cycles = BonusError::Internal(InternalError::KarpVersusCycles {
+            karp: super::wide(a),
+            enumerated: super::wide(b),
+        });
+        assert_eq!(
+            cycles.to_string(),
+            format!("internal error: Karp {a:?} disagrees with cycle enumeration {b:?}")
+        );
+        let (a, b) = (Some(Q::new(7, 1)), Some(Q::new(5, 3)));
+        let policies = InternalError::KarpVersusPolicies {
+            karp: super::wide(a),
+            policies: super::wide(b),
+        };
+        assert_eq!(
+            policies.to_string(),
+            format!("Karp {a:?} disagrees with the policies' cycles {b:?}")
+        );
+        assert_eq!(
+            policies.to_string(),
+            "Karp Some(Q { n: 7, d: 1 }) disagrees with the policies' cycles Some(Q { n: 5, d: 3 })"
+        );
+    }
 
     fn wide(q: Q<i16>) -> Q {
         Q::new(q.numer() as i128, q.denom() as i128)

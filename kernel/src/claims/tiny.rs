@@ -252,50 +252,60 @@ impl FamilySpec {
     }
 }
 
+/// Every multiset of `lo..=hi` moves of `alphabet` (as non-decreasing sequences of its
+/// entries; with `distinct`, no two with the same successor), in depth-first preorder: a
+/// sequence before its extensions, extensions by earlier entries first. Iterative: `next[k]` is
+/// the next entry to try at position `k`.
 fn multisets(alphabet: &[TinyMove], lo: usize, hi: usize, distinct: bool) -> Vec<Vec<TinyMove>> {
     let mut out = Vec::new();
-    fn rec(
-        alphabet: &[TinyMove],
-        start: usize,
-        cur: &mut Vec<TinyMove>,
-        lo: usize,
-        hi: usize,
-        distinct: bool,
-        out: &mut Vec<Vec<TinyMove>>,
-    ) {
+    let mut cur: Vec<TinyMove> = Vec::new();
+    let mut next: Vec<usize> = vec![0];
+    if lo == 0 {
+        out.push(Vec::new());
+    }
+    loop {
+        let depth = cur.len();
+        let i = next[depth];
+        if depth == hi || i == alphabet.len() {
+            if depth == 0 {
+                return out;
+            }
+            cur.pop();
+            next.pop();
+            continue;
+        }
+        next[depth] = i + 1;
+        if distinct && cur.iter().any(|m| m.to == alphabet[i].to) {
+            continue;
+        }
+        cur.push(alphabet[i]);
+        next.push(i);
         if cur.len() >= lo {
             out.push(cur.clone());
         }
-        if cur.len() == hi {
-            return;
-        }
-        for i in start..alphabet.len() {
-            if distinct && cur.iter().any(|m| m.to == alphabet[i].to) {
-                continue;
-            }
-            cur.push(alphabet[i]);
-            rec(alphabet, i, cur, lo, hi, distinct, out);
-            cur.pop();
-        }
     }
-    rec(alphabet, 0, &mut Vec::new(), lo, hi, distinct, &mut out);
-    out
 }
 
+/// Every ordering of `items`, in lexicographic order of the positions they are taken from
+/// (the identity first); iterative, by the successor of a permutation of positions.
 fn permutations(items: &[u8]) -> Vec<Vec<u8>> {
-    if items.is_empty() {
-        return vec![Vec::new()];
-    }
+    let k = items.len();
+    let mut at: Vec<usize> = (0..k).collect();
     let mut out = Vec::new();
-    for i in 0..items.len() {
-        let mut rest = items.to_vec();
-        let head = rest.remove(i);
-        for mut p in permutations(&rest) {
-            p.insert(0, head);
-            out.push(p);
-        }
+    loop {
+        out.push(at.iter().map(|&i| items[i]).collect());
+        // The next permutation of the positions: the longest non-increasing suffix, then the
+        // least larger entry swapped in before it, the suffix reversed.
+        let Some(p) = (1..k).rev().find(|&j| at[j - 1] < at[j]).map(|j| j - 1) else {
+            return out;
+        };
+        let q = (p + 1..k)
+            .rev()
+            .find(|&j| at[j] > at[p])
+            .expect("a larger entry");
+        at.swap(p, q);
+        at[p + 1..].reverse();
     }
-    out
 }
 
 impl Family {
@@ -408,7 +418,14 @@ impl Family {
                         cost: m.cost,
                     };
                 }
-                image[..d].sort_unstable();
+                // In order by insertion (at most MAX_DEGREE moves).
+                for k in 1..d {
+                    let mut j = k;
+                    while j > 0 && image[j - 1] > image[j] {
+                        image.swap(j - 1, j);
+                        j -= 1;
+                    }
+                }
                 let own = t.moves(new);
                 let ord = (own.len(), own).cmp(&(d, &image[..d]));
                 match ord {
@@ -440,6 +457,70 @@ pub fn minimality_key(t: &Tiny, extra: u64, index: u64) -> (usize, usize, u64, u
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every tuple of `len` numbers below `k`, in lexicographic order (an odometer).
+    fn tuples(k: usize, len: usize) -> Vec<Vec<usize>> {
+        let mut out = Vec::new();
+        if k == 0 && len > 0 {
+            return out;
+        }
+        let mut digits = vec![0usize; len];
+        loop {
+            out.push(digits.clone());
+            let Some(p) = (0..len).rev().find(|&p| digits[p] + 1 < k) else {
+                return out;
+            };
+            digits[p] += 1;
+            digits[p + 1..].iter_mut().for_each(|d| *d = 0);
+        }
+    }
+
+    /// `permutations` lists every ordering once, in lexicographic order of positions: the
+    /// tuples of distinct positions, filtered from all tuples.
+    #[test]
+    fn permutations_are_the_distinct_tuples_in_order() {
+        for k in 0..=5 {
+            let items: Vec<u8> = (0..k as u8).map(|i| 10 + 3 * i).collect();
+            let want: Vec<Vec<u8>> = tuples(k, k)
+                .into_iter()
+                .filter(|t| (0..k).all(|i| !t[..i].contains(&t[i])))
+                .map(|t| t.iter().map(|&i| items[i]).collect())
+                .collect();
+            let got = permutations(&items);
+            assert_eq!(got.len(), (1..=k).product::<usize>());
+            assert_eq!(got, want, "{k}");
+        }
+    }
+
+    /// `multisets` lists the non-decreasing tuples of alphabet positions of every length in
+    /// `lo..=hi` (distinct successors when asked), in lexicographic order (a tuple before its
+    /// extensions).
+    #[test]
+    fn multisets_are_the_non_decreasing_tuples_in_order() {
+        let alphabet: Vec<TinyMove> = [(0, 0), (0, 1), (1, 0), (2, 5)]
+            .iter()
+            .map(|&(to, cost)| TinyMove { to, cost })
+            .collect();
+        for (lo, hi) in [(0, 0), (0, 3), (1, 2), (2, 3), (3, 3)] {
+            for distinct in [false, true] {
+                let mut want: Vec<Vec<usize>> = (lo..=hi)
+                    .flat_map(|len| tuples(alphabet.len(), len))
+                    .filter(|t| t.windows(2).all(|w| w[0] <= w[1]))
+                    .filter(|t| {
+                        !distinct
+                            || (0..t.len())
+                                .all(|i| (0..i).all(|j| alphabet[t[j]].to != alphabet[t[i]].to))
+                    })
+                    .collect();
+                want.sort();
+                let want: Vec<Vec<TinyMove>> = want
+                    .iter()
+                    .map(|t| t.iter().map(|&i| alphabet[i]).collect())
+                    .collect();
+                assert_eq!(multisets(&alphabet, lo, hi, distinct), want, "{lo} {hi}");
+            }
+        }
+    }
 
     /// Two free states, one move each to one of 3 states, cost 0: labelled 3·3 with the goal
     /// having no moves; classes under swapping states 0 and 1 (x1 not fixed): hand count.

@@ -10,7 +10,7 @@
 //! is already settled (stale) still counts as a pop; every neighbour examined from a settled
 //! node counts as a relaxation. Preconditions: costs `>= 0`.
 
-use std::cmp::{Ordering, Reverse};
+use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
 use super::{greedy_policy_over, Solution};
@@ -30,8 +30,8 @@ pub struct DijkstraCounts {
 /// pops the smallest (distance, counter). Counters are distinct, so the order is total and
 /// every implementation pops the same sequence.
 trait Frontier<V> {
-    /// An empty frontier with room for `capacity` entries.
-    fn with_capacity(capacity: usize) -> Self;
+    /// An empty frontier for a search over `n` nodes that pushes at most `max_pushes` entries.
+    fn new(n: usize, max_pushes: usize) -> Self;
     /// Inserts an entry.
     fn push(&mut self, dist: &V, counter: u64, node: u32);
     /// Removes the smallest entry and returns its node.
@@ -70,8 +70,8 @@ impl<V: CostValue> Ord for Entry<V> {
 }
 
 impl<V: CostValue> Frontier<V> for Compared<V> {
-    fn with_capacity(capacity: usize) -> Self {
-        Compared(BinaryHeap::with_capacity(capacity))
+    fn new(n: usize, _max_pushes: usize) -> Self {
+        Compared(BinaryHeap::with_capacity(n))
     }
     #[inline]
     fn push(&mut self, dist: &V, counter: u64, node: u32) {
@@ -87,28 +87,82 @@ impl<V: CostValue> Frontier<V> for Compared<V> {
     }
 }
 
+/// The most nodes for which [`Keyed`] packs an entry in a `u128`: nodes take 31 bits and
+/// counters 33, since a graph has fewer than `2^32` moves (its rows are `u32`), so at most
+/// `n + m < 2^31 + 2^32 < 2^33` entries are ever pushed.
+const KEYED_NODES: usize = 1 << 31;
+
 /// The frontier for value types with an [`CostValue::order_key`]: one `u128` per entry,
-/// `key · 2^64 + counter · 2^32 + node`, so that integer order is (distance, counter) order
-/// (the node never decides: counters are distinct). Needs counters below `2^32`.
-struct Keyed(BinaryHeap<Reverse<u128>>);
+/// `key · 2^64 + counter · 2^31 + node`, so that integer order is (distance, counter) order
+/// (the node never decides: counters are distinct). Needs nodes below `2^31` and counters
+/// below `2^33` ([`KEYED_NODES`]). A binary min-heap in a buffer of fixed capacity (every entry
+/// the search can push), filled up to `len`: no push grows it.
+struct Keyed {
+    heap: Vec<u128>,
+    len: usize,
+}
+
+impl Keyed {
+    /// Restores the heap order upwards from slot `i`.
+    fn sift_up(&mut self, mut i: usize) {
+        while i > 0 {
+            let parent = (i - 1) / 2;
+            if self.heap[parent] <= self.heap[i] {
+                break;
+            }
+            self.heap.swap(parent, i);
+            i = parent;
+        }
+    }
+
+    /// Restores the heap order downwards from the root.
+    fn sift_down(&mut self) {
+        let mut i = 0;
+        loop {
+            let (left, right) = (2 * i + 1, 2 * i + 2);
+            let mut least = i;
+            if left < self.len && self.heap[left] < self.heap[least] {
+                least = left;
+            }
+            if right < self.len && self.heap[right] < self.heap[least] {
+                least = right;
+            }
+            if least == i {
+                return;
+            }
+            self.heap.swap(i, least);
+            i = least;
+        }
+    }
+}
 
 impl<V: CostValue> Frontier<V> for Keyed {
-    fn with_capacity(capacity: usize) -> Self {
-        Keyed(BinaryHeap::with_capacity(capacity))
+    fn new(_n: usize, max_pushes: usize) -> Self {
+        Keyed {
+            heap: vec![0; max_pushes],
+            len: 0,
+        }
     }
     #[inline]
     fn push(&mut self, dist: &V, counter: u64, node: u32) {
         let key = dist
             .order_key()
             .expect("Keyed is used only with order keys");
-        debug_assert!(counter < 1 << 32);
-        self.0.push(Reverse(
-            u128::from(key) << 64 | u128::from(counter) << 32 | u128::from(node),
-        ));
+        debug_assert!(counter < 1 << 33 && (node as usize) < KEYED_NODES);
+        self.heap[self.len] = u128::from(key) << 64 | u128::from(counter) << 31 | u128::from(node);
+        self.len += 1;
+        self.sift_up(self.len - 1);
     }
     #[inline]
     fn pop(&mut self) -> Option<u32> {
-        self.0.pop().map(|Reverse(entry)| entry as u32)
+        if self.len == 0 {
+            return None;
+        }
+        let least = self.heap[0];
+        self.len -= 1;
+        self.heap[0] = self.heap[self.len];
+        self.sift_down();
+        Some((least & ((1 << 31) - 1)) as u32)
     }
 }
 
@@ -122,8 +176,12 @@ struct Search<V> {
 
 /// The core. `neighbours(v)` lists `v`'s neighbours `(w, cost)` in order (the concrete
 /// iterator type lets the compiler inline the relaxation loop); `max_pushes` bounds the
-/// entries ever pushed (sources plus moves). Picks the [`Keyed`] frontier when the value type
-/// has order keys and the counters fit, [`Compared`] otherwise: both pop the same sequence.
+/// entries ever pushed (sources plus moves: an entry is pushed only when a move from a node
+/// being settled strictly improves its head, once per move at most). Picks the [`Keyed`]
+/// frontier when the value type has order keys and the graph has at most [`KEYED_NODES`]
+/// nodes, [`Compared`] otherwise: both pop the same sequence. The choice depends on the value
+/// type and the node count only, never on the moves (whose number a model checker may see as
+/// symbolic: it then runs one search, not both).
 fn run<'g, V: CostValue, I: Iterator<Item = (usize, &'g V)>>(
     n: usize,
     sources: &[usize],
@@ -131,10 +189,10 @@ fn run<'g, V: CostValue, I: Iterator<Item = (usize, &'g V)>>(
     neighbours: impl Fn(usize) -> I,
     is_target: impl Fn(usize) -> bool,
 ) -> Search<V> {
-    if V::zero().order_key().is_some() && max_pushes < 1 << 32 {
-        search::<V, Keyed, I>(n, sources, neighbours, is_target)
+    if V::zero().order_key().is_some() && n <= KEYED_NODES {
+        search::<V, Keyed, I>(n, sources, max_pushes, neighbours, is_target)
     } else {
-        search::<V, Compared<V>, I>(n, sources, neighbours, is_target)
+        search::<V, Compared<V>, I>(n, sources, max_pushes, neighbours, is_target)
     }
 }
 
@@ -145,13 +203,14 @@ fn run<'g, V: CostValue, I: Iterator<Item = (usize, &'g V)>>(
 fn search<'g, V: CostValue, F: Frontier<V>, I: Iterator<Item = (usize, &'g V)>>(
     n: usize,
     sources: &[usize],
+    max_pushes: usize,
     neighbours: impl Fn(usize) -> I,
     is_target: impl Fn(usize) -> bool,
 ) -> Search<V> {
     let mut dist = vec![V::infinity(); n];
     let mut parent = vec![u32::MAX; n];
     let mut settled = vec![false; n];
-    let mut heap = F::with_capacity(n);
+    let mut heap = F::new(n, max_pushes);
     let mut counter = 0u64;
     let mut counts = DijkstraCounts::default();
     for &s in sources {
@@ -319,6 +378,40 @@ pub fn from_initial<V: CostValue, U>(graph: &Graph<V, U>) -> ForwardSearch<V> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The fixed-capacity heap pops its entries in increasing order (against a sorted copy),
+    /// nodes up to `2^31 − 1` and counters up to `2^33 − 1` packed without loss.
+    #[test]
+    fn keyed_pops_in_distance_then_counter_order() {
+        let mut draw = Draw(0x5DEE_CE66_D1CE_4E5B);
+        for case in 0..500 {
+            let pushes = 1 + draw.below(40) as usize;
+            let mut heap = <Keyed as Frontier<Units>>::new(4, pushes);
+            let mut entries = Vec::new();
+            for i in 0..pushes {
+                let key = draw.below(6);
+                let counter = if i == 0 { (1 << 33) - 1 } else { i as u64 };
+                let node = if i % 7 == 0 {
+                    (1u32 << 31) - 1 - i as u32
+                } else {
+                    draw.below(1 << 31) as u32
+                };
+                Frontier::<Units>::push(&mut heap, &Units(key), counter, node);
+                entries.push((key, counter, node));
+                // Interleaved pops: the least entry so far.
+                if draw.below(3) == 0 {
+                    entries.sort();
+                    let least = entries.remove(0);
+                    assert_eq!(Frontier::<Units>::pop(&mut heap), Some(least.2), "{case}");
+                }
+            }
+            entries.sort();
+            for (_, _, node) in entries {
+                assert_eq!(Frontier::<Units>::pop(&mut heap), Some(node), "{case}");
+            }
+            assert_eq!(Frontier::<Units>::pop(&mut heap), None);
+        }
+    }
     use crate::value::Units;
 
     use crate::solvers::test_draw::Draw;

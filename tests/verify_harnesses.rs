@@ -13,7 +13,8 @@
 //! pass with every cover hit — so the copies are the harnesses' statements, not strawmen — and
 //! given a planted addition (saturating instead of reporting the overflow; off by one) they
 //! must fail, in the stand-in's run and in `verify`'s report, whose table is the real one with
-//! those two bodies replaced. The test runs the smoke report without SMT or Coq: seconds.
+//! those two bodies replaced. The test runs the smoke report without SMT or Coq: seconds. A
+//! table that panics fails the stand-in's engine: its lines say `engine failed`.
 
 use truecost::claims::registry::{self, Options};
 use truecost::claims::{report, Scope, Verdict};
@@ -301,4 +302,95 @@ fn no_harnesses_says_they_were_not_run() {
         assert!(l.ends_with("] 0 cases, 0 failures"), "{l}");
         assert!(!l.contains("run here by the stand-in"), "{l}");
     }
+}
+
+/// A table of harness bodies that cannot even be built (its function panics): the stand-in's
+/// engine fails for every harness of the claim, whose lines say `engine failed` with the
+/// panic's message and place, the claim is inconclusive, the other engines still report, and
+/// the failure is listed for `verify`'s exit status.
+#[test]
+fn a_failing_harness_engine_is_reported_and_makes_the_claim_inconclusive() {
+    fn unbuildable() -> Vec<Harness> {
+        panic!("planted: no table\nof harnesses")
+    }
+    let options = Options {
+        smt: false,
+        coq: false,
+        harnesses: Some(unbuildable),
+        ..Options::default()
+    };
+    let r = registry::run(Scope::Smoke, Some("C2"), &options).unwrap();
+    let c2 = &r.claims[0];
+    assert_eq!((c2.id.as_str(), c2.verdict), ("C2", Verdict::Inconclusive));
+    let engines: Vec<&str> = c2.engines.iter().map(|e| e.engine.as_str()).collect();
+    assert_eq!(
+        engines,
+        [
+            "exhaustive enumeration",
+            "kani harness c2_oracle_argmin_cost_is_argmax_reward",
+            "proptest"
+        ]
+    );
+    // The enumeration and proptest ran in full (C2 holds: no failures).
+    for e in [&c2.engines[0], &c2.engines[2]] {
+        assert!(e.cases > 0 && e.failures == 0, "{e:?}");
+    }
+    let text = report::text(&r, false);
+    let harness = line_of(
+        &text,
+        "  engine: kani harness c2_oracle_argmin_cost_is_argmax_reward",
+    );
+    assert!(
+        harness.starts_with(
+            "  engine: kani harness c2_oracle_argmin_cost_is_argmax_reward: engine failed: planted: no table\\nof harnesses (at tests/verify_harnesses.rs:"
+        ),
+        "{harness}"
+    );
+    assert_eq!(
+        registry::engine_failures(&r),
+        ["C2: kani harness c2_oracle_argmin_cost_is_argmax_reward"]
+    );
+    assert!(text.contains("\nC2  INCONCLUSIVE\n"), "{text}");
+}
+
+/// The line of `text` starting with `start`.
+fn line_of<'a>(text: &'a str, start: &str) -> &'a str {
+    text.lines()
+        .find(|l| l.starts_with(start))
+        .unwrap_or_else(|| panic!("no line starting {start:?} in:\n{text}"))
+}
+
+/// With times, the harnesses line says whether the harness bodies' crate checks overflow, as
+/// this test's own build does (the test profile: on), and says nothing of it without times.
+#[test]
+fn the_harnesses_line_says_which_crates_check_overflow() {
+    let this_build = std::panic::catch_unwind(|| {
+        std::hint::black_box(std::hint::black_box(u8::MAX) + std::hint::black_box(1u8))
+    })
+    .is_err();
+    let options = Options {
+        smt: false,
+        coq: false,
+        ..Options::default()
+    };
+    let r = registry::run(Scope::Smoke, Some("C3-example"), &options).unwrap();
+    let crates = r
+        .harnesses
+        .as_ref()
+        .unwrap()
+        .overflow_checks
+        .clone()
+        .unwrap();
+    // Every crate of a test build is built alike.
+    assert!(crates.contains(&("truecost-proofs (the harness bodies)", this_build)));
+    assert!(crates.iter().all(|&(_, on)| on == this_build), "{crates:?}");
+    let text = report::text(&r, true);
+    let timed = line_of(&text, "harnesses: ");
+    let state = if this_build { "on in" } else { "are OFF in" };
+    assert!(
+        timed.contains(&format!("; overflow checks {state} "))
+            && timed.contains("truecost-proofs (the harness bodies)"),
+        "{timed}"
+    );
+    assert!(!line_of(&report::text(&r, false), "harnesses: ").contains("overflow"));
 }

@@ -18,6 +18,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use truecost_proofs::standin;
 
+use super::shard::ENGINE_FAILED;
 use super::EngineRun;
 
 /// How the stand-in runs a harness under `cargo test`.
@@ -384,6 +385,22 @@ impl StandinRun {
         }
     }
 
+    /// A run that did not finish: the stand-in (or the code around it) panicked with
+    /// `failure` (described by [`super::shard::caught`]).
+    pub fn failed(name: &str, should_panic: bool, failure: &str) -> StandinRun {
+        StandinRun {
+            mode: ENGINE_FAILED_MODE.into(),
+            should_panic,
+            problem: Some(format!("{ENGINE_FAILED}{failure}")),
+            ..StandinRun::missing(name)
+        }
+    }
+
+    /// Whether the run did not finish ([`StandinRun::failed`]).
+    pub fn engine_failed(&self) -> bool {
+        self.mode == ENGINE_FAILED_MODE
+    }
+
     /// What a shard that does not own a harness records for it (never rendered: the merge
     /// reads the owner's run).
     pub fn by_another_shard() -> StandinRun {
@@ -400,10 +417,14 @@ impl StandinRun {
     }
 }
 
+/// The mode of a [`StandinRun`] that did not finish.
+const ENGINE_FAILED_MODE: &str = "engine failed";
+
 /// Runs the harnesses `names` of `table` through the stand-in, in parallel, each with its
 /// stated executions in every scope (all sixteen together take well under two seconds on two
 /// cores, release or test build, so no scope needs fewer). A name missing from `table` gives a
-/// run that says so.
+/// run that says so; a run of the stand-in that panics (its own failure: a body's panics are
+/// failing executions) gives a run whose engine line says `engine failed`.
 ///
 /// `verify` passes `truecost_proofs::harnesses()`; a test can pass a table whose body is a
 /// deliberately wrong copy (see `tests/harnesses_planted.rs`), which is why the table is a
@@ -415,8 +436,10 @@ pub fn run_standin(table: &[standin::Harness], names: &[&str]) -> Vec<StandinRun
             None => StandinRun::missing(name),
             Some(h) => {
                 let started = std::time::Instant::now();
-                let s = h.explore();
-                StandinRun::from_summary(h, &s, started.elapsed().as_secs_f64())
+                match super::shard::caught(|| h.explore()) {
+                    Ok(s) => StandinRun::from_summary(h, &s, started.elapsed().as_secs_f64()),
+                    Err(failure) => StandinRun::failed(h.name, h.should_panic, &failure),
+                }
             }
         })
         .collect()
@@ -434,6 +457,16 @@ pub fn run_standin(table: &[standin::Harness], names: &[&str]) -> Vec<StandinRun
 /// assert_eq!((e.cases, e.failures), (run.executions, 0));
 /// ```
 pub fn reported(h: &Harness, run: &StandinRun) -> EngineRun {
+    if run.engine_failed() {
+        return EngineRun {
+            engine: format!("kani harness {}", h.name),
+            mode: run.problem.clone().unwrap_or_default(),
+            scope: h.scope(),
+            cases: 0,
+            failures: 0,
+            seconds: 0.0,
+        };
+    }
     let executions = match run.mode.as_str() {
         "sampled" => format!("sampled {} executions", run.executions),
         "exhaustive" => format!(

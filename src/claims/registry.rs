@@ -7,7 +7,7 @@ use super::coq::{self, Kind};
 use super::harnesses::{self, StandinRun, HARNESSES};
 use super::report::{AlphaStar, HarnessSection, Report};
 use super::sampled::{self, PropertyRun};
-use super::shard::{self, Part, ShardFile};
+use super::shard::{self, Part, ShardFile, ENGINE_FAILED};
 use super::smt::{self, Encoding, Outcome, SmtVerdict};
 use super::tiny::Tiny;
 use super::{alpha, c1, c2, c3, c4, ClaimResult, Counterexample, EngineRun, Scope, Verdict};
@@ -281,23 +281,30 @@ fn run_harnesses(
         .iter()
         .map(|h| format!("kani harness {}", h.name))
         .collect();
-    let runs = shard::units(
-        &sites,
-        |wanted| {
-            let names: Vec<&str> = plan
-                .iter()
-                .zip(wanted)
-                .filter(|(_, &w)| w)
-                .map(|(h, _)| h.name)
-                .collect();
-            let mut done = harnesses::run_standin(&table(), &names).into_iter();
-            wanted
-                .iter()
-                .map(|&w| if w { done.next() } else { None })
-                .collect()
-        },
-        StandinRun::by_another_shard,
-    );
+    let runs = shard::engine(|| {
+        shard::units(
+            &sites,
+            |wanted| {
+                let names: Vec<&str> = plan
+                    .iter()
+                    .zip(wanted)
+                    .filter(|(_, &w)| w)
+                    .map(|(h, _)| h.name)
+                    .collect();
+                let mut done = harnesses::run_standin(&table(), &names).into_iter();
+                wanted
+                    .iter()
+                    .map(|&w| if w { done.next() } else { None })
+                    .collect()
+            },
+            StandinRun::by_another_shard,
+        )
+    })
+    .unwrap_or_else(|failure| {
+        plan.iter()
+            .map(|h| StandinRun::failed(h.name, h.should_panic, &failure))
+            .collect()
+    });
     // A shard's placeholder for a harness another shard owns takes the harness's name.
     Some(
         plan.iter()
@@ -325,6 +332,9 @@ fn attach_harness(result: &mut ClaimResult, h: &harnesses::Harness, runs: Option
         .expect("every planned harness has a run");
     result.engines.push(harnesses::reported(h, run));
     let Some(problem) = &run.problem else { return };
+    if run.engine_failed() {
+        return;
+    }
     if run.refutes() && result.verdict != Verdict::Refuted {
         result.notes.push(format!(
             "engines disagree (kani harness {}, run here by the stand-in, fails: {problem}): inconclusive",
@@ -339,11 +349,22 @@ fn attach_harness(result: &mut ClaimResult, h: &harnesses::Harness, runs: Option
     }
 }
 
-fn attach(result: &mut ClaimResult, prop: Option<(PropertyRun, f64)>, runs: Option<&[StandinRun]>) {
+fn attach(
+    result: &mut ClaimResult,
+    prop: Option<Result<(PropertyRun, f64), String>>,
+    runs: Option<&[StandinRun]>,
+) {
     for h in harnesses::of_claim(&result.id) {
         attach_harness(result, h, runs);
     }
-    let Some((p, seconds)) = prop else { return };
+    let (p, seconds) = match prop {
+        None => return,
+        Some(Err(failure)) => {
+            result.engines.push(failed_engine("proptest", &failure));
+            return;
+        }
+        Some(Ok(run)) => run,
+    };
     result.engines.push(p.engine_run(seconds));
     if let Some((t, what)) = &p.counterexample {
         let text = format!(
@@ -380,7 +401,14 @@ struct PropertyRecord {
 /// Runs one property (engine 2), timed: a unit of the run under sharding (proptest stops at
 /// its first failure and shrinks it, so its cases cannot be split without changing the
 /// counterexample).
-fn property(claim: &'static str, run: impl FnOnce() -> PropertyRun) -> (PropertyRun, f64) {
+fn property(
+    claim: &'static str,
+    run: impl FnOnce() -> PropertyRun,
+) -> Result<(PropertyRun, f64), String> {
+    shard::engine(|| property_unit(claim, run))
+}
+
+fn property_unit(claim: &'static str, run: impl FnOnce() -> PropertyRun) -> (PropertyRun, f64) {
     let r = shard::unit(
         &format!("proptest {claim}"),
         || {
@@ -432,7 +460,10 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
     let runs = harness_runs.as_deref();
     let mut claims = Vec::new();
     if selected("C1", only) || selected("C1-corrected", only) {
-        let (mut a, mut b) = c1::check(scope);
+        let [mut a, mut b] = checked(["C1", "C1-corrected"], "exhaustive enumeration", || {
+            let (a, b) = c1::check(scope);
+            [a, b]
+        });
         if selected("C1", only) {
             attach(
                 &mut a,
@@ -451,22 +482,26 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
         }
     }
     if selected("C2", only) {
-        let mut a = c2::check(scope);
+        let [mut a] = checked(["C2"], "exhaustive enumeration", || [c2::check(scope)]);
         attach(&mut a, Some(property("C2", || sampled::c2(n, None))), runs);
         claims.push(a);
     }
     if selected("C3", only) {
-        let mut a = c3::check(scope);
+        let [mut a] = checked(["C3"], "exhaustive enumeration", || [c3::check(scope)]);
         attach(&mut a, Some(property("C3", || sampled::c3(n, None))), runs);
         claims.push(a);
     }
-    let (mut example, star) = alpha::check();
+    let (mut example, star) = shard::engine(alpha::check)
+        .unwrap_or_else(|failure| (failed_claim("C3-example", "exact solve", &failure), None));
     if selected("C3-example", only) {
         attach(&mut example, None, runs);
         claims.push(example);
     }
     if selected("C4", only) || selected("C4-corrected", only) {
-        let (mut a, mut b) = c4::check(scope);
+        let [mut a, mut b] = checked(["C4", "C4-corrected"], "exhaustive enumeration", || {
+            let (a, b) = c4::check(scope);
+            [a, b]
+        });
         if selected("C4", only) {
             attach(
                 &mut a,
@@ -489,26 +524,55 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
     let mut smt_outcomes = Vec::new();
     if options.smt {
         for c in claims.iter_mut() {
-            if let Some(enc) = encoding(&c.id, scope) {
-                let outcome = smt::run(enc, options.smt_timeout_ms);
-                attach_smt(c, &outcome);
-                smt_outcomes.push(outcome);
+            let solved = shard::engine(|| {
+                encoding(&c.id, scope).map(|enc| smt::run(enc, options.smt_timeout_ms))
+            });
+            match solved {
+                Ok(Some(outcome)) => {
+                    attach_smt(c, &outcome);
+                    smt_outcomes.push(outcome);
+                }
+                Ok(None) => {}
+                Err(failure) => c.engines.push(failed_engine("smt (Z3)", &failure)),
             }
         }
     }
     let coq_check = wants_coq.then(|| {
-        shard::unit("coq re-check", coq::recheck, || coq::Check {
-            version: None,
-            outcome: coq::Outcome::NotAvailable("re-checked by another shard".into()),
-            theorems: vec![],
-            files: 0,
-            seconds: 0.0,
+        shard::engine(|| {
+            shard::unit("coq re-check", coq::recheck, || coq::Check {
+                version: None,
+                outcome: coq::Outcome::NotAvailable("re-checked by another shard".into()),
+                theorems: vec![],
+                files: 0,
+                seconds: 0.0,
+            })
         })
     });
-    if let Some(check) = &coq_check {
-        for c in claims.iter_mut() {
-            attach_coq(c, check);
+    let coq_check = match coq_check {
+        Some(Ok(check)) => {
+            for c in claims.iter_mut() {
+                attach_coq(c, &check);
+            }
+            Some(check)
         }
+        Some(Err(failure)) => {
+            for c in claims.iter_mut() {
+                if !coq::theorems_of(&c.id).is_empty() {
+                    c.engines.push(failed_engine("coq", &failure));
+                }
+            }
+            Some(coq::Check {
+                version: None,
+                outcome: coq::Outcome::NotAvailable(format!("{ENGINE_FAILED}{failure}")),
+                theorems: vec![],
+                files: 0,
+                seconds: 0.0,
+            })
+        }
+        None => None,
+    };
+    for c in claims.iter_mut() {
+        settle_engine_failures(c);
     }
     let harnesses = harness_section(&plan, runs);
     Ok(Report {
@@ -524,6 +588,109 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
         claims,
         alpha_star,
     })
+}
+
+/// Runs the checker of claims `ids` (their first engine: the exhaustive enumeration, or C3's
+/// example's exact solve) with its panics caught: if it panics, each of the claims gets a
+/// result whose one engine line, `engine`'s, says `engine failed: <message>`.
+fn checked<const N: usize>(
+    ids: [&str; N],
+    engine: &str,
+    check: impl FnOnce() -> [ClaimResult; N],
+) -> [ClaimResult; N] {
+    shard::engine(check).unwrap_or_else(|failure| ids.map(|id| failed_claim(id, engine, &failure)))
+}
+
+/// The engine line of `engine` when it panicked with `failure` ([`shard::engine`]).
+fn failed_engine(engine: &str, failure: &str) -> EngineRun {
+    EngineRun {
+        engine: engine.into(),
+        mode: format!("{ENGINE_FAILED}{failure}"),
+        scope: "not run to its end: truecost's code panicked".into(),
+        cases: 0,
+        failures: 0,
+        seconds: 0.0,
+    }
+}
+
+/// The statement of claim `id` (one of [`IDS`]), as its checker states it.
+fn statement(id: &str) -> String {
+    match id {
+        "C1" => c1::STATEMENT.into(),
+        "C1-corrected" => c1::corrected_statement(),
+        "C2" => c2::STATEMENT.into(),
+        "C3" => c3::STATEMENT.into(),
+        "C3-example" => alpha::STATEMENT.into(),
+        "C4" => c4::STATEMENT.into(),
+        "C4-corrected" => c4::CORRECTED.into(),
+        _ => String::new(),
+    }
+}
+
+/// Claim `id` when its checker's `engine` panicked with `failure`: no verdict, one engine line
+/// saying so; the other engines are attached to it as to any claim.
+fn failed_claim(id: &str, engine: &str, failure: &str) -> ClaimResult {
+    ClaimResult {
+        id: id.into(),
+        statement: statement(id),
+        verdict: Verdict::Inconclusive,
+        engine: format!("none: {engine} failed"),
+        scope: "no verdict: an engine failed".into(),
+        cases: 0,
+        counterexample: None,
+        engines: vec![failed_engine(engine, failure)],
+        notes: vec![],
+    }
+}
+
+/// The engines of `result` that failed (their lines say `engine failed: …`).
+fn failed_engines(result: &ClaimResult) -> Vec<&str> {
+    result
+        .engines
+        .iter()
+        .filter(|e| e.mode.starts_with(ENGINE_FAILED))
+        .map(|e| e.engine.as_str())
+        .collect()
+}
+
+/// A claim with an engine that failed is inconclusive, whatever its other engines found: the
+/// failure is a bug in truecost's code (or in the code it checks), which the claim's other
+/// engines may share.
+fn settle_engine_failures(result: &mut ClaimResult) {
+    let failed = failed_engines(result).join(", ");
+    if failed.is_empty() {
+        return;
+    }
+    result.notes.push(format!(
+        "engine failed ({failed}): inconclusive whatever the other engines found"
+    ));
+    result.verdict = Verdict::Inconclusive;
+    result.engine = format!("none: {failed} failed");
+    result.scope = "no verdict: an engine failed".into();
+    result.cases = 0;
+}
+
+/// The engines of `report` that failed, as `claim: engine` (a lemma harness as `lemmas:
+/// engine`): `verify` prints the whole report and then exits with a failure when there are any.
+pub fn engine_failures(report: &Report) -> Vec<String> {
+    let mut out: Vec<String> = report
+        .claims
+        .iter()
+        .flat_map(|c| {
+            failed_engines(c)
+                .into_iter()
+                .map(move |e| format!("{}: {e}", c.id))
+        })
+        .collect();
+    if let Some(h) = &report.harnesses {
+        out.extend(
+            h.lemmas
+                .iter()
+                .filter(|e| e.mode.starts_with(ENGINE_FAILED))
+                .map(|e| format!("lemmas: {}", e.engine)),
+        );
+    }
+    out
 }
 
 /// The report's harness section: one line on what ran, and the lemma harnesses' engine lines.
@@ -560,7 +727,10 @@ fn harness_section(
                 harnesses::reported(h, run)
             })
             .collect(),
-        overflow_checks: Some(truecost_proofs::overflow_checks()),
+        overflow_checks: Some(vec![(
+            "truecost-proofs (the harness bodies)",
+            truecost_proofs::overflow_checks(),
+        )]),
     }
 }
 
@@ -872,6 +1042,104 @@ mod tests {
         attach_harness(&mut r, h, None);
         assert!(r.engines[0].mode.starts_with("NOT run by this verify"));
         assert_eq!(r.verdict, Verdict::Proved);
+    }
+
+    /// A panicking engine becomes its engine line, `engine failed: <message>` (escaped, with
+    /// where it panicked): a claim checker's panic gives the claim from its statement with that
+    /// one line, and the other engines still attach; a claim with a failed engine is
+    /// inconclusive whatever the others found; the failures are listed for the exit status,
+    /// and the text report prints each.
+    #[test]
+    fn a_panicking_engine_becomes_its_line_and_the_claim_is_inconclusive() {
+        let [mut a] = checked(["C2"], "exhaustive enumeration", || -> [ClaimResult; 1] {
+            panic!("planted\nin the enumeration")
+        });
+        assert_eq!(a.statement, c2::STATEMENT);
+        assert_eq!((a.verdict, a.cases), (Verdict::Inconclusive, 0));
+        assert_eq!(a.engines.len(), 1);
+        let line = &a.engines[0];
+        assert_eq!(line.engine, "exhaustive enumeration");
+        assert!(
+            line.mode.starts_with(
+                "engine failed: planted\\nin the enumeration (at src/claims/registry.rs:"
+            ),
+            "{}",
+            line.mode
+        );
+        attach(
+            &mut a,
+            Some(property("C2", || -> PropertyRun {
+                panic!("planted in proptest")
+            })),
+            None,
+        );
+        let names: Vec<&str> = a.engines.iter().map(|e| e.engine.as_str()).collect();
+        assert_eq!(
+            names,
+            [
+                "exhaustive enumeration",
+                "kani harness c2_oracle_argmin_cost_is_argmax_reward",
+                "proptest"
+            ]
+        );
+        assert!(a.engines[2]
+            .mode
+            .starts_with("engine failed: planted in proptest (at "));
+        // A checker that does not panic is left as it is.
+        let [b, c] = checked(["C1", "C1-corrected"], "exhaustive enumeration", || {
+            [
+                claim("C1", Verdict::Refuted),
+                claim("C1-corrected", Verdict::Proved),
+            ]
+        });
+        assert_eq!((b.verdict, c.verdict), (Verdict::Refuted, Verdict::Proved));
+        assert_eq!(b.engine, "exhaustive enumeration");
+        // A claim that holds by its other engines, with one failed engine: inconclusive.
+        let mut d = claim("C4-corrected", Verdict::Proved);
+        d.engines
+            .push(failed_engine("smt (Z3)", "planted in the solver"));
+        settle_engine_failures(&mut d);
+        assert_eq!(d.verdict, Verdict::Inconclusive);
+        assert_eq!(d.engine, "none: smt (Z3) failed");
+        assert!(d.notes[0].starts_with("engine failed (smt (Z3)): inconclusive"));
+        let mut e = claim("C3", Verdict::Verified);
+        settle_engine_failures(&mut e);
+        assert_eq!((e.verdict, e.notes.len()), (Verdict::Verified, 0));
+        settle_engine_failures(&mut a);
+        let report = Report {
+            harnesses: Some(HarnessSection {
+                summary: String::new(),
+                lemmas: vec![failed_engine("kani harness h", "planted in the stand-in")],
+                overflow_checks: None,
+            }),
+            solver: None,
+            coq: None,
+            smt: vec![],
+            tool: "truecost".into(),
+            commit: "unknown".into(),
+            scope: Scope::Smoke,
+            claims: vec![a, d, e],
+            alpha_star: None,
+        };
+        assert_eq!(
+            engine_failures(&report),
+            [
+                "C2: exhaustive enumeration",
+                "C2: proptest",
+                "C4-corrected: smt (Z3)",
+                "lemmas: kani harness h"
+            ]
+        );
+        let text = crate::claims::report::text(&report, false);
+        assert!(
+            text.contains("\n  engine: exhaustive enumeration: engine failed: planted\\nin the enumeration (at "),
+            "{text}"
+        );
+        assert!(text.contains("\n  engine: smt (Z3): engine failed: planted in the solver\n"));
+        assert!(
+            text.contains("\n  engine: kani harness h: engine failed: planted in the stand-in\n")
+        );
+        assert!(text.contains("C2  INCONCLUSIVE\n"));
     }
 
     /// How the SMT engine's verdict combines with the enumeration's (the doc comment of

@@ -52,23 +52,73 @@ pub struct HarnessSection {
     pub summary: String,
     /// The lemma harnesses (solvers, exact value types), when every claim was selected.
     pub lemmas: Vec<super::EngineRun>,
-    /// Whether this build checks integer overflow (`None`: nothing ran). Shown with times only:
-    /// a property of the build, like the solver's version.
-    pub overflow_checks: Option<bool>,
+    /// Whether this build checks integer overflow, for each crate whose code the harnesses
+    /// run, as each crate's own probe answers (`None`: nothing ran). Shown with times only: a
+    /// property of the build, like the solver's version.
+    pub overflow_checks: Option<Vec<(&'static str, bool)>>,
 }
 
 impl HarnessSection {
-    /// The summary, and with times whether the build checks overflow.
+    /// The summary, and with times which crates of this build check overflow.
+    ///
+    /// ```
+    /// use truecost::claims::report::HarnessSection;
+    /// let section = |crates: Vec<(&'static str, bool)>| HarnessSection {
+    ///     summary: "2 harnesses".into(),
+    ///     lemmas: vec![],
+    ///     overflow_checks: Some(crates),
+    /// };
+    /// let both = section(vec![("a", true), ("b", true)]);
+    /// assert_eq!(both.line(true), "2 harnesses; overflow checks on in a and b");
+    /// assert_eq!(both.line(false), "2 harnesses");
+    /// assert_eq!(
+    ///     section(vec![("a", true), ("b", false)]).line(true),
+    ///     "2 harnesses; overflow checks are OFF in b in this build (an overflow there wraps instead of failing); on in a"
+    /// );
+    /// ```
     pub fn line(&self, with_times: bool) -> String {
-        match self.overflow_checks {
-            Some(false) if with_times => format!(
-                "{}; overflow checks are OFF in this build: an overflow in a body wraps here instead of failing",
+        let Some(crates) = self.overflow_checks.as_ref().filter(|_| with_times) else {
+            return self.summary.clone();
+        };
+        let names = |checked: bool| -> String {
+            crates
+                .iter()
+                .filter(|(_, c)| *c == checked)
+                .map(|(name, _)| *name)
+                .collect::<Vec<_>>()
+                .join(" and ")
+        };
+        let (on, off) = (names(true), names(false));
+        match (on.is_empty(), off.is_empty()) {
+            (_, true) => format!("{}; overflow checks on in {on}", self.summary),
+            (true, false) => format!(
+                "{}; overflow checks are OFF in {off} in this build (an overflow there wraps instead of failing)",
                 self.summary
             ),
-            Some(true) if with_times => format!("{}; overflow checks on", self.summary),
-            _ => self.summary.clone(),
+            (false, false) => format!(
+                "{}; overflow checks are OFF in {off} in this build (an overflow there wraps instead of failing); on in {on}",
+                self.summary
+            ),
         }
     }
+}
+
+/// The text of an engine line: what the engine checked (Markdown's claim lines with a colon
+/// after the mode), or that it failed.
+fn engine_text(e: &super::EngineRun, with_times: bool, colon: bool) -> String {
+    if e.mode.starts_with(super::shard::ENGINE_FAILED) {
+        return format!("{}: {}", e.engine, e.mode);
+    }
+    let t = if with_times && e.seconds > 0.0 {
+        format!(", {}", rate(e.cases, e.seconds, &e.engine))
+    } else {
+        String::new()
+    };
+    let colon = if colon { ":" } else { "" };
+    format!(
+        "{} [{}]{colon} {} cases, {} failures{t}",
+        e.engine, e.mode, e.cases, e.failures
+    )
 }
 
 /// The whole report.
@@ -215,15 +265,7 @@ fn engine_json(e: &super::EngineRun, with_times: bool) -> Value {
 }
 
 fn engine_line(e: &super::EngineRun, with_times: bool) -> String {
-    let t = if with_times && e.seconds > 0.0 {
-        format!(", {}", rate(e.cases, e.seconds, &e.engine))
-    } else {
-        String::new()
-    };
-    format!(
-        "{} [{}] {} cases, {} failures{t}",
-        e.engine, e.mode, e.cases, e.failures
-    )
+    engine_text(e, with_times, false)
 }
 
 /// The report as JSON: `{"claims": [{"id", "statement", "verdict", "engine", "scope", "cases",
@@ -317,16 +359,7 @@ pub fn text(report: &Report, with_times: bool) -> String {
         let _ = writeln!(s, "  decided by: {} ({} cases)", c.engine, c.cases);
         let _ = writeln!(s, "  scope: {}", c.scope);
         for e in &c.engines {
-            let t = if with_times && e.seconds > 0.0 {
-                format!(", {}", rate(e.cases, e.seconds, &e.engine))
-            } else {
-                String::new()
-            };
-            let _ = writeln!(
-                s,
-                "  engine: {} [{}] {} cases, {} failures{t}",
-                e.engine, e.mode, e.cases, e.failures
-            );
+            let _ = writeln!(s, "  engine: {}", engine_line(e, with_times));
         }
         if let Some(ce) = &c.counterexample {
             let _ = writeln!(s, "  counterexample: {}", ce.summary);
@@ -406,16 +439,7 @@ pub fn markdown(report: &Report, with_times: bool) -> String {
             c.statement
         );
         for e in &c.engines {
-            let t = if with_times && e.seconds > 0.0 {
-                format!(", {}", rate(e.cases, e.seconds, &e.engine))
-            } else {
-                String::new()
-            };
-            let _ = writeln!(
-                s,
-                "- {} [{}]: {} cases, {} failures{t}",
-                e.engine, e.mode, e.cases, e.failures
-            );
+            let _ = writeln!(s, "- {}", engine_text(e, with_times, true));
         }
         if let Some(ce) = &c.counterexample {
             let _ = writeln!(

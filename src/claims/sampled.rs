@@ -15,6 +15,7 @@ use super::c4::{bonus_sets, witness, Instance};
 use super::exact::Q;
 use super::oracle::Functional;
 use super::qlearning::{run, Order, QProblem, Run, Terminal, Values, MAX_PAIRS};
+use super::shard::{self, ENGINE_FAILED};
 use super::tiny::Tiny;
 use super::{EngineRun, Scope};
 
@@ -76,6 +77,22 @@ fn runner(cases: u32, persistence: Option<&'static str>) -> TestRunner {
     TestRunner::new_with_rng(config, TestRng::deterministic_rng(RngAlgorithm::ChaCha))
 }
 
+/// Runs a property with `runner`: a panic in the code it checks fails the case with the
+/// panic's description behind [`ENGINE_FAILED`], so that proptest shrinks it like any failure
+/// and [`finish`] reports it as a failure of the engine, not as a counterexample to the claim.
+fn run_guarded<S: Strategy>(
+    mut runner: TestRunner,
+    strategy: &S,
+    test: impl Fn(S::Value) -> Result<(), TestCaseError>,
+) -> Result<(), TestError<S::Value>> {
+    runner.run(strategy, |v| match shard::caught(|| test(v)) {
+        Ok(r) => r,
+        Err(failure) => Err(TestCaseError::fail(format!("{ENGINE_FAILED}{failure}"))),
+    })
+}
+
+/// The property's outcome; a case that panicked (see [`run_guarded`]) is raised again as the
+/// failure of the engine ([`shard::raise`]), with the input proptest shrank it to.
 fn finish(
     claim: &'static str,
     scope: String,
@@ -85,7 +102,20 @@ fn finish(
 ) -> PropertyRun {
     let counterexample = match result {
         Ok(()) => None,
-        Err(TestError::Fail(reason, (t, _))) => Some((t, reason.message().to_string())),
+        Err(TestError::Fail(reason, (t, v))) => {
+            if let Some(failure) = reason.message().strip_prefix(ENGINE_FAILED) {
+                let values = if v.is_empty() {
+                    String::new()
+                } else {
+                    format!(", Q0 = {v:?}")
+                };
+                shard::raise(format!(
+                    "{failure}; on the input proptest shrank it to: {}{values}",
+                    t.describe()
+                ));
+            }
+            Some((t, reason.message().to_string()))
+        }
         Err(TestError::Abort(reason)) => {
             Some((Tiny::empty(1), format!("aborted: {}", reason.message())))
         }
@@ -119,19 +149,23 @@ fn values_of(v: &[i64]) -> Values {
 /// C1 as printed: converges under the cyclic order (with the termination pair updated).
 pub fn c1_printed(cases: u32, persistence: Option<&'static str>) -> PropertyRun {
     let (n, r) = (AtomicU64::new(0), AtomicU64::new(0));
-    let result = runner(cases, persistence).run(&with_values(6, 3, 2), |(t, v)| {
-        n.fetch_add(1, Ordering::Relaxed);
-        r.fetch_add(1, Ordering::Relaxed);
-        let q = QProblem::new(&t, Terminal::Updated);
-        let q0 = values_of(&v);
-        if !q.all_finite() {
-            return Err(TestCaseError::fail("a pair has Q* = inf; Q stays finite"));
-        }
-        match run(&q, &q0, Order::Cyclic, 64) {
-            Run::Converged(_) => Ok(()),
-            other => Err(TestCaseError::fail(format!("cyclic order: {other:?}"))),
-        }
-    });
+    let result = run_guarded(
+        runner(cases, persistence),
+        &with_values(6, 3, 2),
+        |(t, v)| {
+            n.fetch_add(1, Ordering::Relaxed);
+            r.fetch_add(1, Ordering::Relaxed);
+            let q = QProblem::new(&t, Terminal::Updated);
+            let q0 = values_of(&v);
+            if !q.all_finite() {
+                return Err(TestCaseError::fail("a pair has Q* = inf; Q stays finite"));
+            }
+            match run(&q, &q0, Order::Cyclic, 64) {
+                Run::Converged(_) => Ok(()),
+                other => Err(TestCaseError::fail(format!("cyclic order: {other:?}"))),
+            }
+        },
+    );
     finish(
         "C1",
         format!("{cases} random problems, up to 6 states, 1-3 moves, costs 0-4, Q0 in -2..6"),
@@ -144,37 +178,41 @@ pub fn c1_printed(cases: u32, persistence: Option<&'static str>) -> PropertyRun 
 /// C1-corrected: under H0–H2 every tested order converges within the bound.
 pub fn c1_corrected(cases: u32, persistence: Option<&'static str>) -> PropertyRun {
     let (n, r) = (AtomicU64::new(0), AtomicU64::new(0));
-    let result = runner(cases, persistence).run(&with_values(6, 3, 2), |(t, v)| {
-        n.fetch_add(1, Ordering::Relaxed);
-        let q = QProblem::new(&t, Terminal::HeldAtZero);
-        let mut q0 = values_of(&v);
-        for p in 0..q.len() {
-            if q.pairs[p].terminal {
-                q0[p] = 0; // H0
+    let result = run_guarded(
+        runner(cases, persistence),
+        &with_values(6, 3, 2),
+        |(t, v)| {
+            n.fetch_add(1, Ordering::Relaxed);
+            let q = QProblem::new(&t, Terminal::HeldAtZero);
+            let mut q0 = values_of(&v);
+            for p in 0..q.len() {
+                if q.pairs[p].terminal {
+                    q0[p] = 0; // H0
+                }
             }
-        }
-        if !q.all_finite() {
-            return Ok(());
-        }
-        let Some(bound) = q.round_bound(&q0) else {
-            return Ok(());
-        };
-        r.fetch_add(1, Ordering::Relaxed);
-        for o in [
-            Order::Cyclic,
-            Order::Reverse,
-            Order::FarFirst,
-            Order::Random(7),
-        ] {
-            let outcome = run(&q, &q0, o, 256);
-            if !converged_within(&outcome, bound) {
-                return Err(TestCaseError::fail(format!(
-                    "{o:?}: {outcome:?}, bound {bound}"
-                )));
+            if !q.all_finite() {
+                return Ok(());
             }
-        }
-        Ok(())
-    });
+            let Some(bound) = q.round_bound(&q0) else {
+                return Ok(());
+            };
+            r.fetch_add(1, Ordering::Relaxed);
+            for o in [
+                Order::Cyclic,
+                Order::Reverse,
+                Order::FarFirst,
+                Order::Random(7),
+            ] {
+                let outcome = run(&q, &q0, o, 256);
+                if !converged_within(&outcome, bound) {
+                    return Err(TestCaseError::fail(format!(
+                        "{o:?}: {outcome:?}, bound {bound}"
+                    )));
+                }
+            }
+            Ok(())
+        },
+    );
     finish(
         "C1-corrected",
         format!("{cases} random problems (those satisfying H0-H2 counted), up to 6 states, 1-3 moves, costs 0-4, Q0 in -2..6; four orders"),
@@ -198,7 +236,7 @@ pub fn c2(cases: u32, persistence: Option<&'static str>) -> PropertyRun {
     let (n, r) = (AtomicU64::new(0), AtomicU64::new(0));
     let fs: Vec<Functional> = super::c2::functionals();
     let strategy = (tiny_strategy(6, 2, 1, 6), Just(Vec::<i64>::new()));
-    let result = runner(cases, persistence).run(&strategy, |(t, _)| {
+    let result = run_guarded(runner(cases, persistence), &strategy, |(t, _)| {
         n.fetch_add(1, Ordering::Relaxed);
         r.fetch_add(1, Ordering::Relaxed);
         match super::c2::check_problem(&t, &fs, usize::MAX).0 {
@@ -219,7 +257,7 @@ pub fn c2(cases: u32, persistence: Option<&'static str>) -> PropertyRun {
 pub fn c3(cases: u32, persistence: Option<&'static str>) -> PropertyRun {
     let (n, r) = (AtomicU64::new(0), AtomicU64::new(0));
     let strategy = (tiny_strategy(7, 2, 0, 0), Just(Vec::<i64>::new()));
-    let result = runner(cases, persistence).run(&strategy, |(t, _)| {
+    let result = run_guarded(runner(cases, persistence), &strategy, |(t, _)| {
         n.fetch_add(1, Ordering::Relaxed);
         if certificate(&t, Q::new(1, 2)).is_none() {
             return Ok(());
@@ -242,7 +280,7 @@ pub fn c3(cases: u32, persistence: Option<&'static str>) -> PropertyRun {
 pub fn c4(printed: bool, cases: u32, persistence: Option<&'static str>) -> PropertyRun {
     let (n, r) = (AtomicU64::new(0), AtomicU64::new(0));
     let strategy = (tiny_strategy(6, 3, 0, 5), Just(Vec::<i64>::new()));
-    let result = runner(cases, persistence).run(&strategy, |(t, _)| {
+    let result = run_guarded(runner(cases, persistence), &strategy, |(t, _)| {
         n.fetch_add(1, Ordering::Relaxed);
         let inst = Instance::from_tiny(&t);
         let sets = match bonus_sets(&inst, 1 << 16) {
@@ -288,6 +326,35 @@ pub fn cases(scope: Scope) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A property whose code panics fails the engine (raised to the [`shard::caught`] around
+    /// it, with the input proptest shrank it to), not the claim: a failing assertion of the
+    /// same property is a counterexample.
+    #[test]
+    fn a_panic_in_a_property_fails_the_engine_not_the_claim() {
+        let property = |panics: bool| {
+            let (n, r) = (AtomicU64::new(0), AtomicU64::new(0));
+            let result = run_guarded(runner(32, None), &with_values(4, 2, 1), |(t, _)| {
+                n.fetch_add(1, Ordering::Relaxed);
+                r.fetch_add(1, Ordering::Relaxed);
+                match t.states() >= 3 {
+                    true if panics => panic!("planted at {} states", t.states()),
+                    true => Err(TestCaseError::fail("three states or more")),
+                    false => Ok(()),
+                }
+            });
+            shard::caught(|| finish("C0", String::new(), result, &n, &r))
+        };
+        let failure = property(true).unwrap_err();
+        assert!(
+            failure.starts_with("planted at 3 states (at src/claims/sampled.rs:"),
+            "{failure}"
+        );
+        assert!(failure.contains("; on the input proptest shrank it to: "));
+        let counterexample = property(false).unwrap().counterexample.unwrap();
+        assert_eq!(counterexample.0.states(), 3);
+        assert_eq!(counterexample.1, "three states or more");
+    }
 
     /// The bound is inclusive: converging in exactly `bound` rounds passes, one more fails, and
     /// a cycle or a run cut off at the limit fails whatever the bound.

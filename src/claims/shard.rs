@@ -20,9 +20,20 @@
 //! Shards of different runs are refused (a fingerprint of the scope, the claim filter, the
 //! options and the tool), so are a missing, duplicated or foreign shard, a file whose
 //! checksum does not match its content, and shards that disagree on the sites they ran.
+//!
+//! **Engine failures.** An engine that panics (a bug in the code it checks, or in itself) is
+//! caught by [`caught`], which `verify` wraps around every engine: the panic becomes that
+//! engine's line, `engine failed: <message>`, and the rest of the report is still made. A site
+//! whose work panics under `verify --shard` records the failure as its value, and the merge
+//! raises it again at the same site, so the merged report has the same engine line.
 
+use std::any::Any;
 use std::cell::RefCell;
+use std::collections::VecDeque;
 use std::fmt;
+use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Mutex, Once};
 
 use serde::de::DeserializeOwned;
 use serde::Serialize;
@@ -239,8 +250,15 @@ pub fn complete_set(mut files: Vec<(String, ShardFile)>) -> Result<Vec<ShardFile
             files.len()
         ));
     }
+    // A shard whose engine failed met fewer of that engine's sites than the others: the merge
+    // checks those shards' sites as it reads them ([`engine`]).
+    let failed = files.iter().any(|(_, f)| {
+        f.entries
+            .iter()
+            .any(|e| e.site == END_OF_ENGINE && e.value.is_some())
+    });
     let sites: Vec<&str> = files[0].1.entries.iter().map(|e| e.site.as_str()).collect();
-    for (name, f) in &files[1..] {
+    for (name, f) in files[1..].iter().filter(|_| !failed) {
         let other: Vec<&str> = f.entries.iter().map(|e| e.site.as_str()).collect();
         if other != sites {
             return Err(format!(
@@ -344,8 +362,15 @@ impl Fingerprint<'_> {
 }
 
 enum Mode {
-    Shard { part: Part, entries: Vec<Entry> },
-    Merge { shards: Vec<ShardFile>, next: usize },
+    Shard {
+        part: Part,
+        entries: Vec<Entry>,
+    },
+    /// `next[s]`: the next entry of shard `s` to read.
+    Merge {
+        shards: Vec<ShardFile>,
+        next: Vec<usize>,
+    },
 }
 
 struct Ledger {
@@ -387,7 +412,10 @@ pub fn replay<T>(shards: Vec<ShardFile>, f: impl FnOnce() -> T) -> Result<T, Str
     let expected = shards.first().map_or(0, |s| s.entries.len());
     let previous = LEDGER.with(|l| {
         l.borrow_mut().replace(Ledger {
-            mode: Mode::Merge { shards, next: 0 },
+            mode: Mode::Merge {
+                next: vec![0; shards.len()],
+                shards,
+            },
             units: 0,
             error: None,
         })
@@ -400,9 +428,14 @@ pub fn replay<T>(shards: Vec<ShardFile>, f: impl FnOnce() -> T) -> Result<T, Str
         return Err(e);
     }
     match ledger.mode {
-        Mode::Merge { next, .. } if next == expected => Ok(value),
+        Mode::Merge { shards, next }
+            if next.iter().zip(&shards).all(|(&j, s)| j == s.entries.len()) =>
+        {
+            Ok(value)
+        }
         Mode::Merge { next, .. } => Err(format!(
-            "the merge read {next} of the shards' {expected} sites (shards of a different build?)"
+            "the merge read {} of the shards' {expected} sites (shards of a different build?)",
+            next[0]
         )),
         Mode::Shard { .. } => unreachable!("the merge ledger was replaced while running"),
     }
@@ -416,20 +449,23 @@ fn encode<T: Serialize>(value: &T) -> String {
     serde_json::to_string(value).expect("a site's value is serialisable")
 }
 
-/// Takes the next merge entry (all shards' values), checking its site.
+/// Takes the next merge entry (all shards' values), checking its site. A shard that stopped
+/// at the end of the current engine, which failed in it ([`engine`]), answers with its failure.
 fn next_merged(l: &mut Ledger, site: &str) -> Option<Vec<Option<String>>> {
     let Mode::Merge { shards, next } = &mut l.mode else {
         return None;
     };
-    let j = *next;
-    *next += 1;
     let values: Option<Vec<Option<String>>> = shards
         .iter()
-        .map(|s| {
-            s.entries
-                .get(j)
-                .filter(|e| e.site == site)
-                .map(|e| e.value.clone())
+        .zip(next.iter_mut())
+        .map(|(s, j)| {
+            let entry = s.entries.get(*j)?;
+            if entry.site == END_OF_ENGINE {
+                let failure = entry.value.as_ref()?;
+                return Some(Some(format!("{ENGINE_FAILED}{failure}")));
+            }
+            *j += 1;
+            (entry.site == site).then(|| entry.value.clone())
         })
         .collect();
     if values.is_none() && l.error.is_none() {
@@ -469,12 +505,15 @@ pub fn split<T: Serialize + DeserializeOwned>(
     match plan {
         Plan::Whole => compute(None),
         Plan::Shard(part) => {
-            let v = compute(Some(part));
+            let v = recorded_failure(site, || compute(Some(part)));
             push(site, Some(encode(&v)));
             v
         }
         Plan::Merged(values) => {
             let mut acc: Option<T> = None;
+            if let Some(failure) = values.iter().flatten().find_map(|t| failed_value(t)) {
+                raise(failure.to_string());
+            }
             for text in values {
                 let Some(text) = text else {
                     fail(format!("site '{site}': a shard recorded no value"));
@@ -559,7 +598,16 @@ pub fn units<T: Serialize + DeserializeOwned>(
             .map(|v| v.expect("a wanted unit is computed"))
             .collect(),
         Plan::Shard(wanted) => {
-            let values = compute(&wanted);
+            let values = match caught(|| compute(&wanted)) {
+                Ok(values) => values,
+                Err(failure) => {
+                    // Every unit of the batch this shard owns failed with it.
+                    for (site, &w) in sites.iter().zip(&wanted) {
+                        push(site, w.then(|| format!("{ENGINE_FAILED}{failure}")));
+                    }
+                    raise(failure);
+                }
+            };
             sites
                 .iter()
                 .zip(values)
@@ -582,6 +630,9 @@ pub fn units<T: Serialize + DeserializeOwned>(
                 let Some(values) = values else {
                     return placeholder();
                 };
+                if let Some(failure) = values.iter().flatten().find_map(|t| failed_value(t)) {
+                    raise(failure.to_string());
+                }
                 let mut present = values.into_iter().flatten();
                 match (present.next(), present.next()) {
                     (Some(text), None) => decode::<T>(site, &text).unwrap_or_else(|e| {
@@ -600,6 +651,169 @@ pub fn units<T: Serialize + DeserializeOwned>(
             })
             .collect(),
     }
+}
+
+/// The prefix of an engine line's mode when the engine panicked (the panic's message follows),
+/// and of a shard entry's value when the site's work panicked (never JSON, so never a value).
+pub const ENGINE_FAILED: &str = "engine failed: ";
+
+/// A panic already caught and described: raised again through the levels above the one that
+/// caught it (a shard's site, a proptest run), which keep its description.
+struct Described(String);
+
+/// Engines running under [`caught`] now (the panic hook is silent while there are any).
+static CATCHING: AtomicUsize = AtomicUsize::new(0);
+/// Whether the stand-in's panic hook was installed before [`caught`]'s (which then passes
+/// every panic on to it, since it records where the harness bodies it runs panic).
+static OUTERMOST: AtomicBool = AtomicBool::new(false);
+/// The latest panics under [`caught`] that reached the hook (at most [`RECENT_PANICS`]): their
+/// messages and locations, for [`caught`] to find where the panic it caught happened.
+static RECENT: Mutex<VecDeque<(String, String)>> = Mutex::new(VecDeque::new());
+const RECENT_PANICS: usize = 256;
+
+/// The payload of the panic that asks whether the stand-in's hook is above [`caught`]'s.
+struct Probe;
+
+fn message_of(payload: &(dyn Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "a panic without a message".into())
+}
+
+fn install_hook() {
+    static INSTALL: Once = Once::new();
+    INSTALL.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if info.payload().is::<Probe>() {
+                OUTERMOST.store(true, Ordering::SeqCst);
+                return;
+            }
+            if CATCHING.load(Ordering::SeqCst) == 0 {
+                return previous(info);
+            }
+            let at = info.location().map_or(String::new(), |l| l.to_string());
+            let mut recent = RECENT.lock().unwrap_or_else(|e| e.into_inner());
+            if recent.len() == RECENT_PANICS {
+                recent.pop_front();
+            }
+            recent.push_back((message_of(info.payload()), at));
+            drop(recent);
+            if OUTERMOST.load(Ordering::SeqCst) {
+                previous(info);
+            }
+        }));
+        // The stand-in installs its hook over this one unless it did already: a silenced probe
+        // panic reaches this hook only in that case.
+        truecost_proofs::standin::__panics(|| std::panic::panic_any(Probe));
+    });
+}
+
+/// Runs `f`, an engine, and catches a panic in it — on this thread or on a rayon worker whose
+/// work it waits for (rayon raises a worker's panic again in the caller) — as its description:
+/// the panic message and where it panicked, escaped to one line. No panic message reaches
+/// stderr meanwhile (unless the stand-in's hook was installed first: it then prints them).
+///
+/// ```
+/// use truecost::claims::shard::caught;
+/// assert_eq!(caught(|| 6 * 7), Ok(42));
+/// let failure = caught(|| -> u8 { panic!("value out of range\nsecond line") }).unwrap_err();
+/// assert!(failure.starts_with("value out of range\\nsecond line (at "), "{failure}");
+/// ```
+pub fn caught<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+    install_hook();
+    if CATCHING.fetch_add(1, Ordering::SeqCst) == 0 {
+        RECENT.lock().unwrap_or_else(|e| e.into_inner()).clear();
+    }
+    let result = catch_unwind(AssertUnwindSafe(f));
+    CATCHING.fetch_sub(1, Ordering::SeqCst);
+    result.map_err(|payload| {
+        if let Some(Described(text)) = payload.downcast_ref::<Described>() {
+            return text.clone();
+        }
+        let message = message_of(&*payload);
+        let at = RECENT
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .iter()
+            .rev()
+            .find(|(m, l)| *m == message && !l.is_empty())
+            .map(|(_, l)| format!(" (at {l})"))
+            .unwrap_or_default();
+        crate::echo::one_line(&format!("{message}{at}"))
+    })
+}
+
+/// The site of the entry that ends an engine's entries ([`engine`]).
+const END_OF_ENGINE: &str = "end of engine";
+
+/// Runs `f`, one engine of `verify`, with its panics [`caught`]. Under `verify --shard` an
+/// entry ends the engine's entries, with its failure if it failed: a shard whose engine failed
+/// stops meeting that engine's sites while the other shards go on. The merge raises the
+/// failure where the failed shard would have answered (at the failing site, or at any later
+/// site of the engine), and leaves what the other shards recorded for the rest of the engine
+/// unread: the merged report has the engine's failure line, as the whole run has.
+pub fn engine<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+    let result = caught(f);
+    let failed = LEDGER.with(|l| {
+        let mut l = l.borrow_mut();
+        let ledger = l.as_mut()?;
+        match &mut ledger.mode {
+            Mode::Shard { entries, .. } => {
+                entries.push(Entry {
+                    site: END_OF_ENGINE.into(),
+                    value: result.as_ref().err().cloned(),
+                });
+                None
+            }
+            Mode::Merge { shards, next } => {
+                let mut failed = None;
+                for (s, j) in shards.iter().zip(next.iter_mut()) {
+                    let Some(k) = s.entries[*j..].iter().position(|e| e.site == END_OF_ENGINE)
+                    else {
+                        ledger.error.get_or_insert_with(|| {
+                            "the merge met the end of an engine the shards did not record (shards of a different build?)".into()
+                        });
+                        continue;
+                    };
+                    let end = &s.entries[*j + k];
+                    if k > 0 && result.is_ok() && end.value.is_none() {
+                        ledger.error.get_or_insert_with(|| {
+                            format!("shard {} recorded sites of an engine the merge did not meet (shards of a different build?)", s.part)
+                        });
+                    }
+                    failed = failed.or_else(|| end.value.clone());
+                    *j += k + 1;
+                }
+                failed
+            }
+        }
+    });
+    match (result, failed) {
+        (Ok(_), Some(failure)) => Err(failure),
+        (result, _) => result,
+    }
+}
+
+/// Raises a failure that [`caught`] described again, to the [`caught`] around the engine (its
+/// description kept; no panic message printed).
+pub fn raise(failure: String) -> ! {
+    resume_unwind(Box::new(Described(failure)))
+}
+
+/// A shard's work at `site`: a panic in it is recorded as the site's value, then raised again.
+fn recorded_failure<T>(site: &str, compute: impl FnOnce() -> T) -> T {
+    caught(compute).unwrap_or_else(|failure| {
+        push(site, Some(format!("{ENGINE_FAILED}{failure}")));
+        raise(failure)
+    })
+}
+
+/// The failure a shard recorded as a site's value, if it is one.
+fn failed_value(text: &str) -> Option<&str> {
+    text.strip_prefix(ENGINE_FAILED)
 }
 
 fn push(site: &str, value: Option<String>) {
@@ -659,6 +873,130 @@ mod tests {
         let first = unit("first", || "one".to_string(), String::new);
         let second = unit("second", || "two".to_string(), String::new);
         (total, first, second)
+    }
+
+    /// An engine that panics, on the calling thread or on a rayon worker (the panic raised
+    /// again in the caller by rayon), is caught as its message and location; one that does
+    /// not returns its value; a failure raised again keeps its description through a second
+    /// [`caught`].
+    #[test]
+    fn a_panicking_engine_is_caught_with_its_message_and_location() {
+        use rayon::prelude::*;
+        assert_eq!(caught(|| 6 * 7), Ok(42));
+        let here = caught(|| -> u8 { panic!("planted: {}", 3) }).unwrap_err();
+        assert!(
+            here.starts_with("planted: 3 (at src/claims/shard.rs:"),
+            "{here}"
+        );
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let on_worker = caught(|| {
+            pool.install(|| {
+                (0..10_000u32)
+                    .into_par_iter()
+                    .map(|i| {
+                        assert!(i != 7_777, "planted at {i}");
+                        u64::from(i)
+                    })
+                    .sum::<u64>()
+            })
+        })
+        .unwrap_err();
+        assert!(
+            on_worker.starts_with("planted at 7777 (at src/claims/shard.rs:"),
+            "{on_worker}"
+        );
+        let again = caught(|| caught(|| -> u8 { panic!("inner") }).unwrap_or_else(|f| raise(f)));
+        assert!(again.unwrap_err().starts_with("inner (at "));
+    }
+
+    /// A site whose work panics under a shard records the failure as its value and raises it;
+    /// the merge raises it again at the same site, with the same description, whichever shard
+    /// recorded it.
+    #[test]
+    fn a_shard_records_a_failing_site_and_the_merge_raises_it_again() {
+        fn sites() -> Result<u64, String> {
+            caught(|| {
+                let total = split("sum", sum_of_owned, |a, b| a + b, || 0);
+                let failing = unit("failing", || -> u64 { panic!("planted unit") }, || 0);
+                total + failing
+            })
+        }
+        let whole = sites().unwrap_err();
+        assert!(whole.starts_with("planted unit (at "), "{whole}");
+        let files: Vec<(String, ShardFile)> = (1..=2)
+            .map(|k| {
+                let part = Part::parse(&format!("{k}/2")).unwrap();
+                let (r, entries) = record_shard(part, sites);
+                // Unit 0 ("failing") is shard 1's: shard 2 records it as another's.
+                assert_eq!(r.is_err(), k == 1, "shard {k}: {r:?}");
+                assert_eq!(entries.len(), 2);
+                let value = entries[1].value.clone();
+                assert_eq!(
+                    value.is_some_and(|v| v == format!("{ENGINE_FAILED}{whole}")),
+                    k == 1
+                );
+                let file = ShardFile {
+                    part,
+                    fingerprint: json!({"run": 2}),
+                    entries,
+                    seconds: 0.0,
+                };
+                (format!("shard{k}"), file)
+            })
+            .collect();
+        let merged = replay(complete_set(files).unwrap(), sites).unwrap();
+        assert_eq!(merged, Err(whole));
+    }
+
+    /// Shards that disagree on an engine's sites because it failed in one of them (here on
+    /// shard 1's part only): the merge raises shard 1's failure for the engine, leaves shard
+    /// 2's further site of it unread, and reads the sites after the engine.
+    #[test]
+    fn an_engine_failing_in_one_shard_fails_in_the_merge() {
+        fn sites() -> (Result<u64, String>, String) {
+            let total = engine(|| {
+                let first = split(
+                    "first",
+                    |part| {
+                        assert!(part.is_none_or(|p| p.k() != 1), "planted in shard 1");
+                        sum_of_owned(part)
+                    },
+                    |a, b| a + b,
+                    || 0,
+                );
+                first + split("second", sum_of_owned, |a, b| a + b, || 0)
+            });
+            let after = unit("after", || "after".to_string(), String::new);
+            (total, after)
+        }
+        assert_eq!(sites(), (Ok(2 * 4950), "after".into()));
+        let mut files = Vec::new();
+        for k in 1..=2 {
+            let part = Part::parse(&format!("{k}/2")).unwrap();
+            let (r, entries) = record_shard(part, sites);
+            assert_eq!(r.0.is_err(), k == 1, "{r:?}");
+            let names: Vec<&str> = entries.iter().map(|e| e.site.as_str()).collect();
+            if k == 1 {
+                assert_eq!(names, ["first", END_OF_ENGINE, "after"]);
+            } else {
+                assert_eq!(names, ["first", "second", END_OF_ENGINE, "after"]);
+            }
+            let text = ShardFile {
+                part,
+                fingerprint: json!({"run": 3}),
+                entries,
+                seconds: 0.0,
+            }
+            .to_json("t/1");
+            files.push((format!("shard{k}"), text));
+        }
+        let merged = replay(read_complete_set(&files, "t/1").unwrap(), sites).unwrap();
+        let failure = merged.0.unwrap_err();
+        assert!(failure.starts_with("planted in shard 1 (at "), "{failure}");
+        assert_eq!(merged.1, "after");
     }
 
     /// Three shards split the sum 0+…+99 = 4950 and own one unit each at most; the merge

@@ -24,3 +24,18 @@ pub mod claims;
 pub mod model;
 pub mod solvers;
 pub mod value;
+
+/// Whether this build of the kernel checks integer overflow (`-C overflow-checks`): an
+/// overflow in the kernel then panics instead of wrapping. `truecost verify` reports it.
+///
+/// ```
+/// // Tests build with overflow checks (the test profile's default).
+/// assert!(truecost_kernel::overflow_checks());
+/// ```
+#[cfg(not(kani))]
+pub fn overflow_checks() -> bool {
+    std::panic::catch_unwind(|| {
+        let _ = std::hint::black_box(std::hint::black_box(u8::MAX) + std::hint::black_box(1u8));
+    })
+    .is_err()
+}

@@ -727,10 +727,16 @@ fn harness_section(
                 harnesses::reported(h, run)
             })
             .collect(),
-        overflow_checks: Some(vec![(
-            "truecost-proofs (the harness bodies)",
-            truecost_proofs::overflow_checks(),
-        )]),
+        overflow_checks: Some(vec![
+            (
+                "truecost-proofs (the harness bodies)",
+                truecost_proofs::overflow_checks(),
+            ),
+            (
+                "truecost-kernel (the code they call)",
+                shard::caught(truecost_kernel::overflow_checks) == Ok(true),
+            ),
+        ]),
     }
 }
 

@@ -142,7 +142,7 @@ fn merge(args: &MergeArgs) -> Result<String, String> {
     if let Some(dir) = &args.counterexamples {
         write_counterexamples(dir, &r)?;
     }
-    Ok(render(&r, args.format, false))
+    engine_failures(&r, render(&r, args.format, false))
 }
 
 fn render(r: &report::Report, format: VerifyFormat, with_times: bool) -> String {
@@ -231,12 +231,22 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
             }
         }
     }
-    Ok(match args.format {
-        VerifyFormat::Text => report::text(&r, with_times),
-        VerifyFormat::Json => report::json(&r, with_times),
-        VerifyFormat::Markdown => report::markdown(&r, with_times),
-        VerifyFormat::Latex => report::latex(&r),
-    })
+    engine_failures(&r, render(&r, args.format, with_times))
+}
+
+/// The report's text, or, when an engine failed, the report written out and the failure
+/// (`verify` then exits with status 1 after a whole report).
+fn engine_failures(r: &report::Report, text: String) -> Result<String, String> {
+    let failed = truecost::claims::registry::engine_failures(r);
+    if failed.is_empty() {
+        return Ok(text);
+    }
+    super::emit(&text)?;
+    Err(format!(
+        "{} engine(s) failed ({}): the report above is whole, and its verdicts on those claims are inconclusive",
+        failed.len(),
+        failed.join("; ")
+    ))
 }
 
 /// `verify --claim C4 --env SPEC`: the bonus set of a deterministic

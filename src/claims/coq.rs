@@ -1,17 +1,22 @@
 //! Engine 5: the Coq development in `proofs/coq/` — theorems about **every** finite planning
-//! problem (SPEC §6; `docs/proofs/`), re-checked by `coqc` on the machine that runs `verify`.
+//! problem (and about the paper's worked example; `docs/proofs/`), re-checked by `coqc` on the
+//! machine that runs `verify`.
 //!
 //! The development's sources are embedded in the binary ([`SOURCES`], in `_CoqProject`
 //! order), so that what is re-checked is what this build was made from. [`recheck`] refuses
 //! sources that admit anything ([`scan_sources`]: `Admitted`, `admit`, `Axiom`, `Parameter`, …
-//! outside comments), writes them to a fresh directory, compiles each with
-//! `coqc -R <dir> Truecost`, and runs `Print Assumptions` on every theorem of [`THEOREMS`]. A
-//! theorem is accepted when Coq answers "Closed under the global context", or lists only the
-//! standard library's axioms of the real numbers ([`ALLOWED_AXIOMS`]); any other axiom,
-//! parameter, section variable, or a missing theorem is refused ([`parse_assumptions`]).
+//! outside comments); makes sure the program called `coqc` behaves as Coq (a false lemma
+//! fails, a true one compiles to a `.vo` file with the expected `Check` and
+//! `Print Assumptions`); compiles each source with `coqc -R <dir> Truecost`; and asks `Check`
+//! and `Print Assumptions` about every theorem of [`THEOREMS`]. A theorem is accepted only
+//! when its statement is exactly the pinned one and `Print Assumptions` lists exactly the
+//! pinned axioms ([`PINNED`], [`judge`]), each among the standard library's axioms of the real
+//! numbers ([`ALLOWED_AXIOMS`]): a theorem weakened under its own name compiles, and only the
+//! comparison of statements notices it.
 //!
 //! Nothing is claimed for a check that did not run: without `coqc` on `PATH` the outcome is
-//! [`Outcome::NotAvailable`], and `verify` says the proof was not re-checked on this machine.
+//! [`Outcome::NotAvailable`]; a `coqc` that does not behave as Coq is [`Outcome::NotCoq`]; one
+//! that does not finish within the time limit is stopped ([`Outcome::TimedOut`]).
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -1589,6 +1594,56 @@ Definition Axiomatic := 1.";
             scan_sources(&[("B.v", bad)]),
             ["B.v:2: Parameter", "B.v:3: Axiom", "B.v:4: Conjecture"]
         );
+    }
+
+    /// Each theorem's label follows its pinned Coq statement: "every finite problem" exactly
+    /// for the statements that quantify over every problem of the model (`P : Model.problem`)
+    /// or, for C2, over every type of policies (`Pi : Type`); the worked example's and the
+    /// counterexamples' statements name one fixed problem.
+    #[test]
+    fn each_label_follows_the_quantifier_of_the_pinned_statement() {
+        let pins = pins().unwrap();
+        for t in THEOREMS {
+            let pin = pins.iter().find(|p| p.name == t.name).expect(t.name);
+            let st = &pin.statement;
+            let general = st.contains("P : Model.problem") || st.contains("(Pi : Type)");
+            assert_eq!(
+                general,
+                t.scope == Quantifier::EveryFiniteProblem,
+                "{}: {st}",
+                t.name
+            );
+            assert_eq!(
+                t.kind == Kind::Refutes,
+                t.scope == Quantifier::Counterexample
+            );
+        }
+        // The worked example's statements name it, or its quartic and bracket.
+        for t in THEOREMS
+            .iter()
+            .filter(|t| t.scope == Quantifier::PaperExample)
+        {
+            let st = &pins.iter().find(|p| p.name == t.name).unwrap().statement;
+            assert!(
+                ["C3.ex3", "C3.quartic", "C3.alpha_lo"]
+                    .iter()
+                    .any(|w| st.contains(w)),
+                "{st}"
+            );
+        }
+    }
+
+    /// Check's output: the type after the name's line, whatever the line breaks; anything
+    /// else (an error, Print Assumptions' output) is no statement.
+    #[test]
+    fn check_output_is_read_as_its_type() {
+        assert_eq!(
+            parse_check("C3.x\n     : forall a : R,\n       a = a\n").as_deref(),
+            Some("forall a : R, a = a")
+        );
+        assert_eq!(parse_check("Error: The reference x was not found\n"), None);
+        assert_eq!(parse_check("Axioms:\nfoo : False\n"), None);
+        assert_eq!(parse_check("     : True\n"), None);
     }
 
     /// The embedded sources are the files `_CoqProject` lists, in its order, and the table's

@@ -775,7 +775,7 @@ mod tests {
         let e = r.engines.last().unwrap();
         assert_eq!((e.engine.as_str(), e.cases, e.failures), ("coq", n, 0));
         assert!(r.notes.iter().any(|n| n.starts_with(
-            "coq: Truecost.C1.c1_corrected (proofs/coq/C1.v), re-checked by coqc (Coq 8.16.1) in this run: closed"
+            "coq: Truecost.C1.c1_corrected (proofs/coq/C1.v), re-checked by coqc (Coq 8.16.1) in this run: statement and axioms as pinned; closed"
         )));
         // The reals' axioms are accepted and listed.
         let reals = coq_check(
@@ -800,6 +800,8 @@ mod tests {
                 A::Missing("C1.v was not compiled".into()),
             ),
             coq_check(O::NotAvailable(coq::NOT_FOUND.into()), A::Closed),
+            coq_check(O::NotCoq("it accepted a false lemma".into()), A::Closed),
+            coq_check(O::TimedOut("coqc did not finish".into()), A::Closed),
         ] {
             let mut r = claim("C1-corrected", Verdict::Proved);
             attach_coq(&mut r, &check);
@@ -824,6 +826,43 @@ mod tests {
         assert_eq!(r.engines[0].mode, "not re-checked on this machine");
         assert!(r.notes[0].contains("NOT re-checked on this machine (coqc not found"));
         assert!(r.notes[0].contains("Truecost.C1.c1_corrected"));
+        let mut r = claim("C2", Verdict::Proved);
+        attach_coq(
+            &mut r,
+            &coq_check(O::NotCoq("it accepted a false lemma".into()), A::Closed),
+        );
+        assert_eq!(
+            r.engines[0].mode,
+            "not re-checked: coqc did not behave as Coq"
+        );
+        assert!(r.notes[0]
+            .contains("not re-checked: coqc did not behave as Coq (it accepted a false lemma)"));
+        // A theorem refused for its statement (closed, but not the pinned statement).
+        let mut weakened = clean.clone();
+        weakened.theorems[0].refused = Some("Coq's statement differs from the pinned one".into());
+        let first = weakened.theorems[0].name.clone();
+        let claim_of_first = coq::THEOREMS[0].claim;
+        let mut r = claim(claim_of_first, Verdict::Refuted);
+        attach_coq(&mut r, &weakened);
+        assert_eq!(r.engine, "exhaustive enumeration");
+        assert!(r.notes.iter().any(|n| n.contains(&first)
+            && n.contains("NOT accepted: Coq's statement differs from the pinned one")));
+        // Theorems about the paper's worked example give the example's level, never "every
+        // finite problem"; the scope says what they quantify over.
+        let mut r = claim("C3-example", Verdict::Proved);
+        attach_coq(&mut r, &clean);
+        assert_eq!(r.verdict, Verdict::ProvedCoqExample);
+        assert_eq!(r.verdict.name(), "proved in Coq for the paper's example");
+        assert!(
+            r.scope
+                .starts_with("the paper's worked example (one fixed problem): "),
+            "{}",
+            r.scope
+        );
+        let mut r = claim("C3", Verdict::Proved);
+        attach_coq(&mut r, &clean);
+        assert_eq!(r.verdict, Verdict::ProvedCoq);
+        assert!(r.scope.starts_with("every finite problem: "), "{}", r.scope);
         // A claim without a Coq theorem is left alone.
         let mut r = claim("C9", Verdict::Proved);
         attach_coq(&mut r, &clean);

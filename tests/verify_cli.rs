@@ -379,7 +379,7 @@ fn verify_reaches_the_coq_level_when_coq_rechecks_the_development() {
 #[test]
 fn verify_coq_timeout_is_checked() {
     for bad in ["0", "-1", "x"] {
-        let e = fails(&["verify", "--coq-timeout", bad], 2);
+        let e = fails(&["verify".to_string(), format!("--coq-timeout={bad}")], 2);
         assert!(e.contains("--coq-timeout"), "{e}");
     }
     let e = fails(&["verify", "--no-coq", "--coq-timeout", "5"], 2);

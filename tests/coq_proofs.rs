@@ -8,7 +8,23 @@
 //! (which the source scan does not see and `Print Assumptions` does), one that admits a lemma
 //! (refused before compiling), and a theorem that does not exist.
 
-use truecost::claims::coq::{self, Assumptions, Outcome, ALLOWED_AXIOMS, THEOREMS};
+use std::time::Duration;
+
+use truecost::claims::coq::{self, Assumptions, Outcome, Settings, ALLOWED_AXIOMS, THEOREMS};
+
+/// The re-check's settings for a small development: no pinned statements (every theorem is
+/// then refused for that reason; these tests look at what `Print Assumptions` said).
+fn unpinned() -> Settings {
+    Settings {
+        pins: vec![],
+        ..Settings::with_timeout(Duration::from_secs(120))
+    }
+}
+
+/// What `Print Assumptions` said about `name`.
+fn assumptions<'a>(check: &'a coq::Check, name: &str) -> Option<&'a Assumptions> {
+    check.theorem(name).map(|t| &t.assumptions)
+}
 
 fn require_coqc() -> String {
     match coq::coqc_version() {
@@ -20,14 +36,16 @@ fn require_coqc() -> String {
 #[test]
 fn every_main_theorem_is_rechecked_and_accepted() {
     require_coqc();
-    let check = coq::recheck();
+    let check = coq::recheck(Duration::from_secs(coq::TIMEOUT_SECONDS));
     assert_eq!(check.outcome, Outcome::Checked, "{check:?}");
     assert_eq!(check.files, coq::SOURCES.len());
     assert_eq!(check.theorems.len(), THEOREMS.len());
     for t in THEOREMS {
-        let a = check
+        let checked = check
             .theorem(t.name)
             .unwrap_or_else(|| panic!("{} not asked", t.name));
+        assert!(checked.accepted(), "{}: {:?}", t.name, checked.refused);
+        let a = &checked.assumptions;
         assert!(a.accepted(), "{}: {}", t.name, a.describe());
         if let Assumptions::Allowed(axioms) = a {
             assert!(axioms.iter().all(|x| ALLOWED_AXIOMS.contains(&x.as_str())));
@@ -37,7 +55,7 @@ fn every_main_theorem_is_rechecked_and_accepted() {
     // C1's theorems are over Coq's rationals and need no axiom at all.
     for t in THEOREMS.iter().filter(|t| t.claim.starts_with("C1")) {
         assert_eq!(
-            check.theorem(t.name),
+            assumptions(&check, t.name),
             Some(&Assumptions::Closed),
             "{}",
             t.name
@@ -63,15 +81,16 @@ fn a_small_development_closed_and_with_the_reals_axioms() {
             "Truecost.A.over_r",
             "Truecost.A.absent",
         ],
+        &unpinned(),
     );
     assert_eq!(check.outcome, Outcome::Checked, "{check:?}");
     assert_eq!(check.version.as_deref(), Some(version.as_str()));
     assert_eq!(check.files, 1);
     assert_eq!(
-        check.theorem("Truecost.A.over_q"),
+        assumptions(&check, "Truecost.A.over_q"),
         Some(&Assumptions::Closed)
     );
-    match check.theorem("Truecost.A.over_r") {
+    match assumptions(&check, "Truecost.A.over_r") {
         Some(Assumptions::Allowed(a)) => {
             assert!(
                 a.contains(&"ClassicalDedekindReals.sig_forall_dec".to_string()),
@@ -80,7 +99,7 @@ fn a_small_development_closed_and_with_the_reals_axioms() {
         }
         other => panic!("{other:?}"),
     }
-    match check.theorem("Truecost.A.absent") {
+    match assumptions(&check, "Truecost.A.absent") {
         Some(Assumptions::Missing(why)) => assert!(why.contains("not found"), "{why}"),
         other => panic!("{other:?}"),
     }
@@ -94,9 +113,9 @@ fn an_assumption_the_scan_misses_is_refused_by_print_assumptions() {
     require_coqc();
     let text = "Variable oops : False.\nLemma bad : 0 = 1.\nProof. destruct oops. Qed.\n";
     assert!(coq::scan_sources(&[("B.v", text)]).is_empty());
-    let check = coq::recheck_sources(&[("B.v", text)], &["Truecost.B.bad"]);
+    let check = coq::recheck_sources(&[("B.v", text)], &["Truecost.B.bad"], &unpinned());
     assert_eq!(check.outcome, Outcome::Checked, "{check:?}");
-    match check.theorem("Truecost.B.bad") {
+    match assumptions(&check, "Truecost.B.bad") {
         Some(Assumptions::Forbidden(what)) => {
             assert_eq!(what, &["B.oops (Axioms)"])
         }
@@ -107,7 +126,11 @@ fn an_assumption_the_scan_misses_is_refused_by_print_assumptions() {
 #[test]
 fn admitted_sources_are_refused_before_compiling() {
     let text = "Lemma bad : 0 = 1.\nProof.\nAdmitted.\n";
-    let check = coq::recheck_sources(&[("A.v", CLEAN), ("C.v", text)], &["Truecost.C.bad"]);
+    let check = coq::recheck_sources(
+        &[("A.v", CLEAN), ("C.v", text)],
+        &["Truecost.C.bad"],
+        &unpinned(),
+    );
     assert_eq!(
         check.outcome,
         Outcome::SourcesRefused(vec!["C.v:3: Admitted".into()])
@@ -125,6 +148,7 @@ fn a_file_that_does_not_compile_is_a_failed_build() {
     let check = coq::recheck_sources(
         &[("A.v", CLEAN), ("D.v", broken)],
         &["Truecost.A.over_q", "Truecost.D.x"],
+        &unpinned(),
     );
     match &check.outcome {
         Outcome::BuildFailed(why) => assert!(why.starts_with("D.v does not compile"), "{why}"),
@@ -132,11 +156,11 @@ fn a_file_that_does_not_compile_is_a_failed_build() {
     }
     assert_eq!(check.files, 1);
     assert_eq!(
-        check.theorem("Truecost.A.over_q"),
+        assumptions(&check, "Truecost.A.over_q"),
         Some(&Assumptions::Closed)
     );
     assert_eq!(
-        check.theorem("Truecost.D.x"),
+        assumptions(&check, "Truecost.D.x"),
         Some(&Assumptions::Missing(
             "D.v was not compiled: an earlier file failed".into()
         ))

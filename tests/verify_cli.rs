@@ -295,7 +295,8 @@ fn verify_does_not_depend_on_the_number_of_threads() {
 
 /// `verify` re-checks the Coq development in the run (no `--no-coq`): each claim carried by a
 /// Coq theorem gets the Coq level, or — for a refuted claim — keeps `refuted` with the Coq
-/// engine named; the report names the Coq version. Without `coqc` this test fails (the
+/// engine named; the report names the Coq version and gives each theorem's statement as Coq
+/// prints it (`coq_statement`), accepted only as pinned. Without `coqc` this test fails (the
 /// install line is in the refusal of `tests/coq_proofs.rs`).
 #[test]
 fn verify_reaches_the_coq_level_when_coq_rechecks_the_development() {
@@ -320,11 +321,15 @@ fn verify_reaches_the_coq_level_when_coq_rechecks_the_development() {
             c["engine"].as_str().unwrap().to_string(),
         )
     };
-    for id in ["C1-corrected", "C2", "C3", "C3-example", "C4-corrected"] {
+    for id in ["C1-corrected", "C2", "C3", "C4-corrected"] {
         let (level, engine) = verdict(id);
         assert_eq!(level, "proved for every finite problem (Coq)", "{id}");
         assert!(engine.starts_with("coq (Coq 8."), "{id}: {engine}");
     }
+    // The worked example is one fixed problem: its Coq theorems prove it for that problem.
+    let (level, engine) = verdict("C3-example");
+    assert_eq!(level, "proved in Coq for the paper's example");
+    assert!(engine.starts_with("coq (Coq 8."), "{engine}");
     for id in ["C1", "C4"] {
         assert_eq!(verdict(id).0, "refuted", "{id}");
     }
@@ -341,4 +346,42 @@ fn verify_reaches_the_coq_level_when_coq_rechecks_the_development() {
             .contains("Truecost.C4.c4_as_printed_refuted")),
         "{c4}"
     );
+    let theorems = v["coq"]["theorems"].as_array().unwrap();
+    let pins = truecost::claims::coq::pins().unwrap();
+    assert_eq!(theorems.len(), pins.len());
+    for (t, pin) in theorems.iter().zip(&pins) {
+        assert_eq!(t["theorem"], pin.name.as_str());
+        assert_eq!(t["accepted"], true, "{t}");
+        assert_eq!(t["coq_statement"], pin.statement.as_str(), "{t}");
+    }
+    // The report's own words, not the specification's section numbers.
+    let text = stdout(&[
+        "verify",
+        "--no-coq",
+        "--scope",
+        "smoke",
+        "--claim",
+        "C2",
+        "--no-smt",
+        "--no-harnesses",
+        "--no-times",
+    ]);
+    assert!(
+        text.starts_with(
+            "truecost 0.1.0 - the paper's four propositions (docs/spec.md), scope smoke\n"
+        ),
+        "{text}"
+    );
+    assert!(!text.contains("SPEC"), "{text}");
+}
+
+/// `--coq-timeout` takes whole seconds from 1 and goes with the re-check (not with `--no-coq`).
+#[test]
+fn verify_coq_timeout_is_checked() {
+    for bad in ["0", "-1", "x"] {
+        let e = fails(&["verify".to_string(), format!("--coq-timeout={bad}")], 2);
+        assert!(e.contains("--coq-timeout"), "{e}");
+    }
+    let e = fails(&["verify", "--no-coq", "--coq-timeout", "5"], 2);
+    assert!(e.contains("--no-coq"), "{e}");
 }

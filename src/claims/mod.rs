@@ -1,4 +1,4 @@
-//! The claims engine (SPEC §6): the paper's four propositions C1–C4 *exactly as
+//! The claims engine: the paper's four propositions (`docs/spec.md`) C1–C4 *exactly as
 //! printed*, corrected statements where a printed one is refuted, and the engines that check
 //! them against independent oracles.
 //!
@@ -14,7 +14,8 @@
 //!   re-checked by `coqc` when `verify` runs ([`coq`]).
 //!
 //! A claim is `proved for every finite problem (Coq)` only when its Coq theorems were
-//! re-checked in the same run, `proved` for the SMT engine's stated scope, `verified` only for
+//! re-checked in the same run with their pinned statements (`proved in Coq for the paper's
+//! example` when they are about the worked example only), `proved` for the SMT engine's stated scope, `verified` only for
 //! the scope an engine checked, `refuted` with a minimal counterexample, or `inconclusive`. Nothing here reads a clock except [`run`], which wraps
 //! each engine to report cases per second.
 
@@ -89,9 +90,13 @@ impl Scope {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Verdict {
-    /// A Coq theorem about every finite problem, re-checked by `coqc` in this run with
-    /// accepted `Print Assumptions` ([`coq`]; PROOFS.md's strongest level).
+    /// Coq theorems about every finite problem, re-checked by `coqc` in this run, their
+    /// statements and `Print Assumptions` exactly the pinned ones ([`coq`]; the strongest
+    /// level).
     ProvedCoq,
+    /// Coq theorems about the paper's worked example (one fixed problem), re-checked as for
+    /// [`Verdict::ProvedCoq`]: a proof for that problem, not for every finite problem.
+    ProvedCoqExample,
     /// The SMT engine showed the negation unsatisfiable over the reals for every structure of
     /// its stated scope, with its trust checks passing (PROOFS.md).
     Proved,
@@ -104,16 +109,18 @@ pub enum Verdict {
 }
 
 impl Verdict {
-    /// `proved for every finite problem (Coq)`, `proved`, `verified`, `refuted` or
-    /// `inconclusive`.
+    /// `proved for every finite problem (Coq)`, `proved in Coq for the paper's example`,
+    /// `proved`, `verified`, `refuted` or `inconclusive`.
     ///
     /// ```
     /// use truecost::claims::Verdict;
     /// assert_eq!(Verdict::ProvedCoq.name(), "proved for every finite problem (Coq)");
+    /// assert_eq!(Verdict::ProvedCoqExample.name(), "proved in Coq for the paper's example");
     /// ```
     pub fn name(self) -> &'static str {
         match self {
             Verdict::ProvedCoq => "proved for every finite problem (Coq)",
+            Verdict::ProvedCoqExample => "proved in Coq for the paper's example",
             Verdict::Proved => "proved",
             Verdict::Verified => "verified",
             Verdict::Refuted => "refuted",

@@ -27,6 +27,8 @@ pub struct Options {
     /// unless `--no-coq`. Off by default here: it compiles the whole development, and a
     /// library caller (the test suite's pinned reports) asks for it explicitly.
     pub coq: bool,
+    /// The time limit of the Coq re-check, in seconds (`verify --coq-timeout`).
+    pub coq_timeout_s: u64,
     /// Run the Kani harnesses' bodies through the stand-in in this process, from this table
     /// (`None`: `--no-harnesses`; the report then says they were not run).
     pub harnesses: Option<HarnessTable>,
@@ -38,6 +40,7 @@ impl Default for Options {
             smt: true,
             smt_timeout_ms: smt::TIMEOUT_MS,
             coq: false,
+            coq_timeout_s: coq::TIMEOUT_SECONDS,
             harnesses: Some(truecost_proofs::harnesses),
         }
     }
@@ -107,11 +110,15 @@ fn attach_smt(result: &mut ClaimResult, outcome: &Outcome) {
 }
 
 /// Adds the Coq engine's result to a claim that has theorems in [`coq::THEOREMS`], and gives
-/// it the level "proved for every finite problem (Coq)" when every one of them that proves it
-/// was re-checked in this run and accepted (a refuting theorem confirms `refuted`). A Coq
-/// result against another engine's verdict gives `inconclusive`; a check that did not run,
-/// or failed, leaves the verdict and says so.
-fn attach_coq(result: &mut ClaimResult, check: &coq::Check) {
+/// it the Coq level when every one of them that proves it was re-checked in this run and
+/// accepted — its statement and axioms exactly the pinned ones ([`coq::judge`]): "proved for
+/// every finite problem (Coq)", or "proved in Coq for the paper's example" when a theorem is
+/// about the worked example only ([`coq::Quantifier`]); a refuting theorem confirms
+/// `refuted`. A Coq result against another engine's verdict gives `inconclusive`; a check
+/// that did not run, failed, or ran a `coqc` that did not behave as Coq leaves the verdict and
+/// says so.
+pub fn attach_coq(result: &mut ClaimResult, check: &coq::Check) {
+    use coq::Quantifier;
     let theorems = coq::theorems_of(&result.id);
     if theorems.is_empty() {
         return;
@@ -121,7 +128,15 @@ fn attach_coq(result: &mut ClaimResult, check: &coq::Check) {
         .map(|t| format!("{} ({})", t.name, t.file))
         .collect();
     let coq_name = check.coq();
-    let scope = format!("every finite problem: {}", names.join("; "));
+    let quantifier = [
+        Quantifier::Counterexample,
+        Quantifier::PaperExample,
+        Quantifier::EveryFiniteProblem,
+    ]
+    .into_iter()
+    .find(|q| theorems.iter().any(|t| t.scope == *q))
+    .expect("a theorem");
+    let scope = format!("{}: {}", quantifier.describe(), names.join("; "));
     let coq_run = |mode: String, failures: u64| EngineRun {
         engine: "coq".into(),
         mode,
@@ -131,18 +146,29 @@ fn attach_coq(result: &mut ClaimResult, check: &coq::Check) {
         // The re-check's time is the report's (one `coq:` line), not a rate per claim.
         seconds: 0.0,
     };
+    let not_rechecked = |result: &mut ClaimResult, mode: &str, why: String| {
+        result.engines.push(EngineRun {
+            cases: 0,
+            ..coq_run(mode.into(), 0)
+        });
+        result.notes.push(format!(
+            "coq: the Coq proof was NOT re-checked {why}; the theorem(s) that would carry this \
+claim: {}; the verdict above is the other engines'",
+            names.join(", ")
+        ));
+    };
     match &check.outcome {
         coq::Outcome::NotAvailable(why) => {
-            result.engines.push(EngineRun {
-                cases: 0,
-                ..coq_run("not re-checked on this machine".into(), 0)
-            });
-            result.notes.push(format!(
-                "coq: the Coq proof was NOT re-checked on this machine ({why}); the theorem(s) that would carry this \
-claim: {}; the verdict above is the other engines'",
-                names.join(", ")
-            ));
-            return;
+            let why = format!("on this machine ({why})");
+            return not_rechecked(result, "not re-checked on this machine", why);
+        }
+        coq::Outcome::NotCoq(what) => {
+            let why = format!("(not re-checked: coqc did not behave as Coq ({what}))");
+            return not_rechecked(result, "not re-checked: coqc did not behave as Coq", why);
+        }
+        coq::Outcome::TimedOut(what) => {
+            let why = format!("(not re-checked: {what})");
+            return not_rechecked(result, "not re-checked: coqc timed out", why);
         }
         coq::Outcome::SourcesRefused(found) => {
             result.engines.push(coq_run(
@@ -165,25 +191,34 @@ claim: {}; the verdict above is the other engines'",
     }
     let mut failures = 0;
     for t in &theorems {
-        let verdict = check
-            .theorem(t.name)
-            .cloned()
-            .unwrap_or_else(|| coq::Assumptions::Missing("not asked about".into()));
-        failures += u64::from(!verdict.accepted());
+        let found = check.theorem(t.name);
+        let refused = found.map_or(Some("not asked about".to_string()), |c| c.refused.clone());
+        failures += u64::from(refused.is_some());
+        let judged = match (&refused, found) {
+            (None, Some(c)) => format!(
+                "statement and axioms as pinned; {}",
+                c.assumptions.describe()
+            ),
+            _ => format!(
+                "NOT accepted: {}",
+                refused.as_deref().unwrap_or("not asked about")
+            ),
+        };
         let weaker = t
             .weaker
             .map(|w| format!("; weaker than the paper: {w}"))
             .unwrap_or_default();
+        let states = found
+            .and_then(|c| c.statement.clone())
+            .map(|s| format!(" Coq states: {s}"))
+            .unwrap_or_default();
         result.notes.push(format!(
-            "coq: {} ({}), re-checked by coqc ({coq_name}) in this run: {}. Statement: {}{weaker}",
-            t.name,
-            t.file,
-            verdict.describe(),
-            t.statement
+            "coq: {} ({}), re-checked by coqc ({coq_name}) in this run: {judged}. Statement: {}{weaker}.{states}",
+            t.name, t.file, t.statement
         ));
     }
     let mode = if failures == 0 {
-        format!("proof re-checked by coqc ({coq_name}), Print Assumptions accepted")
+        format!("proof re-checked by coqc ({coq_name}), statements and Print Assumptions as pinned")
     } else {
         format!("re-checked by coqc ({coq_name}): {failures} theorem(s) not accepted")
     };
@@ -197,7 +232,10 @@ claim: {}; the verdict above is the other engines'",
         (Kind::Proves, Verdict::Refuted)
             | (
                 Kind::Refutes,
-                Verdict::Proved | Verdict::Verified | Verdict::ProvedCoq
+                Verdict::Proved
+                    | Verdict::Verified
+                    | Verdict::ProvedCoq
+                    | Verdict::ProvedCoqExample
             )
     );
     if disagree {
@@ -211,20 +249,18 @@ claim: {}; the verdict above is the other engines'",
         .notes
         .iter()
         .any(|n| n.starts_with("engines disagree"));
-    match kind {
-        Kind::Proves if !contradicted => {
-            result.verdict = Verdict::ProvedCoq;
-            result.engine = format!("coq ({coq_name})");
-            result.scope = scope;
-            result.cases = theorems.len() as u64;
-        }
-        Kind::Refutes if !contradicted && result.verdict != Verdict::Refuted => {
-            result.verdict = Verdict::Refuted;
-            result.engine = format!("coq ({coq_name})");
-            result.scope = scope;
-            result.cases = theorems.len() as u64;
-        }
-        _ => {}
+    let level = match (kind, quantifier) {
+        (Kind::Proves, Quantifier::EveryFiniteProblem) => Verdict::ProvedCoq,
+        (Kind::Proves, _) => Verdict::ProvedCoqExample,
+        (Kind::Refutes, _) => Verdict::Refuted,
+    };
+    // A refutation another engine already found keeps that engine's counterexample.
+    let already_refuted = kind == Kind::Refutes && result.verdict == Verdict::Refuted;
+    if !contradicted && !already_refuted {
+        result.verdict = level;
+        result.engine = format!("coq ({coq_name})");
+        result.scope = scope;
+        result.cases = theorems.len() as u64;
     }
 }
 
@@ -538,14 +574,19 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
         }
     }
     let coq_check = wants_coq.then(|| {
+        let timeout = std::time::Duration::from_secs(options.coq_timeout_s);
         shard::engine(|| {
-            shard::unit("coq re-check", coq::recheck, || coq::Check {
-                version: None,
-                outcome: coq::Outcome::NotAvailable("re-checked by another shard".into()),
-                theorems: vec![],
-                files: 0,
-                seconds: 0.0,
-            })
+            shard::unit(
+                "coq re-check",
+                || coq::recheck(timeout),
+                || coq::Check {
+                    version: None,
+                    outcome: coq::Outcome::NotAvailable("re-checked by another shard".into()),
+                    theorems: vec![],
+                    files: 0,
+                    seconds: 0.0,
+                },
+            )
         })
     });
     let coq_check = match coq_check {
@@ -751,6 +792,7 @@ fn fingerprint(scope: Scope, only: Option<&str>, options: &Options) -> serde_jso
         "smt": options.smt,
         "smt_timeout_ms": options.smt_timeout_ms,
         "coq": options.coq,
+        "coq_timeout": options.coq_timeout_s,
         "harnesses": options.harnesses.is_some(),
     })
 }
@@ -806,6 +848,7 @@ pub fn merge(files: &[(String, String)]) -> Result<Report, String> {
         smt: fp.field("smt")?,
         smt_timeout_ms: fp.field("smt_timeout_ms")?,
         coq: fp.field("coq")?,
+        coq_timeout_s: fp.field("coq_timeout")?,
         harnesses: fp
             .field::<bool>("harnesses")?
             .then_some(truecost_proofs::harnesses as HarnessTable),
@@ -865,6 +908,8 @@ mod tests {
                     .iter()
                     .map(|t| coq::TheoremCheck {
                         name: t.name.into(),
+                        statement: Some("a statement".into()),
+                        refused: (!each.accepted()).then(|| each.describe()),
                         assumptions: each.clone(),
                     })
                     .collect()
@@ -906,7 +951,7 @@ mod tests {
         let e = r.engines.last().unwrap();
         assert_eq!((e.engine.as_str(), e.cases, e.failures), ("coq", n, 0));
         assert!(r.notes.iter().any(|n| n.starts_with(
-            "coq: Truecost.C1.c1_corrected (proofs/coq/C1.v), re-checked by coqc (Coq 8.16.1) in this run: closed"
+            "coq: Truecost.C1.c1_corrected (proofs/coq/C1.v), re-checked by coqc (Coq 8.16.1) in this run: statement and axioms as pinned; closed"
         )));
         // The reals' axioms are accepted and listed.
         let reals = coq_check(
@@ -931,6 +976,8 @@ mod tests {
                 A::Missing("C1.v was not compiled".into()),
             ),
             coq_check(O::NotAvailable(coq::NOT_FOUND.into()), A::Closed),
+            coq_check(O::NotCoq("it accepted a false lemma".into()), A::Closed),
+            coq_check(O::TimedOut("coqc did not finish".into()), A::Closed),
         ] {
             let mut r = claim("C1-corrected", Verdict::Proved);
             attach_coq(&mut r, &check);
@@ -955,6 +1002,43 @@ mod tests {
         assert_eq!(r.engines[0].mode, "not re-checked on this machine");
         assert!(r.notes[0].contains("NOT re-checked on this machine (coqc not found"));
         assert!(r.notes[0].contains("Truecost.C1.c1_corrected"));
+        let mut r = claim("C2", Verdict::Proved);
+        attach_coq(
+            &mut r,
+            &coq_check(O::NotCoq("it accepted a false lemma".into()), A::Closed),
+        );
+        assert_eq!(
+            r.engines[0].mode,
+            "not re-checked: coqc did not behave as Coq"
+        );
+        assert!(r.notes[0]
+            .contains("not re-checked: coqc did not behave as Coq (it accepted a false lemma)"));
+        // A theorem refused for its statement (closed, but not the pinned statement).
+        let mut weakened = clean.clone();
+        weakened.theorems[0].refused = Some("Coq's statement differs from the pinned one".into());
+        let first = weakened.theorems[0].name.clone();
+        let claim_of_first = coq::THEOREMS[0].claim;
+        let mut r = claim(claim_of_first, Verdict::Refuted);
+        attach_coq(&mut r, &weakened);
+        assert_eq!(r.engine, "exhaustive enumeration");
+        assert!(r.notes.iter().any(|n| n.contains(&first)
+            && n.contains("NOT accepted: Coq's statement differs from the pinned one")));
+        // Theorems about the paper's worked example give the example's level, never "every
+        // finite problem"; the scope says what they quantify over.
+        let mut r = claim("C3-example", Verdict::Proved);
+        attach_coq(&mut r, &clean);
+        assert_eq!(r.verdict, Verdict::ProvedCoqExample);
+        assert_eq!(r.verdict.name(), "proved in Coq for the paper's example");
+        assert!(
+            r.scope
+                .starts_with("the paper's worked example (one fixed problem): "),
+            "{}",
+            r.scope
+        );
+        let mut r = claim("C3", Verdict::Proved);
+        attach_coq(&mut r, &clean);
+        assert_eq!(r.verdict, Verdict::ProvedCoq);
+        assert!(r.scope.starts_with("every finite problem: "), "{}", r.scope);
         // A claim without a Coq theorem is left alone.
         let mut r = claim("C9", Verdict::Proved);
         attach_coq(&mut r, &clean);

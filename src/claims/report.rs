@@ -172,23 +172,23 @@ pub fn coq_line(check: &super::coq::Check, with_times: bool) -> String {
     } else {
         String::new()
     };
+    let accepted = check.theorems.iter().filter(|t| t.accepted()).count();
     match &check.outcome {
-        Outcome::Checked => {
-            let accepted = check
-                .theorems
-                .iter()
-                .filter(|t| t.assumptions.accepted())
-                .count();
-            format!(
-                "the Coq proofs (proofs/coq) re-checked in this run by coqc ({}): {} files compiled, {accepted} of {} \
-theorems accepted by Print Assumptions{time}",
-                check.coq(),
-                check.files,
-                check.theorems.len()
-            )
-        }
+        Outcome::Checked => format!(
+            "the Coq proofs (proofs/coq) re-checked in this run by coqc ({}): {} files compiled, {accepted} of {} \
+theorems accepted (statement and Print Assumptions as pinned){time}",
+            check.coq(),
+            check.files,
+            check.theorems.len()
+        ),
         Outcome::NotAvailable(why) => {
             format!("the Coq proofs (proofs/coq) were NOT re-checked on this machine: {why}")
+        }
+        Outcome::NotCoq(what) => format!(
+            "the Coq proofs (proofs/coq) were NOT re-checked: coqc did not behave as Coq ({what}){time}"
+        ),
+        Outcome::TimedOut(what) => {
+            format!("the Coq proofs (proofs/coq) were NOT re-checked: {what}{time}")
         }
         Outcome::SourcesRefused(found) => format!(
             "the Coq proofs (proofs/coq) were refused before compiling: {}{time}",
@@ -196,43 +196,50 @@ theorems accepted by Print Assumptions{time}",
         ),
         Outcome::BuildFailed(why) => format!(
             "the Coq proofs (proofs/coq) did not fully build with coqc ({}): {why}; {} files compiled before it, \
-{} of {} theorems accepted by Print Assumptions{time}",
+{accepted} of {} theorems accepted (statement and Print Assumptions as pinned){time}",
             check.coq(),
             check.files,
-            check
-                .theorems
-                .iter()
-                .filter(|t| t.assumptions.accepted())
-                .count(),
             check.theorems.len()
         ),
     }
 }
 
 /// The Coq re-check as JSON: the line, the outcome, and every theorem of the table with its
-/// claim, file, statement, what it is weaker than the paper's, and its assumptions.
+/// claim, file, what it quantifies over, its statement in words, its statement in Coq
+/// (`coq_statement`: as `Check` printed it in this run, or the pinned one when it was not
+/// re-checked), what it is weaker than the paper's, and its assumptions.
 fn coq_json(check: &super::coq::Check, with_times: bool) -> Value {
-    use super::coq::{Outcome, THEOREMS};
+    use super::coq::THEOREMS;
+    let pins = super::coq::pins().unwrap_or_default();
     let theorems: Vec<Value> = THEOREMS
         .iter()
         .map(|t| {
             let a = check.theorem(t.name);
+            let printed = a.and_then(|a| a.statement.clone());
+            let pinned = pins
+                .iter()
+                .find(|p| p.name == t.name)
+                .map(|p| p.statement.clone());
             json!({
                 "claim": t.claim,
                 "theorem": t.name,
                 "file": t.file,
+                "about": t.scope.describe(),
                 "statement": t.statement,
+                "coq_statement": printed.clone().or(pinned),
+                "coq_statement_from": if printed.is_some() { "Check, in this run" } else { "pinned (not printed in this run)" },
                 "weaker_than_paper": t.weaker,
                 "rechecked": a.is_some(),
                 "accepted": a.is_some_and(|a| a.accepted()),
-                "assumptions": a.map(|a| a.describe()),
+                "assumptions": a.map(|a| a.assumptions.describe()),
+                "refused": a.and_then(|a| a.refused.clone()),
             })
         })
         .collect();
     let mut v = json!({
         "summary": coq_line(check, false),
         "coq_version": check.version,
-        "rechecked": check.outcome == Outcome::Checked,
+        "rechecked": check.outcome == super::coq::Outcome::Checked,
         "files": check.files,
         "theorems": theorems,
     });
@@ -336,7 +343,7 @@ pub fn text(report: &Report, with_times: bool) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "{} - claims of SPEC 6, scope {}",
+        "{} - the paper's four propositions (docs/spec.md), scope {}",
         report.tool,
         report.scope.name()
     );
@@ -402,7 +409,7 @@ pub fn markdown(report: &Report, with_times: bool) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "# {} - claims of SPEC 6 (scope {})\n",
+        "# {} - the paper's four propositions (docs/spec.md), scope {}\n",
         report.tool,
         report.scope.name()
     );

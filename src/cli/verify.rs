@@ -1,4 +1,4 @@
-//! `truecost verify`: the claims of SPEC §6 checked by machine, and, with
+//! `truecost verify`: the paper's four propositions (`docs/spec.md`) checked by machine, and, with
 //! `--claim C4 --file F | --problem N`, the exact set of bonuses `M` for one problem.
 
 use std::fmt::Write;
@@ -86,6 +86,10 @@ pub struct VerifyArgs {
     /// not re-checked on this machine.
     #[arg(long)]
     no_coq: bool,
+    /// Time limit of the whole Coq re-check, in seconds: past it coqc (and every process it
+    /// started) is stopped and the proofs count as not re-checked.
+    #[arg(long, value_name = "SECONDS", default_value_t = truecost::claims::coq::TIMEOUT_SECONDS, value_parser = clap::value_parser!(u64).range(1..=86400), conflicts_with = "no_coq")]
+    coq_timeout: u64,
     /// Skip running the Kani harnesses' bodies (proofs/) through the stand-in in this process:
     /// the report then says they were not run. (They run seeded, sampled or exhaustive, in
     /// well under a second in a release build; Kani itself is never run by verify.)
@@ -126,6 +130,7 @@ fn shard(args: &VerifyArgs, part: &str) -> Result<String, String> {
         smt: !args.no_smt,
         smt_timeout_ms: args.smt_timeout * 1000,
         coq: !args.no_coq,
+        coq_timeout_s: args.coq_timeout,
         harnesses: (!args.no_harnesses).then_some(truecost_proofs::harnesses as _),
     };
     truecost::claims::registry::run_shard(args.scope, args.claim.as_deref(), &options, part)
@@ -208,6 +213,7 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
         smt: !args.no_smt,
         smt_timeout_ms: args.smt_timeout * 1000,
         coq: !args.no_coq,
+        coq_timeout_s: args.coq_timeout,
         harnesses: (!args.no_harnesses).then_some(truecost_proofs::harnesses as _),
     };
     let r = truecost::claims::registry::run(args.scope, args.claim.as_deref(), &options)?;

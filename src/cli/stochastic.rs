@@ -11,6 +11,7 @@ use serde::Serialize;
 use serde_json::{json, Value};
 
 use super::{ReportFormat, SolveArgs};
+use truecost::certificate::CertifiedObjective;
 use truecost::model::Decision;
 use truecost::planning::{Algorithm, Mode};
 use truecost::problems::StepCost;
@@ -163,6 +164,46 @@ pub fn deterministic_algorithm(args: &SolveArgs, file: Option<&ProblemFile>) -> 
     }
 }
 
+/// Writes the certificate of the exact optimum (`--certificate`): the deterministic `G*` when
+/// the problem is deterministic (no `--gamma` below 1, no listed outcomes), truecost otherwise.
+fn certify(
+    args: &SolveArgs,
+    problem: &StochasticProblem,
+    opt: &Optimum,
+    path: &std::path::Path,
+) -> Result<(), String> {
+    let objective = match problem.provenance() {
+        Provenance::Noise { gamma, .. } if gamma.is_deterministic() => {
+            CertifiedObjective::Deterministic
+        }
+        _ => CertifiedObjective::Truecost,
+    };
+    let record = super::env::CertifiedSource {
+        file: args.file.as_deref(),
+        problem: args.problem,
+        env: None,
+        step: args.step_cost,
+        gamma: args.gamma.as_deref(),
+        noise: args.noise,
+    }
+    .record(|| {
+        super::env::mdp_of(&truecost::objectives::Model::from_problem(
+            problem.clone(),
+            String::new(),
+        ))
+    })?;
+    let policy: Vec<Option<usize>> = opt
+        .policy()
+        .iter()
+        .map(|d| match d {
+            Some(Decision::Move(i)) => Some(*i),
+            _ => None,
+        })
+        .collect();
+    let text = truecost::certificate::write(&objective, &record, opt.cost_to_go_texts(), &policy);
+    super::env::write_certificate(path, &text)
+}
+
 /// A problem ready to solve, with what to say about it.
 struct Prepared {
     problem: StochasticProblem,
@@ -238,6 +279,14 @@ pub fn solve(args: &SolveArgs, file: Option<ProblemFile>) -> Result<String, Stri
         (Some(t), true) => Some(checked_optimum(t, budget, all_values, args.scale.quiet)?),
         _ => None,
     };
+    if let (Some(path), None) = (&args.certificate, schedule) {
+        certify(
+            args,
+            &prepared.problem,
+            opt.as_ref().expect("exact mode has itself as twin"),
+            path,
+        )?;
+    }
     let report = match schedule {
         None => exact_report(
             &prepared,

@@ -126,7 +126,8 @@ pub fn write(
     s
 }
 
-/// An exact number `-?digits(/digits)?` with a positive denominator.
+/// An exact number `-?digits(/digits)?` with a positive denominator, kept as written (not
+/// reduced).
 pub fn parse_exact(text: &str) -> Option<Rational> {
     let (num, den) = match text.split_once('/') {
         Some((n, d)) => (n, Some(d)),
@@ -145,7 +146,9 @@ pub fn parse_exact(text: &str) -> Option<Rational> {
     if d.is_zero() || d.is_negative() {
         return None;
     }
-    Some(Rational::new(n, d))
+    // Not reduced: every comparison the checker makes is by cross-multiplication, and a gcd
+    // per value of ten thousand digits would dominate the check.
+    Some(Rational::new_raw(n, d))
 }
 
 fn object<'a>(
@@ -305,4 +308,23 @@ pub fn parse(text: &str) -> Result<Certificate, String> {
         values,
         policy,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_exact;
+
+    #[test]
+    fn exact_numbers_are_integers_or_fractions_with_positive_denominators() {
+        let r = |s: &str| parse_exact(s).map(|q| (q.numer().to_string(), q.denom().to_string()));
+        assert_eq!(r("3/2"), Some(("3".into(), "2".into())));
+        assert_eq!(r("6/4"), Some(("6".into(), "4".into())));
+        assert_eq!(r("-7"), Some(("-7".into(), "1".into())));
+        assert_eq!(parse_exact("6/4"), parse_exact("3/2"));
+        for bad in [
+            "", "-", "1/", "/2", "1/0", "1/-2", "+1", "1.5", "1e3", " 1", "inf", "1/2/3",
+        ] {
+            assert_eq!(parse_exact(bad), None, "{bad:?}");
+        }
+    }
 }

@@ -3,13 +3,16 @@
 //!
 //! * `certificate/<grid>/solve` — the exact optimum alone (policy iteration, exact solves).
 //! * `certificate/<grid>/solve_and_write` — the optimum, then the certificate's text: every
-//!   value printed, the policy, the SHA-256 of the model's canonical export.
+//!   value printed over the common denominator, the policy, the SHA-256 of the model's
+//!   canonical export.
 //! * `certificate/<grid>/check` — reading the certificate and checking every condition in exact
 //!   arithmetic against the model.
 //!
 //! Grids: 50×50 deterministic (γ = 1, the size of the budget "writing costs at most 10 % of
 //! the solve") and 20×20 under the paper's noise with γ = 0.99 (values of many digits).
-//! Problems are built outside the timed loop. Run with `cargo bench --bench certificate`.
+//! Problems are built outside the timed loop. The grid is in memory, so the certificate hashes
+//! the model's canonical export (as for `--problem` and `--env`; `--file` hashes the file's
+//! bytes instead, which is cheaper). Run with `cargo bench --bench certificate`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use truecost::certificate::{self, CertifiedObjective, Identity, Mdp, MdpAction, ProblemRecord};
@@ -61,7 +64,17 @@ fn write(p: &StochasticProblem, opt: &Optimum, objective: &CertifiedObjective) -
             _ => None,
         })
         .collect();
-    certificate::write(objective, &record, opt.cost_to_go_texts(), &policy)
+    // As `solve --certificate` writes them: over the common denominator, not reduced.
+    let d = (0..p.states())
+        .find_map(|x| opt.unreduced(x).map(|(_, d)| d.to_string()))
+        .unwrap_or_default();
+    let values = (0..p.states())
+        .map(|x| match opt.unreduced(x) {
+            Some((n, _)) => format!("{n}/{d}"),
+            None => "inf".into(),
+        })
+        .collect();
+    certificate::write(objective, &record, values, &policy)
 }
 
 fn grids(c: &mut Criterion) {
@@ -69,12 +82,12 @@ fn grids(c: &mut Criterion) {
         (50, "1", CertifiedObjective::Deterministic),
         (20, "0.99", CertifiedObjective::Truecost),
     ];
-    for (side, gamma, objective) in cases {
+    for (side, gamma_text, objective) in cases {
         let grid = cost_grid(side, side, 0).expect("a benchmark grid");
-        let gamma = Predictability::parse(gamma).expect("a valid gamma");
+        let gamma = Predictability::parse(gamma_text).expect("a valid gamma");
         let p = StochasticProblem::from_deterministic(&grid, NoiseModel::Paper, &gamma)
             .expect("a stochastic grid");
-        let mut group = c.benchmark_group(format!("certificate/{side}x{side}_gamma_{gamma}"));
+        let mut group = c.benchmark_group(format!("certificate/{side}x{side}_gamma_{gamma_text}"));
         group.sample_size(10);
         group.bench_function("solve", |b| {
             b.iter(|| optimum(black_box(&p)).expect("solvable"))

@@ -18,6 +18,7 @@
 
 pub mod atomic;
 pub mod bounded;
+pub mod certificate;
 pub mod claims;
 pub mod echo;
 pub mod envs;

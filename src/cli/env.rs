@@ -5,10 +5,14 @@
 
 use clap::{Args, ValueEnum};
 
+use truecost::certificate::{
+    self, sha256_hex, CertifiedObjective, Identity, Mdp, MdpAction, ProblemRecord, CANONICAL_FORMAT,
+};
 use truecost::objectives::report::{solution_json, solution_text};
 use truecost::objectives::{parse_objective, Model, Objective, Source};
 use truecost::problems::StepCost;
-use truecost::stochastic::{NoiseModel, Predictability};
+use truecost::stochastic::file::ProblemFile;
+use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
 
 use super::ReportFormat;
 
@@ -156,6 +160,9 @@ pub fn solve(args: &super::SolveArgs) -> Result<String, String> {
         return Err("--objective and --env take --algorithm exact without --model-free, --mode reference, --tolerance, --max-sweeps or --arithmetic".into());
     }
     let (_, objective) = args.objective.parse()?;
+    if args.certificate.is_some() && objective == Objective::Reach {
+        return Err("--certificate covers the truecost and discounted objectives (and the deterministic G*), not reach".into());
+    }
     let model = ModelArgs {
         env: args.env.clone(),
         problem: args.problem,
@@ -166,6 +173,18 @@ pub fn solve(args: &super::SolveArgs) -> Result<String, String> {
     }
     .load()?;
     let solution = model.solve(&objective).map_err(|e| e.to_string())?;
+    if let Some(path) = &args.certificate {
+        let record = CertifiedSource {
+            file: args.file.as_deref(),
+            problem: args.problem,
+            env: args.env.env.as_deref(),
+            step: args.step_cost,
+            gamma: args.gamma.as_deref(),
+            noise: args.noise,
+        }
+        .record(|| mdp_of(&model))?;
+        write_certificate(path, &solution_certificate(&model, &solution, &record)?)?;
+    }
     Ok(match args.format {
         ReportFormat::Json => pretty(&solution_json(&model, &solution)),
         ReportFormat::Text => solution_text(&model, &solution),
@@ -207,4 +226,286 @@ pub fn pretty(v: &serde_json::Value) -> String {
     let mut s = serde_json::to_string_pretty(v).expect("serialisable");
     s.push('\n');
     s
+}
+
+/// The model as the certificate checker reads it ([`truecost::certificate::Mdp`]): per state
+/// its goal and terminal flags, per action its stage cost, reward and outcomes.
+pub fn mdp_of(model: &Model) -> Mdp {
+    let p = &model.problem;
+    let actions = (0..p.states())
+        .map(|x| {
+            p.actions(x)
+                .map(|a| MdpAction {
+                    cost: p.cost(a).clone(),
+                    reward: model.reward[a].clone(),
+                    outcomes: p
+                        .outcomes(a)
+                        .iter()
+                        .map(|o| (o.successor, o.probability.clone()))
+                        .collect(),
+                })
+                .collect()
+        })
+        .collect();
+    Mdp {
+        goal: (0..p.states()).map(|x| p.is_goal(x)).collect(),
+        terminal: model.terminal.clone(),
+        actions,
+    }
+}
+
+/// Where a certified problem comes from: the options that rebuild it.
+pub struct CertifiedSource<'a> {
+    /// `--file`.
+    pub file: Option<&'a std::path::Path>,
+    /// `--problem`.
+    pub problem: Option<usize>,
+    /// `--env`.
+    pub env: Option<&'a str>,
+    /// `--step-cost`.
+    pub step: Option<StepCost>,
+    /// `--gamma`, as given.
+    pub gamma: Option<&'a str>,
+    /// `--noise`.
+    pub noise: Option<NoiseModel>,
+}
+
+fn value_name<T: ValueEnum>(v: &T) -> String {
+    v.to_possible_value()
+        .expect("no skipped variants")
+        .get_name()
+        .to_string()
+}
+
+impl CertifiedSource<'_> {
+    /// The certificate's record of this source: the file's SHA-256, or that of the model's
+    /// canonical export (`model`, built only then).
+    pub fn record(&self, model: impl FnOnce() -> Mdp) -> Result<ProblemRecord, String> {
+        let gamma = self.gamma.map(str::to_string);
+        let noise = gamma
+            .as_ref()
+            .map(|_| value_name(&self.noise.unwrap_or_default()));
+        let canonical = |source: &str, name: String, step_cost: Option<String>| ProblemRecord {
+            source: source.into(),
+            name,
+            gamma: gamma.clone(),
+            noise: noise.clone(),
+            step_cost,
+            sha256: sha256_hex(model().canonical_text().as_bytes()),
+            sha256_of: CANONICAL_FORMAT.into(),
+        };
+        Ok(match (self.file, self.problem, self.env) {
+            (Some(path), _, _) => {
+                let bytes = truecost::bounded::read_bytes(
+                    path,
+                    truecost::model::file::MAX_FILE_BYTES,
+                    "problem files",
+                )
+                .map_err(|e| format!("--certificate hashes the problem file again: {e}"))?;
+                ProblemRecord {
+                    source: "file".into(),
+                    name: path.display().to_string(),
+                    gamma: gamma.clone(),
+                    noise: noise.clone(),
+                    step_cost: None,
+                    sha256: sha256_hex(&bytes),
+                    sha256_of: "file bytes".into(),
+                }
+            }
+            (None, Some(id), _) => canonical(
+                "problem",
+                id.to_string(),
+                Some(value_name(&self.step.unwrap_or_default())),
+            ),
+            (None, None, Some(spec)) => canonical("env", spec.to_string(), None),
+            (None, None, None) => return Err("give --problem N, --file FILE or --env SPEC".into()),
+        })
+    }
+}
+
+/// Writes a certificate file (one line on error).
+pub fn write_certificate(path: &std::path::Path, text: &str) -> Result<(), String> {
+    std::fs::write(path, text).map_err(|e| {
+        format!(
+            "cannot write certificate {}: {e}",
+            truecost::echo::echo(&path.display().to_string())
+        )
+    })
+}
+
+/// The certificate of an objective's solution (truecost or discounted).
+pub fn solution_certificate(
+    model: &Model,
+    solution: &truecost::objectives::Solution,
+    record: &ProblemRecord,
+) -> Result<String, String> {
+    let objective = match &solution.objective {
+        Objective::Truecost => CertifiedObjective::Truecost,
+        Objective::Discounted(alpha) => CertifiedObjective::Discounted(alpha.clone()),
+        Objective::Reach => {
+            return Err("--certificate covers the truecost and discounted objectives (and the deterministic G*), not reach".into())
+        }
+    };
+    let p = &model.problem;
+    let policy: Vec<Option<usize>> = solution
+        .policy
+        .iter()
+        .enumerate()
+        .map(|(x, a)| a.map(|a| a - p.actions(x).start))
+        .collect();
+    let values = solution.values.iter().map(|v| v.to_string()).collect();
+    Ok(certificate::write(&objective, record, values, &policy))
+}
+
+/// `truecost check`: re-reads the problem (`--file`, `--problem`, `--env`; the certificate's
+/// `gamma`, `noise` and `step_cost` say how it was built) and checks the certificate.
+pub fn check(
+    source: &EnvArg,
+    problem: Option<usize>,
+    file: Option<&std::path::Path>,
+    certificate_path: &std::path::Path,
+    format: ReportFormat,
+) -> Result<String, String> {
+    const MAX_CERTIFICATE_BYTES: u64 = 1 << 30;
+    let text =
+        truecost::bounded::read_text(certificate_path, MAX_CERTIFICATE_BYTES, "certificates")
+            .map_err(|e| format!("cannot read the certificate: {e}"))?;
+    let cert = certificate::parse(&text).map_err(|e| format!("malformed certificate: {e}"))?;
+    let record = &cert.problem;
+    let gamma = record
+        .gamma
+        .as_deref()
+        .map(|g| Predictability::parse(g).map_err(|e| format!("the certificate's gamma: {e}")))
+        .transpose()?;
+    let noise = match &record.noise {
+        Some(name) => NoiseModel::from_str(name, false).map_err(|_| {
+            format!(
+                "the certificate's noise {} is not paper or reference",
+                truecost::echo::echo(name)
+            )
+        })?,
+        None => NoiseModel::default(),
+    };
+    let expect = |kind: &str| {
+        if record.source == kind {
+            Ok(())
+        } else {
+            Err(format!(
+                "the certificate is for a problem from {} {}, not from {kind}",
+                truecost::echo::echo(&record.source),
+                truecost::echo::echo(&record.name)
+            ))
+        }
+    };
+    let (model, bytes) = match (&source.env, problem, file) {
+        (Some(spec), None, None) => {
+            expect("env")?;
+            (Source::Env(spec.clone()).load()?, None)
+        }
+        (None, Some(id), None) => {
+            expect("problem")?;
+            let step = match &record.step_cost {
+                Some(s) => StepCost::from_str(s, false).map_err(|_| {
+                    format!(
+                        "the certificate's step_cost {} is not unit or euclidean",
+                        truecost::echo::echo(s)
+                    )
+                })?,
+                None => StepCost::default(),
+            };
+            let source = Source::Paper {
+                id,
+                step,
+                noise,
+                gamma: gamma.unwrap_or_else(Predictability::one),
+            };
+            (source.load()?, None)
+        }
+        (None, None, Some(path)) => {
+            expect("file")?;
+            let bytes = truecost::bounded::read_bytes(
+                path,
+                truecost::model::file::MAX_FILE_BYTES,
+                "problem files",
+            )
+            .map_err(|e| e.to_string())?;
+            let text = String::from_utf8(bytes.clone()).map_err(|_| {
+                format!(
+                    "problem file {} is not UTF-8 text",
+                    truecost::echo::echo(&path.display().to_string())
+                )
+            })?;
+            let (read, extra) = truecost::stochastic::file::from_json_with_objective(&text)
+                .map_err(|e| e.to_string())?;
+            let p = match read {
+                ProblemFile::Deterministic(d) => StochasticProblem::from_deterministic(
+                    &d,
+                    noise,
+                    gamma.as_ref().unwrap_or(&Predictability::one()),
+                )
+                .map_err(|e| e.to_string())?,
+                ProblemFile::Stochastic(s) => {
+                    if gamma.is_some() {
+                        return Err("the certificate gives a gamma, but this problem file lists its own outcome probabilities".into());
+                    }
+                    *s
+                }
+            };
+            let model = Model::from_problem(p, format!("file {}", path.display()))
+                .with_file_objective(&extra);
+            (model, Some(bytes))
+        }
+        _ => return Err("give one of --env SPEC, --problem N and --file FILE".into()),
+    };
+    let mdp = mdp_of(&model);
+    let identity = match &bytes {
+        Some(b) => Identity::FileBytes(b),
+        None => Identity::Canonical,
+    };
+    match certificate::check(&mdp, identity, &cert) {
+        Ok(acceptance) => Ok(match format {
+            ReportFormat::Json => pretty(&serde_json::json!({
+                "accepted": true,
+                "objective": acceptance.objective,
+                "problem": model.name,
+                "sha256": record.sha256,
+                "states": acceptance.states,
+                "finite_states": acceptance.finite_states,
+                "actions": acceptance.actions,
+                "conditions": acceptance.conditions,
+            })),
+            ReportFormat::Text => {
+                let mut s = format!(
+                    "accepted     {} certificate for {} ({} states, {} finite, {} actions; SHA-256 {})\n",
+                    acceptance.objective,
+                    model.name,
+                    acceptance.states,
+                    acceptance.finite_states,
+                    acceptance.actions,
+                    record.sha256
+                );
+                for c in &acceptance.conditions {
+                    s.push_str(&format!(
+                        "{:<12} {} ({} checked)\n",
+                        c.name, c.statement, c.instances
+                    ));
+                }
+                s
+            }
+        }),
+        Err(rejection) => {
+            if format == ReportFormat::Json {
+                let v = serde_json::json!({
+                    "accepted": false,
+                    "objective": cert.objective.name(),
+                    "problem": model.name,
+                    "condition": rejection.condition,
+                    "state": rejection.state,
+                    "detail": rejection.detail,
+                });
+                super::emit(&pretty(&v))?;
+            }
+            Err(format!("certificate rejected: {rejection}"))
+        }
+    }
 }

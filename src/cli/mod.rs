@@ -52,6 +52,29 @@ enum Command {
     Compare(compare::CompareArgs),
     /// Write a Gymnasium benchmark (--env) or a benchmark grid (--grid) as a problem file.
     Export(export::ExportArgs),
+    /// Check a certificate of `solve --certificate` against the problem, re-read, in exact
+    /// arithmetic (exit 0 only if every condition holds).
+    Check(CheckArgs),
+}
+
+#[derive(Args, Debug)]
+#[command(group(clap::ArgGroup::new("source").required(true).args(["problem", "file", "env"])))]
+struct CheckArgs {
+    #[command(flatten)]
+    env: env::EnvArg,
+    /// One of the paper's problems, 0 to 18 (built with the certificate's step cost, gamma
+    /// and noise model).
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    problem: Option<usize>,
+    /// A problem file (perturbed by the certificate's gamma and noise model, if it gives them).
+    #[arg(long, value_name = "FILE")]
+    file: Option<PathBuf>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = ReportFormat::Text)]
+    format: ReportFormat,
+    /// The certificate file (`truecost-certificate/1`).
+    #[arg(value_name = "CERT")]
+    certificate: PathBuf,
 }
 
 /// Output format of a listing.
@@ -139,6 +162,10 @@ struct SolveArgs {
     arithmetic: Option<stochastic::Arithmetic>,
     #[command(flatten)]
     scale: stochastic::ScaleArgs,
+    /// With --algorithm exact: also write a certificate of the optimum (values, policy, the
+    /// problem's SHA-256) to FILE, for `truecost check` (docs/guide/certificates.md).
+    #[arg(long, value_name = "FILE")]
+    certificate: Option<PathBuf>,
 }
 
 /// Runs the command line and maps every failure to a one-line message.
@@ -180,6 +207,13 @@ pub fn main() -> ExitCode {
         Command::Compare(args) => compare::run(&args),
         Command::Export(args) => export::run(&args),
         Command::Learn(args) => learn::learn(&args),
+        Command::Check(args) => env::check(
+            &args.env,
+            args.problem,
+            args.file.as_deref(),
+            &args.certificate,
+            args.format,
+        ),
     };
     match result.and_then(|text| emit(&text)) {
         Ok(()) => ExitCode::SUCCESS,
@@ -225,6 +259,7 @@ fn usage_line(e: &clap::Error) -> String {
         "compare",
         "export",
         "learn",
+        "check",
     ];
     if let Some(command) = args.first().filter(|a| commands.contains(&a.as_str())) {
         help.push(' ');
@@ -274,6 +309,13 @@ fn read_single_initial(path: &std::path::Path, command: &str) -> Result<ProblemF
 }
 
 fn solve(args: &SolveArgs) -> Result<String, String> {
+    if args.certificate.is_some()
+        && (args.algorithm != stochastic::SolveAlgorithm::Exact
+            || args.mode != Mode::Exact
+            || args.model_free)
+    {
+        return Err("--certificate certifies the exact optimum: use --algorithm exact (without --mode reference or --model-free)".into());
+    }
     if env::wants(args) {
         return env::solve(args);
     }

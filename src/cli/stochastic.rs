@@ -11,6 +11,7 @@ use serde::Serialize;
 use serde_json::{json, Value};
 
 use super::{ReportFormat, SolveArgs};
+use truecost::certificate::CertifiedObjective;
 use truecost::model::Decision;
 use truecost::planning::{Algorithm, Mode};
 use truecost::problems::StepCost;
@@ -163,6 +164,73 @@ pub fn deterministic_algorithm(args: &SolveArgs, file: Option<&ProblemFile>) -> 
     }
 }
 
+/// Writes the certificate of the exact optimum (`--certificate`): the deterministic `G*` when
+/// the problem is deterministic (no `--gamma` below 1, no listed outcomes), truecost otherwise.
+fn certify(
+    args: &SolveArgs,
+    problem: &StochasticProblem,
+    opt: &Optimum,
+    path: &std::path::Path,
+) -> Result<(), String> {
+    let objective = match problem.provenance() {
+        Provenance::Noise { gamma, .. } if gamma.is_deterministic() => {
+            CertifiedObjective::Deterministic
+        }
+        _ => CertifiedObjective::Truecost,
+    };
+    let record = super::env::CertifiedSource {
+        file: args.file.as_deref(),
+        problem: args.problem,
+        env: None,
+        step: args.step_cost,
+        gamma: args.gamma.as_deref(),
+        noise: args.noise,
+    }
+    .record(|| {
+        super::env::mdp_of(&truecost::objectives::Model::from_problem(
+            problem.clone(),
+            String::new(),
+        ))
+    })?;
+    let policy: Vec<Option<usize>> = opt
+        .policy()
+        .iter()
+        .map(|d| match d {
+            Some(Decision::Move(i)) => Some(*i),
+            _ => None,
+        })
+        .collect();
+    let text = truecost::certificate::write(
+        &objective,
+        &record,
+        unreduced_texts(opt, problem.states()),
+        &policy,
+    );
+    super::env::write_certificate(path, &text)
+}
+
+/// Every state's `G*` over the optimum's common denominator, not reduced (`"n/d"`, `"n"` when
+/// `d = 1` or `n = 0`, `"inf"`): exact, and no gcd per state (reducing is most of the cost of printing
+/// every value of a large stochastic model).
+fn unreduced_texts(opt: &Optimum, n: usize) -> Vec<String> {
+    use num_traits::Zero;
+    use rayon::prelude::*;
+    let d = (0..n)
+        .find_map(|x| opt.unreduced(x).map(|(_, d)| d.to_string()))
+        .unwrap_or_default();
+    let text = |x: usize| match opt.unreduced(x) {
+        Some((num, _)) if d == "1" || num.is_zero() => num.to_string(),
+        Some((num, _)) => format!("{num}/{d}"),
+        None => "inf".into(),
+    };
+    // In parallel only when the numbers are long (a thread pool costs more than short texts).
+    if d.len() > 64 {
+        (0..n).into_par_iter().map(text).collect()
+    } else {
+        (0..n).map(text).collect()
+    }
+}
+
 /// A problem ready to solve, with what to say about it.
 struct Prepared {
     problem: StochasticProblem,
@@ -238,6 +306,14 @@ pub fn solve(args: &SolveArgs, file: Option<ProblemFile>) -> Result<String, Stri
         (Some(t), true) => Some(checked_optimum(t, budget, all_values, args.scale.quiet)?),
         _ => None,
     };
+    if let (Some(path), None) = (&args.certificate, schedule) {
+        certify(
+            args,
+            &prepared.problem,
+            opt.as_ref().expect("exact mode has itself as twin"),
+            path,
+        )?;
+    }
     let report = match schedule {
         None => exact_report(
             &prepared,

@@ -1,0 +1,114 @@
+//! Benchmarks of certificates (`solve --certificate`, `truecost check`) on a seeded benchmark
+//! grid (`truecost export --grid`, costs 1–4 drawn by ChaCha8, not built for certificates):
+//!
+//! * `certificate/<grid>/solve` — the exact optimum alone (policy iteration, exact solves).
+//! * `certificate/<grid>/solve_and_write` — the optimum, then the certificate's text: every
+//!   value printed over the common denominator, the policy, the SHA-256 of the model's
+//!   canonical export.
+//! * `certificate/<grid>/check` — reading the certificate and checking every condition in exact
+//!   arithmetic against the model.
+//!
+//! Grids: 50×50 deterministic (γ = 1, the size of the budget "writing costs at most 10 % of
+//! the solve") and 20×20 under the paper's noise with γ = 0.99 (values of many digits).
+//! Problems are built outside the timed loop. The grid is in memory, so the certificate hashes
+//! the model's canonical export (as for `--problem` and `--env`; `--file` hashes the file's
+//! bytes instead, which is cheaper). Run with `cargo bench --bench certificate`.
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use truecost::certificate::{self, CertifiedObjective, Identity, Mdp, MdpAction, ProblemRecord};
+use truecost::model::Decision;
+use truecost::stochastic::benchmark::cost_grid;
+use truecost::stochastic::policy_iteration::{optimum, Optimum};
+use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
+
+/// The model as `truecost check` reads it (negated costs as rewards; goals terminal).
+fn mdp_of(p: &StochasticProblem) -> Mdp {
+    Mdp {
+        goal: (0..p.states()).map(|x| p.is_goal(x)).collect(),
+        terminal: (0..p.states())
+            .map(|x| p.is_goal(x) || p.actions(x).is_empty())
+            .collect(),
+        actions: (0..p.states())
+            .map(|x| {
+                p.actions(x)
+                    .map(|a| MdpAction {
+                        cost: p.cost(a).clone(),
+                        reward: -p.cost(a).clone(),
+                        outcomes: p
+                            .outcomes(a)
+                            .iter()
+                            .map(|o| (o.successor, o.probability.clone()))
+                            .collect(),
+                    })
+                    .collect()
+            })
+            .collect(),
+    }
+}
+
+fn write(p: &StochasticProblem, opt: &Optimum, objective: &CertifiedObjective) -> String {
+    let record = ProblemRecord {
+        source: "problem".into(),
+        name: "benchmark grid".into(),
+        gamma: None,
+        noise: None,
+        step_cost: None,
+        sha256: certificate::sha256_hex(mdp_of(p).canonical_text().as_bytes()),
+        sha256_of: certificate::CANONICAL_FORMAT.into(),
+    };
+    let policy: Vec<Option<usize>> = opt
+        .policy()
+        .iter()
+        .map(|d| match d {
+            Some(Decision::Move(i)) => Some(*i),
+            _ => None,
+        })
+        .collect();
+    // As `solve --certificate` writes them: over the common denominator, not reduced.
+    let d = (0..p.states())
+        .find_map(|x| opt.unreduced(x).map(|(_, d)| d.to_string()))
+        .unwrap_or_default();
+    let values = (0..p.states())
+        .map(|x| match opt.unreduced(x) {
+            Some((n, _)) => format!("{n}/{d}"),
+            None => "inf".into(),
+        })
+        .collect();
+    certificate::write(objective, &record, values, &policy)
+}
+
+fn grids(c: &mut Criterion) {
+    let cases = [
+        (50, "1", CertifiedObjective::Deterministic),
+        (20, "0.99", CertifiedObjective::Truecost),
+    ];
+    for (side, gamma_text, objective) in cases {
+        let grid = cost_grid(side, side, 0).expect("a benchmark grid");
+        let gamma = Predictability::parse(gamma_text).expect("a valid gamma");
+        let p = StochasticProblem::from_deterministic(&grid, NoiseModel::Paper, &gamma)
+            .expect("a stochastic grid");
+        let mut group = c.benchmark_group(format!("certificate/{side}x{side}_gamma_{gamma_text}"));
+        group.sample_size(10);
+        group.bench_function("solve", |b| {
+            b.iter(|| optimum(black_box(&p)).expect("solvable"))
+        });
+        group.bench_function("solve_and_write", |b| {
+            b.iter(|| {
+                let opt = optimum(black_box(&p)).expect("solvable");
+                write(&p, &opt, &objective)
+            })
+        });
+        let text = write(&p, &optimum(&p).expect("solvable"), &objective);
+        let mdp = mdp_of(&p);
+        group.bench_function("check", |b| {
+            b.iter(|| {
+                let cert = certificate::parse(black_box(&text)).expect("a certificate");
+                certificate::check(&mdp, Identity::Canonical, &cert).expect("accepted")
+            })
+        });
+        group.finish();
+    }
+}
+
+criterion_group!(benches, grids);
+criterion_main!(benches);

@@ -1,0 +1,91 @@
+//! Certified answers: a certificate states an optimal value per state and a policy, and
+//! [`check`] re-checks it against a problem read afresh, in exact arithmetic, with no solver
+//! code — only the model (plain data, [`Mdp`]), big rationals and SHA-256. Whatever computed
+//! the certificate, an accepted one is optimal for the reasons below.
+//!
+//! Notation: `n` states; `U(x)` the ordered actions of `x`; `l(x, a)` the stage cost,
+//! `r(x, a)` the expected reward, `p(y | x, a)` the outcome probabilities (exact, summing to
+//! 1: checked); `V` the certificate's values, `π` its policy, `F = {x : V(x) finite}`.
+//! A policy `μ` is *proper from x* if, from `x`, it reaches a goal with probability 1; its
+//! truecost `J_μ(x)` is then the expected total stage cost until the goal (`+∞` if it is not
+//! proper from `x`). Stationary policies throughout.
+//!
+//! # Truecost (least expected cost among policies that reach a goal with probability 1)
+//!
+//! With `Q(x, a) = l(x, a) + Σ_y p(y | x, a) V(y)`:
+//!
+//! 1. **goal** — `V(g) = 0` at every goal `g` (goals terminate at no cost).
+//! 2. **policy** — at every non-goal `x ∈ F`, `π(x)` indexes `U(x)`.
+//! 3. **closed** — every outcome of `π(x)`, `x ∈ F`, is in `F`.
+//! 4. **evaluation** — `V(x) = Q(x, π(x))` exactly at every non-goal `x ∈ F`.
+//! 5. **optimality** — `V(x) ≤ Q(x, a)` for every non-goal `x ∈ F` and every `a ∈ U(x)`
+//!    whose outcomes are all in `F`.
+//! 6. **proper** — from every `x ∈ F` a goal is reachable in the graph of `π`'s outcomes.
+//! 7. **infinite** — no state outside `F` lies in `W*`, the greatest set `W` such that from
+//!    every state of `W` a goal can be reached (with positive probability, by a path) using
+//!    only actions all of whose outcomes are in `W`. The checker computes `W*` itself (from
+//!    `W` = all states, keep the states that reach a goal that way, repeat until stable).
+//!
+//! Why these suffice:
+//!
+//! * *`π` is proper from every state of `F`, and `J_π = V` on `F`.* By 3, `F` is closed under
+//!   `π`; by 6 a goal is reachable from every state of `F` in the finite Markov chain of `π`
+//!   restricted to `F`, so the goals are reached with probability 1. Then `J_π` is the unique
+//!   solution of `J = l_π + P_π J` on `F` with `J = 0` at goals, and `V` solves it (1, 4).
+//! * *No policy is proper from a state outside `F`.* Let `μ` be proper from `x` and `R` the
+//!   states reachable from `x` under `μ`. `μ` is proper from every state of `R`, so from each a
+//!   goal is reachable within `R` using `μ`'s actions, whose outcomes stay in `R`. Every `W` of
+//!   the iteration contains `R` (induction: if `R ⊆ W`, `μ`'s actions on `R` keep to `W`, so
+//!   `R` survives the round), hence `x ∈ R ⊆ W*`, and 7 puts `x` in `F`. So `V(x) = inf` is the
+//!   truecost optimum outside `F`.
+//! * *`V(x) ≤ J_μ(x)` for every `μ` proper from `x ∈ F` (maximum principle).* With `R` as above,
+//!   `R ⊆ W* ⊆ F`, so every action `μ` takes on `R` has its outcomes in `F` and 5 applies:
+//!   `V ≤ l_μ + P_μ V` on the non-goals of `R`, while `J_μ = l_μ + P_μ J_μ` there. Hence
+//!   `D = V − J_μ` satisfies `D ≤ P_μ D` on non-goals of `R` and `D = 0` at goals. Let `M` be the
+//!   maximum of `D` over `R` and `A` the states where it is attained. If `M > 0`, `A` has no
+//!   goal, and at `z ∈ A`, `M = D(z) ≤ Σ p D ≤ M` forces every outcome of `μ(z)` into `A`: `A`
+//!   is closed under `μ` and holds no goal, so `μ` is not proper from `z` — a contradiction.
+//!   So `M ≤ 0`: `V(x) ≤ J_μ(x)`, and `V = J_π` attains it.
+//!
+//! Nothing above uses `l ≥ 0` (the readers refuse negative stage costs anyway), and the
+//! conditions are checked exactly: values over one common denominator, each `Q` as an integer
+//! numerator over a positive integer denominator, compared by cross-multiplication.
+//!
+//! # Deterministic `G*`
+//!
+//! The deterministic planners' `G*` (Dijkstra, VI) is the truecost objective of a model whose
+//! every action has one outcome `f(x, a)` with probability 1: the same conditions read
+//! `V(g) = 0`, `V(x) = l(x, π(x)) + V(f(x, π(x)))`, `V(x) ≤ l(x, a) + V(f(x, a))`, the path of
+//! `π` from every finite state reaches a goal (6), and `W*` is the set of states with a path
+//! to a goal. The checker also checks that every action has exactly one outcome
+//! (**deterministic**).
+//!
+//! # Discounted (greatest expected discounted reward, `0 < α < 1`)
+//!
+//! Terminal states (goals, traps, action-less states) end the episode: their value is 0.
+//! With `Q(x, a) = r(x, a) + α Σ_y p(y | x, a) V(y)`: **alpha** `0 < α < 1`; **finite** every
+//! value is finite; **goal** `V = 0` and `π = null` at terminal states; **policy** `π(x)`
+//! indexes `U(x)` at every other state; **evaluation** `V(x) = Q(x, π(x))`; **optimality**
+//! `V(x) ≥ Q(x, a)` for every `a`. Then `V = max_a Q(·, a)`: `V` is the fixed point of the
+//! Bellman operator, a contraction of modulus `α` in the maximum norm, hence `V = V*`; and
+//! `V = Q(·, π)` makes `V` the value of `π` (the unique fixed point of its own contraction),
+//! so `π` is optimal.
+//!
+//! # The problem
+//!
+//! The checker never reads the certificate's problem: the caller re-reads it, and the
+//! certificate's SHA-256 must be that of the problem file's bytes (`--file`) or of the model's
+//! [canonical export](Mdp::canonical_text) (`--problem`, `--env`), and its state count that of
+//! the model (**problem**).
+
+mod check;
+mod format;
+mod mdp;
+mod sha256;
+
+pub use check::{check, Acceptance, Checked, Identity, Rejection, CONDITIONS};
+pub use format::{
+    parse, parse_exact, write, Certificate, CertifiedObjective, ProblemRecord, FORMAT,
+};
+pub use mdp::{Mdp, MdpAction, CANONICAL_FORMAT};
+pub use sha256::sha256_hex;

@@ -1,0 +1,525 @@
+//! Certificates: `solve --certificate` then `truecost check` accepts on hand-made problems
+//! (written here, not by truecost) and on the paper's problems, and every kind of tampering
+//! is rejected naming the first failing state and condition. Expected values are derived by
+//! hand in the comments; the SHA-256 of hand-written certificates comes from the `sha2` crate.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::cli::{fails_one_line, json, stdout};
+use serde_json::{json, Value};
+use sha2::{Digest, Sha256};
+
+/// A stochastic problem (goal 3):
+/// * 0: `a0` cost 1 → 1 or 3 with 1/2 each; `a1` cost 3 → 3.
+/// * 1: `a0` cost 1 → 3; `a1` cost 0 → 2.
+/// * 2: `a0` cost 0 → 1; `a1` cost 5 → 3.
+/// * 4: a trap (cost-0 self-loop).
+/// * 5: `a0` cost 1 → 3 or 4 (the trap) with 1/2 each; `a1` cost 1 → 5.
+///
+/// By hand: `V(1) = min(1, 0 + V(2))`, `V(2) = min(0 + V(1), 5)`: the zero-cost cycle 1 ↔ 2
+/// never reaches the goal, so the proper choice is `π(1) = a0`, `V(1) = 1`, and
+/// `V(2) = V(1) = 1` by `a0`. `V(0) = min(1 + V(1)/2, 3) = 3/2` by `a0`. From 4 and 5 every
+/// policy misses the goal with positive probability (5's `a0` falls into the trap with
+/// probability 1/2; `a1` loops forever): `inf`.
+const HAND: &str = r#"{"format": "truecost-stochastic/1", "initial": 0, "goals": [3], "actions": [
+  [{"cost": "1", "outcomes": [{"to": 1, "p": "1/2"}, {"to": 3, "p": "1/2"}]}, {"to": 3, "cost": "3"}],
+  [{"to": 3, "cost": "1"}, {"to": 2, "cost": "0"}],
+  [{"to": 1, "cost": "0"}, {"to": 3, "cost": "5"}],
+  [],
+  [{"to": 4, "cost": "0"}],
+  [{"cost": "1", "outcomes": [{"to": 3, "p": "1/2"}, {"to": 4, "p": "1/2"}]}, {"to": 5, "cost": "1"}]
+]}"#;
+
+/// A deterministic problem (goal 2): 0 → 1 (cost 1), 0 → 2 (cost 5); 1 → 0 (1), 1 → 2 (1);
+/// 3 → 3 (cost 1, a trap). By hand `G* = (2, 1, 0, inf)` with `π = (0, 1, -, -)`.
+const LINE: &str = r#"{"format": "truecost-problem/1", "initial": 0, "goals": [2], "actions": [
+  [{"to": 1, "cost": "1"}, {"to": 2, "cost": "5"}],
+  [{"to": 0, "cost": "1"}, {"to": 2, "cost": "1"}],
+  [],
+  [{"to": 3, "cost": "1"}]
+]}"#;
+
+/// The discounted example (goal 1, rewards given): staying at 0 pays 0, entering the goal 1.
+/// With `α = 1/2`: `V(0) = max(0 + V(0)/2, 1 + V(1)/2) = 1` (`V(1) = 0`, terminal), `π(0) = 1`.
+const REWARDS: &str = r#"{"initial": 0, "goals": [1], "actions": [
+  [{"to": 0, "cost": "1", "reward": "0"}, {"to": 1, "cost": "5", "reward": "1"}], []]}"#;
+
+fn file(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn s(p: &Path) -> String {
+    p.display().to_string()
+}
+
+/// `solve <source> --algorithm exact <extra> --certificate C` and the certificate read back.
+fn certify(dir: &Path, source: &[&str], extra: &[&str]) -> Value {
+    let cert = dir.join("solved.cert.json");
+    let mut args = vec!["solve"];
+    args.extend_from_slice(source);
+    args.extend_from_slice(&["--algorithm", "exact"]);
+    args.extend_from_slice(extra);
+    let c = s(&cert);
+    args.extend_from_slice(&["--certificate", &c]);
+    stdout(&args);
+    serde_json::from_str(&std::fs::read_to_string(&cert).unwrap()).unwrap()
+}
+
+/// `check <source> C --format json` on the certificate `cert`, which must be accepted.
+fn accepted(dir: &Path, source: &[&str], cert: &Value) -> Value {
+    let path = file(dir, "accept.cert.json", &cert.to_string());
+    let mut args = vec!["check"];
+    args.extend_from_slice(source);
+    let p = s(&path);
+    args.extend_from_slice(&[&p, "--format", "json"]);
+    let v = json(&args);
+    assert_eq!(v["accepted"], true, "{v}");
+    v
+}
+
+/// `check <source> C` on `cert`, which must be rejected: exit 1 and one line on stderr.
+fn rejected(dir: &Path, source: &[&str], cert: &Value) -> String {
+    let path = file(dir, "reject.cert.json", &cert.to_string());
+    let mut args = vec!["check"];
+    args.extend_from_slice(source);
+    let p = s(&path);
+    args.push(&p);
+    fails_one_line(&args)
+}
+
+/// The rejection's first failing state and condition, from its one line.
+fn first_failure(line: &str) -> (Option<usize>, String) {
+    let rest = line
+        .strip_prefix("error: certificate rejected: ")
+        .unwrap_or_else(|| panic!("not a rejection: {line}"));
+    let (state, rest) = match rest.strip_prefix("state ") {
+        Some(r) => {
+            let (n, r) = r.split_once(": ").unwrap();
+            (Some(n.parse().unwrap()), r)
+        }
+        None => (None, rest),
+    };
+    let condition = rest
+        .strip_prefix("condition ")
+        .unwrap()
+        .split_once(':')
+        .unwrap()
+        .0;
+    (state, condition.to_string())
+}
+
+/// The certificate's values equal `expected` as exact numbers (a certificate need not reduce
+/// its fractions).
+fn assert_values(cert: &Value, expected: &[&str]) {
+    let exact = |t: &str| -> Option<num_rational::BigRational> {
+        (t != "inf").then(|| t.parse().unwrap_or_else(|_| panic!("not exact: {t}")))
+    };
+    let got: Vec<_> = cert["values"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| exact(v.as_str().unwrap()))
+        .collect();
+    let want: Vec<_> = expected.iter().map(|t| exact(t)).collect();
+    assert_eq!(got, want, "{}", cert["values"]);
+}
+
+fn tampered(cert: &Value, edit: impl FnOnce(&mut Value)) -> Value {
+    let mut c = cert.clone();
+    edit(&mut c);
+    c
+}
+
+/// `3/2 ± 10⁻³⁰` as an exact fraction over `10³⁰`.
+fn three_halves_off(plus: bool) -> String {
+    let base = format!("15{}", "0".repeat(29));
+    let numerator = if plus {
+        format!("15{}1", "0".repeat(28))
+    } else {
+        format!("14{}", "9".repeat(29))
+    };
+    assert_eq!(base.len(), numerator.len());
+    format!("{numerator}/1{}", "0".repeat(30))
+}
+
+#[test]
+fn hand_problem_certificate_has_the_hand_values_and_is_accepted() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = file(dir.path(), "hand.json", HAND);
+    let source = ["--file", &s(&f)];
+    let cert = certify(dir.path(), &source, &[]);
+    assert_eq!(cert["format"], "truecost-certificate/1");
+    assert_eq!(cert["objective"], "truecost");
+    assert_values(&cert, &["3/2", "1", "1", "0", "inf", "inf"]);
+    assert_eq!(cert["policy"], json!([0, 0, 0, null, null, null]));
+    let sha = format!("{:x}", Sha256::digest(HAND.as_bytes()));
+    assert_eq!(cert["problem"]["sha256"], sha.as_str());
+    let v = accepted(dir.path(), &source, &cert);
+    assert_eq!(v["states"], 6);
+    assert_eq!(v["finite_states"], 4);
+    let names: Vec<&str> = v["conditions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        [
+            "problem",
+            "goal",
+            "policy",
+            "closed",
+            "evaluation",
+            "optimality",
+            "proper",
+            "infinite"
+        ]
+    );
+}
+
+#[test]
+fn each_tampering_names_its_first_failing_state_and_condition() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = file(dir.path(), "hand.json", HAND);
+    let source = ["--file", &s(&f)];
+    let cert = certify(dir.path(), &source, &[]);
+    // No policy leads into state 0, so only its own equation sees its value.
+    let cases: Vec<(&str, Value, Option<usize>, &str)> = vec![
+        (
+            "V(0) + 10^-30",
+            tampered(&cert, |c| c["values"][0] = json!(three_halves_off(true))),
+            Some(0),
+            "evaluation",
+        ),
+        (
+            "V(0) - 10^-30",
+            tampered(&cert, |c| c["values"][0] = json!(three_halves_off(false))),
+            Some(0),
+            "evaluation",
+        ),
+        (
+            "a non-optimal action at 0 (cost 3 straight to the goal)",
+            tampered(&cert, |c| c["policy"][0] = json!(1)),
+            Some(0),
+            "evaluation",
+        ),
+        (
+            "a non-optimal action with its own value V(0) = 3: a0 gives 3/2",
+            tampered(&cert, |c| {
+                c["policy"][0] = json!(1);
+                c["values"][0] = json!("3");
+            }),
+            Some(0),
+            "optimality",
+        ),
+        (
+            "an improper policy: the zero-cost cycle 1 -> 2 -> 1 (values unchanged)",
+            tampered(&cert, |c| c["policy"][1] = json!(1)),
+            Some(1),
+            "proper",
+        ),
+        (
+            "an action index out of range",
+            tampered(&cert, |c| c["policy"][0] = json!(7)),
+            Some(0),
+            "policy",
+        ),
+        (
+            "a wrong SHA-256",
+            tampered(&cert, |c| {
+                c["problem"]["sha256"] = json!("0".repeat(64));
+            }),
+            None,
+            "problem",
+        ),
+        (
+            "a goal with value 1",
+            tampered(&cert, |c| c["values"][3] = json!("1")),
+            Some(3),
+            "goal",
+        ),
+        (
+            "state 2 claimed inf: it reaches the goal through 1",
+            tampered(&cert, |c| {
+                c["values"][2] = json!("inf");
+                c["policy"][2] = json!(null);
+            }),
+            Some(2),
+            "infinite",
+        ),
+        (
+            "state 5 claimed finite through a0, which may fall into the trap",
+            tampered(&cert, |c| {
+                c["values"][5] = json!("1");
+                c["policy"][5] = json!(0);
+            }),
+            Some(5),
+            "closed",
+        ),
+    ];
+    for (what, c, state, condition) in cases {
+        let line = rejected(dir.path(), &source, &c);
+        assert_eq!(
+            first_failure(&line),
+            (state, condition.to_string()),
+            "{what}: {line}"
+        );
+    }
+}
+
+#[test]
+fn malformed_certificates_are_refused_in_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = file(dir.path(), "hand.json", HAND);
+    let source = ["--file", &s(&f)];
+    let cert = certify(dir.path(), &source, &[]);
+    let cases = [
+        ("not JSON", Value::String("{".into()), "is not JSON"),
+        (
+            "a decimal value",
+            tampered(&cert, |c| c["values"][1] = json!("1.0")),
+            "value of state 1",
+        ),
+        (
+            "a zero denominator",
+            tampered(&cert, |c| c["values"][1] = json!("1/0")),
+            "value of state 1",
+        ),
+        (
+            "no policy",
+            tampered(&cert, |c| {
+                c.as_object_mut().unwrap().remove("policy");
+            }),
+            "no field \"policy\"",
+        ),
+        (
+            "a negative action index",
+            tampered(&cert, |c| c["policy"][0] = json!(-1)),
+            "policy of state 0",
+        ),
+        (
+            "another format",
+            tampered(&cert, |c| c["format"] = json!("truecost-certificate/9")),
+            "format",
+        ),
+        (
+            "too few values",
+            tampered(&cert, |c| {
+                c["values"].as_array_mut().unwrap().pop();
+            }),
+            "5 values",
+        ),
+        (
+            "an unknown field",
+            tampered(&cert, |c| c["extra"] = json!(1)),
+            "unknown field",
+        ),
+    ];
+    for (what, c, says) in cases {
+        let text = match &c {
+            Value::String(raw) => raw.clone(),
+            v => v.to_string(),
+        };
+        let path = file(dir.path(), "bad.cert.json", &text);
+        let line = fails_one_line(&["check", "--file", &s(&f), &s(&path)]);
+        assert!(
+            line.starts_with("error: malformed certificate: "),
+            "{what}: {line}"
+        );
+        assert!(line.contains(says), "{what}: {line}");
+    }
+    // The wrong source for the certificate.
+    let path = file(dir.path(), "c.cert.json", &cert.to_string());
+    let line = fails_one_line(&["check", "--problem", "10", &s(&path)]);
+    assert!(line.contains("not from problem"), "{line}");
+}
+
+/// A certificate written here by hand (values, policy and SHA-256), for a problem written
+/// here: the checker accepts it without any solver having run, and the solver agrees.
+#[test]
+fn a_hand_written_deterministic_certificate_is_accepted() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = file(dir.path(), "line.json", LINE);
+    let source = ["--file", &s(&f)];
+    let hand = json!({
+        "format": "truecost-certificate/1",
+        "objective": "deterministic",
+        "alpha": null,
+        "problem": {"source": "file", "name": s(&f), "gamma": null, "noise": null,
+                    "step_cost": null, "sha256": format!("{:x}", Sha256::digest(LINE.as_bytes())),
+                    "sha256_of": "file bytes"},
+        "states": 4,
+        "values": ["2", "1", "0", "inf"],
+        "policy": [0, 1, null, null],
+    });
+    let v = accepted(dir.path(), &source, &hand);
+    assert_eq!(v["objective"], "deterministic");
+    assert_eq!(v["finite_states"], 3);
+    let solved = certify(dir.path(), &source, &[]);
+    assert_eq!(solved["objective"], "deterministic");
+    assert_values(&solved, &["2", "1", "0", "inf"]);
+    assert_eq!(solved["policy"], hand["policy"]);
+    // The shortcut 0 -> 2 (cost 5) as policy, with its value: optimality fails at 0.
+    let c = tampered(&hand, |c| {
+        c["policy"][0] = json!(1);
+        c["values"][0] = json!("5");
+    });
+    let line = rejected(dir.path(), &source, &c);
+    assert_eq!(
+        first_failure(&line),
+        (Some(0), "optimality".into()),
+        "{line}"
+    );
+    // The trap claimed finite: the path of π from 3 never reaches the goal (cost 1 a step
+    // makes V(3) = 1 + V(3) fail first).
+    let c = tampered(&hand, |c| {
+        c["values"][3] = json!("7");
+        c["policy"][3] = json!(0);
+    });
+    let line = rejected(dir.path(), &source, &c);
+    assert_eq!(
+        first_failure(&line),
+        (Some(3), "evaluation".into()),
+        "{line}"
+    );
+}
+
+#[test]
+fn discounted_certificate_of_the_rewards_example() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = file(dir.path(), "rewards.json", REWARDS);
+    let source = ["--file", &s(&f)];
+    let cert = certify(
+        dir.path(),
+        &source,
+        &["--objective", "discounted", "--alpha", "1/2"],
+    );
+    assert_eq!(cert["objective"], "discounted");
+    assert_eq!(cert["alpha"], "1/2");
+    assert_values(&cert, &["1", "0"]);
+    assert_eq!(cert["policy"], json!([1, null]));
+    accepted(dir.path(), &source, &cert);
+    // Staying at 0 is worth 0 + V(0)/2 = 1/2, not 1.
+    let c = tampered(&cert, |c| c["policy"][0] = json!(0));
+    let line = rejected(dir.path(), &source, &c);
+    assert_eq!(
+        first_failure(&line),
+        (Some(0), "evaluation".into()),
+        "{line}"
+    );
+    // V = 0 everywhere with π(0) = stay is self-consistent (0 = 0 + 0/2) but not optimal.
+    let c = tampered(&cert, |c| {
+        c["policy"][0] = json!(0);
+        c["values"][0] = json!("0");
+    });
+    let line = rejected(dir.path(), &source, &c);
+    assert_eq!(
+        first_failure(&line),
+        (Some(0), "optimality".into()),
+        "{line}"
+    );
+    let c = tampered(&cert, |c| c["alpha"] = json!("1"));
+    let line = rejected(dir.path(), &source, &c);
+    assert_eq!(first_failure(&line), (None, "alpha".into()), "{line}");
+}
+
+#[test]
+fn paper_problems_certificates_are_accepted() {
+    let dir = tempfile::tempdir().unwrap();
+    // Problem 6: the goal is unreachable from x1 (inf states); problem 10 as published.
+    for (id, extra) in [
+        ("0", vec![]),
+        ("6", vec![]),
+        ("10", vec![]),
+        ("10", vec!["--step-cost", "euclidean"]),
+        ("10", vec!["--gamma", "0.9"]),
+        ("3", vec!["--gamma", "0.7", "--noise", "reference"]),
+    ] {
+        let source = ["--problem", id];
+        let cert = certify(dir.path(), &source, &extra);
+        let expected = if extra.contains(&"--gamma") {
+            "truecost"
+        } else {
+            "deterministic"
+        };
+        assert_eq!(cert["objective"], expected, "problem {id} {extra:?}");
+        assert_eq!(
+            cert["problem"]["sha256_of"], "truecost-canonical-mdp/1",
+            "problem {id}"
+        );
+        let v = accepted(dir.path(), &source, &cert);
+        assert_eq!(v["states"], 400);
+        // The same certificate does not certify another problem.
+        let line = rejected(dir.path(), &["--problem", "11"], &cert);
+        assert_eq!(first_failure(&line), (None, "problem".into()), "{line}");
+    }
+    // Problem 10, γ = 0.9: the first state with a value other than 0 and inf, raised by
+    // 10^-30. Its own equation breaks, and so may those of states whose policy leads into
+    // it: the first failing state is at most the tampered one.
+    let source = ["--problem", "10"];
+    let cert = certify(dir.path(), &source, &["--gamma", "0.9"]);
+    let x = cert["values"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|v| v != "inf" && v != "0")
+        .unwrap();
+    let off = tampered(&cert, |c| {
+        let v = c["values"][x].as_str().unwrap().to_string();
+        let (n, d) = v.split_once('/').unwrap_or((&v, "1"));
+        // n/d + 1/(d·10^30) = (n·10^30 + 1)/(d·10^30).
+        c["values"][x] = json!(format!("{n}{}1/{d}{}", "0".repeat(29), "0".repeat(30)));
+    });
+    let line = rejected(dir.path(), &source, &off);
+    let (state, condition) = first_failure(&line);
+    assert!(state.unwrap() <= x, "{line}");
+    assert!(
+        condition == "evaluation" || condition == "optimality",
+        "{line}"
+    );
+}
+
+#[test]
+fn environment_certificates_are_accepted() {
+    let dir = tempfile::tempdir().unwrap();
+    for (env, extra) in [
+        ("frozenlake", vec![]),
+        ("cliffwalking", vec![]),
+        (
+            "frozenlake:slippery=false",
+            vec!["--objective", "discounted", "--alpha", "9/10"],
+        ),
+    ] {
+        let source = ["--env", env];
+        let cert = certify(dir.path(), &source, &extra);
+        accepted(dir.path(), &source, &cert);
+    }
+    // Reach has no certificate: refused before solving.
+    let line = fails_one_line(&[
+        "solve",
+        "--env",
+        "frozenlake",
+        "--algorithm",
+        "exact",
+        "--objective",
+        "reach",
+        "--certificate",
+        &s(&dir.path().join("r.json")),
+    ]);
+    assert!(line.contains("not reach"), "{line}");
+    let line = fails_one_line(&[
+        "solve",
+        "--problem",
+        "10",
+        "--algorithm",
+        "dijkstra",
+        "--certificate",
+        &s(&dir.path().join("r.json")),
+    ]);
+    assert!(line.contains("--algorithm exact"), "{line}");
+}

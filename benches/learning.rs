@@ -1,7 +1,7 @@
 //! Benchmarks of Q-learning on Problem 10 of the paper: `ρ = 1`, `Q₀ = 0`, the paper's
 //! 1000 episodes × 3000 steps, ε = 0 (greedy) and ε = 0.9 over the random plan.
 //!
-//! * `q_learning/<ε>/reference` — the reference mode of SPEC §7 (`f64` Euclidean costs, checks
+//! * `q_learning/<ε>/reference` — the reference mode of docs/spec.md §7 (`f64` Euclidean costs, checks
 //!   every 1000 actions): the same work as the paper's Python code, which takes about 0.9 s
 //!   (ε = 0) and 2.0 s (ε = 0.9) per run; the target is ≥ 100× faster (≤ 9 ms, ≤ 20 ms).
 //! * `q_learning/<ε>/exact` — unit step costs in exact `Units`, metrics after every action.

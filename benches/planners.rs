@@ -1,14 +1,14 @@
 //! Benchmarks of the model-free planners on Problem 10 of the paper.
 //!
 //! Every benchmark times exactly the timed region of the experiments' model-free rows,
-//! [`model_free_counts`] (SPEC §2 "model-free variants"): the depth-first
+//! [`model_free_counts`] (docs/spec.md §2, the model-free variants): the depth-first
 //! exploration from `x1`, one planner on the discovered graph, and its path. Compiling the
 //! problem into a graph happens once, outside the timed loop.
 //!
 //! * `model_free/<planner>/exact` — unit step costs, exact `Units` values; Dijkstra backwards
 //!   from the goals, value iteration to its fixed point.
 //! * `model_free/<planner>/exact_euclidean` — the same with the exact step cost 800/19.
-//! * `model_free/<planner>/reference` — the reference mode of SPEC §7 (`f64`): forward
+//! * `model_free/<planner>/reference` — the reference mode of docs/spec.md §7 (`f64`): forward
 //!   Dijkstra from `x1`, value iteration capped at 1000 sweeps.
 //!
 //! The targets are ≥ 150× the paper's Python code measured on the same machine

@@ -5,10 +5,11 @@
 //! Sakçak, LaValle), with a reference mode that reproduces the paper's published counts.
 //!
 //! Architecture (each layer imports only the layers before it; `tests/architecture.rs` checks
-//! this from the source): [`echo`] → [`atomic`], [`bounded`] → [`value`] → [`model`] →
+//! this from the source): [`echo`] → [`atomic`], [`bounded`] → [`value`] → [`model`] and
+//! [`certificate`] (the checker of certificates: plain model data and big rationals only) →
 //! [`problems`], [`solvers`] → [`planning`], [`stochastic`] → [`learning`] → [`claims`] →
 //! [`envs`] → [`objectives`], [`experiments`] → [`figures`] → `cli` (the binary). Beneath them
-//! all, the `kernel/` crate `truecost_kernel` (no dependencies): the value types' arithmetic
+//! all, the `kernel/` crate `truecost_kernel` (no dependencies under Kani): the value types' arithmetic
 //! core ([`value::CostValue`], [`value::Units`]), the planning graph, the planners
 //! ([`solvers`]) and the claims' bignum-free oracles (`claims::{exact, tiny, oracle,
 //! qlearning}`, the C2/C3/C4 checks) — exactly what the Kani harnesses in `proofs/` verify.

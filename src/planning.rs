@@ -1,7 +1,7 @@
 //! One planning run, as the CLI and the experiments ask for it: a problem in a mode, a planner,
 //! optionally model-free, and a report in the problem's own state numbering.
 //!
-//! Modes (SPEC §7): `exact` is the paper's text — exact costs (unit or `800/19` per grid move),
+//! Modes (docs/spec.md §7): `exact` is the paper's text — exact costs (unit or `800/19` per grid move),
 //! exact values, Dijkstra backwards from the goal set. `reference` reproduces the paper's code —
 //! `f64` Euclidean costs on its coordinates, its action orders, Dijkstra forwards from `x1`
 //! stopping at the goal, value iteration capped at 1000 sweeps. Every report names its mode.
@@ -25,7 +25,7 @@ pub enum Mode {
     Reference,
 }
 
-/// A planner of SPEC §2.
+/// A planner of docs/spec.md §2.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Algorithm {
@@ -109,7 +109,7 @@ pub fn plan_exact(problem: &Problem, algorithm: Algorithm, model_free: bool) -> 
     }
 }
 
-/// Plans in the reference mode on an `f64` graph (SPEC §7).
+/// Plans in the reference mode on an `f64` graph (docs/spec.md §7).
 pub fn plan_reference(graph: &Graph<f64>, algorithm: Algorithm, model_free: bool) -> PlanReport {
     plan_on(
         graph,
@@ -212,14 +212,14 @@ pub struct PlanCounts {
 }
 
 impl PlanCounts {
-    /// `exploration_actions + planner_actions` (SPEC §2, "Report actions = exploration + solver").
+    /// `exploration_actions + planner_actions` (docs/spec.md §2).
     pub fn actions(&self) -> u64 {
         self.exploration_actions + self.planner_actions
     }
 }
 
-/// The timed region of a model-free planner row (SPEC §2 "model-free
-/// variants"): the robot explores the **prepared** graph, then the planner runs on the
+/// The timed region of a model-free planner row (docs/spec.md §2, the
+/// model-free variants): the robot explores the **prepared** graph, then the planner runs on the
 /// discovered graph and its path is read off — what the paper's code times. Problem
 /// compilation happens before (the caller passes a compiled [`Graph`]); no oracle runs here (in
 /// reference mode Dijkstra is only the paper's forward search, never the backward search

@@ -1,4 +1,4 @@
-//! Cost-to-go values: the exact extended rationals of SPEC §1 and the value types the solvers
+//! Cost-to-go values: the exact extended rationals of docs/spec.md §1 and the value types the solvers
 //! run on.
 //!
 //! A cost-to-go `G(x)` is a non-negative rational or `+∞` (no goal reachable). The solvers are
@@ -13,7 +13,7 @@
 //!   more than `states + 1` stage costs), so an addition can never wrap. This is the fast exact
 //!   representation.
 //! * [`Extended`] — a big rational or `+∞`; the fallback when `Units` is not provably safe.
-//! * `f64` — only for the reference mode of SPEC §7, which reproduces the paper's float code.
+//! * `f64` — only for the reference mode of docs/spec.md §7, which reproduces the paper's float code.
 
 use std::cmp::Ordering;
 use std::fmt;
@@ -27,7 +27,7 @@ pub type Rational = BigRational;
 
 pub use truecost_kernel::value::{CostValue, Units};
 
-/// The exact meaning of a planner's value (SPEC §1): the big-rational side of [`CostValue`],
+/// The exact meaning of a planner's value (docs/spec.md §1): the big-rational side of [`CostValue`],
 /// kept out of the bignum-free kernel that the Kani harnesses verify.
 ///
 /// ```
@@ -153,7 +153,7 @@ impl ExactValue for Extended {
     }
 }
 
-/// `f64` is the value type of the reference mode only (SPEC §7). It is not exact.
+/// `f64` is the value type of the reference mode only (docs/spec.md §7). It is not exact.
 impl ExactValue for f64 {
     fn to_extended(&self, _unit: &Rational) -> Option<Extended> {
         None

@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 
 /// The layers of `src/`'s top-level modules, lowest first. Shared utilities sit at the bottom;
 /// then the exact values, the planning graph, the paper's problems and the deterministic
-/// solvers; the stochastic model and the learners; the claims engines (SPEC §6, whose exact
+/// solvers; the stochastic model and the learners; the claims engines (docs/spec.md §6, whose exact
 /// polynomial algebra `claims::poly` the objectives build on); the Gymnasium environments;
 /// the three objectives over any stochastic model, which load environments; the paper's
 /// experiments; the figures drawn from problems, environments and experiment reports; and the
@@ -34,7 +34,7 @@ const LAYERS: &[&[&str]] = &[
     &["echo"],
     &["atomic", "bounded"],
     &["value"],
-    &["model"],
+    &["model", "certificate"],
     &["problems", "solvers"],
     &["planning", "stochastic"],
     &["learning"],

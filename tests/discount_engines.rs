@@ -110,7 +110,7 @@ fn both_engines_agree_on_the_problem_files() {
         }
     }
     assert!(compared >= 5, "{compared} deterministic files");
-    // The worked example (SPEC §6): (0, α*] with α* the root of 5α⁴ − α³ − α² − α − 1
+    // The worked example (docs/spec.md §6): (0, α*] with α* the root of 5α⁴ − α³ − α² − α − 1
     // (0.91635458253384933778…, by hand from the lasso 0 ↺ (cost 1 forever) against the
     // path 0 → 1 → … → 5 costing 1 + 2α + 3α² + 4α³ + 5α⁴).
     let p = truecost::model::file::read(std::path::Path::new("problems/discount-example.json"))

@@ -1,5 +1,5 @@
 //! Q-learning and its exploration plans: the base-4 digits of π against known digits, the
-//! digit stream, exact coins, and the learner's invariants (SPEC §2, §4) as properties over
+//! digit stream, exact coins, and the learner's invariants (docs/spec.md §2, §4) as properties over
 //! random problems, judged by an independent oracle (Bellman–Ford on exact rationals).
 
 mod common;
@@ -39,7 +39,7 @@ fn pi_digits_match_256_known_base4_digits() {
     assert_eq!(known.len(), 256);
     let d = pi_digits(256);
     assert_eq!(&d[..256], &known[..]);
-    // The stream is "3" followed by the fractional digits (SPEC §7).
+    // The stream is "3" followed by the fractional digits (docs/spec.md §7).
     let mut s = PiStream::new();
     assert_eq!(s.next_digit(), 3);
     let read: Vec<u8> = (0..256).map(|_| s.next_digit()).collect();
@@ -49,7 +49,7 @@ fn pi_digits_match_256_known_base4_digits() {
 
 #[test]
 fn spec_section_2_prints_pi_wrongly_in_base_4() {
-    // SPEC §2 writes π = 3.1032 0333 1222 … (base 4); π is 3.0210 0333 1222 2020 …: 0x2 = 02,
+    // docs/spec.md §2 writes π = 3.1032 0333 1222 … (base 4); π is 3.0210 0333 1222 2020 …: 0x2 = 02,
     // 0x4 = 10 (the printed first group differs), 0x3F = 0333, 0x6A = 1222, 0x88 = 2020.
     let d = pi_digits(16);
     assert_eq!(&d[..16], &[0, 2, 1, 0, 0, 3, 3, 3, 1, 2, 2, 2, 2, 0, 2, 0]);
@@ -671,7 +671,7 @@ where
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
 
-    /// SPEC §2 derandomized Q-learning (ρ = 1, Q₀ = 0 ≤ Q*): every update is monotone and
+    /// docs/spec.md §2 derandomized Q-learning (ρ = 1, Q₀ = 0 ≤ Q*): every update is monotone and
     /// bounded by Q*; V = G* on every tracked state, once reached, stays; the reported
     /// milestones are the first actions at which they hold (checked against the oracle after
     /// every update).

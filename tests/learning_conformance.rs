@@ -1,4 +1,4 @@
-//! Reference mode against the published deterministic counts (SPEC §7): greedy Q-learning, the
+//! Reference mode against the published deterministic counts (docs/spec.md §7): greedy Q-learning, the
 //! π universal plan and the model-free planners reproduce the paper's numbers with the same
 //! code for every problem.
 //!

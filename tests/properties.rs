@@ -1,4 +1,4 @@
-//! Property tests of the exact planners (SPEC §1, §2) over random deterministic problems, on
+//! Property tests of the exact planners (docs/spec.md §1, §2) over random deterministic problems, on
 //! both value representations (`ExactGraph::Units` and `ExactGraph::Big`), against oracles
 //! written from scratch in `common` (Bellman–Ford and simple-path enumeration over
 //! `BigRational`).
@@ -72,7 +72,7 @@ fn check_policy<V: ExactValue>(
         }
     }
     // At a state whose moves all cost > 0, the greedy choice is the first minimiser in the
-    // state's action order (SPEC §7 / `greedy_policy` documentation).
+    // state's action order (docs/spec.md §7 / `greedy_policy` documentation).
     for x in 0..p.states() {
         if p.is_goal(x) || oracle[x].is_none() || p.moves(x).iter().any(|m| m.cost.is_zero()) {
             continue;

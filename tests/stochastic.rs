@@ -1,4 +1,4 @@
-//! The stochastic model (SPEC §3, §7): hand-derived optima, the exact Bellman equation, γ = 1
+//! The stochastic model (docs/spec.md §3, §7): hand-derived optima, the exact Bellman equation, γ = 1
 //! against Dijkstra, exact scaling with the step cost, optimality against an exhaustive
 //! brute-force oracle and random perturbations (proptest), the published reference counts, and
 //! bad input. Expected values come from hand derivations, independent oracles or the published
@@ -132,7 +132,7 @@ fn star_distinguishes_the_noise_models() {
     assert_eq!(listed, ["1/2", "1/8", "1/8", "1/4"]);
 }
 
-/// `split_f64` (the reference-mode float model, SPEC §7) is `split` computed in `f64`: each of
+/// `split_f64` (the reference-mode float model, docs/spec.md §7) is `split` computed in `f64`: each of
 /// its three probabilities is within a few units in the last place of the exact one, for both
 /// noise models and every number of moves the grids have (1 to 8).
 #[test]

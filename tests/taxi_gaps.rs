@@ -307,7 +307,7 @@ fn deterministic_path_agrees_with_brute_force_on_random_models() {
     assert!(with_breakpoints >= 5, "{with_breakpoints}");
 }
 
-/// The paper's C3 worked example (SPEC §6): the discount-optimal policy from 0 avoids the goal
+/// The paper's C3 worked example (docs/spec.md §6): the discount-optimal policy from 0 avoids the goal
 /// exactly when `1/(1−α) < Σ_{i=1..5} i α^{i−1}`; one breakpoint, the threshold.
 #[test]
 fn c3_example_threshold_by_the_deterministic_path() {

@@ -25,7 +25,7 @@ fn settings() -> insta::Settings {
     s
 }
 
-/// The claims the paper states as printed that the engines refute (SPEC §6); every other claim
+/// The claims the paper states as printed that the engines refute (docs/spec.md §6); every other claim
 /// (corrected statements, C2, C3, the worked example) must hold.
 const REFUTED: [&str; 2] = ["C1", "C4"];
 

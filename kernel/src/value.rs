@@ -1,6 +1,6 @@
-//! The arithmetic core of the cost-to-go value types (SPEC §1, §2): the [`CostValue`] trait the
+//! The arithmetic core of the cost-to-go value types (docs/spec.md §1, §2): the [`CostValue`] trait the
 //! planners are generic over, its fast exact implementation [`Units`], and `f64` for the
-//! reference mode of SPEC §7.
+//! reference mode of docs/spec.md §7.
 //!
 //! A cost-to-go `G(x)` is a non-negative rational or `+∞` (no goal reachable). What needs big
 //! rationals — the exact extended rationals themselves (`truecost::value::Extended`), the value
@@ -11,7 +11,7 @@
 use std::cmp::Ordering;
 use std::fmt;
 
-/// The value type a planner computes with (SPEC §2: "generic over the value type").
+/// The value type a planner computes with (docs/spec.md §2).
 ///
 /// `plus` is the extended addition of the cost model (`+∞` absorbs); implementations must be
 /// exact or, for `f64`, say that they are not.
@@ -135,7 +135,7 @@ impl CostValue for Units {
     }
 }
 
-/// `f64` is the value type of the reference mode only (SPEC §7). It is not exact.
+/// `f64` is the value type of the reference mode only (docs/spec.md §7). It is not exact.
 impl CostValue for f64 {
     const EXACT: bool = false;
     #[inline]

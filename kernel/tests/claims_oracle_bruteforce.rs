@@ -54,7 +54,7 @@ fn walk(t: &Tiny, policy: &Policy, start: usize, steps: usize) -> (Vec<usize>, V
 }
 
 /// The literal stage sequence of `policy` from `start`, `len` stages long (zeros after
-/// termination, as the frozen cycle of SPEC §1).
+/// termination, as the frozen cycle of docs/spec.md §1).
 fn stages(t: &Tiny, policy: &Policy, start: usize, len: usize) -> Vec<i64> {
     let (_, mut s, _) = walk(t, policy, start, len);
     s.resize(len, 0);

@@ -1,6 +1,6 @@
 (** * Claim C1: finite-time convergence of derandomized Q-learning (the paper's Proposition 1)
 
-    - [c1_as_printed_refuted]: C1 as printed (SPEC §6; the claims registry's
+    - [c1_as_printed_refuted]: C1 as printed (docs/spec.md §6; the claims registry's
       [c1::STATEMENT]) fails on the minimal counterexample [loop2];
       [c1_as_printed_refuted_positive_costs]: it fails also with every move cost positive and
       [Q0(xg, uT) = 0] ([back2]).

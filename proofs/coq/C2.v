@@ -1,6 +1,6 @@
 (** * C2: cost-reward equivalence, for every linear cost functional
 
-    The paper's remark on costs and rewards, restated as claim C2 of SPEC §6; the claims
+    The paper's remark on costs and rewards, restated as claim C2 of docs/spec.md §6; the claims
     registry's statement ([src/claims/c2.rs], [STATEMENT]) reads: "for any cost functional
     linear in the sequence of stage costs (total, discounted, average, and their finite-horizon
     versions), a policy minimises the cost iff it maximises the reward obtained by negating
@@ -78,7 +78,7 @@ Section Optimality.
   (** The reward sequence of a policy, [r = -l] stage by stage. *)
   Definition reward (pi : Pi) : sequence := neg (stage pi).
 
-  (** C2 (SPEC §6; [src/claims/c2.rs], [STATEMENT]): for every odd functional [F] -- in
+  (** C2 (docs/spec.md §6; [src/claims/c2.rs], [STATEMENT]): for every odd functional [F] -- in
       particular every linear one, see [c2_linear] -- [pi] minimises the cost [F (l)] over the
       admissible policies iff it maximises the reward [F (-l)]. *)
   Theorem c2_cost_reward_equivalence :
@@ -370,7 +370,7 @@ Qed.
 
 (** ** Total cost with infinite values *)
 
-(** The total cost of SPEC §1 takes values in the extended reals: a policy whose stage costs
+(** The total cost of docs/spec.md §1 takes values in the extended reals: a policy whose stage costs
     sum to [+oo] (a cycle of positive cost, never reaching the goal) has total cost [+oo], and
     its total reward is [-oo]. [total] above has no value on such a sequence; [total_ext] gives
     it one, and [c2_total_extended] is C2 over the extended reals, with [-oo <= v <= +oo]. *)
@@ -432,7 +432,7 @@ Section Extended.
     adm pi /\
     exists v, F (val pi) v /\ forall sigma w, adm sigma -> F (val sigma) w -> ext_le w v.
 
-  (** C2 for the total cost in [[-oo, +oo]] (SPEC §6; [src/claims/c2.rs], [STATEMENT]): [pi]
+  (** C2 for the total cost in [[-oo, +oo]] (docs/spec.md §6; [src/claims/c2.rs], [STATEMENT]): [pi]
       minimises the total cost iff it maximises the total reward [r = -l], the policies
       of infinite cost compared too. *)
   Theorem c2_total_extended :
@@ -463,7 +463,7 @@ From Truecost Require Import Model Paths.
 Open Scope R_scope.
 
 (** The stage costs of the move sequence [w] from [x] (Model.v's [wvalid], [wcost]): the costs
-    of its moves, then [0] for ever (termination at the goal, SPEC §1). *)
+    of its moves, then [0] for ever (termination at the goal, docs/spec.md §1). *)
 Fixpoint move_stages (P : problem) (x : nat) (w : list nat) : sequence :=
   match w with
   | nil => fun _ => 0

@@ -6,7 +6,7 @@
     - [c3_alpha_star]: that quartic has exactly one root [alpha_star] in [(0,1)]; it lies strictly
       between the two rationals [alpha_lo] and [alpha_hi] ([alpha_hi - alpha_lo = 2^-100]), and
       the quartic is negative exactly on [(0, alpha_star)].
-    - [c3_example_threshold]: in the worked example (SPEC §6, C3; the claims registry's
+    - [c3_example_threshold]: in the worked example (docs/spec.md §6, C3; the claims registry's
       C3-example), for every real [alpha] in [(0,1)], every discount-optimal policy avoids the
       goal iff the printed inequality holds (iff the quartic is negative); below [alpha_star] every
       discount-optimal policy has infinite true cost. Policies: the stationary deterministic
@@ -70,7 +70,7 @@ Qed.
 
 
 (** C3's worked example over ALL policies (the paper's discounting proposition, its example;
-    SPEC §6 C3; the claims registry's C3-example): for every real [alpha] in [(0,1)], a
+    docs/spec.md §6 C3; the claims registry's C3-example): for every real [alpha] in [(0,1)], a
     discount-optimal policy exists among all policies (history-dependent or not), every
     discount-optimal policy avoids the goal iff the printed inequality holds (iff the quartic
     is negative, [c3_printed_iff_quartic]), and then every discount-optimal policy stays at 0
@@ -133,7 +133,7 @@ Lemma recost_fst f i l : map fst (recost f i l) = map fst l.
 Proof. revert i; induction l as [|[y c] l IH]; intros i; simpl; [|rewrite IH]; reflexivity. Qed.
 
 (** C3 as the claims registry states it, for every finite problem (the paper's discounting
-    proposition; SPEC §6 C3): if a goal-reaching policy exists and some admissible policy's
+    proposition; docs/spec.md §6 C3): if a goal-reaching policy exists and some admissible policy's
     path from [x1] enters a cycle avoiding the goal (here: a stationary policy whose path never
     visits the goal), then for EVERY discount factor [alpha] in [(0,1)] there are stage costs
     -- on the same states, goal and moves, all strictly positive, termination 0 -- for which a

@@ -205,7 +205,7 @@ Proof.
   - apply Hc; lia.
 Qed.
 
-(** C3 with truecost's certificate (the paper's discounting proposition; SPEC §6 C3; the
+(** C3 with truecost's certificate (the paper's discounting proposition; docs/spec.md §6 C3; the
     claims registry's C3 statement: "if a goal-reaching policy exists and some policy reaches a
     cycle avoiding the goal, then there are stage costs l and a discount factor alpha for which
     a discount-optimal policy has infinite true cost"). For every problem [P], every marking
@@ -377,7 +377,7 @@ Proof.
   destruct (Hmove k) as (i & E & Hi); exists i; unfold policy_marks; rewrite E; auto.
 Qed.
 
-(** C3 from the registry's hypothesis (the paper's discounting proposition; SPEC §6 C3; the
+(** C3 from the registry's hypothesis (the paper's discounting proposition; docs/spec.md §6 C3; the
     claims registry's C3 statement): if some stationary policy's path from [x1] (admissible
     along it) never visits the goal, then for every real [alpha] in [(0,1)] and every
     [K > 1/(1-alpha)] the certificate costs (1 on that policy's moves, [K] on every other

@@ -349,7 +349,7 @@ Proof.
   intros y Hy; unfold reach_pi; destruct (Nat.eqb_spec y 5); [lia | auto].
 Qed.
 
-(** C3's worked example (the paper's discounting proposition, its example; SPEC §6 C3; the
+(** C3's worked example (the paper's discounting proposition, its example; docs/spec.md §6 C3; the
     claims registry's C3-example: "the discount-optimal policy from 0 avoids the goal exactly
     when 1/(1-alpha) < sum_{i=1..5} i alpha^(i-1)"). For every real [alpha] in [(0,1)]:
     a discount-optimal policy exists; every discount-optimal policy avoids the goal iff the

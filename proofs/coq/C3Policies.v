@@ -21,7 +21,7 @@ Definition valid_policy (P : problem) (pi : spolicy) : Prop :=
   forall x, (x < nstates P)%nat -> In (pi x) (actions P x).
 
 (** [state_at P pi x k]: the state after [k] stages from [x] under [pi] ([uT] freezes the
-    goal, SPEC §1). *)
+    goal, docs/spec.md §1). *)
 Fixpoint state_at (P : problem) (pi : spolicy) (x : nat) (k : nat) : nat :=
   match k with
   | O => x

@@ -1,6 +1,6 @@
 (** * Claim C4: episodic equivalence (the paper's Proposition 4)
 
-    - [c4_as_printed_refuted]: C4 as printed (SPEC §6; the claims registry's [c4::STATEMENT])
+    - [c4_as_printed_refuted]: C4 as printed (docs/spec.md §6; the claims registry's [c4::STATEMENT])
       fails on the minimal counterexample that [truecost verify] prints
       ([problems/counterexamples/c4-as-printed.json]): at the bonus [M = -3] the printed
       interval excludes [M], yet [pi*] is average-cost optimal against every run of the
@@ -274,7 +274,7 @@ Qed.
 Lemma A_printed_other : A_printed 3 0 2 1 = - / 3.
 Proof. unfold A_printed; field. Qed.
 
-(** C4 as printed, refuted (the paper's Proposition 4 as printed; SPEC §6 C4; the claims
+(** C4 as printed, refuted (the paper's Proposition 4 as printed; docs/spec.md §6 C4; the claims
     registry's [c4::STATEMENT]), on the minimal counterexample [verify] prints
     ([problems/counterexamples/c4-as-printed.json], at the bonus [M = -3]). In [c4ex]: the
     single-shot optimum is [G*(x1) = 0], attained by [pi* = 0 -> 1 -> 2] ([S* = 3] states,
@@ -1517,7 +1517,7 @@ Proof.
 Qed.
 
 (** C4-corrected for every finite deterministic problem whose goal is reachable from [x1]
-    (the paper's Proposition 4, corrected; SPEC §6 C4; the claims registry's [c4::CORRECTED]):
+    (the paper's Proposition 4, corrected; docs/spec.md §6 C4; the claims registry's [c4::CORRECTED]):
     let [u*] be an optimal single-shot path (a simple goal path from [x1] of cost
     [L* = G*(x1)], [S* = |u*| + 1] states; one exists whenever the goal is reachable,
     [Gstar_attained] and [short_walk]), and [pi*] the policy that follows it and resets. Then

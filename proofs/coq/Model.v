@@ -1,9 +1,9 @@
 (** * The model: finite deterministic planning problems and derandomized Q-learning
 
-    A finite deterministic planning problem of SPEC §1, its optimal cost-to-go [Gstar]
-    (SPEC's G-star), the optimal state-action values [Qstar] (Q-star), the
+    A finite deterministic planning problem of docs/spec.md §1, its optimal cost-to-go [Gstar]
+    (G-star of docs/spec.md §1), the optimal state-action values [Qstar] (Q-star), the
     fewest moves on an optimal path [hstar] (h), the [rho = 1] update of derandomized
-    Q-learning (SPEC §2, the update of the paper's Proposition 1) and the round bound of
+    Q-learning (docs/spec.md §2, the update of the paper's Proposition 1) and the round bound of
     C1-corrected ([round_bound], the kernel's [QProblem::round_bound]).
 
     Everything is over the rationals [Q] and computable, so that the bridge test can evaluate
@@ -14,12 +14,12 @@ Import ListNotations.
 
 Open Scope Q_scope.
 
-(** ** Problems (SPEC §1) *)
+(** ** Problems (docs/spec.md §1) *)
 
 (** States are [0 .. nstates - 1], the initial state is [x1 = 0], [goal] is the goal state.
     [moves x] is the action list [U(x)], each action given by its successor and stage cost
     [(f(x,u), l(x,u))], in order. The goal has, in addition, the termination action [uT]
-    with [f(xg, uT) = xg] and [l(xg, uT) = 0] (SPEC §1). *)
+    with [f(xg, uT) = xg] and [l(xg, uT) = 0] (docs/spec.md §1). *)
 Record problem := {
   nstates : nat;
   goal : nat;
@@ -57,7 +57,7 @@ Definition is_move (p : nat * action) : bool :=
 (** The move pairs (every pair but the goal's termination pair). *)
 Definition move_pairs (P : problem) : list (nat * action) := filter is_move (pairs P).
 
-(** [f(x,u)] and [l(x,u)] (SPEC §1); [uT] is a zero-cost self-loop. An out-of-range move
+(** [f(x,u)] and [l(x,u)] (docs/spec.md §1); [uT] is a zero-cost self-loop. An out-of-range move
     index (never a pair) reads as a zero-cost self-loop too. *)
 Definition target (P : problem) (x : nat) (a : action) : nat :=
   match a with Term => x | Move i => fst (nth i (moves P x) (x, 0)) end.
@@ -95,7 +95,7 @@ Definition nmin (a b : option nat) : option nat :=
 
 Definition nminl (l : list (option nat)) : option nat := fold_right nmin None l.
 
-(** ** Paths and their costs (SPEC §1) *)
+(** ** Paths and their costs (docs/spec.md §1) *)
 
 (** A move sequence from [x] is a list of move indices. [wend] is where it ends, [wcost] its
     cost (the sum of the stage costs), [wvalid] says every index names a move. Appending the
@@ -117,7 +117,7 @@ Fixpoint wvalid (P : problem) (x : nat) (w : list nat) : Prop :=
 Definition reaches (P : problem) (x : nat) (w : list nat) : Prop :=
   wvalid P x w /\ wend P x w = goal P.
 
-(** ** The optimal cost-to-go [G*] (SPEC §1) *)
+(** ** The optimal cost-to-go [G*] (docs/spec.md §1) *)
 
 (** Bellman-Ford: [bf k x] is the least cost of a goal-reaching move sequence from [x] with at
     most [k] moves ([None] if there is none). Kept as a list of the [nstates] values, so that
@@ -138,12 +138,12 @@ Fixpoint bfl (P : problem) (k : nat) : list (option Q) :=
 Definition bf (P : problem) (k : nat) (x : nat) : option Q := nth x (bfl P k) None.
 
 (** [G*(x)]: the least cost over goal-reaching action sequences from [x], [None] = [+oo]
-    (SPEC §1). Sequences of at most [nstates] moves suffice (costs are [>= 0]: a cheapest
+    (docs/spec.md §1). Sequences of at most [nstates] moves suffice (costs are [>= 0]: a cheapest
     sequence can be taken without repeated states); [Paths.v] proves that [Gstar] is the least
     cost over ALL goal-reaching sequences, and attained. *)
 Definition Gstar (P : problem) (x : nat) : option Q := bf P (nstates P) x.
 
-(** [Q*(x,u) = l(x,u) + G*(f(x,u))] (SPEC §1); [Q*(xg,uT) = 0]. *)
+(** [Q*(x,u) = l(x,u) + G*(f(x,u))] (docs/spec.md §1); [Q*(xg,uT) = 0]. *)
 Definition Qstar (P : problem) (x : nat) (a : action) : option Q :=
   match a with
   | Term => Some 0
@@ -177,7 +177,7 @@ Definition hb (P : problem) (k : nat) (x : nat) : option nat := nth x (hbl P k) 
     is unreachable); [Paths.v] proves this meaning. *)
 Definition hstar (P : problem) (x : nat) : option nat := hb P (nstates P) x.
 
-(** ** Derandomized Q-learning, [rho = 1] (SPEC §2; the paper's Proposition 1) *)
+(** ** Derandomized Q-learning, [rho = 1] (docs/spec.md §2; the paper's Proposition 1) *)
 
 (** Value vectors: one rational per state-action pair. *)
 Definition qvec := nat -> action -> Q.

@@ -1,9 +1,9 @@
-(** * Paths and optimal values: [Gstar] and [hstar] mean what SPEC §1 says
+(** * Paths and optimal values: [Gstar] and [hstar] mean what docs/spec.md §1 says
 
     [Gstar_least] and [Gstar_attained]: [G*(x)] is the least cost over all goal-reaching move
     sequences from [x] (of any length), attained by one, and [+oo] exactly when none exists
     ([Gstar_none]). [Gstar_le_move], [Gstar_opt_move] and [Gstar_goal] are the Bellman equation
-    [G*(x) = min_u (l(x,u) + G*(f(x,u)))], [G*(xg) = 0] (SPEC §1: [G*(x) = min_u Q*(x,u)]).
+    [G*(x) = min_u (l(x,u) + G*(f(x,u)))], [G*(xg) = 0] (docs/spec.md §1: [G*(x) = min_u Q*(x,u)]).
     [hstar_attained] and [hstar_least]: [h(x)] is the fewest moves of an optimal goal-reaching
     sequence from [x]; [hstar_descent] is the Descent step of [docs/proofs/c1.md]. *)
 
@@ -346,14 +346,14 @@ Proof.
       exists v'; split; auto; lra.
 Qed.
 
-(** ** [G*] is the least cost over goal-reaching sequences (SPEC §1) *)
+(** ** [G*] is the least cost over goal-reaching sequences (docs/spec.md §1) *)
 
-(** [G*(x)] is attained by a goal-reaching sequence (SPEC §1). *)
+(** [G*(x)] is attained by a goal-reaching sequence (docs/spec.md §1). *)
 Theorem Gstar_attained x g :
   (x < n)%nat -> Gstar P x = Some g -> exists w, reaches P x w /\ wcost P x w == g.
 Proof. intros Hx H; destruct (bf_sound _ _ _ Hx H) as (w & ? & ? & _); eauto. Qed.
 
-(** No goal-reaching sequence from [x], of any length, is cheaper than [G*(x)] (SPEC §1). *)
+(** No goal-reaching sequence from [x], of any length, is cheaper than [G*(x)] (docs/spec.md §1). *)
 Theorem Gstar_least x w :
   (x < n)%nat -> reaches P x w -> exists g, Gstar P x = Some g /\ g <= wcost P x w.
 Proof.

@@ -16,7 +16,7 @@ way ``truecost export --env`` builds the built-in environments:
   Taxi's deliveries +20); the others are **traps** (the episode ends in failure). ``goals=``
   overrides the choice. A goal has no action (termination, cost 0); a trap a single zero-cost
   self-loop, so that no policy entering it reaches a goal.
-* **stage costs** (the paper's truecost, SPEC §1 and §3): an outcome with reward ``r < 0``
+* **stage costs** (the paper's truecost, docs/spec.md §1 and §3): an outcome with reward ``r < 0``
   costs ``-r`` (the environment's own penalty: CliffWalking's -1 per step and -100 per fall,
   Taxi's -10 for an illegal action); an outcome with ``r >= 0`` costs 1, one step (FrozenLake's
   0 and +1, Taxi's +20 delivery, whose reward is a terminal bonus, not a cost). An action costs

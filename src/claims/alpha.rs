@@ -1,4 +1,4 @@
-//! The worked example of claim C3 (SPEC §6) exactly: `X = {0..5}`, goal 5, `U = {-1, +1}`,
+//! The worked example of claim C3 (docs/spec.md §6) exactly: `X = {0..5}`, goal 5, `U = {-1, +1}`,
 //! `f(x,u) = min(5, max(0, x+u))`, `l(x,u) = x + 1`. The paper says the discount-optimal
 //! policy from 0 avoids the goal exactly when `1/(1-α) < Σ_{i=1..5} i α^{i-1}`.
 //!

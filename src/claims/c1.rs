@@ -1,4 +1,4 @@
-//! Claim C1 (SPEC §6): finite-time convergence of derandomized Q-learning (`ρ = 1`).
+//! Claim C1 (docs/spec.md §6): finite-time convergence of derandomized Q-learning (`ρ = 1`).
 //!
 //! **As printed**: costs `l ≥ 0`, *any* initial values; if every state–action pair is
 //! updated infinitely often by `Q̂(x,u) ← l(x,u) + min_{u'} Q̂(f(x,u),u')`, then `Q̂ = Q*`

@@ -1,4 +1,4 @@
-//! Claim C2 (SPEC §6): cost–reward equivalence. For a cost functional that is linear in the
+//! Claim C2 (docs/spec.md §6): cost–reward equivalence. For a cost functional that is linear in the
 //! sequence of stage costs (total, discounted, average and their finite-horizon versions), a
 //! policy minimises the cost iff it maximises the reward obtained by negating every stage cost.
 //!

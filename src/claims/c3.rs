@@ -1,4 +1,4 @@
-//! Claim C3 (SPEC §6), general form: if a goal-reaching policy exists and some policy reaches a
+//! Claim C3 (docs/spec.md §6), general form: if a goal-reaching policy exists and some policy reaches a
 //! cycle avoiding the goal, then there are costs `l` and a discount factor `α` for which a
 //! discount-optimal policy has infinite true cost.
 //!

@@ -1,4 +1,4 @@
-//! The exact bonus set of Claim C4 (SPEC §6) for problems too large for the enumeration
+//! The exact bonus set of Claim C4 (docs/spec.md §6) for problems too large for the enumeration
 //! oracle of [`super::c4`] (Taxi from one initial state: 100 running states, `6^100` stationary
 //! policies): a search over *violated cycles* with exact Bellman–Ford, no formula of the
 //! claim used.

@@ -387,6 +387,10 @@ pub const SOURCES: &[(&str, &str)] = &[
     ("C3.v", include_str!("../../proofs/coq/C3.v")),
     ("C4.v", include_str!("../../proofs/coq/C4.v")),
     ("BridgeC34.v", include_str!("../../proofs/coq/BridgeC34.v")),
+    (
+        "Certificate.v",
+        include_str!("../../proofs/coq/Certificate.v"),
+    ),
 ];
 
 /// The axioms `Print Assumptions` may list, exactly as Coq 8.16 prints their names: the

@@ -1,9 +1,9 @@
-//! Replays of derandomized Q-learning (`ρ = 1`, SPEC §2) on a problem file, round by round, in
+//! Replays of derandomized Q-learning (`ρ = 1`, docs/spec.md §2) on a problem file, round by round, in
 //! exact arithmetic: the command behind every C1 counterexample
 //! (`truecost learn --file F --q0 … --order … --rounds N`).
 //!
 //! The pairs are every move of every state, in file order, and at each goal its termination
-//! action `uT` first (`f(xg, uT) = xg`, `l = 0`, SPEC §1). A *round* updates every updatable pair
+//! action `uT` first (`f(xg, uT) = xg`, `l = 0`, docs/spec.md §1). A *round* updates every updatable pair
 //! once, in the named fair order, with `Q(x,u) ← l(x,u) + min_{u'} Q(f(x,u), u')`. `Q*` comes from
 //! an independent exact Bellman–Ford on the file's rational costs. Verdicts:
 //! * `converged at round r` — `Q = Q*` at the end of round `r` (then forever: `Q*` is a fixed
@@ -267,7 +267,7 @@ fn splitmix(state: &mut u64) -> u64 {
 }
 
 /// Runs derandomized Q-learning on `problem` from `q0` under `order` for at most `rounds`
-/// rounds (SPEC §2 with `ρ = 1`; claim C1). With [`Terminal::HeldAtZero`]
+/// rounds (docs/spec.md §2 with `ρ = 1`; claim C1). With [`Terminal::HeldAtZero`]
 /// the termination pairs are 0 and never updated (H0 of C1-corrected); with
 /// [`Terminal::Updated`] they are ordinary pairs (C1 as printed).
 ///

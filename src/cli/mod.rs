@@ -144,7 +144,7 @@ struct SolveArgs {
     #[arg(long, value_enum, default_value_t = ReportFormat::Text)]
     format: ReportFormat,
     /// Predictability gamma in (0, 1] (exact decimal text, e.g. 0.999): the stochastic model
-    /// (SPEC §3); 1 is deterministic.
+    /// (docs/spec.md §3); 1 is deterministic.
     #[arg(long, value_name = "G", allow_hyphen_values = true)]
     gamma: Option<String>,
     /// How the probability 1 - gamma is spread: `paper` (the text) or `reference` (the

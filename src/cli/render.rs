@@ -327,7 +327,7 @@ fn save(scene: &Scene, overlay: &Overlay, args: &RenderArgs) -> Result<String, S
     ))
 }
 
-/// The figure of the stochastic model (SPEC §3): its exact optimum by policy iteration.
+/// The figure of the stochastic model (docs/spec.md §3): its exact optimum by policy iteration.
 fn stochastic(args: &RenderArgs, loaded: Option<ProblemFile>) -> Result<String, String> {
     if args.noise.is_some() && args.gamma.is_none() {
         return Err(

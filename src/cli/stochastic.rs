@@ -1,4 +1,4 @@
-//! `truecost solve` in the stochastic model (SPEC §3, §7): `--gamma`, `--noise`,
+//! `truecost solve` in the stochastic model (docs/spec.md §3, §7): `--gamma`, `--noise`,
 //! `--algorithm exact`, and stochastic `vi` / `async-vi`. Every output names the noise model.
 
 use std::fmt::Write;

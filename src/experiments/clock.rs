@@ -1,5 +1,5 @@
-//! The only clock of the project: wall time measured around a call by a runner (SPEC §4 "run
-//! time"), never inside an algorithm.
+//! The only clock of the project: wall time measured around a call by a runner (docs/spec.md §4, run
+//! times), never inside an algorithm.
 
 use std::time::Instant;
 

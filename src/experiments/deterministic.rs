@@ -1,6 +1,6 @@
 //! The paper's deterministic comparison (`truecost reproduce deterministic`): Q-learning with
 //! several ε, the π universal plan and ε-decay against model-free Dijkstra and value iteration,
-//! on the paper's grid problems, over seeded samples (SPEC §2, §4, §7).
+//! on the paper's grid problems, over seeded samples (docs/spec.md §2, §4, §7).
 //!
 //! # Rows ([`PAPER_ROWS`], configuration as data)
 //!
@@ -8,14 +8,14 @@
 //! paper's 1000 × 3000) with ε ∈ {0, 0.25, 0.5, 0.75, 0.9, 1} over the random plan; the π plan
 //! with ε = 1; ε-decay (linear from 1 in the first episode to 0.1 in the last, over the random
 //! plan); model-free Dijkstra, asynchronous and synchronous value iteration (explore first, then
-//! plan; SPEC §2).
+//! plan; docs/spec.md §2).
 //!
 //! # Modes
 //!
 //! * [`Mode::Exact`] — the paper's text: exact stage costs and values (the problem compiled to
 //!   [`ExactGraph`]), metrics tracked after every action ([`Rules::Exact`]); `iterations` of a
 //!   learning row is the number of episodes run.
-//! * [`Mode::Reference`] — the paper's code (SPEC §7): `f64` graph, checks every 1000 actions,
+//! * [`Mode::Reference`] — the paper's code (docs/spec.md §7): `f64` graph, checks every 1000 actions,
 //!   `iterations` is the 0-based index of the last episode (999 = never converged). With the
 //!   default settings this reproduces the published deterministic counts: the DP rows, the
 //!   greedy ε = 0 rows and the π rows.
@@ -169,12 +169,12 @@ impl Row {
             .map_err(LearningError::from)
         };
         let epsilon = match *self {
-            // The paper's code flips `random.random() < ε` with ε a float literal (SPEC §7).
+            // The paper's code flips `random.random() < ε` with ε a float literal (docs/spec.md §7).
             Row::QLearning { epsilon, .. } => EpsilonSchedule::Constant(match rules {
                 Rules::Exact => probability(epsilon)?,
                 Rules::Reference => python_coin(epsilon.0 as f64 / epsilon.1 as f64),
             }),
-            // The text decays linearly to 0.1; the paper's code by f64 steps (SPEC §7).
+            // The text decays linearly to 0.1; the paper's code by f64 steps (docs/spec.md §7).
             Row::EpsilonDecay { start } => match rules {
                 Rules::Exact => EpsilonSchedule::decay_to_one_tenth(probability(start)?),
                 Rules::Reference => EpsilonSchedule::CodeDecay {
@@ -258,7 +258,7 @@ impl Settings {
                     StepCost::Euclidean => "Euclidean (800/19)",
                 }
             ),
-            Mode::Reference => "reference (paper code, SPEC §7): f64 Euclidean step costs on the \
+            Mode::Reference => "reference (paper code, docs/spec.md §7): f64 Euclidean step costs on the \
                                 reference grid; checks every 1000 actions; iterations = 0-based \
                                 last episode index; coins random() < ε with ε a float, ε-decay \
                                 by f64 steps of (ε0 − 0.1)/E"

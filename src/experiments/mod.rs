@@ -1,5 +1,5 @@
 //! Experiments: configurations as data, runners that wrap the clock around the algorithms, and
-//! summaries over seeded samples (SPEC §4).
+//! summaries over seeded samples (docs/spec.md §4).
 //!
 //! The algorithms never read a clock; only [`clock::Stopwatch`], used by the runners here, does.
 

@@ -1,6 +1,6 @@
 //! The paper's stochastic comparison (`truecost reproduce stochastic`): stochastic Q-learning
 //! over a grid of `γ × ρ × ε`, and stochastic asynchronous and synchronous value iteration, on
-//! the paper's grid problems, judged against the **exact** optimum (SPEC §3, §4, §7).
+//! the paper's grid problems, judged against the **exact** optimum (docs/spec.md §3, §4, §7).
 //!
 //! # Rows
 //!
@@ -337,7 +337,7 @@ pub struct RowSummary {
     pub convergence_rate: Option<f64>,
     /// Mean action of convergence (over converged runs).
     pub mean_actions_converged: Option<f64>,
-    /// Mean actions (VI: counted actions, SPEC §7).
+    /// Mean actions (VI: counted actions, docs/spec.md §7).
     pub mean_actions: Option<f64>,
     /// Their standard deviation.
     pub std_actions: Option<f64>,

@@ -1,4 +1,4 @@
-//! Learning (SPEC §2): Q-learning, its exploration plans, and the base-4 digits of π that the
+//! Learning (docs/spec.md §2): Q-learning, its exploration plans, and the base-4 digits of π that the
 //! universal plan reads.
 
 pub mod pi;

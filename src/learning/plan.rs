@@ -1,4 +1,4 @@
-//! Exploration plans (SPEC §2) and the probabilities of ε-greedy exploration.
+//! Exploration plans (docs/spec.md §2) and the probabilities of ε-greedy exploration.
 //!
 //! An exploration plan says which action to apply when ε-greedy explores:
 //!
@@ -149,7 +149,7 @@ fn below(rng: &mut ChaCha8Rng, range: u64) -> u64 {
     result
 }
 
-/// How ε varies over the episodes of a run (SPEC §2, "optional ε-decay").
+/// How ε varies over the episodes of a run (docs/spec.md §2).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum EpsilonSchedule {
     /// The same ε in every episode.
@@ -162,7 +162,7 @@ pub enum EpsilonSchedule {
         /// ε in the last episode (the paper's ε-decay row ends at 0.1).
         end: Probability,
     },
-    /// The paper's *code* (reference mode, SPEC §7): `ε ← max(0.1, ε − δ)` in `f64` after every
+    /// The paper's *code* (reference mode, docs/spec.md §7): `ε ← max(0.1, ε − δ)` in `f64` after every
     /// episode, from `ε = start`, with `δ = (start − 0.1)/E` — `q_learning_functions.py`'s
     /// `epsilon_delta = (epsilon - epsilon_min) / episodes` and
     /// `epsilon = max(epsilon_min, epsilon - epsilon_delta)`. So ε in episode `k` is about
@@ -347,7 +347,7 @@ pub fn sample_rng(seed: u64, stream: u64) -> ChaCha8Rng {
 
 /// The period of the reference digit stream: the paper's code read the first 10^7 characters of
 /// its digit file — "3" and 9 999 999 fractional base-4 digits — and wrapped around to the start
-/// (SPEC §7). Both modes use this stream, so a π run is defined for any number of actions.
+/// (docs/spec.md §7). Both modes use this stream, so a π run is defined for any number of actions.
 pub const PI_STREAM_PERIOD: u64 = 10_000_000;
 
 /// At least the first `count` fractional base-4 digits of π (capped at the stream's
@@ -365,7 +365,7 @@ pub fn pi_digits(count: usize) -> Arc<Vec<u8>> {
 
 /// The π universal plan's position in the digit stream `3, d1, d2, …, d_{P−1}, 3, d1, …`
 /// (`P` = [`PI_STREAM_PERIOD`]). One stream is shared by every π run of an experiment, in a
-/// defined order (SPEC §7: "one stream position is shared by all runs of a process").
+/// defined order (docs/spec.md §7).
 #[derive(Clone, Debug)]
 pub struct PiStream {
     position: u64,

@@ -1,5 +1,5 @@
-//! Q-learning with ε-greedy exploration over an exploration plan (SPEC §2), and the metrics of
-//! SPEC §4 tracked while it learns.
+//! Q-learning with ε-greedy exploration over an exploration plan (docs/spec.md §2), and the metrics of
+//! docs/spec.md §4 tracked while it learns.
 //!
 //! # The algorithm
 //!
@@ -21,7 +21,7 @@
 //! Exact value types ([`crate::value::Units`], [`crate::value::Extended`]) require `ρ = 1`;
 //! `ρ < 1` runs on `f64` graphs (its iterates are not finite sums of stage costs).
 //!
-//! # Metrics (SPEC §4)
+//! # Metrics (docs/spec.md §4)
 //!
 //! `V(x) = min_u Q̂(x,u)` is cached per state and refreshed on every update (only the updated
 //! state's `V` can change, so this is `O(1)` amortised: `O(|U(x)|)` only when the old minimum
@@ -35,7 +35,7 @@
 //! * `goal_discovered_at` — the (1-based) action that first entered a goal.
 //!
 //! (0 means "before the first action".) The run stops at the end of the episode in which it
-//! converged. Under [`Rules::Reference`] the paper's code is reproduced instead (SPEC §7):
+//! converged. Under [`Rules::Reference`] the paper's code is reproduced instead (docs/spec.md §7):
 //! convergence and `V(x1)` are only checked after every 1000th action, `converged_at` is the
 //! *last* successful check of the converging episode, and equality is exact `f64` equality
 //! against the given values.
@@ -57,7 +57,7 @@ use super::plan::{explore, EpsilonSchedule, Epsilons, Plan, Probability, Probabi
 use crate::model::Graph;
 use crate::value::{CostValue, Extended, Rational, Units};
 
-/// The interval of the reference code's convergence checks (SPEC §7).
+/// The interval of the reference code's convergence checks (docs/spec.md §7).
 pub const REFERENCE_CHECK_INTERVAL: u64 = 1000;
 
 /// Which rules define the metrics.
@@ -65,7 +65,7 @@ pub const REFERENCE_CHECK_INTERVAL: u64 = 1000;
 pub enum Rules {
     /// Tracked after every action, exactly (the default).
     Exact,
-    /// The paper's code: checks after every 1000th action (SPEC §7).
+    /// The paper's code: checks after every 1000th action (docs/spec.md §7).
     Reference,
 }
 
@@ -180,7 +180,7 @@ pub enum Event {
     Finished,
 }
 
-/// The counts of a run (SPEC §4).
+/// The counts of a run (docs/spec.md §4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize)]
 pub struct Outcome {
     /// Actions applied.
@@ -228,7 +228,7 @@ impl<V, F: FnMut(usize, usize, &V, &V, &[V])> Observer<V> for F {
     }
 }
 
-/// The greedy path read off `Q̂` at the end of a run (SPEC §4): from `x1`, repeatedly the first
+/// The greedy path read off `Q̂` at the end of a run (docs/spec.md §4): from `x1`, repeatedly the first
 /// minimiser of `Q̂(x, ·)`, until a goal, a state without actions, or a state already on the
 /// path (a loop).
 #[derive(Clone, Debug, PartialEq)]

@@ -1,4 +1,4 @@
-//! Stochastic Q-learning (SPEC §3, §4): Q-learning on a [`StochasticProblem`] whose next state
+//! Stochastic Q-learning (docs/spec.md §3, §4): Q-learning on a [`StochasticProblem`] whose next state
 //! is sampled from the noise model, with `f64` values, judged against the exact optimum.
 //!
 //! # The algorithm
@@ -25,7 +25,7 @@
 //! `Σ_n ρ = ∞` and `Σ_n ρ² < ∞` (the Robbins–Monro conditions under which Q-learning converges
 //! with probability 1); outside it the run is refused.
 //!
-//! # Metrics (SPEC §4) against the exact optimum
+//! # Metrics (docs/spec.md §4) against the exact optimum
 //!
 //! A [`Target`] holds, per tracked state, the interval of values within the named
 //! [`Tolerance`] of the exact `G*` ([`crate::stochastic::policy_iteration::optimum`]):
@@ -347,7 +347,7 @@ pub struct StochasticQConfig {
     pub initial_value: f64,
 }
 
-/// The counts of a run (SPEC §4).
+/// The counts of a run (docs/spec.md §4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize)]
 pub struct StochasticOutcome {
     /// Actions applied.

@@ -28,7 +28,7 @@ use crate::value::{ExactValue, Extended, Rational, Units};
 /// ```
 pub type Graph<V> = truecost_kernel::model::Graph<V, Rational>;
 
-/// Exact rendering of a graph's values (SPEC §1): a value times the graph's unit.
+/// Exact rendering of a graph's values (docs/spec.md §1): a value times the graph's unit.
 pub trait RenderValue<V> {
     /// Renders a value of this graph exactly (or as `f64` text in the reference mode).
     fn render(&self, v: &V) -> String;

@@ -1,11 +1,11 @@
-//! The deterministic planning model `P = (X, U, f, x1, XG, l)` of SPEC §1.
+//! The deterministic planning model `P = (X, U, f, x1, XG, l)` of docs/spec.md §1.
 //!
 //! States are `0..n`. Each state has an ordered list of [`Move`]s (its actions `U(x)` other than
 //! termination); the order is significant (greedy tie-breaking, exploration order). Every goal
 //! additionally has the termination action `uT` with `f(xg, uT) = xg`, `l(xg, uT) = 0`, which
 //! freezes the state; it is not stored as a move (see [`Decision::Terminate`]).
 //!
-//! A state with no moves that is not a goal is a dead end: `f` is partial (SPEC §1) and its
+//! A state with no moves that is not a goal is a dead end: `f` is partial (docs/spec.md §1) and its
 //! cost-to-go is `+∞`.
 
 pub mod file;
@@ -88,7 +88,7 @@ pub enum ModelError {
     },
 }
 
-/// A deterministic planning problem (SPEC §1), validated on construction.
+/// A deterministic planning problem (docs/spec.md §1), validated on construction.
 ///
 /// ```
 /// use truecost::model::{Move, Problem};

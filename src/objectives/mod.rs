@@ -1,6 +1,6 @@
 //! Three objectives, exact, on any stochastic problem: the paper's
 //! *truecost* (least expected cost among the policies that reach a goal with probability 1,
-//! SPEC §3), *reach* (the greatest probability of reaching a goal) and *discounted* (the RL
+//! docs/spec.md §3), *reach* (the greatest probability of reaching a goal) and *discounted* (the RL
 //! formulation: rewards discounted by `α ∈ (0, 1)`, maximised).
 //!
 //! All three reduce to the exact stochastic-shortest-path optimum of
@@ -141,7 +141,7 @@ pub struct Solution {
 
 impl Model {
     /// The model of a stochastic problem: discounted rewards are the negated stage costs
-    /// (the paper's reward form, SPEC §1); goals and action-less states end the episode.
+    /// (the paper's reward form, docs/spec.md §1); goals and action-less states end the episode.
     pub fn from_problem(problem: StochasticProblem, name: String) -> Self {
         let reward = (0..problem.action_total())
             .map(|a| -problem.cost(a).clone())
@@ -801,7 +801,7 @@ impl Model {
 }
 
 impl Model {
-    /// The model as a deterministic planning problem (SPEC §1) for the claims stated on one
+    /// The model as a deterministic planning problem (docs/spec.md §1) for the claims stated on one
     /// (C4, `verify --claim C4 --env SPEC`): every action must have a single
     /// outcome and the initial state must be a single state; goals keep no action (their
     /// termination), traps their zero-cost self-loop. Refusals are one line naming why.
@@ -887,12 +887,12 @@ impl Model {
 }
 
 impl Model {
-    /// The model of a deterministic problem (SPEC §1) for the parametric discount analysis:
+    /// The model of a deterministic problem (docs/spec.md §1) for the parametric discount analysis:
     /// every move becomes an action with its single outcome (probability 1), rewards are the
     /// negated stage costs, goals end the episode.
     ///
     /// A dead end (a non-goal state without moves) has cost-to-go `+∞` in the deterministic
-    /// model (SPEC §1): no trajectory through it has a discounted value, so no discount-optimal
+    /// model (docs/spec.md §1): no trajectory through it has a discounted value, so no discount-optimal
     /// policy enters it. Moves into dead ends are removed, repeatedly (a state whose every move
     /// leads into dead ends is one too); what remains are exactly the goal paths and lassos of
     /// [`crate::claims::discount::discount_set`]. A dead-end `x1` has no goal path: every policy

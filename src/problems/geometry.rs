@@ -1,5 +1,5 @@
-//! The obstacle test of SPEC §5, decided exactly in integers, and its `f64` twin for the
-//! reference mode (SPEC §7).
+//! The obstacle test of docs/spec.md §5, decided exactly in integers, and its `f64` twin for the
+//! reference mode (docs/spec.md §7).
 //!
 //! A move between grid points `P` and `Q` is safe iff for every disc `(C, r)`: neither endpoint
 //! is strictly inside (`|P−C|² < r²`), and, when the projection of `C` onto the line falls
@@ -59,7 +59,7 @@ pub fn segment_safe(p: IPoint, q: IPoint, c: IPoint, r: i128) -> bool {
     w2 * len2 - dot * dot >= r * r * len2
 }
 
-/// The `f64` obstacle test of the reference code (SPEC §7): the same rule evaluated in
+/// The `f64` obstacle test of the reference code (docs/spec.md §7): the same rule evaluated in
 /// floating point on the reference coordinates.
 pub fn segment_safe_f64(p: (f64, f64), q: (f64, f64), disc: &Disc) -> bool {
     let (cx, cy, r) = (disc.cx as f64, disc.cy as f64, disc.r as f64);

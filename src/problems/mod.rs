@@ -1,5 +1,5 @@
-//! The paper's 19 grid problems (SPEC §5), built exactly, and their reference-mode twins
-//! (SPEC §7).
+//! The paper's 19 grid problems (docs/spec.md §5), built exactly, and their reference-mode twins
+//! (docs/spec.md §7).
 //!
 //! Data: `data/problem_circles.txt`, three lines per problem (obstacle discs, initial point,
 //! goal point) in an 800×800 world. Grid: 20×20 points, node `i = 20·row + col` at
@@ -252,7 +252,7 @@ pub struct GridLayout {
 }
 
 impl GridLayout {
-    /// The exact layout of SPEC §5 (integer geometry, order left, up, down, right).
+    /// The exact layout of docs/spec.md §5 (integer geometry, order left, up, down, right).
     pub fn exact(id: usize) -> Result<Self, ProblemError> {
         let scenario = scenario(id)?;
         let point = |i: usize| ((800 * (i % SIDE)) as i128, (800 * (i / SIDE)) as i128);
@@ -279,7 +279,7 @@ impl GridLayout {
         Ok(Self::assemble(id, scenario, &ORDER, safe, initial, goal))
     }
 
-    /// The reference code's layout (SPEC §7): `f64` coordinates by repeated addition, `f64`
+    /// The reference code's layout (docs/spec.md §7): `f64` coordinates by repeated addition, `f64`
     /// obstacle and nearest-node tests, its action orders.
     pub fn reference(id: usize) -> Result<Self, ProblemError> {
         let scenario = scenario(id)?;
@@ -319,7 +319,7 @@ impl GridLayout {
     }
 
     /// The layout from a geometry: every node's neighbours in `order` joined by a safe
-    /// segment, then the pocket behind the goal pruned for the problems of SPEC §5 that do so.
+    /// segment, then the pocket behind the goal pruned for the problems of docs/spec.md §5 that do so.
     fn assemble(
         id: usize,
         scenario: Scenario,
@@ -351,7 +351,7 @@ impl GridLayout {
     }
 
     /// Removes the nodes of x1's component that can only be reached through the goal (the
-    /// pocket behind it), keeping the goal itself (SPEC §5).
+    /// pocket behind it), keeping the goal itself (docs/spec.md §5).
     fn prune_behind_goal(&mut self) {
         let n = self.neighbours.len();
         let mut keep = vec![false; n];

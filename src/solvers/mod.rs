@@ -1,4 +1,4 @@
-//! The exact planners of SPEC §2: Dijkstra, synchronous and asynchronous value iteration,
+//! The exact planners of docs/spec.md §2: Dijkstra, synchronous and asynchronous value iteration,
 //! exact policy evaluation, and the model-free exploration that precedes them.
 //!
 //! They live in the bignum-free kernel (`truecost_kernel::solvers`, verified by the Kani

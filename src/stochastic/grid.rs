@@ -1,4 +1,4 @@
-//! The paper's grid problems (SPEC §5) in the stochastic model, in both modes (SPEC §7).
+//! The paper's grid problems (docs/spec.md §5) in the stochastic model, in both modes (docs/spec.md §7).
 //!
 //! * [`exact_grid`] — the paper's text: exact geometry, exact step cost (unit or 800/19), exact
 //!   probabilities from `γ`'s decimal text.

@@ -1,5 +1,5 @@
-//! Exact solution of the sparse linear systems of policy evaluation (SPEC §3: "exact rational
-//! linear solves"), and an `f64` twin for warm starts.
+//! Exact solution of the sparse linear systems of policy evaluation (docs/spec.md §3: the exact
+//! optimum), and an `f64` twin for warm starts.
 //!
 //! A system `A·z = r` has small integer entries (`|A_ij| < 2⁶²`, `|r_i| < 2¹⁰⁰`) and a
 //! non-singular `A` whose symmetric permutations all have non-zero leading principal minors

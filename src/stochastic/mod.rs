@@ -1,4 +1,4 @@
-//! The stochastic model of SPEC §3: a predictability factor `γ ∈ (0, 1]`, two named noise models
+//! The stochastic model of docs/spec.md §3: a predictability factor `γ ∈ (0, 1]`, two named noise models
 //! that turn a deterministic problem into a stochastic one, the exact optimum (policy iteration
 //! with exact rational linear solves), and stochastic value iteration (exact and `f64`).
 //!
@@ -19,7 +19,7 @@
 //!   the exact stage an optimal policy up to exact ties.
 //! * [`scale`] — the `--max-memory` budget of the exact optimum (sizes parsed exactly).
 //! * [`value_iteration`] — stochastic VI and asynchronous VI, exact and `f64`, with an explicit
-//!   stopping rule and the reference code's counting rule (SPEC §7).
+//!   stopping rule and the reference code's counting rule (docs/spec.md §7).
 //!
 //! Conventions (documented once here, used everywhere):
 //! * The stage cost of an action is the cost of the **commanded** move, whatever nature does.

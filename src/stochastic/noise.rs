@@ -1,4 +1,4 @@
-//! The predictability factor `γ` and the two noise models of SPEC §3 and §7.
+//! The predictability factor `γ` and the two noise models of docs/spec.md §3 and §7.
 //!
 //! Applying the commanded move `u ∈ U(x)` (with `k = |U(x)| ≥ 1` moves at `x`, termination not
 //! counted) yields one of these outcomes, listed in this order:
@@ -26,7 +26,7 @@ use num_traits::{One, Zero};
 use super::StochasticError;
 use crate::value::{in_unit_interval_open_closed, parse_rational, Rational};
 
-/// The predictability factor `γ ∈ (0, 1]`, exact (SPEC §3).
+/// The predictability factor `γ ∈ (0, 1]`, exact (docs/spec.md §3).
 ///
 /// ```
 /// use truecost::stochastic::Predictability;
@@ -81,10 +81,10 @@ impl std::fmt::Display for Predictability {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, clap::ValueEnum, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum NoiseModel {
-    /// The paper's text (SPEC §3): `(1−γ)/k` to each other move and to stay.
+    /// The paper's text (docs/spec.md §3): `(1−γ)/k` to each other move and to stay.
     #[default]
     Paper,
-    /// The paper's code (SPEC §7): stay `(1−γ)/2`, the other moves share `(1−γ)/2`; all of
+    /// The paper's code (docs/spec.md §7): stay `(1−γ)/2`, the other moves share `(1−γ)/2`; all of
     /// `1−γ` on stay when there is no other move.
     Reference,
 }
@@ -138,7 +138,7 @@ impl NoiseModel {
     }
 
     /// The same split as the paper's Python code computes it in `f64` (`(1-γ)/2/(k-1)` …), for
-    /// the reference-mode value iteration of SPEC §7.
+    /// the reference-mode value iteration of docs/spec.md §7.
     pub fn split_f64(self, gamma: f64, k: usize) -> (f64, f64, f64) {
         let rest = 1.0 - gamma;
         match self {

@@ -1,4 +1,4 @@
-//! The exact optimum of a stochastic problem (SPEC §3): `G*`, `Q*` and an optimal policy by
+//! The exact optimum of a stochastic problem (docs/spec.md §3): `G*`, `Q*` and an optimal policy by
 //! policy iteration with exact rational linear solves.
 //!
 //! Problem class and assumptions (checked, not assumed): costs `l ≥ 0`; `G*(x)` is the least

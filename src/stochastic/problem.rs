@@ -1,5 +1,5 @@
 //! The stochastic planning problem: states, goals, and per state an ordered list of actions,
-//! each with a stage cost and a list of outcomes carrying exact probabilities (SPEC §3).
+//! each with a stage cost and a list of outcomes carrying exact probabilities (docs/spec.md §3).
 //!
 //! Built from a deterministic [`Problem`] by a [`NoiseModel`] and `γ`
 //! ([`StochasticProblem::from_deterministic`]) or given explicitly, e.g. by a problem file
@@ -461,7 +461,7 @@ impl StochasticProblem {
         self.outcomes(action)[i.min(cumulative.len() - 1)].successor
     }
 
-    /// The reference code's count for backing up state `x` once (SPEC §7): the outcome terms
+    /// The reference code's count for backing up state `x` once (docs/spec.md §7): the outcome terms
     /// that are neither the commanded move nor stay, `k·(k − 1)` for `k` actions (counted from
     /// the structure, whatever `γ`).
     pub fn reference_terms(&self, x: StateId) -> u64 {

@@ -1,5 +1,5 @@
 //! Which states have a finite optimal expected cost, which actions are safe, and proper
-//! policies (SPEC §3 with the conventions of [`super`]).
+//! policies (docs/spec.md §3 with the conventions of [`super`]).
 //!
 //! A policy is *proper at `x`* if from `x` it reaches a goal with probability 1. `G*(x) < ∞`
 //! exactly when some policy is proper at `x` (costs are finite and a trajectory that misses the

@@ -1,5 +1,5 @@
 //! Mixed-precision policy iteration: the stage between the `f64` warm start and the exact
-//! policy iteration of [`super::policy_iteration`] (SPEC §3, "exact optimum").
+//! policy iteration of [`super::policy_iteration`] (docs/spec.md §3).
 //!
 //! Why it exists: on grids whose deterministic optimum has many ties (unit costs, regular cost
 //! patterns), the stochastic `Q`-values of two actions differ by amounts like `((1−γ)/k)^d`

@@ -1,5 +1,5 @@
-//! Stochastic value iteration (SPEC §3), synchronous and asynchronous, in exact arithmetic and
-//! in `f64`, with an explicit stopping rule; and the reference code's variant (SPEC §7).
+//! Stochastic value iteration (docs/spec.md §3), synchronous and asynchronous, in exact arithmetic and
+//! in `f64`, with an explicit stopping rule; and the reference code's variant (docs/spec.md §7).
 //!
 //! The backup at a non-goal state is `G(x) ← min_u { l(x,u) + Σ_o p_o·G(o) }`; a goal's value
 //! is always 0 (termination is free). One *sweep* backs up the swept states in index order:
@@ -17,7 +17,7 @@
 //!   backup, min over safe actions. The iterates increase monotonically towards the least
 //!   fixed point of the Bellman operator, which is `G*` when no cycle avoiding the goals costs
 //!   0 (true on the paper's grids); every iterate is a lower bound on `G*`.
-//! * [`ViOptions::reference`] (the paper's code, SPEC §7): sweep every state of the full graph
+//! * [`ViOptions::reference`] (the paper's code, docs/spec.md §7): sweep every state of the full graph
 //!   (goals included, their value staying 0), start at `10³⁰`, replace a value only if the
 //!   backup is strictly smaller, tolerance 0.1, at most 1000 sweeps. Its counted actions are
 //!   `Σ k·(k−1)` per sweep over the swept states ([`StochasticProblem::reference_terms`]).
@@ -105,7 +105,7 @@ impl ViOptions {
         })
     }
 
-    /// The paper's code (SPEC §7): full graph, `10³⁰`, decrease only, tolerance 0.1, 1000 sweeps.
+    /// The paper's code (docs/spec.md §7): full graph, `10³⁰`, decrease only, tolerance 0.1, 1000 sweeps.
     pub fn reference(schedule: Schedule) -> Self {
         ViOptions {
             schedule,
@@ -469,7 +469,7 @@ impl FloatModel {
         }
     }
 
-    /// The reference code's numbers (SPEC §7): the given `f64` step costs (one per action, in
+    /// The reference code's numbers (docs/spec.md §7): the given `f64` step costs (one per action, in
     /// order) and probabilities computed in `f64` from the `f64` γ as that code does
     /// ([`super::NoiseModel::split_f64`]). `None` unless the problem came from a noise model.
     pub fn reference(problem: &StochasticProblem, cost: Vec<f64>) -> Option<Self> {

@@ -1,4 +1,4 @@
-//! Claim C2 (SPEC §6): cost–reward equivalence — the per-problem check over the
+//! Claim C2 (docs/spec.md §6): cost–reward equivalence — the per-problem check over the
 //! policy-enumeration oracle ([`crate::claims::oracle`]): for a cost functional linear in the
 //! sequence of stage costs, a policy minimises the cost iff it maximises the reward obtained by
 //! negating every stage cost. The rewards are evaluated afresh from the negated stage sequence,

@@ -1,4 +1,4 @@
-//! The bignum-free kernels of the claims engine (SPEC §6): the small exact rationals
+//! The bignum-free kernels of the claims engine (docs/spec.md §6): the small exact rationals
 //! ([`exact`]), the tiny problems and their symmetry-reduced families ([`tiny`]), the
 //! policy-enumeration oracles ([`oracle`]), derandomized Q-learning ([`qlearning`]) and the
 //! per-problem checks of C2, C3 and C4. The claim runners (scopes, rayon, reports) and

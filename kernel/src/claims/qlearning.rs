@@ -1,9 +1,9 @@
-//! A tiny, self-contained derandomized Q-learning (SPEC §2, `ρ = 1`) for checking claim C1:
+//! A tiny, self-contained derandomized Q-learning (docs/spec.md §2, `ρ = 1`) for checking claim C1:
 //! `Q̂(x,u) ← l(x,u) + min_{u'} Q̂(f(x,u), u')`, one state–action pair at a time, in an order
 //! chosen by the caller (or by an adversary that explores every order).
 //!
 //! The pairs are every move of every state plus, at the goal, the termination action `uT`
-//! (`f(xg, uT) = xg`, `l = 0`, SPEC §1). Two treatments of `uT`:
+//! (`f(xg, uT) = xg`, `l = 0`, docs/spec.md §1). Two treatments of `uT`:
 //! * [`Terminal::Updated`] — as printed: `uT` is an ordinary pair, updated by the same rule
 //!   (a zero-cost self-loop).
 //! * [`Terminal::HeldAtZero`] — the episodic convention: `Q̂(xg, uT) = 0` always.

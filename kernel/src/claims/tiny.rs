@@ -1,6 +1,6 @@
 //! Tiny problems for exhaustive small-scope enumeration (engine 1), with symmetry reduction.
 //!
-//! A [`Tiny`] is a deterministic problem of SPEC §1 in fixed arrays: at most [`MAX_STATES`]
+//! A [`Tiny`] is a deterministic problem of docs/spec.md §1 in fixed arrays: at most [`MAX_STATES`]
 //! states, at most [`MAX_DEGREE`] moves per state, small integer costs. The goal is always the
 //! last state and `x1` is state 0. A [`Family`] enumerates every such problem in a stated scope
 //! exactly once *up to relabelling of states*: a labelled problem is kept only if it is the
@@ -24,7 +24,7 @@ pub struct TinyMove {
 }
 
 /// A tiny deterministic problem: states `0..n`, `x1 = 0`, goal `n − 1` (with the termination
-/// action of SPEC §1 in addition to its moves). Read back from a file (a shard of `verify`),
+/// action of docs/spec.md §1 in addition to its moves). Read back from a file (a shard of `verify`),
 /// it is checked like [`Tiny::from_lists`] checks its lists: a tampered file is refused, not
 /// indexed out of bounds.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]

@@ -1,4 +1,4 @@
-//! SMT encodings of claim C1 (derandomized Q-learning converges in finite time; SPEC §6,
+//! SMT encodings of claim C1 (derandomized Q-learning converges in finite time; docs/spec.md §6,
 //! the paper's Proposition 1) — the argument is written out in `docs/proofs/c1.md`.
 //!
 //! **C1-corrected** is proved for every number of rounds by induction (see [`super::super::c1`]

@@ -1,4 +1,4 @@
-//! SMT encoding of claim C2 (SPEC §6, cost–reward equivalence), and the lasso
+//! SMT encoding of claim C2 (docs/spec.md §6, cost–reward equivalence), and the lasso
 //! machinery that the C3 encodings share ([`lassos`], [`shape_text`], [`parse_shape`],
 //! [`poly_term`]).
 //!
@@ -6,7 +6,7 @@
 //! to relabelling with [`crate::claims::tiny::Family`]) every deterministic stationary policy
 //! is enumerated explicitly by following it from `x1` ([`lassos`]): its stage sequence from
 //! `x1` is a *lasso* — a prefix of moves, then a cycle of moves repeated forever, or termination
-//! at the goal (stage cost 0 forever, SPEC §1). Policies with the same lasso have the same value
+//! at the goal (stage cost 0 forever, docs/spec.md §1). Policies with the same lasso have the same value
 //! under every functional, so the argmin/argmax sets are unions of lasso classes and it is
 //! enough to compare lassos. Every move's stage cost is its own real unknown `l ≥ 0`. Each
 //! functional of [`crate::claims::c2::functionals`] is written from the lasso for the cost
@@ -61,7 +61,7 @@ impl Lasso {
 
 /// Every lasso from `x1 = 0` of `t`, one per class of stationary policies, found by following
 /// the policy and choosing a move (or, at the goal, termination — and the goal's moves when
-/// `goal_may_move`) at each state the first time it is reached (SPEC §1). Deterministic order.
+/// `goal_may_move`) at each state the first time it is reached (docs/spec.md §1). Deterministic order.
 ///
 /// ```
 /// use truecost::claims::smt::c2::lassos;

@@ -1,4 +1,4 @@
-//! SMT encodings of claim C3 (SPEC §6, the dangers of discounting): the
+//! SMT encodings of claim C3 (docs/spec.md §6, the dangers of discounting): the
 //! worked example for every real `α ∈ (0,1)` (`C3-example`), and each structure's certificate
 //! for every real `α` in a stated interval (`C3`). Both are univariate nonlinear real
 //! arithmetic (QF_NRA) in the one unknown `α`.

@@ -1,5 +1,5 @@
 //! SMT encodings of C4 (as printed) and C4-corrected (Proposition 4, episodic equivalence;
-//! SPEC §6 C4). The argument is written in `docs/proofs/c4.md`.
+//! docs/spec.md §6 C4). The argument is written in `docs/proofs/c4.md`.
 //!
 //! The *structure* of a problem (which state has which moves) is enumerated outside the
 //! solver with [`crate::claims::tiny::Family`] (one cost value, so it enumerates shapes up to

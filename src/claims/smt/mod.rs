@@ -1,4 +1,4 @@
-//! Engine 4: SMT proofs over the reals (`../shared/PROOFS.md`).
+//! Engine 4: SMT proofs over the reals (`docs/proofs/`, `docs/guide/verify.md`).
 //!
 //! A claim is *proved* by proof obligations whose **unsatisfiability** is the proof: each
 //! obligation states the hypotheses and the negated conclusion over real (or integer) unknowns —

@@ -865,6 +865,51 @@ mod tests {
         }
     }
 
+    /// The policies in the order of the literal construction: one state at a time, every
+    /// policy so far extended by each of the state's choices in turn (termination first at the
+    /// goal), on random problems of 1 to 7 states with 0 to 3 moves per state.
+    #[test]
+    fn policies_are_the_state_by_state_extension_in_its_order() {
+        let mut seed = 0x2545_F491_4F6C_DD1Du64;
+        let mut many = 0;
+        for _ in 0..400 {
+            let n = 1 + draw(&mut seed, MAX_STATES as u64) as usize;
+            let lists: Vec<Vec<(u8, u8)>> = (0..n)
+                .map(|_| {
+                    (0..draw(&mut seed, 4))
+                        .map(|_| (draw(&mut seed, n as u64) as u8, draw(&mut seed, 3) as u8))
+                        .collect()
+                })
+                .collect();
+            let t = Tiny::from_lists(&lists);
+            for goal_may_move in [false, true] {
+                let mut literal = vec![[0u8; MAX_STATES]];
+                for x in 0..n {
+                    let mut choices = Vec::new();
+                    if t.is_goal(x) {
+                        choices.push(TERMINATE);
+                    }
+                    if !t.is_goal(x) || goal_may_move {
+                        choices.extend(0..t.moves(x).len() as u8);
+                    }
+                    let mut next = Vec::new();
+                    for p in &literal {
+                        for &c in &choices {
+                            let mut q = *p;
+                            q[x] = c;
+                            next.push(q);
+                        }
+                    }
+                    literal = next;
+                }
+                let got = policies(&t, goal_may_move);
+                assert_eq!(got, literal, "{lists:?} {goal_may_move}");
+                many += usize::from(got.len() > 8);
+            }
+        }
+        assert!(many > 50, "{many}");
+    }
+
     /// The goal paths of the brute force (node sequences from 0 whose last node, and only it,
     /// is the goal) in depth-first order: by the positions of their moves in their lists.
     fn brute_goal_paths(t: &Tiny) -> Vec<(i64, usize)> {

@@ -429,6 +429,35 @@ mod tests {
             assert_eq!(Frontier::<Units>::pop(&mut heap), None);
         }
     }
+    /// The frontier for any value type pops the same sequence as the packed one, on random
+    /// interleavings of insertions and pops (ties in distance broken by the counter).
+    #[test]
+    fn compared_pops_what_keyed_pops() {
+        let mut draw = Draw(0x2545_F491_4F6C_DD1D);
+        for case in 0..500 {
+            let inserts = 1 + draw.below(40) as usize;
+            let mut keyed = <Keyed as Frontier<Units>>::new(4, inserts);
+            let mut compared = <Compared<Units> as Frontier<Units>>::new(4, inserts);
+            let mut popped = 0;
+            for i in 0..inserts {
+                let (key, node) = (Units(draw.below(6)), draw.below(1 << 20) as u32);
+                Frontier::<Units>::insert(&mut keyed, &key, i as u64, node);
+                compared.insert(&key, i as u64, node);
+                if draw.below(3) == 0 {
+                    let k = Frontier::<Units>::pop(&mut keyed);
+                    assert!(k.is_some());
+                    assert_eq!(compared.pop(), k, "{case}");
+                    popped += 1;
+                }
+            }
+            for _ in popped..inserts {
+                let k = Frontier::<Units>::pop(&mut keyed);
+                assert!(k.is_some());
+                assert_eq!(compared.pop(), k, "{case}");
+            }
+            assert_eq!(compared.pop(), None);
+        }
+    }
     use crate::value::Units;
 
     use crate::solvers::test_draw::Draw;

@@ -158,18 +158,20 @@ impl<V: CostValue, U> Graph<V, U> {
         unit: U,
     ) -> Self {
         let n = adjacency.len();
-        let mut first = Vec::with_capacity(n + 1);
+        // The rows are written into buffers of their final lengths, one entry at a time.
         let edges = adjacency.iter().map(Vec::len).sum();
-        let mut successor = Vec::with_capacity(edges);
-        let mut cost = Vec::with_capacity(edges);
-        first.push(0u32);
-        for list in adjacency {
+        let mut first = vec![0u32; n + 1];
+        let mut successor = vec![0u32; edges];
+        let mut cost = vec![V::zero(); edges];
+        let mut e = 0;
+        for (x, list) in adjacency.into_iter().enumerate() {
             for (y, c) in list {
                 assert!(y < n, "successor out of range");
-                successor.push(y as u32);
-                cost.push(c);
+                successor[e] = y as u32;
+                cost[e] = c;
+                e += 1;
             }
-            first.push(u32::try_from(successor.len()).expect("too many edges"));
+            first[x + 1] = u32::try_from(e).expect("too many edges");
         }
         Self::from_csr(first, successor, cost, initial, goals, origin, unit)
     }

@@ -214,14 +214,20 @@ impl Instance {
                 }
             }
         }
-        let mut arcs = Vec::new();
+        // The arcs among them, counted and then written into a buffer of that length.
+        let seen = &seen;
+        let among = |x: usize| {
+            self.moves[x]
+                .iter()
+                .filter(move |&&(y, _)| seen[x] && seen[y])
+        };
+        let count: usize = (0..n).map(|x| among(x).count()).sum();
+        let mut arcs = vec![(0usize, 0usize, 0i64); count];
+        let mut len = 0;
         for x in 0..n {
-            if seen[x] {
-                for &(y, c) in &self.moves[x] {
-                    if seen[y] {
-                        arcs.push((x, y, c));
-                    }
-                }
+            for &(y, c) in among(x) {
+                arcs[len] = (x, y, c);
+                len += 1;
             }
         }
         (n, arcs)
@@ -253,7 +259,39 @@ impl Instance {
         if self.is_goal[self.initial] {
             return Ok(vec![(0, 1)]);
         }
-        let mut out = Vec::new();
+        // Two runs of one search: the first counts the paths (and stops past `max_steps`), the
+        // second writes them into a buffer of that length.
+        let mut count = 0;
+        self.each_goal_path(
+            || {
+                steps += 1;
+                if steps > max_steps {
+                    return Err(too_long.clone());
+                }
+                Ok(())
+            },
+            |_, _| count += 1,
+        )?;
+        let mut out = vec![(0i64, 0i64); count];
+        let mut len = 0;
+        self.each_goal_path(
+            || Ok(()),
+            |cost, states| {
+                out[len] = (cost, states);
+                len += 1;
+            },
+        )?;
+        Ok(out)
+    }
+
+    /// The depth-first search of [`Instance::goal_paths`] from a non-goal `x1`: `step()` is
+    /// called at every arc that ends or extends a path (an error stops the search), then
+    /// `found(L, S)` at every simple path to a goal.
+    fn each_goal_path(
+        &self,
+        mut step: impl FnMut() -> Result<(), BonusError>,
+        mut found: impl FnMut(i64, i64),
+    ) -> Result<(), BonusError> {
         with_search_space(self.moves.len(), |frames, on| {
             simple_paths(
                 frames,
@@ -270,18 +308,14 @@ impl Instance {
                     }
                 },
                 |s, cost, moves| {
-                    steps += 1;
-                    if steps > max_steps {
-                        return Err(too_long.clone());
-                    }
+                    step()?;
                     if s == Step::End {
-                        out.push((cost, moves as i64 + 1));
+                        found(cost, moves as i64 + 1);
                     }
                     Ok(())
                 },
             )
-        })?;
-        Ok(out)
+        })
     }
 
     /// The states reachable from `x1` without passing through a goal (goals reached included).
@@ -339,37 +373,53 @@ impl Instance {
         let n = self.moves.len();
         // Only states reachable from x1 matter.
         let reach = self.reachable();
-        let free: Vec<usize> = (0..n).filter(|&x| reach[x] && !self.is_goal[x]).collect();
+        // The non-goal states reachable from x1: the first `free_len` entries of `free`.
+        let mut free = vec![0usize; n];
+        let mut free_len = 0;
+        for x in (0..n).filter(|&x| reach[x] && !self.is_goal[x]) {
+            free[free_len] = x;
+            free_len += 1;
+        }
+        let free = &free[..free_len];
         if free.iter().any(|&x| self.moves[x].is_empty()) {
             return Some(Vec::new());
         }
         let count = self.policy_count(limit)?;
         let mut choice = vec![0usize; n];
-        let mut out = Vec::with_capacity(count as usize);
+        // One average per policy, `count` in all, written in order.
+        let mut out = vec![(0i64, 0i64, 0i64); count as usize];
+        let mut len = 0;
+        // The stage costs of the trajectory followed: at most one per state before a goal or
+        // a repeated state, so `n` entries, the first `steps` of them in use.
+        let mut costs = vec![0i64; n];
         loop {
             // Follow from x1.
             let mut seen_at = vec![usize::MAX; n];
-            let mut costs = Vec::new();
+            let mut steps = 0;
             let mut x = self.initial;
             loop {
                 if self.is_goal[x] {
-                    let l: i64 = costs.iter().sum();
-                    out.push((l, 1, costs.len() as i64 + 1));
+                    let l: i64 = costs[..steps].iter().sum();
+                    out[len] = (l, 1, steps as i64 + 1);
+                    len += 1;
                     break;
                 }
                 if seen_at[x] != usize::MAX {
-                    let cyc = &costs[seen_at[x]..];
-                    out.push((cyc.iter().sum(), 0, cyc.len() as i64));
+                    let cyc = &costs[seen_at[x]..steps];
+                    out[len] = (cyc.iter().sum(), 0, cyc.len() as i64);
+                    len += 1;
                     break;
                 }
-                seen_at[x] = costs.len();
+                seen_at[x] = steps;
                 let (y, c) = self.moves[x][choice[x]];
-                costs.push(c);
+                costs[steps] = c;
+                steps += 1;
                 x = y;
             }
             let mut k = 0;
             loop {
                 if k == free.len() {
+                    debug_assert_eq!(len, out.len());
                     return Some(out);
                 }
                 let x = free[k];
@@ -601,9 +651,10 @@ pub fn bonus_analysis_in<I: ExactInt>(
             policies: wide(from_policies),
         }));
     }
-    let mut out = Vec::new();
     // The distinct `S*` in increasing order: each the least `S` of an optimal path above the
-    // previous one (a scan of the paths per value; nothing is sorted).
+    // previous one (a scan of the paths per value; nothing is sorted); at most one per path.
+    let mut optimal_states = vec![0i64; paths.len()];
+    let mut distinct = 0;
     let mut previous = None;
     while let Some(s) = paths
         .iter()
@@ -612,6 +663,10 @@ pub fn bonus_analysis_in<I: ExactInt>(
         .min()
     {
         previous = Some(s);
+        optimal_states[distinct] = s;
+        distinct += 1;
+    }
+    let sets_for = |s: i64| {
         // Exact: (L*+M)/S* <= (c + rM)/k for every policy, i.e. M(k − r S*) <= c S* − L* k.
         let mut exact = Interval::negative();
         for &(c, r, k) in &averages {
@@ -662,16 +717,21 @@ pub fn bonus_analysis_in<I: ExactInt>(
         if let Some(cb) = cycle_bound {
             corrected.at_most(cb);
         }
-        out.push(BonusSets {
+        BonusSets {
             optimal_cost: lstar,
             optimal_states: s,
             least_mean_cycle: lav,
             exact,
             printed,
             corrected,
-        });
-    }
-    Ok(Some(out))
+        }
+    };
+    Ok(Some(
+        optimal_states[..distinct]
+            .iter()
+            .map(|&s| sets_for(s))
+            .collect(),
+    ))
 }
 
 /// A bonus in the symmetric difference of two sets (`None` if they are equal).

@@ -8,7 +8,7 @@
 use std::fmt;
 
 use super::exact::{power, ExactInt, Ext, Frac, FracExt, Q};
-use super::tiny::{Tiny, MAX_STATES};
+use super::tiny::{Tiny, MAX_DEGREE, MAX_STATES};
 
 /// A decision of a stationary policy at one state: a move index, or [`TERMINATE`].
 pub type Choice = u8;
@@ -22,26 +22,32 @@ pub type Policy = [Choice; MAX_STATES];
 /// (first) and then its moves; a non-goal state chooses one of its moves.
 pub fn policies(t: &Tiny, goal_may_move: bool) -> Vec<Policy> {
     let n = t.states();
-    let mut out = vec![[0u8; MAX_STATES]];
+    // The choices of each state, in order: `choices[x][..count[x]]`.
+    let mut choices = [[0u8; MAX_DEGREE + 1]; MAX_STATES];
+    let mut count = [0usize; MAX_STATES];
     for x in 0..n {
-        let mut choices: Vec<Choice> = Vec::new();
-        if t.is_goal(x) {
-            choices.push(TERMINATE);
-            if goal_may_move {
-                choices.extend(0..t.deg[x]);
-            }
-        } else {
-            choices.extend(0..t.deg[x]);
+        let deg = t.deg[x] as usize;
+        let goal = t.is_goal(x);
+        let first_move = usize::from(goal);
+        if goal {
+            choices[x][0] = TERMINATE;
         }
-        let mut next = Vec::with_capacity(out.len() * choices.len());
-        for p in &out {
-            for &c in &choices {
-                let mut q = *p;
-                q[x] = c;
-                next.push(q);
-            }
+        let moves = if !goal || goal_may_move { deg } else { 0 };
+        for k in 0..moves {
+            choices[x][first_move + k] = k as Choice;
         }
-        out = next;
+        count[x] = first_move + moves;
+    }
+    // The policies in the order of an odometer over the states' choices, state 0 the most
+    // significant digit: the `i`-th policy's digits are `i` in the mixed radix `count`.
+    let total: usize = count[..n].iter().product();
+    let mut out = vec![[0u8; MAX_STATES]; total];
+    for (i, p) in out.iter_mut().enumerate() {
+        let mut rest = i;
+        for x in (0..n).rev() {
+            p[x] = choices[x][rest % count[x]];
+            rest /= count[x];
+        }
     }
     out
 }
@@ -561,9 +567,10 @@ pub(crate) fn simple_paths<E>(
 /// order of `arcs`.
 ///
 /// The search from each root follows only arcs into nodes `≥ root` that can reach the root
-/// again among such nodes (a backward search first), over adjacency lists: a node that lies on
+/// again among such nodes (a backward search first), over the arcs in compressed rows: a node on
 /// no cycle through the root is never entered, so an acyclic graph costs `O(n·m)` whatever its
-/// number of paths. Both searches are iterative, on stacks of fixed capacity ([`simple_paths`]).
+/// number of paths. Both searches are iterative, on stacks of fixed capacity ([`simple_paths`]);
+/// they run twice, to count the cycles and then to write them into a buffer of that length.
 ///
 /// ```
 /// use truecost_kernel::claims::oracle::simple_cycles;
@@ -574,12 +581,43 @@ pub(crate) fn simple_paths<E>(
 /// assert_eq!(c, vec![(3, 2), (5, 1), (5, 2)]);
 /// ```
 pub fn simple_cycles(n: usize, arcs: &[(usize, usize, i64)]) -> Vec<(i64, usize)> {
-    let mut out = Vec::new();
-    let mut forward: Vec<Vec<(usize, i64)>> = vec![Vec::new(); n];
-    let mut backward: Vec<Vec<usize>> = vec![Vec::new(); n];
+    // Two runs of one search: the first counts the cycles, the second writes them into a
+    // buffer of that length (no buffer grows while a search runs).
+    let mut count = 0;
+    each_simple_cycle(n, arcs, |_, _| count += 1);
+    let mut out = vec![(0i64, 0usize); count];
+    let mut len = 0;
+    each_simple_cycle(n, arcs, |weight, arcs| {
+        out[len] = (weight, arcs);
+        len += 1;
+    });
+    out
+}
+
+/// Calls `found(weight, length)` for every simple cycle, in the order of [`simple_cycles`].
+/// The arcs are kept in compressed rows (forward and backward), built by counting.
+fn each_simple_cycle(n: usize, arcs: &[(usize, usize, i64)], mut found: impl FnMut(i64, usize)) {
+    // Row `v` of the forward arcs is `forward[out_first[v]..out_first[v + 1]]`, in the order of
+    // `arcs`; likewise the tails of the arcs into `v` in `backward`.
+    let mut out_first = vec![0usize; n + 1];
+    let mut in_first = vec![0usize; n + 1];
+    for &(a, b, _) in arcs {
+        out_first[a + 1] += 1;
+        in_first[b + 1] += 1;
+    }
+    for v in 0..n {
+        out_first[v + 1] += out_first[v];
+        in_first[v + 1] += in_first[v];
+    }
+    let mut forward = vec![(0usize, 0i64); arcs.len()];
+    let mut backward = vec![0usize; arcs.len()];
+    let mut out_fill = out_first.clone();
+    let mut in_fill = in_first.clone();
     for &(a, b, w) in arcs {
-        forward[a].push((b, w));
-        backward[b].push(a);
+        forward[out_fill[a]] = (b, w);
+        out_fill[a] += 1;
+        backward[in_fill[b]] = a;
+        in_fill[b] += 1;
     }
     let mut back = vec![false; n];
     // The backward search's stack: each node enters it at most once per root.
@@ -594,7 +632,7 @@ pub fn simple_cycles(n: usize, arcs: &[(usize, usize, i64)]) -> Vec<(i64, usize)
             while len > 0 {
                 len -= 1;
                 let v = stack[len];
-                for &a in &backward[v] {
+                for &a in &backward[in_first[v]..in_first[v + 1]] {
                     if a > root && !back[a] {
                         back[a] = true;
                         stack[len] = a;
@@ -606,7 +644,7 @@ pub fn simple_cycles(n: usize, arcs: &[(usize, usize, i64)]) -> Vec<(i64, usize)
                 frames,
                 on_path,
                 root,
-                |v, k| forward[v].get(k).copied(),
+                |v, k| forward[out_first[v]..out_first[v + 1]].get(k).copied(),
                 |b, on| {
                     if b == root {
                         Step::End
@@ -618,7 +656,7 @@ pub fn simple_cycles(n: usize, arcs: &[(usize, usize, i64)]) -> Vec<(i64, usize)
                 },
                 |s, weight, len| {
                     if s == Step::End {
-                        out.push((weight, len));
+                        found(weight, len);
                     }
                     Ok::<(), std::convert::Infallible>(())
                 },
@@ -628,7 +666,6 @@ pub fn simple_cycles(n: usize, arcs: &[(usize, usize, i64)]) -> Vec<(i64, usize)
             }
         }
     });
-    out
 }
 
 /// The non-goal states reachable from `x1` without passing through the goal, and the arcs
@@ -826,6 +863,51 @@ mod tests {
             );
             assert_eq!(got, brute_cycles(n, &arcs));
         }
+    }
+
+    /// The policies in the order of the literal construction: one state at a time, every
+    /// policy so far extended by each of the state's choices in turn (termination first at the
+    /// goal), on random problems of 1 to 7 states with 0 to 3 moves per state.
+    #[test]
+    fn policies_are_the_state_by_state_extension_in_its_order() {
+        let mut seed = 0x2545_F491_4F6C_DD1Du64;
+        let mut many = 0;
+        for _ in 0..400 {
+            let n = 1 + draw(&mut seed, MAX_STATES as u64) as usize;
+            let lists: Vec<Vec<(u8, u8)>> = (0..n)
+                .map(|_| {
+                    (0..draw(&mut seed, 4))
+                        .map(|_| (draw(&mut seed, n as u64) as u8, draw(&mut seed, 3) as u8))
+                        .collect()
+                })
+                .collect();
+            let t = Tiny::from_lists(&lists);
+            for goal_may_move in [false, true] {
+                let mut literal = vec![[0u8; MAX_STATES]];
+                for x in 0..n {
+                    let mut choices = Vec::new();
+                    if t.is_goal(x) {
+                        choices.push(TERMINATE);
+                    }
+                    if !t.is_goal(x) || goal_may_move {
+                        choices.extend(0..t.moves(x).len() as u8);
+                    }
+                    let mut next = Vec::new();
+                    for p in &literal {
+                        for &c in &choices {
+                            let mut q = *p;
+                            q[x] = c;
+                            next.push(q);
+                        }
+                    }
+                    literal = next;
+                }
+                let got = policies(&t, goal_may_move);
+                assert_eq!(got, literal, "{lists:?} {goal_may_move}");
+                many += usize::from(got.len() > 8);
+            }
+        }
+        assert!(many > 50, "{many}");
     }
 
     /// The goal paths of the brute force (node sequences from 0 whose last node, and only it,

@@ -11,7 +11,6 @@
 //! node counts as a relaxation. Preconditions: costs `>= 0`.
 
 use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 
 use super::{greedy_policy_over, Solution};
 use crate::model::{Decision, Graph};
@@ -30,17 +29,76 @@ pub struct DijkstraCounts {
 /// pops the smallest (distance, counter). Counters are distinct, so the order is total and
 /// every implementation pops the same sequence.
 trait Frontier<V> {
-    /// An empty frontier for a search over `n` nodes that pushes at most `max_pushes` entries.
+    /// An empty frontier for a search over `n` nodes that inserts at most `max_pushes` entries.
     fn new(n: usize, max_pushes: usize) -> Self;
     /// Inserts an entry.
-    fn push(&mut self, dist: &V, counter: u64, node: u32);
+    fn insert(&mut self, dist: &V, counter: u64, node: u32);
     /// Removes the smallest entry and returns its node.
     fn pop(&mut self) -> Option<u32>;
 }
 
-/// The frontier for any value type: a binary heap of entries compared with
+/// A binary min-heap in a buffer of fixed capacity (every entry the search can insert), filled
+/// up to `len`: no insertion grows it, so a model checker sees one allocation of a length
+/// known before the search.
+struct MinHeap<T> {
+    heap: Vec<T>,
+    len: usize,
+}
+
+impl<T: Ord> MinHeap<T> {
+    /// A heap over `buffer`, whose length is its capacity (the entries are placeholders).
+    fn over(buffer: Vec<T>) -> Self {
+        MinHeap {
+            heap: buffer,
+            len: 0,
+        }
+    }
+
+    /// Adds `entry` (the buffer has room: at most its capacity entries are ever inserted).
+    fn insert(&mut self, entry: T) {
+        self.heap[self.len] = entry;
+        self.len += 1;
+        let mut i = self.len - 1;
+        while i > 0 {
+            let parent = (i - 1) / 2;
+            if self.heap[parent] <= self.heap[i] {
+                break;
+            }
+            self.heap.swap(parent, i);
+            i = parent;
+        }
+    }
+
+    /// Removes the least entry; it is left in the slot just past the heap, `heap[len]`.
+    fn remove_least(&mut self) -> Option<&T> {
+        if self.len == 0 {
+            return None;
+        }
+        self.len -= 1;
+        self.heap.swap(0, self.len);
+        let mut i = 0;
+        loop {
+            let (left, right) = (2 * i + 1, 2 * i + 2);
+            let mut least = i;
+            if left < self.len && self.heap[left] < self.heap[least] {
+                least = left;
+            }
+            if right < self.len && self.heap[right] < self.heap[least] {
+                least = right;
+            }
+            if least == i {
+                break;
+            }
+            self.heap.swap(i, least);
+            i = least;
+        }
+        Some(&self.heap[self.len])
+    }
+}
+
+/// The frontier for any value type: a [`MinHeap`] of entries compared with
 /// [`CostValue::compare`].
-struct Compared<V>(BinaryHeap<Entry<V>>);
+struct Compared<V>(MinHeap<Entry<V>>);
 
 struct Entry<V> {
     dist: V,
@@ -60,22 +118,28 @@ impl<V: CostValue> PartialOrd for Entry<V> {
     }
 }
 impl<V: CostValue> Ord for Entry<V> {
-    /// Reversed: `BinaryHeap` is a max-heap and we pop the smallest (distance, counter).
+    /// (distance, counter) order.
     fn cmp(&self, other: &Self) -> Ordering {
-        other
-            .dist
-            .compare(&self.dist)
-            .then_with(|| other.counter.cmp(&self.counter))
+        self.dist
+            .compare(&other.dist)
+            .then_with(|| self.counter.cmp(&other.counter))
     }
 }
 
 impl<V: CostValue> Frontier<V> for Compared<V> {
-    fn new(n: usize, _max_pushes: usize) -> Self {
-        Compared(BinaryHeap::with_capacity(n))
+    fn new(_n: usize, max_pushes: usize) -> Self {
+        let placeholder = || Entry {
+            dist: V::infinity(),
+            counter: 0,
+            node: 0,
+        };
+        Compared(MinHeap::over(
+            (0..max_pushes).map(|_| placeholder()).collect(),
+        ))
     }
     #[inline]
-    fn push(&mut self, dist: &V, counter: u64, node: u32) {
-        self.0.push(Entry {
+    fn insert(&mut self, dist: &V, counter: u64, node: u32) {
+        self.0.insert(Entry {
             dist: dist.clone(),
             counter,
             node,
@@ -83,86 +147,39 @@ impl<V: CostValue> Frontier<V> for Compared<V> {
     }
     #[inline]
     fn pop(&mut self) -> Option<u32> {
-        self.0.pop().map(|entry| entry.node)
+        self.0.remove_least().map(|entry| entry.node)
     }
 }
 
 /// The most nodes for which [`Keyed`] packs an entry in a `u128`: nodes take 31 bits and
 /// counters 33, since a graph has fewer than `2^32` moves (its rows are `u32`), so at most
-/// `n + m < 2^31 + 2^32 < 2^33` entries are ever pushed.
+/// `n + m < 2^31 + 2^32 < 2^33` entries are ever inserted.
 const KEYED_NODES: usize = 1 << 31;
 
 /// The frontier for value types with an [`CostValue::order_key`]: one `u128` per entry,
 /// `key · 2^64 + counter · 2^31 + node`, so that integer order is (distance, counter) order
 /// (the node never decides: counters are distinct). Needs nodes below `2^31` and counters
-/// below `2^33` ([`KEYED_NODES`]). A binary min-heap in a buffer of fixed capacity (every entry
-/// the search can push), filled up to `len`: no push grows it.
-struct Keyed {
-    heap: Vec<u128>,
-    len: usize,
-}
-
-impl Keyed {
-    /// Restores the heap order upwards from slot `i`.
-    fn sift_up(&mut self, mut i: usize) {
-        while i > 0 {
-            let parent = (i - 1) / 2;
-            if self.heap[parent] <= self.heap[i] {
-                break;
-            }
-            self.heap.swap(parent, i);
-            i = parent;
-        }
-    }
-
-    /// Restores the heap order downwards from the root.
-    fn sift_down(&mut self) {
-        let mut i = 0;
-        loop {
-            let (left, right) = (2 * i + 1, 2 * i + 2);
-            let mut least = i;
-            if left < self.len && self.heap[left] < self.heap[least] {
-                least = left;
-            }
-            if right < self.len && self.heap[right] < self.heap[least] {
-                least = right;
-            }
-            if least == i {
-                return;
-            }
-            self.heap.swap(i, least);
-            i = least;
-        }
-    }
-}
+/// below `2^33` ([`KEYED_NODES`]). A [`MinHeap`] of these integers.
+struct Keyed(MinHeap<u128>);
 
 impl<V: CostValue> Frontier<V> for Keyed {
     fn new(_n: usize, max_pushes: usize) -> Self {
-        Keyed {
-            heap: vec![0; max_pushes],
-            len: 0,
-        }
+        Keyed(MinHeap::over(vec![0; max_pushes]))
     }
     #[inline]
-    fn push(&mut self, dist: &V, counter: u64, node: u32) {
+    fn insert(&mut self, dist: &V, counter: u64, node: u32) {
         let key = dist
             .order_key()
             .expect("Keyed is used only with order keys");
         debug_assert!(counter < 1 << 33 && (node as usize) < KEYED_NODES);
-        self.heap[self.len] = u128::from(key) << 64 | u128::from(counter) << 31 | u128::from(node);
-        self.len += 1;
-        self.sift_up(self.len - 1);
+        self.0
+            .insert(u128::from(key) << 64 | u128::from(counter) << 31 | u128::from(node));
     }
     #[inline]
     fn pop(&mut self) -> Option<u32> {
-        if self.len == 0 {
-            return None;
-        }
-        let least = self.heap[0];
-        self.len -= 1;
-        self.heap[0] = self.heap[self.len];
-        self.sift_down();
-        Some((least & ((1 << 31) - 1)) as u32)
+        self.0
+            .remove_least()
+            .map(|&least| (least & ((1 << 31) - 1)) as u32)
     }
 }
 
@@ -215,7 +232,7 @@ fn search<'g, V: CostValue, F: Frontier<V>, I: Iterator<Item = (usize, &'g V)>>(
     let mut counts = DijkstraCounts::default();
     for &s in sources {
         dist[s] = V::zero();
-        heap.push(&V::zero(), counter, s as u32);
+        heap.insert(&V::zero(), counter, s as u32);
         counter += 1;
     }
     while let Some(node) = heap.pop() {
@@ -242,7 +259,7 @@ fn search<'g, V: CostValue, F: Frontier<V>, I: Iterator<Item = (usize, &'g V)>>(
             }
             let nd = d.plus(c);
             if nd.compare(&dist[w]) == Ordering::Less {
-                heap.push(&nd, counter, w as u32);
+                heap.insert(&nd, counter, w as u32);
                 dist[w] = nd;
                 parent[w] = v as u32;
                 counter += 1;
@@ -396,7 +413,7 @@ mod tests {
                 } else {
                     draw.below(1 << 31) as u32
                 };
-                Frontier::<Units>::push(&mut heap, &Units(key), counter, node);
+                Frontier::<Units>::insert(&mut heap, &Units(key), counter, node);
                 entries.push((key, counter, node));
                 // Interleaved pops: the least entry so far.
                 if draw.below(3) == 0 {
@@ -410,6 +427,35 @@ mod tests {
                 assert_eq!(Frontier::<Units>::pop(&mut heap), Some(node), "{case}");
             }
             assert_eq!(Frontier::<Units>::pop(&mut heap), None);
+        }
+    }
+    /// The frontier for any value type pops the same sequence as the packed one, on random
+    /// interleavings of insertions and pops (ties in distance broken by the counter).
+    #[test]
+    fn compared_pops_what_keyed_pops() {
+        let mut draw = Draw(0x2545_F491_4F6C_DD1D);
+        for case in 0..500 {
+            let inserts = 1 + draw.below(40) as usize;
+            let mut keyed = <Keyed as Frontier<Units>>::new(4, inserts);
+            let mut compared = <Compared<Units> as Frontier<Units>>::new(4, inserts);
+            let mut popped = 0;
+            for i in 0..inserts {
+                let (key, node) = (Units(draw.below(6)), draw.below(1 << 20) as u32);
+                Frontier::<Units>::insert(&mut keyed, &key, i as u64, node);
+                compared.insert(&key, i as u64, node);
+                if draw.below(3) == 0 {
+                    let k = Frontier::<Units>::pop(&mut keyed);
+                    assert!(k.is_some());
+                    assert_eq!(compared.pop(), k, "{case}");
+                    popped += 1;
+                }
+            }
+            for _ in popped..inserts {
+                let k = Frontier::<Units>::pop(&mut keyed);
+                assert!(k.is_some());
+                assert_eq!(compared.pop(), k, "{case}");
+            }
+            assert_eq!(compared.pop(), None);
         }
     }
     use crate::value::Units;

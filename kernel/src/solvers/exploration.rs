@@ -47,14 +47,18 @@ pub fn explore<V: CostValue, U: Clone>(graph: &Graph<V, U>) -> Exploration<V, U>
     let mut walk = Walk::new(graph);
     let start = graph.initial();
     walk.appear(start);
-    let mut stack: Vec<u32> = Vec::with_capacity(graph.nodes());
-    stack.push(start as u32);
-    while let Some(&x) = stack.last() {
-        match walk.step(x as usize) {
-            Some(y) => stack.push(y),
-            None => {
-                stack.pop();
+    // The robot's path, in a buffer of fixed capacity: every step forward tries a move not
+    // tried before, so at most `1 + |moves|` nodes are ever on it.
+    let mut stack = vec![0u32; 1 + graph.edge_count()];
+    stack[0] = start as u32;
+    let mut len = 1;
+    while len > 0 {
+        match walk.step(stack[len - 1] as usize) {
+            Some(y) => {
+                stack[len] = y;
+                len += 1;
             }
+            None => len -= 1,
         }
     }
     walk.finish()
@@ -95,9 +99,13 @@ struct Walk<'g, V, U> {
     nodes: Vec<Node>,
     /// Actions counted (moves inspected).
     actions: u64,
-    /// Explored node of each discovered node, in order of first appearance.
+    /// Explored node of each discovered node, in order of first appearance: the first
+    /// `discovered` entries of a buffer sized for every node of the explored graph.
     order: Vec<usize>,
-    /// Discovered row starts, one more than `order`: row `i` is `first[i]..first[i + 1]`.
+    /// Nodes discovered so far.
+    discovered: usize,
+    /// Discovered row starts, the first `discovered + 1` entries of a buffer of `n + 1`: row
+    /// `i` is `first[i]..first[i + 1]`.
     first: Vec<u32>,
     /// Per slot: the discovered index of the move's target (`0` until recorded). Sized for
     /// every move of the explored graph, truncated to the rows when the walk ends.
@@ -115,8 +123,6 @@ impl<'g, V: CostValue, U: Clone> Walk<'g, V, U> {
     fn new(graph: &'g Graph<V, U>) -> Self {
         let (row, target, weight) = graph.compressed_rows();
         let (n, m) = (graph.nodes(), target.len());
-        let mut first = Vec::with_capacity(n + 1);
-        first.push(0);
         let unseen = Node {
             index: UNSEEN,
             cursor: 0,
@@ -130,8 +136,9 @@ impl<'g, V: CostValue, U: Clone> Walk<'g, V, U> {
             tried: vec![false; m],
             nodes: vec![unseen; n],
             actions: 0,
-            order: Vec::with_capacity(n),
-            first,
+            order: vec![0; n],
+            discovered: 0,
+            first: vec![0; n + 1],
             successor: vec![0; m],
             cost: vec![V::zero(); m],
             partner: vec![NO_PARTNER; m],
@@ -140,15 +147,17 @@ impl<'g, V: CostValue, U: Clone> Walk<'g, V, U> {
 
     /// Numbers `v` (first appearance) and reserves its row: one slot per move of `v`.
     fn appear(&mut self, v: usize) {
-        let slots = *self.first.last().expect("first is never empty");
+        let i = self.discovered;
+        let slots = self.first[i];
         let (lo, hi) = (self.row[v], self.row[v + 1]);
         self.nodes[v] = Node {
-            index: self.order.len() as u32,
+            index: i as u32,
             cursor: lo,
             fill: slots,
         };
-        self.order.push(v);
-        self.first.push(slots + (hi - lo));
+        self.order[i] = v;
+        self.first[i + 1] = slots + (hi - lo);
+        self.discovered = i + 1;
     }
 
     /// One step of the walk at discovered node `x`: takes the first untried move and returns
@@ -198,13 +207,16 @@ impl<'g, V: CostValue, U: Clone> Walk<'g, V, U> {
             graph,
             actions,
             nodes,
-            order,
-            first,
+            mut order,
+            discovered,
+            mut first,
             mut successor,
             mut cost,
             mut partner,
             ..
         } = self;
+        order.truncate(discovered);
+        first.truncate(discovered + 1);
         debug_assert!((0..order.len()).all(|i| nodes[order[i]].fill == first[i + 1]));
         let recorded = *first.last().expect("first is never empty") as usize;
         successor.truncate(recorded);

@@ -78,22 +78,27 @@ pub(crate) fn greedy_policy_over<V: CostValue, U>(
             && c.plus(&cost_to_go[y]).compare(&cost_to_go[x]) == Ordering::Equal
     };
     // h: shortest number of optimal moves to a goal (backward BFS over tight edges).
-    // The queue is a vector read from `head` (every node enters at most once).
+    // The queue is a buffer of fixed capacity `n` (every node enters at most once), filled up
+    // to `len` and read from `head`.
     let mut h = vec![u32::MAX; n];
-    let mut queue: Vec<usize> = Vec::with_capacity(n);
+    let mut queue = vec![0usize; n];
+    let mut len = 0;
     for (v, hv) in h.iter_mut().enumerate() {
         if graph.is_goal(v) {
             *hv = 0;
-            queue.push(v);
+            queue[len] = v;
+            len += 1;
         }
     }
     let mut head = 0;
-    while let Some(&y) = queue.get(head) {
+    while head < len {
+        let y = queue[head];
         head += 1;
         for (x, c) in incoming.of(y) {
             if h[x] == u32::MAX && tight(x, y, c) {
                 h[x] = h[y] + 1;
-                queue.push(x);
+                queue[len] = x;
+                len += 1;
             }
         }
     }

@@ -1,4 +1,4 @@
-//! The deterministic planning model's compiled form (SPEC §1, §2): states, the ordered move
+//! The deterministic planning model's compiled form (docs/spec.md §1, §2): states, the ordered move
 //! lists the planners run on, and a policy's [`Decision`]s.
 //!
 //! The validated problem with exact rational costs (`truecost::model::Problem`) and the choice
@@ -136,7 +136,7 @@ pub struct Graph<V, U = ()> {
 }
 
 impl<V: CostValue, U> Graph<V, U> {
-    /// Builds a graph from ordered successor lists (SPEC §1: `U(x)` in order, `f`, `l`).
+    /// Builds a graph from ordered successor lists (docs/spec.md §1: `U(x)` in order, `f`, `l`).
     /// `origin[v]` names node `v` in the caller's numbering; `unit` is the exact value of one
     /// unit of `V` (1 unless `V` is scaled; `()` where it is not needed).
     ///

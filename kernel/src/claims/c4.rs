@@ -1,4 +1,4 @@
-//! Claim C4 (SPEC §6): episodic equivalence — the exact bonus analysis. The single-shot
+//! Claim C4 (docs/spec.md §6): episodic equivalence — the exact bonus analysis. The single-shot
 //! problem versus the infinite-horizon average-cost problem in which reaching the goal resets
 //! to `x1` with bonus `M < 0` (the reset is one stage costing `M`; a path with `S` states is a
 //! reset cycle of `S` stages and cost `L + M`).

@@ -1,8 +1,8 @@
 //! Independent oracles: enumeration of every deterministic stationary policy
 //! of a tiny problem, the exact cost of each policy's trajectory under every functional of
-//! SPEC §1, exact minimum mean cycles by Karp's algorithm and by enumerating simple cycles.
+//! docs/spec.md §1, exact minimum mean cycles by Karp's algorithm and by enumerating simple cycles.
 //!
-//! Nothing here knows the formulas of SPEC §6: a claim is checked by comparing what these
+//! Nothing here knows the formulas of docs/spec.md §6: a claim is checked by comparing what these
 //! brute-force computations give with what the claim states.
 
 use std::fmt;
@@ -53,7 +53,7 @@ pub fn policies(t: &Tiny, goal_may_move: bool) -> Vec<Policy> {
 }
 
 /// The stage costs of a trajectory: `prefix` then `cycle` repeated forever. A trajectory that
-/// terminates at a goal has the cycle `[0]` (frozen, SPEC §1) and `terminates = true`.
+/// terminates at a goal has the cycle `[0]` (frozen, docs/spec.md §1) and `terminates = true`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Trajectory {
     /// Stage costs before the cycle.
@@ -117,7 +117,7 @@ pub fn trajectory(t: &Tiny, policy: &Policy, start: usize) -> Trajectory {
     }
 }
 
-/// A functional of a stage sequence that is linear in the stages (SPEC §1, §6 C2); its discount
+/// A functional of a stage sequence that is linear in the stages (docs/spec.md §1, §6 C2); its discount
 /// factors are exact rationals over `I` (`i128` unless stated).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Functional<I: ExactInt = i128> {

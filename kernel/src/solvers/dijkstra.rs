@@ -1,9 +1,9 @@
-//! Dijkstra's algorithm (SPEC §2, §7), in two directions over one private core:
+//! Dijkstra's algorithm (docs/spec.md §2, §7), in two directions over one private core:
 //!
 //! * [`to_goals`] — backwards from the goal set over reversed moves: `G*` for every node. This
 //!   is the default planner.
 //! * [`from_initial`] — forwards from `x1`, stopping when a goal is popped: the paper's code
-//!   (SPEC §7). It gives `G*(x1)` and one optimal path.
+//!   (docs/spec.md §7). It gives `G*(x1)` and one optimal path.
 //!
 //! Both use a binary heap ordered by (distance, insertion counter); for value types with an
 //! order key (`Units`, `f64`) each entry is one machine integer. A popped entry whose node
@@ -340,7 +340,7 @@ fn first_tight_moves<V: CostValue, U>(graph: &Graph<V, U>, g: &[V]) -> Vec<Optio
         .collect()
 }
 
-/// Forward Dijkstra from `x1` that stops when a goal is popped (the paper's code, SPEC §7).
+/// Forward Dijkstra from `x1` that stops when a goal is popped (the paper's code, docs/spec.md §7).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ForwardSearch<V> {
     /// `G*(x1)`, `+∞` if no goal was reached.

@@ -1,4 +1,4 @@
-//! Model-free exploration (SPEC §2, §7): the robot cannot jump; it walks the graph depth-first
+//! Model-free exploration (docs/spec.md §2, §7): the robot cannot jump; it walks the graph depth-first
 //! over *edges* until every move reachable from `x1` has been tried once, and the planners then
 //! run on the graph it discovered.
 //!
@@ -254,7 +254,7 @@ mod tests {
     /// Per-node move lists `(successor, cost)`.
     type Adjacency = Vec<Vec<(usize, f64)>>;
 
-    /// The walk of SPEC §7 written as literally as possible, as an oracle for [`explore`]:
+    /// The walk of docs/spec.md §7 written as literally as possible, as an oracle for [`explore`]:
     /// every scan starts at the first move, the reverse partner is searched for by its rank,
     /// and the discovered graph is grown as per-node lists.
     fn literal_walk(graph: &Graph<f64>) -> (u64, Vec<Option<usize>>, Adjacency) {

@@ -1,4 +1,4 @@
-//! The exact planners of SPEC §2: Dijkstra, synchronous and asynchronous value iteration,
+//! The exact planners of docs/spec.md §2: Dijkstra, synchronous and asynchronous value iteration,
 //! exact policy evaluation, and the model-free exploration that precedes them.
 //!
 //! Every planner is a function over a [`Graph`] generic in its [`CostValue`]; none reads a
@@ -48,7 +48,7 @@ pub struct Solution<V> {
 /// the shortest path to a goal over optimal moves). With positive costs this is exactly "the
 /// first minimiser in action order"; with zero-cost cycles the progress condition stops the
 /// policy from circling, so following it from any node with finite `G*` reaches a goal with
-/// total cost `G*` (SPEC §1, `π*(x) ∈ argmin_u Q*(x,u)`). Goals terminate.
+/// total cost `G*` (docs/spec.md §1, `π*(x) ∈ argmin_u Q*(x,u)`). Goals terminate.
 ///
 /// ```
 /// use truecost_kernel::model::{Decision, Graph};

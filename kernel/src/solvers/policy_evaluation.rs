@@ -1,5 +1,5 @@
 //! Exact policy evaluation: the total cost `L(π, x) = Σ_{k≥1} l(x_k, π(x_k))` of a
-//! deterministic stationary policy from every state (SPEC §1).
+//! deterministic stationary policy from every state (docs/spec.md §1).
 //!
 //! Convention (consistent with `G* = +∞` where no goal is reachable): a trajectory that never
 //! reaches a goal and terminates — it runs into a node where `π` is undefined, or circles

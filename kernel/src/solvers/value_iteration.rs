@@ -1,4 +1,4 @@
-//! Value iteration (SPEC §2): the backup `G(x) ← min_u { l(x,u) + G(f(x,u)) }`.
+//! Value iteration (docs/spec.md §2): the backup `G(x) ← min_u { l(x,u) + G(f(x,u)) }`.
 //!
 //! Values start at `+∞` except goals at 0 (their termination action costs 0). A backup replaces
 //! a value only when the new one is strictly smaller; with non-negative costs and this start

@@ -174,7 +174,9 @@ fn the_json_gives_each_theorem_s_statement_as_check_prints_it() {
         assert_eq!(json["accepted"], true);
     }
     // The lemma behind the printed "2^-100 apart" is among the checked theorems.
-    assert!(check.theorem("Truecost.C3Example.alpha_bracket_width").is_some());
+    assert!(check
+        .theorem("Truecost.C3Example.alpha_bracket_width")
+        .is_some());
 }
 
 /// The sources up to C3.v, with `C3.v` changed by `edit`.
@@ -288,7 +290,9 @@ fn a_widened_bracket_without_its_width_lemma_is_not_proved() {
         .theorem("Truecost.C3.c3_alpha_star")
         .unwrap()
         .accepted());
-    let width = check.theorem("Truecost.C3Example.alpha_bracket_width").unwrap();
+    let width = check
+        .theorem("Truecost.C3Example.alpha_bracket_width")
+        .unwrap();
     assert!(
         matches!(width.assumptions, Assumptions::Missing(_)),
         "{width:?}"

@@ -258,11 +258,13 @@ impl Settings {
                     StepCost::Euclidean => "Euclidean (800/19)",
                 }
             ),
-            Mode::Reference => "reference (paper code, docs/spec.md §7): f64 Euclidean step costs on the \
+            Mode::Reference => {
+                "reference (paper code, docs/spec.md §7): f64 Euclidean step costs on the \
                                 reference grid; checks every 1000 actions; iterations = 0-based \
                                 last episode index; coins random() < ε with ε a float, ε-decay \
                                 by f64 steps of (ε0 − 0.1)/E"
-                .to_string(),
+                    .to_string()
+            }
         }
     }
 }

@@ -264,7 +264,7 @@ fn contract(kind: &str, attr: TokenStream, item: TokenStream) -> TokenStream {
     f.into_token_stream().into()
 }
 
-/// A precondition (Kani's `#[kani::requires(cond)]`; see [`contract`] for the stand-in's
+/// A precondition (Kani's `#[kani::requires(cond)]`; see the private `contract` for the stand-in's
 /// checks). Needs `-Z function-contracts` under Kani.
 #[proc_macro_attribute]
 pub fn requires(attr: TokenStream, item: TokenStream) -> TokenStream {

@@ -465,7 +465,7 @@ pub fn karp_minimum_mean_cycle_in<I: ExactInt>(
 }
 
 /// One node of the current path of a depth-first search over simple paths
-/// ([`simple_paths`]): the node, the index of its next arc to examine, and the weight and the
+/// (`simple_paths`): the node, the index of its next arc to examine, and the weight and the
 /// number of arcs of the path up to the node.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Frame {
@@ -475,7 +475,7 @@ pub(crate) struct Frame {
     arcs: usize,
 }
 
-/// What a depth-first search over simple paths does with an arc ([`simple_paths`]).
+/// What a depth-first search over simple paths does with an arc (`simple_paths`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Step {
     /// Ignores it.
@@ -569,7 +569,7 @@ pub(crate) fn simple_paths<E>(
 /// The search from each root follows only arcs into nodes `≥ root` that can reach the root
 /// again among such nodes (a backward search first), over the arcs in compressed rows: a node on
 /// no cycle through the root is never entered, so an acyclic graph costs `O(n·m)` whatever its
-/// number of paths. Both searches are iterative, on stacks of fixed capacity ([`simple_paths`]);
+/// number of paths. Both searches are iterative, on stacks of fixed capacity (`simple_paths`);
 /// they run twice, to count the cycles and then to write them into a buffer of that length.
 ///
 /// ```
@@ -704,7 +704,7 @@ pub fn goal_avoiding_arcs(t: &Tiny) -> (Vec<bool>, Vec<(usize, usize, i64)>) {
 
 /// Every simple path from `x1 = 0` to the goal as `(cost L, number of states S)`, in
 /// depth-first order (moves in each state's order); iterative, on a stack of fixed capacity
-/// ([`simple_paths`]).
+/// (`simple_paths`).
 pub fn simple_goal_paths(t: &Tiny) -> Vec<(i64, usize)> {
     if t.is_goal(0) {
         return vec![(0, 1)];

@@ -1,6 +1,7 @@
 //! Command-line interface (clap). Every error is one line on stderr and a non-zero exit:
 //! 2 for usage errors (clap), 1 for bad input or a failed run.
 
+mod certify;
 mod compare;
 mod discount;
 mod env;

@@ -178,7 +178,7 @@ fn certify(
         }
         _ => CertifiedObjective::Truecost,
     };
-    let record = super::env::CertifiedSource {
+    let record = super::certify::CertifiedSource {
         file: args.file.as_deref(),
         problem: args.problem,
         env: None,
@@ -187,7 +187,7 @@ fn certify(
         noise: args.noise,
     }
     .record(|| {
-        super::env::mdp_of(&truecost::objectives::Model::from_problem(
+        super::certify::mdp_of(&truecost::objectives::Model::from_problem(
             problem.clone(),
             String::new(),
         ))
@@ -206,7 +206,7 @@ fn certify(
         unreduced_texts(opt, problem.states()),
         &policy,
     );
-    super::env::write_certificate(path, &text)
+    super::certify::write_certificate(path, &text)
 }
 
 /// Every state's `G*` over the optimum's common denominator, not reduced (`"n/d"`, `"n"` when

@@ -36,7 +36,7 @@ use truecost_kernel::claims::c4::{bonus_analysis, End, Instance, Interval};
 use truecost_kernel::claims::exact::Q;
 use truecost_kernel::claims::tiny::{Family, FamilySpec, Tiny};
 
-use coq_support::{coq_dir, list, make, parse, run, Verdict, NO_COQC};
+use coq_support::{check_all, coq_dir, list, make, parse, Verdict, NO_COQC};
 
 /// The policy bound of the bonus analysis (as `verify` runs it).
 const LIMIT: u64 = 1 << 20;
@@ -213,29 +213,8 @@ fn coq_term(c: &Case) -> String {
 
 /// Writes `cases` as a Coq file in `work`, evaluates `check_all` on them with `coqc`.
 fn coq_check(dir: &Path, work: &Path, name: &str, cases: &[Case]) -> Verdict {
-    let mut file = String::from(
-        "From Coq Require Import String QArith List.\nFrom Truecost Require Import Model BridgeC34.\n\
-         Import ListNotations.\nOpen Scope Q_scope.\n\n\
-         Definition problems : list (problem * expected) := [\n",
-    );
-    for (i, c) in cases.iter().enumerate() {
-        let sep = if i + 1 < cases.len() { ";" } else { "" };
-        writeln!(file, "  {}{sep}", coq_term(c)).unwrap();
-    }
-    file.push_str("].\n\nEval vm_compute in check_all problems.\n");
-    let path = work.join(format!("{name}.v"));
-    std::fs::write(&path, file).unwrap();
-    let out = run(
-        Command::new("coqc")
-            .arg("-q")
-            .arg("-R")
-            .arg(dir)
-            .arg("Truecost")
-            .arg(&path)
-            .current_dir(work),
-        &format!("coqc {}", path.display()),
-    );
-    parse(&out).unwrap_or_else(|| panic!("unreadable Coq output:\n{out}"))
+    let terms: Vec<String> = cases.iter().map(coq_term).collect();
+    check_all(dir, work, name, "BridgeC34", &terms)
 }
 
 /// The kernel's value at a mismatch, for the failure message.

@@ -28,7 +28,7 @@ use std::time::Instant;
 use truecost_kernel::claims::qlearning::{run, Order, QProblem, Run, Terminal, Values, MAX_PAIRS};
 use truecost_kernel::claims::tiny::{Family, FamilySpec, Tiny};
 
-use coq_support::{coq_dir, list, make, parse, run as run_cmd, Verdict, NO_COQC};
+use coq_support::{check_all, coq_dir, list, make, Verdict, NO_COQC};
 
 /// Rounds simulated per run.
 const ROUNDS: usize = 4;
@@ -219,30 +219,8 @@ fn coq_check(dir: &Path, work: &Path, name: &str, cases: &[Case]) -> Verdict {
         mismatches: Vec::new(),
     };
     for (k, chunk) in cases.chunks(CHUNK).enumerate() {
-        let mut file = String::from(
-            "From Coq Require Import QArith List String.\nFrom Truecost Require Import Model BridgeRun.\n\
-             Import ListNotations.\nOpen Scope Q_scope.\n\n\
-             Definition problems : list (problem * expected) := [\n",
-        );
-        for (i, c) in chunk.iter().enumerate() {
-            let sep = if i + 1 < chunk.len() { ";" } else { "" };
-            writeln!(file, "  {}{sep}", coq_term(c)).unwrap();
-        }
-        file.push_str("].\n\nEval vm_compute in check_all problems.\n");
-        let path = work.join(format!("{name}_{k}.v"));
-        std::fs::write(&path, file).unwrap();
-        let out = run_cmd(
-            Command::new("coqc")
-                .arg("-q")
-                .arg("-no-glob")
-                .arg("-R")
-                .arg(dir)
-                .arg("Truecost")
-                .arg(&path)
-                .current_dir(work),
-            &format!("coqc {}", path.display()),
-        );
-        let v = parse(&out).unwrap_or_else(|| panic!("unreadable Coq output:\n{out}"));
+        let terms: Vec<String> = chunk.iter().map(coq_term).collect();
+        let v = check_all(dir, work, &format!("{name}_{k}"), "BridgeRun", &terms);
         total.problems += v.problems;
         total.values += v.values;
         let offset = k * CHUNK;

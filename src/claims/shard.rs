@@ -728,8 +728,9 @@ pub fn caught<T>(f: impl FnOnce() -> T) -> Result<T, String> {
         RECENT.lock().unwrap_or_else(|e| e.into_inner()).clear();
     }
     let result = catch_unwind(AssertUnwindSafe(f));
-    CATCHING.fetch_sub(1, Ordering::SeqCst);
-    result.map_err(|payload| {
+    // The panic's place is read before this catch ends: a catch that starts once none is
+    // running (on another thread) clears the places recorded.
+    let result = result.map_err(|payload| {
         if let Some(Described(text)) = payload.downcast_ref::<Described>() {
             return text.clone();
         }
@@ -743,7 +744,9 @@ pub fn caught<T>(f: impl FnOnce() -> T) -> Result<T, String> {
             .map(|(_, l)| format!(" (at {l})"))
             .unwrap_or_default();
         crate::echo::one_line(&format!("{message}{at}"))
-    })
+    });
+    CATCHING.fetch_sub(1, Ordering::SeqCst);
+    result
 }
 
 /// The site of the entry that ends an engine's entries ([`engine`]).

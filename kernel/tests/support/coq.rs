@@ -82,3 +82,33 @@ pub fn make(dir: &Path, target: &str) {
         &format!("make -C {} {target}", dir.display()),
     );
 }
+
+/// Writes the Coq terms `cases` (one `(problem, expected)` pair each) as the list `problems` of
+/// a file `work/<name>.v` that imports `bridge`, evaluates `check_all problems` with `coqc`,
+/// and reads the verdict back.
+pub fn check_all(dir: &Path, work: &Path, name: &str, bridge: &str, cases: &[String]) -> Verdict {
+    let mut file = format!(
+        "From Coq Require Import QArith List String.\nFrom Truecost Require Import Model {bridge}.\n\
+         Import ListNotations.\nOpen Scope Q_scope.\n\n\
+         Definition problems : list (problem * expected) := [\n"
+    );
+    for (i, c) in cases.iter().enumerate() {
+        let sep = if i + 1 < cases.len() { ";" } else { "" };
+        file.push_str(&format!("  {c}{sep}\n"));
+    }
+    file.push_str("].\n\nEval vm_compute in check_all problems.\n");
+    let path = work.join(format!("{name}.v"));
+    std::fs::write(&path, file).unwrap();
+    let out = run(
+        Command::new("coqc")
+            .arg("-q")
+            .arg("-no-glob")
+            .arg("-R")
+            .arg(dir)
+            .arg("Truecost")
+            .arg(&path)
+            .current_dir(work),
+        &format!("coqc {}", path.display()),
+    );
+    parse(&out).unwrap_or_else(|| panic!("unreadable Coq output:\n{out}"))
+}

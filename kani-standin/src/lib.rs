@@ -684,6 +684,13 @@ fn is_overflow(msg: &str) -> bool {
     msg.starts_with("attempt to ")
 }
 
+/// Whether this thread is running a body with the stand-in's panic hook silent (a harness run
+/// or [`__panics`]): its panics are the stand-in's to record, not anyone else's.
+#[doc(hidden)]
+pub fn __quiet() -> bool {
+    QUIET.with(|q| *q.borrow())
+}
+
 /// Runs `f` with the stand-in's panic hook silent; `true` if it panicked. (Used to ask whether
 /// this build checks arithmetic overflow.)
 #[doc(hidden)]

@@ -21,7 +21,7 @@ use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 mod source_scan;
-use source_scan::{blank, close_of, drop_test_modules, is_ident};
+use source_scan::{blank, body_open, close_of, drop_test_modules, is_ident};
 
 /// A function of the scanned code.
 #[derive(Clone, Debug)]
@@ -140,24 +140,9 @@ fn functions_in(file: &str, code: &str) -> Vec<Function> {
             .skip_while(|c| c.is_whitespace())
             .take_while(|&&c| is_ident(c))
             .collect();
-        let mut j = i + 2;
-        let mut depth = 0i32;
-        let mut body = None;
-        while j < b.len() {
-            match b[j] {
-                '(' | '[' | '<' => depth += 1,
-                ')' | ']' => depth -= 1,
-                '>' if b[j - 1] != '-' => depth -= 1,
-                '{' if depth <= 0 => {
-                    body = Some(j);
-                    break;
-                }
-                ';' if depth <= 0 => break,
-                _ => {}
-            }
-            j += 1;
-        }
-        let Some(open) = body else { continue };
+        let Some(open) = body_open(&b, i + 2) else {
+            continue;
+        };
         let end = close_of(&b, open);
         // The innermost impl that contains it, unless a function body lies in between.
         let owner = impls

@@ -93,6 +93,23 @@ pub fn close_of(b: &[char], open: usize) -> usize {
     b.len()
 }
 
+/// The `{` that opens the body of the item whose signature starts at `from`: the first `{` at
+/// bracket depth 0 after its parameter list (`None` when a `;` comes first: a declaration).
+pub fn body_open(b: &[char], from: usize) -> Option<usize> {
+    let mut depth = 0i32;
+    for j in from..b.len() {
+        match b[j] {
+            '(' | '[' | '<' => depth += 1,
+            ')' | ']' => depth -= 1,
+            '>' if b[j - 1] != '-' => depth -= 1,
+            '{' if depth <= 0 => return Some(j),
+            ';' if depth <= 0 => return None,
+            _ => {}
+        }
+    }
+    None
+}
+
 pub fn is_ident(c: char) -> bool {
     c.is_alphanumeric() || c == '_'
 }
@@ -146,26 +163,8 @@ pub fn functions(code: &str) -> Vec<(String, String, String)> {
             continue;
         }
         let name: String = b[i + 3..].iter().take_while(|&&c| is_ident(c)).collect();
-        // The body is the first `{` at bracket depth 0 after the parameter list; `;` first means
-        // a declaration without a body.
-        let mut j = i + 3;
-        let mut depth = 0i32;
-        let mut body = None;
-        while j < b.len() {
-            match b[j] {
-                '(' | '[' | '<' => depth += 1,
-                ')' | ']' => depth -= 1,
-                '>' if b[j - 1] != '-' => depth -= 1,
-                '{' if depth <= 0 => {
-                    body = Some(j);
-                    break;
-                }
-                ';' if depth <= 0 => break,
-                _ => {}
-            }
-            j += 1;
-        }
-        match body {
+        // A declaration without a body is passed over.
+        match body_open(&b, i + 3) {
             Some(open) => {
                 let end = close_of(&b, open);
                 out.push((
@@ -176,7 +175,7 @@ pub fn functions(code: &str) -> Vec<(String, String, String)> {
                 // Nested functions are scanned as part of this body.
                 i = end;
             }
-            None => i = j + 1,
+            None => i += 3,
         }
     }
     out

@@ -830,6 +830,19 @@ mod tests {
         *seed % k
     }
 
+    /// Move lists of a random tiny problem: 1 to `MAX_STATES` states, 0 to 3 moves each, costs
+    /// below `costs`.
+    fn random_lists(seed: &mut u64, costs: u64) -> Vec<Vec<(u8, u8)>> {
+        let n = 1 + draw(seed, MAX_STATES as u64) as usize;
+        (0..n)
+            .map(|_| {
+                (0..draw(seed, 4))
+                    .map(|_| (draw(seed, n as u64) as u8, draw(seed, costs) as u8))
+                    .collect()
+            })
+            .collect()
+    }
+
     /// The iterative search enumerates the simple cycles of the brute force, in the same order,
     /// on random graphs of 1 to 5 nodes with parallel arcs and self-loops, on a 7-node ring with
     /// chords (its 7-cycle fills the fixed array of `MAX_STATES` frames) and on an 8-node ring
@@ -873,14 +886,8 @@ mod tests {
         let mut seed = 0x2545_F491_4F6C_DD1Du64;
         let mut many = 0;
         for _ in 0..400 {
-            let n = 1 + draw(&mut seed, MAX_STATES as u64) as usize;
-            let lists: Vec<Vec<(u8, u8)>> = (0..n)
-                .map(|_| {
-                    (0..draw(&mut seed, 4))
-                        .map(|_| (draw(&mut seed, n as u64) as u8, draw(&mut seed, 3) as u8))
-                        .collect()
-                })
-                .collect();
+            let lists = random_lists(&mut seed, 3);
+            let n = lists.len();
             let t = Tiny::from_lists(&lists);
             for goal_may_move in [false, true] {
                 let mut literal = vec![[0u8; MAX_STATES]];
@@ -959,14 +966,7 @@ mod tests {
             brute.len()
         };
         for _ in 0..1500 {
-            let n = 1 + draw(&mut seed, MAX_STATES as u64) as usize;
-            let lists: Vec<Vec<(u8, u8)>> = (0..n)
-                .map(|_| {
-                    (0..draw(&mut seed, 4))
-                        .map(|_| (draw(&mut seed, n as u64) as u8, draw(&mut seed, 5) as u8))
-                        .collect()
-                })
-                .collect();
+            let lists = random_lists(&mut seed, 5);
             let t = Tiny::from_lists(&lists);
             several += usize::from(check(&t, &Instance::from_tiny(&t)) >= 2);
         }

@@ -16,8 +16,8 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use truecost::certificate::{self, CertifiedObjective, Identity, Mdp, MdpAction, ProblemRecord};
-use truecost::model::Decision;
 use truecost::stochastic::benchmark::cost_grid;
+use truecost::stochastic::certified::optimum_certificate;
 use truecost::stochastic::policy_iteration::{optimum, Optimum};
 use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
 
@@ -56,25 +56,7 @@ fn write(p: &StochasticProblem, opt: &Optimum, objective: &CertifiedObjective) -
         sha256: certificate::sha256_hex(mdp_of(p).canonical_text().as_bytes()),
         sha256_of: certificate::CANONICAL_FORMAT.into(),
     };
-    let policy: Vec<Option<usize>> = opt
-        .policy()
-        .iter()
-        .map(|d| match d {
-            Some(Decision::Move(i)) => Some(*i),
-            _ => None,
-        })
-        .collect();
-    // As `solve --certificate` writes them: over the common denominator, not reduced.
-    let d = (0..p.states())
-        .find_map(|x| opt.unreduced(x).map(|(_, d)| d.to_string()))
-        .unwrap_or_default();
-    let values = (0..p.states())
-        .map(|x| match opt.unreduced(x) {
-            Some((n, _)) => format!("{n}/{d}"),
-            None => "inf".into(),
-        })
-        .collect();
-    certificate::write(objective, &record, values, &policy)
+    optimum_certificate(p, opt, objective, &record)
 }
 
 fn grids(c: &mut Criterion) {

@@ -30,6 +30,7 @@
 //!   policies that reach a goal with probability 1 from `x` (*proper* at `x`), `+∞` if none.
 
 pub mod benchmark;
+pub mod certified;
 pub mod file;
 pub mod grid;
 pub mod linear;

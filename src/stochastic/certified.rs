@@ -1,0 +1,55 @@
+//! The certificate of an exact optimum ([`super::policy_iteration::optimum`]), as
+//! `solve --algorithm exact --certificate` writes it ([`crate::certificate`] checks it): every
+//! state's `G*` over the optimum's common denominator, the optimal policy's action per state,
+//! and the record of the problem.
+
+use num_traits::Zero;
+use rayon::prelude::*;
+
+use super::policy_iteration::Optimum;
+use super::StochasticProblem;
+use crate::certificate::{self, CertifiedObjective, ProblemRecord};
+use crate::model::Decision;
+
+/// The certificate's text for `opt`, the exact optimum of `problem`.
+pub fn optimum_certificate(
+    problem: &StochasticProblem,
+    opt: &Optimum,
+    objective: &CertifiedObjective,
+    record: &ProblemRecord,
+) -> String {
+    let policy: Vec<Option<usize>> = opt
+        .policy()
+        .iter()
+        .map(|d| match d {
+            Some(Decision::Move(i)) => Some(*i),
+            _ => None,
+        })
+        .collect();
+    certificate::write(
+        objective,
+        record,
+        unreduced_texts(opt, problem.states()),
+        &policy,
+    )
+}
+
+/// Every state's `G*` over the optimum's common denominator, not reduced (`"n/d"`, `"n"` when
+/// `d = 1` or `n = 0`, `"inf"`): exact, and no gcd per state (reducing is most of the cost of
+/// printing every value of a large stochastic model).
+fn unreduced_texts(opt: &Optimum, n: usize) -> Vec<String> {
+    let d = (0..n)
+        .find_map(|x| opt.unreduced(x).map(|(_, d)| d.to_string()))
+        .unwrap_or_default();
+    let text = |x: usize| match opt.unreduced(x) {
+        Some((num, _)) if d == "1" || num.is_zero() => num.to_string(),
+        Some((num, _)) => format!("{num}/{d}"),
+        None => "inf".into(),
+    };
+    // In parallel only when the numbers are long (a thread pool costs more than short texts).
+    if d.len() > 64 {
+        (0..n).into_par_iter().map(text).collect()
+    } else {
+        (0..n).map(text).collect()
+    }
+}

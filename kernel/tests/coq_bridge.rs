@@ -21,14 +21,13 @@ mod coq_support;
 use std::fmt::Write as _;
 
 use std::path::Path;
-use std::process::Command;
 use std::time::Instant;
 
 use truecost_kernel::claims::oracle::optimal_cost_to_go;
 use truecost_kernel::claims::qlearning::{QProblem, Terminal, Values, MAX_PAIRS};
 use truecost_kernel::claims::tiny::{Family, FamilySpec, Tiny};
 
-use coq_support::{check_all, coq_dir, list, make, parse, Verdict, NO_COQC};
+use coq_support::{check_all, list, parse, prepare, Verdict};
 
 /// The scopes, and the stride at which each one's labelled problems are sampled (every
 /// `stride`-th labelled problem, kept if it is its class's representative).
@@ -155,21 +154,15 @@ fn kernel_value(c: &Case, what: &str, k: usize) -> String {
 
 #[test]
 fn model_definitions_equal_the_kernel_oracles_on_enumerated_problems() {
-    if Command::new("coqc").arg("--version").output().is_err() {
-        panic!("{NO_COQC}");
-    }
-    let dir = coq_dir();
     let started = Instant::now();
     // Only what the checker needs (Model.v, Bridge.v): the other proofs are built and checked
     // by `make -C proofs/coq` in CI and by the crate `truecost`'s Coq test.
-    make(&dir, "Bridge.vo");
+    let (dir, work) = prepare("Bridge.vo", "coq-bridge");
     eprintln!(
         "make -C {}: {:.1} s",
         dir.display(),
         started.elapsed().as_secs_f64()
     );
-    let work = std::env::temp_dir().join(format!("truecost-coq-bridge-{}", std::process::id()));
-    std::fs::create_dir_all(&work).unwrap();
 
     let mut all = Vec::new();
     let (mut total, mut checked, mut values) = (0usize, 0u64, 0u64);
@@ -250,16 +243,7 @@ fn model_definitions_equal_the_kernel_oracles_on_enumerated_problems() {
 /// reported by Coq at exactly their places.
 #[test]
 fn planted_wrong_values_are_reported() {
-    if Command::new("coqc").arg("--version").output().is_err() {
-        panic!("{NO_COQC}");
-    }
-    let dir = coq_dir();
-    make(&dir, "Bridge.vo");
-    let work = std::env::temp_dir().join(format!(
-        "truecost-coq-bridge-planted-{}",
-        std::process::id()
-    ));
-    std::fs::create_dir_all(&work).unwrap();
+    let (dir, work) = prepare("Bridge.vo", "coq-bridge-planted");
     // 0 -> 1 (cost 1), 0 -> 2 (cost 4), 1 -> 2 (cost 1), the goal 2: G* = (2, 1, 0), the
     // pairs (0,0->1) (0,0->2) (1,1->2) (2,uT), h = (2, 1, 0).
     let t = Tiny::from_lists(&[vec![(1, 1), (2, 4)], vec![(2, 1)], vec![]]);

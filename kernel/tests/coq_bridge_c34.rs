@@ -27,8 +27,7 @@
 mod coq_support;
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 use std::time::Instant;
 
 use truecost_kernel::claims::c3::{certificate, goal_avoiding_core};
@@ -36,7 +35,7 @@ use truecost_kernel::claims::c4::{bonus_analysis, End, Instance, Interval};
 use truecost_kernel::claims::exact::Q;
 use truecost_kernel::claims::tiny::{Family, FamilySpec, Tiny};
 
-use coq_support::{check_all, coq_dir, list, make, parse, Verdict, NO_COQC};
+use coq_support::{check_all, list, parse, prepare, Verdict};
 
 /// The policy bound of the bonus analysis (as `verify` runs it).
 const LIMIT: u64 = 1 << 20;
@@ -236,26 +235,10 @@ fn kernel_value(c: &Case, what: &str, k: usize) -> String {
     }
 }
 
-fn prepare() -> (PathBuf, PathBuf) {
-    if Command::new("coqc").arg("--version").output().is_err() {
-        panic!("{NO_COQC}");
-    }
-    let dir = coq_dir();
-    // Only what the checker needs (Model.v … C4.v, BridgeC34.v).
-    make(&dir, "BridgeC34.vo");
-    let work = std::env::temp_dir().join(format!(
-        "truecost-coq-bridge-c34-{}-{:?}",
-        std::process::id(),
-        std::thread::current().id()
-    ));
-    std::fs::create_dir_all(&work).unwrap();
-    (dir, work)
-}
-
 #[test]
 fn c3_c4_definitions_equal_the_kernel_oracles_on_enumerated_problems() {
     let started = Instant::now();
-    let (dir, work) = prepare();
+    let (dir, work) = prepare("BridgeC34.vo", "coq-bridge-c34");
     eprintln!(
         "make -C {} BridgeC34.vo: {:.1} s",
         dir.display(),
@@ -355,7 +338,7 @@ fn c3_c4_definitions_equal_the_kernel_oracles_on_enumerated_problems() {
 /// reported by Coq at exactly their places.
 #[test]
 fn planted_wrong_values_are_reported() {
-    let (dir, work) = prepare();
+    let (dir, work) = prepare("BridgeC34.vo", "coq-bridge-c34");
     // 0 -> 1 (cost 1), 0 -> 3 (cost 5), 1 -> 2 (cost 0), 1 -> 3 (cost 1), 2 -> 1 (cost 2):
     // L* = 2 (S* = 3), T(0 -> 3) = (3*5 - 2*2)/(2 - 3) = -11, the cycle 1 -> 2 -> 1 (mean 1).
     let t = Tiny::from_lists(&[
@@ -411,7 +394,7 @@ fn planted_wrong_values_are_reported() {
 /// checker finds no mismatch on the problem.
 #[test]
 fn the_positive_cost_counterexample_of_c4_is_the_kernels() {
-    let (dir, work) = prepare();
+    let (dir, work) = prepare("BridgeC34.vo", "coq-bridge-c34");
     let t = Tiny::from_lists(&[vec![(1, 1), (2, 3)], vec![(2, 1)], vec![]]);
     let sets = bonus_analysis(&Instance::from_tiny(&t), LIMIT)
         .unwrap()

@@ -21,14 +21,13 @@
 mod coq_support;
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 use std::time::Instant;
 
 use truecost_kernel::claims::qlearning::{run, Order, QProblem, Run, Terminal, Values, MAX_PAIRS};
 use truecost_kernel::claims::tiny::{Family, FamilySpec, Tiny};
 
-use coq_support::{check_all, coq_dir, list, make, Verdict, NO_COQC};
+use coq_support::{check_all, list, prepare, Verdict};
 
 /// Rounds simulated per run.
 const ROUNDS: usize = 4;
@@ -192,21 +191,6 @@ fn coq_term(c: &Case) -> String {
     format!("(mk {} {moves}, {runs})", t.states())
 }
 
-fn prepare() -> (PathBuf, PathBuf) {
-    if Command::new("coqc").arg("--version").output().is_err() {
-        panic!("{NO_COQC}");
-    }
-    let dir = coq_dir();
-    make(&dir, "BridgeRun.vo");
-    let work = std::env::temp_dir().join(format!(
-        "truecost-coq-bridge-run-{}-{:?}",
-        std::process::id(),
-        std::thread::current().id()
-    ));
-    std::fs::create_dir_all(&work).unwrap();
-    (dir, work)
-}
-
 /// Problems per `coqc` run: Coq's stack overflows on a few hundred of them at once.
 const CHUNK: usize = 100;
 
@@ -247,7 +231,7 @@ fn sample(spec: &FamilySpec, wanted: u64) -> Vec<Tiny> {
 #[test]
 fn model_run_equals_the_kernel_simulator_on_enumerated_problems() {
     let started = Instant::now();
-    let (dir, work) = prepare();
+    let (dir, work) = prepare("BridgeRun.vo", "coq-bridge-run");
     let mut all: Vec<Case> = Vec::new();
     let (mut checked, mut values) = (0u64, 0u64);
     let mut failures = String::new();
@@ -331,7 +315,7 @@ fn model_run_equals_the_kernel_simulator_on_enumerated_problems() {
 /// The checker can fail: planted wrong values and a wrong simulator are reported by Coq.
 #[test]
 fn planted_wrong_runs_are_reported() {
-    let (dir, work) = prepare();
+    let (dir, work) = prepare("BridgeRun.vo", "coq-bridge-run");
     // 0 -> 1 (cost 2), 0 -> 2 (cost 5), 1 -> 2 (cost 1), 1 -> 0 (cost 3), the goal 2 -> 0
     // (cost 4): pairs (0,0->1) (0,0->2) (1,1->2) (1,1->0) (2,uT) (2,2->0).
     let t = Tiny::from_lists(&[vec![(1, 2), (2, 5)], vec![(2, 1), (0, 3)], vec![(0, 4)]]);

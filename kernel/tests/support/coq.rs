@@ -112,3 +112,21 @@ pub fn check_all(dir: &Path, work: &Path, name: &str, bridge: &str, cases: &[Str
     );
     parse(&out).unwrap_or_else(|| panic!("unreadable Coq output:\n{out}"))
 }
+
+/// Checks that `coqc` runs, builds `target` (a `.vo` of the development and what it needs),
+/// and makes a fresh working directory named for `tag`, this process and this test's thread:
+/// `(the development's directory, the working directory)`.
+pub fn prepare(target: &str, tag: &str) -> (PathBuf, PathBuf) {
+    if Command::new("coqc").arg("--version").output().is_err() {
+        panic!("{NO_COQC}");
+    }
+    let dir = coq_dir();
+    make(&dir, target);
+    let work = std::env::temp_dir().join(format!(
+        "truecost-{tag}-{}-{:?}",
+        std::process::id(),
+        std::thread::current().id()
+    ));
+    std::fs::create_dir_all(&work).unwrap();
+    (dir, work)
+}

@@ -11,22 +11,32 @@ import importlib
 import json
 import os
 import sys
-import tempfile
 
-from .importer import BAD_TABLE, REWARDS, UNSUPPORTED, ImportRefused, name_note, to_json
+from . import output
+from .echo import one_line, printable
+from .importer import (
+    BAD_TABLE,
+    MAX_FILE_BYTES,
+    REWARDS,
+    UNSUPPORTED,
+    ImportRefused,
+    name_note,
+    to_json,
+)
 from .rational import BINARY, DEFAULT_MAX_DENOMINATOR, DEFAULT_ULPS, EXACT
 
 SHOWN = 20  # recovered values listed on stderr (all of them are in --report)
 
 
-def _one_line(text, limit=300):
-    text = " ".join(str(text).split())
-    return text if len(text) <= limit else text[: limit - 1] + "…"
-
-
 def fail(message, status):
-    print(f"error: {_one_line(message)}", file=sys.stderr)
+    """Exits with ``status`` after one escaped line ``error: message`` on stderr."""
+    print(f"error: {one_line(message)}", file=sys.stderr)
     sys.exit(status)
+
+
+def warn(message):
+    """One escaped line ``warning: message`` on stderr."""
+    print(f"warning: {one_line(message, 1000)}", file=sys.stderr)
 
 
 class Parser(argparse.ArgumentParser):
@@ -41,6 +51,10 @@ def _states(text):
         raise argparse.ArgumentTypeError(f"expected comma-separated states, got {text!r}")
     if not out:
         raise argparse.ArgumentTypeError("expected at least one state")
+    twice = sorted({x for x in out if out.count(x) > 1})
+    if twice:
+        raise argparse.ArgumentTypeError(
+            f"state{'s' if len(twice) > 1 else ''} {', '.join(map(str, twice))} listed twice")
     return out
 
 
@@ -86,7 +100,8 @@ def parser():
                    help="register ENV_ID with this entry point first (a class that is not "
                    "registered anywhere)")
     e.add_argument("--out", metavar="FILE.json", required=True,
-                   help="the problem file to write ('-': standard output)")
+                   help="the problem file to write ('-': standard output; a pipe or a terminal "
+                   "is written directly, a regular file replaced whole, anything else refused)")
     e.add_argument("--report", metavar="FILE.json",
                    help="also write every recovered value and every choice made, as JSON")
     e.add_argument("--max-denominator", metavar="N", type=_positive,
@@ -115,28 +130,21 @@ def parser():
                    "rewards the negated stage costs)")
     e.add_argument("--compact", action="store_true",
                    help="one state's actions per line (default: the layout of truecost export)")
+    e.add_argument("--allow-large", action="store_true",
+                   help=f"write a file larger than {MAX_FILE_BYTES} bytes (32 MiB), the most "
+                   "truecost's readers accept (default: refused before writing)")
     e.add_argument("--quiet", action="store_true",
                    help="do not list the recovered values on stderr")
     return p
 
 
-def _write(path, text):
-    if path == "-":
-        sys.stdout.write(text)
-        return
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(dir=folder, prefix=".truecost_gym.", suffix=".tmp")
+def _import_module(name):
     try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+        importlib.import_module(name)
+    except KeyboardInterrupt:
         raise
+    except BaseException as e:  # the user's module, sys.exit included: one line
+        fail(f"--module {name}: {type(e).__name__}: {e}", 2)
 
 
 def export(args):
@@ -146,18 +154,14 @@ def export(args):
         fail(f"--kwargs: not JSON: {e}", 2)
     if not isinstance(kwargs, dict):
         fail("--kwargs: expected a JSON object", 2)
-    for folder in (args.out, args.report):
-        if folder and folder != "-":
-            d = os.path.dirname(os.path.abspath(folder))
-            if not os.path.isdir(d):
-                fail(f"{folder}: no such directory {d}", 2)
+    try:
+        targets = output.check_all([("--out", args.out), ("--report", args.report)])
+    except output.OutputRefused as e:
+        fail(str(e), e.status)
     if "" not in sys.path and os.getcwd() not in sys.path:
         sys.path.insert(0, os.getcwd())
     for name in args.module:
-        try:
-            importlib.import_module(name)
-        except Exception as e:  # the user's module: any failure is reported in one line
-            fail(f"--module {name}: {type(e).__name__}: {e}", 2)
+        _import_module(name)
     try:
         import gymnasium
     except ImportError:
@@ -165,19 +169,23 @@ def export(args):
     if args.entry_point:
         if ":" not in args.entry_point:
             fail(f"--entry-point {args.entry_point}: expected MODULE:CLASS", 2)
-        gymnasium.register(id=args.env_id, entry_point=args.entry_point)
+        try:
+            gymnasium.register(id=args.env_id, entry_point=args.entry_point)
+        except Exception as e:
+            fail(f"--entry-point {args.entry_point}: {type(e).__name__}: {e}", 2)
     try:
         env = gymnasium.make(args.env_id, **kwargs)
     except Exception as e:  # unknown ids, bad keyword arguments, the user's constructor
         fail(f"cannot make {args.env_id}: {type(e).__name__}: {e}", 2)
     from .environment import from_env
 
+    limit = None if args.allow_large else MAX_FILE_BYTES
     try:
         problem, report = from_env(env, args.env_id, initial=args.initial,
                                    max_denominator=args.max_denominator, ulps=args.ulps,
                                    exact_binary=args.exact_binary, goals=args.goals,
                                    deterministic_moves=args.deterministic_moves,
-                                   rewards=args.rewards)
+                                   rewards=args.rewards, max_file_bytes=limit)
     except ImportRefused as e:
         fail(str(e), e.status)
     options = "" if not kwargs else " " + json.dumps(kwargs, separators=(",", ":"))
@@ -187,23 +195,44 @@ def export(args):
     report["gymnasium_version"] = gymnasium.__version__
     report["env_id"] = args.env_id
     report["kwargs"] = kwargs
-    _write(args.out, to_json(problem, compact=args.compact))
+    text = to_json(problem, compact=args.compact)
+    size = len(text.encode("utf-8"))
+    if size > MAX_FILE_BYTES:
+        message = (f"{printable(args.out)} would take {size} bytes, more than the "
+                   f"{MAX_FILE_BYTES} bytes (32 MiB) truecost's readers accept")
+        if not args.allow_large:
+            fail(f"{message}: nothing written ({report['states']} states, "
+                 f"{report['actions']} actions; --compact, if not given, makes it smaller; "
+                 "--allow-large writes it anyway)", 1)
+        warn(f"{message}; written as --allow-large asks")
+    texts = [text]
     if args.report:
-        _write(args.report, json.dumps(report, indent=2) + "\n")
+        texts.append(json.dumps(report, indent=2) + "\n")
+    for line in report["warnings"]:
+        warn(line)
+    try:
+        output.write_all(list(zip(targets, texts)))
+    except output.OutputRefused as e:
+        fail(str(e), e.status)
     if not args.quiet:
         listed = [v for v in report["values"] if v["how"] != EXACT]
         for v in listed[:SHOWN]:
             what = "kept" if v["how"] == BINARY else "recovered"
-            print(f"{what} {v['kind']} {v['float']} = {v['value']} ({v['how']}; "
-                  f"{v['entries']} entries, first {v['first']})", file=sys.stderr)
+            print(one_line(f"{what} {v['kind']} {v['float']} = {v['value']} ({v['how']}; "
+                           f"{v['entries']} entries, first {v['first']})", 1000),
+                  file=sys.stderr)
         if len(listed) > SHOWN:
             print(f"... and {len(listed) - SHOWN} more recovered values (--report lists them)",
                   file=sys.stderr)
     binary = len(report["binary"])
     note = f"; {binary} values kept in exact binary" if binary and not args.exact_binary else ""
     if args.out != "-":
-        print(f"wrote {args.out} ({report['states']} states, {report['actions']} actions; "
-              f"goals {_short(report['goals'])}, traps {_short(report['traps'])}{note})")
+        # On stdout unless an output goes there (a pipe, /dev/stdout) or to a terminal.
+        summary = all(t.kind == output.REPLACE for t in targets)
+        print(one_line(f"wrote {args.out} ({report['states']} states, {report['actions']} "
+                       f"actions; goals {_short(report['goals'])}, traps "
+                       f"{_short(report['traps'])}{note})", 1000),
+              file=sys.stdout if summary else sys.stderr)
     return 0
 
 
@@ -214,10 +243,15 @@ def _short(states, limit=8):
 
 
 def main(argv=None):
-    args = parser().parse_args(argv)
-    if args.command == "export":
-        return export(args)
-    return BAD_TABLE
+    """The command line (module docs); returns the exit status. An interruption (Ctrl-C) is one
+    line too, exit status 130."""
+    try:
+        args = parser().parse_args(argv)
+        if args.command == "export":
+            return export(args)
+        return BAD_TABLE
+    except KeyboardInterrupt:
+        fail("interrupted", 130)
 
 
 if __name__ == "__main__":

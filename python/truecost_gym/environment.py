@@ -9,8 +9,20 @@ def from_env(env, env_name=None, *, initial=None, **options):
     The observation and action spaces must be ``Discrete`` (starting at 0) and the unwrapped
     environment must carry the toy-text table ``P``; the initial distribution is
     ``initial_state_distrib`` or ``isd`` unless ``initial`` (a state) is given. Refusals are
-    :class:`ImportRefused` with exit status 2 for these requirements.
+    :class:`ImportRefused` with exit status 2 for these requirements; any exception the
+    environment's own code raises (a ``P`` property, a space's ``n``) is one refusal naming the
+    exception's type.
     """
+    try:
+        return _from_env(env, env_name, initial, options)
+    except ImportRefused:
+        raise
+    except Exception as e:  # the environment's own code
+        name = env_name if env_name is not None else type(env).__name__
+        raise ImportRefused(f"{name}: the environment raised {type(e).__name__}: {e}") from None
+
+
+def _from_env(env, env_name, initial, options):
     raw = getattr(env, "unwrapped", env)
     if env_name is None:
         spec = getattr(env, "spec", None)

@@ -42,8 +42,12 @@ that does not sum to exactly 1 after recovery is refused, naming the state and a
 """
 
 import json
+import numbers
+import re
+from decimal import Decimal
 from fractions import Fraction
 
+from .goals import choose_goals, terminal_states
 from .rational import (
     BINARY,
     DEFAULT_MAX_DENOMINATOR,
@@ -51,23 +55,20 @@ from .rational import (
     float_text,
     recover,
 )
+from .refusal import BAD_TABLE, UNSUPPORTED, ImportRefused
 
 FORMAT = "truecost-stochastic/1"
 
 #: The values of ``rewards``: Gymnasium's expected rewards, or none (negated stage costs).
 REWARDS = ("gymnasium", "costs")
 
-#: Exit status of a refusal: 2 for an environment truecost cannot import (its kind: spaces,
-#: no transition table), 1 for a table that is malformed or inconsistent.
-UNSUPPORTED, BAD_TABLE = 2, 1
+#: The largest problem file truecost's readers accept, in bytes (32 MiB, the Rust constant
+#: ``truecost::model::file::MAX_FILE_BYTES``): a larger file is refused by every command.
+MAX_FILE_BYTES = 32 << 20
 
-
-class ImportRefused(Exception):
-    """A one-line refusal with its exit status."""
-
-    def __init__(self, message, status=BAD_TABLE):
-        super().__init__(message)
-        self.status = status
+#: The fewest bytes one state takes in a file (``[]``, a goal, and its separator): a table of
+#: more than ``MAX_FILE_BYTES / MIN_STATE_BYTES`` states cannot make a readable file.
+MIN_STATE_BYTES = 3
 
 
 def _space_size(space, what, env_name):
@@ -100,13 +101,21 @@ class _Values:
         self.seen = {}
 
     def get(self, kind, x, where):
-        key = (kind, float_text(x))
+        if not _is_number(x):
+            raise ImportRefused(f"{self.env_name}: {where}: {kind} {_shown(x)} is a "
+                                f"{type(x).__name__}, not a number")
+        try:
+            key = (kind, type(x).__name__ if isinstance(x, Decimal) else "", float_text(x))
+        except Exception as e:  # a number type of the environment's own
+            raise ImportRefused(f"{self.env_name}: {where}: {kind} {_shown(x)}: "
+                                f"{type(e).__name__}: {e}") from None
         entry = self.seen.get(key)
         if entry is None:
             try:
                 r = recover(x, self.max_denominator, self.ulps, self.exact_binary)
-            except (TypeError, ValueError) as e:
-                raise ImportRefused(f"{self.env_name}: {where}: {kind} {x!r}: {e}") from None
+            except Exception as e:
+                raise ImportRefused(f"{self.env_name}: {where}: {kind} {_shown(x)}: "
+                                    f"{e}") from None
             entry = {"kind": kind, "float": r.text, "value": str(r.value), "how": r.how,
                      "entries": 0, "first": where, "_exact": r.value}
             self.seen[key] = entry
@@ -118,19 +127,46 @@ class _Values:
                 for e in self.seen.values()]
 
 
-def _entries(P, s, a, env_name):
+def _shown(x, limit=60):
+    """``repr(x)``, shortened, or the type's name if the environment's ``__repr__`` fails."""
     try:
-        row = P[s][a]
-    except (KeyError, IndexError, TypeError):
+        text = repr(x)
+    except Exception:
+        return f"<{type(x).__name__}>"
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+def _is_number(x):
+    """A real number that is not a bool: ``int``, ``float``, ``Fraction``, ``Decimal``, NumPy's
+    integers and floats."""
+    if isinstance(x, bool) or getattr(getattr(x, "dtype", None), "kind", "") == "b":
+        return False
+    return isinstance(x, (numbers.Real, Decimal))
+
+
+def _is_bool(x):
+    """``True``/``False`` or a NumPy boolean (not the strings "True"/"False", nor 0 and 1)."""
+    return isinstance(x, bool) or (getattr(getattr(x, "dtype", None), "kind", "") == "b"
+                                   and getattr(x, "shape", None) == ())
+
+
+def _entries(P, s, a, env_name):
+    """``P[s][a]`` as a list of 4-tuples; any exception the environment's table raises is one
+    refusal naming its type."""
+    try:
+        row = list(P[s][a])
+    except (KeyError, IndexError):
         raise ImportRefused(f"{env_name}: P[{s}][{a}] is missing from the transition table") from None
+    except Exception as e:  # the environment's own code: one line, naming the exception
+        raise ImportRefused(f"{env_name}: reading P[{s}][{a}] raised {type(e).__name__}: {e}") from None
     out = []
     for i, t in enumerate(row):
         if not isinstance(t, (tuple, list)) or len(t) != 4:
             raise ImportRefused(
-                f"{env_name}: P[{s}][{a}][{i}] is {t!r}, not (probability, next_state, reward, "
-                "terminated)"
+                f"{env_name}: P[{s}][{a}][{i}] is {_shown(t)}, not (probability, next_state, "
+                "reward, terminated)"
             )
-        out.append(t)
+        out.append(tuple(t))
     return out
 
 
@@ -156,7 +192,7 @@ def truecost_cost(reward):
 def import_table(P, n_states, n_actions, initial, *, env_name="environment",
                  max_denominator=DEFAULT_MAX_DENOMINATOR, ulps=DEFAULT_ULPS,
                  exact_binary=False, goals=None, deterministic_moves=False,
-                 rewards="gymnasium"):
+                 rewards="gymnasium", max_file_bytes=None):
     """Builds the problem from a transition table (module docs).
 
     ``P[s][a]``: lists of ``(p, s', r, terminated)``; ``initial``: a sequence of ``n_states``
@@ -168,14 +204,23 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
     ``{"to": y, "cost": c}``: a table without randomness then makes a deterministic problem
     file, which the commands on deterministic problems also read (``verify --claim C4``,
     ``learn``, ``solve --algorithm dijkstra``). ``rewards``: ``"gymnasium"`` writes every
-    action's expected reward, ``"costs"`` none (module docs). Raises :class:`ImportRefused`
-    (one line, naming the state and action).
+    action's expected reward, ``"costs"`` none (module docs). ``max_file_bytes``: refuse at
+    once a table whose file cannot be that small (more states than ``MIN_STATE_BYTES`` each
+    allow). ``report["warnings"]`` lists what the caller should print (an unreachable goal).
+    Raises :class:`ImportRefused` (one line, naming the state and action) for a malformed or
+    ambiguous table, including any exception the table's own code raises.
     """
     if rewards not in REWARDS:
         raise ValueError(f"rewards must be one of {REWARDS}, got {rewards!r}")
     with_rewards = rewards == "gymnasium"
     values = _Values(env_name, max_denominator, ulps, exact_binary)
     after = "in exact binary" if exact_binary else "after recovery"
+    if max_file_bytes is not None and n_states * MIN_STATE_BYTES > max_file_bytes:
+        raise ImportRefused(
+            f"{env_name}: {n_states} states take at least {n_states * MIN_STATE_BYTES} bytes, "
+            f"more than the {max_file_bytes} bytes truecost's readers accept",
+            UNSUPPORTED,
+        )
     # Pass 1: read and recover every entry with positive probability.
     table = []
     for s in range(n_states):
@@ -187,18 +232,22 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
                 prob = values.get("probability", p, where)
                 if prob < 0 or prob > 1:
                     raise ImportRefused(f"{env_name}: {where}: probability {float_text(p)} is not in [0, 1]")
-                try:
-                    nxt_i = int(nxt)
-                except (TypeError, ValueError):
-                    nxt_i = -1
-                if nxt_i != nxt or not 0 <= nxt_i < n_states:
+                if not isinstance(nxt, numbers.Integral) or isinstance(nxt, bool):
+                    raise ImportRefused(f"{env_name}: {where}: next state {_shown(nxt)} is a "
+                                        f"{type(nxt).__name__}, not an int")
+                if not 0 <= nxt < n_states:
                     raise ImportRefused(
-                        f"{env_name}: {where}: next state {nxt!r} is not a state 0..{n_states - 1}"
+                        f"{env_name}: {where}: next state {int(nxt)} is not a state 0..{n_states - 1}"
                     )
+                if not _is_bool(done):
+                    raise ImportRefused(f"{env_name}: {where}: terminated {_shown(done)} is a "
+                                        f"{type(done).__name__}, not a bool")
                 if prob == 0:
+                    if not _is_number(r):
+                        values.get("reward", r, where)  # refuses it
                     continue
                 reward = values.get("reward", r, where)
-                outcomes.append((prob, nxt_i, reward, bool(done), where))
+                outcomes.append((prob, int(nxt), reward, bool(done), (s, a, i)))
             row.append(outcomes)
         table.append(row)
 
@@ -231,49 +280,21 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
             "exactly 1"
         )
 
-    # Terminal states: entered by a terminated transition from a state where the episode runs
-    # (reachable from the initial distribution without ending the episode; named goals end it
-    # too). States no episode reaches keep their actions and do not take part in the checks.
+    # Terminal states and goals (module truecost_gym.goals).
     named = set()
     for g in goals or ():
-        if not 0 <= g < n_states:
-            raise ImportRefused(f"{env_name}: goal {g} is not a state 0..{n_states - 1}",
+        if not isinstance(g, numbers.Integral) or isinstance(g, bool) or not 0 <= g < n_states:
+            raise ImportRefused(f"{env_name}: goal {_shown(g)} is not a state 0..{n_states - 1}",
                                 UNSUPPORTED)
-        named.add(g)
-    entered_running = {}  # state -> where it was first entered without termination
-    entered_terminated = {}  # state -> [(reward, where)] of terminated entries
-    frontier = []
-    for x, _ in start:
-        if x not in named and x not in entered_running:
-            entered_running[x] = f"initial_state_distrib[{x}]"
-            frontier.append(x)
-    while frontier:
-        s = frontier.pop()
-        for a in range(n_actions):
-            for prob, nxt, reward, done, where in table[s][a]:
-                if done:
-                    entered_terminated.setdefault(nxt, []).append((reward, where))
-                elif nxt not in named and nxt not in entered_running:
-                    entered_running[nxt] = where
-                    frontier.append(nxt)
-    for x in sorted(entered_terminated):
-        if x in entered_running:
-            raise ImportRefused(
-                f"{env_name}: state {x} is entered with terminated=True "
-                f"({entered_terminated[x][0][1]}) and without ({entered_running[x]}); "
-                "truecost's terminal states end every episode that enters them"
-            )
+        if g in named:
+            raise ImportRefused(f"{env_name}: goal {g} is named twice", UNSUPPORTED)
+        named.add(int(g))
+    entered_running, entered_terminated = terminal_states(table, start, named, env_name)
     terminal = set(entered_terminated) | named
+    warnings = []
     if goals is None:
-        terminal_rewards = [r for lst in entered_terminated.values() for r, _ in lst]
-        if not terminal_rewards:
-            raise ImportRefused(
-                f"{env_name}: no episode ends (no terminated transition is reachable), so there "
-                "is no goal: name the goal states with --goals"
-            )
-        best = max(terminal_rewards)
-        goal_set = {x for x, lst in entered_terminated.items() if any(r == best for r, _ in lst)}
-        goal_rule = f"terminal states entered with the greatest terminal reward ({best})"
+        goal_set, goal_rule, warnings = choose_goals(table, entered_running, entered_terminated,
+                                                     named, env_name)
     else:
         goal_set = named
         goal_rule = "named with --goals"
@@ -348,6 +369,7 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
         "running_states": running,
         "goals": sorted(goal_set),
         "goal_rule": goal_rule,
+        "warnings": warnings,
         "traps": traps,
         "cost_rule": "an outcome with reward r < 0 costs -r, with r >= 0 costs 1 (one step); "
                      "an action costs the expectation over its outcomes",

@@ -14,13 +14,15 @@ the fractions the author meant, so every float is recovered as follows, all boun
 3. ``within K ulps``: otherwise, the simplest fraction with denominator at most
    ``max_denominator`` within ``ulps`` units in the last place of the float (a value computed
    with a rounding error or two, such as FrozenLake's 0.33333333333333337 -> 1/3, 0.67 ulp
-   away).
+   away). A non-zero float is never recovered as 0 (nor with the other sign): near 0 the
+   interval contains 0, which is then passed over.
 4. ``exact binary``: otherwise the float's exact binary value is kept (and said so); a
    probability row containing one almost never sums to 1, and is then refused by the caller.
 """
 
 import math
 import numbers
+from decimal import Decimal
 from fractions import Fraction
 
 DEFAULT_MAX_DENOMINATOR = 10**6
@@ -120,6 +122,8 @@ def float_text(x):
         return str(int(x))
     if isinstance(x, numbers.Rational):
         return str(Fraction(x))
+    if isinstance(x, Decimal):
+        return str(x)
     if hasattr(x, "dtype") and getattr(x.dtype, "itemsize", 8) != 8:
         return f"{x!r}"
     return repr(float(x))
@@ -128,8 +132,8 @@ def float_text(x):
 def recover(x, max_denominator=DEFAULT_MAX_DENOMINATOR, ulps=DEFAULT_ULPS, exact_binary=False):
     """The exact value of ``x`` (module docs: exact, rounding interval, within K ulps, binary).
 
-    Integers and exact rationals (``int``, ``Fraction``, NumPy integers) are taken as they are.
-    Raises ``ValueError`` for NaN and infinities.
+    Integers and exact numbers (``int``, ``Fraction``, ``Decimal``, NumPy integers) are taken
+    as they are. Raises ``ValueError`` for NaN and infinities, ``TypeError`` for text.
 
     >>> recover(0.1).value, recover(1 / 3).value, recover(2 / 3).value
     (Fraction(1, 10), Fraction(1, 3), Fraction(2, 3))
@@ -139,7 +143,13 @@ def recover(x, max_denominator=DEFAULT_MAX_DENOMINATOR, ulps=DEFAULT_ULPS, exact
     >>> recover(0.1, exact_binary=True).value == Fraction(0.1)
     True
     """
+    if isinstance(x, (str, bytes)):
+        raise TypeError(f"{x!r} is text, not a number")
     text = float_text(x)
+    if isinstance(x, Decimal):
+        if not x.is_finite():
+            raise ValueError(f"{text} is not a finite number")
+        return Recovery(text, Fraction(x), EXACT, 0)
     if isinstance(x, (bool, numbers.Rational)):
         return Recovery(text, Fraction(int(x)) if isinstance(x, bool) else Fraction(x), EXACT, 0)
     f = float(x)
@@ -159,7 +169,9 @@ def recover(x, max_denominator=DEFAULT_MAX_DENOMINATOR, ulps=DEFAULT_ULPS, exact
     if ulps > 0:
         unit = max(own - below, above - own)
         found = simplest_between(own - ulps * unit, own + ulps * unit, max_denominator)
-        if found is not None:
+        # A float near 0 (-5e-324) is never recovered as 0, nor with the other sign: the
+        # simplest fraction of an interval around 0 is 0, and the float's binary value is kept.
+        if found is not None and found != 0:
             away = math.ceil(abs(found - own) / unit)
             return Recovery(text, found, f"within {away} ulp{'' if away == 1 else 's'}", away)
     return Recovery(text, own, BINARY, 0)

@@ -210,6 +210,7 @@ def export(args):
         texts.append(json.dumps(report, indent=2) + "\n")
     for line in report["warnings"]:
         warn(line)
+    summary = output.all_beside_stdout(targets)  # before the files are replaced
     try:
         output.write_all(list(zip(targets, texts)))
     except output.OutputRefused as e:
@@ -228,7 +229,6 @@ def export(args):
     note = f"; {binary} values kept in exact binary" if binary and not args.exact_binary else ""
     if args.out != "-":
         # On stdout unless an output goes there (a pipe, /dev/stdout) or to a terminal.
-        summary = all(t.kind == output.REPLACE for t in targets)
         print(one_line(f"wrote {args.out} ({report['states']} states, {report['actions']} "
                        f"actions; goals {_short(report['goals'])}, traps "
                        f"{_short(report['traps'])}{note})", 1000),

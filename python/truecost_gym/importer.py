@@ -399,15 +399,27 @@ def name_note(rewards):
         "truecost stage costs"
 
 
+#: Characters JSON allows raw in a string that must not reach a terminal that shows the file:
+#: DEL, the C1 controls, the line and paragraph separators, direction and zero-width marks.
+_RAW_HIDDEN = re.compile("[\x7f-\x9f\u200b-\u200f\u2028-\u202e\u2066-\u2069\ufeff]")
+
+
+def _escape_hidden(text):
+    """``text`` (JSON) with :data:`_RAW_HIDDEN` written as ``\\uXXXX`` escapes (they occur in
+    strings only, where the escape means the same character)."""
+    return _RAW_HIDDEN.sub(lambda m: f"\\u{ord(m.group()):04x}", text)
+
+
 def to_json(problem, compact=False):
     """The file's text: ``compact`` puts one state's action list per line; otherwise the same
-    layout as ``truecost export`` (two-space indentation)."""
+    layout as ``truecost export`` (two-space indentation). Control and direction characters
+    of the name are escaped (``\\u009b``), never written raw."""
     if not compact:
-        return json.dumps(problem, indent=2, ensure_ascii=False) + "\n"
+        return _escape_hidden(json.dumps(problem, indent=2, ensure_ascii=False)) + "\n"
     head = {k: v for k, v in problem.items() if k != "actions"}
     sep = (",", ":")
     lines = [json.dumps(head, separators=sep, ensure_ascii=False)[:-1] + ',"actions":[']
     rows = [json.dumps(r, separators=sep) for r in problem["actions"]]
     lines.append(",\n".join(rows))
     lines.append("]}")
-    return "\n".join(lines) + "\n"
+    return _escape_hidden("\n".join(lines)) + "\n"

@@ -52,7 +52,8 @@ def _refuse(path, why):
 def _what(mode):
     """A non-regular file's kind, in words."""
     for test, name in ((stat.S_ISCHR, "character device"), (stat.S_ISBLK, "block device"),
-                       (stat.S_ISSOCK, "socket"), (stat.S_ISDIR, "directory")):
+                       (stat.S_ISSOCK, "socket"), (stat.S_ISDIR, "directory"),
+                       (stat.S_ISLNK, "symbolic link")):
         if test(mode):
             return name
     return "special file"
@@ -284,3 +285,21 @@ def _clean(opened):
                 os.unlink(tmp)
             except OSError:
                 pass
+
+
+def all_beside_stdout(targets):
+    """Whether every target is a file replaced whole and none of them is standard output's
+    file (``/dev/stdout`` redirected to a file): then standard output is free for messages."""
+    try:
+        out = os.fstat(sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):
+        out = None
+    for t in targets:
+        if t.kind != REPLACE:
+            return False
+        try:
+            if out is not None and os.path.samestat(os.stat(t.real), out):
+                return False
+        except OSError:
+            pass
+    return True

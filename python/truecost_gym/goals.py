@@ -11,10 +11,14 @@ is walled off by holes), those goals are kept, unreachable, and every reachable 
 is a trap: every policy's success probability is 0, as in Gymnasium, where no episode earns
 that reward; the importer says so.
 
+A state entered with the greatest terminal reward is a goal even where it is also entered
+with a smaller one (a goal reached from a muddy cell pays the mud's toll on the way in).
+
 Where the table cannot tell success from failure the importer refuses and asks for
-``--goals``: a state entered both with the greatest terminal reward and with another one, and
-two or more terminal states that all end with one reward no greater than the reward of a step
-(FrozenLake's holes on a map without a goal: truecost's ``--env`` refuses such a map too).
+``--goals``: a state entered with the greatest terminal reward from a state no episode reaches
+but without termination by the episodes, and two or more terminal states that all end with one
+reward no greater than the greatest reward of a step (FrozenLake's holes on a map without a
+goal: truecost's ``--env`` refuses such a map too).
 """
 
 from .refusal import ImportRefused
@@ -117,14 +121,6 @@ def choose_goals(table, running, ended, named, env_name):
                 f"terminal reward {best} ({_at(where)}, from a state no episode reaches) and "
                 f"without termination ({running[x]}): whether it is a goal is ambiguous; name "
                 "the goal states with --goals"
-            )
-        other = next(((r, w) for r, w in endings[x] if r != best), None)
-        if other is not None:
-            where = next(w for r, w in endings[x] if r == best)
-            raise ImportRefused(
-                f"{env_name}: state {x} ends the episode with reward {best} ({_at(where)}) and "
-                f"with reward {other[0]} ({_at(other[1])}): whether entering it is a success "
-                "is ambiguous; name the goal states with --goals"
             )
     rewards = {r for lst in endings.values() for r, _ in lst}
     step = _step_reward(table, running)

@@ -271,6 +271,23 @@ class CommandLine(unittest.TestCase):
         self.assertIn("state 15 listed twice", err)
 
 
+class Echo(unittest.TestCase):
+    def test_every_hidden_character_is_escaped(self):
+        from truecost_gym.echo import one_line, printable
+
+        for raw, shown in (("\x1b[2J", "\\x1b[2J"), ("\x9b31m", "\\x9b31m"),
+                           ("\x7f", "\\x7f"), ("a\u202eb", "a\\u{202e}b"),
+                           ("\u2066", "\\u{2066}"), ("\ufeff", "\\u{feff}"),
+                           ("\udcff", "\\u{dcff}"), ("\r\n\t", "\\r\\n\\t"),
+                           ("é ü", "é ü")):
+            with self.subTest(raw=raw):
+                self.assertEqual(printable(raw), shown)
+        # Shortened without cutting an escape.
+        line = one_line("x" * 297 + "\x1b")
+        self.assertEqual(line, "x" * 297 + "…")
+        self.assertEqual(one_line("x" * 296 + "\x1b"), "x" * 296 + "\\x1b")
+
+
 class Size(unittest.TestCase):
     def test_the_limit_is_the_rust_readers(self):
         # MAX_FILE_BYTES mirrors the reader's constant in src/model/file.rs: read it there.

@@ -367,6 +367,15 @@ class Doctests(unittest.TestCase):
         self.assertEqual(failures, 0)
         self.assertGreater(tried, 0)
 
+    def test_echo_doctests(self):
+        import doctest
+
+        from truecost_gym import echo
+
+        failures, tried = doctest.testmod(echo)
+        self.assertEqual(failures, 0)
+        self.assertGreater(tried, 0)
+
 
 try:
     import gymnasium  # noqa: F401

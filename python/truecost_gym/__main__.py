@@ -1,9 +1,12 @@
 """Command line: ``python3 -m truecost_gym export ENV_ID [options] --out FILE.json``.
 
-Every refusal is one line on stderr (``error: ...``): exit status 2 for usage errors and for
-environments truecost cannot import (non-Discrete spaces, no transition table), 1 for a table
-that is inconsistent after recovery (a probability row not summing to 1, a state entered both
-with and without termination).
+Every refusal is one line on stderr (``error: ...``, escaped by :mod:`truecost_gym.echo`):
+exit status 2 for usage errors, outputs that cannot be written (:mod:`truecost_gym.output`)
+and environments truecost cannot import (non-Discrete spaces, no transition table), 1 for a
+table that is malformed, inconsistent after recovery (a probability row not summing to 1, a
+state entered both with and without termination) or ambiguous about its goals, for an
+environment whose own code raises, and for a file larger than truecost's readers accept
+(unless ``--allow-large``); 130 when interrupted.
 """
 
 import argparse

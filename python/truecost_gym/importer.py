@@ -11,9 +11,11 @@ way ``truecost export --env`` builds the built-in environments:
   state where the episode runs (reachable from the initial distribution without ending the
   episode); a state entered both with and without termination is refused. States no episode
   reaches keep Gymnasium's actions (Taxi's 96 states "passenger delivered, taxi elsewhere").
-  Among them the **goals** are those entered with the greatest reward of any terminated
-  transition (FrozenLake's goal +1 against the holes' 0, CliffWalking's single terminal state,
-  Taxi's deliveries +20); the others are **traps** (the episode ends in failure). ``goals=``
+  The **goals** are the states entered with the greatest reward of any terminated transition
+  of the table (FrozenLake's goal +1 against the holes' 0, CliffWalking's single terminal
+  state, Taxi's deliveries +20), reachable or not; the other terminal states are **traps**
+  (the episode ends in failure). An unreachable goal is kept and reported, and a table that
+  cannot tell success from failure is refused (:mod:`truecost_gym.goals`). ``goals=``
   overrides the choice. A goal has no action (termination, cost 0); a trap a single zero-cost
   self-loop, so that no policy entering it reaches a goal.
 * **stage costs** (the paper's truecost, docs/spec.md §1 and §3): an outcome with reward ``r < 0``
@@ -38,7 +40,10 @@ way ``truecost export --env`` builds the built-in environments:
   state instead.
 
 Every float is recovered as an exact fraction by :mod:`truecost_gym.rational`; a probability row
-that does not sum to exactly 1 after recovery is refused, naming the state and action.
+that does not sum to exactly 1 after recovery is refused, naming the state and action. Entries
+are type-checked: probabilities and rewards real numbers (not bools, not text), next states
+``int`` in range, ``terminated`` a ``bool``; any exception the table's own code raises is one
+refusal naming the exception's type.
 """
 
 import json
@@ -55,7 +60,7 @@ from .rational import (
     float_text,
     recover,
 )
-from .refusal import BAD_TABLE, UNSUPPORTED, ImportRefused
+from .refusal import BAD_TABLE, UNSUPPORTED, ImportRefused  # noqa: F401 (re-exported)
 
 FORMAT = "truecost-stochastic/1"
 

@@ -3,11 +3,14 @@ every echoed text, files larger than truecost's readers accept."""
 
 import contextlib
 import io
+import json
 import os
 import re
+import signal
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 from fractions import Fraction
 from unittest import mock
@@ -213,6 +216,28 @@ gym.register("Typed-v0", entry_point=Typed)
 '''
 
 
+SLOW_MODULE = '''
+import time
+
+import gymnasium as gym
+from gymnasium import spaces
+
+
+class Slow(gym.Env):
+    observation_space = spaces.Discrete(2)
+    action_space = spaces.Discrete(2)
+    isd = [1.0, 0.0]
+
+    @property
+    def P(self):
+        open(MARKER, "w").close()
+        time.sleep(60)
+
+
+gym.register("Slow-v0", entry_point=Slow)
+'''
+
+
 def run_cli(*args, cwd=None):
     env = dict(os.environ, PYTHONPATH=PYTHON_DIR + os.pathsep + os.environ.get("PYTHONPATH", ""))
     return subprocess.run([sys.executable, "-m", "truecost_gym", *args], capture_output=True,
@@ -264,6 +289,43 @@ class CommandLine(unittest.TestCase):
         err = self.one_line_error(run_cli("export", "FrozenLake-v1", "--module", "quitter",
                                           "--out", "-", cwd=self.d), 2)
         self.assertIn("--module quitter: SystemExit: bye\\nnow", err)
+
+    def test_interrupted_is_one_line_exit_130(self):
+        marker = os.path.join(self.d, "inside")
+        with open(os.path.join(self.d, "slow.py"), "w") as f:
+            f.write(SLOW_MODULE.replace("MARKER", repr(marker)))
+        env = dict(os.environ, PYTHONPATH=PYTHON_DIR)
+        proc = subprocess.Popen([sys.executable, "-m", "truecost_gym", "export", "Slow-v0",
+                                 "--module", "slow", "--out", "-"], cwd=self.d, env=env,
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        try:
+            for _ in range(600):
+                if os.path.exists(marker) or proc.poll() is not None:
+                    break
+                time.sleep(0.05)
+            self.assertTrue(os.path.exists(marker), "the environment's P was never read")
+            proc.send_signal(signal.SIGINT)
+            out, err = proc.communicate(timeout=30)
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+                proc.wait()
+        self.assertEqual((proc.returncode, err, out), (130, "error: interrupted\n", ""))
+
+    def test_a_closed_standard_output_is_no_traceback(self):
+        # A 20x20 map: about 400 KB of text, more than a pipe holds, so the writer meets the
+        # closed pipe.
+        desc = ["S" + "F" * 19] + ["F" * 20] * 18 + ["F" * 19 + "G"]
+        env = dict(os.environ, PYTHONPATH=PYTHON_DIR)
+        proc = subprocess.Popen([sys.executable, "-m", "truecost_gym", "export", "FrozenLake-v1",
+                                 "--kwargs", json.dumps({"desc": desc}), "--quiet", "--out", "-"],
+                                env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self.assertEqual(proc.stdout.read(1), b"{")
+        proc.stdout.close()
+        err = proc.stderr.read().decode()
+        proc.stderr.close()
+        proc.wait(60)
+        self.assertEqual((proc.returncode, err), (0, ""))
 
     def test_duplicate_goals_refused(self):
         err = self.one_line_error(run_cli("export", "FrozenLake-v1", "--goals", "15,15",

@@ -255,6 +255,10 @@ def main(argv=None):
         return BAD_TABLE
     except KeyboardInterrupt:
         fail("interrupted", 130)
+    except BrokenPipeError:
+        # Standard output's reader left (``| head``): what it read is what it wanted.
+        output.silence_stdout()
+        return 0
 
 
 if __name__ == "__main__":

@@ -203,15 +203,30 @@ def _write_fd(fd, data):
 
 
 def _write_stdout(data):
+    """``data`` on standard output, all of it (a buffered write may stop short when the
+    reader leaves)."""
     try:
         sys.stdout.flush()
-        sys.stdout.buffer.write(data)
-        sys.stdout.flush()
+        try:
+            fd = sys.stdout.fileno()
+        except (OSError, ValueError, AttributeError):  # not a file (an in-memory stream)
+            fd = None
+        if fd is None:
+            sys.stdout.buffer.write(data)
+            sys.stdout.flush()
+        else:
+            _write_fd(fd, data)
     except BrokenPipeError:
         # The reader took what it wanted (``--out - | head``); later output goes nowhere.
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-        os.close(devnull)
+        silence_stdout()
+
+
+def silence_stdout():
+    """Sends the rest of standard output (and Python's flush at exit) to the null device,
+    after its reader closed the pipe."""
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    os.close(devnull)
 
 
 def write_all(outputs):

@@ -5,7 +5,6 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 import unittest
 from fractions import Fraction
 
@@ -16,7 +15,7 @@ PYTHON_DIR = os.path.dirname(HERE)
 REPO = os.path.dirname(PYTHON_DIR)
 
 sys.path.insert(0, HERE)
-from test_importer import truecost_binary  # noqa: E402
+from test_importer import InTemporaryDirectory, run_cli, truecost_binary  # noqa: E402
 
 try:
     import gymnasium  # noqa: F401
@@ -130,20 +129,8 @@ class Rule(unittest.TestCase):
         self.assertIn("--goals", msg)
 
 
-def run_cli(*args, cwd=None):
-    env = dict(os.environ, PYTHONPATH=PYTHON_DIR + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    return subprocess.run([sys.executable, "-m", "truecost_gym", *args], capture_output=True,
-                          text=True, cwd=cwd, env=env)
-
-
 @unittest.skipUnless(HAVE_GYM, "gymnasium is not installed")
-class FrozenLakeMaps(unittest.TestCase):
-    def setUp(self):
-        self.dir = tempfile.TemporaryDirectory()
-        self.d = self.dir.name
-
-    def tearDown(self):
-        self.dir.cleanup()
+class FrozenLakeMaps(InTemporaryDirectory):
 
     def export(self, desc, *extra):
         out = os.path.join(self.d, "map.json")

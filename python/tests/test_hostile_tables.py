@@ -19,6 +19,9 @@ from truecost_gym import ImportRefused, import_table, to_json
 from truecost_gym.importer import MAX_FILE_BYTES, MIN_STATE_BYTES, UNSUPPORTED
 from truecost_gym.rational import BINARY, recover
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from test_importer import InTemporaryDirectory, assert_one_line_error, run_cli  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 PYTHON_DIR = os.path.dirname(HERE)
 REPO = os.path.dirname(PYTHON_DIR)
@@ -185,6 +188,9 @@ class EnvironmentCode(unittest.TestCase):
 
 
 RAISING_MODULE = '''
+import os
+import time
+
 import gymnasium as gym
 from gymnasium import spaces
 
@@ -193,76 +199,46 @@ class Oops(Exception):
     pass
 
 
-class Raising(gym.Env):
+class Small(gym.Env):
     observation_space = spaces.Discrete(2)
     action_space = spaces.Discrete(2)
     isd = [1.0, 0.0]
 
+
+class Raising(Small):
     @property
     def P(self):
         raise Oops("line one\\nline two \\x1b[31mred\\x1b[0m")
 
 
-class Typed(gym.Env):
-    observation_space = spaces.Discrete(2)
-    action_space = spaces.Discrete(2)
-    isd = [1.0, 0.0]
+class Typed(Small):
     P = {0: {0: [(1.0, 1, -1.0, "False")], 1: [(1.0, 1, -1.0, True)]},
          1: {0: [(1.0, 1, 0.0, True)], 1: [(1.0, 1, 0.0, True)]}}
 
 
-gym.register("Raising-v0", entry_point=Raising)
-gym.register("Typed-v0", entry_point=Typed)
-'''
-
-
-SLOW_MODULE = '''
-import time
-
-import gymnasium as gym
-from gymnasium import spaces
-
-
-class Slow(gym.Env):
-    observation_space = spaces.Discrete(2)
-    action_space = spaces.Discrete(2)
-    isd = [1.0, 0.0]
-
+class Slow(Small):
     @property
     def P(self):
-        open(MARKER, "w").close()
+        open(os.environ["SLOW_MARKER"], "w").close()
         time.sleep(60)
 
 
+gym.register("Raising-v0", entry_point=Raising)
+gym.register("Typed-v0", entry_point=Typed)
 gym.register("Slow-v0", entry_point=Slow)
 '''
 
 
-def run_cli(*args, cwd=None):
-    env = dict(os.environ, PYTHONPATH=PYTHON_DIR + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    return subprocess.run([sys.executable, "-m", "truecost_gym", *args], capture_output=True,
-                          text=True, cwd=cwd, env=env)
-
-
 @unittest.skipUnless(HAVE_GYM, "gymnasium is not installed")
-class CommandLine(unittest.TestCase):
+class CommandLine(InTemporaryDirectory):
     def setUp(self):
-        self.dir = tempfile.TemporaryDirectory()
-        self.d = self.dir.name
+        super().setUp()
         with open(os.path.join(self.d, "raising.py"), "w") as f:
             f.write(RAISING_MODULE)
 
-    def tearDown(self):
-        self.dir.cleanup()
-
     def one_line_error(self, out, status):
-        self.assertEqual(out.returncode, status, out.stderr)
-        self.assertEqual(out.stderr.count("\n"), 1, out.stderr)
-        self.assertTrue(out.stderr.startswith("error: "), out.stderr)
-        self.assertNotIn("\x1b", out.stderr)
-        self.assertNotIn("\x07", out.stderr)
         self.assertEqual(out.stdout, "")
-        return out.stderr
+        return assert_one_line_error(self, out, status)
 
     def test_a_raising_P_property_is_one_escaped_line_naming_the_exception(self):
         err = self.one_line_error(
@@ -292,11 +268,9 @@ class CommandLine(unittest.TestCase):
 
     def test_interrupted_is_one_line_exit_130(self):
         marker = os.path.join(self.d, "inside")
-        with open(os.path.join(self.d, "slow.py"), "w") as f:
-            f.write(SLOW_MODULE.replace("MARKER", repr(marker)))
-        env = dict(os.environ, PYTHONPATH=PYTHON_DIR)
+        env = dict(os.environ, PYTHONPATH=PYTHON_DIR, SLOW_MARKER=marker)
         proc = subprocess.Popen([sys.executable, "-m", "truecost_gym", "export", "Slow-v0",
-                                 "--module", "slow", "--out", "-"], cwd=self.d, env=env,
+                                 "--module", "raising", "--out", "-"], cwd=self.d, env=env,
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         try:
             for _ in range(600):

@@ -31,10 +31,8 @@ except ImportError:
     HAVE_GYM = False
 
 
-def run_cli(*args, cwd=None, stdout=subprocess.PIPE, **kw):
-    env = dict(os.environ, PYTHONPATH=PYTHON_DIR + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    return subprocess.run([sys.executable, "-m", "truecost_gym", *args], stdout=stdout,
-                          stderr=subprocess.PIPE, text=True, cwd=cwd, env=env, **kw)
+sys.path.insert(0, HERE)
+from test_importer import InTemporaryDirectory, assert_one_line_error, run_cli  # noqa: E402
 
 
 def snapshot(folder):
@@ -77,14 +75,7 @@ def drain(fd, sink):
         sink.extend(chunk)
 
 
-class Classification(unittest.TestCase):
-    def setUp(self):
-        self.dir = tempfile.TemporaryDirectory()
-        self.d = self.dir.name
-
-    def tearDown(self):
-        self.dir.cleanup()
-
+class Classification(InTemporaryDirectory):
     def refused(self, path, needle):
         with self.assertRaises(OutputRefused) as c:
             check(path)
@@ -167,14 +158,7 @@ class Classification(unittest.TestCase):
         self.assertNotIn("\x1b", msg)
 
 
-class Writing(unittest.TestCase):
-    def setUp(self):
-        self.dir = tempfile.TemporaryDirectory()
-        self.d = self.dir.name
-
-    def tearDown(self):
-        self.dir.cleanup()
-
+class Writing(InTemporaryDirectory):
     def test_new_and_replaced_files_whole_with_the_old_mode(self):
         new = os.path.join(self.d, "new.json")
         old = os.path.join(self.d, "old.json")
@@ -441,20 +425,9 @@ class FuzzedTargets(unittest.TestCase):
 
 
 @unittest.skipUnless(HAVE_GYM, "gymnasium is not installed")
-class CommandLine(unittest.TestCase):
-    def setUp(self):
-        self.dir = tempfile.TemporaryDirectory()
-        self.d = self.dir.name
-
-    def tearDown(self):
-        self.dir.cleanup()
-
+class CommandLine(InTemporaryDirectory):
     def one_line_error(self, out, status=2):
-        self.assertEqual(out.returncode, status, out.stderr)
-        self.assertEqual(out.stderr.count("\n"), 1, out.stderr)
-        self.assertTrue(out.stderr.startswith("error: "), out.stderr)
-        self.assertNotIn("Traceback", out.stderr)
-        self.assertNotIn("\x1b", out.stderr)
+        return assert_one_line_error(self, out, status)
 
     def test_directories_and_devices_refused_in_one_line_nothing_written(self):
         out_json = os.path.join(self.d, "out.json")

@@ -385,10 +385,34 @@ except ImportError:
     HAVE_GYM = False
 
 
-def run_cli(*args, cwd=None):
+def run_cli(*args, cwd=None, stdout=subprocess.PIPE):
+    """``python -m truecost_gym ARGS`` with this checkout's module, its output as text."""
     env = dict(os.environ, PYTHONPATH=PYTHON_DIR + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    return subprocess.run([sys.executable, "-m", "truecost_gym", *args], capture_output=True,
-                          text=True, cwd=cwd, env=env)
+    return subprocess.run([sys.executable, "-m", "truecost_gym", *args], stdout=stdout,
+                          stderr=subprocess.PIPE, text=True, cwd=cwd, env=env)
+
+
+def assert_one_line_error(case, out, status):
+    """``out`` (a finished run) failed with ``status`` and one escaped ``error:`` line, no
+    traceback and no raw escape character; returns that line."""
+    case.assertEqual(out.returncode, status, out.stderr)
+    case.assertEqual(out.stderr.count("\n"), 1, out.stderr)
+    case.assertTrue(out.stderr.startswith("error: "), out.stderr)
+    case.assertNotIn("Traceback", out.stderr)
+    case.assertNotIn("\x1b", out.stderr)
+    case.assertNotIn("\x07", out.stderr)
+    return out.stderr
+
+
+class InTemporaryDirectory(unittest.TestCase):
+    """A test case with a fresh temporary directory ``self.d``."""
+
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.d = self.dir.name
+
+    def tearDown(self):
+        self.dir.cleanup()
 
 
 BOX_MODULE = '''

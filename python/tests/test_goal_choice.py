@@ -167,6 +167,50 @@ class FrozenLakeMaps(InTemporaryDirectory):
         for row in rows_file:
             self.assertEqual(Fraction(row["success_probability"]), 0, row)
 
+    def test_random_maps_answer_as_gymnasiums_own_semantics(self):
+        # Maps with many holes, the goal often walled off: the file's goals are the map's G,
+        # its traps the holes episodes reach, and `compare --file` prints `compare --env`'s
+        # rows (when truecost is built).
+        import random
+
+        import gymnasium as gym
+
+        from truecost_gym import from_env, to_json
+
+        rng = random.Random(49)
+        binary = truecost_binary()
+        walled = 0
+        for k in range(12):
+            n = rng.choice((3, 4))
+            cells = ["H" if rng.random() < 0.4 else "F" for _ in range(n * n)]
+            cells[0] = "S"
+            goal = rng.randrange(1, n * n)
+            cells[goal] = "G"
+            desc = ["".join(cells[r * n:(r + 1) * n]) for r in range(n)]
+            with self.subTest(desc=desc):
+                p, report = from_env(gym.make("FrozenLake-v1", desc=desc), "map")
+                self.assertEqual(p["goals"], [goal])
+                holes = {i for i, c in enumerate(cells) if c == "H"}
+                self.assertLessEqual(set(p.get("terminal", [])), holes)
+                if goal not in reachable(p):
+                    walled += 1
+                    self.assertEqual(len(report["warnings"]), 1)
+                if binary is None:
+                    continue
+                path = os.path.join(self.d, f"map{k}.json")
+                with open(path, "w") as f:
+                    f.write(to_json(p))
+                with open(os.path.join(self.d, f"map{k}.txt"), "w") as f:
+                    f.write("\n".join(desc) + "\n")
+                rows = []
+                for source in (["--file", path], ["--env", f"frozenlake:map=map{k}.txt"]):
+                    done = subprocess.run([binary, "compare", *source, "--format", "json"],
+                                          capture_output=True, text=True, cwd=self.d)
+                    self.assertEqual(done.returncode, 0, done.stderr)
+                    rows.append(json.loads(done.stdout)["rows"])
+                self.assertEqual(rows[0], rows[1])
+        self.assertGreater(walled, 0, "no map walled its goal off: the seed tests nothing new")
+
     def test_map_without_goal_refused_and_named_goals_accepted(self):
         done, out = self.export(["SHF", "HFH"])
         self.assertEqual(done.returncode, 1, done.stderr)

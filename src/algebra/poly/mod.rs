@@ -26,7 +26,7 @@ impl Poly {
     /// From coefficients, constant first.
     ///
     /// ```
-    /// use truecost::claims::poly::Poly;
+    /// use truecost::algebra::poly::Poly;
     /// let p = Poly::from_i64(&[-2, 0, 1]); // x^2 - 2
     /// assert_eq!(p.degree(), Some(2));
     /// assert_eq!(p.to_string(), "x^2 - 2");
@@ -242,14 +242,14 @@ pub struct Algebraic {
 impl Algebraic {
     /// Halves the bracket until its width is at most `width`.
     pub fn refine_to(&mut self, width: &Rational) {
-        let ints = crate::claims::poly::roots::integer_form(&self.poly);
+        let ints = crate::algebra::poly::roots::integer_form(&self.poly);
         if let Some(sign_lo) = self.sign_bracket(&ints) {
             // The same halves as Sturm's count: the root lies in (lo, mid] iff the sign at
             // mid is 0 or differs from the sign at lo.
             let two = r(2);
             while &(&self.hi - &self.lo) > width {
                 let mid = (&self.lo + &self.hi) / &two;
-                let s = crate::claims::poly::roots::integer_sign(&ints, &mid);
+                let s = crate::algebra::poly::roots::integer_sign(&ints, &mid);
                 if s == Ordering::Equal || s != sign_lo {
                     self.hi = mid;
                 } else {
@@ -275,7 +275,7 @@ impl Algebraic {
     /// bracket is a simple root strictly inside (the polynomial is square-free), where the
     /// sign changes. `None`: Sturm's theorem decides.
     fn sign_bracket(&self, ints: &[BigInt]) -> Option<Ordering> {
-        use crate::claims::poly::roots::integer_sign;
+        use crate::algebra::poly::roots::integer_sign;
         let (l, h) = (integer_sign(ints, &self.lo), integer_sign(ints, &self.hi));
         (l != Ordering::Equal && h != Ordering::Equal && l != h).then_some(l)
     }
@@ -283,7 +283,7 @@ impl Algebraic {
     /// The rational `q` as an algebraic number (the root of `x − q` in `(q − 1, q]`).
     ///
     /// ```
-    /// use truecost::claims::poly::Algebraic;
+    /// use truecost::algebra::poly::Algebraic;
     /// let h = Algebraic::from_rational("1/2".parse().unwrap());
     /// assert_eq!(h.as_rational(), Some("1/2".parse().unwrap()));
     /// ```
@@ -311,7 +311,7 @@ impl Algebraic {
     /// point of a bracket refined until it holds no root of `f`.
     ///
     /// ```
-    /// use truecost::claims::poly::{isolate_roots, Poly};
+    /// use truecost::algebra::poly::{isolate_roots, Poly};
     /// use std::cmp::Ordering;
     /// let sqrt2 = isolate_roots(&Poly::from_i64(&[-2, 0, 1]), &"0".parse().unwrap(), &"2".parse().unwrap()).remove(0);
     /// assert_eq!(sqrt2.sign_of(&Poly::from_i64(&[-2, 0, 1])), Ordering::Equal);
@@ -360,9 +360,9 @@ impl Algebraic {
         if self.poly.eval(x).is_zero() {
             return Ordering::Equal;
         }
-        let ints = crate::claims::poly::roots::integer_form(&self.poly);
+        let ints = crate::algebra::poly::roots::integer_form(&self.poly);
         if let Some(sign_lo) = self.sign_bracket(&ints) {
-            return if crate::claims::poly::roots::integer_sign(&ints, x) != sign_lo {
+            return if crate::algebra::poly::roots::integer_sign(&ints, x) != sign_lo {
                 Ordering::Less
             } else {
                 Ordering::Greater
@@ -404,22 +404,22 @@ impl Algebraic {
     /// The factor of [`Self::poly`] vanishing at the number, as a primitive integer polynomial
     /// with a positive leading coefficient, and what is proved of it: `x − q` for a rational
     /// `q`; otherwise the square-free part without rational roots, [`Reduction::Minimal`]
-    /// when proved irreducible over `Q` ([`crate::claims::poly::roots::reduce_polynomial`]).
+    /// when proved irreducible over `Q` ([`crate::algebra::poly::roots::reduce_polynomial`]).
     /// The bracket isolates the number for it too (it divides [`Self::poly`]).
     ///
-    /// [`Reduction::Minimal`]: crate::claims::poly::roots::Reduction::Minimal
+    /// [`Reduction::Minimal`]: crate::algebra::poly::roots::Reduction::Minimal
     ///
     /// ```
-    /// use truecost::claims::poly::{isolate_roots, Poly};
-    /// use truecost::claims::poly::roots::Reduction;
+    /// use truecost::algebra::poly::{isolate_roots, Poly};
+    /// use truecost::algebra::poly::roots::Reduction;
     /// // (x^2 − 2)(2x − 3)(x + 1): the root √2 in (1, 29/20) has the minimal polynomial x^2 − 2.
     /// let p = Poly::from_i64(&[-2, 0, 1]).mul(&Poly::from_i64(&[-3, 2])).mul(&Poly::from_i64(&[1, 1]));
     /// let a = isolate_roots(&p, &"1".parse().unwrap(), &"29/20".parse().unwrap()).remove(0);
     /// let (m, how) = a.reduced_polynomial();
     /// assert_eq!((m.to_string(), how), ("x^2 - 2".to_string(), Reduction::Minimal));
     /// ```
-    pub fn reduced_polynomial(&self) -> (Poly, crate::claims::poly::roots::Reduction) {
-        use crate::claims::poly::roots::{integer_form, reduce_polynomial, Reduction};
+    pub fn reduced_polynomial(&self) -> (Poly, crate::algebra::poly::roots::Reduction) {
+        use crate::algebra::poly::roots::{integer_form, reduce_polynomial, Reduction};
         if let Some(q) = self.as_rational() {
             return (
                 Poly::new(vec![-q, Rational::one()]).primitive(),
@@ -429,7 +429,7 @@ impl Algebraic {
         let (g, _, how) = reduce_polynomial(&integer_form(&self.poly));
         let (g, how) = match how {
             Reduction::SquareFree => {
-                match crate::claims::poly::roots::irreducible_factor_at(&g, &self.lo, &self.hi) {
+                match crate::algebra::poly::roots::irreducible_factor_at(&g, &self.lo, &self.hi) {
                     Some(f) => (f, Reduction::Minimal),
                     None => (g, how),
                 }
@@ -456,7 +456,7 @@ impl Algebraic {
     /// only possible for a rational, away from zero), as [`decimal_rounded`] of the exact value.
     ///
     /// ```
-    /// use truecost::claims::poly::{isolate_roots, Poly};
+    /// use truecost::algebra::poly::{isolate_roots, Poly};
     /// let sqrt2 = isolate_roots(&Poly::from_i64(&[-2, 0, 1]), &"0".parse().unwrap(), &"2".parse().unwrap()).remove(0);
     /// assert_eq!(sqrt2.decimal_rounded(10), "1.4142135624"); // √2 = 1.41421356237…
     /// assert_eq!(sqrt2.decimal(10), "1.4142135623");
@@ -500,7 +500,7 @@ impl Algebraic {
 /// (no point when `digits` is 0).
 ///
 /// ```
-/// use truecost::claims::poly::decimal_rounded;
+/// use truecost::algebra::poly::decimal_rounded;
 /// use truecost::value::parse_rational;
 /// let q = |t: &str| parse_rational(t).unwrap();
 /// assert_eq!(decimal_rounded(&q("2/3"), 5), "0.66667");
@@ -543,7 +543,7 @@ fn fixed(k: &BigInt, digits: usize) -> String {
 /// `x` in decimal, truncated to `digits` digits after the point (no point when `digits` is 0).
 ///
 /// ```
-/// use truecost::claims::poly::decimal;
+/// use truecost::algebra::poly::decimal;
 /// use truecost::value::parse_rational;
 /// assert_eq!(decimal(&parse_rational("7/2").unwrap(), 0), "3");
 /// assert_eq!(decimal(&parse_rational("7/2").unwrap(), 2), "3.50");
@@ -557,7 +557,7 @@ pub fn decimal(x: &Rational, digits: usize) -> String {
 /// A rational strictly between the algebraic numbers `a < b` (brackets refined as needed).
 ///
 /// ```
-/// use truecost::claims::poly::{between, Algebraic};
+/// use truecost::algebra::poly::{between, Algebraic};
 /// let a = Algebraic::from_rational("1/3".parse().unwrap());
 /// let b = Algebraic::from_rational("1/2".parse().unwrap());
 /// let t = between(&a, &b);
@@ -577,7 +577,7 @@ pub fn between(a: &Algebraic, b: &Algebraic) -> Rational {
 /// each with a bracket not wider than `hi - lo` and containing no other root.
 ///
 /// ```
-/// use truecost::claims::poly::{isolate_roots, Poly};
+/// use truecost::algebra::poly::{isolate_roots, Poly};
 /// use truecost::value::parse_rational;
 /// let p = Poly::from_i64(&[-2, 0, 1]); // roots ±√2
 /// let roots = isolate_roots(&p, &parse_rational("0").unwrap(), &parse_rational("2").unwrap());

@@ -1,6 +1,5 @@
-//! Exact real roots in `(0, 1)` for the parametric discount analysis (the breakpoints of
-//! [`crate::objectives::parametric`]), fast enough for the
-//! degree-50 advantage polynomials of FrozenLake 8x8.
+//! Exact real roots in `(0, 1)`, fast enough for the degree-50 advantage polynomials of
+//! FrozenLake 8x8 (the breakpoints of the parametric discount analysis, `objectives::parametric`).
 //!
 //! * **Isolation**: Descartes' rule of signs with bisection (Vincent–Collins–Akritas) on the
 //!   integer multiple of the polynomial: the number of sign variations of
@@ -78,7 +77,7 @@ pub fn integer_sign(a: &[BigInt], x: &Rational) -> Ordering {
 /// first): `a(x)·m^d`, by homogeneous Horner.
 ///
 /// ```
-/// use truecost::claims::poly::roots::homogeneous;
+/// use truecost::algebra::poly::roots::homogeneous;
 /// use num_bigint::BigInt;
 /// // 1 + 2x + 3x² at x = 1/2: (4 + 4 + 3) = 11 = (1 + 1 + 3/4)·2².
 /// let a: Vec<BigInt> = [1, 2, 3].into_iter().map(BigInt::from).collect();
@@ -143,11 +142,11 @@ pub fn integer_form(p: &Poly) -> Vec<BigInt> {
 
 /// The content of integer coefficients: their gcd (`≥ 0`; `0` when all are zero). Taken from
 /// the smallest non-zero magnitude up, stopping at 1, each gcd by
-/// [`crate::stochastic::linear::gcd`].
+/// [`crate::algebra::linear::gcd`].
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::claims::poly::roots::content;
+/// use truecost::algebra::poly::roots::content;
 /// let c: Vec<BigInt> = [0, -12, 18, 30].into_iter().map(BigInt::from).collect();
 /// assert_eq!(content(&c), BigInt::from(6));
 /// assert_eq!(content(&[BigInt::from(0)]), BigInt::from(0));
@@ -160,7 +159,7 @@ pub fn content(coefficients: &[BigInt]) -> BigInt {
         if g.is_one() {
             break;
         }
-        g = crate::stochastic::linear::gcd(&g, c);
+        g = crate::algebra::linear::gcd(&g, c);
     }
     g
 }
@@ -255,7 +254,7 @@ fn descartes_is_zero(q: &[BigInt]) -> bool {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::claims::poly::roots::no_root_between;
+/// use truecost::algebra::poly::roots::no_root_between;
 /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
 /// let p: Vec<BigInt> = [-1, 0, 2].into_iter().map(BigInt::from).collect(); // 2x^2 - 1
 /// assert!(no_root_between(&p, &q("0"), &q("7/10")));
@@ -355,8 +354,8 @@ fn isolate(p: &[BigInt], window: Option<(&Rational, &Rational)>) -> Isolation {
 /// Every root of the non-zero `f` in the open interval `(0, 1)`, in increasing order, distinct.
 ///
 /// ```
-/// use truecost::claims::poly::Poly;
-/// use truecost::claims::poly::roots::roots_in_unit_interval;
+/// use truecost::algebra::poly::Poly;
+/// use truecost::algebra::poly::roots::roots_in_unit_interval;
 /// // (x - 1/2)(3x - 2)(x^2 - 1/2) · x · (x - 1): roots 1/2, √2/2 ≈ 0.7071, 2/3 in (0, 1)
 /// let f = Poly::from_i64(&[-1, 2]).mul(&Poly::from_i64(&[-2, 3])).mul(&Poly::from_i64(&[-1, 0, 2]))
 ///     .mul(&Poly::from_i64(&[0, 1])).mul(&Poly::from_i64(&[-1, 1]));
@@ -380,8 +379,8 @@ pub fn roots_in_unit_interval(f: &Poly) -> Vec<Root> {
 /// `(0, 1)`.
 ///
 /// ```
-/// use truecost::claims::poly::Poly;
-/// use truecost::claims::poly::roots::{roots_in_unit_interval, roots_in_window};
+/// use truecost::algebra::poly::Poly;
+/// use truecost::algebra::poly::roots::{roots_in_unit_interval, roots_in_window};
 /// // (4x - 1)(4x - 3)(x^2 - 1/2): roots 1/4, √2/2, 3/4.
 /// let f = Poly::from_i64(&[-1, 4]).mul(&Poly::from_i64(&[-3, 4])).mul(&Poly::from_i64(&[-1, 0, 2]));
 /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
@@ -469,7 +468,7 @@ pub fn roots_in_window(f: &Poly, window: Option<(&Rational, &Rational)>) -> Vec<
 /// (continued fractions).
 ///
 /// ```
-/// use truecost::claims::poly::roots::simplest_between;
+/// use truecost::algebra::poly::roots::simplest_between;
 /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
 /// assert_eq!(simplest_between(&q("3/10"), &q("17/50")), q("1/3"));
 /// assert_eq!(simplest_between(&q("0"), &q("3/10")), q("1/4"));
@@ -638,7 +637,7 @@ fn squarefree_modulo_a_prime(a: &[BigInt], d: &[BigInt]) -> bool {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::claims::poly::roots::squarefree_part;
+/// use truecost::algebra::poly::roots::squarefree_part;
 /// // (x − 2)^2 (x + 1) = x^3 − 3x^2 + 4 → (x − 2)(x + 1) = x^2 − x − 2.
 /// let a: Vec<BigInt> = [4, 0, -3, 1].iter().map(|&c| BigInt::from(c)).collect();
 /// let want: Vec<BigInt> = [-2, -1, 1].iter().map(|&c| BigInt::from(c)).collect();
@@ -710,7 +709,7 @@ fn rational_among(
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::claims::poly::roots::rational_roots;
+/// use truecost::algebra::poly::roots::rational_roots;
 /// // (2x − 3)(x + 5)(x^2 − 2)(3x − 1)
 /// let f: Vec<BigInt> = [-30, 104, -23, -64, 19, 6].iter().map(|&c| BigInt::from(c)).collect();
 /// let got: Vec<String> = rational_roots(&f).iter().map(|r| r.to_string()).collect();
@@ -758,7 +757,7 @@ pub fn rational_roots(f: &[BigInt]) -> Vec<Rational> {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::claims::poly::roots::{reduce_polynomial, Reduction};
+/// use truecost::algebra::poly::roots::{reduce_polynomial, Reduction};
 /// let ints = |c: &[i64]| -> Vec<BigInt> { c.iter().map(|&x| BigInt::from(x)).collect() };
 /// // −(2x − 3)(x^2 − x − 1)^2 → x^2 − x − 1, with the rational root 3/2.
 /// let f = ints(&[3, 4, -7, -4, 7, -2]);
@@ -1165,7 +1164,7 @@ fn hensel(f: &[BigInt], g: &[u64], p: u64, k: u32) -> Vec<BigInt> {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::claims::poly::roots::irreducible_factor_at;
+/// use truecost::algebra::poly::roots::irreducible_factor_at;
 /// let ints = |c: &[i64]| -> Vec<BigInt> { c.iter().map(|&x| BigInt::from(x)).collect() };
 /// // (x^2 + x − 1)(x^3 − 2): the root (√5 − 1)/2 ≈ 0.618 in (3/5, 2/3) is a root of x^2 + x − 1.
 /// let f = ints(&[2, -2, -2, -1, 1, 1]);
@@ -1266,7 +1265,7 @@ fn is_prime(n: u64) -> bool {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::claims::poly::roots::irreducible_by_degrees;
+/// use truecost::algebra::poly::roots::irreducible_by_degrees;
 /// let ints = |c: &[i64]| -> Vec<BigInt> { c.iter().map(|&x| BigInt::from(x)).collect() };
 /// assert!(irreducible_by_degrees(&ints(&[-2, 0, 0, 0, 0, 1]))); // x^5 − 2 (Eisenstein)
 /// assert!(!irreducible_by_degrees(&ints(&[2, 0, -3, 0, 1]))); // (x^2 − 1)(x^2 − 2)
@@ -1415,7 +1414,7 @@ impl Root {
         }
         // (lo + hi)/2 with one normalisation (dashu's gcd: the binary gcd of num-bigint is
         // quadratic when one side is small).
-        let mid = crate::stochastic::linear::reduced(
+        let mid = crate::algebra::linear::reduced(
             &(self.lo.numer() * self.hi.denom() + self.hi.numer() * self.lo.denom()),
             &(2 * self.lo.denom() * self.hi.denom()),
         );
@@ -1647,8 +1646,8 @@ impl Root {
     /// digits are those of the number itself, not of an approximation.
     ///
     /// ```
-    /// use truecost::claims::poly::Poly;
-    /// use truecost::claims::poly::roots::roots_in_unit_interval;
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
     /// // 2x^2 - 1: 1/√2 = 0.70710678118654752440084...; 6 digits: 0.707107 (truncated: 0.707106).
     /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
     /// assert_eq!(r.decimal(6), "0.707107");
@@ -1667,13 +1666,13 @@ impl Root {
             }
         }
         if a.exact {
-            return crate::claims::poly::decimal_rounded(&a.lo, digits);
+            return crate::algebra::poly::decimal_rounded(&a.lo, digits);
         }
         // The root lies strictly inside (lo, hi), within the closure of one rounding cell
         // (width at most one unit, no boundary strictly inside): the bracket's midpoint lies
         // strictly inside the same cell, so it rounds to the same digits.
         let mid = (&a.lo + &a.hi) / Rational::from_integer(2.into());
-        crate::claims::poly::decimal_rounded(&mid, digits)
+        crate::algebra::poly::decimal_rounded(&mid, digits)
     }
 
     /// The polynomial as a primitive integer polynomial with a positive leading coefficient.
@@ -1685,7 +1684,7 @@ impl Root {
 /// A rational strictly between the roots `a < b`.
 ///
 /// ```
-/// use truecost::claims::poly::roots::{between, Root};
+/// use truecost::algebra::poly::roots::{between, Root};
 /// let a = Root::rational("1/3".parse().unwrap());
 /// let b = Root::rational("1/2".parse().unwrap());
 /// let t = between(&a, &b);

@@ -538,7 +538,7 @@ fn to_num(x: &IBig) -> BigInt {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::stochastic::linear::reduced;
+/// use truecost::algebra::linear::reduced;
 /// assert_eq!(reduced(&BigInt::from(-6), &BigInt::from(4)).to_string(), "-3/2");
 /// ```
 pub fn reduced(n: &BigInt, d: &BigInt) -> crate::value::Rational {
@@ -556,7 +556,7 @@ pub fn reduced(n: &BigInt, d: &BigInt) -> crate::value::Rational {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::stochastic::linear::gcd;
+/// use truecost::algebra::linear::gcd;
 /// let big = BigInt::from(3).pow(5000) * 14;
 /// assert_eq!(gcd(&big, &BigInt::from(-21)), BigInt::from(21));
 /// assert_eq!(gcd(&BigInt::from(0), &BigInt::from(-4)), BigInt::from(4));
@@ -602,7 +602,7 @@ fn divided(n: &BigInt, un: &UBig, d: &BigInt, ud: &UBig, g: &UBig) -> crate::val
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::stochastic::linear::reduced_all;
+/// use truecost::algebra::linear::reduced_all;
 /// let n: Vec<BigInt> = [-6, 0, 5, 12].into_iter().map(BigInt::from).collect();
 /// let r = reduced_all(&n.iter().collect::<Vec<_>>(), &BigInt::from(4));
 /// let text: Vec<String> = r.iter().map(|v| v.to_string()).collect();
@@ -944,7 +944,7 @@ pub struct LiftProgress {
 /// Solves `A·z = r` exactly (module docs). The result satisfies `A·N = d·r` exactly.
 ///
 /// ```
-/// use truecost::stochastic::linear::{solve_exact, SparseSystem};
+/// use truecost::algebra::linear::{solve_exact, SparseSystem};
 /// use num_bigint::BigInt;
 /// // 3x - y = 1, -x + 3y = 2  →  x = 5/8, y = 7/8
 /// let mut s = SparseSystem::new();

@@ -69,6 +69,16 @@ impl RootPoly {
 
 /// The sign at `x = n/m` of the integer polynomial `a` (constant first): the sign of
 /// [`homogeneous`] (`m > 0`), no rational normalisation.
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use std::cmp::Ordering;
+/// use truecost::algebra::poly::roots::integer_sign;
+/// // x² − 2 at 7/5: 49/25 − 2 < 0; at 3/2: 9/4 − 2 > 0.
+/// let a: Vec<BigInt> = [-2, 0, 1].into_iter().map(BigInt::from).collect();
+/// assert_eq!(integer_sign(&a, &"7/5".parse().unwrap()), Ordering::Less);
+/// assert_eq!(integer_sign(&a, &"3/2".parse().unwrap()), Ordering::Greater);
+/// ```
 pub fn integer_sign(a: &[BigInt], x: &Rational) -> Ordering {
     homogeneous(a, x).sign().cmp(&num_bigint::Sign::NoSign)
 }
@@ -123,6 +133,15 @@ pub enum Reduction {
 }
 
 /// `p` scaled to integer coefficients with gcd 1, the sign kept.
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use truecost::algebra::poly::Poly;
+/// use truecost::algebra::poly::roots::integer_form;
+/// // −x/2 + 1/3 → −3x + 2 (lcm of the denominators 6, content 1, sign kept)
+/// let p = Poly::new(vec!["1/3".parse().unwrap(), "-1/2".parse().unwrap()]);
+/// assert_eq!(integer_form(&p), [2, -3].map(BigInt::from));
+/// ```
 pub fn integer_form(p: &Poly) -> Vec<BigInt> {
     let mut l = BigInt::one();
     for c in p.coefficients() {
@@ -1317,6 +1336,13 @@ pub fn irreducible_by_degrees(f: &[BigInt]) -> bool {
 
 impl Root {
     /// The exact rational `r`.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::roots::Root;
+    /// let r = Root::rational("2/3".parse().unwrap());
+    /// assert!(r.exact);
+    /// assert_eq!(r.polynomial().to_string(), "3x - 2");
+    /// ```
     pub fn rational(r: Rational) -> Root {
         Root {
             poly: RootPoly::new(Poly::new(vec![-r.clone(), Rational::one()])),
@@ -1332,6 +1358,17 @@ impl Root {
     /// no rational roots, [`Reduction::Minimal`] when proved irreducible. A rational root
     /// found on the way makes the root exact. The bracket is kept (it isolates the root of
     /// every factor of the polynomial vanishing there).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::{roots_in_unit_interval, Reduction};
+    /// // (x² + x − 1)(x³ − 2): its one root in (0, 1) is (√5 − 1)/2 = 0.618…, a root of x² + x − 1.
+    /// let f = Poly::from_i64(&[-1, 1, 1]).mul(&Poly::from_i64(&[-2, 0, 0, 1]));
+    /// let mut r = roots_in_unit_interval(&f).remove(0);
+    /// r.reduce();
+    /// assert_eq!(r.reduction, Reduction::Minimal);
+    /// assert_eq!(r.polynomial().to_string(), "x^2 + x - 1");
+    /// ```
     pub fn reduce(&mut self) {
         if self.exact || self.reduction != Reduction::AsMet {
             return;
@@ -1371,6 +1408,20 @@ impl Root {
     /// Whether `other` is the same number; if so, this root keeps the exact value if either
     /// has it, else the gcd of the two polynomials (it vanishes at the common root, which is
     /// simple, and divides this root's polynomial, so the bracket isolates its root).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// // 1/√2 as a root of (2x² − 1)(x + 1) and of (2x² − 1)(x + 2): the same number, and the gcd
+    /// // 2x² − 1 becomes its polynomial. 1/2 is another number.
+    /// let a = Poly::from_i64(&[-1, 0, 2]);
+    /// let mut r = roots_in_unit_interval(&a.mul(&Poly::from_i64(&[1, 1]))).remove(0);
+    /// let s = roots_in_unit_interval(&a.mul(&Poly::from_i64(&[2, 1]))).remove(0);
+    /// assert!(r.absorb_if_equal(&s));
+    /// assert_eq!(r.polynomial().to_string(), "2x^2 - 1");
+    /// let half = roots_in_unit_interval(&Poly::from_i64(&[-1, 2])).remove(0);
+    /// assert!(!r.absorb_if_equal(&half));
+    /// ```
     pub fn absorb_if_equal(&mut self, other: &Root) -> bool {
         if self.compare(other) != Ordering::Equal {
             return false;
@@ -1392,6 +1443,21 @@ impl Root {
 
     /// Makes the root exact if it is a rational: the simplest rational of a bracket narrowed to
     /// `2^-100` is tried (exactly); otherwise the bracket is left narrowed.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// // 2x² − 1: the root 1/√2 = 0.70710678… in (0, 1).
+    /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
+    /// let mut s = r.clone();
+    /// s.recognise_rational();
+    /// assert!(!s.exact && &s.hi - &s.lo <= q("1") / q("1267650600228229401496703205376")); // 2^-100
+    /// // 3x − 1: its root is recognised as exactly 1/3.
+    /// let mut third = roots_in_unit_interval(&Poly::from_i64(&[-1, 3])).remove(0);
+    /// third.recognise_rational();
+    /// assert_eq!(third.as_rational(), Some(&q("1/3")));
+    /// ```
     pub fn recognise_rational(&mut self) {
         self.refine_to(&Rational::new(BigInt::one(), BigInt::one() << 100u32));
         if !self.exact {
@@ -1403,11 +1469,34 @@ impl Root {
     }
 
     /// The value if it is rational and known to be (exact roots).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// // 2x² − 1: the root 1/√2 = 0.70710678… in (0, 1).
+    /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
+    /// use truecost::algebra::poly::roots::Root;
+    /// assert_eq!(r.as_rational(), None);
+    /// assert_eq!(Root::rational(q("1/3")).as_rational(), Some(&q("1/3")));
+    /// ```
     pub fn as_rational(&self) -> Option<&Rational> {
         self.exact.then_some(&self.lo)
     }
 
     /// Halves the bracket (no-op when exact).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// // 2x² − 1: the root 1/√2 = 0.70710678… in (0, 1).
+    /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
+    /// let mut s = r.clone();
+    /// s.halve();
+    /// assert_eq!(&s.hi - &s.lo, (&r.hi - &r.lo) / q("2"));
+    /// assert!(q("2") * &s.lo * &s.lo < q("1") && q("2") * &s.hi * &s.hi > q("1"));
+    /// ```
     pub fn halve(&mut self) {
         if self.exact {
             return;
@@ -1438,6 +1527,18 @@ impl Root {
     /// until narrow enough, exact if a midpoint is the root). After 16 halvings the remaining
     /// ones are taken at once where a Newton guess of the final cell is confirmed by the signs
     /// at its ends.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// // 2x² − 1: the root 1/√2 = 0.70710678… in (0, 1).
+    /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
+    /// let mut s = r.clone();
+    /// s.refine_to(&q("1/1000000"));
+    /// assert!(&s.hi - &s.lo <= q("1/1000000"));
+    /// assert!(q("2") * &s.lo * &s.lo < q("1") && q("2") * &s.hi * &s.hi > q("1"));
+    /// ```
     pub fn refine_to(&mut self, width: &Rational) {
         let mut plain = 0;
         while !self.exact && &(&self.hi - &self.lo) > width {
@@ -1552,6 +1653,22 @@ impl Root {
     }
 
     /// Exact comparison (module docs).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// // 2x² − 1: the root 1/√2 = 0.70710678… in (0, 1).
+    /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
+    /// use std::cmp::Ordering;
+    /// use truecost::algebra::poly::roots::Root;
+    /// // 2/3 < 1/√2 = 0.7071… < 3/4
+    /// assert_eq!(r.compare(&Root::rational(q("2/3"))), Ordering::Greater);
+    /// assert_eq!(r.compare(&Root::rational(q("3/4"))), Ordering::Less);
+    /// // 4x² − 2 vanishes at the same number.
+    /// let same = roots_in_unit_interval(&Poly::from_i64(&[-2, 0, 4])).remove(0);
+    /// assert_eq!(r.compare(&same), Ordering::Equal);
+    /// ```
     pub fn compare(&self, other: &Root) -> Ordering {
         // Disjoint brackets (or two exact values) decide without refining.
         if self.exact && other.exact {
@@ -1622,6 +1739,17 @@ impl Root {
     /// Compares with a rational.
     /// (The bracket decides, else the sign of the integer polynomial at `x`: the same answer as
     /// [`Root::compare`] with the exact root `x`, without building its polynomial.)
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// // 2x² − 1: the root 1/√2 = 0.70710678… in (0, 1).
+    /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
+    /// use std::cmp::Ordering;
+    /// assert_eq!(r.cmp_rational(&q("7/10")), Ordering::Greater);
+    /// assert_eq!(r.cmp_rational(&q("71/100")), Ordering::Less);
+    /// ```
     pub fn cmp_rational(&self, x: &Rational) -> Ordering {
         if self.exact {
             return self.lo.cmp(x);
@@ -1676,6 +1804,14 @@ impl Root {
     }
 
     /// The polynomial as a primitive integer polynomial with a positive leading coefficient.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// // The root of −4x² + 2 (= 1/√2), as the primitive 2x² − 1.
+    /// let r = roots_in_unit_interval(&Poly::from_i64(&[2, 0, -4])).remove(0);
+    /// assert_eq!(r.polynomial().to_string(), "2x^2 - 1");
+    /// ```
     pub fn polynomial(&self) -> Poly {
         self.poly.poly.primitive()
     }

@@ -5,7 +5,8 @@
 //! Sakçak, LaValle), with a reference mode that reproduces the paper's published counts.
 //!
 //! Architecture (each layer imports only the layers before it; `tests/architecture.rs` checks
-//! this from the source): [`echo`] → [`atomic`], [`bounded`] → [`value`] → [`model`] and
+//! this from the source): [`echo`] → [`atomic`], [`bounded`] → [`value`] → [`algebra`] (exact
+//! polynomials, real algebraic numbers, exact linear algebra) → [`model`] and
 //! [`certificate`] (the checker of certificates: plain model data and big rationals only) →
 //! [`problems`], [`solvers`] → [`planning`], [`stochastic`] → [`learning`] → [`claims`] →
 //! [`envs`] → [`objectives`], [`experiments`] → [`figures`] → `cli` (the binary). Beneath them
@@ -17,6 +18,7 @@
 //! rationals ([`value::ExactValue`], the unit of [`model::Graph`]).
 #![warn(missing_docs)]
 
+pub mod algebra;
 pub mod atomic;
 pub mod bounded;
 pub mod certificate;

@@ -24,16 +24,19 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 /// The layers of `src/`'s top-level modules, lowest first. Shared utilities sit at the bottom;
-/// then the exact values, the planning graph, the paper's problems and the deterministic
-/// solvers; the stochastic model and the learners; the claims engines (docs/spec.md §6, whose exact
-/// polynomial algebra `claims::poly` the objectives build on); the Gymnasium environments;
-/// the three objectives over any stochastic model, which load environments; the paper's
-/// experiments; the figures drawn from problems, environments and experiment reports; and the
-/// command line on top, which parses, calls one library function and prints.
+/// then the exact values; the exact algebra built on them alone (polynomials and their real
+/// roots, algebraic numbers, exact rational and modular linear algebra), which the stochastic
+/// solvers, the claims engines and the objectives all use; the planning graph, the paper's
+/// problems and the deterministic solvers; the stochastic model and the learners; the claims
+/// engines (docs/spec.md §6); the Gymnasium environments; the three objectives over any
+/// stochastic model, which load environments; the paper's experiments; the figures drawn from
+/// problems, environments and experiment reports; and the command line on top, which parses,
+/// calls one library function and prints.
 const LAYERS: &[&[&str]] = &[
     &["echo"],
     &["atomic", "bounded"],
     &["value"],
+    &["algebra"],
     &["model", "certificate"],
     &["problems", "solvers"],
     &["planning", "stochastic"],
@@ -508,6 +511,66 @@ fn no_cycle_between_sibling_modules() {
         "sibling modules that name each other:\n  {}",
         cycles.join("\n  ")
     );
+}
+
+/// Pairs `(from, to)` of top-level modules where `from` names nothing of `to` although the
+/// layers would allow it: the discount engine takes its arithmetic from the algebra layer, not
+/// from the claims engine that checks it.
+const APART: &[(&str, &str)] = &[("objectives", "claims")];
+
+/// The edges of `graph` that [`APART`]-style `pairs` forbid, with their witnesses.
+fn forbidden_edges(
+    graph: &BTreeMap<String, BTreeMap<String, String>>,
+    pairs: &[(&str, &str)],
+) -> Vec<String> {
+    pairs
+        .iter()
+        .filter_map(|&(from, to)| {
+            let witness = graph.get(from)?.get(to)?;
+            Some(format!("{from} names {to}: {witness}"))
+        })
+        .collect()
+}
+
+#[test]
+fn modules_kept_apart_name_nothing_of_each_other() {
+    let forbidden = forbidden_edges(&top_level_graph(&read_sources()), APART);
+    assert!(
+        forbidden.is_empty(),
+        "imports between modules kept apart:\n  {}",
+        forbidden.join("\n  ")
+    );
+}
+
+/// The check of [`APART`] on a planted import: a file of `objectives` naming
+/// `claims::discount::discount_set` is found, with its witness; one naming `algebra` is not.
+#[test]
+fn a_planted_import_between_modules_kept_apart_is_found() {
+    let file = |rel: &str, names: &[&str]| {
+        let rel = PathBuf::from(rel);
+        SourceFile {
+            module: module_of(&rel),
+            rel,
+            names: names
+                .iter()
+                .map(|n| n.split("::").map(String::from).collect())
+                .collect(),
+        }
+    };
+    let files = [
+        file("objectives/mod.rs", &["algebra::intervals::Point"]),
+        file(
+            "objectives/parametric.rs",
+            &["claims::discount::discount_set"],
+        ),
+        file("claims/mod.rs", &["algebra::poly::Poly"]),
+        file("algebra/mod.rs", &[]),
+    ];
+    assert_eq!(
+        forbidden_edges(&top_level_graph(&files), APART),
+        ["objectives names claims: objectives/parametric.rs names claims::discount::discount_set"]
+    );
+    assert!(forbidden_edges(&top_level_graph(&files[..1]), APART).is_empty());
 }
 
 /// The reader itself, on small texts: comments, strings and characters hide their paths; use

@@ -3,9 +3,10 @@
 
 use num_bigint::BigInt;
 use num_traits::{One, Zero};
+use truecost::algebra::intervals::Point;
 use truecost::claims::alpha::{alpha_star, optimal_policies_from_initial, worked_example};
 use truecost::claims::c4::{bonus_sets, Instance};
-use truecost::claims::discount::{discount_set, Point};
+use truecost::claims::discount::discount_set;
 use truecost::claims::exact::Q;
 use truecost::claims::oracle::{karp_minimum_mean_cycle, simple_cycles};
 use truecost::claims::tiny::Tiny;
@@ -240,7 +241,7 @@ fn discount_set_agrees_with_exact_solves_on_every_3_state_problem() {
         let set = discount_set(&t.to_problem(), 10_000).unwrap();
         if !set.pieces.is_empty()
             && set.pieces
-                != [truecost::claims::discount::Piece {
+                != [truecost::algebra::intervals::Piece {
                     lo: Point::Zero,
                     lo_closed: false,
                     hi: Point::One,

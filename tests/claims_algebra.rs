@@ -25,13 +25,13 @@ use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 use proptest::prelude::*;
 use proptest::test_runner::Config;
+use truecost::algebra::poly::{count_roots, decimal, isolate_roots, Algebraic, Poly};
 use truecost::claims::c4::{bonus_sets, contains_unscaled, End, Instance, Interval};
 use truecost::claims::exact::{ipow, Ext, Frac, FracExt, Q};
 use truecost::claims::oracle::{
     evaluate, evaluate_fast, goal_avoiding_arcs, karp_minimum_mean_cycle, optimal_cost_to_go,
     policies, simple_cycles, simple_goal_paths, trajectory, Functional, Policy, TERMINATE,
 };
-use truecost::claims::poly::{count_roots, decimal, isolate_roots, Algebraic, Poly};
 use truecost::claims::sampled::tiny_strategy;
 use truecost::claims::tiny::{Tiny, MAX_STATES};
 use truecost::value::{parse_rational, Rational};

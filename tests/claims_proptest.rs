@@ -55,12 +55,13 @@ fn c4_corrected_holds() {
 mod discount_cross_check {
     use num_bigint::BigInt;
     use proptest::prelude::*;
+    use truecost::algebra::intervals::Point;
     use truecost::claims::alpha::optimal_policies_from_initial;
-    use truecost::claims::discount::{discount_set, Point};
+    use truecost::claims::discount::discount_set;
     use truecost::claims::sampled::tiny_strategy;
     use truecost::value::Rational;
 
-    fn inside(set: &truecost::claims::discount::DiscountSet, a: &Rational) -> bool {
+    fn inside(set: &truecost::algebra::intervals::DiscountSet, a: &Rational) -> bool {
         let cmp = |p: &Point| match p {
             Point::Zero => std::cmp::Ordering::Less,
             Point::One => std::cmp::Ordering::Greater,

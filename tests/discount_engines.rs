@@ -13,7 +13,8 @@
 
 use std::cmp::Ordering;
 
-use truecost::claims::discount::{discount_set, DiscountSet, Point};
+use truecost::algebra::intervals::{DiscountSet, Point};
+use truecost::claims::discount::discount_set;
 use truecost::model::{Move, Problem};
 use truecost::objectives::parametric::discount_breakpoints;
 use truecost::objectives::{failure_set, Model};
@@ -60,7 +61,7 @@ fn parametric_set(p: &Problem) -> DiscountSet {
 }
 
 fn text(s: &DiscountSet) -> String {
-    truecost::claims::discount::set_text(s)
+    truecost::algebra::intervals::set_text(s)
 }
 
 #[test]

@@ -27,10 +27,10 @@
 mod common;
 
 use num_bigint::BigInt;
-use truecost::claims::poly::roots::{
+use truecost::algebra::poly::roots::{
     irreducible_factor_at, reduce_polynomial, roots_in_unit_interval, Reduction, Root,
 };
-use truecost::claims::poly::{decimal, decimal_rounded, isolate_roots, Poly};
+use truecost::algebra::poly::{decimal, decimal_rounded, isolate_roots, Poly};
 use truecost::objectives::report::point_text;
 use truecost::value::Rational;
 

@@ -7,7 +7,7 @@
 use num_bigint::BigInt;
 use num_traits::{One, Zero};
 
-use truecost::claims::poly::roots::Root;
+use truecost::algebra::poly::roots::Root;
 use truecost::envs::EnvSpec;
 use truecost::objectives::parametric::{discount_breakpoints, DiscountAnalysis};
 use truecost::objectives::Model;
@@ -542,7 +542,7 @@ fn discount_env_on_the_command_line() {
 
 #[test]
 fn decimal_with_no_digits_prints_no_point() {
-    use truecost::claims::poly::decimal;
+    use truecost::algebra::poly::decimal;
     assert_eq!(decimal(&q("7/2"), 0), "3");
     assert_eq!(decimal(&q("-7/2"), 0), "-4"); // truncation is towards -inf (floor)
     assert_eq!(decimal(&q("7/2"), 1), "3.5");

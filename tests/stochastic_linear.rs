@@ -1,11 +1,11 @@
-//! The exact sparse solver's public edges (`src/stochastic/linear.rs`): emptiness, the band
+//! The exact sparse solver's public edges (`src/algebra/linear.rs`): emptiness, the band
 //! ordering's widths on patterns whose bandwidth is known by hand, and the refusal of a band
 //! too wide for memory, which must name the width the ordering actually has (the
 //! mutants `is_empty → true`, `bandwidths → (0, 0)` and the width `lower + upper + 1` →
 //! `lower + upper` survived the solver's other tests).
 
 use num_bigint::BigInt;
-use truecost::stochastic::linear::{solve_exact, BandOrdering, LinearError, SparseSystem};
+use truecost::algebra::linear::{solve_exact, BandOrdering, LinearError, SparseSystem};
 
 #[test]
 fn emptiness_and_length_follow_the_rows_pushed() {
@@ -225,7 +225,7 @@ fn try_points(expected: usize, last: usize) -> Vec<usize> {
 fn lifting_takes_the_steps_the_schedule_documents() {
     use num_integer::Integer;
     use rand::SeedableRng;
-    use truecost::stochastic::linear::solve_exact_with;
+    use truecost::algebra::linear::solve_exact_with;
     // Every prime the solver uses lies in (2^30, 2^31): log2 p ≈ 31 (the largest below
     // 2^31 − 1 first).
     let log2_p = 2_147_483_629f64.log2();
@@ -356,7 +356,7 @@ fn push_row_refuses_entries_from_2_to_the_62_and_right_hand_sides_from_2_to_the_
 /// `(1, −1)` for the right-hand sides `(1, 1)`.
 #[test]
 fn an_f64_singular_estimate_falls_back_to_the_hadamard_bound() {
-    use truecost::stochastic::linear::solve_exact_with;
+    use truecost::algebra::linear::solve_exact_with;
     let a = 1i64 << 54;
     let mut s = SparseSystem::new();
     s.push_row(&[(0, a + 1), (1, a)], 1).unwrap();
@@ -386,7 +386,7 @@ fn an_f64_singular_estimate_falls_back_to_the_hadamard_bound() {
 fn batched_reduction_agrees_with_reducing_each_fraction() {
     use num_rational::BigRational;
     use rand::{RngExt, SeedableRng};
-    use truecost::stochastic::linear::{reduced, reduced_all};
+    use truecost::algebra::linear::{reduced, reduced_all};
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
     let big = |bits: usize, rng: &mut rand_chacha::ChaCha8Rng| -> BigInt {
         let mut x = BigInt::from(1u8);

@@ -29,9 +29,9 @@ use std::sync::Mutex;
 mod common;
 use common::stochastic_file;
 
+use truecost::algebra::linear::{BandOrdering, SparseSystem};
 use truecost::model::{Move, Problem};
 use truecost::stochastic::benchmark::cost_grid;
-use truecost::stochastic::linear::{BandOrdering, SparseSystem};
 use truecost::stochastic::policy_iteration::{memory_estimate, optimum, problem_bytes};
 use truecost::stochastic::{decimal, NoiseModel, Predictability, StochasticProblem};
 use truecost::value::parse_rational;

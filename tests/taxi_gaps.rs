@@ -330,7 +330,7 @@ fn c3_example_threshold_by_the_deterministic_path() {
     check_against_brute_force(&m, &d);
     // At 0 the policy "stay" (u = −1, a self-loop costing 1) against "walk to the goal": the
     // threshold solves 1/(1−α) = 1 + 2α + 3α² + 4α³ + 5α⁴; both sides checked exactly.
-    let at0: Vec<&truecost::claims::poly::roots::Root> =
+    let at0: Vec<&truecost::algebra::poly::roots::Root> =
         d.breakpoints.iter().map(|b| &b.at).collect();
     assert!(!at0.is_empty());
     let f = |a: &Rational| {

@@ -12,9 +12,9 @@ use num_bigint::BigInt;
 use num_traits::{One, Zero};
 
 use super::oracle::{policies, trajectory, Trajectory};
-use super::poly::{isolate_roots, Algebraic, Poly};
 use super::tiny::Tiny;
 use super::{ClaimResult, EngineRun, Verdict};
+use crate::algebra::poly::{isolate_roots, Algebraic, Poly};
 use crate::value::Rational;
 
 /// The statement checked.
@@ -156,7 +156,7 @@ pub fn check() -> (ClaimResult, Option<Algebraic>) {
 ///
 /// ```
 /// use truecost::claims::alpha::{check_threshold, printed_inequality, worked_example};
-/// use truecost::claims::poly::Algebraic;
+/// use truecost::algebra::poly::Algebraic;
 /// use truecost::claims::Verdict;
 /// use truecost::value::Rational;
 /// // A bracket (1/2 − 2^-10, 1/2], below α* ≈ 0.92: at its upper end the optimal policy

@@ -33,7 +33,6 @@ pub mod discount;
 pub mod exact;
 pub mod harnesses;
 pub mod oracle;
-pub mod poly;
 pub mod qlearning;
 pub mod registry;
 pub mod replay;

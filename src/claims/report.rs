@@ -6,9 +6,9 @@ use std::fmt::Write;
 
 use serde_json::{json, Value};
 
-use super::discount::rat;
-use super::poly::Algebraic;
 use super::{ClaimResult, Scope};
+use crate::algebra::intervals::rat;
+use crate::algebra::poly::Algebraic;
 
 /// `α*` of the worked example of C3.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -12,7 +12,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
 
-use truecost::claims::discount::{point_text, set_text, DiscountSet};
+use truecost::algebra::intervals::{point_text, set_text, DiscountSet};
 use truecost::echo::printable;
 use truecost::objectives::parametric::{discount_breakpoints_with, DiscountAnalysis};
 use truecost::objectives::report::{

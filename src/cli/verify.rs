@@ -282,7 +282,7 @@ fn bonus_env(spec: &str, args: &VerifyArgs) -> Result<String, String> {
 
 fn unscale(q: Q, d: &BigInt) -> String {
     let r = q.to_rational() / truecost::value::Rational::from_integer(d.clone());
-    truecost::claims::discount::rat(&r)
+    truecost::algebra::intervals::rat(&r)
 }
 
 fn interval_text(i: &Interval, d: &BigInt) -> String {

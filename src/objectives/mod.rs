@@ -894,8 +894,8 @@ impl Model {
     /// A dead end (a non-goal state without moves) has cost-to-go `+∞` in the deterministic
     /// model (docs/spec.md §1): no trajectory through it has a discounted value, so no discount-optimal
     /// policy enters it. Moves into dead ends are removed, repeatedly (a state whose every move
-    /// leads into dead ends is one too); what remains are exactly the goal paths and lassos of
-    /// [`crate::claims::discount::discount_set`]. A dead-end `x1` has no goal path: every policy
+    /// leads into dead ends is one too); what remains are exactly the goal paths and lassos
+    /// that the C3 claim's enumeration (`discount_set` of the claims engine) walks. A dead-end `x1` has no goal path: every policy
     /// fails there, as the model says (it ends at `x1`, unsuccessfully).
     ///
     /// ```
@@ -1002,15 +1002,16 @@ impl Model {
 /// iff the policies optimal at the point do (there the optimal actions of both neighbouring
 /// intervals tie, so a point can belong to the set while neither neighbour does, or the
 /// reverse). In a deterministic model a policy's success from `x1` is 0 or 1, and a policy
-/// using only optimal actions follows a discount-optimal trajectory, so this is the set of
-/// [`crate::claims::discount::discount_set`] (checked in `tests/discount_engines.rs`). With an
+/// using only optimal actions follows a discount-optimal trajectory, so this is the set the
+/// C3 claim's enumeration of goal paths and lassos (`discount_set` of the claims engine) gives
+/// (checked in `tests/discount_engines.rs`). With an
 /// initial distribution (a problem file's) the least success probability is taken at the
 /// distribution: `α` belongs to the set iff a discount-optimal policy fails from some of its
 /// states. Consecutive members are merged into maximal pieces.
-pub fn failure_set(d: &parametric::DiscountAnalysis) -> crate::claims::discount::DiscountSet {
-    use crate::claims::discount::{pieces_of_members, DiscountSet, Point};
-    use crate::claims::poly::Algebraic;
-    let point = |r: &crate::claims::poly::roots::Root| -> Point {
+pub fn failure_set(d: &parametric::DiscountAnalysis) -> crate::algebra::intervals::DiscountSet {
+    use crate::algebra::intervals::{pieces_of_members, DiscountSet, Point};
+    use crate::algebra::poly::Algebraic;
+    let point = |r: &crate::algebra::poly::roots::Root| -> Point {
         Point::Root(match r.as_rational() {
             Some(q) => Algebraic::from_rational(q.clone()),
             // An open bracket (lo, hi) holding one simple root of the polynomial, not a root
@@ -1018,7 +1019,7 @@ pub fn failure_set(d: &parametric::DiscountAnalysis) -> crate::claims::discount:
             // itself once reduced).
             None => Algebraic {
                 poly: match r.reduction {
-                    crate::claims::poly::roots::Reduction::AsMet => r.poly.poly.squarefree(),
+                    crate::algebra::poly::roots::Reduction::AsMet => r.poly.poly.squarefree(),
                     _ => r.poly.poly.clone(),
                 },
                 lo: r.lo.clone(),

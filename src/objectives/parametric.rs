@@ -36,7 +36,7 @@
 //!    `(0, 1)` (with several denominators: `Q_a − V_x` times their product). `π` is optimal
 //!    exactly where every `A ≤ 0`; the optimal actions there are the policy's and those with
 //!    `A = 0`. The roots of every non-zero `A` in `(0, 1)` are isolated
-//!    exactly (Descartes' rule with bisection, [`crate::claims::poly::roots`]) and the sign of `A` on each gap
+//!    exactly (Descartes' rule with bisection, [`crate::algebra::poly::roots`]) and the sign of `A` on each gap
 //!    between them is evaluated at a rational point, so the maximal interval `[β_L, β_R]` around a point
 //!    where `π` is optimal is exact, and so are the points inside where some `A` touches 0
 //!    without changing sign (a tie at a single `α`: the optimal set changes there too).
@@ -71,17 +71,17 @@ use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 
 use super::{derive, max_reach, min_reach, Bounds, Model, ObjectiveError};
-use crate::claims::poly::roots::{
+use crate::algebra::annihilator;
+use crate::algebra::poly::roots::{
     between, homogeneous, integer_sign, no_root_between, roots_in_unit_interval, roots_in_window,
     simplest_between, Root,
 };
-use crate::claims::poly::Poly;
+use crate::algebra::poly::Poly;
 use crate::model::StateId;
 use crate::stochastic::policy_iteration::{evaluate, optimum};
 use crate::stochastic::StochasticAction;
 use crate::value::{Extended, Rational};
 
-mod annihilator;
 mod chains;
 mod paths;
 

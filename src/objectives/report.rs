@@ -339,7 +339,7 @@ pub fn facts(model: &Model) -> Result<Value, ObjectiveError> {
 /// A breakpoint's exact description: a rational, or the unique root of a primitive integer
 /// polynomial in a rational bracket of width at most `2^-100 < 1e-30`, with its decimal
 /// correctly rounded to 30 digits. The polynomial is the factor vanishing at the point
-/// ([`crate::claims::poly::roots::Root::reduce`]): the minimal polynomial when proved irreducible, else
+/// ([`crate::algebra::poly::roots::Root::reduce`]): the minimal polynomial when proved irreducible, else
 /// square-free without rational roots.
 pub struct PointText {
     /// The value correctly rounded to 30 digits after the point (the exact value when it
@@ -363,14 +363,14 @@ pub struct PointText {
 pub const SHORT_DIGITS: usize = 12;
 
 /// The text of a breakpoint (refined to a bracket of width at most `2^-100`).
-pub fn point_text(r: &crate::claims::poly::roots::Root) -> PointText {
+pub fn point_text(r: &crate::algebra::poly::roots::Root) -> PointText {
     let mut r = r.clone();
     r.reduce();
     r.refine_to(&Rational::new(
         num_bigint::BigInt::from(1),
         num_bigint::BigInt::from(1) << 100u32,
     ));
-    let rat = |x: &Rational| crate::claims::discount::rat(x);
+    let rat = |x: &Rational| crate::algebra::intervals::rat(x);
     PointText {
         decimal: r.decimal(30),
         short: r.decimal(SHORT_DIGITS),
@@ -381,7 +381,7 @@ pub fn point_text(r: &crate::claims::poly::roots::Root) -> PointText {
         } else {
             r.polynomial().degree().unwrap_or(0)
         },
-        minimal: r.exact || r.reduction == crate::claims::poly::roots::Reduction::Minimal,
+        minimal: r.exact || r.reduction == crate::algebra::poly::roots::Reduction::Minimal,
         bracket: (rat(&r.lo), rat(&r.hi)),
     }
 }
@@ -398,7 +398,7 @@ fn achievement_json(a: &super::parametric::Achievement) -> Value {
     })
 }
 
-fn end_json(r: Option<&crate::claims::poly::roots::Root>, none: &str) -> Value {
+fn end_json(r: Option<&crate::algebra::poly::roots::Root>, none: &str) -> Value {
     match r {
         None => json!(none),
         Some(r) => {
@@ -480,7 +480,7 @@ fn truecost_text(a: &super::parametric::Achievement) -> String {
     }
 }
 
-fn short_point(r: Option<&crate::claims::poly::roots::Root>, none: &str) -> String {
+fn short_point(r: Option<&crate::algebra::poly::roots::Root>, none: &str) -> String {
     match r {
         None => none.into(),
         Some(r) => {

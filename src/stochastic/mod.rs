@@ -13,7 +13,8 @@
 //! * [`properness`] — which states can reach a goal with probability 1 (finite `G*`), which
 //!   actions are safe, proper policies.
 //! * [`linear`] — the exact sparse linear solver (Dixon p-adic lifting, rational reconstruction,
-//!   exact verification) and its `f64` twin.
+//!   exact verification) and its `f64` twin, from the exact-algebra layer
+//!   ([`crate::algebra::linear`]).
 //! * [`policy_iteration`] — the exact optimum `G*`, `Q*` and an optimal policy.
 //! * [`refine`] — the mixed-precision policy iteration (certified improvements) that hands
 //!   the exact stage an optimal policy up to exact ties.
@@ -33,7 +34,6 @@ pub mod benchmark;
 pub mod certified;
 pub mod file;
 pub mod grid;
-pub mod linear;
 pub mod noise;
 pub mod policy_iteration;
 pub mod problem;
@@ -41,6 +41,8 @@ pub mod properness;
 pub mod refine;
 pub mod scale;
 pub mod value_iteration;
+
+use crate::algebra::linear;
 
 pub use noise::{NoiseModel, Predictability};
 pub use problem::{Outcome, OutcomeKind, Provenance, StochasticAction, StochasticProblem};

@@ -20,10 +20,10 @@ use std::collections::HashSet;
 
 use super::term::{and, app, eq, ge, gt, le, lt, max, mul, not, or, real, real_int, sub, sum};
 use super::{Encoding, Logic, Model, Obligation, Replay, Role, Sort};
+use crate::algebra::poly::Poly;
 use crate::claims::c2::functionals;
 use crate::claims::exact::{FracExt, Q};
 use crate::claims::oracle::{evaluate_fast, policies, trajectory, Functional, Trajectory};
-use crate::claims::poly::Poly;
 use crate::claims::tiny::{Family, FamilySpec, Tiny, MAX_STATES};
 use crate::claims::Scope;
 use crate::value::Rational;
@@ -164,7 +164,7 @@ pub fn parse_shape(text: &str) -> Option<Vec<Vec<(u8, String)>>> {
 /// (`(+ (- 1.0) (* 5.0 a a a a))`).
 ///
 /// ```
-/// use truecost::claims::poly::Poly;
+/// use truecost::algebra::poly::Poly;
 /// use truecost::claims::smt::c2::poly_term;
 /// assert_eq!(poly_term(&Poly::from_i64(&[-1, 0, 2]), "a"), "(+ (- 1.0) (* 2.0 a a))");
 /// ```

@@ -14,13 +14,13 @@
 use super::c2::{lassos, parse_shape, poly_term, Lasso};
 use super::term::{and, eq, ge, gt, le, lt, mul, not, or, real, real_int, sub};
 use super::{Encoding, Logic, Model, Obligation, Replay, Role, Sort};
+use crate::algebra::poly::Poly;
 use crate::claims::alpha::{
     discounted_value, optimal_policies_from_initial, printed_inequality, worked_example,
 };
 use crate::claims::c3::certificate;
 use crate::claims::exact::Q;
 use crate::claims::oracle::{policies, trajectory};
-use crate::claims::poly::Poly;
 use crate::claims::tiny::{Family, FamilySpec, Tiny};
 use crate::claims::Scope;
 use crate::value::Rational;
@@ -40,7 +40,7 @@ pub const THRESHOLD: [i64; 5] = [-1, -1, -1, -1, 5];
 /// by `cost` (the termination stage costs 0).
 ///
 /// ```
-/// use truecost::claims::poly::Poly;
+/// use truecost::algebra::poly::Poly;
 /// use truecost::claims::smt::c2::Lasso;
 /// use truecost::claims::smt::c3::lasso_fraction;
 /// // prefix cost 2, then a cycle of cost 1: 2 + α/(1 − α) = (2 − α)/(1 − α).

@@ -41,7 +41,7 @@ use super::{
     advantage_polynomial, between, chains, float_optimum, int_poly, one_point, poly_add_scaled,
     successor, zero_point, Advantage, ParametricError, Region, MAX_CHAIN_DEGREE,
 };
-use crate::claims::poly::roots::{integer_sign, roots_in_unit_interval, Root};
+use crate::algebra::poly::roots::{integer_sign, roots_in_unit_interval, Root};
 use crate::model::StateId;
 use crate::objectives::Model;
 use crate::value::Rational;

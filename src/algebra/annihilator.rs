@@ -1,7 +1,8 @@
-//! The denominator of a stochastic policy's values (module docs of the parent, step 1) by
-//! modular arithmetic: the minimal polynomial of the Krylov sequence `e_k = A^k e_0` of an
-//! integer matrix `A` (the scaled transition matrix `Q·P`) and an integer vector `e_0`, found
-//! modulo word-size primes and lifted to the integers by Chinese remaindering.
+//! The minimal polynomial of the Krylov sequence `e_k = A^k e_0` of an integer matrix `A` and
+//! an integer vector `e_0` by modular arithmetic: found modulo word-size primes and lifted to
+//! the integers by Chinese remaindering. The parametric discount engine takes from it the
+//! denominator of a stochastic policy's values (`A` the scaled transition matrix `Q·P`; step 1
+//! of the module docs of `objectives::parametric`).
 //!
 //! **Why integers suffice.** The minimal polynomial `μ` of `e_0` under `A` divides the
 //! characteristic polynomial of `A`, which is monic with integer coefficients; by Gauss's
@@ -23,8 +24,8 @@
 //! degree met are kept.
 //!
 //! **Exactness.** The largest degree met may still be too low if every prime so far was
-//! unlucky. The caller therefore verifies every candidate exactly (parent module docs,
-//! step 1); after a failed verification only primes of a larger degree are accepted. The
+//! unlucky. The caller therefore verifies every candidate exactly (the parametric engine
+//! does so in step 1 of its module docs); after a failed verification only primes of a larger degree are accepted. The
 //! result does not depend on the primes, the projections or this module's heuristics: a
 //! verified annihilator of degree at most `deg μ` is `μ` itself.
 
@@ -32,7 +33,7 @@ use num_bigint::{BigInt, BigUint};
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
 /// Projections tried modulo each prime before the prime is skipped.
-pub(super) const PROJECTIONS: usize = 4;
+pub const PROJECTIONS: usize = 4;
 
 /// Primes below `2^60` in decreasing order (Miller–Rabin with the first twelve prime bases,
 /// deterministic below `3.3·10^24`): products of two residues fit 120 bits, so 256 of them add
@@ -260,7 +261,7 @@ impl Remainders {
 /// The candidates for the denominator recurrence `d` (`d_0 = 1`, length `L + 1`) of the Krylov
 /// sequence of an integer matrix (sparse rows `(column, entry)`) and start vector, in the
 /// order to verify them.
-pub(super) struct Search<'a, I: Iterator<Item = u64>> {
+pub struct Search<'a, I: Iterator<Item = u64>> {
     rows: &'a [Vec<(usize, BigInt)>],
     start: &'a [BigInt],
     primes: I,
@@ -276,7 +277,19 @@ pub(super) struct Search<'a, I: Iterator<Item = u64>> {
 }
 
 /// The search with the primes below `2^60`.
-pub(super) fn search<'a>(
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use truecost::algebra::annihilator::search;
+/// // A swaps the two coordinates: e_0 = (1, 0), e_1 = (0, 1), e_2 = e_0, so the minimal
+/// // polynomial of e_0 is t² − 1 and the recurrence e_k − e_(k−2) = 0 reads d = (1, 0, −1).
+/// let one = BigInt::from(1);
+/// let rows = vec![vec![(1, one.clone())], vec![(0, one.clone())]];
+/// let start = vec![one, BigInt::from(0)];
+/// let d = search(&rows, &start).candidate().unwrap();
+/// assert_eq!(d, [1, 0, -1].map(BigInt::from));
+/// ```
+pub fn search<'a>(
     rows: &'a [Vec<(usize, BigInt)>],
     start: &'a [BigInt],
 ) -> Search<'a, impl Iterator<Item = u64>> {
@@ -310,7 +323,7 @@ impl<'a, I: Iterator<Item = u64>> Search<'a, I> {
     /// The next candidate `d` (`d_0 = 1`), or `None` when the primes allowed run out. After
     /// `None`-free calls, a further call means the last candidate failed its exact
     /// verification: its degree and every lower one are not asked again.
-    pub(super) fn candidate(&mut self) -> Option<Vec<BigInt>> {
+    pub fn candidate(&mut self) -> Option<Vec<BigInt>> {
         if let Some(l) = self.degree.take() {
             self.rejected = Some(l);
         }

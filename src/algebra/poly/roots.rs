@@ -1,6 +1,5 @@
-//! Exact real roots in `(0, 1)` for the parametric discount analysis (the breakpoints of
-//! [`crate::objectives::parametric`]), fast enough for the
-//! degree-50 advantage polynomials of FrozenLake 8x8.
+//! Exact real roots in `(0, 1)`, fast enough for the degree-50 advantage polynomials of
+//! FrozenLake 8x8 (the breakpoints of the parametric discount analysis, `objectives::parametric`).
 //!
 //! * **Isolation**: Descartes' rule of signs with bisection (Vincent–Collins–Akritas) on the
 //!   integer multiple of the polynomial: the number of sign variations of
@@ -70,6 +69,16 @@ impl RootPoly {
 
 /// The sign at `x = n/m` of the integer polynomial `a` (constant first): the sign of
 /// [`homogeneous`] (`m > 0`), no rational normalisation.
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use std::cmp::Ordering;
+/// use truecost::algebra::poly::roots::integer_sign;
+/// // x² − 2 at 7/5: 49/25 − 2 < 0; at 3/2: 9/4 − 2 > 0.
+/// let a: Vec<BigInt> = [-2, 0, 1].into_iter().map(BigInt::from).collect();
+/// assert_eq!(integer_sign(&a, &"7/5".parse().unwrap()), Ordering::Less);
+/// assert_eq!(integer_sign(&a, &"3/2".parse().unwrap()), Ordering::Greater);
+/// ```
 pub fn integer_sign(a: &[BigInt], x: &Rational) -> Ordering {
     homogeneous(a, x).sign().cmp(&num_bigint::Sign::NoSign)
 }
@@ -78,7 +87,7 @@ pub fn integer_sign(a: &[BigInt], x: &Rational) -> Ordering {
 /// first): `a(x)·m^d`, by homogeneous Horner.
 ///
 /// ```
-/// use truecost::claims::poly::roots::homogeneous;
+/// use truecost::algebra::poly::roots::homogeneous;
 /// use num_bigint::BigInt;
 /// // 1 + 2x + 3x² at x = 1/2: (4 + 4 + 3) = 11 = (1 + 1 + 3/4)·2².
 /// let a: Vec<BigInt> = [1, 2, 3].into_iter().map(BigInt::from).collect();
@@ -124,6 +133,15 @@ pub enum Reduction {
 }
 
 /// `p` scaled to integer coefficients with gcd 1, the sign kept.
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use truecost::algebra::poly::Poly;
+/// use truecost::algebra::poly::roots::integer_form;
+/// // −x/2 + 1/3 → −3x + 2 (lcm of the denominators 6, content 1, sign kept)
+/// let p = Poly::new(vec!["1/3".parse().unwrap(), "-1/2".parse().unwrap()]);
+/// assert_eq!(integer_form(&p), [2, -3].map(BigInt::from));
+/// ```
 pub fn integer_form(p: &Poly) -> Vec<BigInt> {
     let mut l = BigInt::one();
     for c in p.coefficients() {
@@ -143,11 +161,11 @@ pub fn integer_form(p: &Poly) -> Vec<BigInt> {
 
 /// The content of integer coefficients: their gcd (`≥ 0`; `0` when all are zero). Taken from
 /// the smallest non-zero magnitude up, stopping at 1, each gcd by
-/// [`crate::stochastic::linear::gcd`].
+/// [`crate::algebra::linear::gcd`].
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::claims::poly::roots::content;
+/// use truecost::algebra::poly::roots::content;
 /// let c: Vec<BigInt> = [0, -12, 18, 30].into_iter().map(BigInt::from).collect();
 /// assert_eq!(content(&c), BigInt::from(6));
 /// assert_eq!(content(&[BigInt::from(0)]), BigInt::from(0));
@@ -160,7 +178,7 @@ pub fn content(coefficients: &[BigInt]) -> BigInt {
         if g.is_one() {
             break;
         }
-        g = crate::stochastic::linear::gcd(&g, c);
+        g = crate::algebra::linear::gcd(&g, c);
     }
     g
 }
@@ -255,7 +273,7 @@ fn descartes_is_zero(q: &[BigInt]) -> bool {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::claims::poly::roots::no_root_between;
+/// use truecost::algebra::poly::roots::no_root_between;
 /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
 /// let p: Vec<BigInt> = [-1, 0, 2].into_iter().map(BigInt::from).collect(); // 2x^2 - 1
 /// assert!(no_root_between(&p, &q("0"), &q("7/10")));
@@ -355,8 +373,8 @@ fn isolate(p: &[BigInt], window: Option<(&Rational, &Rational)>) -> Isolation {
 /// Every root of the non-zero `f` in the open interval `(0, 1)`, in increasing order, distinct.
 ///
 /// ```
-/// use truecost::claims::poly::Poly;
-/// use truecost::claims::poly::roots::roots_in_unit_interval;
+/// use truecost::algebra::poly::Poly;
+/// use truecost::algebra::poly::roots::roots_in_unit_interval;
 /// // (x - 1/2)(3x - 2)(x^2 - 1/2) · x · (x - 1): roots 1/2, √2/2 ≈ 0.7071, 2/3 in (0, 1)
 /// let f = Poly::from_i64(&[-1, 2]).mul(&Poly::from_i64(&[-2, 3])).mul(&Poly::from_i64(&[-1, 0, 2]))
 ///     .mul(&Poly::from_i64(&[0, 1])).mul(&Poly::from_i64(&[-1, 1]));
@@ -380,8 +398,8 @@ pub fn roots_in_unit_interval(f: &Poly) -> Vec<Root> {
 /// `(0, 1)`.
 ///
 /// ```
-/// use truecost::claims::poly::Poly;
-/// use truecost::claims::poly::roots::{roots_in_unit_interval, roots_in_window};
+/// use truecost::algebra::poly::Poly;
+/// use truecost::algebra::poly::roots::{roots_in_unit_interval, roots_in_window};
 /// // (4x - 1)(4x - 3)(x^2 - 1/2): roots 1/4, √2/2, 3/4.
 /// let f = Poly::from_i64(&[-1, 4]).mul(&Poly::from_i64(&[-3, 4])).mul(&Poly::from_i64(&[-1, 0, 2]));
 /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
@@ -469,7 +487,7 @@ pub fn roots_in_window(f: &Poly, window: Option<(&Rational, &Rational)>) -> Vec<
 /// (continued fractions).
 ///
 /// ```
-/// use truecost::claims::poly::roots::simplest_between;
+/// use truecost::algebra::poly::roots::simplest_between;
 /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
 /// assert_eq!(simplest_between(&q("3/10"), &q("17/50")), q("1/3"));
 /// assert_eq!(simplest_between(&q("0"), &q("3/10")), q("1/4"));
@@ -638,7 +656,7 @@ fn squarefree_modulo_a_prime(a: &[BigInt], d: &[BigInt]) -> bool {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::claims::poly::roots::squarefree_part;
+/// use truecost::algebra::poly::roots::squarefree_part;
 /// // (x − 2)^2 (x + 1) = x^3 − 3x^2 + 4 → (x − 2)(x + 1) = x^2 − x − 2.
 /// let a: Vec<BigInt> = [4, 0, -3, 1].iter().map(|&c| BigInt::from(c)).collect();
 /// let want: Vec<BigInt> = [-2, -1, 1].iter().map(|&c| BigInt::from(c)).collect();
@@ -710,7 +728,7 @@ fn rational_among(
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::claims::poly::roots::rational_roots;
+/// use truecost::algebra::poly::roots::rational_roots;
 /// // (2x − 3)(x + 5)(x^2 − 2)(3x − 1)
 /// let f: Vec<BigInt> = [-30, 104, -23, -64, 19, 6].iter().map(|&c| BigInt::from(c)).collect();
 /// let got: Vec<String> = rational_roots(&f).iter().map(|r| r.to_string()).collect();
@@ -758,7 +776,7 @@ pub fn rational_roots(f: &[BigInt]) -> Vec<Rational> {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::claims::poly::roots::{reduce_polynomial, Reduction};
+/// use truecost::algebra::poly::roots::{reduce_polynomial, Reduction};
 /// let ints = |c: &[i64]| -> Vec<BigInt> { c.iter().map(|&x| BigInt::from(x)).collect() };
 /// // −(2x − 3)(x^2 − x − 1)^2 → x^2 − x − 1, with the rational root 3/2.
 /// let f = ints(&[3, 4, -7, -4, 7, -2]);
@@ -1165,7 +1183,7 @@ fn hensel(f: &[BigInt], g: &[u64], p: u64, k: u32) -> Vec<BigInt> {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::claims::poly::roots::irreducible_factor_at;
+/// use truecost::algebra::poly::roots::irreducible_factor_at;
 /// let ints = |c: &[i64]| -> Vec<BigInt> { c.iter().map(|&x| BigInt::from(x)).collect() };
 /// // (x^2 + x − 1)(x^3 − 2): the root (√5 − 1)/2 ≈ 0.618 in (3/5, 2/3) is a root of x^2 + x − 1.
 /// let f = ints(&[2, -2, -2, -1, 1, 1]);
@@ -1266,7 +1284,7 @@ fn is_prime(n: u64) -> bool {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::claims::poly::roots::irreducible_by_degrees;
+/// use truecost::algebra::poly::roots::irreducible_by_degrees;
 /// let ints = |c: &[i64]| -> Vec<BigInt> { c.iter().map(|&x| BigInt::from(x)).collect() };
 /// assert!(irreducible_by_degrees(&ints(&[-2, 0, 0, 0, 0, 1]))); // x^5 − 2 (Eisenstein)
 /// assert!(!irreducible_by_degrees(&ints(&[2, 0, -3, 0, 1]))); // (x^2 − 1)(x^2 − 2)
@@ -1318,6 +1336,13 @@ pub fn irreducible_by_degrees(f: &[BigInt]) -> bool {
 
 impl Root {
     /// The exact rational `r`.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::roots::Root;
+    /// let r = Root::rational("2/3".parse().unwrap());
+    /// assert!(r.exact);
+    /// assert_eq!(r.polynomial().to_string(), "3x - 2");
+    /// ```
     pub fn rational(r: Rational) -> Root {
         Root {
             poly: RootPoly::new(Poly::new(vec![-r.clone(), Rational::one()])),
@@ -1333,6 +1358,17 @@ impl Root {
     /// no rational roots, [`Reduction::Minimal`] when proved irreducible. A rational root
     /// found on the way makes the root exact. The bracket is kept (it isolates the root of
     /// every factor of the polynomial vanishing there).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::{roots_in_unit_interval, Reduction};
+    /// // (x² + x − 1)(x³ − 2): its one root in (0, 1) is (√5 − 1)/2 = 0.618…, a root of x² + x − 1.
+    /// let f = Poly::from_i64(&[-1, 1, 1]).mul(&Poly::from_i64(&[-2, 0, 0, 1]));
+    /// let mut r = roots_in_unit_interval(&f).remove(0);
+    /// r.reduce();
+    /// assert_eq!(r.reduction, Reduction::Minimal);
+    /// assert_eq!(r.polynomial().to_string(), "x^2 + x - 1");
+    /// ```
     pub fn reduce(&mut self) {
         if self.exact || self.reduction != Reduction::AsMet {
             return;
@@ -1372,6 +1408,20 @@ impl Root {
     /// Whether `other` is the same number; if so, this root keeps the exact value if either
     /// has it, else the gcd of the two polynomials (it vanishes at the common root, which is
     /// simple, and divides this root's polynomial, so the bracket isolates its root).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// // 1/√2 as a root of (2x² − 1)(x + 1) and of (2x² − 1)(x + 2): the same number, and the gcd
+    /// // 2x² − 1 becomes its polynomial. 1/2 is another number.
+    /// let a = Poly::from_i64(&[-1, 0, 2]);
+    /// let mut r = roots_in_unit_interval(&a.mul(&Poly::from_i64(&[1, 1]))).remove(0);
+    /// let s = roots_in_unit_interval(&a.mul(&Poly::from_i64(&[2, 1]))).remove(0);
+    /// assert!(r.absorb_if_equal(&s));
+    /// assert_eq!(r.polynomial().to_string(), "2x^2 - 1");
+    /// let half = roots_in_unit_interval(&Poly::from_i64(&[-1, 2])).remove(0);
+    /// assert!(!r.absorb_if_equal(&half));
+    /// ```
     pub fn absorb_if_equal(&mut self, other: &Root) -> bool {
         if self.compare(other) != Ordering::Equal {
             return false;
@@ -1393,6 +1443,21 @@ impl Root {
 
     /// Makes the root exact if it is a rational: the simplest rational of a bracket narrowed to
     /// `2^-100` is tried (exactly); otherwise the bracket is left narrowed.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// // 2x² − 1: the root 1/√2 = 0.70710678… in (0, 1).
+    /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
+    /// let mut s = r.clone();
+    /// s.recognise_rational();
+    /// assert!(!s.exact && &s.hi - &s.lo <= q("1") / q("1267650600228229401496703205376")); // 2^-100
+    /// // 3x − 1: its root is recognised as exactly 1/3.
+    /// let mut third = roots_in_unit_interval(&Poly::from_i64(&[-1, 3])).remove(0);
+    /// third.recognise_rational();
+    /// assert_eq!(third.as_rational(), Some(&q("1/3")));
+    /// ```
     pub fn recognise_rational(&mut self) {
         self.refine_to(&Rational::new(BigInt::one(), BigInt::one() << 100u32));
         if !self.exact {
@@ -1404,18 +1469,41 @@ impl Root {
     }
 
     /// The value if it is rational and known to be (exact roots).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// // 2x² − 1: the root 1/√2 = 0.70710678… in (0, 1).
+    /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
+    /// use truecost::algebra::poly::roots::Root;
+    /// assert_eq!(r.as_rational(), None);
+    /// assert_eq!(Root::rational(q("1/3")).as_rational(), Some(&q("1/3")));
+    /// ```
     pub fn as_rational(&self) -> Option<&Rational> {
         self.exact.then_some(&self.lo)
     }
 
     /// Halves the bracket (no-op when exact).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// // 2x² − 1: the root 1/√2 = 0.70710678… in (0, 1).
+    /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
+    /// let mut s = r.clone();
+    /// s.halve();
+    /// assert_eq!(&s.hi - &s.lo, (&r.hi - &r.lo) / q("2"));
+    /// assert!(q("2") * &s.lo * &s.lo < q("1") && q("2") * &s.hi * &s.hi > q("1"));
+    /// ```
     pub fn halve(&mut self) {
         if self.exact {
             return;
         }
         // (lo + hi)/2 with one normalisation (dashu's gcd: the binary gcd of num-bigint is
         // quadratic when one side is small).
-        let mid = crate::stochastic::linear::reduced(
+        let mid = crate::algebra::linear::reduced(
             &(self.lo.numer() * self.hi.denom() + self.hi.numer() * self.lo.denom()),
             &(2 * self.lo.denom() * self.hi.denom()),
         );
@@ -1439,6 +1527,18 @@ impl Root {
     /// until narrow enough, exact if a midpoint is the root). After 16 halvings the remaining
     /// ones are taken at once where a Newton guess of the final cell is confirmed by the signs
     /// at its ends.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// // 2x² − 1: the root 1/√2 = 0.70710678… in (0, 1).
+    /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
+    /// let mut s = r.clone();
+    /// s.refine_to(&q("1/1000000"));
+    /// assert!(&s.hi - &s.lo <= q("1/1000000"));
+    /// assert!(q("2") * &s.lo * &s.lo < q("1") && q("2") * &s.hi * &s.hi > q("1"));
+    /// ```
     pub fn refine_to(&mut self, width: &Rational) {
         let mut plain = 0;
         while !self.exact && &(&self.hi - &self.lo) > width {
@@ -1553,6 +1653,22 @@ impl Root {
     }
 
     /// Exact comparison (module docs).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// // 2x² − 1: the root 1/√2 = 0.70710678… in (0, 1).
+    /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
+    /// use std::cmp::Ordering;
+    /// use truecost::algebra::poly::roots::Root;
+    /// // 2/3 < 1/√2 = 0.7071… < 3/4
+    /// assert_eq!(r.compare(&Root::rational(q("2/3"))), Ordering::Greater);
+    /// assert_eq!(r.compare(&Root::rational(q("3/4"))), Ordering::Less);
+    /// // 4x² − 2 vanishes at the same number.
+    /// let same = roots_in_unit_interval(&Poly::from_i64(&[-2, 0, 4])).remove(0);
+    /// assert_eq!(r.compare(&same), Ordering::Equal);
+    /// ```
     pub fn compare(&self, other: &Root) -> Ordering {
         // Disjoint brackets (or two exact values) decide without refining.
         if self.exact && other.exact {
@@ -1623,6 +1739,17 @@ impl Root {
     /// Compares with a rational.
     /// (The bracket decides, else the sign of the integer polynomial at `x`: the same answer as
     /// [`Root::compare`] with the exact root `x`, without building its polynomial.)
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// // 2x² − 1: the root 1/√2 = 0.70710678… in (0, 1).
+    /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
+    /// use std::cmp::Ordering;
+    /// assert_eq!(r.cmp_rational(&q("7/10")), Ordering::Greater);
+    /// assert_eq!(r.cmp_rational(&q("71/100")), Ordering::Less);
+    /// ```
     pub fn cmp_rational(&self, x: &Rational) -> Ordering {
         if self.exact {
             return self.lo.cmp(x);
@@ -1647,8 +1774,8 @@ impl Root {
     /// digits are those of the number itself, not of an approximation.
     ///
     /// ```
-    /// use truecost::claims::poly::Poly;
-    /// use truecost::claims::poly::roots::roots_in_unit_interval;
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
     /// // 2x^2 - 1: 1/√2 = 0.70710678118654752440084...; 6 digits: 0.707107 (truncated: 0.707106).
     /// let r = roots_in_unit_interval(&Poly::from_i64(&[-1, 0, 2])).remove(0);
     /// assert_eq!(r.decimal(6), "0.707107");
@@ -1667,16 +1794,24 @@ impl Root {
             }
         }
         if a.exact {
-            return crate::claims::poly::decimal_rounded(&a.lo, digits);
+            return crate::algebra::poly::decimal_rounded(&a.lo, digits);
         }
         // The root lies strictly inside (lo, hi), within the closure of one rounding cell
         // (width at most one unit, no boundary strictly inside): the bracket's midpoint lies
         // strictly inside the same cell, so it rounds to the same digits.
         let mid = (&a.lo + &a.hi) / Rational::from_integer(2.into());
-        crate::claims::poly::decimal_rounded(&mid, digits)
+        crate::algebra::poly::decimal_rounded(&mid, digits)
     }
 
     /// The polynomial as a primitive integer polynomial with a positive leading coefficient.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use truecost::algebra::poly::roots::roots_in_unit_interval;
+    /// // The root of −4x² + 2 (= 1/√2), as the primitive 2x² − 1.
+    /// let r = roots_in_unit_interval(&Poly::from_i64(&[2, 0, -4])).remove(0);
+    /// assert_eq!(r.polynomial().to_string(), "2x^2 - 1");
+    /// ```
     pub fn polynomial(&self) -> Poly {
         self.poly.poly.primitive()
     }
@@ -1685,7 +1820,7 @@ impl Root {
 /// A rational strictly between the roots `a < b`.
 ///
 /// ```
-/// use truecost::claims::poly::roots::{between, Root};
+/// use truecost::algebra::poly::roots::{between, Root};
 /// let a = Root::rational("1/3".parse().unwrap());
 /// let b = Root::rational("1/2".parse().unwrap());
 /// let t = between(&a, &b);

@@ -81,6 +81,17 @@ impl SparseSystem {
     }
 
     /// Appends a row: its entries `(column, value)` (duplicates are added) and right-hand side.
+    ///
+    /// ```
+    /// use truecost::algebra::linear::SparseSystem;
+    /// use truecost::algebra::linear::LinearError;
+    /// let mut s = SparseSystem::new();
+    /// // Duplicate columns are added: 2x + x = 3.
+    /// s.push_row(&[(0, 2), (0, 1)], 3).unwrap();
+    /// assert_eq!(s.row(0).collect::<Vec<_>>(), [(0, 3)]);
+    /// assert_eq!(s.rhs(0), 3);
+    /// assert_eq!(s.push_row(&[(0, 1 << 62)], 0), Err(LinearError::TooLarge));
+    /// ```
     pub fn push_row(&mut self, entries: &[(usize, i64)], rhs: i128) -> Result<(), LinearError> {
         let start = self.col.len();
         for &(c, v) in entries {
@@ -107,6 +118,14 @@ impl SparseSystem {
     }
 
     /// The number of rows (= unknowns).
+    ///
+    /// ```
+    /// use truecost::algebra::linear::SparseSystem;
+    /// let mut s = SparseSystem::new();
+    /// assert!(s.is_empty());
+    /// s.push_row(&[(0, 1)], 0).unwrap();
+    /// assert_eq!((s.len(), s.is_empty()), (1, false));
+    /// ```
     pub fn len(&self) -> usize {
         self.rhs.len()
     }
@@ -131,6 +150,17 @@ impl SparseSystem {
     }
 
     /// Whether `A·N = d·r` holds exactly.
+    ///
+    /// ```
+    /// use truecost::algebra::linear::SparseSystem;
+    /// use num_bigint::BigInt;
+    /// // 2x = 1: x = 1/2 is N = 1, d = 2 (also N = 3, d = 6); N = 1, d = 3 is not.
+    /// let mut s = SparseSystem::new();
+    /// s.push_row(&[(0, 2)], 1).unwrap();
+    /// assert!(s.satisfied_by(&[BigInt::from(1)], &BigInt::from(2)));
+    /// assert!(s.satisfied_by(&[BigInt::from(3)], &BigInt::from(6)));
+    /// assert!(!s.satisfied_by(&[BigInt::from(1)], &BigInt::from(3)));
+    /// ```
     pub fn satisfied_by(&self, numerators: &[BigInt], denominator: &BigInt) -> bool {
         (0..self.len()).all(|i| {
             let mut lhs = BigInt::zero();
@@ -266,6 +296,19 @@ impl BandOrdering {
     }
 
     /// `(lower, upper)` bandwidths after reordering.
+    ///
+    /// ```
+    /// use truecost::algebra::linear::{BandOrdering, SparseSystem};
+    /// // A path 0 – 1 – 2 – 3 (tridiagonal, each unknown coupled to its neighbours) in a scrambled
+    /// // numbering 0, 2, 3, 1: reordered, it is tridiagonal again.
+    /// let mut s = SparseSystem::new();
+    /// for (i, nbrs) in [(0, vec![2]), (1, vec![3]), (2, vec![0, 3]), (3, vec![2, 1])] {
+    ///     let mut row: Vec<(usize, i64)> = vec![(i, 4)];
+    ///     row.extend(nbrs.into_iter().map(|j| (j, -1)));
+    ///     s.push_row(&row, 1).unwrap();
+    /// }
+    /// assert_eq!(BandOrdering::new(&s).bandwidths(), (1, 1));
+    /// ```
     pub fn bandwidths(&self) -> (usize, usize) {
         (self.lower, self.upper)
     }
@@ -538,7 +581,7 @@ fn to_num(x: &IBig) -> BigInt {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::stochastic::linear::reduced;
+/// use truecost::algebra::linear::reduced;
 /// assert_eq!(reduced(&BigInt::from(-6), &BigInt::from(4)).to_string(), "-3/2");
 /// ```
 pub fn reduced(n: &BigInt, d: &BigInt) -> crate::value::Rational {
@@ -556,7 +599,7 @@ pub fn reduced(n: &BigInt, d: &BigInt) -> crate::value::Rational {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::stochastic::linear::gcd;
+/// use truecost::algebra::linear::gcd;
 /// let big = BigInt::from(3).pow(5000) * 14;
 /// assert_eq!(gcd(&big, &BigInt::from(-21)), BigInt::from(21));
 /// assert_eq!(gcd(&BigInt::from(0), &BigInt::from(-4)), BigInt::from(4));
@@ -602,7 +645,7 @@ fn divided(n: &BigInt, un: &UBig, d: &BigInt, ud: &UBig, g: &UBig) -> crate::val
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use truecost::stochastic::linear::reduced_all;
+/// use truecost::algebra::linear::reduced_all;
 /// let n: Vec<BigInt> = [-6, 0, 5, 12].into_iter().map(BigInt::from).collect();
 /// let r = reduced_all(&n.iter().collect::<Vec<_>>(), &BigInt::from(4));
 /// let text: Vec<String> = r.iter().map(|v| v.to_string()).collect();
@@ -944,7 +987,7 @@ pub struct LiftProgress {
 /// Solves `A·z = r` exactly (module docs). The result satisfies `A·N = d·r` exactly.
 ///
 /// ```
-/// use truecost::stochastic::linear::{solve_exact, SparseSystem};
+/// use truecost::algebra::linear::{solve_exact, SparseSystem};
 /// use num_bigint::BigInt;
 /// // 3x - y = 1, -x + 3y = 2  →  x = 5/8, y = 7/8
 /// let mut s = SparseSystem::new();
@@ -959,6 +1002,16 @@ pub fn solve_exact(system: &SparseSystem) -> Result<ExactSolution, LinearError> 
 }
 
 /// [`solve_exact`], calling `progress` after every lifting step.
+///
+/// ```
+/// use truecost::algebra::linear::{solve_exact_with, SparseSystem};
+/// use num_bigint::BigInt;
+/// // 2x = 1: x = 1/2 (the progress reports ignored).
+/// let mut s = SparseSystem::new();
+/// s.push_row(&[(0, 2)], 1).unwrap();
+/// let z = solve_exact_with(&s, &mut |_| {}).unwrap();
+/// assert_eq!(&z.numerators[0] * BigInt::from(2), z.denominator);
+/// ```
 pub fn solve_exact_with(
     system: &SparseSystem,
     progress: &mut dyn FnMut(LiftProgress),
@@ -1113,6 +1166,16 @@ fn lift(
 
 /// Solves `A·z = r` in `f64` by banded LU without pivoting, in the same ordering (for warm
 /// starts only; never reported as a value).
+///
+/// ```
+/// use truecost::algebra::linear::{solve_f64, SparseSystem};
+/// // 3x − y = 1, −x + 3y = 2: x = 5/8, y = 7/8 (exact in binary).
+/// let mut s = SparseSystem::new();
+/// s.push_row(&[(0, 3), (1, -1)], 1).unwrap();
+/// s.push_row(&[(0, -1), (1, 3)], 2).unwrap();
+/// let z = solve_f64(&s).unwrap();
+/// assert!((z[0] - 0.625).abs() < 1e-12 && (z[1] - 0.875).abs() < 1e-12);
+/// ```
 pub fn solve_f64(system: &SparseSystem) -> Result<Vec<f64>, LinearError> {
     let ordering = BandOrdering::new(system);
     check_band(system.len(), &ordering)?;
@@ -1128,7 +1191,7 @@ fn solve_f64_ordered(system: &SparseSystem, ordering: &BandOrdering) -> (Vec<f64
 
 /// The `f64` band LU factor of a system (reverse Cuthill–McKee ordering, no pivoting), kept to
 /// solve the same matrix for many right-hand sides (the mixed-precision refinement of
-/// [`super::refine`]). Only ever proposes values; never reported.
+/// `stochastic::refine`). Only ever proposes values; never reported.
 #[derive(Clone, Debug)]
 pub struct FloatFactor {
     ordering: BandOrdering,
@@ -1176,6 +1239,20 @@ impl FloatFactor {
     }
 
     /// `A⁻¹·rhs` in `f64` (`rhs` in the system's numbering).
+    ///
+    /// ```
+    /// use truecost::algebra::linear::{FloatFactor, SparseSystem};
+    /// // One factor of [[3, −1], [−1, 3]] (det 8), two right-hand sides: (1, 2) → (5/8, 7/8),
+    /// // (2, −2) → (1/2, −1/2).
+    /// let mut s = SparseSystem::new();
+    /// s.push_row(&[(0, 3), (1, -1)], 0).unwrap();
+    /// s.push_row(&[(0, -1), (1, 3)], 0).unwrap();
+    /// let f = FloatFactor::new(&s).unwrap();
+    /// assert!((f.log2_det - 3.0).abs() < 1e-12);
+    /// let close = |a: Vec<f64>, b: [f64; 2]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12);
+    /// assert!(close(f.solve(&[1.0, 2.0]), [0.625, 0.875]));
+    /// assert!(close(f.solve(&[2.0, -2.0]), [0.5, -0.5]));
+    /// ```
     pub fn solve(&self, rhs: &[f64]) -> Vec<f64> {
         let (band, ordering) = (&self.band, &self.ordering);
         let n = band.n;

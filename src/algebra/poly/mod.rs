@@ -26,7 +26,7 @@ impl Poly {
     /// From coefficients, constant first.
     ///
     /// ```
-    /// use truecost::claims::poly::Poly;
+    /// use truecost::algebra::poly::Poly;
     /// let p = Poly::from_i64(&[-2, 0, 1]); // x^2 - 2
     /// assert_eq!(p.degree(), Some(2));
     /// assert_eq!(p.to_string(), "x^2 - 2");
@@ -36,6 +36,14 @@ impl Poly {
     }
 
     /// From rational coefficients, constant first.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// // Trailing zeros are dropped: 1 + 0·x is the constant 1.
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// let p = Poly::new(vec![q("1"), q("0")]);
+    /// assert_eq!((p.degree(), p.to_string()), (Some(0), "1".to_string()));
+    /// ```
     pub fn new(mut c: Vec<Rational>) -> Poly {
         while c.last().is_some_and(Zero::is_zero) {
             c.pop();
@@ -44,11 +52,22 @@ impl Poly {
     }
 
     /// The zero polynomial.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// assert!(Poly::zero().is_zero() && Poly::zero().degree().is_none());
+    /// assert_eq!(Poly::zero().to_string(), "0");
+    /// ```
     pub fn zero() -> Poly {
         Poly { c: Vec::new() }
     }
 
     /// `x^k`.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// assert_eq!(Poly::monomial(3).to_string(), "x^3");
+    /// ```
     pub fn monomial(k: usize) -> Poly {
         let mut c = vec![Rational::zero(); k + 1];
         c[k] = Rational::one();
@@ -61,16 +80,34 @@ impl Poly {
     }
 
     /// Whether this is the zero polynomial.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// assert!(!Poly::from_i64(&[0, 1]).is_zero() && Poly::from_i64(&[0, 0]).is_zero());
+    /// ```
     pub fn is_zero(&self) -> bool {
         self.c.is_empty()
     }
 
     /// Coefficients, constant first.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// let c: Vec<String> = Poly::from_i64(&[-2, 0, 1]).coefficients().iter().map(|c| c.to_string()).collect();
+    /// assert_eq!(c, ["-2", "0", "1"]);
+    /// ```
     pub fn coefficients(&self) -> &[Rational] {
         &self.c
     }
 
     /// The value at `x`.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// // x² − 2 at 3/2: 9/4 − 2 = 1/4.
+    /// let v = Poly::from_i64(&[-2, 0, 1]).eval(&"3/2".parse().unwrap());
+    /// assert_eq!(v, "1/4".parse().unwrap());
+    /// ```
     pub fn eval(&self, x: &Rational) -> Rational {
         let mut acc = Rational::zero();
         for c in self.c.iter().rev() {
@@ -80,11 +117,25 @@ impl Poly {
     }
 
     /// The sign of the value at `x`.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// use std::cmp::Ordering;
+    /// let p = Poly::from_i64(&[-2, 0, 1]); // x² − 2: −1 at 1, 2 at 2
+    /// assert_eq!(p.sign_at(&"1".parse().unwrap()), Ordering::Less);
+    /// assert_eq!(p.sign_at(&"2".parse().unwrap()), Ordering::Greater);
+    /// ```
     pub fn sign_at(&self, x: &Rational) -> Ordering {
         self.eval(x).cmp(&Rational::zero())
     }
 
     /// The derivative.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// // (x³ − 2x + 1)' = 3x² − 2
+    /// assert_eq!(Poly::from_i64(&[1, -2, 0, 1]).derivative().to_string(), "3x^2 - 2");
+    /// ```
     pub fn derivative(&self) -> Poly {
         Poly::new(
             self.c
@@ -97,6 +148,12 @@ impl Poly {
     }
 
     /// `self + o`.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// // (x − 1) + (x + 1) = 2x
+    /// assert_eq!(Poly::from_i64(&[-1, 1]).add(&Poly::from_i64(&[1, 1])).to_string(), "2x");
+    /// ```
     pub fn add(&self, o: &Poly) -> Poly {
         let n = self.c.len().max(o.c.len());
         Poly::new(
@@ -110,16 +167,36 @@ impl Poly {
     }
 
     /// `self - o`.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// // (x − 1) − (x + 1) = −2
+    /// assert_eq!(Poly::from_i64(&[-1, 1]).sub(&Poly::from_i64(&[1, 1])).to_string(), "-2");
+    /// ```
     pub fn sub(&self, o: &Poly) -> Poly {
         self.add(&o.scale(&r(-1)))
     }
 
     /// `k · self`.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// // (x − 1)/2
+    /// let half = "1/2".parse().unwrap();
+    /// assert_eq!(Poly::from_i64(&[-1, 1]).scale(&half).to_string(), "(1/2)x - (1/2)");
+    /// ```
     pub fn scale(&self, k: &Rational) -> Poly {
         Poly::new(self.c.iter().map(|c| c * k).collect())
     }
 
     /// `self · o`.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// // (x − 1)(x + 1) = x² − 1; a zero factor gives zero.
+    /// assert_eq!(Poly::from_i64(&[-1, 1]).mul(&Poly::from_i64(&[1, 1])).to_string(), "x^2 - 1");
+    /// assert!(Poly::from_i64(&[-1, 1]).mul(&Poly::zero()).is_zero());
+    /// ```
     pub fn mul(&self, o: &Poly) -> Poly {
         if self.is_zero() || o.is_zero() {
             return Poly::zero();
@@ -134,6 +211,15 @@ impl Poly {
     }
 
     /// Quotient and remainder of the division by `d` (non-zero).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// // x³ − 1 = (x − 1)(x² + x + 1); x² + 1 = (x − 1)(x + 1) + 2.
+    /// let (q, r) = Poly::from_i64(&[-1, 0, 0, 1]).div_rem(&Poly::from_i64(&[-1, 1]));
+    /// assert_eq!((q.to_string(), r.is_zero()), ("x^2 + x + 1".to_string(), true));
+    /// let (q, r) = Poly::from_i64(&[1, 0, 1]).div_rem(&Poly::from_i64(&[-1, 1]));
+    /// assert_eq!((q.to_string(), r.to_string()), ("x + 1".to_string(), "2".to_string()));
+    /// ```
     pub fn div_rem(&self, d: &Poly) -> (Poly, Poly) {
         let dd = d.degree().expect("division by the zero polynomial");
         let lead = d.c[dd].clone();
@@ -155,6 +241,14 @@ impl Poly {
     }
 
     /// The monic greatest common divisor.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// // gcd((x − 1)(x − 2), 2(x − 1)(x + 3)) = x − 1 (monic)
+    /// let a = Poly::from_i64(&[2, -3, 1]);
+    /// let b = Poly::from_i64(&[-6, 4, 2]);
+    /// assert_eq!(a.gcd(&b).to_string(), "x - 1");
+    /// ```
     pub fn gcd(&self, o: &Poly) -> Poly {
         let (mut a, mut b) = (self.clone(), o.clone());
         while !b.is_zero() {
@@ -166,6 +260,11 @@ impl Poly {
     }
 
     /// Divided by the leading coefficient.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// assert_eq!(Poly::from_i64(&[-4, 0, 2]).monic().to_string(), "x^2 - 2");
+    /// ```
     pub fn monic(&self) -> Poly {
         match self.c.last() {
             None => Poly::zero(),
@@ -177,6 +276,14 @@ impl Poly {
     }
 
     /// The primitive integer multiple with a positive leading coefficient (for display).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// // x/2 − 1/3 → 3x − 2; −2x + 4 → x − 2 (positive leading coefficient, content 1).
+    /// let p = Poly::new(vec!["-1/3".parse().unwrap(), "1/2".parse().unwrap()]);
+    /// assert_eq!(p.primitive().to_string(), "3x - 2");
+    /// assert_eq!(Poly::from_i64(&[4, -2]).primitive().to_string(), "x - 2");
+    /// ```
     pub fn primitive(&self) -> Poly {
         let mut ints = roots::integer_form(self);
         if ints.last().is_some_and(Signed::is_negative) {
@@ -186,6 +293,12 @@ impl Poly {
     }
 
     /// The square-free part `p / gcd(p, p')` (monic).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// // (x − 1)²(x + 2) = x³ − 3x + 2 → (x − 1)(x + 2) = x² + x − 2
+    /// assert_eq!(Poly::from_i64(&[2, -3, 0, 1]).squarefree().to_string(), "x^2 + x - 2");
+    /// ```
     pub fn squarefree(&self) -> Poly {
         let g = self.gcd(&self.derivative());
         if g.degree() == Some(0) {
@@ -195,6 +308,13 @@ impl Poly {
     }
 
     /// The Sturm sequence `p, p', -rem(p, p'), ...`.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::Poly;
+    /// // x² − 2, its derivative 2x, and −rem(x² − 2, 2x) = 2.
+    /// let seq: Vec<String> = Poly::from_i64(&[-2, 0, 1]).sturm().iter().map(|p| p.to_string()).collect();
+    /// assert_eq!(seq, ["x^2 - 2", "2x", "2"]);
+    /// ```
     pub fn sturm(&self) -> Vec<Poly> {
         let mut seq = vec![self.clone(), self.derivative()];
         while !seq[seq.len() - 1].is_zero() {
@@ -224,6 +344,16 @@ fn variations(seq: &[Poly], x: &Rational) -> usize {
 }
 
 /// Number of distinct real roots of `seq[0]` in `(lo, hi]` (Sturm's theorem).
+///
+/// ```
+/// use truecost::algebra::poly::{count_roots, Poly};
+/// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+/// // x² − 2 has the roots ±√2: one in (0, 2], two in (−2, 2], none in (3/2, 2].
+/// let seq = Poly::from_i64(&[-2, 0, 1]).sturm();
+/// assert_eq!(count_roots(&seq, &q("0"), &q("2")), 1);
+/// assert_eq!(count_roots(&seq, &q("-2"), &q("2")), 2);
+/// assert_eq!(count_roots(&seq, &q("3/2"), &q("2")), 0);
+/// ```
 pub fn count_roots(seq: &[Poly], lo: &Rational, hi: &Rational) -> usize {
     variations(seq, lo) - variations(seq, hi)
 }
@@ -241,15 +371,26 @@ pub struct Algebraic {
 
 impl Algebraic {
     /// Halves the bracket until its width is at most `width`.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::{isolate_roots, Poly};
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// let sqrt2 = isolate_roots(&Poly::from_i64(&[-2, 0, 1]), &q("0"), &q("2")).remove(0);
+    /// let mut r = sqrt2.clone();
+    /// r.refine_to(&q("1/1000"));
+    /// // Still a bracket (lo, hi] of √2, now at most 1/1000 wide.
+    /// assert!(&r.hi - &r.lo <= q("1/1000"));
+    /// assert!(&r.lo * &r.lo < q("2") && &r.hi * &r.hi > q("2"));
+    /// ```
     pub fn refine_to(&mut self, width: &Rational) {
-        let ints = crate::claims::poly::roots::integer_form(&self.poly);
+        let ints = crate::algebra::poly::roots::integer_form(&self.poly);
         if let Some(sign_lo) = self.sign_bracket(&ints) {
             // The same halves as Sturm's count: the root lies in (lo, mid] iff the sign at
             // mid is 0 or differs from the sign at lo.
             let two = r(2);
             while &(&self.hi - &self.lo) > width {
                 let mid = (&self.lo + &self.hi) / &two;
-                let s = crate::claims::poly::roots::integer_sign(&ints, &mid);
+                let s = crate::algebra::poly::roots::integer_sign(&ints, &mid);
                 if s == Ordering::Equal || s != sign_lo {
                     self.hi = mid;
                 } else {
@@ -275,7 +416,7 @@ impl Algebraic {
     /// bracket is a simple root strictly inside (the polynomial is square-free), where the
     /// sign changes. `None`: Sturm's theorem decides.
     fn sign_bracket(&self, ints: &[BigInt]) -> Option<Ordering> {
-        use crate::claims::poly::roots::integer_sign;
+        use crate::algebra::poly::roots::integer_sign;
         let (l, h) = (integer_sign(ints, &self.lo), integer_sign(ints, &self.hi));
         (l != Ordering::Equal && h != Ordering::Equal && l != h).then_some(l)
     }
@@ -283,7 +424,7 @@ impl Algebraic {
     /// The rational `q` as an algebraic number (the root of `x − q` in `(q − 1, q]`).
     ///
     /// ```
-    /// use truecost::claims::poly::Algebraic;
+    /// use truecost::algebra::poly::Algebraic;
     /// let h = Algebraic::from_rational("1/2".parse().unwrap());
     /// assert_eq!(h.as_rational(), Some("1/2".parse().unwrap()));
     /// ```
@@ -297,6 +438,18 @@ impl Algebraic {
 
     /// Halves the bracket once, given the Sturm sequence of [`Self::poly`] (callers that refine
     /// often compute it once).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::{isolate_roots, Poly};
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// let sqrt2 = isolate_roots(&Poly::from_i64(&[-2, 0, 1]), &q("0"), &q("2")).remove(0);
+    /// let mut r = sqrt2.clone();
+    /// let width = &r.hi - &r.lo;
+    /// let seq = r.poly.sturm();
+    /// r.halve_with(&seq);
+    /// assert_eq!(&r.hi - &r.lo, width / q("2"));
+    /// assert!(&r.lo * &r.lo < q("2") && &r.hi * &r.hi > q("2"));
+    /// ```
     pub fn halve_with(&mut self, seq: &[Poly]) {
         let mid = (&self.lo + &self.hi) / r(2);
         if count_roots(seq, &self.lo, &mid) == 1 {
@@ -311,7 +464,7 @@ impl Algebraic {
     /// point of a bracket refined until it holds no root of `f`.
     ///
     /// ```
-    /// use truecost::claims::poly::{isolate_roots, Poly};
+    /// use truecost::algebra::poly::{isolate_roots, Poly};
     /// use std::cmp::Ordering;
     /// let sqrt2 = isolate_roots(&Poly::from_i64(&[-2, 0, 1]), &"0".parse().unwrap(), &"2".parse().unwrap()).remove(0);
     /// assert_eq!(sqrt2.sign_of(&Poly::from_i64(&[-2, 0, 1])), Ordering::Equal);
@@ -335,11 +488,29 @@ impl Algebraic {
     }
 
     /// Whether the number is exactly the rational `hi` (the bracket's closed end).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::{isolate_roots, Poly};
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// let sqrt2 = isolate_roots(&Poly::from_i64(&[-2, 0, 1]), &q("0"), &q("2")).remove(0);
+    /// use truecost::algebra::poly::Algebraic;
+    /// assert!(!sqrt2.is_rational());
+    /// assert!(Algebraic::from_rational(q("1/2")).is_rational());
+    /// ```
     pub fn is_rational(&self) -> bool {
         self.poly.eval(&self.hi).is_zero()
     }
 
     /// The number as a rational, when its polynomial is linear or it is the bracket's end.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::{isolate_roots, Poly};
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// let sqrt2 = isolate_roots(&Poly::from_i64(&[-2, 0, 1]), &q("0"), &q("2")).remove(0);
+    /// use truecost::algebra::poly::Algebraic;
+    /// assert_eq!(sqrt2.as_rational(), None);
+    /// assert_eq!(Algebraic::from_rational(q("1/3")).as_rational(), Some(q("1/3")));
+    /// ```
     pub fn as_rational(&self) -> Option<Rational> {
         if self.poly.degree() == Some(1) {
             let c = self.poly.coefficients();
@@ -349,6 +520,16 @@ impl Algebraic {
     }
 
     /// Compares with a rational.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::{isolate_roots, Poly};
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// let sqrt2 = isolate_roots(&Poly::from_i64(&[-2, 0, 1]), &q("0"), &q("2")).remove(0);
+    /// use std::cmp::Ordering;
+    /// // 7/5 = 1.4 < √2 = 1.41421… < 3/2
+    /// assert_eq!(sqrt2.cmp_rational(&q("7/5")), Ordering::Greater);
+    /// assert_eq!(sqrt2.cmp_rational(&q("3/2")), Ordering::Less);
+    /// ```
     pub fn cmp_rational(&self, x: &Rational) -> Ordering {
         if x > &self.hi {
             return Ordering::Less;
@@ -360,9 +541,9 @@ impl Algebraic {
         if self.poly.eval(x).is_zero() {
             return Ordering::Equal;
         }
-        let ints = crate::claims::poly::roots::integer_form(&self.poly);
+        let ints = crate::algebra::poly::roots::integer_form(&self.poly);
         if let Some(sign_lo) = self.sign_bracket(&ints) {
-            return if crate::claims::poly::roots::integer_sign(&ints, x) != sign_lo {
+            return if crate::algebra::poly::roots::integer_sign(&ints, x) != sign_lo {
                 Ordering::Less
             } else {
                 Ordering::Greater
@@ -377,6 +558,18 @@ impl Algebraic {
     }
 
     /// Exact comparison of two algebraic numbers.
+    ///
+    /// ```
+    /// use truecost::algebra::poly::{isolate_roots, Poly};
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// let sqrt2 = isolate_roots(&Poly::from_i64(&[-2, 0, 1]), &q("0"), &q("2")).remove(0);
+    /// use std::cmp::Ordering;
+    /// // √2 < √3, and √2 as the root of 2x² − 4 is the same number.
+    /// let sqrt3 = isolate_roots(&Poly::from_i64(&[-3, 0, 1]), &q("0"), &q("2")).remove(0);
+    /// let again = isolate_roots(&Poly::from_i64(&[-4, 0, 2]), &q("0"), &q("2")).remove(0);
+    /// assert_eq!(sqrt2.compare(&sqrt3), Ordering::Less);
+    /// assert_eq!(sqrt2.compare(&again), Ordering::Equal);
+    /// ```
     pub fn compare(&self, o: &Algebraic) -> Ordering {
         let g = self.poly.gcd(&o.poly);
         let lo = if self.lo > o.lo { &self.lo } else { &o.lo };
@@ -404,22 +597,22 @@ impl Algebraic {
     /// The factor of [`Self::poly`] vanishing at the number, as a primitive integer polynomial
     /// with a positive leading coefficient, and what is proved of it: `x − q` for a rational
     /// `q`; otherwise the square-free part without rational roots, [`Reduction::Minimal`]
-    /// when proved irreducible over `Q` ([`crate::claims::poly::roots::reduce_polynomial`]).
+    /// when proved irreducible over `Q` ([`crate::algebra::poly::roots::reduce_polynomial`]).
     /// The bracket isolates the number for it too (it divides [`Self::poly`]).
     ///
-    /// [`Reduction::Minimal`]: crate::claims::poly::roots::Reduction::Minimal
+    /// [`Reduction::Minimal`]: crate::algebra::poly::roots::Reduction::Minimal
     ///
     /// ```
-    /// use truecost::claims::poly::{isolate_roots, Poly};
-    /// use truecost::claims::poly::roots::Reduction;
+    /// use truecost::algebra::poly::{isolate_roots, Poly};
+    /// use truecost::algebra::poly::roots::Reduction;
     /// // (x^2 − 2)(2x − 3)(x + 1): the root √2 in (1, 29/20) has the minimal polynomial x^2 − 2.
     /// let p = Poly::from_i64(&[-2, 0, 1]).mul(&Poly::from_i64(&[-3, 2])).mul(&Poly::from_i64(&[1, 1]));
     /// let a = isolate_roots(&p, &"1".parse().unwrap(), &"29/20".parse().unwrap()).remove(0);
     /// let (m, how) = a.reduced_polynomial();
     /// assert_eq!((m.to_string(), how), ("x^2 - 2".to_string(), Reduction::Minimal));
     /// ```
-    pub fn reduced_polynomial(&self) -> (Poly, crate::claims::poly::roots::Reduction) {
-        use crate::claims::poly::roots::{integer_form, reduce_polynomial, Reduction};
+    pub fn reduced_polynomial(&self) -> (Poly, crate::algebra::poly::roots::Reduction) {
+        use crate::algebra::poly::roots::{integer_form, reduce_polynomial, Reduction};
         if let Some(q) = self.as_rational() {
             return (
                 Poly::new(vec![-q, Rational::one()]).primitive(),
@@ -429,7 +622,7 @@ impl Algebraic {
         let (g, _, how) = reduce_polynomial(&integer_form(&self.poly));
         let (g, how) = match how {
             Reduction::SquareFree => {
-                match crate::claims::poly::roots::irreducible_factor_at(&g, &self.lo, &self.hi) {
+                match crate::algebra::poly::roots::irreducible_factor_at(&g, &self.lo, &self.hi) {
                     Some(f) => (f, Reduction::Minimal),
                     None => (g, how),
                 }
@@ -444,6 +637,15 @@ impl Algebraic {
 
     /// The number truncated (towards −∞) to `digits` digits after the point: the digits of
     /// the number itself (the bracket is cut at the digit boundary it may contain).
+    ///
+    /// ```
+    /// use truecost::algebra::poly::{isolate_roots, Poly};
+    /// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+    /// let sqrt2 = isolate_roots(&Poly::from_i64(&[-2, 0, 1]), &q("0"), &q("2")).remove(0);
+    /// // √2 = 1.41421356…: truncated, not rounded.
+    /// assert_eq!(sqrt2.decimal(3), "1.414");
+    /// assert_eq!(sqrt2.decimal(4), "1.4142");
+    /// ```
     pub fn decimal(&self, digits: usize) -> String {
         if let Some(q) = self.as_rational() {
             return decimal(&q, digits);
@@ -456,7 +658,7 @@ impl Algebraic {
     /// only possible for a rational, away from zero), as [`decimal_rounded`] of the exact value.
     ///
     /// ```
-    /// use truecost::claims::poly::{isolate_roots, Poly};
+    /// use truecost::algebra::poly::{isolate_roots, Poly};
     /// let sqrt2 = isolate_roots(&Poly::from_i64(&[-2, 0, 1]), &"0".parse().unwrap(), &"2".parse().unwrap()).remove(0);
     /// assert_eq!(sqrt2.decimal_rounded(10), "1.4142135624"); // √2 = 1.41421356237…
     /// assert_eq!(sqrt2.decimal(10), "1.4142135623");
@@ -500,7 +702,7 @@ impl Algebraic {
 /// (no point when `digits` is 0).
 ///
 /// ```
-/// use truecost::claims::poly::decimal_rounded;
+/// use truecost::algebra::poly::decimal_rounded;
 /// use truecost::value::parse_rational;
 /// let q = |t: &str| parse_rational(t).unwrap();
 /// assert_eq!(decimal_rounded(&q("2/3"), 5), "0.66667");
@@ -543,7 +745,7 @@ fn fixed(k: &BigInt, digits: usize) -> String {
 /// `x` in decimal, truncated to `digits` digits after the point (no point when `digits` is 0).
 ///
 /// ```
-/// use truecost::claims::poly::decimal;
+/// use truecost::algebra::poly::decimal;
 /// use truecost::value::parse_rational;
 /// assert_eq!(decimal(&parse_rational("7/2").unwrap(), 0), "3");
 /// assert_eq!(decimal(&parse_rational("7/2").unwrap(), 2), "3.50");
@@ -557,7 +759,7 @@ pub fn decimal(x: &Rational, digits: usize) -> String {
 /// A rational strictly between the algebraic numbers `a < b` (brackets refined as needed).
 ///
 /// ```
-/// use truecost::claims::poly::{between, Algebraic};
+/// use truecost::algebra::poly::{between, Algebraic};
 /// let a = Algebraic::from_rational("1/3".parse().unwrap());
 /// let b = Algebraic::from_rational("1/2".parse().unwrap());
 /// let t = between(&a, &b);
@@ -577,7 +779,7 @@ pub fn between(a: &Algebraic, b: &Algebraic) -> Rational {
 /// each with a bracket not wider than `hi - lo` and containing no other root.
 ///
 /// ```
-/// use truecost::claims::poly::{isolate_roots, Poly};
+/// use truecost::algebra::poly::{isolate_roots, Poly};
 /// use truecost::value::parse_rational;
 /// let p = Poly::from_i64(&[-2, 0, 1]); // roots ±√2
 /// let roots = isolate_roots(&p, &parse_rational("0").unwrap(), &parse_rational("2").unwrap());

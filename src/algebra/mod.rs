@@ -1,0 +1,22 @@
+//! Exact algebra, general and free of the planning model: it depends on the value types
+//! ([`crate::value`]) and the big-number crates only, and is the part another project could
+//! reuse.
+//!
+//! * [`poly`] — univariate polynomials with rational coefficients, Sturm sequences, real-root
+//!   isolation and real algebraic numbers; [`poly::roots`] — Descartes/Vincent–Collins–Akritas
+//!   root isolation in `(0, 1)`, exact comparison of roots and minimal polynomials.
+//! * [`intervals`] — subsets of `(0, 1)` as unions of intervals with algebraic ends, and their
+//!   exact text.
+//! * [`linear`] — exact rational linear algebra: the sparse solver of policy evaluation (Dixon
+//!   p-adic lifting, rational reconstruction, exact verification), its `f64` twin, and exact
+//!   reduction of fractions.
+//! * [`annihilator`] — modular methods: the minimal polynomial of a Krylov sequence of an
+//!   integer matrix (Berlekamp–Massey modulo word-size primes, Chinese remaindering).
+//!
+//! The stochastic solvers, the parametric discount engine ([`crate::objectives`]) and the
+//! claims engine ([`crate::claims`]) build on it.
+
+pub mod annihilator;
+pub mod intervals;
+pub mod linear;
+pub mod poly;

@@ -101,7 +101,7 @@ class Threads(unittest.TestCase):
 
         def analyse():
             try:
-                truecost.discount("frozenlake:map=8x8")
+                truecost.discount("cliffwalking:slippery=true")
             finally:
                 done.set()
 

@@ -204,9 +204,9 @@ class Gymnasium(Agreement, unittest.TestCase):
     def tearDown(self):
         self.dir.cleanup()
 
-    def exported(self, env_id, kwargs):
+    def exported(self, env_id, kwargs, *options):
         path = os.path.join(self.dir.name, "env.json")
-        export_with_importer(env_id, kwargs, path)
+        export_with_importer(env_id, kwargs, path, *options)
         return path
 
     def test_random_frozenlake_map(self):
@@ -235,6 +235,22 @@ class Gymnasium(Agreement, unittest.TestCase):
         self.assert_solution(api, cli)
         # Six moves from the start to the goal on the plain 4x4 map.
         self.assertEqual((api.value, api.success_probability), (6, 1))
+
+    def test_importer_options(self):
+        # Moves with one outcome as a deterministic problem file: discount reads it as
+        # `discount --file` does (the failure set of a deterministic problem).
+        kwargs = {"map_name": "8x8", "is_slippery": False}
+        path = self.exported("FrozenLake-v1", kwargs, "--deterministic-moves")
+        api = truecost.discount("FrozenLake-v1", importer={"deterministic_moves": True}, **kwargs)
+        self.assertTrue(api.deterministic)
+        self.assertEqual(api.failure_set_text, cli_json("discount", "--file", path)["set"])
+        args = ["solve", "--file", path, "--algorithm", "exact", "--objective", "truecost"]
+        solved = truecost.solve("FrozenLake-v1", importer={"deterministic_moves": True}, **kwargs)
+        self.assert_solution(solved, cli_json(*args))
+        # Fourteen moves from one corner of the 8x8 map to the other.
+        self.assertEqual(solved.value, 14)
+        with self.assertRaisesRegex(truecost.Error, "^importer options: "):
+            truecost.solve("FrozenLake-v1", importer={"no_such_option": 1})
 
     def test_made_environment_done_when(self):
         # The done-when line: the default FrozenLake-v1 (slippery 4x4) has truecost

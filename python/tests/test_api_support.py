@@ -100,10 +100,10 @@ def polynomial_text(coefficients):
     return "".join(terms) or "0"
 
 
-def export_with_importer(env_id, kwargs, out):
+def export_with_importer(env_id, kwargs, out, *options):
     """The importer's command line (``python -m truecost_gym export``) writing ``out``."""
     cmd = [sys.executable, "-m", "truecost_gym", "export", env_id, "--quiet", "--out", out,
-           "--kwargs", json.dumps(kwargs)]
+           "--kwargs", json.dumps(kwargs), *options]
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     if r.returncode != 0:
         raise AssertionError(f"export failed: {r.stderr}")

@@ -72,8 +72,8 @@ impl Input {
                 gamma: None,
             }
             .load(),
-            Input::Text { .. } => {
-                let (file, extra, name) = self.problem_file()?.expect("a problem file");
+            Input::Text { json, name } => {
+                let (file, extra) = from_json_with_objective(json).map_err(text)?;
                 let problem = match file {
                     ProblemFile::Deterministic(d) => StochasticProblem::from_deterministic(
                         &d,
@@ -83,7 +83,7 @@ impl Input {
                     .map_err(text)?,
                     ProblemFile::Stochastic(s) => *s,
                 };
-                Ok(Model::from_problem(problem, name).with_file_objective(&extra))
+                Ok(Model::from_problem(problem, name.clone()).with_file_objective(&extra))
             }
         }
     }

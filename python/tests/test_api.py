@@ -252,11 +252,12 @@ class Gymnasium(Agreement, unittest.TestCase):
         with self.assertRaisesRegex(truecost.Error, "^importer options: "):
             truecost.solve("FrozenLake-v1", importer={"no_such_option": 1})
 
-    def test_made_environment_done_when(self):
-        # The done-when line: the default FrozenLake-v1 (slippery 4x4) has truecost
-        # +inf at the start (the engine's own --env model says the same).
+    def test_made_environment_as_in_the_guide(self):
+        # docs/guide/python.md's install check: the default FrozenLake-v1 (slippery 4x4) has
+        # truecost +inf at the start (the engine's own --env model says the same).
         value = truecost.solve(gymnasium.make("FrozenLake-v1")).value
         self.assertEqual(value, math.inf)
+        self.assertEqual(value, truecost.solve("frozenlake").value)
         self.assertEqual(truecost.solve(gymnasium.make("FrozenLake-v1"), "reach").value,
                          truecost.solve("frozenlake", "reach").value)
 

@@ -6,8 +6,8 @@ use num_bigint::BigInt;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyFloat, PyList};
 
-use truecost::claims::discount::{point_text as set_point_text, set_text, DiscountSet, Point};
-use truecost::claims::poly::roots::{Reduction, Root};
+use truecost::algebra::intervals::{point_text as set_point_text, set_text, DiscountSet, Point};
+use truecost::algebra::poly::roots::{Reduction, Root};
 use truecost::objectives::parametric::{Achievement, DiscountAnalysis};
 use truecost::objectives::report::{discount_method, point_text, policy_indices};
 use truecost::objectives::{Bounds, Model, Objective, Solution};
@@ -63,7 +63,7 @@ fn rational(text: &str) -> PyResult<Rational> {
     parse_rational(text).map_err(|e| Error::new_err(format!("internal error (please report): {e}")))
 }
 
-fn integers(p: &truecost::claims::poly::Poly) -> Vec<BigInt> {
+fn integers(p: &truecost::algebra::poly::Poly) -> Vec<BigInt> {
     p.coefficients().iter().map(|c| c.to_integer()).collect()
 }
 
@@ -101,7 +101,7 @@ fn point<'py>(py: Python<'py>, p: &Point) -> PyResult<Bound<'py, PyDict>> {
             d.set_item("interval", (q, q))?;
             d.set_item("polynomial", vec![-q.numer().clone(), q.denom().clone()])?;
             d.set_item("minimal", true)?;
-            d.set_item("decimal", truecost::claims::poly::decimal_rounded(q, 30))?;
+            d.set_item("decimal", truecost::algebra::poly::decimal_rounded(q, 30))?;
         }
         (None, Point::Root(a)) => {
             let mut b = a.clone();

@@ -1,10 +1,11 @@
 //! The Kani harness registry (`claims::harnesses`) against the harness sources
 //! in `proofs/src/` and the table of bodies `verify` runs (`truecost_proofs::harnesses`): every
-//! `#[kani::proof]` is registered under its file, with the source's `#[kani::unwind]`,
-//! `#[kani::should_panic]` and stated sample count, and its doc comment states the domain the
-//! registry gives; the table has every registered harness, in the registry's order, with the
-//! same `should_panic` and sample count. (The proofs crate's own test runs every harness through
-//! the stand-in and compares mode, executions, choice bits and failures.)
+//! `#[kani::proof]` and `#[kani::proof_for_contract(…)]` is registered under its file, with the
+//! source's `#[kani::unwind]`, `#[kani::should_panic]` and stated sample count, and its doc
+//! comment states the domain the registry gives; the table has every registered harness, in the
+//! registry's order, with the same `should_panic` and sample count; and the stand-in's run of
+//! each has the registry's mode, executions, choice bits and failures. (This cross-check lives
+//! here, not in the proofs crate, so that the proofs crate does not depend on `truecost`.)
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -49,7 +50,7 @@ fn sources() -> BTreeMap<String, Source> {
                 doc.push_str(d.trim());
                 continue;
             }
-            if t == "#[kani::proof]" {
+            if t == "#[kani::proof]" || t.starts_with("#[kani::proof_for_contract(") {
                 current = Some(Source {
                     file: file.clone(),
                     doc: std::mem::take(&mut doc),
@@ -163,6 +164,68 @@ fn registry_matches_the_harness_sources() {
         assert_eq!(h.failing > 0, h.should_panic, "{}", h.name);
         assert!(!h.kani_adds.is_empty(), "{}", h.name);
     }
+}
+
+/// The registry against the stand-in's runs of `truecost_proofs::harnesses()`: every harness
+/// once, in the registry's order, and each run's mode, executions, choice bits and failing count
+/// are the entry's; every run passes its own checks (no unexpected failure, a `should_panic`
+/// harness refuted by an assertion, not vacuous, every cover satisfied); a contract proof's run
+/// checks its function's contract on some call, and its entry is a lemma named after it.
+#[test]
+fn registry_matches_the_stand_in_runs() {
+    use truecost_proofs::standin::Mode;
+    let all = truecost_proofs::harnesses();
+    let names: Vec<&str> = all.iter().map(|h| h.name).collect();
+    let registered: Vec<&str> = HARNESSES.iter().map(|h| h.name).collect();
+    assert_eq!(names, registered, "the table and the registry, in order");
+    for h in &all {
+        let entry = HARNESSES
+            .iter()
+            .find(|e| e.name == h.name)
+            .expect("registered");
+        assert_eq!(h.should_panic, entry.should_panic, "{}", h.name);
+        let s = h.explore();
+        assert_eq!(s.verdict(), Ok(()), "{s}");
+        let mode = match s.mode {
+            Mode::Exhaustive => StandinMode::Exhaustive,
+            Mode::Sampled => StandinMode::Sampled,
+        };
+        assert_eq!(mode, entry.mode, "{s}");
+        assert_eq!(s.executions, entry.executions, "{s}");
+        assert_eq!(s.choice_bits, entry.choice_bits, "{s}");
+        assert_eq!(s.failures, entry.failing, "{s}");
+        // Wide domains only, but for the named small variants.
+        assert_eq!(
+            h.name.ends_with("_exhaustive_small"),
+            entry.choice_bits < 32,
+            "{}",
+            h.name
+        );
+        // Not nearly vacuous: at least one execution in twenty is not pruned.
+        assert!(s.executions - s.pruned >= s.executions / 20, "{s}");
+        // A contract proof: its function's contract checked, registered as that lemma.
+        if let Some(f) = h.contract {
+            assert!(s.contract_calls > 0, "{s}");
+            let function = f.rsplit("::").next().expect("a name");
+            assert!(
+                entry.claim.starts_with("contracts: ") && entry.claim.ends_with(function),
+                "{}: {}",
+                h.name,
+                entry.claim
+            );
+            assert!(entry.proves.contains("proof_for_contract"), "{}", h.name);
+        } else {
+            assert!(!entry.claim.starts_with("contracts: "), "{}", h.name);
+        }
+    }
+    // The six contract proofs are registered (and so reported by `verify`).
+    assert_eq!(
+        HARNESSES
+            .iter()
+            .filter(|h| h.claim.starts_with("contracts: "))
+            .count(),
+        6
+    );
 }
 
 /// The table `verify` runs is the registry: the same harnesses in the same order, with the

@@ -5,7 +5,7 @@
 //! Sakçak, LaValle): exactly the code that the Kani harnesses in `proofs/` verify, in a crate
 //! with **no dependencies under Kani**, so that `cargo kani -p truecost-proofs` compiles
 //! neither big integers nor clap, rayon, plotters, indicatif or z3. Without Kani it depends on
-//! the Kani stand-in only, for the contract attributes of `claims::exact::{gcd, Q::ratio,
+//! the Kani stand-in only, for the contract attributes of `claims::exact::{lowest_terms, gcd,
 //! Q::checked_add, Q::checked_mul}`, `value::Units::checked_plus` and
 //! `claims::qlearning::QProblem::update` (checked inside stand-in harness runs, inert outside).
 //!

@@ -38,12 +38,13 @@ fn check<I: ExactInt>(trs: &[Trajectory], f: Functional<I>) {
 /// 2^30`.
 ///
 /// CBMC: at most 8 policies and 7 functionals; trajectories of at most 4 stages; the `Q`
-/// constants (1/2, 9/10) are concrete, so no Euclid loop runs on a symbolic value: the
-/// largest loop is the 8 policies (unwind 9). `kissat` for the symbolic products.
+/// constants (1/2, 9/10) are concrete, and `lowest_terms` (the one loop of `Q`'s arithmetic)
+/// is replaced by its proven contract, so no Euclid loop runs: the largest loop is the 8
+/// policies (unwind 9; the extended Euclid loop on the constants' operands, at most 10, would
+/// take at most 6 iterations by Lamé's theorem, were it run). `kissat` for the symbolic
+/// products.
 #[kani::proof]
-#[kani::stub_verified(Q::<i16>::ratio)]
-#[kani::stub_verified(Q::<i16>::checked_add)]
-#[kani::stub_verified(Q::<i16>::checked_mul)]
+#[kani::stub_verified(truecost_kernel::claims::exact::lowest_terms)]
 #[kani::unwind(9)]
 #[kani::solver(kissat)]
 #[cfg_attr(not(kani), kani::samples(4000))]

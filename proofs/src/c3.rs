@@ -53,14 +53,14 @@ fn check_at<I: ExactInt>(t: &Tiny, alpha: Q<I>, hypotheses: bool) {
 /// `Q<i32>`. 1/16 runs at `Q<i16>` (`4096/15` fits; no certificate, so no oracle).
 ///
 /// CBMC: at most 8 policies; trajectories of at most 4 stages; the certificate's lasso walk
-/// and the goal-avoiding core's fixed point take at most 4 and 5 rounds. Euclid's loop runs
-/// only on concrete operands (`α`'s arithmetic), the largest `gcd(1000, 81)` (5 iterations);
-/// Lamé's bound for operands below 1000 is `1 + 15 = 16`: unwind 17. `kissat` for the
-/// symbolic products of the oracle.
+/// and the goal-avoiding core's fixed point take at most 4 and 5 rounds. `lowest_terms` (the
+/// extended Euclid loop of `Q`'s arithmetic) is replaced by its proven contract; its operands
+/// here are concrete anyway (`α`'s arithmetic), the largest `(1000, 81)` (5 iterations), and
+/// unwind 17 is Lamé's bound for operands below 1000 (`1 + 15 = 16`) plus one, in case Kani
+/// runs the `Q<i32>` instance's loop instead of the contract. `kissat` for the symbolic
+/// products of the oracle.
 #[kani::proof]
-#[kani::stub_verified(Q::<i16>::ratio)]
-#[kani::stub_verified(Q::<i16>::checked_add)]
-#[kani::stub_verified(Q::<i16>::checked_mul)]
+#[kani::stub_verified(truecost_kernel::claims::exact::lowest_terms)]
 #[kani::unwind(17)]
 #[kani::solver(kissat)]
 #[cfg_attr(not(kani), kani::samples(4000))]

@@ -46,14 +46,13 @@ fn any_bonus_corrected() -> Q<i16> {
 /// with `M`: `2^12·4 = 16384`, `3060·8 = 24480`.
 ///
 /// CBMC: at most 8 policies, goal paths of at most 3 moves (at most 8 of them), walks of at
-/// most 4 arcs in Karp's algorithm. Euclid's loop runs on operands whose smaller magnitude is
-/// a denominator at most 8 (`M`) or 4 (every other end, mean and bound): by Lamé's theorem at
-/// most `1 + 5 = 6` iterations (Fibonacci numbers 1, 2, 3, 5, 8 are at most 8). The largest
-/// loop is the enumeration of the 8 policies: unwind 9.
+/// most 4 arcs in Karp's algorithm. `lowest_terms` (the extended Euclid loop of every `Q`
+/// operation) is replaced by its proven contract, so no Euclid loop runs (were it run, its
+/// operands' smaller magnitude is a denominator at most 8 (`M`) or 4 (every other end, mean
+/// and bound): by Lamé's theorem at most `1 + 5 = 6` iterations). The largest loop is the
+/// enumeration of the 8 policies: unwind 9.
 #[kani::proof]
-#[kani::stub_verified(Q::<i16>::ratio)]
-#[kani::stub_verified(Q::<i16>::checked_add)]
-#[kani::stub_verified(Q::<i16>::checked_mul)]
+#[kani::stub_verified(truecost_kernel::claims::exact::lowest_terms)]
 #[kani::unwind(9)]
 #[kani::solver(kissat)]
 #[cfg_attr(not(kani), kani::samples(4000))]
@@ -111,15 +110,13 @@ fn any_small_tiny() -> Tiny {
 /// `128·240 = 30720`, `120·128 = 15360`; the exact and corrected ends are smaller
 /// (`|numerator| ≤ 60`, denominator `≤ 4`).
 ///
-/// CBMC: Euclid's loop runs on operands whose smaller magnitude is at most 128 (`M`), 120 or
-/// 60 (`A(u)`'s terms), or a denominator at most 4: by Lamé's theorem at most `1 + 10 = 11`
-/// iterations (Fibonacci numbers 1, 2, 3, …, 89 are at most 128): unwind 12 (the 8 policies
-/// need 9).
+/// CBMC: `lowest_terms` (the extended Euclid loop of every `Q` operation) is replaced by its
+/// proven contract, so no Euclid loop runs (its operands' smaller magnitude would be at most
+/// 128 (`M`), 120 or 60 (`A(u)`'s terms), or a denominator at most 4); the largest loop is the
+/// enumeration of the 8 policies, as in C4-corrected: unwind 9.
 #[kani::proof]
-#[kani::stub_verified(Q::<i16>::ratio)]
-#[kani::stub_verified(Q::<i16>::checked_add)]
-#[kani::stub_verified(Q::<i16>::checked_mul)]
-#[kani::unwind(12)]
+#[kani::stub_verified(truecost_kernel::claims::exact::lowest_terms)]
+#[kani::unwind(9)]
 #[kani::solver(kissat)]
 #[kani::should_panic]
 #[cfg_attr(not(kani), kani::samples(4000))]

@@ -1,30 +1,34 @@
 //! The kernel's contracts, each proved once (`#[kani::proof_for_contract]`), so that the claim
 //! harnesses can use them through `#[kani::stub_verified]` instead of running the code: no C1
-//! harness runs the `ρ = 1` update's loop, no C2–C4 harness runs Euclid's loop.
+//! harness runs the `ρ = 1` update's loop, no harness but [`lowest_terms_has_a_bezout_witness`]
+//! runs Euclid's loop.
 //!
 //! A contract states what the function guarantees, independently of how it computes
-//! (`claims::exact::spec`, `claims::qlearning::update_spec`, `value::units_plus_spec`): a
-//! common divisor, the exact value by cross-multiplication, coprime parts, `None` only on
-//! overflow, the `ρ = 1` rule as a minimum. Under Kani (`-Z function-contracts`, set in
+//! (`claims::exact::spec`, `claims::qlearning::update_spec`, `value::units_plus_spec`), and
+//! without a loop: a common divisor, the exact value by cross-multiplication, coprime parts by a
+//! Bézout witness that `lowest_terms` returns (`num·x + den·y = 1`), `None` only on overflow,
+//! the `ρ = 1` rule as a minimum. `lowest_terms` (extended Euclid) is the only loop of
+//! `claims::exact`: `gcd`, `Q::ratio` and `Q`'s operations call it, so with it replaced by its
+//! contract they are straight-line code. Under Kani (`-Z function-contracts`, set in
 //! `proofs/Cargo.toml`) each harness below assumes the precondition at its call and checks the
 //! postcondition; the stand-in does the same on the executions it runs.
 //!
-//! Loops CBMC unrolls (`tests/unwind_bounds.rs`): Euclid's loop on 16-bit operands — by Lamé's
-//! theorem at most `1 + 22` iterations for magnitudes up to 32767 — plus the clauses' own
-//! loops (the coprimality check is Euclid again, on the result); the update harness's frame
-//! check reads the 24 values.
+//! Loops CBMC unrolls (`tests/unwind_bounds.rs`): the extended Euclid loop on 16-bit operands —
+//! by Lamé's theorem at most `1 + 22` iterations for magnitudes up to 32767 — in
+//! [`lowest_terms_has_a_bezout_witness`] only; the update harness's frame check reads the 24
+//! values.
 
-use truecost_kernel::claims::exact::{gcd, Q};
+use truecost_kernel::claims::exact::{gcd, lowest_terms, Q};
 use truecost_kernel::claims::qlearning::{QProblem, Terminal, Values, MAX_PAIRS};
 use truecost_kernel::value::Units;
 
 use crate::symbolic::{any_structure, learner, values, MOVES, TERMINAL};
 
 /// `gcd` on any two `i16` values (the precondition excludes `i16::MIN`, whose magnitude does
-/// not fit): non-negative, zero exactly when both are, a divisor of both. Domain 2^32.
-/// Unwind 24: Euclid on magnitudes up to 32767 (Lamé: 23).
+/// not fit): non-negative, zero exactly when both are, a divisor of both. `lowest_terms` is
+/// its contract (no loop: `|b|` divided by the reduced denominator). Domain 2^32.
 #[kani::proof_for_contract(truecost_kernel::claims::exact::gcd)]
-#[kani::unwind(24)]
+#[kani::stub_verified(truecost_kernel::claims::exact::lowest_terms)]
 #[kani::solver(kissat)]
 pub fn gcd_divides_both() {
     let (a, b): (i16, i16) = (kani::any(), kani::any());
@@ -34,24 +38,23 @@ pub fn gcd_divides_both() {
     kani::cover!(a < 0 && b < 0, "two negative operands");
 }
 
-/// `Q::<i16>::ratio(n, d)` on any `i16` values (precondition: `d ≠ 0`, neither is `i16::MIN`):
-/// the value `n/d` exactly, a positive denominator, coprime parts. Domain 2^32. Unwind 24:
-/// Euclid on magnitudes up to 32767, in `gcd` and in the clause's coprimality check.
-#[kani::proof_for_contract(Q::<i16>::ratio)]
+/// `lowest_terms(n, d)` at `i16` on any values (precondition: `d ≠ 0`, neither is
+/// `i16::MIN`): the value `n/d` exactly, a positive denominator, and a Bézout witness
+/// `num·x + den·y = 1` (so coprime parts). Domain 2^32. Unwind 24: the extended Euclid loop on
+/// magnitudes up to 32767 (Lamé: 23), the one Euclid loop any harness unrolls.
+#[kani::proof_for_contract(truecost_kernel::claims::exact::lowest_terms)]
 #[kani::unwind(24)]
 #[kani::solver(kissat)]
-pub fn ratio_is_exact_and_normalised() {
+pub fn lowest_terms_has_a_bezout_witness() {
     let (n, d): (i16, i16) = (kani::any(), kani::any());
-    let q = Q::<i16>::ratio(n, d);
-    kani::cover!(q.denom() < d.abs(), "a fraction that reduces");
-    kani::cover!(
-        d < 0 && q.signum() > 0,
-        "a negative denominator flips the sign"
-    );
+    let l = lowest_terms(n, d);
+    kani::cover!(l.den < d.abs(), "a fraction that reduces");
+    kani::cover!(d < 0 && l.num > 0, "a negative denominator flips the sign");
+    kani::cover!(n == 0, "zero");
 }
 
 /// Any `Q<i16>` with numerator and denominator in `[-127, 127]` (denominator non-zero), built
-/// by `Q::ratio` (replaced by its proven contract under Kani).
+/// by `Q::ratio` (its `lowest_terms` replaced by the proven contract under Kani).
 fn any_small_q() -> Q<i16> {
     let n = kani::any_where(|v: &i8| *v != i8::MIN) as i16;
     let d = kani::any_where(|v: &i8| *v != i8::MIN && *v != 0) as i16;
@@ -59,12 +62,12 @@ fn any_small_q() -> Q<i16> {
 }
 
 /// `Q::<i16>::checked_add` on any two fractions with parts in `[-127, 127]` and on any two
-/// integers (`i16`, so that the overflow branch is reached): a `Some` is normalised and exactly
-/// the sum, `None` only when the unreduced sum does not fit. `Q::ratio` is its contract (no
-/// Euclid here). Domain 2^33 (which kind of operands, then 32 bits).
+/// integers (`i16`, so that the overflow branch is reached): a `Some` has a positive
+/// denominator and exactly the sum, `None` only when the unreduced sum does not fit.
+/// `lowest_terms` is its contract (no Euclid here). Domain 2^33 (which kind of operands, then
+/// 32 bits).
 #[kani::proof_for_contract(Q::<i16>::checked_add)]
-#[kani::stub_verified(Q::<i16>::ratio)]
-#[kani::unwind(24)]
+#[kani::stub_verified(truecost_kernel::claims::exact::lowest_terms)]
 #[kani::solver(kissat)]
 pub fn checked_add_is_exact() {
     let (a, b) = if kani::any() {
@@ -79,12 +82,11 @@ pub fn checked_add_is_exact() {
 }
 
 /// `Q::<i16>::checked_mul` on any two fractions with parts in `[-127, 127]` (every product
-/// fits) and on any two integers (`i16`: products that do not fit): a `Some` is normalised and
-/// exactly the product, `None` only when the product in lowest terms does not fit. Domain 2^33.
-/// Unwind 24: Euclid in the cross-cancelling `gcd`s (operands up to 32767).
+/// fits) and on any two integers (`i16`: products that do not fit): a `Some` has a positive
+/// denominator and exactly the product, `None` only when the unreduced product does not fit.
+/// `lowest_terms` (the cross-cancelling and the final reduction) is its contract. Domain 2^33.
 #[kani::proof_for_contract(Q::<i16>::checked_mul)]
-#[kani::stub_verified(Q::<i16>::ratio)]
-#[kani::unwind(24)]
+#[kani::stub_verified(truecost_kernel::claims::exact::lowest_terms)]
 #[kani::solver(kissat)]
 pub fn checked_mul_is_exact() {
     let (a, b) = if kani::any() {
@@ -112,7 +114,8 @@ pub fn units_checked_plus_is_exact() {
 /// symbolic), any `i32` values, any pair (the termination pair included, held or updated):
 /// the `ρ = 1` rule (`update_spec`: the pair's new value is `l + Q̂` of some successor pair and
 /// at most that of every one) and no other value changes (asserted here over the 24 values;
-/// Kani also checks the contract's `modifies(&v[p])`). Domain 2^(144 + 224 + 8 + 1).
+/// Kani also checks the contract's `modifies(&v[p])`). Domain 2^377 (144 + 224 + 8 + 1
+/// choice bits).
 /// Unwind 25: the frame check reads the 24 values.
 #[kani::proof_for_contract(truecost_kernel::claims::qlearning::QProblem::update)]
 #[kani::unwind(25)]

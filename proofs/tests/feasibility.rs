@@ -10,6 +10,13 @@
 //!   graph by names (over-approximated: a method call `.f(` reaches every kernel method named
 //!   `f`; the operator traits' methods — `add`, `mul`, `cmp`, … — count as reached, since `+`
 //!   or `<` call them without naming them);
+//! * a **loop in a contract clause**: a `#[kani::requires(…)]` or `#[kani::ensures(…)]` of a
+//!   kernel function that reaches (through the kernel's call graph, as above) a function with
+//!   a `while`, `loop` or `for` loop. A clause is evaluated at every call a verified stub
+//!   replaces, so a loop there (Euclid's, for coprimality) would be unrolled at each of them.
+//!   Iterator adaptors (`all`, `any`, an array's `map`) are not counted: in the clauses they
+//!   run over a move's successor pairs (at most 2) or a fixed array of 4–6 operands. Operators
+//!   (`+`, `<` on a kernel type) in a clause are not followed;
 //! * an **unwind below a literal loop bound** in a harness (`for _ in 0..K` with `K` a literal
 //!   and `#[kani::unwind(N)]`, `N ≤ K`). The loops bounded by the harnesses' named constants
 //!   and the kernel's loops are audited by `tests/unwind_bounds.rs`, which derives each count.
@@ -34,6 +41,8 @@ struct Function {
     owner: Option<String>,
     /// Its body, nested items included.
     body: String,
+    /// Where its `fn` keyword is in the scanned text.
+    at: usize,
 }
 
 /// Blanks the items gated by `#[cfg(not(kani))]` (not compiled under Kani).
@@ -162,6 +171,7 @@ fn functions_in(file: &str, code: &str) -> Vec<Function> {
                 name,
                 owner,
                 body: b[open..end].iter().collect(),
+                at: i,
             },
         ));
     }
@@ -386,10 +396,40 @@ fn reached(kernel: &[Function], roots: &[Function]) -> BTreeSet<usize> {
             stack.extend(targets(kernel, &unowned, &c, false));
         }
     }
+    closure(kernel, stack, false)
+}
+
+/// The integer types' own methods that the clauses call (`x.checked_add(y)` on an `i128`): a
+/// method call of one of these names on a receiver other than `self` is taken to be the
+/// integer's, not a kernel method of the same name (`Q::checked_add`).
+const INTEGER_METHODS: [&str; 4] = ["checked_add", "checked_sub", "checked_mul", "signum"];
+
+/// The kernel functions reachable from the calls of `root` (code inside the kernel: its
+/// `Self::`/`self.` calls are its own type's), operators not followed, and the integers'
+/// methods ([`INTEGER_METHODS`]) taken as the integers'.
+fn reached_from_kernel(kernel: &[Function], root: &Function) -> BTreeSet<usize> {
+    let stack = calls(&root.body)
+        .iter()
+        .filter(|c| !is_integer_method(c))
+        .flat_map(|c| targets(kernel, root, c, false))
+        .collect();
+    closure(kernel, stack, true)
+}
+
+fn is_integer_method(c: &Call) -> bool {
+    matches!(c, Call::Method(n) if INTEGER_METHODS.contains(&n.as_str()))
+}
+
+/// Everything reachable from `stack` through the calls of the kernel's functions (`integers`:
+/// the integers' methods taken as the integers', [`INTEGER_METHODS`]).
+fn closure(kernel: &[Function], mut stack: Vec<usize>, integers: bool) -> BTreeSet<usize> {
     let mut seen = BTreeSet::new();
     while let Some(x) = stack.pop() {
         if seen.insert(x) {
             for c in calls(&kernel[x].body) {
+                if integers && is_integer_method(&c) {
+                    continue;
+                }
                 stack.extend(targets(kernel, &kernel[x], &c, false));
             }
         }
@@ -415,6 +455,85 @@ fn expensive(body: &str) -> Vec<&'static str> {
     .collect()
 }
 
+/// Whether `body` has a `while`, `loop` or `for … in` loop.
+fn has_loop(body: &str) -> bool {
+    let b: Vec<char> = body.chars().collect();
+    let word_at = |i: usize, w: &str| {
+        let n = w.chars().count();
+        i + n <= b.len()
+            && b[i..i + n].iter().copied().eq(w.chars())
+            && (i == 0 || !is_ident(b[i - 1]))
+            && b.get(i + n).is_none_or(|&c| !is_ident(c))
+    };
+    (0..b.len()).any(|i| {
+        if word_at(i, "while") {
+            return true;
+        }
+        if word_at(i, "loop") {
+            return b[i + 4..].iter().find(|c| !c.is_whitespace()) == Some(&'{');
+        }
+        if word_at(i, "for") {
+            // `for pat in expr {`, not `impl Trait for Type` nor `for<'a>`.
+            let rest: String = b[i + 3..]
+                .iter()
+                .take_while(|&&c| c != '{' && c != ';')
+                .collect();
+            return rest.contains(" in ");
+        }
+        false
+    })
+}
+
+/// The contract clauses of the functions in `code`: for each `#[kani::requires(…)]` and
+/// `#[kani::ensures(…)]`, a pseudo-function whose body is the clause, named after the function
+/// it belongs to (the next `fn`) and owned by that function's type.
+fn contract_clauses(file: &str, code: &str, fs: &[Function]) -> Vec<Function> {
+    let b: Vec<char> = code.chars().collect();
+    let mut out = Vec::new();
+    for attr in ["#[kani::requires(", "#[kani::ensures("] {
+        let mut from = 0;
+        while let Some(k) = code[from..].find(attr).map(|k| k + from) {
+            let open = code[..k + attr.len() - 1].chars().count();
+            let close = close_of(&b, open);
+            from = k + attr.len();
+            let Some(owner) = fs
+                .iter()
+                .filter(|f| f.file == file && f.at > open)
+                .min_by_key(|f| f.at)
+            else {
+                continue;
+            };
+            out.push(Function {
+                name: format!("{} ({})", owner.name, &attr[8..attr.len() - 1]),
+                body: b[open..close].iter().collect(),
+                at: open,
+                ..owner.clone()
+            });
+        }
+    }
+    out
+}
+
+/// The contract clauses of `kernel_files` (`(file, prepared code)`) that reach a looping
+/// kernel function, as `clause of f reaches g, which loops`.
+fn clause_findings(kernel: &[Function], kernel_files: &[(String, String)]) -> Vec<String> {
+    let mut out = Vec::new();
+    for (file, code) in kernel_files {
+        for clause in contract_clauses(file, code, kernel) {
+            for i in reached_from_kernel(kernel, &clause) {
+                if has_loop(&kernel[i].body) {
+                    out.push(format!(
+                        "contract clause {} reaches {}, which loops",
+                        label(&clause),
+                        label(&kernel[i])
+                    ));
+                }
+            }
+        }
+    }
+    out
+}
+
 /// `(file, text)` blanked and stripped of unit tests and `cfg(not(kani))` items.
 fn prepare(file: &str, text: &str) -> (String, String) {
     (
@@ -434,21 +553,29 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-fn load(dir: &Path) -> Vec<Function> {
+/// The prepared sources under `dir`, `(file relative to dir, code)`.
+fn load_files(dir: &Path) -> Vec<(String, String)> {
     let mut files = Vec::new();
     rust_files(dir, &mut files);
     files.sort();
-    let mut out = Vec::new();
-    for p in files {
-        let rel = p
-            .strip_prefix(dir)
-            .expect("inside")
-            .to_string_lossy()
-            .to_string();
-        let (file, code) = prepare(&rel, &std::fs::read_to_string(&p).expect("source"));
-        out.extend(functions_in(&file, &code));
-    }
-    out
+    files
+        .iter()
+        .map(|p| {
+            let rel = p
+                .strip_prefix(dir)
+                .expect("inside")
+                .to_string_lossy()
+                .to_string();
+            prepare(&rel, &std::fs::read_to_string(p).expect("source"))
+        })
+        .collect()
+}
+
+fn load(dir: &Path) -> Vec<Function> {
+    load_files(dir)
+        .iter()
+        .flat_map(|(file, code)| functions_in(file, code))
+        .collect()
 }
 
 /// Everything the scan rejects, given the kernel's functions and the harness code's.
@@ -543,6 +670,7 @@ fn the_kernel_code_the_harnesses_reach_is_feasible_for_cbmc() {
     for f in [
         "claims/qlearning.rs::QProblem::update",
         "claims/exact.rs::gcd",
+        "claims/exact.rs::lowest_terms",
         "claims/exact.rs::Q::ratio",
         "solvers/dijkstra.rs::to_goals",
     ] {
@@ -567,6 +695,88 @@ fn the_kernel_code_the_harnesses_reach_is_feasible_for_cbmc() {
         problems.extend(literal_unwind_findings(&file, &text));
     }
     assert_eq!(problems, Vec::<String>::new());
+}
+
+/// No contract clause of the kernel reaches a loop: `lowest_terms`' coprimality is a Bézout
+/// identity on its witness, not Euclid on the result. Not vacuous: every contract's clauses are
+/// seen, and they reach the clause functions they are written with.
+#[test]
+fn no_contract_clause_reaches_a_loop() {
+    let files = load_files(&root().join("kernel/src"));
+    let kernel: Vec<Function> = files
+        .iter()
+        .flat_map(|(file, code)| functions_in(file, code))
+        .collect();
+    let clauses: Vec<String> = files
+        .iter()
+        .flat_map(|(file, code)| contract_clauses(file, code, &kernel))
+        .map(|c| label(&c))
+        .collect();
+    for c in [
+        "claims/exact.rs::lowest_terms (requires)",
+        "claims/exact.rs::lowest_terms (ensures)",
+        "claims/exact.rs::gcd (ensures)",
+        "claims/exact.rs::Q::checked_add (ensures)",
+        "claims/exact.rs::Q::checked_mul (requires)",
+        "claims/exact.rs::Q::checked_mul (ensures)",
+        "value.rs::Units::checked_plus (ensures)",
+        "claims/qlearning.rs::QProblem::update (requires)",
+        "claims/qlearning.rs::QProblem::update (ensures)",
+    ] {
+        assert!(clauses.iter().any(|x| x == c), "{c} not seen: {clauses:?}");
+    }
+    let lowest = files
+        .iter()
+        .flat_map(|(file, code)| contract_clauses(file, code, &kernel))
+        .find(|c| label(c) == "claims/exact.rs::lowest_terms (ensures)")
+        .expect("seen");
+    let reached: BTreeSet<String> = reached_from_kernel(&kernel, &lowest)
+        .into_iter()
+        .map(|i| label(&kernel[i]))
+        .collect();
+    for f in ["is_lowest_form", "same_value", "is_bezout_one", "product"] {
+        assert!(
+            reached.contains(&format!("claims/exact.rs::{f}")),
+            "{f}: {reached:?}"
+        );
+    }
+    assert_eq!(clause_findings(&kernel, &files), Vec::<String>::new());
+}
+
+/// A clause that reaches a loop is found — Euclid on the result for coprimality, directly and
+/// through a method on `self` — and clauses that reach only straight-line code (a Bézout
+/// identity) are not.
+#[test]
+fn planted_loop_in_a_contract_clause_is_found() {
+    let kernel = r#"
+        fn coprime(mut a: u32, mut b: u32) -> bool { while b != 0 { (a, b) = (b, a % b); } a == 1 }
+        fn bezout(a: i32, x: i32, b: i32, y: i32) -> bool { a * x + b * y == 1 }
+        fn sum_all(v: &[u32]) -> u32 { let mut s = 0; for k in 0..v.len() { s += v[k]; } s }
+        #[kani::ensures(|r: &(u32, u32)| coprime(r.0, r.1))]
+        pub fn reduce(n: u32, d: u32) -> (u32, u32) { (n, d) }
+        #[kani::ensures(|r: &(i32, i32, i32, i32)| bezout(r.0, r.2, r.1, r.3))]
+        pub fn witnessed(n: i32, d: i32) -> (i32, i32, i32, i32) { (n, d, 0, 0) }
+        struct W(Vec<u32>);
+        impl W {
+            fn total(&self) -> u32 { sum_all(&self.0) }
+            #[kani::requires(self.total() > 0)]
+            pub fn first(&self) -> u32 { loop { break self.0[0]; } }
+        }
+        impl Iterator for W { type Item = u32; fn next(&mut self) -> Option<u32> { None } }
+    "#;
+    let (file, code) = prepare("k.rs", kernel);
+    let fs = functions_in(&file, &code);
+    let found = clause_findings(&fs, &[(file, code)]);
+    assert_eq!(
+        found,
+        [
+            "contract clause k.rs::W::first (requires) reaches k.rs::sum_all, which loops",
+            "contract clause k.rs::reduce (ensures) reaches k.rs::coprime, which loops",
+        ]
+    );
+    // The loop detector: `while`, `loop {`, `for … in`; not `impl … for`, nor a name.
+    assert!(has_loop("{ loop { } }") && has_loop("{ for x in v { } }"));
+    assert!(!has_loop("{ impl Iterator for W { } let looping = 1; }"));
 }
 
 fn planted(kernel: &str, harness: &str) -> Vec<String> {

@@ -389,7 +389,8 @@ fn value_and_claim_unwinds_cover_their_loops() {
         false,
     );
     // C4-corrected (`Q<i16>`, the printed formula skipped): the policies, goal paths and
-    // cycles (at most 8 each), Euclid's loop with the smaller operand at most 8 (the bonus's
+    // cycles (at most 8 each); Euclid's loop (`lowest_terms`, replaced by its contract; were it
+    // run) with the smaller operand at most 8 (the bonus's
     // denominator d <= 8 and the path-count denominators S(u) - S* < 4).
     check(
         &u,
@@ -397,24 +398,21 @@ fn value_and_claim_unwinds_cover_their_loops() {
         &[("policies, Euclid", max_policies().max(euclid_iterations(8)))],
         false,
     );
-    // C4 as printed: the bonus M = -n/d with n, d <= 128, the printed A(u) with costs 0..=5:
-    // Euclid's smaller operand at most 128.
+    // C4 as printed (`Q<i16>` only): every Euclid loop is `lowest_terms`', replaced by its
+    // contract; the policies, goal paths and cycles as in C4-corrected.
     check(
         &u,
         "c4_as_printed_set_is_the_oracles",
-        &[(
-            "policies, Euclid",
-            max_policies().max(euclid_iterations(128)),
-        )],
+        &[("policies", max_policies())],
         false,
     );
-    // Q<i16> on fractions with numerators and denominators in [-127, 127]: the smaller operand
-    // of every gcd is at most 127·127 (the harness's own gcd loop too).
+    // Q<i16> with `lowest_terms` replaced by its contract: no Euclid loop; the harness checks
+    // its two results (the sum and the product) in a loop.
     check(
         &u,
         "rational_add_and_mul_are_exact",
-        &[("Euclid", euclid_iterations(127 * 127))],
-        false,
+        &[("the two results", 2)],
+        true,
     );
     // The Units harnesses have no loop (Units::plus is straight-line code).
     for h in [
@@ -433,25 +431,39 @@ fn value_and_claim_unwinds_cover_their_loops() {
 /// The contract proofs of `contracts.rs`.
 const CONTRACT_HARNESSES: [&str; 6] = [
     "gcd_divides_both",
-    "ratio_is_exact_and_normalised",
+    "lowest_terms_has_a_bezout_witness",
     "checked_add_is_exact",
     "checked_mul_is_exact",
     "units_checked_plus_is_exact",
     "update_is_the_rho_one_rule",
 ];
 
-/// The contract proofs: Euclid on 16-bit magnitudes (in `gcd`, and in the clauses'
-/// coprimality check on a 16-bit result) and the update harness's frame check over the values.
+/// The contract proofs: the extended Euclid loop on 16-bit magnitudes in `lowest_terms`' own
+/// proof (its remainders are Euclid's, `r₀ − q·r₁ = r₀ mod r₁`, so Lamé's bound is its count),
+/// and the update harness's frame check over the values. `gcd`, `checked_add` and
+/// `checked_mul` are proved with `lowest_terms` replaced by its contract: no loop of theirs,
+/// and the clauses are loop-free (`tests/feasibility.rs`); the default unwind of
+/// `proofs/Cargo.toml` (16) covers the clauses' 4- and 6-element array maps.
 #[test]
 fn contract_unwinds_cover_their_loops() {
     use truecost_kernel::claims::qlearning::MAX_PAIRS;
     let u = unwinds();
     let euclid16 = euclid_iterations(i16::MAX as u128);
     assert_eq!(euclid16, 23);
-    for h in &CONTRACT_HARNESSES[..4] {
-        check(&u, h, &[("Euclid on i16 magnitudes", euclid16)], true);
+    check(
+        &u,
+        "lowest_terms_has_a_bezout_witness",
+        &[("extended Euclid on i16 magnitudes", euclid16)],
+        true,
+    );
+    for h in [
+        "gcd_divides_both",
+        "checked_add_is_exact",
+        "checked_mul_is_exact",
+        "units_checked_plus_is_exact",
+    ] {
+        assert_eq!(u[h], None, "{h}: no loop");
     }
-    assert_eq!(u["units_checked_plus_is_exact"], None, "no loop");
     let mut update = c1_common();
     update.extend([
         ("initial values: every pair", TERMINAL as u64 + 1),

@@ -71,6 +71,8 @@ pub struct Harness {
     pub kani_adds: &'static str,
 }
 
+const CONTRACT: &str = "a proof of the contract for every input its precondition admits (the postcondition checked symbolically, with Kani's overflow checks), which the claim harnesses then assume through #[kani::stub_verified] (the stand-in runs a seeded sample and checks the contract on every call it makes)";
+
 const SYMBOLIC: &str = "every choice of the domain at once, symbolically, plus Kani's overflow and bounds checks on every \
 path (the stand-in runs a seeded sample)";
 
@@ -172,7 +174,7 @@ pub const HARNESSES: &[Harness] = &[
         claim: "C4",
         file: "c4.rs",
         proves: "FAILS as expected (the printed claim): on any 4-state problem (x1 = 0, goal 3, 1-2 moves per state, symbolic successors, costs 0..=5) with a goal path, at any bonus M = -n/d (n, d <= 128; Q<i16>), wherever the printed formula is defined, pi* is average-cost optimal (oracle) iff M is in the printed set",
-        unwind: Some(12),
+        unwind: Some(9),
         should_panic: true,
         mode: StandinMode::Sampled,
         executions: 4_000,
@@ -275,8 +277,8 @@ pub const HARNESSES: &[Harness] = &[
         name: "rational_add_and_mul_are_exact",
         claim: "values: exact arithmetic",
         file: "values.rs",
-        proves: "claims::exact::Q<i16> addition and multiplication on any fractions with numerators and denominators in [-127, 127] (denominators non-zero): normalised (gcd 1, positive denominator) and exact (cross-multiplied in i32), with no overflow",
-        unwind: Some(22),
+        proves: "claims::exact::Q<i16> addition and multiplication on any fractions with numerators and denominators in [-127, 127] (denominators non-zero): normalised (positive denominator, and Q::ratio of the result is the result) and exact (cross-multiplied in i32), with no overflow; lowest_terms (extended Euclid) replaced by its proven contract under Kani",
+        unwind: Some(3),
         should_panic: false,
         mode: StandinMode::Sampled,
         executions: 20_000,
@@ -284,7 +286,74 @@ pub const HARNESSES: &[Harness] = &[
         failing: 0,
         kani_adds: SYMBOLIC,
     },
+    contract_proof(
+        "gcd_divides_both",
+        "contracts: gcd",
+        "the contract of claims::exact::gcd (proof_for_contract) on any two i16 values whose magnitudes fit: the result is non-negative, zero exactly when both operands are, and divides both; lowest_terms replaced by its proven contract",
+        None,
+        32,
+    ),
+    contract_proof(
+        "lowest_terms_has_a_bezout_witness",
+        "contracts: lowest_terms",
+        "the contract of claims::exact::lowest_terms (proof_for_contract; Q::ratio is its fraction) on any two i16 values (d != 0, magnitudes fit): a positive denominator, the value n/d exactly (cross-multiplied) and a Bezout witness num*x + den*y = 1 (coprime parts), every clause loop-free; the one harness that unrolls Euclid's loop",
+        Some(24),
+        32,
+    ),
+    contract_proof(
+        "checked_add_is_exact",
+        "contracts: Q::checked_add",
+        "the contract of Q::<i16>::checked_add (proof_for_contract) on fractions with parts in [-127, 127] and on any two i16 integers: a Some has a positive denominator and exactly the sum, None only when the unreduced sum does not fit; lowest_terms replaced by its proven contract",
+        None,
+        33,
+    ),
+    contract_proof(
+        "checked_mul_is_exact",
+        "contracts: Q::checked_mul",
+        "the contract of Q::<i16>::checked_mul (proof_for_contract) on fractions with parts in [-127, 127] and on any two i16 integers: a Some has a positive denominator and exactly the product, None only when the unreduced product does not fit; lowest_terms replaced by its proven contract",
+        None,
+        33,
+    ),
+    contract_proof(
+        "units_checked_plus_is_exact",
+        "contracts: Units::checked_plus",
+        "the contract of value::Units::checked_plus (proof_for_contract) on any two u64 counts: +inf absorbs, a sum below u64::MAX is exact, None exactly when it is not",
+        None,
+        128,
+    ),
+    contract_proof(
+        "update_is_the_rho_one_rule",
+        "contracts: QProblem::update",
+        "the contract of claims::qlearning::QProblem::update (proof_for_contract) on any structure of the C1 family, any i32 values and any pair (the termination pair held or updated): the new value is l + Q^ of some successor pair and at most that of every one (the rho = 1 rule), and no other value changes",
+        Some(25),
+        377,
+    ),
 ];
+
+/// The entry of a contract proof of `proofs/src/contracts.rs` (`#[kani::proof_for_contract]`):
+/// a lemma named `contracts: <function>`, sampled by the stand-in with its default 20000
+/// executions, never failing.
+const fn contract_proof(
+    name: &'static str,
+    claim: &'static str,
+    proves: &'static str,
+    unwind: Option<u32>,
+    choice_bits: u32,
+) -> Harness {
+    Harness {
+        name,
+        claim,
+        file: "contracts.rs",
+        proves,
+        unwind,
+        should_panic: false,
+        mode: StandinMode::Sampled,
+        executions: 20_000,
+        choice_bits,
+        failing: 0,
+        kani_adds: CONTRACT,
+    }
+}
 
 impl Harness {
     /// The domain as the registry states it: an exhaustive harness's exact number of choice
@@ -421,7 +490,7 @@ impl StandinRun {
 const ENGINE_FAILED_MODE: &str = "engine failed";
 
 /// Runs the harnesses `names` of `table` through the stand-in, in parallel, each with its
-/// stated executions in every scope (all sixteen together take well under two seconds on two
+/// stated executions in every scope (all twenty-two together take well under two seconds on two
 /// cores, release or test build, so no scope needs fewer). A name missing from `table` gives a
 /// run that says so; a run of the stand-in that panics (its own failure: a body's panics are
 /// failing executions) gives a run whose engine line says `engine failed`.

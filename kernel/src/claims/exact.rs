@@ -26,6 +26,8 @@ pub trait ExactInt:
     const ZERO: Self;
     /// One.
     const ONE: Self;
+    /// The width in bits.
+    const BITS: u32;
     /// `self + o`, `None` on overflow.
     fn checked_add(self, o: Self) -> Option<Self>;
     /// `self - o`, `None` on overflow.
@@ -82,6 +84,7 @@ macro_rules! exact_int {
         impl ExactInt for $t {
             const ZERO: Self = 0;
             const ONE: Self = 1;
+            const BITS: u32 = <$t>::BITS;
             #[inline]
             fn checked_add(self, o: Self) -> Option<Self> {
                 <$t>::checked_add(self, o)
@@ -136,24 +139,116 @@ exact_int!(i128, |a: i128, b: i128| {
     }
 });
 
-/// The greatest common divisor of `|a|` and `|b|` by Euclid's algorithm (`gcd(0, 0) = 0`).
-/// By Lamé's theorem the loop runs at most `1 + k` times when the smaller magnitude is below
-/// the Fibonacci number `F(k+2)` (the `1` for a first iteration that only swaps the operands).
+/// A fraction in lowest terms together with the witness that it is: `num/den` with
+/// `den > 0` and Bézout coefficients `x`, `y` with `num·x + den·y = 1`. The identity proves
+/// `gcd(num, den) = 1` without a loop (a common divisor of `num` and `den` divides `1`), which
+/// is what lets a contract state coprimality (see [`lowest_terms`]).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub struct Lowest<I: ExactInt> {
+    /// Numerator (sign of the fraction).
+    pub num: I,
+    /// Denominator (positive).
+    pub den: I,
+    /// Bézout coefficient of `num`.
+    pub x: I,
+    /// Bézout coefficient of `den`.
+    pub y: I,
+}
+
+/// `n/d` in lowest terms with a Bézout witness, by the extended Euclid algorithm on `|n|` and
+/// `|d|`: the remainders `r` with coefficients `s`, `t` (`r = s·|n| + t·|d|`), until the
+/// remainder is zero. Then the last non-zero remainder is `g = gcd(|n|, |d|) = s₀·|n| + t₀·|d|`,
+/// and the next row `s₁·|n| + t₁·|d| = 0` has `|s₁| = |d|/g`, `|t₁| = |n|/g`: the reduced
+/// fraction is read off it (no division by `g`), and `(s₀, t₀)` is its witness. Every
+/// coefficient is at most `max(|n|, |d|)/g` in magnitude, so nothing overflows `I`. Panics if
+/// `d == 0` (a bug, never input) or if a magnitude does not fit `I`. The loop runs as often as
+/// Euclid's (Lamé: at most `1 + k` times when the smaller magnitude is below `F(k+2)`).
 ///
-/// Contract (proved once by `proofs::contracts::gcd_divides_both`): for operands whose
-/// magnitude fits `I`, the result is non-negative, zero exactly when both operands are, and
-/// divides both.
+/// ```
+/// use truecost_kernel::claims::exact::lowest_terms;
+/// let l = lowest_terms::<i16>(6, -4);
+/// assert_eq!((l.num, l.den), (-3, 2));
+/// assert_eq!(l.num * l.x + l.den * l.y, 1);
+/// ```
+///
+/// Contract (proved once by `proofs::contracts::lowest_terms_has_a_bezout_witness`; the
+/// harnesses use it through `stub_verified`, so none of them unrolls this loop): for `d ≠ 0`
+/// and magnitudes that fit `I`, the result has a positive denominator, the value `n/d`
+/// (cross-multiplied, exactly) and the witness `num·x + den·y = 1` (in a wider integer). Every
+/// clause is loop-free.
+#[kani::requires(d != I::ZERO && n.checked_abs().is_some() && d.checked_abs().is_some())]
+#[kani::ensures(|r: &Lowest<I>| spec::is_lowest_form(n, d, r))]
+pub fn lowest_terms<I: ExactInt>(n: I, d: I) -> Lowest<I> {
+    assert!(d != I::ZERO, "zero denominator");
+    // The product's `i128` values almost always fit `i64`, where a division is one machine
+    // instruction instead of a library call: the same algorithm, run at 64 bits. (A constant
+    // condition at the harnesses' widths.)
+    if I::BITS > 64 {
+        let narrow = |v: I| i64::from_i128(v.to_i128()).filter(|&v| v != i64::MIN);
+        if let (Some(n), Some(d)) = (narrow(n), narrow(d)) {
+            let l = extended_euclid(n, d);
+            let wide = |v: i64| I::from_i128(v as i128).unwrap_or_else(|| overflow());
+            return Lowest {
+                num: wide(l.num),
+                den: wide(l.den),
+                x: wide(l.x),
+                y: wide(l.y),
+            };
+        }
+    }
+    extended_euclid(n, d)
+}
+
+/// The extended Euclid algorithm of [`lowest_terms`] (`d ≠ 0`), at the width `I`.
+fn extended_euclid<I: ExactInt>(n: I, d: I) -> Lowest<I> {
+    let a = n.checked_abs().unwrap_or_else(|| overflow());
+    let b = d.checked_abs().unwrap_or_else(|| overflow());
+    let (mut r0, mut r1) = (a, b);
+    let (mut s0, mut s1) = (I::ONE, I::ZERO);
+    let (mut t0, mut t1) = (I::ZERO, I::ONE);
+    while r1 != I::ZERO {
+        let q = r0.checked_div(r1).unwrap_or_else(|| overflow());
+        (r0, r1) = (r1, r0.sub_exact(q.mul_exact(r1)));
+        (s0, s1) = (s1, s0.sub_exact(q.mul_exact(s1)));
+        (t0, t1) = (t1, t0.sub_exact(q.mul_exact(t1)));
+    }
+    let reduced_n = t1.checked_abs().unwrap_or_else(|| overflow());
+    let reduced_d = s1.checked_abs().unwrap_or_else(|| overflow());
+    // `(σ·|n|/g)·(σ·s₀) + (|d|/g)·t₀ = (s₀·|n| + t₀·|d|)/g = 1` for either sign `σ`.
+    if (n < I::ZERO) != (d < I::ZERO) {
+        Lowest {
+            num: reduced_n.neg_exact(),
+            den: reduced_d,
+            x: s0.neg_exact(),
+            y: t0,
+        }
+    } else {
+        Lowest {
+            num: reduced_n,
+            den: reduced_d,
+            x: s0,
+            y: t0,
+        }
+    }
+}
+
+/// The greatest common divisor of `|a|` and `|b|` (`gcd(0, 0) = 0`): `|a|` when `b = 0`,
+/// otherwise `|b|` over the denominator of `a/b` in lowest terms ([`lowest_terms`], whose
+/// extended Euclid loop is the only one of this module).
+///
+/// Contract (proved once by `proofs::contracts::gcd_divides_both`, with [`lowest_terms`]
+/// replaced by its contract): for operands whose magnitude fits `I`, the result is
+/// non-negative, zero exactly when both operands are, and divides both.
 #[kani::requires(a.checked_abs().is_some() && b.checked_abs().is_some())]
 #[kani::ensures(|g: &I| spec::is_common_divisor(a, b, *g))]
 pub fn gcd<I: ExactInt>(a: I, b: I) -> I {
-    let mut a = a.checked_abs().unwrap_or_else(|| overflow());
-    let mut b = b.checked_abs().unwrap_or_else(|| overflow());
-    while b != I::ZERO {
-        let t = a.checked_rem(b).unwrap_or_else(|| overflow());
-        a = b;
-        b = t;
+    let magnitude_b = b.checked_abs().unwrap_or_else(|| overflow());
+    if b == I::ZERO {
+        return a.checked_abs().unwrap_or_else(|| overflow());
     }
-    a
+    magnitude_b
+        .checked_div(lowest_terms(a, b).den)
+        .unwrap_or_else(|| overflow())
 }
 
 /// An exact rational `n/d` with `d > 0` and `gcd(n, d) = 1`, over the integer type `I`
@@ -191,23 +286,12 @@ impl<I: ExactInt> Q<I> {
         }
     }
 
-    /// `n/d`, normalised. Panics if `d == 0` (a bug, never input) or on overflow.
-    ///
-    /// Contract (proved by `proofs::contracts::ratio_is_exact_and_normalised`): for `d ≠ 0`
-    /// and operands whose magnitude fits `I`, the result has the value `n/d` (checked by
-    /// cross-multiplication, exactly), a positive denominator and coprime parts.
-    #[kani::requires(d != I::ZERO && n.checked_abs().is_some() && d.checked_abs().is_some())]
-    #[kani::ensures(|q: &Self| spec::is_normalised(q.n, q.d) && spec::same_value(q.n, q.d, n, d))]
+    /// `n/d`, normalised: the fraction of [`lowest_terms`]`(n, d)` (positive denominator,
+    /// coprime parts, the value `n/d`; its contract is this function's). Panics if `d == 0` (a
+    /// bug, never input) or on overflow.
     pub fn ratio(n: I, d: I) -> Self {
-        assert!(d != I::ZERO, "zero denominator");
-        let g = gcd(n, d).max(I::ONE);
-        let mut n = n.checked_div(g).unwrap_or_else(|| overflow());
-        let mut d = d.checked_div(g).unwrap_or_else(|| overflow());
-        if d < I::ZERO {
-            n = n.neg_exact();
-            d = d.neg_exact();
-        }
-        Q { n, d }
+        let l = lowest_terms(n, d);
+        Q { n: l.num, d: l.den }
     }
 
     /// The integer `n`.
@@ -243,12 +327,14 @@ impl<I: ExactInt> Q<I> {
     /// `self + o`, `None` on overflow: the sum is exact, and `None` only when the unreduced sum
     /// `(n₁d₂ + n₂d₁)/(d₁d₂)` has a part outside `±I::MAX`.
     ///
-    /// Contract (proved by `proofs::contracts::checked_add_is_exact`): for operands with
-    /// positive denominators, a `Some` is normalised with the exact value of the sum
-    /// (cross-multiplied), and `None` only when the unreduced sum does not fit.
+    /// Contract (proved by `proofs::contracts::checked_add_is_exact`, with [`lowest_terms`]
+    /// replaced by its contract): for operands with positive denominators, a `Some` has a
+    /// positive denominator and the exact value of the sum (cross-multiplied), and `None` comes
+    /// only when the unreduced sum does not fit. (That a `Some` is in lowest terms is
+    /// [`lowest_terms`]' contract: the result is `Q::ratio` of the sum.)
     #[kani::requires(self.d > I::ZERO && o.d > I::ZERO)]
     #[kani::ensures(|r: &Option<Self>| match r {
-        Some(q) => spec::is_normalised(q.n, q.d) && spec::is_sum(self.n, self.d, o.n, o.d, q.n, q.d),
+        Some(q) => q.d > I::ZERO && spec::is_sum(self.n, self.d, o.n, o.d, q.n, q.d),
         None => !spec::unreduced_sum_fits::<I>(self.n, self.d, o.n, o.d),
     })]
     pub fn checked_add(self, o: Q<I>) -> Option<Q<I>> {
@@ -265,24 +351,27 @@ impl<I: ExactInt> Q<I> {
         (fits(n) && fits(d)).then(|| Q::ratio(n, d))
     }
 
-    /// `self · o`, `None` on overflow: the product is exact, and `None` only when the product
-    /// in lowest terms has a part outside `±I::MAX`.
+    /// `self · o`, `None` on overflow: the product is exact. It cross-cancels first (`n₁/d₂`
+    /// and `n₂/d₁` in lowest terms, by [`lowest_terms`]), so for normalised operands `None`
+    /// comes only when the product in lowest terms has a part outside `±I::MAX`.
     ///
-    /// Contract (proved by `proofs::contracts::checked_mul_is_exact`): for normalised operands
-    /// whose numerators' magnitudes fit `I`, a `Some` is normalised with the exact value of the
-    /// product (cross-multiplied), and `None` only when the product in lowest terms does not
-    /// fit.
-    #[kani::requires(spec::is_normalised(self.n, self.d) && spec::is_normalised(o.n, o.d)
+    /// Contract (proved by `proofs::contracts::checked_mul_is_exact`, with [`lowest_terms`]
+    /// replaced by its contract): for operands with positive denominators whose numerators'
+    /// magnitudes fit `I`, a `Some` has a positive denominator and the exact value of the
+    /// product (cross-multiplied), and `None` comes only when the unreduced product
+    /// `(n₁n₂)/(d₁d₂)` does not fit.
+    #[kani::requires(self.d > I::ZERO && o.d > I::ZERO
         && self.n.checked_abs().is_some() && o.n.checked_abs().is_some())]
     #[kani::ensures(|r: &Option<Self>| match r {
-        Some(q) => spec::is_normalised(q.n, q.d) && spec::is_product(self.n, self.d, o.n, o.d, q.n, q.d),
-        None => !spec::lowest_product_fits::<I>(self.n, self.d, o.n, o.d),
+        Some(q) => q.d > I::ZERO && spec::is_product(self.n, self.d, o.n, o.d, q.n, q.d),
+        None => !spec::unreduced_product_fits::<I>(self.n, self.d, o.n, o.d),
     })]
     pub fn checked_mul(self, o: Q<I>) -> Option<Q<I>> {
-        let g1 = gcd(self.n, o.d).max(I::ONE);
-        let g2 = gcd(o.n, self.d).max(I::ONE);
-        let n = self.n.checked_div(g1)?.checked_mul(o.n.checked_div(g2)?)?;
-        let d = self.d.checked_div(g2)?.checked_mul(o.d.checked_div(g1)?)?;
+        // n₁/d₂ and n₂/d₁ in lowest terms; the denominators stay positive.
+        let a = lowest_terms(self.n, o.d);
+        let b = lowest_terms(o.n, self.d);
+        let n = a.num.checked_mul(b.num)?;
+        let d = b.den.checked_mul(a.den)?;
         n.checked_abs()?;
         Some(Q::ratio(n, d))
     }
@@ -384,14 +473,16 @@ impl<I: ExactInt> fmt::Display for Q<I> {
     }
 }
 
-/// The guarantees of [`gcd`], [`Q::ratio`], [`Q::checked_add`] and [`Q::checked_mul`] (their
-/// contracts' clauses), stated independently of how those functions compute: values are
-/// compared by cross-multiplication in 256 bits (exact for every width), coprimality by a
-/// Euclid loop of its own on `u128` magnitudes. The "does not fit" statements are computed in
-/// `i128`: exact for every width up to `i64`; for `i128` operands whose products leave `i128`
-/// they hold trivially (they then claim nothing).
+/// The guarantees of [`lowest_terms`], [`gcd`], [`Q::checked_add`] and [`Q::checked_mul`]
+/// (their contracts' clauses), stated independently of how those functions compute, and
+/// without a loop (a contract's clause is evaluated at every call a verified stub replaces):
+/// values are compared by cross-multiplication — in `i32` for widths up to 16 bits, in 256
+/// bits otherwise (exact for every width) — and coprimality by a Bézout identity
+/// `num·x + den·y = 1` on the witness the function returns. The "does not fit" statements are
+/// computed in `i128`: exact for every width up to `i64`; for `i128` operands whose products
+/// leave `i128` they hold trivially (they then claim nothing).
 pub mod spec {
-    use super::ExactInt;
+    use super::{ExactInt, Lowest};
 
     /// `g ≥ 0`, `g = 0` exactly when `a = b = 0`, and `g` divides `a` and `b` (`gcd`'s contract).
     pub fn is_common_divisor<I: ExactInt>(a: I, b: I, g: I) -> bool {
@@ -399,17 +490,39 @@ pub mod spec {
         g >= 0 && ((g == 0) == (a == 0 && b == 0)) && (g == 0 || (a % g == 0 && b % g == 0))
     }
 
-    /// `d > 0` and `gcd(|n|, d) = 1` (Euclid written here, on magnitudes).
-    pub fn is_normalised<I: ExactInt>(n: I, d: I) -> bool {
-        let (n, d) = (n.to_i128(), d.to_i128());
-        d > 0 && coprime(n.unsigned_abs(), d.unsigned_abs())
+    /// `l` is `n/d` in lowest terms with its witness: `l.den > 0`, `l.num/l.den = n/d` and
+    /// `l.num·l.x + l.den·l.y = 1` (`lowest_terms`' contract; `d ≠ 0`).
+    pub fn is_lowest_form<I: ExactInt>(n: I, d: I, l: &Lowest<I>) -> bool {
+        l.den > I::ZERO && same_value(l.num, l.den, n, d) && is_bezout_one(l.num, l.x, l.den, l.y)
     }
 
-    fn coprime(mut a: u128, mut b: u128) -> bool {
-        while b != 0 {
-            (a, b) = (b, a % b);
+    /// `a·x + b·y = 1`, exactly: in `i32` for widths up to 16 bits (each product is below
+    /// `2^30` in magnitude; a sum that leaves `i32` is not 1), in 256 bits otherwise.
+    pub fn is_bezout_one<I: ExactInt>(a: I, x: I, b: I, y: I) -> bool {
+        let [a, x, b, y] = [a, x, b, y].map(ExactInt::to_i128);
+        if I::BITS <= 16 {
+            let (a, x, b, y) = (a as i32, x as i32, b as i32, y as i32);
+            return (a * x).checked_add(b * y) == Some(1);
         }
-        a == 1
+        // a·x + b·y = 1 with magnitudes P = |a·x|, R = |b·y|: both non-negative means
+        // {P, R} = {0, 1}; opposite signs mean the non-negative one exceeds the other by 1.
+        let (p_neg, p_high, p_low) = product(a, x);
+        let (r_neg, r_high, r_low) = product(b, y);
+        let (p, r) = ((p_high, p_low), (r_high, r_low));
+        match (p_neg, r_neg) {
+            (false, false) => (p == (0, 1) && r == (0, 0)) || (p == (0, 0) && r == (0, 1)),
+            (false, true) => p == successor(r),
+            (true, false) => r == successor(p),
+            (true, true) => false,
+        }
+    }
+
+    /// `m + 1` for a 256-bit magnitude `m < 2^255` (every product of two `i128` values is).
+    fn successor((high, low): (u128, u128)) -> (u128, u128) {
+        match low.checked_add(1) {
+            Some(l) => (high, l),
+            None => (high + 1, 0),
+        }
     }
 
     /// The 256-bit magnitude of `a · b` as (high, low) halves, and whether it is negative.
@@ -429,9 +542,15 @@ pub mod spec {
         product(a, b) == product(c, d)
     }
 
-    /// `n1/d1 = n2/d2` (non-zero denominators), by cross-multiplication.
+    /// `n1/d1 = n2/d2` (non-zero denominators), by cross-multiplication: in `i32` for widths
+    /// up to 16 bits (products below `2^30` in magnitude), in 256 bits otherwise.
     pub fn same_value<I: ExactInt>(n1: I, d1: I, n2: I, d2: I) -> bool {
-        products_equal(n1.to_i128(), d2.to_i128(), n2.to_i128(), d1.to_i128())
+        let [n1, d1, n2, d2] = [n1, d1, n2, d2].map(ExactInt::to_i128);
+        if I::BITS <= 16 {
+            let (n1, d1, n2, d2) = (n1 as i32, d1 as i32, n2 as i32, d2 as i32);
+            return n1 * d2 == n2 * d1;
+        }
+        products_equal(n1, d2, n2, d1)
     }
 
     /// `n/d = n1/d1 + n2/d2`: `n·d1·d2 = (n1·d2 + n2·d1)·d`, checked as
@@ -476,19 +595,12 @@ pub mod spec {
         n.zip(d).is_some_and(|(n, d)| fits::<I>(n) && fits::<I>(d))
     }
 
-    /// The product `(n1·n2)/(d1·d2)` in lowest terms has both parts in `±I::MAX`.
-    pub fn lowest_product_fits<I: ExactInt>(n1: I, d1: I, n2: I, d2: I) -> bool {
+    /// The unreduced product `(n1·n2)/(d1·d2)` has both parts in `±I::MAX`.
+    pub fn unreduced_product_fits<I: ExactInt>(n1: I, d1: I, n2: I, d2: I) -> bool {
         let [n1, d1, n2, d2] = [n1, d1, n2, d2].map(ExactInt::to_i128);
-        let (Some(n), Some(d)) = (n1.checked_mul(n2), d1.checked_mul(d2)) else {
-            return false;
-        };
-        let (mut a, mut b) = (n.unsigned_abs(), d.unsigned_abs());
-        while b != 0 {
-            (a, b) = (b, a % b);
-        }
-        let g = a.max(1);
-        let (n, d) = (n.unsigned_abs() / g, d.unsigned_abs() / g);
-        i128::try_from(n).is_ok_and(fits::<I>) && i128::try_from(d).is_ok_and(fits::<I>)
+        let n = n1.checked_mul(n2);
+        let d = d1.checked_mul(d2);
+        n.zip(d).is_some_and(|(n, d)| fits::<I>(n) && fits::<I>(d))
     }
 }
 
@@ -595,26 +707,157 @@ mod tests {
         }
     }
 
-    /// The contracts' clauses on hand-checked values: a wrong sum, product or unreduced result
-    /// is rejected; the 256-bit cross product is exact where `i128` would overflow.
+    /// The contracts' clauses on hand-checked values: a wrong sum, product, unreduced result or
+    /// witness is rejected; the 256-bit cross product is exact where `i128` would overflow.
     #[test]
     fn spec_clauses_reject_wrong_results() {
         assert!(spec::is_sum(1i16, 2, 1, 3, 5, 6));
         assert!(!spec::is_sum(1i16, 2, 1, 3, 2, 5));
         assert!(spec::is_product(2i16, 3, 3, 4, 1, 2));
         assert!(!spec::is_product(2i16, 3, 3, 4, 1, 3));
-        assert!(spec::is_normalised(-3i8, 4) && !spec::is_normalised(2i8, 4));
-        assert!(!spec::is_normalised(1i8, -1));
+        let lowest = |num, den, x, y| Lowest { num, den, x, y };
+        // 6/-4 = -3/2, and -3·1 + 2·2 = 1.
+        assert!(spec::is_lowest_form(6i8, -4, &lowest(-3, 2, 1, 2)));
+        assert!(
+            !spec::is_lowest_form(6i8, -4, &lowest(-3, 2, 1, 1)),
+            "not a witness"
+        );
+        assert!(
+            !spec::is_lowest_form(6i8, -4, &lowest(3, -2, 1, 2)),
+            "negative denominator"
+        );
+        assert!(
+            !spec::is_lowest_form(6i8, -4, &lowest(-6, 4, 1, 2)),
+            "not reduced"
+        );
+        assert!(
+            !spec::is_lowest_form(6i8, -4, &lowest(-1, 2, 1, 1)),
+            "another value"
+        );
         assert!(spec::is_common_divisor(12i32, -18, 6) && spec::is_common_divisor(0i32, 0, 0));
         assert!(!spec::is_common_divisor(12i32, 18, 4) && !spec::is_common_divisor(0i32, 5, 0));
         // (2^100)·(2^100) = (2^101)·(2^99), far beyond i128.
         let (a, b) = (1i128 << 100, 1i128 << 99);
         assert!(spec::same_value(a, b, 2 * a, 2 * b));
         assert!(!spec::same_value(a, b, 2 * a + 1, 2 * b));
+        // A witness whose products leave i128: (2^100 + 1)·(2^100 − 1) − 2^100·2^100 = −1.
+        let (p, m) = ((1i128 << 100) + 1, (1i128 << 100) - 1);
+        assert!(spec::is_bezout_one(p, -m, a, a));
+        assert!(!spec::is_bezout_one(p, m, a, -a), "the sum is -1");
+        assert!(
+            !spec::is_bezout_one(p, -m, a, a + 1),
+            "the sum is 1 + 2^100"
+        );
         assert!(spec::unreduced_sum_fits(100i8, 1, 27, 1));
         assert!(!spec::unreduced_sum_fits(100i8, 1, 28, 1));
-        assert!(spec::lowest_product_fits(100i8, 3, 3, 100));
-        assert!(!spec::lowest_product_fits(16i8, 1, 8, 1));
+        assert!(spec::unreduced_product_fits(10i8, 3, 12, 7));
+        assert!(!spec::unreduced_product_fits(16i8, 1, 8, 1));
+        assert!(!spec::unreduced_product_fits(1i8, 16, 1, 8));
+    }
+
+    /// `a·x + b·y = 1` by the narrow path (`i16`, in `i32`) and the 256-bit path (the same
+    /// values as `i32`) agree, on a grid with both signs and every boundary value.
+    #[test]
+    fn bezout_clause_paths_agree() {
+        let values: Vec<i16> = [
+            i16::MIN,
+            i16::MIN + 1,
+            -300,
+            -7,
+            -2,
+            -1,
+            0,
+            1,
+            2,
+            3,
+            7,
+            255,
+            301,
+        ]
+        .into_iter()
+        .chain([i16::MAX - 1, i16::MAX])
+        .collect();
+        let mut ones = 0;
+        for &a in &values {
+            for &x in &values {
+                for &b in &values {
+                    for &y in &values {
+                        let narrow = spec::is_bezout_one(a, x, b, y);
+                        let wide = spec::is_bezout_one(a as i32, x as i32, b as i32, y as i32);
+                        let exact = a as i64 * x as i64 + b as i64 * y as i64 == 1;
+                        assert_eq!((narrow, wide), (exact, exact), "{a}·{x} + {b}·{y}");
+                        ones += exact as u32;
+                    }
+                }
+            }
+        }
+        assert!(ones > 50, "the grid has solutions ({ones})");
+    }
+
+    /// `lowest_terms` on every `i8` pair (`d ≠ 0`, no `-128`): the reduced fraction found by
+    /// trial division here, a positive denominator, and a witness `num·x + den·y = 1`; `gcd`
+    /// is the largest common divisor found by trial.
+    #[test]
+    fn lowest_terms_of_every_i8_pair() {
+        for n in -127i8..=127 {
+            for d in -127i8..=127 {
+                let (ni, di) = (n as i32, d as i32);
+                let g = (1..=127)
+                    .filter(|k| ni % k == 0 && di % k == 0)
+                    .max()
+                    .unwrap_or(0);
+                let expected = if n == 0 && d == 0 { 0 } else { g };
+                assert_eq!(gcd(n, d) as i32, expected, "gcd({n}, {d})");
+                if d == 0 {
+                    continue;
+                }
+                let l = lowest_terms(n, d);
+                let sign = if (ni < 0) != (di < 0) { -1 } else { 1 };
+                assert_eq!(
+                    (l.num as i32, l.den as i32),
+                    (sign * ni.abs() / g, di.abs() / g),
+                    "{n}/{d}"
+                );
+                assert_eq!(l.num as i32 * l.x as i32 + l.den as i32 * l.y as i32, 1);
+            }
+        }
+    }
+
+    /// `lowest_terms` at `i128` on values far beyond `i64` (Fibonacci neighbours: the longest
+    /// Euclid runs), with the witness checked by the 256-bit clause.
+    #[test]
+    fn lowest_terms_at_i128_with_long_runs() {
+        let (mut a, mut b) = (1i128, 1i128);
+        while let Some(c) = a.checked_add(b) {
+            (a, b) = (b, c);
+        }
+        // a, b consecutive Fibonacci numbers near i128::MAX: coprime.
+        // Beyond i64, at its edge (i64::MIN takes the 128-bit loop) and inside it (the 64-bit
+        // one).
+        let (min, max) = (i64::MIN as i128, i64::MAX as i128);
+        for (n, d) in [
+            (a, b),
+            (-b, a),
+            (a, -a),
+            (6 * (a / 6), 4 * (a / 6)),
+            (min, 6),
+            (max, min),
+            (-max, max - 1),
+            (6, -4),
+        ] {
+            let l = lowest_terms(n, d);
+            assert!(spec::is_lowest_form(n, d, &l), "{n}/{d}: {l:?}");
+        }
+        assert_eq!((lowest_terms(a, b).num, lowest_terms(a, b).den), (a, b));
+        let l = lowest_terms(a, -a);
+        assert_eq!((l.num, l.den, l.num * l.x + l.den * l.y), (-1, 1, 1));
+        let l = lowest_terms(6 * (a / 6), 4 * (a / 6));
+        assert_eq!((l.num, l.den), (3, 2));
+        // 2^63 / 6 = 2^62 / 3 (negative); 6 / -4 = -3/2.
+        let l = lowest_terms(min, 6);
+        assert_eq!((l.num, l.den), (-(1i128 << 62), 3));
+        let l = lowest_terms(6i128, -4);
+        assert_eq!((l.num, l.den), (-3, 2));
     }
 
     /// An overflow at a narrow width panics, never wraps: 100 + 100 does not fit an `i8`, nor

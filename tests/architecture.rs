@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 
 /// The layers of `src/`'s top-level modules, lowest first. Shared utilities sit at the bottom;
 /// then the exact values, the planning graph, the paper's problems and the deterministic
-/// solvers; the stochastic model and the learners; the claims engines (docs/spec.md §6, whose exact
+/// solvers; the stochastic model; the learners and the formats of the field (Storm's, PRISM's); the claims engines (docs/spec.md §6, whose exact
 /// polynomial algebra `claims::poly` the objectives build on); the Gymnasium environments;
 /// the three objectives over any stochastic model, which load environments; the paper's
 /// experiments; the figures drawn from problems, environments and experiment reports; and the
@@ -37,7 +37,7 @@ const LAYERS: &[&[&str]] = &[
     &["model", "certificate"],
     &["problems", "solvers"],
     &["planning", "stochastic"],
-    &["learning"],
+    &["learning", "formats"],
     &["claims"],
     &["envs"],
     &["objectives", "experiments"],

@@ -121,6 +121,7 @@ fn write(
     extra: &FileObjective,
     name: &str,
 ) -> Result<String, String> {
+    let (problem, extra) = &truecost::formats::dead_ends_as_traps(problem, extra);
     let text = match args.format {
         ExportFormat::Json => to_json_with_objective(problem, Some(name), extra) + "\n",
         ExportFormat::Drn => drn::to_drn(problem, extra, Some(name)).map_err(|e| e.to_string())?,

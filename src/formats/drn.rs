@@ -568,11 +568,13 @@ fn build(
     let cost_model = match names.iter().position(|n| n == COST_MODEL) {
         Some(i) => i,
         None if width == 1 => 0,
-        None => return Err(DrnError::File(format!(
+        None => {
+            return Err(DrnError::File(format!(
             "no reward model named '{COST_MODEL}' (the stage costs) among {} reward models ({})",
             width,
             echo(&names.join(", "))
-        ))),
+        )))
+        }
     };
     let reward_model = names.iter().position(|n| n == REWARD_MODEL);
     let entry = |v: &[Rational], i: usize| v.get(i).cloned().unwrap_or_else(Rational::zero);

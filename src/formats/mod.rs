@@ -12,10 +12,12 @@ pub mod prism;
 
 use std::path::Path;
 
+use num_traits::{One, Zero};
+
 use crate::model::file::{self as det_file, FileError};
 use crate::model::StateId;
 use crate::stochastic::file::{self as json_file, FileObjective, ProblemFile, StochasticFileError};
-use crate::stochastic::StochasticProblem;
+use crate::stochastic::{Outcome, OutcomeKind, StochasticAction, StochasticProblem};
 use crate::value::Rational;
 
 /// The format of a problem file's text, told by its content.
@@ -152,14 +154,71 @@ pub fn initial_states(problem: &StochasticProblem, extra: &FileObjective) -> Opt
     Some(states)
 }
 
-/// A zero-cost self-loop stands in for the actions of a state that has none (goals, dead ends):
-/// both formats need a choice in every state.
+/// A zero-cost self-loop stands in for the actions of a goal without actions: both formats need
+/// a choice in every state (dead ends are made traps first, [`dead_ends_as_traps`]).
 ///
 /// What the writers write for state `x`: `Some(range)` of its global action ids, or `None`
 /// for the stand-in self-loop.
 fn written_actions(problem: &StochasticProblem, x: StateId) -> Option<std::ops::Range<usize>> {
     let range = problem.actions(x);
     (!range.is_empty()).then_some(range)
+}
+
+/// The problem as every file format can hold it: each non-goal state without actions (a dead
+/// end, `G* = +∞`, where the episode ends) gets one zero-cost self-loop with reward 0 and is
+/// listed terminal (a trap: the same value under every objective), since problem files give
+/// every non-goal state an action and Storm every state a choice. Anything else is unchanged.
+///
+/// ```
+/// use truecost::formats::dead_ends_as_traps;
+/// use truecost::stochastic::{Outcome, OutcomeKind, StochasticAction, StochasticProblem};
+/// let one = truecost::value::Rational::from_integer(1.into());
+/// let to = |y| StochasticAction { cost: one.clone(), outcomes: vec![Outcome { successor: y, probability: one.clone(), kind: OutcomeKind::Listed }] };
+/// let p = StochasticProblem::new(vec![vec![to(1), to(2)], vec![], vec![]], 0, vec![2]).unwrap();
+/// let (q, extra) = dead_ends_as_traps(&p, &Default::default());
+/// assert_eq!((q.actions(1).len(), q.outcomes(2)[0].successor, q.cost(2).to_string()), (1, 1, "0".to_string()));
+/// assert_eq!(extra.terminal, [1]);
+/// ```
+pub fn dead_ends_as_traps(
+    problem: &StochasticProblem,
+    extra: &FileObjective,
+) -> (StochasticProblem, FileObjective) {
+    let dead = |x: StateId| !problem.is_goal(x) && problem.actions(x).is_empty();
+    if !(0..problem.states()).any(dead) {
+        return (problem.clone(), extra.clone());
+    }
+    let mut lists = problem.action_lists();
+    let mut rewards = extra.rewards.as_ref().map(|_| Vec::new());
+    let mut terminal = extra.terminal.clone();
+    for (x, list) in lists.iter_mut().enumerate() {
+        if let (Some(out), Some(given)) = (rewards.as_mut(), extra.rewards.as_ref()) {
+            out.extend(problem.actions(x).map(|a| given[a].clone()));
+        }
+        if dead(x) {
+            list.push(StochasticAction {
+                cost: Rational::zero(),
+                outcomes: vec![Outcome {
+                    successor: x,
+                    probability: Rational::one(),
+                    kind: OutcomeKind::Listed,
+                }],
+            });
+            if let Some(out) = rewards.as_mut() {
+                out.push(Rational::zero());
+            }
+            terminal.push(x);
+        }
+    }
+    terminal.sort_unstable();
+    terminal.dedup();
+    let traps = StochasticProblem::new(lists, problem.initial(), problem.goals().to_vec())
+        .expect("the same problem with self-loops added");
+    let extra = FileObjective {
+        rewards,
+        terminal,
+        initial: extra.initial.clone(),
+    };
+    (traps, extra)
 }
 
 /// An exact number as both formats write it: an integer or `p/q`, with a leading `-` if

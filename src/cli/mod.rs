@@ -51,7 +51,8 @@ enum Command {
     Reproduce(reproduce::ReproduceArgs),
     /// Every objective side by side: success probability, expected truecost, expected steps.
     Compare(compare::CompareArgs),
-    /// Write a Gymnasium benchmark (--env) or a benchmark grid (--grid) as a problem file.
+    /// Write a problem (--env, --problem, --file, --grid) as a problem file, in Storm's DRN format
+    /// or in the PRISM language.
     Export(export::ExportArgs),
     /// Check a certificate of `solve --certificate` against the problem, re-read, in exact
     /// arithmetic (exit 0 only if every condition holds).

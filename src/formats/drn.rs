@@ -148,14 +148,7 @@ pub fn to_drn(
     let choices: usize = (0..n)
         .map(|x| written_actions(problem, x).map_or(1, |r| r.len()))
         .sum();
-    let mut out = String::new();
-    if let Some(name) = name {
-        let _ = writeln!(
-            out,
-            "// {} (written by truecost)",
-            crate::echo::printable(name)
-        );
-    }
+    let mut out = super::name_comment(name);
     let models = if rewards.is_some() {
         format!("{COST_MODEL} {REWARD_MODEL}")
     } else {

@@ -221,6 +221,13 @@ pub fn dead_ends_as_traps(
     (traps, extra)
 }
 
+/// The first line of a written file: `name` in a `//` comment (both formats' comment), escaped to
+/// one printable line; nothing without a name.
+fn name_comment(name: Option<&str>) -> String {
+    name.map(|n| format!("// {} (written by truecost)\n", crate::echo::printable(n)))
+        .unwrap_or_default()
+}
+
 /// An exact number as both formats write it: an integer or `p/q`, with a leading `-` if
 /// negative.
 fn exact_text(r: &Rational) -> String {

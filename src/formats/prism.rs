@@ -104,14 +104,7 @@ pub fn to_prism(
 ) -> Result<String, PrismError> {
     let init = initial_states(problem, extra).ok_or(PrismError::NotUniform)?;
     let n = problem.states();
-    let mut out = String::new();
-    if let Some(name) = name {
-        let _ = writeln!(
-            out,
-            "// {} (written by truecost)",
-            crate::echo::printable(name)
-        );
-    }
+    let mut out = super::name_comment(name);
     out.push_str("mdp\n\nmodule truecost\n");
     let _ = write!(out, "  s : [0..{}]", n - 1);
     if init.len() == 1 {

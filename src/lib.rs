@@ -8,7 +8,7 @@
 //! this from the source): [`echo`] → [`atomic`], [`bounded`] → [`value`] → [`algebra`] (exact
 //! polynomials, real algebraic numbers, exact linear algebra) → [`model`] and
 //! [`certificate`] (the checker of certificates: plain model data and big rationals only) →
-//! [`problems`], [`solvers`] → [`planning`], [`stochastic`] → [`learning`] → [`claims`] →
+//! [`problems`], [`solvers`] → [`planning`], [`stochastic`] → [`learning`], [`formats`] (Storm's and PRISM's formats) → [`claims`] →
 //! [`envs`] → [`objectives`], [`experiments`] → [`figures`] → `cli` (the binary). Beneath them
 //! all, the `kernel/` crate `truecost_kernel` (no dependencies under Kani): the value types' arithmetic
 //! core ([`value::CostValue`], [`value::Units`]), the planning graph, the planners
@@ -27,6 +27,7 @@ pub mod echo;
 pub mod envs;
 pub mod experiments;
 pub mod figures;
+pub mod formats;
 pub mod learning;
 pub mod model;
 pub mod objectives;

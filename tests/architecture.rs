@@ -27,11 +27,11 @@ use std::path::{Path, PathBuf};
 /// then the exact values; the exact algebra built on them alone (polynomials and their real
 /// roots, algebraic numbers, exact rational and modular linear algebra), which the stochastic
 /// solvers, the claims engines and the objectives all use; the planning graph, the paper's
-/// problems and the deterministic solvers; the stochastic model and the learners; the claims
-/// engines (docs/spec.md §6); the Gymnasium environments; the three objectives over any
-/// stochastic model, which load environments; the paper's experiments; the figures drawn from
-/// problems, environments and experiment reports; and the command line on top, which parses,
-/// calls one library function and prints.
+/// problems and the deterministic solvers; the stochastic model; the learners and the formats of
+/// the field (Storm's DRN, PRISM); the claims engines (docs/spec.md §6); the Gymnasium
+/// environments; the three objectives over any stochastic model, which load environments; the
+/// paper's experiments; the figures drawn from problems, environments and experiment reports;
+/// and the command line on top, which parses, calls one library function and prints.
 const LAYERS: &[&[&str]] = &[
     &["echo"],
     &["atomic", "bounded"],
@@ -40,7 +40,7 @@ const LAYERS: &[&[&str]] = &[
     &["model", "certificate"],
     &["problems", "solvers"],
     &["planning", "stochastic"],
-    &["learning"],
+    &["learning", "formats"],
     &["claims"],
     &["envs"],
     &["objectives", "experiments"],

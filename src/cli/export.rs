@@ -1,24 +1,48 @@
-//! `truecost export --env SPEC --out F.json`: an environment as a
-//! stochastic problem file (truecost stage costs, Gymnasium's rewards, the terminal non-goal
-//! states and the initial distribution, see [`truecost::objectives::Model::exportable`]).
+//! `truecost export (--env SPEC | --problem N | --file F | --grid RxC) [--format json|drn|prism]
+//! --out F`: a problem as a truecost problem file (JSON), in Storm's explicit DRN format or in
+//! the PRISM language ([`truecost::formats`]). An environment's file carries the truecost stage
+//! costs, Gymnasium's rewards, the terminal non-goal states and the initial distribution (see
+//! [`truecost::objectives::Model::exportable`]); `--gamma`/`--noise` perturb a paper problem,
+//! a deterministic file or a grid.
 
 use std::path::PathBuf;
 
-use clap::Args;
+use clap::{Args, ValueEnum};
 
+use truecost::formats::{drn, prism};
 use truecost::objectives::Source;
-use truecost::stochastic::file::to_json_with_objective;
+use truecost::problems::StepCost;
+use truecost::stochastic::file::{to_json_with_objective, FileObjective};
+use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
+
+/// The formats `export` writes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum ExportFormat {
+    /// truecost's JSON problem file.
+    #[default]
+    Json,
+    /// Storm's explicit format (exact rationals, reward model "cost", labels init and goal).
+    Drn,
+    /// The PRISM language (an mdp module, rewards "cost", label "goal").
+    Prism,
+}
 
 /// Arguments of `export`.
 #[derive(Args, Debug)]
-#[command(group(clap::ArgGroup::new("what").required(true).args(["env", "grid"])))]
+#[command(group(clap::ArgGroup::new("what").required(true).args(["env", "grid", "problem", "file"])))]
 pub struct ExportArgs {
     /// The environment (frozenlake[...], cliffwalking[...], taxi).
     #[arg(long, value_name = "SPEC")]
     env: Option<String>,
+    /// One of the paper's problems, 0 to 18 (with --gamma and --noise: the stochastic model).
+    #[arg(long, value_name = "N")]
+    problem: Option<usize>,
+    /// A problem file (JSON or DRN; a deterministic one perturbed by --gamma and --noise).
+    #[arg(long, value_name = "FILE")]
+    file: Option<PathBuf>,
     /// A benchmark grid ROWSxCOLS (4 neighbours, start top-left; costs and goals from
-    /// --pattern, by default move costs 1-4 from --seed and the goal bottom-right) as a
-    /// deterministic problem file; solve it with --gamma.
+    /// --pattern, by default move costs 1-4 from --seed and the goal bottom-right): a
+    /// deterministic problem, perturbed by --gamma and --noise if given.
     #[arg(long, value_name = "ROWSxCOLS")]
     grid: Option<String>,
     /// The seed of the benchmark grid's costs (pattern random).
@@ -32,8 +56,21 @@ pub struct ExportArgs {
     /// The integer cost range LO-HI of pattern random (default 1-4).
     #[arg(long, value_name = "LO-HI", requires = "grid")]
     costs: Option<String>,
-    /// The problem file to write (JSON).
-    #[arg(long, value_name = "FILE.json")]
+    /// Stage cost of a grid move of a paper problem [default: unit].
+    #[arg(long, value_enum, requires = "problem")]
+    step_cost: Option<StepCost>,
+    /// Predictability gamma in (0, 1] for --problem, --grid and a deterministic --file.
+    #[arg(long, value_name = "G")]
+    gamma: Option<String>,
+    /// How 1 - gamma is spread [default: paper].
+    #[arg(long, value_enum)]
+    noise: Option<NoiseModel>,
+    /// The format written: json (truecost's problem file), drn (Storm's explicit format) or
+    /// prism (the PRISM language).
+    #[arg(long, value_enum, default_value_t = ExportFormat::Json)]
+    format: ExportFormat,
+    /// The file to write.
+    #[arg(long, value_name = "FILE")]
     out: PathBuf,
 }
 
@@ -41,23 +78,58 @@ pub struct ExportArgs {
 pub fn run(args: &ExportArgs) -> Result<String, String> {
     truecost::atomic::check_target(&args.out)?;
     if let Some(size) = &args.grid {
-        return grid(
-            size,
-            args.pattern.as_deref(),
-            args.costs.as_deref(),
-            args.seed,
-            &args.out,
-        );
+        return grid(args, size);
     }
-    let env = args.env.clone().expect("clap requires --env or --grid");
-    let model = Source::Env(env).load()?;
-    let (problem, extra) = model.exportable();
-    let name = format!(
-        "{} (truecost stage costs, {})",
-        model.name, model.reward_source
-    );
-    let text = to_json_with_objective(&problem, Some(&name), &extra);
-    truecost::atomic::write(&args.out, (text + "\n").as_bytes())?;
+    let env = super::env::EnvArg {
+        env: args.env.clone(),
+    };
+    let source = super::env::source(
+        &env,
+        args.problem,
+        args.file.as_deref(),
+        args.step_cost,
+        args.gamma.as_deref(),
+        args.noise,
+    )?;
+    let model = source.load()?;
+    let (problem, mut extra) = model.exportable();
+    let name = if matches!(source, Source::Env(_)) {
+        format!(
+            "{} (truecost stage costs, {})",
+            model.name, model.reward_source
+        )
+    } else {
+        let gamma = args
+            .gamma
+            .as_deref()
+            .map(|g| Predictability::parse(g).map_err(|e| e.to_string()))
+            .transpose()?;
+        perturbed(model.name.clone(), gamma.as_ref(), args.noise)
+    };
+    // Rewards that are the negated stage costs (the default) are not written.
+    let negated = (0..problem.action_total()).all(|a| model.reward[a] == -problem.cost(a).clone());
+    if negated && !matches!(source, Source::Env(_)) {
+        extra.rewards = None;
+    }
+    write(args, &problem, &extra, &name)
+}
+
+/// Writes the problem in the format asked for and says what was written.
+fn write(
+    args: &ExportArgs,
+    problem: &StochasticProblem,
+    extra: &FileObjective,
+    name: &str,
+) -> Result<String, String> {
+    let (problem, extra) = &truecost::formats::dead_ends_as_traps(problem, extra);
+    let text = match args.format {
+        ExportFormat::Json => to_json_with_objective(problem, Some(name), extra) + "\n",
+        ExportFormat::Drn => drn::to_drn(problem, extra, Some(name)).map_err(|e| e.to_string())?,
+        ExportFormat::Prism => {
+            prism::to_prism(problem, extra, Some(name)).map_err(|e| e.to_string())?
+        }
+    };
+    truecost::atomic::write(&args.out, text.as_bytes())?;
     Ok(format!(
         "wrote {} ({} states, {} actions)\n",
         args.out.display(),
@@ -66,34 +138,35 @@ pub fn run(args: &ExportArgs) -> Result<String, String> {
     ))
 }
 
-/// `export --grid`: a grid of the pattern family as a problem file; every option is checked
-/// before the grid is built.
-fn grid(
-    size: &str,
-    pattern: Option<&str>,
-    costs: Option<&str>,
-    seed: u64,
-    out: &std::path::Path,
-) -> Result<String, String> {
+/// `export --grid`: a grid of the pattern family, deterministic (as a JSON problem file
+/// without --gamma) or perturbed by --gamma and --noise; every option is checked before the
+/// grid is built.
+fn grid(args: &ExportArgs, size: &str) -> Result<String, String> {
     use truecost::stochastic::benchmark::{
         exportable_size, parse_size, pattern_grid, CostRange, GridPattern,
     };
     let (rows, cols) = parse_size(size).map_err(|e| e.to_string())?;
     exportable_size(rows, cols).map_err(|e| e.to_string())?;
-    let pattern = match pattern {
+    let pattern = match &args.pattern {
         Some(p) => GridPattern::parse(p).map_err(|e| e.to_string())?,
         None => GridPattern::Random,
     };
-    let range = match costs {
+    let range = match &args.costs {
         Some(c) => CostRange::parse(c).map_err(|e| e.to_string())?,
         None => CostRange::DEFAULT,
     };
-    if costs.is_some() && pattern != GridPattern::Random {
+    if args.costs.is_some() && pattern != GridPattern::Random {
         return Err(format!(
             "--costs applies to --pattern random only (pattern {} has fixed costs)",
             pattern.name()
         ));
     }
+    let gamma = args
+        .gamma
+        .as_deref()
+        .map(|g| Predictability::parse(g).map_err(|e| e.to_string()))
+        .transpose()?;
+    let seed = args.seed;
     let problem = pattern_grid(rows, cols, pattern, range, seed).map_err(|e| e.to_string())?;
     let name = match pattern {
         GridPattern::Random => format!(
@@ -102,14 +175,34 @@ fn grid(
         ),
         p => format!("benchmark grid {rows}x{cols}, pattern {}", p.name()),
     };
-    let text = truecost::model::file::to_json(&problem, Some(&name));
-    truecost::atomic::write(out, (text + "\n").as_bytes())?;
-    Ok(format!(
-        "wrote {} ({} states, {} moves)\n",
-        out.display(),
-        problem.states(),
-        (0..problem.states())
-            .map(|x| problem.moves(x).len())
-            .sum::<usize>()
-    ))
+    if args.format == ExportFormat::Json && gamma.is_none() && args.noise.is_none() {
+        let text = truecost::model::file::to_json(&problem, Some(&name));
+        truecost::atomic::write(&args.out, (text + "\n").as_bytes())?;
+        return Ok(format!(
+            "wrote {} ({} states, {} moves)\n",
+            args.out.display(),
+            problem.states(),
+            (0..problem.states())
+                .map(|x| problem.moves(x).len())
+                .sum::<usize>()
+        ));
+    }
+    let name = perturbed(name, gamma.as_ref(), args.noise);
+    let noise = args.noise.unwrap_or_default();
+    let gamma = gamma.unwrap_or_else(Predictability::one);
+    let stochastic = StochasticProblem::from_deterministic(&problem, noise, &gamma)
+        .map_err(|e| e.to_string())?;
+    write(args, &stochastic, &FileObjective::default(), &name)
+}
+
+/// A deterministic source's name with the noise applied to it (nothing for `γ = 1`).
+fn perturbed(name: String, gamma: Option<&Predictability>, noise: Option<NoiseModel>) -> String {
+    match gamma.filter(|g| !g.is_deterministic()) {
+        Some(g) => format!(
+            "{name}, gamma {}, {} noise",
+            truecost::stochastic::short_text(g.value()),
+            noise.unwrap_or_default().name()
+        ),
+        None => name,
+    }
 }

@@ -22,7 +22,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use truecost::echo::echo;
 use truecost::planning::{plan_exact, plan_reference, Mode};
 use truecost::problems::{GridLayout, StepCost, GRID_NODES};
-use truecost::stochastic::file::{self as stochastic_file, ProblemFile};
+use truecost::stochastic::file::ProblemFile;
 
 /// Exact planning, the paper's problems, and machine-checked claims of "Relating Reinforcement
 /// Learning to Dynamic Programming-Based Planning" (Georgiev, Timperi, Sakçak, LaValle).
@@ -51,7 +51,8 @@ enum Command {
     Reproduce(reproduce::ReproduceArgs),
     /// Every objective side by side: success probability, expected truecost, expected steps.
     Compare(compare::CompareArgs),
-    /// Write a Gymnasium benchmark (--env) or a benchmark grid (--grid) as a problem file.
+    /// Write a problem (--env, --problem, --file, --grid) as a problem file, in Storm's DRN format
+    /// or in the PRISM language.
     Export(export::ExportArgs),
     /// Check a certificate of `solve --certificate` against the problem, re-read, in exact
     /// arithmetic (exit 0 only if every condition holds).
@@ -304,7 +305,7 @@ fn problems(args: &ProblemsArgs) -> Result<String, String> {
 /// state: a file that draws its initial state from two or more states is refused in one line
 /// naming the command, before any work.
 fn read_single_initial(path: &std::path::Path, command: &str) -> Result<ProblemFile, String> {
-    let (file, extra) = stochastic_file::read_with_objective(path).map_err(|e| e.to_string())?;
+    let (file, extra) = truecost::formats::read_with_objective(path).map_err(|e| e.to_string())?;
     extra.single_initial(command).map_err(|e| e.to_string())?;
     Ok(file)
 }

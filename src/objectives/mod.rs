@@ -720,7 +720,8 @@ pub enum Source {
 impl Source {
     /// Builds the model (reads files, builds environments). Errors are one line.
     pub fn load(&self) -> Result<Model, String> {
-        use crate::stochastic::file::{read_with_objective, ProblemFile};
+        use crate::formats::read_with_objective;
+        use crate::stochastic::file::ProblemFile;
         match self {
             Source::Env(spec) => {
                 let env = crate::envs::EnvSpec::parse(spec)

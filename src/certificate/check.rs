@@ -72,58 +72,75 @@ pub struct Acceptance {
     pub conditions: Vec<Checked>,
 }
 
-/// Every condition: its name, its statement for truecost and the deterministic `G*`, and for
-/// the discounted objective (empty where it does not apply), in the order checked. `V` are
-/// the certificate's values, `pi` its policy, `F` the states with finite `V`,
+/// Every condition: its name, its statement for truecost and the deterministic `G*`, for the
+/// discounted objective and for reach (empty where it does not apply), in the order checked.
+/// `V` are the certificate's values, `pi` its policy, `F` the states with finite `V`,
 /// `Q(x, a) = l(x, a) + sum_y p(y|x,a) V(y)`, discounted `Q(x, a) = r(x, a) + alpha sum_y
-/// p(y|x,a) V(y)`.
-pub const CONDITIONS: &[(&str, &str, &str)] = &[
+/// p(y|x,a) V(y)`, reach `Q(x, a) = sum_y p(y|x,a) V(y)`.
+pub const CONDITIONS: &[(&str, &str, &str, &str)] = &[
     (
         "problem",
         "the SHA-256 and the number of states are those of the re-read problem",
         "the SHA-256 and the number of states are those of the re-read problem",
+        "the SHA-256 and the number of states are those of the re-read problem",
     ),
-    ("deterministic", "every action has exactly one outcome (objective deterministic)", ""),
-    ("alpha", "", "0 < alpha < 1"),
-    ("finite", "", "every value is finite"),
+    ("deterministic", "every action has exactly one outcome (objective deterministic)", "", ""),
+    ("alpha", "", "0 < alpha < 1", ""),
+    ("finite", "", "every value is finite", ""),
+    ("range", "", "", "every value is finite and 0 <= V(x) <= 1"),
     (
         "goal",
         "V(x) = 0 and pi(x) = null at every goal",
         "V(x) = 0 and pi(x) = null at every terminal state",
+        "V(x) = 1 and pi(x) = null at every goal",
     ),
     (
         "policy",
         "pi(x) indexes x's actions at every non-goal x in F, null outside F",
         "pi(x) indexes x's actions at every non-terminal x",
+        "pi(x) indexes x's actions at every non-goal x with V(x) > 0, null where V(x) = 0",
     ),
-    ("closed", "every outcome of pi(x) is in F, for x in F", ""),
+    ("closed", "every outcome of pi(x) is in F, for x in F", "", ""),
     (
         "evaluation",
         "V(x) = Q(x, pi(x)) exactly at every non-goal x in F",
         "V(x) = Q(x, pi(x)) exactly at every non-terminal x",
+        "V(x) = Q(x, pi(x)) exactly at every non-goal x with V(x) > 0",
     ),
     (
         "optimality",
         "V(x) <= Q(x, a) for every non-goal x in F and action a with all outcomes in F",
         "V(x) >= Q(x, a) for every non-terminal x and action a",
+        "V(x) >= Q(x, a) for every non-goal x and action a (V is inductive: an upper bound)",
     ),
-    ("proper", "every x in F reaches a goal in the graph of pi's outcomes", ""),
+    (
+        "proper",
+        "every x in F reaches a goal in the graph of pi's outcomes",
+        "",
+        "every non-goal x with V(x) > 0 reaches a goal or a state with V = 0 in the graph of pi's outcomes",
+    ),
     (
         "infinite",
         "no x outside F is in W*, the greatest W from each of whose states a goal is reachable by actions with all outcomes in W",
         "",
+        "",
     ),
 ];
 
-fn statement(name: &'static str, discounted: bool) -> &'static str {
+/// The statement of condition `name` for `objective`.
+fn statement(name: &'static str, objective: &CertifiedObjective) -> &'static str {
     CONDITIONS
         .iter()
-        .find(|(n, _, _)| *n == name)
-        .map(|(_, t, d)| if discounted { *d } else { *t })
+        .find(|(n, _, _, _)| *n == name)
+        .map(|(_, t, d, r)| match objective {
+            CertifiedObjective::Discounted(_) => *d,
+            CertifiedObjective::Reach => *r,
+            CertifiedObjective::Truecost | CertifiedObjective::Deterministic => *t,
+        })
         .expect("a listed condition")
 }
 
-fn reject(condition: &'static str, state: Option<usize>, detail: String) -> Rejection {
+pub(super) fn reject(condition: &'static str, state: Option<usize>, detail: String) -> Rejection {
     Rejection {
         condition,
         state,
@@ -132,13 +149,13 @@ fn reject(condition: &'static str, state: Option<usize>, detail: String) -> Reje
 }
 
 /// The values over one common denominator: `V(x) = numer[x] / scale`.
-struct Scaled {
+pub(super) struct Scaled {
     numer: Vec<Option<BigInt>>,
-    scale: BigInt,
+    pub(super) scale: BigInt,
 }
 
 impl Scaled {
-    fn new(values: &[Option<Rational>]) -> Self {
+    pub(super) fn new(values: &[Option<Rational>]) -> Self {
         let mut factor: HashMap<&BigInt, BigInt> = HashMap::new();
         let mut scale = BigInt::one();
         for v in values.iter().flatten() {
@@ -159,7 +176,7 @@ impl Scaled {
 
     /// `constant + weight · Σ p(y) V(y)` as `(K, D)` with value `K / (D · scale)`, `D > 0`;
     /// `None` if an outcome's value is `inf`.
-    fn affine(
+    pub(super) fn affine(
         &self,
         constant: &Rational,
         weight: &Rational,
@@ -179,7 +196,7 @@ impl Scaled {
     }
 
     /// `V(x) · D · scale`, to compare with an [`affine`](Self::affine) `K`.
-    fn value_times(&self, x: usize, d: &BigInt) -> BigInt {
+    pub(super) fn value_times(&self, x: usize, d: &BigInt) -> BigInt {
         self.numer[x].as_ref().expect("a finite value") * d
     }
 }
@@ -192,11 +209,11 @@ pub fn check(
     certificate: &Certificate,
 ) -> Result<Acceptance, Rejection> {
     let mut done = Vec::new();
-    let is_discounted = matches!(certificate.objective, CertifiedObjective::Discounted(_));
+    let objective = &certificate.objective;
     let mut pass = |name: &'static str, instances: usize| {
         done.push(Checked {
             name,
-            statement: statement(name, is_discounted),
+            statement: statement(name, objective),
             instances,
         })
     };
@@ -249,6 +266,10 @@ pub fn check(
             discounted(mdp, certificate, alpha, &mut pass)?;
             done
         }
+        CertifiedObjective::Reach => {
+            super::reach::reach(mdp, certificate, &mut pass)?;
+            done
+        }
         objective => {
             if *objective == CertifiedObjective::Deterministic {
                 for (x, list) in mdp.actions.iter().enumerate() {
@@ -276,7 +297,7 @@ pub fn check(
 }
 
 /// The action `π(x)` names, or why it names none.
-fn chosen(mdp: &Mdp, x: usize, index: Option<u64>) -> Result<&MdpAction, String> {
+pub(super) fn chosen(mdp: &Mdp, x: usize, index: Option<u64>) -> Result<&MdpAction, String> {
     let list = &mdp.actions[x];
     match index {
         None => Err("pi(x) is null".into()),
@@ -409,7 +430,7 @@ fn truecost(
 }
 
 /// The states reached backwards from `start` along `edges_into`.
-fn backward<I: Iterator<Item = usize>>(
+pub(super) fn backward<I: Iterator<Item = usize>>(
     n: usize,
     start: &[bool],
     edges_into: impl Fn(usize) -> I,

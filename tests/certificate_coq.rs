@@ -5,8 +5,8 @@
 //! verdict, every untampered certificate is accepted by both, and most tampered ones are
 //! rejected by both. One `coqc` call decides all of them.
 
-use num_traits::Zero;
-use truecost::certificate::{self, coq, Certificate, CertifiedObjective, Identity, Mdp, MdpAction};
+use truecost::certificate::{self, coq, Certificate, CertifiedObjective, Identity, Mdp};
+use truecost::stochastic::certified::problem_mdp;
 use truecost::stochastic::{Outcome, OutcomeKind, StochasticAction, StochasticProblem};
 use truecost::value::Rational;
 
@@ -70,30 +70,6 @@ fn random_problem(rng: &mut Rng) -> StochasticProblem {
         })
         .collect();
     StochasticProblem::new(actions, 0, vec![n - 1]).expect("a well-formed problem")
-}
-
-/// The model as the checker reads it (rewards play no part in truecost).
-fn mdp_of(p: &StochasticProblem) -> Mdp {
-    let goal: Vec<bool> = (0..p.states()).map(|x| p.is_goal(x)).collect();
-    Mdp {
-        terminal: goal.clone(),
-        goal,
-        actions: (0..p.states())
-            .map(|x| {
-                p.actions(x)
-                    .map(|a| MdpAction {
-                        cost: p.cost(a).clone(),
-                        reward: Rational::zero(),
-                        outcomes: p
-                            .outcomes(a)
-                            .iter()
-                            .map(|o| (o.successor, o.probability.clone()))
-                            .collect(),
-                    })
-                    .collect()
-            })
-            .collect(),
-    }
 }
 
 /// The exact solver's certificate of `p`, read back.
@@ -178,7 +154,7 @@ fn the_rust_and_coq_checkers_agree_on_1200_certificates() {
     let (mut valid, mut tampered) = (0, 0);
     while valid < 600 || tampered < 600 {
         let p = random_problem(&mut rng);
-        let mdp = mdp_of(&p);
+        let mdp = problem_mdp(&p);
         let mut c = solved(&p, &mdp);
         let is_tampered = valid >= 600 || (tampered < 600 && rng.below(2) == 0);
         if is_tampered {
@@ -241,7 +217,7 @@ fn the_coq_checker_rejects_an_improper_zero_cost_loop() {
         vec![2],
     )
     .unwrap();
-    let mdp = mdp_of(&p);
+    let mdp = problem_mdp(&p);
     let c = solved(&p, &mdp);
     assert_eq!(c.values, vec![None, Some(r(1, 1)), Some(r(0, 1))]);
     let mut lying = c.clone();

@@ -201,6 +201,96 @@ impl Scaled {
     }
 }
 
+/// `Q(x, a) = constant(a) + weight · Σ_y p(y | x, a) V(y)` (`constant` 0 if `None`) over the
+/// certificate's values,
+/// compared with `V(x)` exactly (the "evaluation" and "optimality" conditions of every
+/// objective).
+pub(super) struct Bellman<'a> {
+    scaled: Scaled,
+    values: &'a [Option<Rational>],
+    constant: Option<fn(&MdpAction) -> &Rational>,
+    weight: Rational,
+    zero: Rational,
+}
+
+impl<'a> Bellman<'a> {
+    pub(super) fn new(
+        values: &'a [Option<Rational>],
+        constant: Option<fn(&MdpAction) -> &Rational>,
+        weight: Rational,
+    ) -> Self {
+        Bellman {
+            scaled: Scaled::new(values),
+            values,
+            constant,
+            weight,
+            zero: Rational::zero(),
+        }
+    }
+
+    /// `(K, D)` with `Q(x, a) · D · scale = K`, or `None` if an outcome's value is `inf`.
+    fn q(&self, a: &MdpAction) -> Option<(BigInt, BigInt)> {
+        let constant = self.constant.map_or(&self.zero, |f| f(a));
+        self.scaled.affine(constant, &self.weight, a)
+    }
+
+    fn shown(&self, x: usize) -> String {
+        self.values[x]
+            .as_ref()
+            .map_or_else(|| "inf".into(), |r| r.to_string())
+    }
+
+    /// "evaluation": `V(x) = Q(x, π(x))` at every state of `states` (each with a chosen action
+    /// whose outcomes are finite); the number checked.
+    pub(super) fn evaluation(
+        &self,
+        states: &[usize],
+        policy: &[Option<&MdpAction>],
+    ) -> Result<usize, Rejection> {
+        for &x in states {
+            let a = policy[x].expect("a chosen action");
+            let (k, d) = self.q(a).expect("the chosen action's outcomes are finite");
+            if k != self.scaled.value_times(x, &d) {
+                let q = Rational::new(k, d * &self.scaled.scale);
+                return Err(reject(
+                    "evaluation",
+                    Some(x),
+                    format!("V(x) = {} but Q(x, pi(x)) = {q}", self.shown(x)),
+                ));
+            }
+        }
+        Ok(states.len())
+    }
+
+    /// "optimality": `V(x) ≥ Q(x, a)` (`upper`) or `V(x) ≤ Q(x, a)` for every state of
+    /// `states` and every action whose outcomes are all finite; the number of pairs checked.
+    pub(super) fn optimality(
+        &self,
+        mdp: &Mdp,
+        states: &[usize],
+        upper: bool,
+    ) -> Result<usize, Rejection> {
+        let mut pairs = 0;
+        for &x in states {
+            for (i, a) in mdp.actions[x].iter().enumerate() {
+                let Some((k, d)) = self.q(a) else { continue };
+                pairs += 1;
+                let v = self.scaled.value_times(x, &d);
+                if (upper && k > v) || (!upper && k < v) {
+                    let q = Rational::new(k, d * &self.scaled.scale);
+                    let sign = if upper { ">" } else { "<" };
+                    return Err(reject(
+                        "optimality",
+                        Some(x),
+                        format!("action {i} has Q = {q} {sign} V(x) = {}", self.shown(x)),
+                    ));
+                }
+            }
+        }
+        Ok(pairs)
+    }
+}
+
 /// Checks `certificate` against the re-read model `mdp`, whose SHA-256 is taken as `identity`
 /// says. `Ok` lists every condition checked; `Err` is the first violation.
 pub fn check(
@@ -358,45 +448,9 @@ fn truecost(
         }
     }
     pass("closed", inner.len());
-    let scaled = Scaled::new(v);
-    let one = Rational::one();
-    for &x in &inner {
-        let a = policy[x].expect("a chosen action");
-        let (k, d) = scaled
-            .affine(&a.cost, &one, a)
-            .expect("closed: outcomes finite");
-        if k != scaled.value_times(x, &d) {
-            let q = Rational::new(k, d * &scaled.scale);
-            return Err(reject(
-                "evaluation",
-                Some(x),
-                format!(
-                    "V(x) = {} but Q(x, pi(x)) = {q}",
-                    v[x].as_ref().expect("finite")
-                ),
-            ));
-        }
-    }
-    pass("evaluation", inner.len());
-    let mut pairs = 0;
-    for &x in &inner {
-        for (i, a) in mdp.actions[x].iter().enumerate() {
-            if let Some((k, d)) = scaled.affine(&a.cost, &one, a) {
-                pairs += 1;
-                if k < scaled.value_times(x, &d) {
-                    let q = Rational::new(k, d * &scaled.scale);
-                    return Err(reject(
-                        "optimality",
-                        Some(x),
-                        format!(
-                            "action {i} has Q = {q} < V(x) = {}",
-                            v[x].as_ref().expect("finite")
-                        ),
-                    ));
-                }
-            }
-        }
-    }
+    let q = Bellman::new(v, Some(|a| &a.cost), Rational::one());
+    pass("evaluation", q.evaluation(&inner, &policy)?);
+    let pairs = q.optimality(mdp, &inner, false)?;
     pass("optimality", pairs);
     // Proper: backward search from the goals along pi's outcomes.
     let mut into: Vec<Vec<usize>> = vec![Vec::new(); n];
@@ -530,35 +584,9 @@ fn discounted(
         policy[x] = Some(chosen(mdp, x, c.policy[x]).map_err(|e| reject("policy", Some(x), e))?);
     }
     pass("policy", n);
-    let scaled = Scaled::new(&c.values);
-    for &x in &inner {
-        let a = policy[x].expect("a chosen action");
-        let (k, d) = scaled.affine(&a.reward, alpha, a).expect("finite values");
-        if k != scaled.value_times(x, &d) {
-            let q = Rational::new(k, d * &scaled.scale);
-            return Err(reject(
-                "evaluation",
-                Some(x),
-                format!("V(x) = {} but Q(x, pi(x)) = {q}", v[x]),
-            ));
-        }
-    }
-    pass("evaluation", inner.len());
-    let mut pairs = 0;
-    for &x in &inner {
-        for (i, a) in mdp.actions[x].iter().enumerate() {
-            let (k, d) = scaled.affine(&a.reward, alpha, a).expect("finite values");
-            pairs += 1;
-            if k > scaled.value_times(x, &d) {
-                let q = Rational::new(k, d * &scaled.scale);
-                return Err(reject(
-                    "optimality",
-                    Some(x),
-                    format!("action {i} has Q = {q} > V(x) = {}", v[x]),
-                ));
-            }
-        }
-    }
+    let q = Bellman::new(&c.values, Some(|a| &a.reward), alpha.clone());
+    pass("evaluation", q.evaluation(&inner, &policy)?);
+    let pairs = q.optimality(mdp, &inner, true)?;
     pass("optimality", pairs);
     Ok(())
 }

@@ -5,7 +5,7 @@
 
 use num_traits::{One, Signed, Zero};
 
-use super::check::{backward, chosen, reject, Rejection, Scaled};
+use super::check::{backward, chosen, reject, Bellman, Rejection};
 use super::format::Certificate;
 use super::mdp::{Mdp, MdpAction};
 use crate::value::Rational;
@@ -19,7 +19,6 @@ pub(super) fn reach(
 ) -> Result<(), Rejection> {
     let n = mdp.states();
     let one = Rational::one();
-    let zero = Rational::zero();
     for (x, v) in c.values.iter().enumerate() {
         match v {
             None => return Err(reject("range", Some(x), "V = inf".into())),
@@ -66,35 +65,10 @@ pub(super) fn reach(
         }
     }
     pass("policy", n);
-    let scaled = Scaled::new(&c.values);
-    for &x in &inner {
-        let a = policy[x].expect("a chosen action");
-        let (k, d) = scaled.affine(&zero, &one, a).expect("finite values");
-        if k != scaled.value_times(x, &d) {
-            let q = Rational::new(k, d * &scaled.scale);
-            return Err(reject(
-                "evaluation",
-                Some(x),
-                format!("V(x) = {} but Q(x, pi(x)) = {q}", v[x]),
-            ));
-        }
-    }
-    pass("evaluation", inner.len());
-    let mut pairs = 0;
-    for x in (0..n).filter(|&x| !mdp.goal[x]) {
-        for (i, a) in mdp.actions[x].iter().enumerate() {
-            let (k, d) = scaled.affine(&zero, &one, a).expect("finite values");
-            pairs += 1;
-            if k > scaled.value_times(x, &d) {
-                let q = Rational::new(k, d * &scaled.scale);
-                return Err(reject(
-                    "optimality",
-                    Some(x),
-                    format!("action {i} has Q = {q} > V(x) = {}", v[x]),
-                ));
-            }
-        }
-    }
+    let q = Bellman::new(&c.values, None, Rational::one());
+    pass("evaluation", q.evaluation(&inner, &policy)?);
+    let non_goals: Vec<usize> = (0..n).filter(|&x| !mdp.goal[x]).collect();
+    let pairs = q.optimality(mdp, &non_goals, true)?;
     pass("optimality", pairs);
     // Proper: backward search from the goals and the value-0 states along pi's outcomes.
     let mut into: Vec<Vec<usize>> = vec![Vec::new(); n];

@@ -131,6 +131,16 @@ fn assert_values(cert: &Value, expected: &[&str]) {
     assert_eq!(got, want, "{}", cert["values"]);
 }
 
+/// The names of the conditions an accepted certificate's JSON report lists, in order.
+fn condition_names(v: &Value) -> Vec<&str> {
+    v["conditions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["name"].as_str().unwrap())
+        .collect()
+}
+
 fn tampered(cert: &Value, edit: impl FnOnce(&mut Value)) -> Value {
     let mut c = cert.clone();
     edit(&mut c);
@@ -164,14 +174,8 @@ fn hand_problem_certificate_has_the_hand_values_and_is_accepted() {
     let v = accepted(dir.path(), &source, &cert);
     assert_eq!(v["states"], 6);
     assert_eq!(v["finite_states"], 4);
-    let names: Vec<&str> = v["conditions"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|c| c["name"].as_str().unwrap())
-        .collect();
     assert_eq!(
-        names,
+        condition_names(&v),
         [
             "problem",
             "goal",
@@ -567,14 +571,8 @@ fn the_hand_reach_certificate_is_accepted_with_every_condition_listed() {
     let source = ["--file", &s(&problem)];
     let v = accepted(dir.path(), &source, &reach_certificate(&problem));
     assert_eq!(v["objective"], "reach");
-    let names: Vec<&str> = v["conditions"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|c| c["name"].as_str().unwrap())
-        .collect();
     assert_eq!(
-        names,
+        condition_names(&v),
         [
             "problem",
             "range",

@@ -15,36 +15,11 @@
 //! bytes instead, which is cheaper). Run with `cargo bench --bench certificate`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use truecost::certificate::{self, CertifiedObjective, Identity, Mdp, MdpAction, ProblemRecord};
+use truecost::certificate::{self, CertifiedObjective, Identity, ProblemRecord};
 use truecost::stochastic::benchmark::cost_grid;
-use truecost::stochastic::certified::optimum_certificate;
+use truecost::stochastic::certified::{optimum_certificate, problem_mdp};
 use truecost::stochastic::policy_iteration::{optimum, Optimum};
 use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
-
-/// The model as `truecost check` reads it (negated costs as rewards; goals terminal).
-fn mdp_of(p: &StochasticProblem) -> Mdp {
-    Mdp {
-        goal: (0..p.states()).map(|x| p.is_goal(x)).collect(),
-        terminal: (0..p.states())
-            .map(|x| p.is_goal(x) || p.actions(x).is_empty())
-            .collect(),
-        actions: (0..p.states())
-            .map(|x| {
-                p.actions(x)
-                    .map(|a| MdpAction {
-                        cost: p.cost(a).clone(),
-                        reward: -p.cost(a).clone(),
-                        outcomes: p
-                            .outcomes(a)
-                            .iter()
-                            .map(|o| (o.successor, o.probability.clone()))
-                            .collect(),
-                    })
-                    .collect()
-            })
-            .collect(),
-    }
-}
 
 fn write(p: &StochasticProblem, opt: &Optimum, objective: &CertifiedObjective) -> String {
     let record = ProblemRecord {
@@ -53,7 +28,7 @@ fn write(p: &StochasticProblem, opt: &Optimum, objective: &CertifiedObjective) -
         gamma: None,
         noise: None,
         step_cost: None,
-        sha256: certificate::sha256_hex(mdp_of(p).canonical_text().as_bytes()),
+        sha256: certificate::sha256_hex(problem_mdp(p).canonical_text().as_bytes()),
         sha256_of: certificate::CANONICAL_FORMAT.into(),
     };
     optimum_certificate(p, opt, objective, &record)
@@ -81,7 +56,7 @@ fn grids(c: &mut Criterion) {
             })
         });
         let text = write(&p, &optimum(&p).expect("solvable"), &objective);
-        let mdp = mdp_of(&p);
+        let mdp = problem_mdp(&p);
         group.bench_function("check", |b| {
             b.iter(|| {
                 let cert = certificate::parse(black_box(&text)).expect("a certificate");

@@ -10,6 +10,8 @@
     ([certificate_optimal]). The core is [maximum_principle]: [D = V - J] satisfies
     [D x <= sum_y p D y] at non-goals and [D = 0] at goals; where [D] is largest the outcomes
     stay where it is largest, so a goal reachable from there has the largest [D], which is 0.
+    The "infinite" condition rests on [proper_inside_Wstar]: a state from which some policy is
+    proper lies in the checker's [W*].
 
     Properness is the graph condition the checker also uses: from every state of [S] a goal is
     reachable along outcomes of positive probability ([reaches]). States are natural numbers;
@@ -184,3 +186,55 @@ Section MaximumPrinciple.
   Qed.
 
 End MaximumPrinciple.
+
+(** * States outside [W*] have no proper policy.
+
+    The checker's "infinite" condition asks that no state of value [inf] lie in [W*], which it
+    computes from [W] = every state by keeping the states from which a goal is reachable
+    using only actions whose outcomes all stay in [W] ([survives]), until nothing changes.
+    [acts x] are the outcome lists of [x]'s actions. Whatever the number [k] of rounds,
+    the states from which a stationary policy [mu] (choosing among [acts]) is proper — the
+    states of a set [R] closed under [mu]'s outcomes, from each of which a goal is reachable
+    along them — are all in the [k]-th set ([proper_inside_Wstar]). So a state outside the
+    final set has no proper policy, and [inf] is its truecost optimum. (The checker keeps,
+    in each round, only states of the previous round; the rounds here decrease anyway, since
+    [survives] is monotone in [W], so the sets are the same.) *)
+
+Section Wstar.
+
+  Variable goal : nat -> bool.
+  Variable acts : nat -> list (list (nat * Q)).
+
+  (** A goal is reachable from [x] using only actions whose outcomes all satisfy [W]. *)
+  Inductive survives (W : nat -> Prop) : nat -> Prop :=
+  | survives_goal : forall x, goal x = true -> survives W x
+  | survives_step : forall x a y p,
+      goal x = false -> In a (acts x) -> (forall z q, In (z, q) a -> W z) ->
+      In (y, p) a -> 0 < p -> survives W y -> survives W x.
+
+  (** The [k]-th round, from every state. *)
+  Fixpoint rounds (k : nat) : nat -> Prop :=
+    match k with
+    | O => fun _ => True
+    | S k' => survives (rounds k')
+    end.
+
+  Theorem proper_inside_Wstar : forall (mu : nat -> list (nat * Q)) (R : list nat),
+    (forall x, In x R -> goal x = false -> In (mu x) (acts x)) ->
+    (forall x y p, In x R -> goal x = false -> In (y, p) (mu x) -> In y R) ->
+    (forall x, In x R -> reaches goal mu x) ->
+    forall k x, In x R -> rounds k x.
+  Proof.
+    intros mu R Hact Hclosed Hproper k.
+    induction k as [| k IH]; intros x Hx; simpl; [exact I |].
+    specialize (Hproper x Hx).
+    induction Hproper as [x Hg | x y p Hg Hin Hp Hr IHr].
+    - apply survives_goal. exact Hg.
+    - apply (survives_step (rounds k) x (mu x) y p Hg (Hact x Hx Hg)).
+      + intros z q Hzq. apply IH. exact (Hclosed x z q Hx Hg Hzq).
+      + exact Hin.
+      + exact Hp.
+      + apply IHr. exact (Hclosed x y p Hx Hg Hin).
+  Qed.
+
+End Wstar.

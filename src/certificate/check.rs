@@ -72,58 +72,75 @@ pub struct Acceptance {
     pub conditions: Vec<Checked>,
 }
 
-/// Every condition: its name, its statement for truecost and the deterministic `G*`, and for
-/// the discounted objective (empty where it does not apply), in the order checked. `V` are
-/// the certificate's values, `pi` its policy, `F` the states with finite `V`,
+/// Every condition: its name, its statement for truecost and the deterministic `G*`, for the
+/// discounted objective and for reach (empty where it does not apply), in the order checked.
+/// `V` are the certificate's values, `pi` its policy, `F` the states with finite `V`,
 /// `Q(x, a) = l(x, a) + sum_y p(y|x,a) V(y)`, discounted `Q(x, a) = r(x, a) + alpha sum_y
-/// p(y|x,a) V(y)`.
-pub const CONDITIONS: &[(&str, &str, &str)] = &[
+/// p(y|x,a) V(y)`, reach `Q(x, a) = sum_y p(y|x,a) V(y)`.
+pub const CONDITIONS: &[(&str, &str, &str, &str)] = &[
     (
         "problem",
         "the SHA-256 and the number of states are those of the re-read problem",
         "the SHA-256 and the number of states are those of the re-read problem",
+        "the SHA-256 and the number of states are those of the re-read problem",
     ),
-    ("deterministic", "every action has exactly one outcome (objective deterministic)", ""),
-    ("alpha", "", "0 < alpha < 1"),
-    ("finite", "", "every value is finite"),
+    ("deterministic", "every action has exactly one outcome (objective deterministic)", "", ""),
+    ("alpha", "", "0 < alpha < 1", ""),
+    ("finite", "", "every value is finite", ""),
+    ("range", "", "", "every value is finite and 0 <= V(x) <= 1"),
     (
         "goal",
         "V(x) = 0 and pi(x) = null at every goal",
         "V(x) = 0 and pi(x) = null at every terminal state",
+        "V(x) = 1 and pi(x) = null at every goal",
     ),
     (
         "policy",
         "pi(x) indexes x's actions at every non-goal x in F, null outside F",
         "pi(x) indexes x's actions at every non-terminal x",
+        "pi(x) indexes x's actions at every non-goal x with V(x) > 0, null where V(x) = 0",
     ),
-    ("closed", "every outcome of pi(x) is in F, for x in F", ""),
+    ("closed", "every outcome of pi(x) is in F, for x in F", "", ""),
     (
         "evaluation",
         "V(x) = Q(x, pi(x)) exactly at every non-goal x in F",
         "V(x) = Q(x, pi(x)) exactly at every non-terminal x",
+        "V(x) = Q(x, pi(x)) exactly at every non-goal x with V(x) > 0",
     ),
     (
         "optimality",
         "V(x) <= Q(x, a) for every non-goal x in F and action a with all outcomes in F",
         "V(x) >= Q(x, a) for every non-terminal x and action a",
+        "V(x) >= Q(x, a) for every non-goal x and action a (V is inductive: an upper bound)",
     ),
-    ("proper", "every x in F reaches a goal in the graph of pi's outcomes", ""),
+    (
+        "proper",
+        "every x in F reaches a goal in the graph of pi's outcomes",
+        "",
+        "every non-goal x with V(x) > 0 reaches a goal or a state with V = 0 in the graph of pi's outcomes",
+    ),
     (
         "infinite",
         "no x outside F is in W*, the greatest W from each of whose states a goal is reachable by actions with all outcomes in W",
         "",
+        "",
     ),
 ];
 
-fn statement(name: &'static str, discounted: bool) -> &'static str {
+/// The statement of condition `name` for `objective`.
+fn statement(name: &'static str, objective: &CertifiedObjective) -> &'static str {
     CONDITIONS
         .iter()
-        .find(|(n, _, _)| *n == name)
-        .map(|(_, t, d)| if discounted { *d } else { *t })
+        .find(|(n, _, _, _)| *n == name)
+        .map(|(_, t, d, r)| match objective {
+            CertifiedObjective::Discounted(_) => *d,
+            CertifiedObjective::Reach => *r,
+            CertifiedObjective::Truecost | CertifiedObjective::Deterministic => *t,
+        })
         .expect("a listed condition")
 }
 
-fn reject(condition: &'static str, state: Option<usize>, detail: String) -> Rejection {
+pub(super) fn reject(condition: &'static str, state: Option<usize>, detail: String) -> Rejection {
     Rejection {
         condition,
         state,
@@ -132,13 +149,13 @@ fn reject(condition: &'static str, state: Option<usize>, detail: String) -> Reje
 }
 
 /// The values over one common denominator: `V(x) = numer[x] / scale`.
-struct Scaled {
+pub(super) struct Scaled {
     numer: Vec<Option<BigInt>>,
-    scale: BigInt,
+    pub(super) scale: BigInt,
 }
 
 impl Scaled {
-    fn new(values: &[Option<Rational>]) -> Self {
+    pub(super) fn new(values: &[Option<Rational>]) -> Self {
         let mut factor: HashMap<&BigInt, BigInt> = HashMap::new();
         let mut scale = BigInt::one();
         for v in values.iter().flatten() {
@@ -159,7 +176,7 @@ impl Scaled {
 
     /// `constant + weight · Σ p(y) V(y)` as `(K, D)` with value `K / (D · scale)`, `D > 0`;
     /// `None` if an outcome's value is `inf`.
-    fn affine(
+    pub(super) fn affine(
         &self,
         constant: &Rational,
         weight: &Rational,
@@ -179,8 +196,98 @@ impl Scaled {
     }
 
     /// `V(x) · D · scale`, to compare with an [`affine`](Self::affine) `K`.
-    fn value_times(&self, x: usize, d: &BigInt) -> BigInt {
+    pub(super) fn value_times(&self, x: usize, d: &BigInt) -> BigInt {
         self.numer[x].as_ref().expect("a finite value") * d
+    }
+}
+
+/// `Q(x, a) = constant(a) + weight · Σ_y p(y | x, a) V(y)` (`constant` 0 if `None`) over the
+/// certificate's values,
+/// compared with `V(x)` exactly (the "evaluation" and "optimality" conditions of every
+/// objective).
+pub(super) struct Bellman<'a> {
+    scaled: Scaled,
+    values: &'a [Option<Rational>],
+    constant: Option<fn(&MdpAction) -> &Rational>,
+    weight: Rational,
+    zero: Rational,
+}
+
+impl<'a> Bellman<'a> {
+    pub(super) fn new(
+        values: &'a [Option<Rational>],
+        constant: Option<fn(&MdpAction) -> &Rational>,
+        weight: Rational,
+    ) -> Self {
+        Bellman {
+            scaled: Scaled::new(values),
+            values,
+            constant,
+            weight,
+            zero: Rational::zero(),
+        }
+    }
+
+    /// `(K, D)` with `Q(x, a) · D · scale = K`, or `None` if an outcome's value is `inf`.
+    fn q(&self, a: &MdpAction) -> Option<(BigInt, BigInt)> {
+        let constant = self.constant.map_or(&self.zero, |f| f(a));
+        self.scaled.affine(constant, &self.weight, a)
+    }
+
+    fn shown(&self, x: usize) -> String {
+        self.values[x]
+            .as_ref()
+            .map_or_else(|| "inf".into(), |r| r.to_string())
+    }
+
+    /// "evaluation": `V(x) = Q(x, π(x))` at every state of `states` (each with a chosen action
+    /// whose outcomes are finite); the number checked.
+    pub(super) fn evaluation(
+        &self,
+        states: &[usize],
+        policy: &[Option<&MdpAction>],
+    ) -> Result<usize, Rejection> {
+        for &x in states {
+            let a = policy[x].expect("a chosen action");
+            let (k, d) = self.q(a).expect("the chosen action's outcomes are finite");
+            if k != self.scaled.value_times(x, &d) {
+                let q = Rational::new(k, d * &self.scaled.scale);
+                return Err(reject(
+                    "evaluation",
+                    Some(x),
+                    format!("V(x) = {} but Q(x, pi(x)) = {q}", self.shown(x)),
+                ));
+            }
+        }
+        Ok(states.len())
+    }
+
+    /// "optimality": `V(x) ≥ Q(x, a)` (`upper`) or `V(x) ≤ Q(x, a)` for every state of
+    /// `states` and every action whose outcomes are all finite; the number of pairs checked.
+    pub(super) fn optimality(
+        &self,
+        mdp: &Mdp,
+        states: &[usize],
+        upper: bool,
+    ) -> Result<usize, Rejection> {
+        let mut pairs = 0;
+        for &x in states {
+            for (i, a) in mdp.actions[x].iter().enumerate() {
+                let Some((k, d)) = self.q(a) else { continue };
+                pairs += 1;
+                let v = self.scaled.value_times(x, &d);
+                if (upper && k > v) || (!upper && k < v) {
+                    let q = Rational::new(k, d * &self.scaled.scale);
+                    let sign = if upper { ">" } else { "<" };
+                    return Err(reject(
+                        "optimality",
+                        Some(x),
+                        format!("action {i} has Q = {q} {sign} V(x) = {}", self.shown(x)),
+                    ));
+                }
+            }
+        }
+        Ok(pairs)
     }
 }
 
@@ -192,11 +299,11 @@ pub fn check(
     certificate: &Certificate,
 ) -> Result<Acceptance, Rejection> {
     let mut done = Vec::new();
-    let is_discounted = matches!(certificate.objective, CertifiedObjective::Discounted(_));
+    let objective = &certificate.objective;
     let mut pass = |name: &'static str, instances: usize| {
         done.push(Checked {
             name,
-            statement: statement(name, is_discounted),
+            statement: statement(name, objective),
             instances,
         })
     };
@@ -249,6 +356,10 @@ pub fn check(
             discounted(mdp, certificate, alpha, &mut pass)?;
             done
         }
+        CertifiedObjective::Reach => {
+            super::reach::reach(mdp, certificate, &mut pass)?;
+            done
+        }
         objective => {
             if *objective == CertifiedObjective::Deterministic {
                 for (x, list) in mdp.actions.iter().enumerate() {
@@ -276,7 +387,7 @@ pub fn check(
 }
 
 /// The action `π(x)` names, or why it names none.
-fn chosen(mdp: &Mdp, x: usize, index: Option<u64>) -> Result<&MdpAction, String> {
+pub(super) fn chosen(mdp: &Mdp, x: usize, index: Option<u64>) -> Result<&MdpAction, String> {
     let list = &mdp.actions[x];
     match index {
         None => Err("pi(x) is null".into()),
@@ -337,45 +448,9 @@ fn truecost(
         }
     }
     pass("closed", inner.len());
-    let scaled = Scaled::new(v);
-    let one = Rational::one();
-    for &x in &inner {
-        let a = policy[x].expect("a chosen action");
-        let (k, d) = scaled
-            .affine(&a.cost, &one, a)
-            .expect("closed: outcomes finite");
-        if k != scaled.value_times(x, &d) {
-            let q = Rational::new(k, d * &scaled.scale);
-            return Err(reject(
-                "evaluation",
-                Some(x),
-                format!(
-                    "V(x) = {} but Q(x, pi(x)) = {q}",
-                    v[x].as_ref().expect("finite")
-                ),
-            ));
-        }
-    }
-    pass("evaluation", inner.len());
-    let mut pairs = 0;
-    for &x in &inner {
-        for (i, a) in mdp.actions[x].iter().enumerate() {
-            if let Some((k, d)) = scaled.affine(&a.cost, &one, a) {
-                pairs += 1;
-                if k < scaled.value_times(x, &d) {
-                    let q = Rational::new(k, d * &scaled.scale);
-                    return Err(reject(
-                        "optimality",
-                        Some(x),
-                        format!(
-                            "action {i} has Q = {q} < V(x) = {}",
-                            v[x].as_ref().expect("finite")
-                        ),
-                    ));
-                }
-            }
-        }
-    }
+    let q = Bellman::new(v, Some(|a| &a.cost), Rational::one());
+    pass("evaluation", q.evaluation(&inner, &policy)?);
+    let pairs = q.optimality(mdp, &inner, false)?;
     pass("optimality", pairs);
     // Proper: backward search from the goals along pi's outcomes.
     let mut into: Vec<Vec<usize>> = vec![Vec::new(); n];
@@ -409,7 +484,7 @@ fn truecost(
 }
 
 /// The states reached backwards from `start` along `edges_into`.
-fn backward<I: Iterator<Item = usize>>(
+pub(super) fn backward<I: Iterator<Item = usize>>(
     n: usize,
     start: &[bool],
     edges_into: impl Fn(usize) -> I,
@@ -509,35 +584,9 @@ fn discounted(
         policy[x] = Some(chosen(mdp, x, c.policy[x]).map_err(|e| reject("policy", Some(x), e))?);
     }
     pass("policy", n);
-    let scaled = Scaled::new(&c.values);
-    for &x in &inner {
-        let a = policy[x].expect("a chosen action");
-        let (k, d) = scaled.affine(&a.reward, alpha, a).expect("finite values");
-        if k != scaled.value_times(x, &d) {
-            let q = Rational::new(k, d * &scaled.scale);
-            return Err(reject(
-                "evaluation",
-                Some(x),
-                format!("V(x) = {} but Q(x, pi(x)) = {q}", v[x]),
-            ));
-        }
-    }
-    pass("evaluation", inner.len());
-    let mut pairs = 0;
-    for &x in &inner {
-        for (i, a) in mdp.actions[x].iter().enumerate() {
-            let (k, d) = scaled.affine(&a.reward, alpha, a).expect("finite values");
-            pairs += 1;
-            if k > scaled.value_times(x, &d) {
-                let q = Rational::new(k, d * &scaled.scale);
-                return Err(reject(
-                    "optimality",
-                    Some(x),
-                    format!("action {i} has Q = {q} > V(x) = {}", v[x]),
-                ));
-            }
-        }
-    }
+    let q = Bellman::new(&c.values, Some(|a| &a.reward), alpha.clone());
+    pass("evaluation", q.evaluation(&inner, &policy)?);
+    let pairs = q.optimality(mdp, &inner, true)?;
     pass("optimality", pairs);
     Ok(())
 }

@@ -14,8 +14,9 @@
 //! }
 //! ```
 //!
-//! * `objective`: `truecost`, `discounted` (with `alpha`, a fraction in `(0, 1)`) or
-//!   `deterministic` (the deterministic planners' `G*`: every action has one outcome).
+//! * `objective`: `truecost`, `discounted` (with `alpha`, a fraction in `(0, 1)`),
+//!   `deterministic` (the deterministic planners' `G*`: every action has one outcome) or
+//!   `reach` (the greatest probability of reaching a goal).
 //! * `problem`: how to rebuild the problem — `source` `file` (`name` the path as given),
 //!   `problem` (`name` the paper problem's number, `step_cost` `unit` or `euclidean`) or `env`
 //!   (`name` the `--env` text); `gamma` (a fraction) and `noise` (`paper` or `reference`) when
@@ -27,7 +28,7 @@
 //!   decimal digits, a positive denominator), or `"inf"` (truecost, deterministic: no policy
 //!   reaches a goal with probability 1).
 //! * `policy`: per state, the index of the chosen action in the state's action list, or `null`
-//!   (goals, terminal states, `inf` states).
+//!   (goals, terminal states, `inf` states; for reach, the states of probability 0).
 
 use num_bigint::BigInt;
 use num_traits::{Signed, Zero};
@@ -47,6 +48,8 @@ pub enum CertifiedObjective {
     Discounted(Rational),
     /// The deterministic planners' `G*` (every action has a single outcome).
     Deterministic,
+    /// Greatest probability of reaching a goal.
+    Reach,
 }
 
 impl CertifiedObjective {
@@ -56,6 +59,7 @@ impl CertifiedObjective {
             CertifiedObjective::Truecost => "truecost",
             CertifiedObjective::Discounted(_) => "discounted",
             CertifiedObjective::Deterministic => "deterministic",
+            CertifiedObjective::Reach => "reach",
         }
     }
 }
@@ -218,11 +222,12 @@ pub fn parse(text: &str) -> Result<Certificate, String> {
     }
     let alpha = optional_string(top, "the certificate", "alpha")?;
     let objective = match string(top, "the certificate", "objective")?.as_str() {
-        "truecost" | "deterministic" if alpha.is_some() => {
+        "truecost" | "deterministic" | "reach" if alpha.is_some() => {
             return Err("\"alpha\" is given but the objective is not discounted".into())
         }
         "truecost" => CertifiedObjective::Truecost,
         "deterministic" => CertifiedObjective::Deterministic,
+        "reach" => CertifiedObjective::Reach,
         "discounted" => {
             let a = alpha.ok_or("the discounted objective needs \"alpha\"")?;
             let a = parse_exact(&a).ok_or_else(|| {
@@ -235,7 +240,7 @@ pub fn parse(text: &str) -> Result<Certificate, String> {
         }
         other => {
             return Err(format!(
-                "unknown objective {} (truecost, discounted, deterministic)",
+                "unknown objective {} (truecost, discounted, deterministic, reach)",
                 crate::echo::echo(other)
             ))
         }

@@ -47,6 +47,14 @@
 //!   is closed under `μ` and holds no goal, so `μ` is not proper from `z` — a contradiction.
 //!   So `M ≤ 0`: `V(x) ≤ J_μ(x)`, and `V = J_π` attains it.
 //!
+//! In Coq (`proofs/coq/Certificate.v`, re-checked by `verify`'s Coq level): the maximum
+//! principle is `Truecost.Certificate.maximum_principle`, the optimality of `V` against every
+//! policy proper on a closed set is `Truecost.Certificate.certificate_optimal`, and "no policy
+//! is proper from a state outside `W*`" is `Truecost.Certificate.proper_inside_Wstar` (every
+//! round of the checker's iteration contains every closed set from which a policy is proper).
+//! The first point — a policy proper on `F` has `J_π` as the unique solution of its equations
+//! — is the standard fact about absorbing Markov chains, argued here, not proved in Coq.
+//!
 //! Nothing above uses `l ≥ 0` (the readers refuse negative stage costs anyway), and the
 //! conditions are checked exactly: values over one common denominator, each `Q` as an integer
 //! numerator over a positive integer denominator, compared by cross-multiplication.
@@ -71,6 +79,42 @@
 //! `V = Q(·, π)` makes `V` the value of `π` (the unique fixed point of its own contraction),
 //! so `π` is optimal.
 //!
+//! # Reach (greatest probability of reaching a goal)
+//!
+//! With `Q(x, a) = Σ_y p(y | x, a) V(y)` and `Z = {x : V(x) = 0}`: **range** every value is
+//! finite and in `[0, 1]`; **goal** `V = 1` and `π = null` at goals; **policy** `π(x)` indexes
+//! `U(x)` at every non-goal `x ∉ Z`, `π = null` on `Z`; **evaluation** `V(x) = Q(x, π(x))`
+//! exactly at every non-goal `x ∉ Z`; **optimality** `V(x) ≥ Q(x, a)` for every non-goal `x`
+//! and every `a ∈ U(x)`; **proper** from every non-goal `x ∉ Z` a goal or a state of `Z` is
+//! reachable in the graph of `π`'s outcomes. These are the two halves of the certificates
+//! Storm emits for reachability, made exact: an *inductive* upper bound and a lower bound by a
+//! policy whose absorption a ranking (here the graph search) guarantees; with exact values one
+//! vector serves as both.
+//!
+//! * *Upper bound: no policy (even history-dependent) reaches a goal from `x` with probability
+//!   above `V(x)`.* Let `Φ(W)(x) = 1` at goals, `max_a Q_W(x, a)` elsewhere (0 without
+//!   actions). `Φ` is monotone, and goal, optimality and range give `Φ(V) ≤ V` (at a state
+//!   without actions `Φ(V) = 0 ≤ V`). The probability that a policy reaches a goal within `k`
+//!   steps is at most `Φ^k(0)` (induction on `k`, conditioning on the first step), and
+//!   `Φ^k(0) ≤ Φ^k(V) ≤ V`; let `k → ∞`.
+//! * *Lower bound: `π` reaches a goal from `x` with probability at least `V(x)`.* Make the goals
+//!   and `Z` absorbing: by **proper**, from every other state `π` reaches them with positive
+//!   probability, so with probability 1. Let `J(x)` be the probability of being absorbed at a
+//!   goal; `J = 1` at goals, `0` on `Z`, `J = P_π J` elsewhere, and `V` satisfies the same
+//!   (goal, evaluation, `V = 0` on `Z`). `D = V − J` has `D = 0` on the absorbing states and
+//!   `D = P_π D` elsewhere, so `D ≤ 0` by the maximum principle above
+//!   (`Truecost.Certificate.maximum_principle` with the goals and `Z` as its goals): `V ≤ J`,
+//!   and `J` is at most the probability that `π` (continued anyhow on `Z`) reaches a goal.
+//!
+//! So `V` is the greatest reach probability from every state and `π` attains it. The upper
+//! bound is argued here, not proved in Coq.
+//!
+//! # The verified checker
+//!
+//! [`coq`] runs the same truecost conditions as a Coq function (`proofs/coq/CertificateCheck.v`)
+//! whose soundness is proved in Coq for every finite model
+//! (`Truecost.CertificateCheck.check_policy`, `Truecost.CertificateCheck.check_optimal`).
+//!
 //! # The problem
 //!
 //! The checker never reads the certificate's problem: the caller re-reads it, and the
@@ -79,8 +123,10 @@
 //! the model (**problem**).
 
 mod check;
+pub mod coq;
 mod format;
 mod mdp;
+mod reach;
 mod sha256;
 
 pub use check::{check, Acceptance, Checked, Identity, Rejection, CONDITIONS};

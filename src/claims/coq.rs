@@ -64,6 +64,8 @@ pub enum Quantifier {
     PaperExample,
     /// One concrete counterexample to a statement as printed.
     Counterexample,
+    /// Every finite Markov decision process (the soundness of `truecost check`'s conditions).
+    EveryFiniteMdp,
 }
 
 impl Quantifier {
@@ -78,6 +80,7 @@ impl Quantifier {
             Quantifier::EveryFiniteProblem => "every finite problem",
             Quantifier::PaperExample => "the paper's worked example (one fixed problem)",
             Quantifier::Counterexample => "one counterexample (a fixed problem)",
+            Quantifier::EveryFiniteMdp => "every finite Markov decision process",
         }
     }
 }
@@ -329,6 +332,63 @@ c4_corrected applies to every such problem",
         weaker: None,
         scope: Quantifier::EveryFiniteProblem,
     },
+    Theorem {
+        claim: "certificates",
+        kind: Kind::Proves,
+        name: "Truecost.Certificate.maximum_principle",
+        file: "proofs/coq/Certificate.v",
+        statement: "for every finite set S of states closed under a policy's outcomes (non-negative probabilities \
+summing to 1) from each of whose states a goal is reachable along outcomes of positive probability: every D with \
+D = 0 at the goals of S and D(x) <= sum_y p(y|x) D(y) at its other states has D <= 0 on S",
+        weaker: None,
+        scope: Quantifier::EveryFiniteMdp,
+    },
+    Theorem {
+        claim: "certificates",
+        kind: Kind::Proves,
+        name: "Truecost.Certificate.certificate_optimal",
+        file: "proofs/coq/Certificate.v",
+        statement: "for S and a policy mu as in maximum_principle: values V with V = 0 at goals and \
+V(x) <= c(x, mu(x)) + sum_y p V(y) elsewhere (the checker's goal and optimality conditions) are at most mu's \
+expected cost J (J = 0 at goals, J(x) = c(x, mu(x)) + sum_y p J(y)) on S",
+        weaker: None,
+        scope: Quantifier::EveryFiniteMdp,
+    },
+    Theorem {
+        claim: "certificates",
+        kind: Kind::Proves,
+        name: "Truecost.Certificate.proper_inside_Wstar",
+        file: "proofs/coq/Certificate.v",
+        statement: "for every finite MDP and every set R closed under a stationary policy mu, from each of whose \
+states mu reaches a goal along outcomes of positive probability: R lies in every round of the checker's W* \
+iteration (from all states, keep those reaching a goal by actions whose outcomes all stay in the previous round), \
+so a state outside W* has no proper policy",
+        weaker: None,
+        scope: Quantifier::EveryFiniteMdp,
+    },
+    Theorem {
+        claim: "certificates",
+        kind: Kind::Proves,
+        name: "Truecost.CertificateCheck.check_policy",
+        file: "proofs/coq/CertificateCheck.v",
+        statement: "for every finite model (goal flags, actions with costs and outcomes) and every certificate \
+(values, policy, hints) that the Coq checker check accepts: at every finite non-goal state the policy's action has \
+all its outcomes finite, the value solves the policy's equation exactly, and a goal is reachable along the policy's \
+outcomes",
+        weaker: None,
+        scope: Quantifier::EveryFiniteMdp,
+    },
+    Theorem {
+        claim: "certificates",
+        kind: Kind::Proves,
+        name: "Truecost.CertificateCheck.check_optimal",
+        file: "proofs/coq/CertificateCheck.v",
+        statement: "for every finite model and every certificate that check accepts: for every stationary policy mu, \
+every set S closed under mu's outcomes from each of whose states mu reaches a goal, and every J solving mu's \
+equations on S (its expected cost), every state of S has a finite value, at most J",
+        weaker: None,
+        scope: Quantifier::EveryFiniteMdp,
+    },
 ];
 
 /// What the C1 theorems are weaker than the paper's statement in.
@@ -390,6 +450,10 @@ pub const SOURCES: &[(&str, &str)] = &[
     (
         "Certificate.v",
         include_str!("../../proofs/coq/Certificate.v"),
+    ),
+    (
+        "CertificateCheck.v",
+        include_str!("../../proofs/coq/CertificateCheck.v"),
     ),
 ];
 

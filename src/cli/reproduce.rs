@@ -114,6 +114,12 @@ struct StochasticArgs {
     /// stdout for `reproduce merge`.
     #[arg(long, value_name = "K/N", conflicts_with_all = ["against_published", "out", "plots", "format"])]
     shard: Option<String>,
+    /// Also write the certificate of every exact optimum the comparison measures against (one
+    /// per problem and γ: its truecost optimum under the noise model and the tolerance's step
+    /// cost) to DIR, as `problem-<N>-gamma-<γ>.cert.json`; `truecost check --problem N FILE`
+    /// checks each.
+    #[arg(long, value_name = "DIR", conflicts_with = "shard")]
+    certificates: Option<PathBuf>,
     #[command(flatten)]
     output: Output,
 }
@@ -448,6 +454,13 @@ fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
         return file.map_err(e);
     }
     args.output.prepare("stochastic")?;
+    if let Some(dir) = &args.certificates {
+        let step = match args.tolerance {
+            Tolerance::Relative => StepCost::Unit,
+            Tolerance::Reference => StepCost::Euclidean,
+        };
+        write_certificates(dir, &settings.problems, &args.gammas, args.noise, step)?;
+    }
     let bar = progress_bar(args.output.quiet, stochastic::total_runs(&settings));
     let mut report = stochastic::run(&settings, &|k| bar.inc(k)).map_err(e)?;
     bar.finish_and_clear();
@@ -462,6 +475,57 @@ fn stochastic_command(args: &StochasticArgs) -> Result<String, String> {
         },
         || truecost::figures::plots::stochastic(&report),
     )
+}
+
+/// The certificate of the exact truecost optimum of every paper problem of `problems` at
+/// every `γ` of `gammas` (as given), under `noise` with step cost `step`, written to `dir`.
+fn write_certificates(
+    dir: &Path,
+    problems: &[usize],
+    gammas: &[String],
+    noise: truecost::stochastic::NoiseModel,
+    step: StepCost,
+) -> Result<(), String> {
+    use truecost::certificate::CertifiedObjective;
+    std::fs::create_dir_all(dir).map_err(|e| {
+        format!(
+            "cannot create --certificates {}: {e}",
+            truecost::echo::echo(&dir.display().to_string())
+        )
+    })?;
+    for &id in problems {
+        for g in gammas {
+            let g = g.trim();
+            let gamma = Predictability::parse(g).map_err(|e| e.to_string())?;
+            let model = truecost::objectives::Source::Paper {
+                id,
+                step,
+                noise,
+                gamma,
+            }
+            .load()?;
+            let opt = truecost::stochastic::policy_iteration::optimum(&model.problem)
+                .map_err(|e| e.to_string())?;
+            let record = super::certify::CertifiedSource {
+                file: None,
+                problem: Some(id),
+                env: None,
+                step: Some(step),
+                gamma: Some(g),
+                noise: Some(noise),
+            }
+            .record(|| super::certify::mdp_of(&model))?;
+            let text = truecost::stochastic::certified::optimum_certificate(
+                &model.problem,
+                &opt,
+                &CertifiedObjective::Truecost,
+                &record,
+            );
+            let name = format!("problem-{id}-gamma-{}.cert.json", g.replace('/', "over"));
+            super::certify::write_certificate(&dir.join(name), &text)?;
+        }
+    }
+    Ok(())
 }
 
 fn write_file(path: &Path, text: &str) -> Result<(), String> {

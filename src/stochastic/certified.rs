@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use super::policy_iteration::Optimum;
 use super::StochasticProblem;
-use crate::certificate::{self, CertifiedObjective, ProblemRecord};
+use crate::certificate::{self, CertifiedObjective, Mdp, MdpAction, ProblemRecord};
 use crate::model::Decision;
 
 /// The certificate's text for `opt`, the exact optimum of `problem`.
@@ -51,5 +51,33 @@ fn unreduced_texts(opt: &Optimum, n: usize) -> Vec<String> {
         (0..n).into_par_iter().map(text).collect()
     } else {
         (0..n).map(text).collect()
+    }
+}
+
+/// `problem` as the certificate checker reads it ([`crate::certificate::Mdp`]): its stage
+/// costs, their negations as rewards, its outcomes; goals and action-less states terminal.
+pub fn problem_mdp(problem: &StochasticProblem) -> Mdp {
+    let n = problem.states();
+    Mdp {
+        goal: (0..n).map(|x| problem.is_goal(x)).collect(),
+        terminal: (0..n)
+            .map(|x| problem.is_goal(x) || problem.actions(x).is_empty())
+            .collect(),
+        actions: (0..n)
+            .map(|x| {
+                problem
+                    .actions(x)
+                    .map(|a| MdpAction {
+                        cost: problem.cost(a).clone(),
+                        reward: -problem.cost(a).clone(),
+                        outcomes: problem
+                            .outcomes(a)
+                            .iter()
+                            .map(|o| (o.successor, o.probability.clone()))
+                            .collect(),
+                    })
+                    .collect()
+            })
+            .collect(),
     }
 }

@@ -506,19 +506,14 @@ fn environment_certificates_are_accepted() {
         let cert = certify(dir.path(), &source, &extra);
         accepted(dir.path(), &source, &cert);
     }
-    // Reach has no certificate: refused before solving.
-    let line = fails_one_line(&[
-        "solve",
-        "--env",
-        "frozenlake",
-        "--algorithm",
-        "exact",
-        "--objective",
-        "reach",
-        "--certificate",
-        &s(&dir.path().join("r.json")),
-    ]);
-    assert!(line.contains("not reach"), "{line}");
+    // Reach certificates of the library's exact reach optima.
+    for env in ["frozenlake", "cliffwalking:slippery=true"] {
+        let source = ["--env", env];
+        let cert = certify(dir.path(), &source, &["--objective", "reach"]);
+        assert_eq!(cert["objective"], "reach", "{cert}");
+        let v = accepted(dir.path(), &source, &cert);
+        assert_eq!(v["objective"], "reach", "{v}");
+    }
     let line = fails_one_line(&[
         "solve",
         "--problem",
@@ -775,4 +770,26 @@ fn library_reach_optima_are_accepted_and_their_tampering_rejected() {
     let (state, condition) = first_failure(&rejected(dir.path(), &["--problem", "10"], &off));
     assert!(state.unwrap() <= x);
     assert_eq!(condition, "evaluation");
+}
+
+/// `check --coq`: the verified checker (Truecost.CertificateCheck.check, run by coqc) accepts
+/// the certificate of the exact optimum of a small environment, and says so in the JSON and
+/// the text.
+#[test]
+fn check_coq_runs_the_verified_checker() {
+    let dir = tempfile::tempdir().unwrap();
+    let source = ["--env", "frozenlake:slippery=false"];
+    let cert = certify(dir.path(), &source, &[]);
+    let path = file(dir.path(), "coq.cert.json", &cert.to_string());
+    let p = s(&path);
+    let v = json(&["check", source[0], source[1], &p, "--coq", "--format", "json"]);
+    assert_eq!(v["accepted"], true, "{v}");
+    assert_eq!(v["coq_checked"], true, "{v}");
+    let text = stdout(&["check", source[0], source[1], &p, "--coq"]);
+    assert!(
+        text.contains("accepted by the verified checker Truecost.CertificateCheck.check"),
+        "{text}"
+    );
+    let v = json(&["check", source[0], source[1], &p, "--format", "json"]);
+    assert_eq!(v["coq_checked"], false, "{v}");
 }

@@ -159,9 +159,6 @@ pub fn solve(args: &super::SolveArgs) -> Result<String, String> {
         return Err("--objective and --env take --algorithm exact without --model-free, --mode reference, --tolerance, --max-sweeps or --arithmetic".into());
     }
     let (_, objective) = args.objective.parse()?;
-    if args.certificate.is_some() && objective == Objective::Reach {
-        return Err("--certificate covers the truecost and discounted objectives (and the deterministic G*), not reach".into());
-    }
     let model = ModelArgs {
         env: args.env.clone(),
         problem: args.problem,
@@ -227,7 +224,7 @@ pub fn pretty(v: &serde_json::Value) -> String {
     s
 }
 
-/// The certificate of an objective's solution (truecost or discounted).
+/// The certificate of an objective's solution (truecost, reach or discounted).
 pub fn solution_certificate(
     model: &Model,
     solution: &truecost::objectives::Solution,
@@ -236,9 +233,7 @@ pub fn solution_certificate(
     let objective = match &solution.objective {
         Objective::Truecost => CertifiedObjective::Truecost,
         Objective::Discounted(alpha) => CertifiedObjective::Discounted(alpha.clone()),
-        Objective::Reach => {
-            return Err("--certificate covers the truecost and discounted objectives (and the deterministic G*), not reach".into())
-        }
+        Objective::Reach => CertifiedObjective::Reach,
     };
     let p = &model.problem;
     let policy: Vec<Option<usize>> = solution
@@ -252,13 +247,16 @@ pub fn solution_certificate(
 }
 
 /// `truecost check`: re-reads the problem (`--file`, `--problem`, `--env`; the certificate's
-/// `gamma`, `noise` and `step_cost` say how it was built) and checks the certificate.
+/// `gamma`, `noise` and `step_cost` say how it was built) and checks the certificate; with
+/// `coq`, the verified checker (`Truecost.CertificateCheck.check`, run by coqc) must accept it
+/// too.
 pub fn check(
     source: &EnvArg,
     problem: Option<usize>,
     file: Option<&std::path::Path>,
     certificate_path: &std::path::Path,
     format: ReportFormat,
+    coq: bool,
 ) -> Result<String, String> {
     const MAX_CERTIFICATE_BYTES: u64 = 1 << 30;
     let text =
@@ -356,20 +354,31 @@ pub fn check(
         Some(b) => Identity::FileBytes(b),
         None => Identity::Canonical,
     };
+    if coq {
+        certificate::coq::coq_applies(&mdp, &cert)?;
+    }
     match certificate::check(&mdp, identity, &cert) {
-        Ok(acceptance) => Ok(match format {
-            ReportFormat::Json => pretty(&serde_json::json!({
-                "accepted": true,
-                "objective": acceptance.objective,
-                "problem": model.name,
-                "sha256": record.sha256,
-                "states": acceptance.states,
-                "finite_states": acceptance.finite_states,
-                "actions": acceptance.actions,
-                "conditions": acceptance.conditions,
-            })),
-            ReportFormat::Text => {
-                let mut s = format!(
+        Ok(acceptance) => {
+            if coq && !certificate::coq::coq_check(&mdp, &cert)? {
+                return Err(
+                    "certificate rejected by the Coq checker (Truecost.CertificateCheck.check)"
+                        .into(),
+                );
+            }
+            Ok(match format {
+                ReportFormat::Json => pretty(&serde_json::json!({
+                    "accepted": true,
+                    "objective": acceptance.objective,
+                    "problem": model.name,
+                    "sha256": record.sha256,
+                    "states": acceptance.states,
+                    "finite_states": acceptance.finite_states,
+                    "actions": acceptance.actions,
+                    "conditions": acceptance.conditions,
+                    "coq_checked": coq,
+                })),
+                ReportFormat::Text => {
+                    let mut s = format!(
                     "accepted     {} certificate for {} ({} states, {} finite, {} actions; SHA-256 {})\n",
                     acceptance.objective,
                     model.name,
@@ -378,15 +387,19 @@ pub fn check(
                     acceptance.actions,
                     record.sha256
                 );
-                for c in &acceptance.conditions {
-                    s.push_str(&format!(
-                        "{:<12} {} ({} checked)\n",
-                        c.name, c.statement, c.instances
-                    ));
+                    for c in &acceptance.conditions {
+                        s.push_str(&format!(
+                            "{:<12} {} ({} checked)\n",
+                            c.name, c.statement, c.instances
+                        ));
+                    }
+                    if coq {
+                        s.push_str("coq          accepted by the verified checker Truecost.CertificateCheck.check (coqc, vm_compute)\n");
+                    }
+                    s
                 }
-                s
-            }
-        }),
+            })
+        }
         Err(rejection) => {
             if format == ReportFormat::Json {
                 let v = serde_json::json!({

@@ -74,6 +74,11 @@ struct CheckArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = ReportFormat::Text)]
     format: ReportFormat,
+    /// Also run the verified checker (proofs/coq/CertificateCheck.v, by coqc and vm_compute;
+    /// truecost and deterministic objectives): its acceptance implies the certificate's values
+    /// are optimal (theorem Truecost.CertificateCheck.check_optimal).
+    #[arg(long)]
+    coq: bool,
     /// The certificate file (`truecost-certificate/1`).
     #[arg(value_name = "CERT")]
     certificate: PathBuf,
@@ -215,6 +220,7 @@ pub fn main() -> ExitCode {
             args.file.as_deref(),
             &args.certificate,
             args.format,
+            args.coq,
         ),
     };
     match result.and_then(|text| emit(&text)) {

@@ -82,6 +82,7 @@ use crate::stochastic::StochasticAction;
 use crate::value::{Extended, Rational};
 
 mod annihilator;
+pub mod bounds;
 mod chains;
 mod paths;
 
@@ -215,6 +216,49 @@ pub enum ParametricError {
         degree: usize,
         /// [`MAX_CHAIN_DEGREE`].
         bound: usize,
+    },
+    /// A deterministic model whose policies optimal next to `α = 1` must follow a chain longer
+    /// than [`MAX_CHAIN_DEGREE`] ([`bounds::certain_degree`]): refused before any probe.
+    #[error("state {state} is {moves} moves from any end of the episode and every reward is negative, so for alpha near 1 the optimal policies' values there have degree >= {degree}; the exact parametric analysis of deterministic problems handles degree at most {bound} (refused before any probe)")]
+    CertainDegree {
+        /// The state farthest from an end.
+        state: usize,
+        /// Its fewest moves to an end.
+        moves: usize,
+        /// `moves − 1`.
+        degree: usize,
+        /// [`MAX_CHAIN_DEGREE`].
+        bound: usize,
+    },
+    /// A stage cost or reward over `2^100` in magnitude ([`bounds::MAX_MAGNITUDE_BITS`]).
+    #[error("state {state}, action {action}: the {quantity} {value} exceeds 2^{bound} in magnitude; the exact parametric analysis takes stage costs and rewards up to 2^{bound} (refused before any work)")]
+    Magnitude {
+        /// The state.
+        state: usize,
+        /// The action's index at the state.
+        action: usize,
+        /// `stage cost` or `reward`.
+        quantity: &'static str,
+        /// The number (shortened).
+        value: String,
+        /// [`bounds::MAX_MAGNITUDE_BITS`].
+        bound: u64,
+    },
+    /// Rewards too large scaled to integers ([`bounds::MAX_SCALED_BITS`]).
+    #[error("state {state}, action {action}: the reward {value}: {what} {bits} bits; the exact parametric analysis takes at most {bound} (refused before any work: isolating roots near 1 slows with the square of the bits)")]
+    ScaledBits {
+        /// The state.
+        state: usize,
+        /// The action's index at the state.
+        action: usize,
+        /// The reward (shortened).
+        value: String,
+        /// What took the bits.
+        what: &'static str,
+        /// The bits.
+        bits: u64,
+        /// [`bounds::MAX_SCALED_BITS`].
+        bound: u64,
     },
     /// One probe alone would exceed [`MAX_SINGLE_PROBE_WORK`].
     #[error("one exact probe of this problem is estimated at {work} units ({states} running states, numbers of {bits} bits: n^5 b^4); the exact parametric analysis takes at most {bound} per probe (about 5 to 20 s)")]
@@ -1660,6 +1704,7 @@ fn analyse(
     let p = &model.problem;
     let running: Vec<StateId> = (0..p.states()).filter(|&x| !model.terminal[x]).collect();
     let deterministic = is_deterministic(model);
+    bounds::check_numbers(model, &running)?;
     if !deterministic && running.len() > MAX_RUNNING_STATES {
         return Err(ParametricError::Degree {
             states: running.len(),
@@ -1676,6 +1721,7 @@ fn analyse(
                 bound: MAX_DETERMINISTIC_RUNNING_STATES,
             });
         }
+        bounds::check_certain_degree(model, &running)?;
         None
     } else {
         let bits = number_bits(model, &running);

@@ -113,7 +113,7 @@ pub enum StochasticFileError {
         action: usize,
         /// The sum (shortened).
         sum: String,
-        /// `exceeds` or `fall short of`.
+        /// `above` or `below`.
         off: &'static str,
         /// `|sum − 1|`, exact when short enough.
         distance: String,
@@ -139,9 +139,9 @@ fn check_sum(outcomes: &[Outcome], state: usize, action: usize) -> Result<(), St
         return Ok(());
     }
     let (off, distance) = if sum > one {
-        ("exceeds", &sum - &one)
+        ("above", &sum - &one)
     } else {
-        ("fall short of", &one - &sum)
+        ("below", &one - &sum)
     };
     Err(StochasticFileError::Sum {
         state,

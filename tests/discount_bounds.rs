@@ -87,7 +87,10 @@ fn lines(n: usize, length: usize) -> String {
 /// A stochastic file whose state 0 reaches the goal with probability `1/2^k` per try (else
 /// stays), or moves to state 1 (one step from the goal) at cost 3.
 fn stochastic_power(k: u32) -> String {
-    let (p, q) = (format!("1/{}", 1u64 << k), format!("{}/{}", (1u64 << k) - 1, 1u64 << k));
+    let (p, q) = (
+        format!("1/{}", 1u64 << k),
+        format!("{}/{}", (1u64 << k) - 1, 1u64 << k),
+    );
     format!(
         r#"{{"format": "truecost-stochastic/1", "states": 3, "initial": 0, "goals": [2], "actions": [[{{"cost": "1", "outcomes": [{{"to": 2, "p": "{p}"}}, {{"to": 0, "p": "{q}"}}]}}, {{"cost": "3", "outcomes": [{{"to": 1, "p": "1"}}]}}], [{{"cost": "1", "outcomes": [{{"to": 2, "p": "1"}}]}}], []]}}"#
     )
@@ -144,7 +147,10 @@ fn the_number_bounds_are_exact() {
     let top = at("top.json", two_states(&num(100), "1"));
     let (ok, err, _) = run(&["discount", "--file", top.to_str().unwrap()]);
     assert!(ok, "{err}");
-    let over = at("over.json", two_states(&(pow2(100) + 1u32).to_string(), "1"));
+    let over = at(
+        "over.json",
+        two_states(&(pow2(100) + 1u32).to_string(), "1"),
+    );
     refused(
         &["discount", "--file", over.to_str().unwrap()],
         &["stage cost 1267650600228229401496703205377", "2^100"],
@@ -170,7 +176,12 @@ fn a_chain_over_the_degree_bound_is_refused_before_any_probe() {
     let path = write(dir.path(), "lines.json", &lines(2500, 202));
     refused(
         &["discount", "--file", path.to_str().unwrap()],
-        &["202 moves", "degree >= 201", "at most 200", "before any probe"],
+        &[
+            "202 moves",
+            "degree >= 201",
+            "at most 200",
+            "before any probe",
+        ],
     );
     let long = write(dir.path(), "long.json", &lines(2500, 2500));
     refused(

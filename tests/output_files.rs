@@ -83,7 +83,11 @@ fn devices_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let link = dir.path().join("full.json");
     std::os::unix::fs::symlink("/dev/full", &link).unwrap();
-    for target in [Path::new("/dev/full"), Path::new("/dev/null"), link.as_path()] {
+    for target in [
+        Path::new("/dev/full"),
+        Path::new("/dev/null"),
+        link.as_path(),
+    ] {
         let err = one_line_refusal(&export(target));
         assert!(
             err.contains("character device that is not a terminal"),

@@ -8,6 +8,11 @@
 //! override them. Each target prints its classes of outcome (ok / clean refusal) with
 //! `--nocapture`.
 //!
+//! `discount` on huge exponents and digits and on long chains must refuse at once or answer
+//! within [`CASE_SECONDS`]; `export --out` onto hostile targets (symlinks to a victim file or to
+//! a device, devices, directories, missing directories, symlinks planted at process-numbered
+//! temporary names) never writes through a link or onto a device.
+//!
 //! Beside the fuzzers, the bounds checked before work: `--alpha` with too many digits, and
 //! `--samples` at its maximum with `--shard` (refused before any run, since a shard lists every
 //! site and would exceed what `reproduce merge` reads).
@@ -472,4 +477,146 @@ fn the_largest_sample_count_is_refused_for_shards_before_work() {
             start.elapsed()
         );
     }
+}
+
+/// A number of a huge exponent or many digits, within the readers' limits (4096 characters,
+/// exponents within ±10000).
+fn huge_number(r: &mut ChaCha8Rng) -> String {
+    match r.random_range(0..6) {
+        0 => format!("1e{}", r.random_range(0..=10000)),
+        1 => format!("1e-{}", r.random_range(0..=10000)),
+        2 => "9".repeat(r.random_range(1..=4096)),
+        3 => format!("0.{}", "3".repeat(r.random_range(1..=4094))),
+        4 => format!("1/{}", "7".repeat(r.random_range(1..=4000))),
+        _ => format!("{}/13", r.random_range(1..13)),
+    }
+}
+
+/// `discount --file` on two- and three-state files of huge numbers (costs or rewards) and on
+/// chains of up to 2,500 states in lines of 202 to 259 (refused before any probe) or of 5 to 39
+/// (answered; costs `k/13`): each case refused in one
+/// line or answered within [`CASE_SECONDS`].
+#[test]
+fn discount_on_huge_numbers_and_long_chains() {
+    let mut r = rng(5);
+    let dir = scratch("discount");
+    let mut classes = Vec::new();
+    for case in 0..cases() {
+        let text = if case % 2 == 0 {
+            let (a, b) = (huge_number(&mut r), huge_number(&mut r));
+            let field = if r.random_range(0..2) == 0 {
+                "cost"
+            } else {
+                "reward"
+            };
+            let other = if field == "reward" {
+                r#", "reward": "-1""#
+            } else {
+                ""
+            };
+            format!(
+                r#"{{"states": 3, "initial": 0, "goals": [2], "actions": [[{{"to": 2, "cost": "1", "{field}": "{a}"}}, {{"to": 1, "cost": "1"{other}}}], [{{"to": 0, "cost": "1", "{field}": "{b}"}}, {{"to": 2, "cost": "2"{other}}}], []]}}"#
+            )
+            .replace(r#""cost": "1", "cost""#, r#""cost""#)
+        } else {
+            // Long lines are refused before any probe (degree); short problems are answered.
+            let length = if r.random_range(0..2) == 0 {
+                r.random_range(202..260)
+            } else {
+                r.random_range(5..40)
+            };
+            let n = if length > 201 {
+                r.random_range(length..=2500)
+            } else {
+                r.random_range(length..=length + 20)
+            };
+            let actions: Vec<String> = (0..n)
+                .map(|i| {
+                    let next = if i % length == length - 1 || i == n - 1 {
+                        n
+                    } else {
+                        i + 1
+                    };
+                    format!(
+                        r#"[{{"to": {next}, "cost": "{}/13"}}, {{"to": {}, "cost": "{}/13"}}]"#,
+                        r.random_range(1..13),
+                        i - i % length,
+                        r.random_range(1..40)
+                    )
+                })
+                .chain(["[]".to_string()])
+                .collect();
+            format!(
+                r#"{{"states": {}, "initial": 0, "goals": [{n}], "actions": [{}]}}"#,
+                n + 1,
+                actions.join(",")
+            )
+        };
+        let file = dir.join(format!("discount{case}.json"));
+        std::fs::write(&file, &text).unwrap();
+        classes.push(run(&["discount".into(), "--file".into(), path(&file)]));
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    report("discount on huge numbers and long chains", &classes);
+}
+
+/// `export --out` onto hostile targets: a victim file behind a symlink at the target or at
+/// process-numbered temporary names is never written, a device is never replaced, a refusal is
+/// one line, and a success leaves a regular file at the target.
+#[test]
+fn export_onto_hostile_targets() {
+    let mut r = rng(6);
+    let dir = scratch("targets");
+    let victim = dir.join("victim.txt");
+    let mut classes = Vec::new();
+    for case in 0..cases() {
+        std::fs::write(&victim, "victim\n").unwrap();
+        let out = dir.join(format!("out{case}.json"));
+        let target = match r.random_range(0..7) {
+            0 => out.clone(),
+            1 => {
+                std::os::unix::fs::symlink(&victim, &out).unwrap();
+                out.clone()
+            }
+            2 => {
+                std::os::unix::fs::symlink("/dev/full", &out).unwrap();
+                out.clone()
+            }
+            3 => PathBuf::from(pick(&mut r, &["/dev/full", "/dev/null", "/dev/zero"])),
+            4 => dir.clone(),
+            5 => dir.join(format!("missing{case}/out.json")),
+            _ => {
+                let next: u32 = std::fs::read_to_string("/proc/sys/kernel/ns_last_pid")
+                    .ok()
+                    .and_then(|s| s.trim().parse().ok())
+                    .unwrap_or(0);
+                for pid in next..next + 200 {
+                    let name = format!(".truecost-{pid}-out{case}.json");
+                    std::os::unix::fs::symlink(&victim, dir.join(name)).ok();
+                }
+                out.clone()
+            }
+        };
+        let class = run(&[
+            "export".into(),
+            "--grid".into(),
+            "3x3".into(),
+            "--out".into(),
+            path(&target),
+        ]);
+        assert_eq!(
+            std::fs::read_to_string(&victim).unwrap(),
+            "victim\n",
+            "written through a link: {}",
+            target.display()
+        );
+        if class == Class::Ok {
+            let meta = std::fs::symlink_metadata(&target).unwrap();
+            assert!(meta.file_type().is_file(), "{}", target.display());
+        }
+        assert!(!dir.join(format!("missing{case}")).exists());
+        classes.push(class);
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    report("export onto hostile targets", &classes);
 }

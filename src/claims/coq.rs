@@ -1394,7 +1394,9 @@ pub mod process {
                 std::process::id(),
                 COUNT.fetch_add(1, Ordering::Relaxed)
             ));
-            std::fs::create_dir_all(&dir)
+            // Only the directory itself: a temporary directory (TMPDIR) that does not exist is
+            // an error, never created.
+            std::fs::create_dir(&dir)
                 .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
             Ok(TempDir(dir))
         }

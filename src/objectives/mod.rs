@@ -102,6 +102,11 @@ pub enum ObjectiveError {
     /// The exact solver refused (sizes, denominators).
     #[error("{0}")]
     Solver(#[from] StochasticError),
+    /// The discounted objective's killed-process construction passed a limit of the exact
+    /// solver: the text names the quantity (a probability denominator times `α`'s, or the
+    /// largest reward minus a reward), its value and the bound.
+    #[error("{0}")]
+    Discounted(String),
 }
 
 /// `{min, max}` of a quantity over the tied optimal policies.
@@ -442,8 +447,14 @@ impl Model {
             }
         }
         actions.push(Vec::new());
+        discounted_denominators(&actions, p, alpha)?;
         let aux = StochasticProblem::new(actions, p.initial(), vec![kill])?;
-        let opt = optimum(&aux)?;
+        let opt = optimum(&aux).map_err(|e| match e {
+            StochasticError::CostTooLarge { state } => {
+                ObjectiveError::Discounted(discounted_cost_text(self, state, &top, alpha))
+            }
+            e => e.into(),
+        })?;
         let scale = &top / &end;
         let values: Vec<Extended> = (0..n)
             .map(|x| {
@@ -465,6 +476,70 @@ impl Model {
         }
         Ok((values, policy, allowed))
     }
+}
+
+/// Refuses a state of the killed-process construction whose probabilities (`α · p` and
+/// `1 − α`) have a common denominator over the exact solver's `2^62`
+/// ([`crate::stochastic::problem::MAX_DENOMINATOR`]), naming the state, the common denominator
+/// of the problem's own probabilities there, `α`'s denominator and the bound.
+fn discounted_denominators(
+    actions: &[Vec<StochasticAction>],
+    problem: &StochasticProblem,
+    alpha: &Rational,
+) -> Result<(), ObjectiveError> {
+    use num_integer::Integer;
+    let bound = num_bigint::BigInt::from(crate::stochastic::problem::MAX_DENOMINATOR);
+    for (x, list) in actions.iter().enumerate().take(problem.states()) {
+        let mut lcm = num_bigint::BigInt::one();
+        for o in list.iter().flat_map(|a| &a.outcomes) {
+            lcm = lcm.lcm(o.probability.denom());
+        }
+        if lcm > bound {
+            let mut own = num_bigint::BigInt::one();
+            for a in problem.actions(x) {
+                for o in problem.outcomes(a) {
+                    own = own.lcm(o.probability.denom());
+                }
+            }
+            return Err(ObjectiveError::Discounted(format!(
+                "state {x}: at alpha = {} the discounted objective multiplies the probabilities by alpha; their common denominator there, {own} (the problem's) times alpha's {}, is {lcm} > 2^62, the exact solver's limit",
+                crate::stochastic::short_text(alpha),
+                alpha.denom(),
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The refusal of a killed-process construction whose stage cost at `state` (the largest reward
+/// `top` minus the state's rewards, or `top` itself where the episode is over) times the
+/// probabilities' denominators passes the exact solver's `2^100`: names the rewards, not the
+/// stage costs.
+fn discounted_cost_text(model: &Model, state: StateId, top: &Rational, alpha: &Rational) -> String {
+    let short = crate::stochastic::short_text;
+    let charged = if model.terminal.get(state).copied().unwrap_or(false) {
+        format!(
+            "the episode is over there and the discounted objective (killed-process construction) charges it the model's largest reward, {}, per step",
+            short(top)
+        )
+    } else {
+        let least = model
+            .problem
+            .actions(state)
+            .map(|a| &model.reward[a])
+            .min()
+            .cloned()
+            .unwrap_or_else(Rational::zero);
+        format!(
+            "the discounted objective (killed-process construction) charges the model's largest reward, {}, minus this state's least reward, {}, per step",
+            short(top),
+            short(&least)
+        )
+    };
+    format!(
+        "state {state}: {charged}; times the probabilities' denominators (alpha's denominator {} included) that exceeds 2^100, the exact solver's limit",
+        alpha.denom()
+    )
 }
 
 fn listed(successor: StateId, probability: Rational) -> Outcome {

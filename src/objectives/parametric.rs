@@ -58,12 +58,16 @@
 //!    model with non-negative stage costs the same four numbers come from searches of the
 //!    graph of the optimal actions (module `paths`).
 //!
-//! Effort is bounded: [`MAX_RUNNING_STATES`] bounds the degree of every rational function of a
-//! stochastic model and [`probe_work`] estimates each of its probes ([`MAX_PROBE_WORK`] in
-//! all); a deterministic model has at most [`MAX_DETERMINISTIC_RUNNING_STATES`], chains of
-//! degree at most [`MAX_CHAIN_DEGREE`] (checked while running) and probes whose counted work
-//! stays within [`MAX_DETERMINISTIC_WORK`]; [`MAX_REGIONS`]
-//! bounds the number of probes. Each refusal names its bound.
+//! Effort is bounded: before any work, the numbers (stage costs and rewards of magnitude at
+//! most `2^100`, rewards of at most [`bounds::MAX_SCALED_BITS`] bits scaled to integers:
+//! [`bounds::check_numbers`]); [`MAX_RUNNING_STATES`] bounds the degree of every rational
+//! function of a stochastic model and [`probe_work`] estimates each of its probes
+//! ([`MAX_PROBE_WORK`] in all); a deterministic model has at most
+//! [`MAX_DETERMINISTIC_RUNNING_STATES`], chains of degree at most [`MAX_CHAIN_DEGREE`] (refused
+//! before the first probe when the chain structure forces more, [`bounds::certain_degree`],
+//! else checked while running) and probes whose counted work stays within
+//! [`MAX_DETERMINISTIC_WORK`]; [`MAX_REGIONS`] bounds the number of probes. Each refusal names
+//! the quantity, its value and its bound.
 
 use std::cmp::Ordering;
 
@@ -82,6 +86,7 @@ use crate::stochastic::policy_iteration::{evaluate, optimum};
 use crate::stochastic::StochasticAction;
 use crate::value::{Extended, Rational};
 
+pub mod bounds;
 mod chains;
 mod paths;
 
@@ -114,14 +119,16 @@ pub const MAX_SINGLE_PROBE_WORK: u128 = MAX_PROBE_WORK / 16;
 pub const MAX_DETERMINISTIC_RUNNING_STATES: usize = 2_500;
 
 /// The most work the probes of one deterministic analysis may do together, counted in words
-/// of the polynomials built (the pruned search: values and advantages built anew, plus one
-/// unit per advantage read from the probes' memory; the full search:
-/// `deterministic_probe_work`); checked before every probe with the last probe's work as the
-/// estimate of the next, and after it. Measured in release on 2 cores (6 Dec 2026), grids of
-/// `export --grid NxN --pattern random --costs 1-9 --seed 0`, pruned search: 20×20 9.8·10⁵
-/// units (385 probes), 30×30 5.6·10⁶ (1003 probes), 50×50 3.9·10⁷ (2534 probes, about 20 s
-/// of probes); the bound leaves room for about a minute of probes.
-pub const MAX_DETERMINISTIC_WORK: u128 = 3 << 25;
+/// of arithmetic (the pruned search, module `chains`: polynomials built, roots isolated, signs
+/// and halvings of root brackets, hash lookups; the full search: `deterministic_probe_work`);
+/// checked before every probe with the last probe's work as the estimate of the next, and
+/// after it. Measured in release (processor time on 2 shared cores, 7 Dec 2026), the probes
+/// do 3·10⁸ to 1.4·10⁹ units a second: grids of `export --grid NxN --pattern random --costs
+/// 1-9 --seed 0` take 2.6·10⁸ units (20×20, 385 probes), 1.5·10⁹ (30×30, 1003 probes) and
+/// 1.2·10¹⁰ (50×50, 2534 probes, about 53 s of probes); twelve 200-state chains with costs
+/// `k/13` reach the bound after 1048 probes and 12 s. The bound (`2^34` ≈ 1.7·10¹⁰) keeps the
+/// probes of an analysis to about a minute of processor time.
+pub const MAX_DETERMINISTIC_WORK: u128 = 1 << 34;
 
 /// The estimated work of one probe of a stochastic analysis: `n⁵·b⁴`, with `n` the running
 /// states (the degree of the rational functions and the size of the exact solve) and `b` the
@@ -216,6 +223,49 @@ pub enum ParametricError {
         /// [`MAX_CHAIN_DEGREE`].
         bound: usize,
     },
+    /// A deterministic model whose policies optimal next to `α = 1` must follow a chain longer
+    /// than [`MAX_CHAIN_DEGREE`] ([`bounds::certain_degree`]): refused before any probe.
+    #[error("state {state} is {moves} moves from any end of the episode and every reward is negative, so for alpha near 1 the optimal policies' values there have degree >= {degree}; the exact parametric analysis of deterministic problems handles degree at most {bound} (refused before any probe)")]
+    CertainDegree {
+        /// The state farthest from an end.
+        state: usize,
+        /// Its fewest moves to an end.
+        moves: usize,
+        /// `moves − 1`.
+        degree: usize,
+        /// [`MAX_CHAIN_DEGREE`].
+        bound: usize,
+    },
+    /// A stage cost or reward over `2^100` in magnitude ([`bounds::MAX_MAGNITUDE_BITS`]).
+    #[error("state {state}, action {action}: the {quantity} {value} exceeds 2^{bound} in magnitude; the exact parametric analysis takes stage costs and rewards up to 2^{bound} (refused before any work)")]
+    Magnitude {
+        /// The state.
+        state: usize,
+        /// The action's index at the state.
+        action: usize,
+        /// `stage cost` or `reward`.
+        quantity: &'static str,
+        /// The number (shortened).
+        value: String,
+        /// [`bounds::MAX_MAGNITUDE_BITS`].
+        bound: u64,
+    },
+    /// Rewards too large scaled to integers ([`bounds::MAX_SCALED_BITS`]).
+    #[error("state {state}, action {action}: the reward {value}: {what} {bits} bits; the exact parametric analysis takes at most {bound} (refused before any work: isolating roots near 1 slows with the square of the bits)")]
+    ScaledBits {
+        /// The state.
+        state: usize,
+        /// The action's index at the state.
+        action: usize,
+        /// The reward (shortened).
+        value: String,
+        /// What took the bits.
+        what: &'static str,
+        /// The bits.
+        bits: u64,
+        /// [`bounds::MAX_SCALED_BITS`].
+        bound: u64,
+    },
     /// One probe alone would exceed [`MAX_SINGLE_PROBE_WORK`].
     #[error("one exact probe of this problem is estimated at {work} units ({states} running states, numbers of {bits} bits: n^5 b^4); the exact parametric analysis takes at most {bound} per probe (about 5 to 20 s)")]
     ProbeWork {
@@ -229,10 +279,12 @@ pub enum ParametricError {
         bound: u128,
     },
     /// The probes together would exceed [`MAX_PROBE_WORK`].
-    #[error("the exact parametric analysis stopped after {probes} probes ({regions} regions of (0,1) covered, {gaps} gaps left): the next probe would pass its work bound of {bound} units (a few minutes of work); the problem has too many breakpoints for numbers this size")]
+    #[error("the exact parametric analysis stopped after {probes} probes ({regions} regions of (0,1) covered, {gaps} gaps left, {work} units of work done): the next probe would pass its work bound of {bound} units (at most a few minutes of processor time); the problem has too many breakpoints for numbers this size")]
     Work {
         /// Probes run.
         probes: usize,
+        /// The work counted so far.
+        work: u128,
         /// Regions found.
         regions: usize,
         /// Gaps left.
@@ -1660,6 +1712,7 @@ fn analyse(
     let p = &model.problem;
     let running: Vec<StateId> = (0..p.states()).filter(|&x| !model.terminal[x]).collect();
     let deterministic = is_deterministic(model);
+    bounds::check_numbers(model, &running)?;
     if !deterministic && running.len() > MAX_RUNNING_STATES {
         return Err(ParametricError::Degree {
             states: running.len(),
@@ -1676,6 +1729,7 @@ fn analyse(
                 bound: MAX_DETERMINISTIC_RUNNING_STATES,
             });
         }
+        bounds::check_certain_degree(model, &running)?;
         None
     } else {
         let bits = number_bits(model, &running);
@@ -1726,6 +1780,7 @@ fn analyse(
             if work + per_probe.unwrap_or(last) > bound {
                 return Err(ParametricError::Work {
                     probes,
+                    work,
                     regions: regions.len(),
                     gaps: gaps.len() + 1,
                     bound,
@@ -1757,6 +1812,7 @@ fn analyse(
             if work > bound {
                 return Err(ParametricError::Work {
                     probes,
+                    work,
                     regions: regions.len(),
                     gaps: gaps.len() + 1,
                     bound,

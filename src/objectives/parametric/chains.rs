@@ -27,8 +27,11 @@
 //!
 //! The memory is cleared when it holds more than [`MAX_MEMORY_WORDS`] words of polynomial
 //! coefficients (counted, so the analysis is the same on every machine). The work of a probe
-//! is counted as the words of the polynomials it builds plus one unit per advantage it reads
-//! from memory.
+//! is counted in words of the arithmetic it does: the polynomials it builds, the isolation of
+//! their roots ([`isolation`]), every sign of a root's polynomial at a probe and every halving
+//! of a bracket ([`evaluation`]: degree-many steps on numbers that grow with the degree times
+//! the point's bits), 100 halvings per exact comparison of two roots, and 16 units per advantage
+//! read from memory and per running state of each policy evaluated (hash lookups).
 
 use std::cmp::Ordering;
 use std::collections::HashMap;
@@ -65,6 +68,10 @@ struct Value {
     num: Vec<BigInt>,
 }
 
+/// The counted work of reading an advantage from memory, and of naming one state's value in a
+/// policy evaluation (hash lookups: measured at about 16 words of arithmetic each).
+const READ: u128 = 16;
+
 /// The margin of the floating-point windows of [`Points`]: far above the error of rounding a
 /// rational in `[0, 1]` to the nearest `f64` (at most `2^-54`).
 const MARGIN: f64 = 1.0 / (1u64 << 50) as f64;
@@ -83,17 +90,46 @@ struct Located {
     root: Root,
     lo: f64,
     hi: f64,
+    /// The degree and coefficient bits of the root's advantage polynomial (for [`evaluation`]).
+    degree: usize,
+    bits: u64,
+}
+
+/// The counted work of the sign of a degree-`degree` integer polynomial with `bits`-bit
+/// coefficients at a rational whose denominator takes `point_bits` bits: homogeneous Horner,
+/// `degree` steps on numbers of up to `bits + degree · point_bits` bits, in words.
+pub fn evaluation(degree: usize, bits: u64, point_bits: u64) -> u128 {
+    let d = degree as u128 + 1;
+    d * ((u128::from(bits) + d * u128::from(point_bits)) / 64 + 1)
+}
+
+/// The counted work of isolating the roots of a degree-`degree` polynomial with `bits`-bit
+/// coefficients in `(0, 1)`, `roots` of them, to brackets of `2^-100`: a Taylor shift per root
+/// and one more (`degree²` additions on numbers of `bits + degree` bits), and about 100 halvings
+/// per root, each an [`evaluation`] at a point of about 100 bits.
+pub fn isolation(degree: usize, bits: u64, roots: usize) -> u128 {
+    let d = degree as u128 + 1;
+    let shift = d * d * ((u128::from(bits) + d) / 64 + 1);
+    (roots as u128 + 1) * shift + roots as u128 * 100 * evaluation(degree, bits, 100)
 }
 
 impl Located {
-    fn new(root: Root) -> Located {
+    fn new(root: Root, degree: usize, bits: u64) -> Located {
         let mut located = Located {
             root,
             lo: 0.0,
             hi: 1.0,
+            degree,
+            bits,
         };
         located.window();
         located
+    }
+
+    /// The counted work of one halving or sign at the current bracket.
+    fn cost(&self) -> u128 {
+        let point = self.root.lo.denom().bits().max(self.root.hi.denom().bits()) + 1;
+        evaluation(self.degree, self.bits, point)
     }
 
     /// The window of the current bracket.
@@ -115,6 +151,8 @@ impl Located {
 struct Points {
     points: Vec<Located>,
     class: Vec<u32>,
+    /// The counted work of the halvings, signs and exact comparisons done ([`evaluation`]).
+    work: u128,
 }
 
 impl Points {
@@ -122,12 +160,13 @@ impl Points {
         Points {
             points: Vec::new(),
             class: Vec::new(),
+            work: 0,
         }
     }
 
-    fn insert(&mut self, root: Root) -> u32 {
+    fn insert(&mut self, root: Root, degree: usize, bits: u64) -> u32 {
         let id = u32::try_from(self.points.len()).expect("fewer than 2^32 roots");
-        self.points.push(Located::new(root));
+        self.points.push(Located::new(root, degree, bits));
         self.class.push(id);
         id
     }
@@ -150,6 +189,7 @@ impl Points {
         if tf < p.lo {
             return Ordering::Greater;
         }
+        self.work += evaluation(p.degree, p.bits, t.denom().bits());
         let order = p.root.cmp_rational(t);
         // Narrowed past t, so the next probes near t decide by the window.
         let mut rounds = 0;
@@ -157,6 +197,7 @@ impl Points {
             let p = &self.points[id as usize];
             p.lo <= tf && tf <= p.hi && !p.root.exact
         } {
+            self.work += self.points[id as usize].cost();
             self.points[id as usize].halve();
             rounds += 1;
         }
@@ -181,12 +222,15 @@ impl Points {
         }
         // Distinct roots part after a few halvings; equal ones are decided exactly, once.
         for _ in 0..SEPARATION_BEFORE_EXACT {
+            self.work += self.points[a as usize].cost() + self.points[b as usize].cost();
             self.points[a as usize].halve();
             self.points[b as usize].halve();
             if let Some(o) = apart(&self.points[a as usize], &self.points[b as usize]) {
                 return o;
             }
         }
+        // An exact comparison: charged as 100 halvings of both.
+        self.work += 100 * (self.points[a as usize].cost() + self.points[b as usize].cost());
         let order = self.points[a as usize]
             .root
             .compare(&self.points[b as usize].root);
@@ -419,16 +463,19 @@ impl ChainMemory {
         let y = successor(model, a);
         let key = (a, id[x], (!model.terminal[y]).then(|| id[y]));
         if let Some(found) = self.advantages.get(&key) {
-            return (found.clone(), 1);
+            return (found.clone(), READ);
         }
         let value = |z: StateId| {
             let v = &self.values[id[z] as usize];
             (v.den, v.num.as_slice())
         };
         let (c, _, _) = advantage_polynomial(model, x, a, &value, &self.dens);
-        let built = words(&c);
+        let mut built = words(&c) as u128;
+        let degree = c.len().saturating_sub(1);
+        let bits = c.iter().map(BigInt::bits).max().unwrap_or(0);
         let isolated = (!c.iter().all(Zero::is_zero)).then(|| {
             let roots = roots_in_unit_interval(&int_poly(&c));
+            built += isolation(degree, bits, roots.len());
             let signs = (0..=roots.len())
                 .map(|i| {
                     let lo = if i == 0 {
@@ -440,18 +487,36 @@ impl ChainMemory {
                     integer_sign(&c, &between(&lo, &hi))
                 })
                 .collect();
-            let roots = roots.into_iter().map(|r| self.points.insert(r)).collect();
+            let roots = roots
+                .into_iter()
+                .map(|r| self.points.insert(r, degree, bits))
+                .collect();
             Arc::new(Isolated { roots, signs })
         });
-        self.words += built;
+        self.words += words(&c);
         self.advantages.insert(key, isolated.clone());
-        (isolated, built as u128 + 1)
+        (isolated, built + READ)
     }
 
     /// The probe at the rational `t` (module docs of [`super`], step 3): `None` if `t` is a root
     /// of some non-zero advantage of the optimal policy there. Adds the probe's counted work
-    /// to `work` and the largest value degree of its policy to `degree`.
+    /// to `work` (module docs: words built, roots isolated, signs and halvings) and the largest
+    /// value degree of its policy to `degree`.
     pub fn probe(
+        &mut self,
+        model: &Model,
+        running: &[StateId],
+        t: &Rational,
+        degree: &mut usize,
+        work: &mut u128,
+    ) -> Result<Option<Region>, ParametricError> {
+        let region = self.probe_counted(model, running, t, degree, work);
+        *work += std::mem::take(&mut self.points.work);
+        region
+    }
+
+    /// [`Self::probe`] without the work of [`Points`].
+    fn probe_counted(
         &mut self,
         model: &Model,
         running: &[StateId],
@@ -485,7 +550,8 @@ impl ChainMemory {
                 }
                 Err(e) => return Err(e),
             };
-            *work += built;
+            // The chains walked and the values named: a unit per running state.
+            *work += built + READ * running.len() as u128;
             // Per other action: its advantage (`None`: identically zero) with the number of
             // its roots left of t and its sign at t (`None`: t is a root).
             let mut found = Vec::new();

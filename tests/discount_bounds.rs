@@ -1,0 +1,279 @@
+//! The bounds `discount` checks before any work, on the hostile inputs that once ran for
+//! minutes: numbers of huge exponents or many digits, chains whose values need a degree over
+//! the bound, probabilities whose denominators pass the exact solver's limit once multiplied by
+//! `α`, rewards too large for `compare`'s discounted solve, and outcome sums within `10^-28` of 1.
+//! Each input is built here by a small generator; each refusal must come at once (the budget
+//! [`REFUSAL_SECONDS`] is for a debug build on a loaded machine; in release each takes well
+//! under a second), in one line naming the quantity, the file's value and the bound.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+/// A refusal's time budget in this (debug) test build; the documented bound is one second in
+/// release.
+const REFUSAL_SECONDS: u64 = 4;
+
+fn bin() -> &'static str {
+    env!("CARGO_BIN_EXE_truecost")
+}
+
+/// Runs `truecost args`; returns whether it succeeded, its stderr and its wall time.
+fn run(args: &[&str]) -> (bool, String, Duration) {
+    let start = Instant::now();
+    let out = Command::new(bin())
+        .args(args)
+        .env("RAYON_NUM_THREADS", "1")
+        .output()
+        .unwrap();
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+        start.elapsed(),
+    )
+}
+
+/// A refusal in one line, within [`REFUSAL_SECONDS`], containing every one of `words`.
+fn refused(args: &[&str], words: &[&str]) -> String {
+    let (ok, err, took) = run(args);
+    assert!(!ok, "accepted: {args:?}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        took < Duration::from_secs(REFUSAL_SECONDS),
+        "refused after {took:?}: {err}"
+    );
+    for w in words {
+        assert!(err.contains(w), "{w:?} missing from: {err}");
+    }
+    err
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Two states: from 0, an action to the goal 1 with stage cost `to_goal` and a self-loop with
+/// stage cost `stay` (the breakpoint, where staying stops paying, is `α = 1 − stay/to_goal`).
+fn two_states(to_goal: &str, stay: &str) -> String {
+    format!(
+        r#"{{"states": 2, "initial": 0, "goals": [1], "actions": [[{{"to": 1, "cost": "{to_goal}"}}, {{"to": 0, "cost": "{stay}"}}], []]}}"#
+    )
+}
+
+/// `n` running states in lines of `length` (the last one shorter): state `i` moves on to
+/// `i + 1`, the last of each line to the goal `n`, at stage cost 1, or stays at cost 3. The
+/// first state of a full line is `length` moves from the goal.
+fn lines(n: usize, length: usize) -> String {
+    let actions: Vec<String> = (0..n)
+        .map(|i| {
+            let next = if i % length == length - 1 || i == n - 1 {
+                n
+            } else {
+                i + 1
+            };
+            format!(r#"[{{"to": {next}, "cost": "1"}}, {{"to": {i}, "cost": "3"}}]"#)
+        })
+        .chain(["[]".to_string()])
+        .collect();
+    format!(
+        r#"{{"states": {}, "initial": 0, "goals": [{n}], "actions": [{}]}}"#,
+        n + 1,
+        actions.join(",")
+    )
+}
+
+/// A stochastic file whose state 0 reaches the goal with probability `1/2^k` per try (else
+/// stays), or moves to state 1 (one step from the goal) at cost 3.
+fn stochastic_power(k: u32) -> String {
+    let (p, q) = (
+        format!("1/{}", 1u64 << k),
+        format!("{}/{}", (1u64 << k) - 1, 1u64 << k),
+    );
+    format!(
+        r#"{{"format": "truecost-stochastic/1", "states": 3, "initial": 0, "goals": [2], "actions": [[{{"cost": "1", "outcomes": [{{"to": 2, "p": "{p}"}}, {{"to": 0, "p": "{q}"}}]}}, {{"cost": "3", "outcomes": [{{"to": 1, "p": "1"}}]}}], [{{"cost": "1", "outcomes": [{{"to": 2, "p": "1"}}]}}], []]}}"#
+    )
+}
+
+/// Stage costs of `1e10000`, `1e-10000` and rewards of 4096 digits are refused at once, naming
+/// the state, the action, the number and the bound (magnitude `2^100`, or 160 bits scaled).
+#[test]
+fn huge_exponents_and_digits_are_refused_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let big = write(dir.path(), "big.json", &two_states("1e10000", "1"));
+    let f = big.to_str().unwrap();
+    refused(
+        &["discount", "--file", f],
+        &["state 0, action 0", "stage cost ≈1e10000", "2^100"],
+    );
+    for (name, text) in [
+        ("tiny-goal.json", two_states("1e-10000", "1")),
+        ("tiny-loop.json", two_states("1", "1e-10000")),
+    ] {
+        let path = write(dir.path(), name, &text);
+        // 10^10000 takes ⌊10000 · log2 10⌋ + 1 = 33220 bits.
+        refused(
+            &["discount", "--file", path.to_str().unwrap()],
+            &["reward ≈-1e-10000", "33220 bits", "at most 160"],
+        );
+    }
+    let digits = "9".repeat(4096);
+    let text = format!(
+        r#"{{"states": 2, "initial": 0, "goals": [1], "actions": [[{{"to": 1, "cost": "1", "reward": "{digits}"}}, {{"to": 0, "cost": "1", "reward": "1"}}], []]}}"#
+    );
+    let path = write(dir.path(), "digits.json", &text);
+    refused(
+        &["discount", "--file", path.to_str().unwrap()],
+        &["the reward ≈1e4096", "exceeds 2^100"],
+    );
+}
+
+/// The bounds are where they are said to be: a reward scaled to 160 bits passes (and the
+/// breakpoint `1 − 2^-159` is found), 161 bits are refused; a stage cost of exactly `2^100`
+/// passes, `2^100 + 1` is refused.
+#[test]
+fn the_number_bounds_are_exact() {
+    let dir = tempfile::tempdir().unwrap();
+    let at = |name: &str, text: String| write(dir.path(), name, &text);
+    let inside = at("159.json", two_states("1", &format!("1/{}", num(159))));
+    let (ok, err, _) = run(&["discount", "--file", inside.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let outside = at("160.json", two_states("1", &format!("1/{}", num(160))));
+    refused(
+        &["discount", "--file", outside.to_str().unwrap()],
+        &["161 bits", "at most 160"],
+    );
+    let top = at("top.json", two_states(&num(100), "1"));
+    let (ok, err, _) = run(&["discount", "--file", top.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let over = at(
+        "over.json",
+        two_states(&(pow2(100) + 1u32).to_string(), "1"),
+    );
+    refused(
+        &["discount", "--file", over.to_str().unwrap()],
+        &["stage cost 1267650600228229401496703205377", "2^100"],
+    );
+}
+
+fn pow2(k: u32) -> num_bigint::BigUint {
+    num_bigint::BigUint::from(1u32) << k
+}
+
+/// `2^k` in decimal.
+fn num(k: u32) -> String {
+    pow2(k).to_string()
+}
+
+/// A 2,500-state problem whose farthest state is 202 moves from the goal needs degree 201 for
+/// `α` near 1: refused before any probe, naming the moves, the degree and the bound; 201 moves
+/// (degree 200) are analysed.
+#[test]
+fn a_chain_over_the_degree_bound_is_refused_before_any_probe() {
+    let dir = tempfile::tempdir().unwrap();
+    // 12 lines of 202 states and one of 76: 2,500 running states.
+    let path = write(dir.path(), "lines.json", &lines(2500, 202));
+    refused(
+        &["discount", "--file", path.to_str().unwrap()],
+        &[
+            "202 moves",
+            "degree >= 201",
+            "at most 200",
+            "before any probe",
+        ],
+    );
+    let long = write(dir.path(), "long.json", &lines(2500, 2500));
+    refused(
+        &["discount", "--file", long.to_str().unwrap()],
+        &["2500 moves", "degree >= 2499"],
+    );
+    let fits = write(dir.path(), "fits.json", &lines(201, 201));
+    let (ok, err, _) = run(&["discount", "--file", fits.to_str().unwrap()]);
+    assert!(ok, "{err}");
+}
+
+/// The stochastic probe's bound includes `α`'s denominator and says so: probabilities of
+/// `1/2^37` pass the solver's `2^62` alone (`solve` answers) but not times the first probe's
+/// `α` (denominator `2^25 + 1`); `1/2^36` fits.
+#[test]
+fn a_denominator_bound_that_includes_alpha_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let p37 = write(dir.path(), "p37.json", &stochastic_power(37));
+    let f = p37.to_str().unwrap();
+    let (ok, err, _) = run(&["solve", "--algorithm", "exact", "--file", f]);
+    assert!(ok, "{err}");
+    // 2^37 · (2^25 + 1) = 2^62 + 2^37 > 2^62.
+    let product = (pow2(62) + pow2(37)).to_string();
+    refused(
+        &["discount", "--file", f],
+        &[
+            "137438953472 (the problem's)",
+            "alpha's 33554433",
+            &product,
+            "> 2^62",
+        ],
+    );
+    let p36 = write(dir.path(), "p36.json", &stochastic_power(36));
+    let (ok, err, _) = run(&["discount", "--file", p36.to_str().unwrap()]);
+    assert!(ok, "{err}");
+}
+
+/// A large reward in a deterministic file is named as such by `compare` (the goal state is
+/// charged the largest reward per step by the killed-process construction), not as "stage
+/// costs times the probabilities' denominators".
+#[test]
+fn compare_names_the_reward_not_the_stage_cost() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = r#"{"states": 2, "initial": 0, "goals": [1], "actions": [[{"to": 1, "cost": "1", "reward": "1e40"}, {"to": 0, "cost": "1", "reward": "1"}], []]}"#;
+    let path = write(dir.path(), "reward.json", text);
+    let err = refused(
+        &[
+            "compare",
+            "--file",
+            path.to_str().unwrap(),
+            "--alphas",
+            "0.9",
+        ],
+        &[
+            "state 1: the episode is over there",
+            "largest reward, ≈1e40",
+            "alpha's denominator 10",
+            "2^100",
+        ],
+    );
+    assert!(!err.contains("stage costs times"), "{err}");
+}
+
+/// Outcome probabilities summing to `1 + 10^-28` are refused with the exact excess, not a
+/// rounded sum alone; a shortfall says so.
+#[test]
+fn a_sum_off_one_shows_its_exact_distance() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = |p: &str, q: &str| {
+        format!(
+            r#"{{"format": "truecost-stochastic/1", "initial": 0, "goals": [1], "actions": [[{{"cost": "1", "outcomes": [{{"to": 1, "p": "{p}"}}, {{"to": 0, "p": "{q}"}}]}}], []]}}"#
+        )
+    };
+    let over = write(
+        dir.path(),
+        "over.json",
+        &file("0.5", "0.5000000000000000000000000001"),
+    );
+    let ten28 = format!("1/1{}", "0".repeat(28));
+    for command in ["discount", "solve"] {
+        let mut args = vec![command, "--file", over.to_str().unwrap()];
+        if command == "solve" {
+            args.extend(["--algorithm", "exact"]);
+        }
+        refused(
+            &args,
+            &["state 0, action 0", "not 1 (above 1 by", ten28.as_str()],
+        );
+    }
+    let under = write(dir.path(), "under.json", &file("0.5", "0.49"));
+    refused(
+        &["discount", "--file", under.to_str().unwrap()],
+        &["sum to 99/100, not 1 (below 1 by 1/100)"],
+    );
+}

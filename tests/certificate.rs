@@ -782,7 +782,9 @@ fn check_coq_runs_the_verified_checker() {
     let cert = certify(dir.path(), &source, &[]);
     let path = file(dir.path(), "coq.cert.json", &cert.to_string());
     let p = s(&path);
-    let v = json(&["check", source[0], source[1], &p, "--coq", "--format", "json"]);
+    let v = json(&[
+        "check", source[0], source[1], &p, "--coq", "--format", "json",
+    ]);
     assert_eq!(v["accepted"], true, "{v}");
     assert_eq!(v["coq_checked"], true, "{v}");
     let text = stdout(&["check", source[0], source[1], &p, "--coq"]);

@@ -220,6 +220,42 @@ fn the_command_line_solves_a_drn_file_and_exports_every_source() {
     }
 }
 
+/// `discount --file` reads DRN too: a file and its DRN export give the same analysis.
+#[test]
+fn discount_reads_a_drn_file_as_its_json_source() {
+    let dir = tempfile::tempdir().unwrap();
+    let drn = dir.path().join("fl.drn");
+    let json = dir.path().join("fl.json");
+    for (out, format) in [(&drn, "drn"), (&json, "json")] {
+        let args = [
+            "export",
+            "--env",
+            "frozenlake:slippery=false",
+            "--format",
+            format,
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        assert!(stdout(&args).starts_with("wrote "), "{args:?}");
+    }
+    let analysis = |f: &std::path::Path| {
+        let text = stdout(&[
+            "discount",
+            "--file",
+            f.to_str().unwrap(),
+            "--format",
+            "json",
+        ]);
+        let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        v.as_object_mut().unwrap().remove("source");
+        v
+    };
+    let (a, b) = (analysis(&drn), analysis(&json));
+    assert!(a["breakpoints"].is_array(), "{a}");
+    assert_eq!(a["breakpoints"], b["breakpoints"]);
+    assert_eq!(a["intervals"], b["intervals"]);
+}
+
 #[test]
 fn hostile_drn_input_is_refused_in_one_line() {
     let dir = tempfile::tempdir().unwrap();

@@ -410,34 +410,49 @@ fn deterministic_and_general_engines_agree() {
 }
 
 #[test]
-fn chain_degree_bound_is_checked_while_running() {
-    // A line of 251 states (cost 1 per step): the only policy's chain from 0 has 250 steps.
-    let n = 251;
-    let actions = (0..n)
-        .map(|x| {
-            if x + 1 < n {
-                vec![det(1, x + 1)]
-            } else {
-                vec![]
-            }
-        })
-        .collect();
-    let m = Model::from_problem(
-        StochasticProblem::new(actions, 0, vec![n - 1]).unwrap(),
-        "line".into(),
-    );
-    let e = discount_breakpoints(&m).unwrap_err();
+fn chain_degree_bound_is_checked_before_any_probe_and_while_running() {
+    // A line of `n` states (cost `first` on the first step, 1 on the others).
+    let line = |n: usize, first: i64| {
+        let actions = (0..n)
+            .map(|x| {
+                if x + 1 < n {
+                    vec![det(if x == 0 { first } else { 1 }, x + 1)]
+                } else {
+                    vec![]
+                }
+            })
+            .collect();
+        Model::from_problem(
+            StochasticProblem::new(actions, 0, vec![n - 1]).unwrap(),
+            "line".into(),
+        )
+    };
+    // 251 states, every reward negative: state 0 is 250 moves from the goal, so every policy
+    // optimal near alpha = 1 ends the episode from it and its value has degree 249 > 200,
+    // refused before the first probe.
+    let e = discount_breakpoints(&line(251, 1)).unwrap_err();
     assert!(
         matches!(
             e,
-            ParametricError::ChainDegree {
-                degree: 201,
+            ParametricError::CertainDegree {
+                state: 0,
+                moves: 250,
+                degree: 249,
                 bound: 200
             }
         ),
         "{e}"
     );
-    assert!(e.to_string().contains("at most 200"));
+    assert!(e.to_string().contains("before any probe"), "{e}");
+    assert!(e.to_string().contains("at most 200"), "{e}");
+    // A first step of cost 0 (reward 0, not negative): the bound before the probes does not
+    // apply, and the chain's degree is caught while the first policy is evaluated.
+    let e = discount_breakpoints(&line(251, 0)).unwrap_err();
+    assert!(
+        matches!(e, ParametricError::ChainDegree { degree, bound: 200 } if degree > 200),
+        "{e}"
+    );
+    assert!(e.to_string().contains("at most 200"), "{e}");
     // A line of 150 is within the bound: no choice, no breakpoint, truecost 149.
     let n = 150;
     let actions = (0..n)

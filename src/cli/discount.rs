@@ -20,7 +20,7 @@ use truecost::objectives::report::{
 };
 use truecost::objectives::{failure_set, Model, Source};
 use truecost::problems::{GridLayout, StepCost};
-use truecost::stochastic::file::{read_with_objective, FileObjective, ProblemFile};
+use truecost::stochastic::file::{FileObjective, ProblemFile};
 
 use super::compare::CompareFormat;
 use super::env::{pretty, EnvArg};
@@ -59,18 +59,20 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
             let model = Source::Env(spec.clone()).load()?;
             return analysis(&model).map(|d| breakpoints(&model, &d, args.format));
         }
-        (None, Some(path), _) => match read_with_objective(path).map_err(|e| e.to_string())? {
-            (ProblemFile::Deterministic(p), extra) => (
-                p,
-                format!("file {}", printable(&path.display().to_string())),
-                extra,
-            ),
-            (ProblemFile::Stochastic(p), extra) => {
-                let model = Model::from_problem(*p, format!("file {}", path.display()))
-                    .with_file_objective(&extra);
-                return analysis(&model).map(|d| breakpoints(&model, &d, args.format));
+        (None, Some(path), _) => {
+            match truecost::formats::read_with_objective(path).map_err(|e| e.to_string())? {
+                (ProblemFile::Deterministic(p), extra) => (
+                    p,
+                    format!("file {}", printable(&path.display().to_string())),
+                    extra,
+                ),
+                (ProblemFile::Stochastic(p), extra) => {
+                    let model = Model::from_problem(*p, format!("file {}", path.display()))
+                        .with_file_objective(&extra);
+                    return analysis(&model).map(|d| breakpoints(&model, &d, args.format));
+                }
             }
-        },
+        }
         (None, None, Some(id)) => (
             GridLayout::exact(id)
                 .map_err(|e| e.to_string())?

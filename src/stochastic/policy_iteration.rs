@@ -6,10 +6,12 @@
 //! none. Unsafe actions (an outcome with `G* = +∞`) are never chosen.
 //!
 //! Algorithm:
-//! 1. **Initial proper policy**: the deterministic optimum of the commanded moves (first
-//!    optimal move making progress, as in [`crate::solvers::greedy_policy`]), where its action
-//!    is safe; if that policy is not proper on the finite states, the attractor policy (always
-//!    proper).
+//! 1. **Initial proper policy**: the deterministic optimum of the intended moves (the commanded
+//!    move, or for an action that only lists outcomes its most likely outcome:
+//!    [`StochasticProblem::intended`]; first optimal move making progress, as in
+//!    [`crate::solvers::greedy_policy`]), where its action is safe; if that policy is not
+//!    proper on the finite states, the attractor policy (always proper). A problem read from
+//!    an explicit file thus starts where the same problem built from a grid and `γ` does.
 //! 2. **Warm start in `f64`**: policy iteration with `f64` evaluations, switching an action only
 //!    when it is better by a relative margin of 10⁻⁹, and only while the policy stays proper.
 //!    This only proposes a policy; nothing of it is reported.
@@ -921,7 +923,8 @@ fn initial_policy(
     (properness.attractor.clone(), "attractor")
 }
 
-/// The deterministic optimum over commanded moves, where safe (attractor action elsewhere).
+/// The deterministic optimum over intended moves ([`StochasticProblem::intended`]), where safe
+/// (attractor action elsewhere).
 fn deterministic_policy(
     problem: &StochasticProblem,
     properness: &Properness,
@@ -932,7 +935,7 @@ fn deterministic_policy(
         let mut list = Vec::new();
         for a in problem.actions(x) {
             list.push(Move {
-                successor: problem.commanded(a)?,
+                successor: problem.intended(a),
                 cost: problem.cost(a).clone(),
             });
         }

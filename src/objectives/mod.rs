@@ -48,7 +48,7 @@ use num_traits::{One, Signed, Zero};
 use crate::envs::Environment;
 use crate::model::file::FileObjective;
 use crate::model::StateId;
-use crate::stochastic::policy_iteration::{evaluate, optimum};
+use crate::stochastic::policy_iteration::{evaluate, evaluate_at, optimum};
 use crate::stochastic::properness::{almost_sure, avoids, reaches};
 use crate::stochastic::{
     Outcome, OutcomeKind, StochasticAction, StochasticError, StochasticProblem,
@@ -424,7 +424,17 @@ impl Model {
         let truecost = self.at_initial_of(|x| opt.cost_to_go(x));
         let steps = match truecost {
             Extended::Infinite => Extended::Infinite,
-            Extended::Finite(_) => self.at_initial(&evaluate(&self.unit_costs()?, &policy)?),
+            Extended::Finite(_) => {
+                let initial: Vec<StateId> = self.initial.iter().map(|(x, _)| *x).collect();
+                let steps = evaluate_at(&self.unit_costs()?, &policy, &initial)?;
+                self.at_initial_of(|x| {
+                    let k = initial
+                        .iter()
+                        .position(|&y| y == x)
+                        .expect("an initial state");
+                    steps[k].clone()
+                })
+            }
         };
         Ok(Solution {
             objective: Objective::Reach,

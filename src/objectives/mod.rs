@@ -595,15 +595,7 @@ pub fn max_reach(
         })
         .collect();
     let mut policy = sure.attractor;
-    if maybe.contains(&true) {
-        let goals: Vec<StateId> = (0..n).filter(|&x| !maybe[x]).collect();
-        let (aux, origin) = derive(problem, goals, |a| {
-            allowed(a).then(|| StochasticAction {
-                cost: probability_into(problem, a, &zero),
-                outcomes: problem.outcomes(a).to_vec(),
-            })
-        })?;
-        let opt = optimum(&aux)?;
+    if let Some((opt, origin)) = maybe_optimum(problem, allowed, &maybe, &zero)? {
         for x in (0..n).filter(|&x| maybe[x]) {
             values[x] = Rational::one()
                 - opt
@@ -614,6 +606,28 @@ pub fn max_reach(
         }
     }
     Ok((values, policy))
+}
+
+/// The exact optimum of the maybe-states (none if there are none): the problem whose goals are
+/// all the states outside `maybe`, with the allowed actions, each costing its probability of
+/// stepping into `costly`; with the original id of every action of that problem.
+fn maybe_optimum(
+    problem: &StochasticProblem,
+    allowed: &dyn Fn(usize) -> bool,
+    maybe: &[bool],
+    costly: &[bool],
+) -> Result<Option<(crate::stochastic::policy_iteration::Optimum, Vec<usize>)>, StochasticError> {
+    if !maybe.contains(&true) {
+        return Ok(None);
+    }
+    let goals: Vec<StateId> = (0..problem.states()).filter(|&x| !maybe[x]).collect();
+    let (aux, origin) = derive(problem, goals, |a| {
+        allowed(a).then(|| StochasticAction {
+            cost: probability_into(problem, a, costly),
+            outcomes: problem.outcomes(a).to_vec(),
+        })
+    })?;
+    Ok(Some((optimum(&aux)?, origin)))
 }
 
 /// The probability that action `a` steps into a state of `set`.
@@ -653,15 +667,7 @@ pub fn min_reach(
             }
         })
         .collect();
-    if maybe.contains(&true) {
-        let goals: Vec<StateId> = (0..n).filter(|&x| !maybe[x]).collect();
-        let (aux, _) = derive(problem, goals, |a| {
-            allowed(a).then(|| StochasticAction {
-                cost: probability_into(problem, a, &one),
-                outcomes: problem.outcomes(a).to_vec(),
-            })
-        })?;
-        let opt = optimum(&aux)?;
+    if let Some((opt, _)) = maybe_optimum(problem, allowed, &maybe, &one)? {
         for x in (0..n).filter(|&x| maybe[x]) {
             values[x] = opt
                 .cost_to_go(x)

@@ -111,7 +111,7 @@ fn reverse_actions(problem: &StochasticProblem) -> Vec<Vec<usize>> {
 /// use truecost::stochastic::properness::reaches;
 /// use truecost::stochastic::file::{from_json, ProblemFile};
 /// // 0 -> 1 -> 2 (goal); 3 only loops.
-/// let text = r#"{"initial":0,"goals":[2],"actions":[[{"to":1,"cost":"1"}],[{"to":2,"cost":"1"}],[],[{"to":3,"cost":"1"}]]}"#;
+/// let text = r#"{"initial":0,"goals":[2],"actions":[[{"cost":"1","outcomes":[{"to":1,"p":"1"}]}],[{"to":2,"cost":"1"}],[],[{"to":3,"cost":"1"}]]}"#;
 /// let ProblemFile::Stochastic(p) = from_json(text).unwrap() else { unreachable!() };
 /// let goal = [false, false, true, false];
 /// assert_eq!(reaches(&p, &|_| true, &goal, &|_| true), [true, true, true, false]);
@@ -148,7 +148,7 @@ pub fn reaches(
 /// use truecost::stochastic::properness::avoids;
 /// use truecost::stochastic::file::{from_json, ProblemFile};
 /// // 0 may loop or go to the goal 1; 2 must go to 0.
-/// let text = r#"{"initial":0,"goals":[1],"actions":[[{"to":0,"cost":"1"},{"to":1,"cost":"1"}],[],[{"to":0,"cost":"1"}]]}"#;
+/// let text = r#"{"initial":0,"goals":[1],"actions":[[{"to":0,"cost":"1"},{"cost":"1","outcomes":[{"to":1,"p":"1"}]}],[],[{"to":0,"cost":"1"}]]}"#;
 /// let ProblemFile::Stochastic(p) = from_json(text).unwrap() else { unreachable!() };
 /// assert_eq!(avoids(&p, &|_| true), [true, false, true]);
 /// assert_eq!(avoids(&p, &|a| a != 0), [false, false, false]);

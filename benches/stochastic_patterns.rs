@@ -4,13 +4,23 @@
 //! rounds and bits. Targets (release, 2 idle cores): 2,500 states ≤ 5 s and 10⁴ states ≤ 60 s
 //! for every pattern; a row over its target is marked `OVER`.
 //!
-//! `cargo bench --bench stochastic_patterns` runs every row (about 20 minutes);
+//! Each case runs from three sources: `grid` (the problem built from the grid and `γ`),
+//! `file` (the same problem written as an explicit stochastic file and read back: no
+//! commanded moves, the same number of exact evaluations is expected) and `reach` (the reach
+//! objective on the file's problem: the probability by graph analysis, then the reported
+//! policy's expected truecost and steps; its target is twice the optimum's). `pmax` times the
+//! greatest reach probability alone (no target beyond the optimum's).
+//!
+//! `cargo bench --bench stochastic_patterns` runs every row (about an hour);
 //! `cargo bench --bench stochastic_patterns -- 50` only the 50×50 rows, `-- ties` only one
-//! pattern (a row runs when its label contains every argument given).
+//! pattern, `-- /file` only the explicit files (a row runs when its label contains every
+//! argument given).
 
 use std::time::Instant;
 
+use truecost::objectives::{max_reach, Model, Objective};
 use truecost::stochastic::benchmark::{pattern_grid, CostRange, GridPattern};
+use truecost::stochastic::file::{from_json, to_json, ProblemFile};
 use truecost::stochastic::policy_iteration::optimum;
 use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
 
@@ -20,37 +30,70 @@ fn main() {
         .filter(|a| !a.starts_with("--"))
         .collect();
     println!(
-        "{:<40} {:>9} {:>6} {:>8} {:>7} {:>7}  target",
+        "{:<46} {:>9} {:>6} {:>8} {:>7} {:>7}  target",
         "case", "seconds", "exact", "lifting", "rounds", "bits"
     );
     for (side, target) in [(50usize, 5.0f64), (100, 60.0)] {
         for pattern in GridPattern::ALL {
             for gamma in ["0.99", "0.999"] {
                 for noise in [NoiseModel::Paper, NoiseModel::Reference] {
-                    let label =
-                        format!("{side}x{side}/{}/{gamma}/{}", pattern.name(), noise.name());
-                    if !filters.iter().all(|f| label.contains(f.as_str())) {
-                        continue;
+                    for source in ["grid", "file", "reach", "pmax"] {
+                        let label = format!(
+                            "{side}x{side}/{}/{gamma}/{}/{source}",
+                            pattern.name(),
+                            noise.name()
+                        );
+                        if filters.iter().all(|f| label.contains(f.as_str())) {
+                            row(&label, side, pattern, gamma, noise, target);
+                        }
                     }
-                    let grid = pattern_grid(side, side, pattern, CostRange::DEFAULT, 0)
-                        .expect("a valid grid");
-                    let gamma = Predictability::parse(gamma).expect("a valid gamma");
-                    let problem = StochasticProblem::from_deterministic(&grid, noise, &gamma)
-                        .expect("a valid model");
-                    let start = Instant::now();
-                    let o = optimum(&problem).expect("solvable");
-                    let seconds = start.elapsed().as_secs_f64();
-                    let s = &o.stats;
-                    println!(
-                        "{label:<40} {seconds:>9.2} {:>6} {:>8} {:>7} {:>7}  {}",
-                        s.exact_iterations,
-                        s.lifting_steps,
-                        s.refinement_rounds,
-                        s.refinement_bits,
-                        if seconds <= target { "ok" } else { "OVER" }
-                    );
                 }
             }
         }
+    }
+}
+
+/// Builds one case, times its source (module docs) and prints its row.
+fn row(
+    label: &str,
+    side: usize,
+    pattern: GridPattern,
+    gamma: &str,
+    noise: NoiseModel,
+    target: f64,
+) {
+    let grid = pattern_grid(side, side, pattern, CostRange::DEFAULT, 0).expect("a valid grid");
+    let gamma = Predictability::parse(gamma).expect("a valid gamma");
+    let built = StochasticProblem::from_deterministic(&grid, noise, &gamma).expect("a valid model");
+    let problem = if label.ends_with("/grid") {
+        built
+    } else {
+        match from_json(&to_json(&built, None)).expect("a written file reads back") {
+            ProblemFile::Stochastic(p) => *p,
+            ProblemFile::Deterministic(_) => unreachable!("the file lists outcomes"),
+        }
+    };
+    let start = Instant::now();
+    let (stats, target) = if label.ends_with("/reach") {
+        let model = Model::from_problem(problem, label.to_string());
+        model.solve(&Objective::Reach).expect("solvable");
+        (None, 2.0 * target)
+    } else if label.ends_with("/pmax") {
+        max_reach(&problem, &|_| true).expect("solvable");
+        (None, target)
+    } else {
+        (Some(optimum(&problem).expect("solvable").stats), target)
+    };
+    let seconds = start.elapsed().as_secs_f64();
+    let verdict = if seconds <= target { "ok" } else { "OVER" };
+    match stats {
+        Some(s) => println!(
+            "{label:<46} {seconds:>9.2} {:>6} {:>8} {:>7} {:>7}  {verdict}",
+            s.exact_iterations, s.lifting_steps, s.refinement_rounds, s.refinement_bits,
+        ),
+        None => println!(
+            "{label:<46} {seconds:>9.2} {:>6} {:>8} {:>7} {:>7}  {verdict}",
+            "-", "-", "-", "-"
+        ),
     }
 }

@@ -7,14 +7,21 @@
 //! [`crate::stochastic::policy_iteration::optimum`] (policy iteration with exact rational linear
 //! solves) on an auxiliary problem; nothing is iterated in floating point:
 //! * **truecost** — the problem itself.
-//! * **reach** — `Z` = the states that cannot reach a goal; in the problem whose goals are
-//!   `XG ∪ Z` and whose stage cost is the probability of stepping into `Z`, the least expected
-//!   cost over proper policies is `1 − max P(reach XG)` (a reach-optimal policy that is proper
-//!   for `XG ∪ Z` exists: strict policy improvement from a proper policy stays proper, and a
-//!   proper fixed point `v = max_u P_u v` dominates every policy).
+//! * **reach** — first the graph precomputation of probabilistic model checking: `Z` = the
+//!   states that cannot reach a goal (probability 0), `S1` = the states from which some policy
+//!   reaches a goal with probability 1 (the almost-sure fixpoint of
+//!   [`crate::stochastic::properness`]). Only the remaining *maybe* states `M` are solved: in
+//!   the problem whose goals are all states outside `M` and whose stage cost is the probability
+//!   of stepping into `Z`, the least expected cost over proper policies is `1 − max P(reach
+//!   XG)` (a reach-optimal policy that is proper for `XG ∪ S1 ∪ Z` exists: strict policy
+//!   improvement from a proper policy stays proper, and a proper fixed point `v = max_u P_u v`
+//!   dominates every policy). On grids with noise every state is in `S1` and nothing is
+//!   solved.
 //!   The least success probability over a set of policies uses the dual construction: `S0` =
-//!   the states from which some policy avoids the goals forever (greatest fixpoint), goals
-//!   `XG ∪ S0`, stage cost = the probability of stepping into `XG` (every policy is proper there).
+//!   the states from which some policy avoids the goals forever (greatest fixpoint, probability
+//!   0), `A1` = the states from which no policy reaches `S0` (probability 1), goals everything
+//!   outside `M = ∁(S0 ∪ A1)`, stage cost = the probability of stepping into `XG ∪ A1` (every
+//!   policy is proper there).
 //! * **discounted** — a killed process: every step continues with probability `α` and ends in an
 //!   extra absorbing state with `1 − α`; rewards are shifted to costs `R − r ≥ 0`
 //!   (`R = max(0, max r)`), and an ended episode (goal, trap) keeps paying `R` (reward 0). Then
@@ -24,6 +31,10 @@
 //! Every objective reports its optimal policy's success probability — as `{min, max}` over all
 //! the policies optimal for it (any choice among tied optimal actions) — and the expected
 //! truecost and number of steps of the policy it reports (`+∞` if that policy is improper).
+//! The reach objective reports, on `S1`, the truecost-optimal policy (it reaches a goal with
+//! probability 1 and costs least there), so its expected truecost is `G*` (finite exactly when
+//! the initial states are in `S1`) and costs one run of the exact optimum rather than an
+//! exact evaluation of an arbitrary reach-optimal policy (whose cost can exceed `10³⁰⁰`).
 //! With an initial distribution (Taxi), values at "the initial state" are expectations over it.
 
 pub mod actions;
@@ -37,7 +48,8 @@ use num_traits::{One, Signed, Zero};
 use crate::envs::Environment;
 use crate::model::file::FileObjective;
 use crate::model::StateId;
-use crate::stochastic::policy_iteration::{evaluate, optimum};
+use crate::stochastic::policy_iteration::{evaluate, evaluate_at, optimum};
+use crate::stochastic::properness::{almost_sure, avoids, reaches};
 use crate::stochastic::{
     Outcome, OutcomeKind, StochasticAction, StochasticError, StochasticProblem,
 };
@@ -293,9 +305,14 @@ impl Model {
     /// The expectation of per-state values over the initial distribution (`+∞` if any state
     /// of positive probability has `+∞`).
     pub fn at_initial(&self, values: &[Extended]) -> Extended {
+        self.at_initial_of(|x| values[x].clone())
+    }
+
+    /// [`Self::at_initial`] of the values `value(x)`, asked at the initial states only.
+    fn at_initial_of(&self, value: impl Fn(StateId) -> Extended) -> Extended {
         let mut sum = Rational::zero();
         for (x, p) in &self.initial {
-            match &values[*x] {
+            match &value(*x) {
                 Extended::Finite(v) => sum += v * p,
                 Extended::Infinite => return Extended::Infinite,
             }
@@ -343,7 +360,6 @@ impl Model {
     pub fn solve(&self, objective: &Objective) -> Result<Solution, ObjectiveError> {
         let p = &self.problem;
         let n = p.states();
-        let everything = |_: usize| true;
         let (values, policy, allowed): (Vec<Extended>, Vec<Option<usize>>, Vec<bool>) =
             match objective {
                 Objective::Truecost => {
@@ -357,31 +373,15 @@ impl Model {
                         .collect();
                     (values, opt.policy_actions().to_vec(), allowed)
                 }
-                Objective::Reach => {
-                    let (max, policy) = max_reach(p, &everything)?;
-                    let values = max.into_iter().map(Extended::Finite).collect();
-                    (values, policy, vec![true; p.action_total()])
-                }
+                Objective::Reach => return self.reach(),
                 Objective::Discounted(alpha) => self.discounted(alpha)?,
             };
         let allow = |a: usize| allowed[a];
-        let success = match objective {
-            Objective::Reach => {
-                let v = self.at_initial(&values);
-                let v = v.finite().cloned().unwrap_or_else(Rational::zero);
-                Bounds {
-                    min: v.clone(),
-                    max: v,
-                }
-            }
-            _ => {
-                let (max, _) = max_reach(p, &allow)?;
-                let min = min_reach(p, &allow)?;
-                Bounds {
-                    min: self.at_initial_rational(&min),
-                    max: self.at_initial_rational(&max),
-                }
-            }
+        let (max, _) = max_reach(p, &allow)?;
+        let min = min_reach(p, &allow)?;
+        let success = Bounds {
+            min: self.at_initial_rational(&min),
+            max: self.at_initial_rational(&max),
         };
         let chosen = |a: usize| policy[p.state_of(a)] == Some(a);
         let policy_success = self.at_initial_rational(&min_reach(p, &chosen)?);
@@ -395,6 +395,61 @@ impl Model {
             value_initial,
             policy,
             success,
+            policy_success,
+            truecost,
+            steps,
+        })
+    }
+
+    /// The reach objective: the greatest probability of reaching a goal by [`max_reach`]
+    /// (graph analysis, exact solves of the maybe-states only). The policy reported attains it
+    /// everywhere: [`max_reach`]'s on the states where the probability is below 1, and on the
+    /// states where some policy reaches a goal with probability 1 the truecost-optimal one
+    /// (which does, and costs least there). Its expected truecost is therefore `G*` at the
+    /// initial distribution (`+∞` unless every initial state reaches a goal surely) and costs
+    /// one run of the exact optimum; its expected number of steps one more exact evaluation,
+    /// only when that is finite.
+    fn reach(&self) -> Result<Solution, ObjectiveError> {
+        let p = &self.problem;
+        let (max, mut policy) = max_reach(p, &|_| true)?;
+        let values: Vec<Extended> = max.into_iter().map(Extended::Finite).collect();
+        let opt = optimum(p)?;
+        for (x, a) in opt.policy_actions().iter().enumerate() {
+            if a.is_some() {
+                policy[x] = *a;
+            }
+        }
+        let value_initial = self.at_initial(&values);
+        let v = value_initial
+            .finite()
+            .cloned()
+            .unwrap_or_else(Rational::zero);
+        let chosen = |a: usize| policy[p.state_of(a)] == Some(a);
+        let policy_success = self.at_initial_rational(&min_reach(p, &chosen)?);
+        let truecost = self.at_initial_of(|x| opt.cost_to_go(x));
+        let steps = match truecost {
+            Extended::Infinite => Extended::Infinite,
+            Extended::Finite(_) => {
+                let initial: Vec<StateId> = self.initial.iter().map(|(x, _)| *x).collect();
+                let steps = evaluate_at(&self.unit_costs()?, &policy, &initial)?;
+                self.at_initial_of(|x| {
+                    let k = initial
+                        .iter()
+                        .position(|&y| y == x)
+                        .expect("an initial state");
+                    steps[k].clone()
+                })
+            }
+        };
+        Ok(Solution {
+            objective: Objective::Reach,
+            values,
+            value_initial,
+            policy,
+            success: Bounds {
+                min: v.clone(),
+                max: v,
+            },
             policy_success,
             truecost,
             steps,
@@ -586,123 +641,117 @@ pub(crate) fn derive(
 }
 
 /// The greatest probability of reaching a goal from every state using only the actions with
-/// `allowed(a)`, with a policy attaining it (proper for goals ∪ {probability-0 states}).
+/// `allowed(a)`, with a policy attaining it (proper for the goals and the probability-0
+/// states). The standard precomputation of probabilistic model checking first: the states
+/// that cannot reach a goal (probability 0, a backward search) and those where some policy
+/// reaches one with probability 1 ([`almost_sure`]: probability 1, where the attractor policy
+/// is used); only the remaining *maybe* states are solved exactly, as the least expected cost
+/// of stepping into a probability-0 state in the problem whose goals are all the other states
+/// (module docs).
 pub fn max_reach(
     problem: &StochasticProblem,
     allowed: &dyn Fn(usize) -> bool,
 ) -> Result<(Vec<Rational>, Vec<Option<usize>>), StochasticError> {
     let n = problem.states();
-    // States that can reach a goal through allowed actions (backward search).
-    let mut reaches = vec![false; n];
-    for &g in problem.goals() {
-        reaches[g] = true;
-    }
-    loop {
-        let mut changed = false;
-        for x in 0..n {
-            if !reaches[x]
-                && problem
-                    .actions(x)
-                    .any(|a| allowed(a) && problem.outcomes(a).iter().any(|o| reaches[o.successor]))
-            {
-                reaches[x] = true;
-                changed = true;
-            }
-        }
-        if !changed {
-            break;
-        }
-    }
-    let zero: Vec<bool> = reaches.iter().map(|r| !r).collect();
-    let goals: Vec<StateId> = (0..n).filter(|&x| problem.is_goal(x) || zero[x]).collect();
-    let (aux, origin) = derive(problem, goals, |a| {
-        allowed(a).then(|| StochasticAction {
-            cost: problem
-                .outcomes(a)
-                .iter()
-                .filter(|o| zero[o.successor])
-                .map(|o| o.probability.clone())
-                .fold(Rational::zero(), |s, p| s + p),
-            outcomes: problem.outcomes(a).to_vec(),
-        })
-    })?;
-    let opt = optimum(&aux)?;
-    let values = (0..n)
+    let goal: Vec<bool> = (0..n).map(|x| problem.is_goal(x)).collect();
+    let zero: Vec<bool> = reaches(problem, allowed, &goal, &|_| true)
+        .into_iter()
+        .map(|r| !r)
+        .collect();
+    let sure = almost_sure(problem, allowed);
+    let maybe: Vec<bool> = (0..n).map(|x| !zero[x] && !sure.finite[x]).collect();
+    let mut values: Vec<Rational> = (0..n)
         .map(|x| {
-            if problem.is_goal(x) {
+            if sure.finite[x] {
                 Rational::one()
-            } else if zero[x] {
-                Rational::zero()
             } else {
-                Rational::one()
-                    - opt
-                        .cost_to_go(x)
-                        .finite()
-                        .expect("a state that can reach a goal has a proper policy")
+                Rational::zero()
             }
         })
         .collect();
-    let policy = opt
-        .policy_actions()
-        .iter()
-        .map(|a| a.map(|a| origin[a]))
-        .collect();
+    let mut policy = sure.attractor;
+    if let Some((opt, origin)) = maybe_optimum(problem, allowed, &maybe, &zero)? {
+        for x in (0..n).filter(|&x| maybe[x]) {
+            values[x] = Rational::one()
+                - opt
+                    .cost_to_go(x)
+                    .finite()
+                    .expect("a state that can reach a goal has a proper policy");
+            policy[x] = opt.policy_actions()[x].map(|a| origin[a]);
+        }
+    }
     Ok((values, policy))
 }
 
+/// The exact optimum of the maybe-states (none if there are none): the problem whose goals are
+/// all the states outside `maybe`, with the allowed actions, each costing its probability of
+/// stepping into `costly`; with the original id of every action of that problem.
+fn maybe_optimum(
+    problem: &StochasticProblem,
+    allowed: &dyn Fn(usize) -> bool,
+    maybe: &[bool],
+    costly: &[bool],
+) -> Result<Option<(crate::stochastic::policy_iteration::Optimum, Vec<usize>)>, StochasticError> {
+    if !maybe.contains(&true) {
+        return Ok(None);
+    }
+    let goals: Vec<StateId> = (0..problem.states()).filter(|&x| !maybe[x]).collect();
+    let (aux, origin) = derive(problem, goals, |a| {
+        allowed(a).then(|| StochasticAction {
+            cost: probability_into(problem, a, costly),
+            outcomes: problem.outcomes(a).to_vec(),
+        })
+    })?;
+    Ok(Some((optimum(&aux)?, origin)))
+}
+
+/// The probability that action `a` steps into a state of `set`.
+fn probability_into(problem: &StochasticProblem, a: usize, set: &[bool]) -> Rational {
+    problem
+        .outcomes(a)
+        .iter()
+        .filter(|o| set[o.successor])
+        .map(|o| o.probability.clone())
+        .fold(Rational::zero(), |s, p| s + p)
+}
+
 /// The least probability of reaching a goal from every state over the policies using only the
-/// actions with `allowed(a)` (a state without allowed action ends there, unsuccessfully).
+/// actions with `allowed(a)` (a state without allowed action ends there, unsuccessfully). The
+/// precomputation first: the states from which some policy avoids the goals forever
+/// ([`avoids`]: probability 0) and those from which no policy can reach one of them
+/// (probability 1, a backward search); only the remaining states are solved exactly, as the
+/// least expected cost of stepping into a probability-1 state in the problem whose goals are
+/// all the other states (every policy is proper there).
 pub fn min_reach(
     problem: &StochasticProblem,
     allowed: &dyn Fn(usize) -> bool,
 ) -> Result<Vec<Rational>, StochasticError> {
     let n = problem.states();
-    // S0: the states from which some policy avoids the goals forever (greatest fixpoint).
-    let mut avoid: Vec<bool> = (0..n).map(|x| !problem.is_goal(x)).collect();
-    loop {
-        let mut changed = false;
-        for x in 0..n {
-            if avoid[x] {
-                let mut own = problem.actions(x).filter(|&a| allowed(a)).peekable();
-                let stays = own.peek().is_none()
-                    || own.any(|a| problem.outcomes(a).iter().all(|o| avoid[o.successor]));
-                if !stays {
-                    avoid[x] = false;
-                    changed = true;
-                }
+    let avoid = avoids(problem, allowed);
+    let one: Vec<bool> = reaches(problem, allowed, &avoid, &|x| !problem.is_goal(x))
+        .into_iter()
+        .map(|r| !r)
+        .collect();
+    let maybe: Vec<bool> = (0..n).map(|x| !avoid[x] && !one[x]).collect();
+    let mut values: Vec<Rational> = (0..n)
+        .map(|x| {
+            if one[x] {
+                Rational::one()
+            } else {
+                Rational::zero()
             }
-        }
-        if !changed {
-            break;
+        })
+        .collect();
+    if let Some((opt, _)) = maybe_optimum(problem, allowed, &maybe, &one)? {
+        for x in (0..n).filter(|&x| maybe[x]) {
+            values[x] = opt
+                .cost_to_go(x)
+                .finite()
+                .cloned()
+                .expect("every policy leaves the avoiding states' complement");
         }
     }
-    let goals: Vec<StateId> = (0..n).filter(|&x| problem.is_goal(x) || avoid[x]).collect();
-    let (aux, _) = derive(problem, goals, |a| {
-        allowed(a).then(|| StochasticAction {
-            cost: problem
-                .outcomes(a)
-                .iter()
-                .filter(|o| problem.is_goal(o.successor))
-                .map(|o| o.probability.clone())
-                .fold(Rational::zero(), |s, p| s + p),
-            outcomes: problem.outcomes(a).to_vec(),
-        })
-    })?;
-    let opt = optimum(&aux)?;
-    Ok((0..n)
-        .map(|x| {
-            if problem.is_goal(x) {
-                Rational::one()
-            } else if avoid[x] {
-                Rational::zero()
-            } else {
-                opt.cost_to_go(x)
-                    .finite()
-                    .cloned()
-                    .expect("every policy leaves the avoiding states' complement")
-            }
-        })
-        .collect())
+    Ok(values)
 }
 
 /// The objective named on the command line (`truecost`, `reach`, `discounted`), with `α`'s

@@ -6,10 +6,12 @@
 //! none. Unsafe actions (an outcome with `G* = +∞`) are never chosen.
 //!
 //! Algorithm:
-//! 1. **Initial proper policy**: the deterministic optimum of the commanded moves (first
-//!    optimal move making progress, as in [`crate::solvers::greedy_policy`]), where its action
-//!    is safe; if that policy is not proper on the finite states, the attractor policy (always
-//!    proper).
+//! 1. **Initial proper policy**: the deterministic optimum of the intended moves (the commanded
+//!    move, or for an action that only lists outcomes its most likely outcome:
+//!    [`StochasticProblem::intended`]; first optimal move making progress, as in
+//!    [`crate::solvers::greedy_policy`]), where its action is safe; if that policy is not
+//!    proper on the finite states, the attractor policy (always proper). A problem read from
+//!    an explicit file thus starts where the same problem built from a grid and `γ` does.
 //! 2. **Warm start in `f64`**: policy iteration with `f64` evaluations, switching an action only
 //!    when it is better by a relative margin of 10⁻⁹, and only while the policy stays proper.
 //!    This only proposes a policy; nothing of it is reported.
@@ -560,6 +562,29 @@ pub fn evaluate(
     problem: &StochasticProblem,
     policy: &[Option<usize>],
 ) -> Result<Vec<Extended>, StochasticError> {
+    let all: Vec<usize> = (0..problem.states()).collect();
+    evaluate_at(problem, policy, &all)
+}
+
+/// [`evaluate`]'s values at the given states only, in their order: the same exact solve, but
+/// only these values are reduced to lowest terms (on a large grid, reducing every state's
+/// fraction of thousands of digits costs several times the solve).
+///
+/// ```
+/// use truecost::model::{Move, Problem};
+/// use truecost::stochastic::{policy_iteration::evaluate_at, NoiseModel, Predictability, StochasticProblem};
+/// use truecost::value::parse_rational;
+/// let one = parse_rational("1").unwrap();
+/// let p = Problem::new(vec![vec![Move { successor: 1, cost: one.clone() }], vec![Move { successor: 2, cost: one }], vec![]], 0, vec![2]).unwrap();
+/// let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::parse("0.5").unwrap()).unwrap();
+/// let g = evaluate_at(&s, &[Some(0), Some(1), None], &[1, 0]).unwrap();
+/// assert_eq!(g.iter().map(|v| v.to_string()).collect::<Vec<_>>(), ["2", "4"]);
+/// ```
+pub fn evaluate_at(
+    problem: &StochasticProblem,
+    policy: &[Option<usize>],
+    states: &[usize],
+) -> Result<Vec<Extended>, StochasticError> {
     let n = problem.states();
     let action = |x: usize| -> Option<usize> {
         policy
@@ -609,8 +634,9 @@ pub fn evaluate(
     let system = build_system(problem, &index, &full, &costs)?;
     let z = solve_exact(&system).map_err(linear_error)?;
     let den = &z.denominator * problem.cost_denominator();
-    Ok((0..n)
-        .map(|x| {
+    Ok(states
+        .iter()
+        .map(|&x| {
             if problem.is_goal(x) {
                 Extended::Finite(Rational::zero())
             } else {
@@ -921,7 +947,8 @@ fn initial_policy(
     (properness.attractor.clone(), "attractor")
 }
 
-/// The deterministic optimum over commanded moves, where safe (attractor action elsewhere).
+/// The deterministic optimum over intended moves ([`StochasticProblem::intended`]), where safe
+/// (attractor action elsewhere).
 fn deterministic_policy(
     problem: &StochasticProblem,
     properness: &Properness,
@@ -932,7 +959,7 @@ fn deterministic_policy(
         let mut list = Vec::new();
         for a in problem.actions(x) {
             list.push(Move {
-                successor: problem.commanded(a)?,
+                successor: problem.intended(a),
                 cost: problem.cost(a).clone(),
             });
         }

@@ -387,6 +387,31 @@ impl StochasticProblem {
         self.commanded[action]
     }
 
+    /// The successor an action aims at: the commanded one, or (for an action of a problem that
+    /// lists only outcomes, such as a stochastic problem file) its most likely outcome, the
+    /// first of equals. The exact optimum's initial policy is the deterministic optimum over
+    /// these moves ([`super::policy_iteration`]).
+    ///
+    /// ```
+    /// use truecost::stochastic::file::{from_json, ProblemFile};
+    /// let text = r#"{"initial":0,"goals":[2],"actions":[[{"cost":"1","outcomes":[
+    ///     {"to":0,"p":"1/4"},{"to":1,"p":"3/8"},{"to":2,"p":"3/8"}]}],
+    ///     [{"to":2,"cost":"1"}],[]]}"#;
+    /// let ProblemFile::Stochastic(p) = from_json(text).unwrap() else { unreachable!() };
+    /// assert_eq!((p.intended(0), p.intended(1)), (1, 2));
+    /// ```
+    pub fn intended(&self, action: usize) -> StateId {
+        self.commanded(action).unwrap_or_else(|| {
+            let outcomes = self.outcomes(action);
+            let weights = self.weights(action);
+            let best = (0..outcomes.len())
+                .rev()
+                .max_by_key(|&k| weights[k])
+                .expect("an action has at least one outcome");
+            outcomes[best].successor
+        })
+    }
+
     /// The outcomes of an action, in order (commanded, other moves, stay for noise models).
     pub fn outcomes(&self, action: usize) -> &[Outcome] {
         &self.outcomes[self.outcome_first[action]..self.outcome_first[action + 1]]

@@ -46,21 +46,33 @@ pub struct Properness {
 /// assert_eq!(analyse(&d).finite, vec![true, true, false]);
 /// ```
 pub fn analyse(problem: &StochasticProblem) -> Properness {
+    almost_sure(problem, &|_| true)
+}
+
+/// [`analyse`] over the policies that use only the actions with `allowed(a)`: `finite` is then
+/// the set of states from which such a policy reaches a goal with probability 1 (the
+/// `Prob1E` set of probabilistic model checking: maximal reach probability 1), `safe` holds
+/// only allowed actions, and the attractor policy uses only allowed actions.
+///
+/// ```
+/// use truecost::stochastic::properness::almost_sure;
+/// use truecost::stochastic::file::{from_json, ProblemFile};
+/// // 0: action 0 reaches the goal 2 surely, action 1 risks the trap 1.
+/// let text = r#"{"initial":0,"goals":[2],"actions":[[{"to":2,"cost":"1"},
+///     {"cost":"1","outcomes":[{"to":1,"p":"1/2"},{"to":2,"p":"1/2"}]}],[{"to":1,"cost":"0"}],[]]}"#;
+/// let ProblemFile::Stochastic(p) = from_json(text).unwrap() else { unreachable!() };
+/// assert_eq!(almost_sure(&p, &|_| true).finite, [true, false, true]);
+/// assert_eq!(almost_sure(&p, &|a| a != 0).finite, [false, false, true]);
+/// ```
+pub fn almost_sure(problem: &StochasticProblem, allowed: &dyn Fn(usize) -> bool) -> Properness {
     let n = problem.states();
-    // Reverse outcome lists: for each state, the actions with an outcome there.
-    let mut into: Vec<Vec<usize>> = vec![Vec::new(); n];
-    for a in 0..problem.action_total() {
-        for o in problem.outcomes(a) {
-            if into[o.successor].last() != Some(&a) {
-                into[o.successor].push(a);
-            }
-        }
-    }
+    let into = reverse_actions(problem);
     let mut inside = vec![true; n];
     loop {
         let safe: Vec<bool> = (0..problem.action_total())
             .map(|a| {
-                inside[problem.state_of(a)]
+                allowed(a)
+                    && inside[problem.state_of(a)]
                     && problem.outcomes(a).iter().all(|o| inside[o.successor])
             })
             .collect();
@@ -74,6 +86,120 @@ pub fn analyse(problem: &StochasticProblem) -> Properness {
         }
         inside = reached;
     }
+}
+
+/// For each state, the actions with an outcome there (each action once per state).
+fn reverse_actions(problem: &StochasticProblem) -> Vec<Vec<usize>> {
+    let mut into: Vec<Vec<usize>> = vec![Vec::new(); problem.states()];
+    for a in 0..problem.action_total() {
+        for o in problem.outcomes(a) {
+            if into[o.successor].last() != Some(&a) {
+                into[o.successor].push(a);
+            }
+        }
+    }
+    into
+}
+
+/// The states from which `targets` are reached with positive probability by some policy
+/// using only the actions with `allowed(a)`, passing only through states with
+/// `through(x)` (the targets included): a backward search. With the goals as targets, its
+/// complement is the set where the maximal reach probability is 0 (`Prob0A` of probabilistic
+/// model checking).
+///
+/// ```
+/// use truecost::stochastic::properness::reaches;
+/// use truecost::stochastic::file::{from_json, ProblemFile};
+/// // 0 -> 1 -> 2 (goal); 3 only loops.
+/// let text = r#"{"initial":0,"goals":[2],"actions":[[{"cost":"1","outcomes":[{"to":1,"p":"1"}]}],[{"to":2,"cost":"1"}],[],[{"to":3,"cost":"1"}]]}"#;
+/// let ProblemFile::Stochastic(p) = from_json(text).unwrap() else { unreachable!() };
+/// let goal = [false, false, true, false];
+/// assert_eq!(reaches(&p, &|_| true, &goal, &|_| true), [true, true, true, false]);
+/// assert_eq!(reaches(&p, &|a| a != 1, &goal, &|_| true), [false, false, true, false]);
+/// assert_eq!(reaches(&p, &|_| true, &goal, &|x| x != 1), [false, false, true, false]);
+/// ```
+pub fn reaches(
+    problem: &StochasticProblem,
+    allowed: &dyn Fn(usize) -> bool,
+    targets: &[bool],
+    through: &dyn Fn(usize) -> bool,
+) -> Vec<bool> {
+    let into = reverse_actions(problem);
+    let mut reached = targets.to_vec();
+    let mut stack: Vec<usize> = (0..problem.states()).filter(|&x| targets[x]).collect();
+    while let Some(y) = stack.pop() {
+        for &a in &into[y] {
+            let x = problem.state_of(a);
+            if !reached[x] && through(x) && allowed(a) {
+                reached[x] = true;
+                stack.push(x);
+            }
+        }
+    }
+    reached
+}
+
+/// The states from which some policy using only the actions with `allowed(a)` avoids the
+/// goals forever (a state without an allowed action stays where it is): the greatest set `S`
+/// of non-goal states where every state has no allowed action or an allowed action with all
+/// its outcomes in `S`. Where the minimal reach probability is 0 (`Prob0E`).
+///
+/// ```
+/// use truecost::stochastic::properness::avoids;
+/// use truecost::stochastic::file::{from_json, ProblemFile};
+/// // 0 may loop or go to the goal 1; 2 must go to 0.
+/// let text = r#"{"initial":0,"goals":[1],"actions":[[{"to":0,"cost":"1"},{"cost":"1","outcomes":[{"to":1,"p":"1"}]}],[],[{"to":0,"cost":"1"}]]}"#;
+/// let ProblemFile::Stochastic(p) = from_json(text).unwrap() else { unreachable!() };
+/// assert_eq!(avoids(&p, &|_| true), [true, false, true]);
+/// assert_eq!(avoids(&p, &|a| a != 0), [false, false, false]);
+/// ```
+pub fn avoids(problem: &StochasticProblem, allowed: &dyn Fn(usize) -> bool) -> Vec<bool> {
+    let n = problem.states();
+    let into = reverse_actions(problem);
+    let mut avoid: Vec<bool> = (0..n).map(|x| !problem.is_goal(x)).collect();
+    // Per state: its allowed actions with every outcome still in the set.
+    let mut staying: Vec<usize> = vec![0; n];
+    let mut left: Vec<usize> = Vec::new();
+    let mut inside_action: Vec<bool> = vec![false; problem.action_total()];
+    for x in 0..n {
+        if !avoid[x] {
+            continue;
+        }
+        let own: Vec<usize> = problem.actions(x).filter(|&a| allowed(a)).collect();
+        if own.is_empty() {
+            staying[x] = usize::MAX; // ends here: never leaves the set
+            continue;
+        }
+        for a in own {
+            if problem.outcomes(a).iter().all(|o| avoid[o.successor]) {
+                inside_action[a] = true;
+                staying[x] += 1;
+            }
+        }
+        if staying[x] == 0 {
+            left.push(x);
+        }
+    }
+    for &x in &left {
+        avoid[x] = false;
+    }
+    while let Some(y) = left.pop() {
+        for &a in &into[y] {
+            if !inside_action[a] {
+                continue;
+            }
+            inside_action[a] = false;
+            let x = problem.state_of(a);
+            if avoid[x] && staying[x] != usize::MAX {
+                staying[x] -= 1;
+                if staying[x] == 0 {
+                    avoid[x] = false;
+                    left.push(x);
+                }
+            }
+        }
+    }
+    avoid
 }
 
 /// States of `inside` from which a goal is reached with positive probability using safe

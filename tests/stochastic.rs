@@ -835,13 +835,13 @@ fn stochastic_files_round_trip_and_keep_their_optimum() {
     }
     let (direct, read) = (optimum(&s).unwrap(), optimum(&back).unwrap());
     assert_eq!(direct.cost_to_go_all(), read.cost_to_go_all());
-    // Policy iteration starts from the deterministic optimum over the commanded moves when the
-    // problem has them (a noise model's), and from the attractor's policy when it does not (a
-    // file lists outcomes only).
+    // Policy iteration starts from the deterministic optimum over each action's intended move:
+    // the commanded move when the problem has one (a noise model's), else its most likely
+    // outcome (a file lists outcomes only) — here the same move.
     assert_eq!(s.commanded(0), Some(p.neighbours[0][0]));
     assert_eq!(back.commanded(0), None);
     assert_eq!(direct.stats.initial_policy, "deterministic-optimum");
-    assert_eq!(read.stats.initial_policy, "attractor");
+    assert_eq!(read.stats.initial_policy, "deterministic-optimum");
 }
 
 #[test]
@@ -1031,15 +1031,15 @@ fn the_reported_policy_is_the_first_optimal_action() {
     assert_eq!(o.policy_actions(), [Some(0), None]);
 }
 
-/// Policy iteration's initial policy is the deterministic optimum over the commanded moves:
+/// Policy iteration's initial policy is the deterministic optimum over the intended moves:
 /// where that optimum is not the attractor's choice, it saves the improvement rounds the
-/// attractor's policy needs. `0 → goal` costs 10, `0 → 1 → goal` costs 1 + 1; the
-/// attractor (reaching a goal in the fewest moves) takes the costly direct move. Fully
+/// attractor's policy would need. `0 → goal` costs 10, `0 → 1 → goal` costs 1 + 1; the
+/// attractor (reaching a goal in the fewest moves) would take the costly direct move. Fully
 /// predictable (γ = 1) and at γ = 0.9 the cheap detour is optimal from the start: no
-/// improvement round; the same problem read back from a file (outcomes only, so the
-/// attractor's policy) needs one.
+/// improvement round, from the noise model and from the same problem read back from a file
+/// (whose intended moves are the most likely outcomes, the commanded moves).
 #[test]
-fn the_deterministic_optimum_start_needs_no_improvement_where_the_attractor_does() {
+fn the_deterministic_optimum_start_needs_no_improvement_from_either_source() {
     let p = Problem::new(
         weighted(&[&[(2, "10"), (1, "1")], &[(2, "1")], &[]]),
         0,
@@ -1053,8 +1053,8 @@ fn the_deterministic_optimum_start_needs_no_improvement_where_the_attractor_does
         assert_eq!(o.stats.float_iterations, 0, "gamma {g}");
         let back = stochastic_file(&file::to_json(&s, None));
         let r = optimum(&back).unwrap();
-        assert_eq!(r.stats.initial_policy, "attractor");
-        assert_eq!(r.stats.float_iterations, 1, "gamma {g}");
+        assert_eq!(r.stats.initial_policy, "deterministic-optimum");
+        assert_eq!(r.stats.float_iterations, 0, "gamma {g}");
         assert_eq!(o.cost_to_go_all(), r.cost_to_go_all());
         // Value iteration's greedy policies (exact, and f64 on the nearest f64 model) take
         // the cheap detour too: the first minimising action; the goal terminates.
@@ -1075,39 +1075,47 @@ fn the_deterministic_optimum_start_needs_no_improvement_where_the_attractor_does
 }
 
 /// The `f64` warm start does the improving, so that the exact phase evaluates once: read
-/// from a file (outcomes only), `0 → goal` at cost 5 against `0 → 1` at cost 1 and
-/// `1 → goal` at cost 0 starts from the attractor's direct move (`G = 5`); the warm start's
-/// first round sees `Q(detour) = 1 + G(1) = 1 < 5` and switches, its second changes nothing,
-/// and one exact evaluation confirms `G*(0) = 1`.
+/// from a file (outcomes only), `0 → goal` at cost 5 against a detour at cost 1 that stays
+/// at 0 or moves to 1 with probability 1/2 each (its intended move, the first of the equally
+/// likely outcomes, is the self-loop), and `1 → goal` at cost 0. The deterministic optimum
+/// over the intended moves takes the direct move (`G = 5`); the warm start's first round sees
+/// `Q(detour) = 1 + G(0)/2 + G(1)/2 = 7/2 < 5` and switches, its second changes nothing
+/// (the detour's value `G = 1 + G/2` is 2), and one exact evaluation confirms `G*(0) = 2`.
 #[test]
 fn the_warm_start_finds_the_improvement_before_the_exact_phase() {
     let text = r#"{"initial":0,"goals":[2],"actions":[
-        [{"cost":"5","outcomes":[{"to":2,"p":"1"}]},{"cost":"1","outcomes":[{"to":1,"p":"1"}]}],
+        [{"cost":"5","outcomes":[{"to":2,"p":"1"}]},{"cost":"1","outcomes":[{"to":0,"p":"1/2"},{"to":1,"p":"1/2"}]}],
         [{"cost":"0","outcomes":[{"to":2,"p":"1"}]}],
         []]}"#;
     let o = optimum(&stochastic_file(text)).unwrap();
-    assert_eq!(o.stats.initial_policy, "attractor");
+    assert_eq!(o.stats.initial_policy, "deterministic-optimum");
     assert_eq!((o.stats.float_iterations, o.stats.exact_iterations), (1, 1));
-    assert_eq!(strings(o.cost_to_go_all()), ["1", "0", "0"]);
+    assert_eq!(strings(o.cost_to_go_all()), ["2", "0", "0"]);
     assert_eq!(o.policy_actions(), [Some(1), Some(2), None]);
 }
 
 /// The warm start switches only on an improvement larger than 10⁻⁹ of the value (module
-/// docs of `policy_iteration`): against a direct move at cost 10⁶, a detour cheaper by 10⁻⁵
-/// (relatively 10⁻¹¹) is left to the mixed-precision stage, which certifies it and switches
-/// (one round), so one exact evaluation confirms; cheaper by 1 (relatively 10⁻⁶) the warm
-/// start takes it.
+/// docs of `policy_iteration`): against a direct move at cost 10⁶, a detour whose intended
+/// move is a self-loop (it stays at 0 or moves to 2 with probability 1/2 each; `2 → goal`
+/// costs 0), so that the deterministic optimum over intended moves starts from the direct
+/// move. The detour's value is twice its cost: cost 499999.999995 gives 999999.99999, cheaper
+/// by 10⁻⁵ (relatively 10⁻¹¹), left to the mixed-precision stage, which certifies it and
+/// switches (one round), so one exact evaluation confirms; cost 499999.5 gives 999999, cheaper
+/// by 1 (relatively 10⁻⁶), and the warm start takes it.
 #[test]
 fn the_warm_start_ignores_improvements_below_its_relative_margin() {
-    for (detour, float, refined, exact) in [("999999.99999", 0, 1, 1), ("999999", 1, 0, 1)] {
+    for (cost, detour, float, refined, exact) in [
+        ("499999.999995", "999999.99999", 0, 1, 1),
+        ("499999.5", "999999", 1, 0, 1),
+    ] {
         let text = format!(
             r#"{{"initial":0,"goals":[1],"actions":[
-            [{{"cost":"1000000","outcomes":[{{"to":1,"p":"1"}}]}},{{"cost":"{detour}","outcomes":[{{"to":2,"p":"1"}}]}}],
+            [{{"cost":"1000000","outcomes":[{{"to":1,"p":"1"}}]}},{{"cost":"{cost}","outcomes":[{{"to":0,"p":"1/2"}},{{"to":2,"p":"1/2"}}]}}],
             [],
             [{{"cost":"0","outcomes":[{{"to":1,"p":"1"}}]}}]]}}"#
         );
         let o = optimum(&stochastic_file(&text)).unwrap();
-        assert_eq!(o.stats.initial_policy, "attractor");
+        assert_eq!(o.stats.initial_policy, "deterministic-optimum");
         assert_eq!(
             (
                 o.stats.float_iterations,

@@ -124,12 +124,14 @@ pub enum StochasticFileError {
 }
 
 /// Refuses outcome probabilities, each in `(0, 1]`, whose sum is not exactly 1, naming the sum
-/// and its exact distance from 1 (a range error is left to [`StochasticProblem::new`]).
+/// and its exact distance from 1 (a range error and an empty list are left to
+/// [`StochasticProblem::new`]).
 fn check_sum(outcomes: &[Outcome], state: usize, action: usize) -> Result<(), StochasticFileError> {
     use num_traits::One;
-    if !outcomes
-        .iter()
-        .all(|o| crate::value::in_unit_interval_open_closed(&o.probability))
+    if outcomes.is_empty()
+        || !outcomes
+            .iter()
+            .all(|o| crate::value::in_unit_interval_open_closed(&o.probability))
     {
         return Ok(());
     }

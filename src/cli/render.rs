@@ -403,7 +403,7 @@ fn stochastic(args: &RenderArgs, loaded: Option<ProblemFile>) -> Result<String, 
         if problem.is_goal(x) {
             Some(x)
         } else {
-            policy[x].map(|a| intended(&problem, a))
+            policy[x].map(|a| problem.intended(a))
         }
     };
     let model = match (problem.provenance(), &args.gamma) {
@@ -434,7 +434,7 @@ fn stochastic(args: &RenderArgs, loaded: Option<ProblemFile>) -> Result<String, 
                 "state"
             };
             (
-                actions_overlay(model, s, |a| intended(&problem, a), place),
+                actions_overlay(model, s, |a| problem.intended(a), place),
                 "; overlay: every optimal action (arrow to the commanded or else the most likely successor; several arrows: tied actions)",
             )
         }
@@ -449,20 +449,6 @@ fn stochastic(args: &RenderArgs, loaded: Option<ProblemFile>) -> Result<String, 
         "{g} (stochastic model, {model}; exact optimum by policy iteration){shown}; grey segments: allowed moves"
     );
     save(&scene, &overlay, args)
-}
-
-/// The successor an action aims at: the commanded one, or (for an action of a file that lists
-/// only outcomes) its most likely outcome, the first of equals.
-fn intended(problem: &StochasticProblem, action: usize) -> usize {
-    problem.commanded(action).unwrap_or_else(|| {
-        let outcomes = problem.outcomes(action);
-        let weights = problem.weights(action);
-        let best = (0..outcomes.len())
-            .rev()
-            .max_by_key(|&k| weights[k])
-            .expect("an action has at least one outcome");
-        outcomes[best].successor
-    })
 }
 
 /// From x1, the states the optimal policy visits when every move goes as commanded.

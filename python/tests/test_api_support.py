@@ -10,10 +10,10 @@ be imported instead. Without the native module the API tests are skipped, unless
 import json
 import math
 import os
-import shutil
 import subprocess
 import sys
 from fractions import Fraction
+from cli_binary import truecost_binary
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PYTHON_DIR = os.path.dirname(HERE)
@@ -34,18 +34,6 @@ try:
     import gymnasium
 except ImportError:
     gymnasium = None
-
-
-def truecost_binary():
-    """``$TRUECOST_BIN``, else the newer of target/release/truecost and target/debug/truecost
-    (the one built from the current source), else ``truecost`` on the PATH."""
-    if os.environ.get("TRUECOST_BIN"):
-        return os.environ["TRUECOST_BIN"]
-    built = [os.path.join(REPO, "target", b, "truecost") for b in ("release", "debug")]
-    built = [p for p in built if os.access(p, os.X_OK)]
-    if built:
-        return max(built, key=os.path.getmtime)
-    return shutil.which("truecost")
 
 
 def run_cli(*args):

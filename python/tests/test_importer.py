@@ -3,7 +3,6 @@
 import itertools
 import json
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -12,6 +11,7 @@ from fractions import Fraction
 
 from truecost_gym import ImportRefused, import_table, to_json
 from truecost_gym.importer import BAD_TABLE, UNSUPPORTED
+from cli_binary import truecost_binary
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PYTHON_DIR = os.path.dirname(HERE)
@@ -152,14 +152,6 @@ def discounted_by_enumeration(problem, alpha):
         if best is None or v > best:
             best = v
     return best
-
-
-def truecost_binary():
-    for build in ("release", "debug"):
-        path = os.path.join(REPO, "target", build, "truecost")
-        if os.access(path, os.X_OK):
-            return path
-    return shutil.which("truecost")
 
 
 class TinyTable(unittest.TestCase):

@@ -21,11 +21,11 @@ missing.
 import json
 import os
 import random
-import shutil
 import subprocess
 import tempfile
 import unittest
 from fractions import Fraction
+from cli_binary import truecost_binary
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
@@ -40,18 +40,6 @@ MISSING_STORMPY = ("stormpy is not installed: this cross-check needs Storm's Pyt
 
 COST = 'R{"cost"}min=? [F "goal"]'
 REACH = 'Pmax=? [F "goal"]'
-
-
-def truecost_binary():
-    """``$TRUECOST`` if set, else the most recently built of target/release and target/debug
-    (a stale release binary may predate the formats), else ``truecost`` on the PATH."""
-    if os.environ.get("TRUECOST"):
-        return os.environ["TRUECOST"]
-    built = [os.path.join(REPO, "target", b, "truecost") for b in ("release", "debug")]
-    built = [p for p in built if os.access(p, os.X_OK)]
-    if built:
-        return max(built, key=os.path.getmtime)
-    return shutil.which("truecost")
 
 
 def exact(text):

@@ -91,7 +91,7 @@ fn temporary(path: &Path) -> std::io::Result<tempfile::NamedTempFile> {
 }
 
 /// Produces the file at `path` by calling `write` on a new temporary file beside it
-/// ([`temporary`]: unpredictable name, created with `O_EXCL`) and renaming the result over
+/// (`temporary`: unpredictable name, created with `O_EXCL`) and renaming the result over
 /// `path`; on any error the temporary file is removed and `path` is left as it was (a failed
 /// rename gives the I/O error's text). A pipe, socket or terminal (`/dev/stdout`, a FIFO) is
 /// written directly; a directory or another special file (a device) is refused.

@@ -123,6 +123,7 @@
 //! the model (**problem**).
 
 mod check;
+mod conditions;
 pub mod coq;
 mod format;
 mod mdp;

@@ -5,7 +5,7 @@
 
 use num_traits::{One, Signed, Zero};
 
-use super::check::{backward, chosen, reject, Bellman, Rejection};
+use super::conditions::{backward, chosen, reject, Bellman, Rejection};
 use super::format::Certificate;
 use super::mdp::{Mdp, MdpAction};
 use crate::value::Rational;

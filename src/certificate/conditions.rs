@@ -16,7 +16,7 @@ use crate::value::Rational;
 /// The first violated condition.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Rejection {
-    /// The condition's name (one of [`CONDITIONS`]).
+    /// The condition's name (one of [`super::CONDITIONS`]).
     pub condition: &'static str,
     /// The first state where it fails (`None` for conditions on the whole certificate).
     pub state: Option<usize>,

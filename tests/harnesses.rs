@@ -390,7 +390,7 @@ fn rust_version_covers_every_dependency() {
         members += 1;
     }
     assert_eq!(
-        members, 5,
-        "truecost, kernel, proofs, the stand-in and its macros"
+        members, 6,
+        "truecost, kernel, proofs, the stand-in and its macros, the Python bindings"
     );
 }

@@ -129,8 +129,11 @@ class Threads(unittest.TestCase):
             except KeyboardInterrupt:
                 print("interrupted", time.monotonic() - t, flush=True)
         """)
+        # SIGINT restored to its default in the child, so that Python turns it into
+        # KeyboardInterrupt even where the test runs with SIGINT ignored (a background job).
         child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
-                                 text=True, cwd=tempfile.gettempdir())
+                                 text=True, cwd=tempfile.gettempdir(),
+                                 preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
         self.assertEqual(child.stdout.readline().strip(), "start")
         time.sleep(0.3)
         sent = time.monotonic()

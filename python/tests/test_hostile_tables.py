@@ -269,9 +269,12 @@ class CommandLine(InTemporaryDirectory):
     def test_interrupted_is_one_line_exit_130(self):
         marker = os.path.join(self.d, "inside")
         env = dict(os.environ, PYTHONPATH=PYTHON_DIR, SLOW_MARKER=marker)
+        # SIGINT restored to its default in the child (a background job starts with it
+        # ignored, and Python then never raises KeyboardInterrupt).
         proc = subprocess.Popen([sys.executable, "-m", "truecost_gym", "export", "Slow-v0",
                                  "--module", "raising", "--out", "-"], cwd=self.d, env=env,
-                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
         try:
             for _ in range(600):
                 if os.path.exists(marker) or proc.poll() is not None:

@@ -38,6 +38,21 @@ def _export(env, env_id, kwargs, importer):
     from truecost_gym.importer import name_note
 
     gymnasium = _gymnasium()
+    # Options are checked against the importer's own keywords before the environment's code
+    # runs (from_env passes the others to import_table; a TypeError raised inside the
+    # environment is the environment's refusal, not an unknown option).
+    import inspect
+
+    from truecost_gym import import_table
+
+    known = set(inspect.signature(import_table).parameters) | {"initial"}
+    known -= {"P", "n_states", "n_actions", "env_name"}
+    unknown = sorted(set(importer) - known)
+    if unknown:
+        raise Error(
+            f"importer options: unknown {', '.join(map(repr, unknown))} "
+            f"(known: {', '.join(sorted(known))})"
+        )
     try:
         problem, _ = from_env(env, env_id, **importer)
     except ImportRefused as e:

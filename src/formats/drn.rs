@@ -57,7 +57,7 @@ use num_traits::Zero;
 
 use super::{exact_text, initial_states, written_actions};
 use crate::echo::echo;
-use crate::model::file::{check_terminal, FileError, FileObjective, NumberBudget};
+use crate::model::file::{FileError, FileObjective, NumberBudget};
 use crate::model::StateId;
 use crate::stochastic::{
     Outcome, OutcomeKind, StochasticAction, StochasticError, StochasticProblem,
@@ -644,14 +644,8 @@ fn build(
     let problem = StochasticProblem::new(actions, first, goals)?;
     let rewards: Option<Vec<Rational>> =
         reward_model.map(|_| rewards.into_iter().flatten().collect());
-    let terminal = check_terminal(
-        Some(&terminal),
-        problem.states(),
-        |x| problem.is_goal(x),
-        |x| problem.actions(x),
-        |x, a| problem.cost(a).is_zero() && problem.outcomes(a).iter().all(|o| o.successor == x),
-        rewards.as_deref(),
-    )?;
+    let terminal =
+        crate::stochastic::file::check_terminal(&problem, Some(&terminal), rewards.as_deref())?;
     let initial = (init.len() > 1).then(|| {
         let p = Rational::new(1.into(), init.len().into());
         init.iter()

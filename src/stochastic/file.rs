@@ -154,6 +154,24 @@ fn check_sum(outcomes: &[Outcome], state: usize, action: usize) -> Result<(), St
     })
 }
 
+/// Checks a stochastic problem's `terminal` list (module docs of [`crate::model::file`]) and
+/// returns it sorted: a terminal state's actions are zero-cost self-loops. Shared by the JSON
+/// and DRN readers.
+pub(crate) fn check_terminal(
+    problem: &StochasticProblem,
+    listed: Option<&[usize]>,
+    rewards: Option<&[crate::value::Rational]>,
+) -> Result<Vec<crate::model::StateId>, FileError> {
+    det_file::check_terminal(
+        listed,
+        problem.states(),
+        |x| problem.is_goal(x),
+        |x| problem.actions(x),
+        |x, a| problem.cost(a).is_zero() && problem.outcomes(a).iter().all(|o| o.successor == x),
+        rewards,
+    )
+}
+
 /// A stochastic problem file: the deterministic file's shape (its actions may list outcomes).
 type FileProblem = det_file::FileProblem<FileAction>;
 
@@ -280,14 +298,7 @@ pub fn from_json_with_objective(
         return Err(FileError::EmptyActions(x).into());
     }
     let rewards = rewards.finish();
-    let terminal = det_file::check_terminal(
-        file.terminal.as_deref(),
-        problem.states(),
-        |x| problem.is_goal(x),
-        |x| problem.actions(x),
-        |x, a| problem.cost(a).is_zero() && problem.outcomes(a).iter().all(|o| o.successor == x),
-        rewards.as_deref(),
-    )?;
+    let terminal = check_terminal(&problem, file.terminal.as_deref(), rewards.as_deref())?;
     Ok((
         ProblemFile::Stochastic(Box::new(problem)),
         FileObjective {

@@ -15,7 +15,6 @@ from cli_binary import truecost_binary
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PYTHON_DIR = os.path.dirname(HERE)
-REPO = os.path.dirname(PYTHON_DIR)
 
 # A toy-text table written by hand (Gymnasium's convention P[s][a] = [(p, s', r, terminated)]):
 # state 0 the start, 1 a corridor, 2 the goal (+10 on entry), 3 a pit (-5 on entry).

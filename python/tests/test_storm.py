@@ -27,8 +27,6 @@ import unittest
 from fractions import Fraction
 from cli_binary import truecost_binary
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.path.dirname(os.path.dirname(HERE))
 
 try:
     import stormpy

@@ -182,13 +182,20 @@ def export(args):
         fail(f"cannot make {args.env_id}: {type(e).__name__}: {e}", 2)
     from .environment import from_env
 
-    limit = None if args.allow_large else MAX_FILE_BYTES
+    warned = []
+
+    def large(message):
+        warned.append(message)
+        warn(message)
+
     try:
         problem, report = from_env(env, args.env_id, initial=args.initial,
                                    max_denominator=args.max_denominator, ulps=args.ulps,
                                    exact_binary=args.exact_binary, goals=args.goals,
                                    deterministic_moves=args.deterministic_moves,
-                                   rewards=args.rewards, max_file_bytes=limit)
+                                   rewards=args.rewards, max_file_bytes=MAX_FILE_BYTES,
+                                   compact=args.compact,
+                                   large=large if args.allow_large else None)
     except ImportRefused as e:
         fail(str(e), e.status)
     options = "" if not kwargs else " " + json.dumps(kwargs, separators=(",", ":"))
@@ -207,7 +214,8 @@ def export(args):
             fail(f"{message}: nothing written ({report['states']} states, "
                  f"{report['actions']} actions; --compact, if not given, makes it smaller; "
                  "--allow-large writes it anyway)", 1)
-        warn(f"{message}; written as --allow-large asks")
+        if not warned:
+            warn(f"{message}; written as --allow-large asks")
     texts = [text]
     if args.report:
         texts.append(json.dumps(report, indent=2) + "\n")

@@ -174,11 +174,15 @@ def export(args):
             fail(f"--entry-point {args.entry_point}: expected MODULE:CLASS", 2)
         try:
             gymnasium.register(id=args.env_id, entry_point=args.entry_point)
-        except Exception as e:
+        except KeyboardInterrupt:
+            raise
+        except BaseException as e:
             fail(f"--entry-point {args.entry_point}: {type(e).__name__}: {e}", 2)
     try:
         env = gymnasium.make(args.env_id, **kwargs)
-    except Exception as e:  # unknown ids, bad keyword arguments, the user's constructor
+    except KeyboardInterrupt:
+        raise
+    except BaseException as e:  # unknown ids, bad keyword arguments, the user's constructor
         fail(f"cannot make {args.env_id}: {type(e).__name__}: {e}", 2)
     from .environment import from_env
 

@@ -163,7 +163,9 @@ def _entries(P, s, a, env_name):
         row = list(P[s][a])
     except (KeyError, IndexError):
         raise ImportRefused(f"{env_name}: P[{s}][{a}] is missing from the transition table") from None
-    except Exception as e:  # the environment's own code: one line, naming the exception
+    except KeyboardInterrupt:
+        raise
+    except BaseException as e:  # the environment's own code: one line, naming the exception
         raise ImportRefused(f"{env_name}: reading P[{s}][{a}] raised {type(e).__name__}: {e}") from None
     out = []
     for i, t in enumerate(row):

@@ -1,6 +1,7 @@
 """Regressions of a hostile campaign against the importer: an environment whose code raises
 ``SystemExit`` or a ``BaseException`` of its own (not an ``Exception``) is one refusal naming
-it, never a traceback, never the environment's exit status and text."""
+it, never a traceback, never the environment's exit status and text; a warning of Gymnasium or
+of the environment (Gymnasium colours its own with raw escape sequences) is one escaped line."""
 
 import os
 import sys
@@ -83,6 +84,16 @@ class ExitingConstructor(Small):
         raise SystemExit(7)
 
 
+class Warning(Small):
+    P = {0: {0: [(1.0, 1, -1.0, True)], 1: [(1.0, 1, -1.0, True)]},
+         1: {0: [(1.0, 1, 0.0, True)], 1: [(1.0, 1, 0.0, True)]}}
+
+    def __init__(self):
+        import warnings
+        warnings.warn("two\\nlines \\x1b[31mred\\x1b[0m")
+
+
+gym.register("Warning-v0", entry_point=Warning)
 gym.register("ExitingTable-v0", entry_point=ExitingTable)
 gym.register("AbortingTable-v0", entry_point=AbortingTable)
 gym.register("ExitingConstructor-v0", entry_point=ExitingConstructor)
@@ -106,6 +117,22 @@ class CommandLine(InTemporaryDirectory):
                               cwd=self.d)
                 self.assertEqual(assert_one_line_error(self, out, status), expected)
                 self.assertFalse(os.path.exists(os.path.join(self.d, "o.json")))
+
+    def test_warnings_are_one_escaped_line_each(self):
+        with open(os.path.join(self.d, "exiting.py"), "w") as f:
+            f.write(EXITING_MODULE)
+        out = run_cli("export", "Warning-v0", "--module", "exiting", "--out", "o.json",
+                      cwd=self.d)
+        self.assertEqual(out.returncode, 0, out.stderr)
+        self.assertIn("warning: UserWarning: two\\nlines \\x1b[31mred\\x1b[0m\n", out.stderr)
+        self.assertNotIn("\x1b", out.stderr)
+        for line in out.stderr.splitlines():
+            self.assertTrue(line.startswith(("warning: ", "recovered ")), line)
+        # Gymnasium's own, coloured with raw escapes: an id it deprecates.
+        out = run_cli("export", "Taxi-v3", "--out", "t.json", cwd=self.d)
+        self.assertNotIn("\x1b", out.stderr)
+        self.assertTrue(all(line.startswith(("warning: ", "error: "))
+                            for line in out.stderr.splitlines()), out.stderr)
 
 
 if __name__ == "__main__":

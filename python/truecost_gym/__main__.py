@@ -6,7 +6,8 @@ and environments truecost cannot import (non-Discrete spaces, no transition tabl
 table that is malformed, inconsistent after recovery (a probability row not summing to 1, a
 state entered both with and without termination) or ambiguous about its goals, for an
 environment whose own code raises, and for a file larger than truecost's readers accept
-(unless ``--allow-large``); 130 when interrupted.
+(unless ``--allow-large``); 130 when interrupted. Python's warnings (Gymnasium's, the
+environment's) are one escaped ``warning:`` line each.
 """
 
 import argparse
@@ -14,6 +15,7 @@ import importlib
 import json
 import os
 import sys
+import warnings
 
 from . import output
 from .echo import one_line, printable
@@ -40,6 +42,11 @@ def fail(message, status):
 def warn(message):
     """One escaped line ``warning: message`` on stderr."""
     print(f"warning: {one_line(message, 1000)}", file=sys.stderr)
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    """A Python warning (Gymnasium's, the environment's) as one escaped ``warning:`` line."""
+    warn(f"{category.__name__}: {message}")
 
 
 class Parser(argparse.ArgumentParser):
@@ -261,10 +268,12 @@ def main(argv=None):
     """The command line (module docs); returns the exit status. An interruption (Ctrl-C) is one
     line too, exit status 130."""
     try:
-        args = parser().parse_args(argv)
-        if args.command == "export":
-            return export(args)
-        return BAD_TABLE
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning
+            args = parser().parse_args(argv)
+            if args.command == "export":
+                return export(args)
+            return BAD_TABLE
     except KeyboardInterrupt:
         fail("interrupted", 130)
     except BrokenPipeError:

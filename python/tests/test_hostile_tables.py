@@ -15,8 +15,8 @@ import unittest
 from fractions import Fraction
 from unittest import mock
 
-from truecost_gym import ImportRefused, import_table, to_json
-from truecost_gym.importer import MAX_FILE_BYTES, MIN_STATE_BYTES, UNSUPPORTED
+from truecost_gym import ImportRefused, import_table
+from truecost_gym.importer import MAX_FILE_BYTES, UNSUPPORTED
 from truecost_gym.rational import BINARY, recover
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -336,51 +336,52 @@ class Size(unittest.TestCase):
         self.assertIsNotNone(m, "MAX_FILE_BYTES not found in src/model/file.rs")
         self.assertEqual(MAX_FILE_BYTES, int(m.group(1)) << int(m.group(2)))
 
-    def test_too_many_states_refused_before_reading_the_table(self):
-        class Untouchable:
-            def __getitem__(self, s):
-                raise AssertionError("the table was read")
-
-        n = MAX_FILE_BYTES // MIN_STATE_BYTES + 1
-        with self.assertRaises(ImportRefused) as c:
-            import_table(Untouchable(), n, 4, 0, max_file_bytes=MAX_FILE_BYTES)
-        self.assertIn(f"{n} states take at least", str(c.exception))
-        # Every state takes at least MIN_STATE_BYTES: a file of goals only, "[]," per state.
-        P = {s: {0: [(1.0, s, 0.0, True)]} for s in range(50)}
-        p, _ = import_table(P, 50, 1, 0, goals=list(range(50)))
-        self.assertGreaterEqual(len(to_json(p, compact=True)), 50 * MIN_STATE_BYTES)
-
     @unittest.skipUnless(HAVE_GYM, "gymnasium is not installed")
     def test_a_file_over_the_limit_is_refused_unless_allowed(self):
+        # FrozenLake 4x4 in the default layout: 14,005 bytes, of which the bound from the
+        # table's shape sees 13,150 (its four holes are traps, counted as goals' "[]").
         from truecost_gym import __main__ as cli
 
-        limit = 10_000  # less than FrozenLake 4x4 takes in the default layout
+        def run(limit, *options):
+            err = io.StringIO()
+            with mock.patch.object(cli, "MAX_FILE_BYTES", limit), \
+                    contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+                try:
+                    code = cli.main(["export", "FrozenLake-v1", "--quiet", "--out", out,
+                                     *options])
+                except SystemExit as e:
+                    code = e.code
+            return code, err.getvalue()
+
         with tempfile.TemporaryDirectory() as d:
             out = os.path.join(d, "fl.json")
-            err = io.StringIO()
-            with mock.patch.object(cli, "MAX_FILE_BYTES", limit), \
-                    contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
-                with self.assertRaises(SystemExit) as c:
-                    cli.main(["export", "FrozenLake-v1", "--quiet", "--out", out])
-            self.assertEqual(c.exception.code, 1)
-            m = re.search(r"would take (\d+) bytes, more than the 10000 bytes", err.getvalue())
-            self.assertIsNotNone(m, err.getvalue())
-            self.assertIn("nothing written", err.getvalue())
+            self.assertEqual(run(10 ** 9), (0, ""))
+            size = os.path.getsize(out)
+            os.unlink(out)
+            # Under the bound: refused before the values are read, naming the bound.
+            code, err = run(10_000)
+            self.assertEqual(code, 1)
+            m = re.search(r"^error: FrozenLake-v1: the file would take at least (\d+) bytes "
+                          r"\(a lower bound from the table's shape\), more than the 10000 "
+                          r"bytes truecost's readers accept: nothing written", err)
+            self.assertIsNotNone(m, err)
+            least = int(m.group(1))
+            self.assertLess(least, size)
             self.assertEqual(os.listdir(d), [])
-            err = io.StringIO()
-            with mock.patch.object(cli, "MAX_FILE_BYTES", limit), \
-                    contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
-                self.assertEqual(cli.main(["export", "FrozenLake-v1", "--quiet", "--allow-large",
-                                           "--out", out]), 0)
-            self.assertTrue(err.getvalue().startswith("warning: "), err.getvalue())
-            self.assertEqual(os.path.getsize(out), int(m.group(1)))
-            self.assertGreater(os.path.getsize(out), limit)
-            # Within the limit: no warning.
-            err = io.StringIO()
-            with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
-                self.assertEqual(cli.main(["export", "FrozenLake-v1", "--quiet", "--out", out]),
-                                 0)
-            self.assertEqual(err.getvalue(), "")
+            # Between the bound and the size: refused once the text is laid out.
+            code, err = run(least + 1)
+            self.assertEqual(code, 1)
+            self.assertIn(f"would take {size} bytes, more than the {least + 1} bytes", err)
+            self.assertEqual(os.listdir(d), [])
+            # --allow-large: one warning each time, the file written.
+            for limit, said in ((10_000, f"at least {least} bytes"), (least + 1, f"{size} bytes")):
+                code, err = run(limit, "--allow-large")
+                self.assertEqual(code, 0, err)
+                self.assertEqual(err.count("\n"), 1, err)
+                self.assertTrue(err.startswith("warning: "), err)
+                self.assertIn(said, err)
+                self.assertEqual(os.path.getsize(out), size)
+                os.unlink(out)
 
 
 if __name__ == "__main__":

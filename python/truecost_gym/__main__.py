@@ -6,7 +6,8 @@ and environments truecost cannot import (non-Discrete spaces, no transition tabl
 table that is malformed, inconsistent after recovery (a probability row not summing to 1, a
 state entered both with and without termination) or ambiguous about its goals, for an
 environment whose own code raises, and for a file larger than truecost's readers accept
-(unless ``--allow-large``); 130 when interrupted.
+(unless ``--allow-large``); 130 when interrupted. Python's warnings (Gymnasium's, the
+environment's) are one escaped ``warning:`` line each.
 """
 
 import argparse
@@ -14,6 +15,7 @@ import importlib
 import json
 import os
 import sys
+import warnings
 
 from . import output
 from .echo import one_line, printable
@@ -40,6 +42,11 @@ def fail(message, status):
 def warn(message):
     """One escaped line ``warning: message`` on stderr."""
     print(f"warning: {one_line(message, 1000)}", file=sys.stderr)
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    """A Python warning (Gymnasium's, the environment's) as one escaped ``warning:`` line."""
+    warn(f"{category.__name__}: {message}")
 
 
 class Parser(argparse.ArgumentParser):
@@ -174,21 +181,32 @@ def export(args):
             fail(f"--entry-point {args.entry_point}: expected MODULE:CLASS", 2)
         try:
             gymnasium.register(id=args.env_id, entry_point=args.entry_point)
-        except Exception as e:
+        except KeyboardInterrupt:
+            raise
+        except BaseException as e:
             fail(f"--entry-point {args.entry_point}: {type(e).__name__}: {e}", 2)
     try:
         env = gymnasium.make(args.env_id, **kwargs)
-    except Exception as e:  # unknown ids, bad keyword arguments, the user's constructor
+    except KeyboardInterrupt:
+        raise
+    except BaseException as e:  # unknown ids, bad keyword arguments, the user's constructor
         fail(f"cannot make {args.env_id}: {type(e).__name__}: {e}", 2)
     from .environment import from_env
 
-    limit = None if args.allow_large else MAX_FILE_BYTES
+    warned = []
+
+    def large(message):
+        warned.append(message)
+        warn(message)
+
     try:
         problem, report = from_env(env, args.env_id, initial=args.initial,
                                    max_denominator=args.max_denominator, ulps=args.ulps,
                                    exact_binary=args.exact_binary, goals=args.goals,
                                    deterministic_moves=args.deterministic_moves,
-                                   rewards=args.rewards, max_file_bytes=limit)
+                                   rewards=args.rewards, max_file_bytes=MAX_FILE_BYTES,
+                                   compact=args.compact,
+                                   large=large if args.allow_large else None)
     except ImportRefused as e:
         fail(str(e), e.status)
     options = "" if not kwargs else " " + json.dumps(kwargs, separators=(",", ":"))
@@ -207,7 +225,8 @@ def export(args):
             fail(f"{message}: nothing written ({report['states']} states, "
                  f"{report['actions']} actions; --compact, if not given, makes it smaller; "
                  "--allow-large writes it anyway)", 1)
-        warn(f"{message}; written as --allow-large asks")
+        if not warned:
+            warn(f"{message}; written as --allow-large asks")
     texts = [text]
     if args.report:
         texts.append(json.dumps(report, indent=2) + "\n")
@@ -249,10 +268,12 @@ def main(argv=None):
     """The command line (module docs); returns the exit status. An interruption (Ctrl-C) is one
     line too, exit status 130."""
     try:
-        args = parser().parse_args(argv)
-        if args.command == "export":
-            return export(args)
-        return BAD_TABLE
+        with warnings.catch_warnings():
+            warnings.showwarning = _show_warning
+            args = parser().parse_args(argv)
+            if args.command == "export":
+                return export(args)
+            return BAD_TABLE
     except KeyboardInterrupt:
         fail("interrupted", 130)
     except BrokenPipeError:

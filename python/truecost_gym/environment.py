@@ -15,9 +15,9 @@ def from_env(env, env_name=None, *, initial=None, **options):
     """
     try:
         return _from_env(env, env_name, initial, options)
-    except ImportRefused:
+    except (ImportRefused, KeyboardInterrupt):
         raise
-    except Exception as e:  # the environment's own code
+    except BaseException as e:  # the environment's own code, SystemExit included: one line
         name = env_name if env_name is not None else type(env).__name__
         raise ImportRefused(f"{name}: the environment raised {type(e).__name__}: {e}") from None
 

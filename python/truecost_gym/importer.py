@@ -61,6 +61,7 @@ from .rational import (
     recover,
 )
 from .refusal import BAD_TABLE, UNSUPPORTED, ImportRefused  # noqa: F401 (re-exported)
+from .size import Layout, least_file_bytes, refuse_or_warn
 
 FORMAT = "truecost-stochastic/1"
 
@@ -70,10 +71,6 @@ REWARDS = ("gymnasium", "costs")
 #: The largest problem file truecost's readers accept, in bytes (32 MiB, the Rust constant
 #: ``truecost::model::file::MAX_FILE_BYTES``): a larger file is refused by every command.
 MAX_FILE_BYTES = 32 << 20
-
-#: The fewest bytes one state takes in a file (``[]``, a goal, and its separator): a table of
-#: more than ``MAX_FILE_BYTES / MIN_STATE_BYTES`` states cannot make a readable file.
-MIN_STATE_BYTES = 3
 
 
 def _space_size(space, what, env_name):
@@ -107,8 +104,7 @@ class _Values:
 
     def get(self, kind, x, where):
         if not _is_number(x):
-            raise ImportRefused(f"{self.env_name}: {where}: {kind} {_shown(x)} is a "
-                                f"{type(x).__name__}, not a number")
+            raise _not_a_number(self.env_name, where, kind, x)
         try:
             key = (kind, type(x).__name__ if isinstance(x, Decimal) else "", float_text(x))
         except Exception as e:  # a number type of the environment's own
@@ -141,6 +137,11 @@ def _shown(x, limit=60):
     return text if len(text) <= limit else text[: limit - 1] + "…"
 
 
+def _not_a_number(env_name, where, kind, x):
+    return ImportRefused(f"{env_name}: {where}: {kind} {_shown(x)} is a {type(x).__name__}, "
+                         "not a number")
+
+
 def _is_number(x):
     """A real number that is not a bool: ``int``, ``float``, ``Fraction``, ``Decimal``, NumPy's
     integers and floats."""
@@ -162,7 +163,9 @@ def _entries(P, s, a, env_name):
         row = list(P[s][a])
     except (KeyError, IndexError):
         raise ImportRefused(f"{env_name}: P[{s}][{a}] is missing from the transition table") from None
-    except Exception as e:  # the environment's own code: one line, naming the exception
+    except KeyboardInterrupt:
+        raise
+    except BaseException as e:  # the environment's own code: one line, naming the exception
         raise ImportRefused(f"{env_name}: reading P[{s}][{a}] raised {type(e).__name__}: {e}") from None
     out = []
     for i, t in enumerate(row):
@@ -173,6 +176,36 @@ def _entries(P, s, a, env_name):
             )
         out.append(tuple(t))
     return out
+
+
+def _move(nxt, done, n_states, env_name, where):
+    """An entry's next state and ``terminated`` flag, type-checked: ``(int, bool)``."""
+    if not isinstance(nxt, numbers.Integral) or isinstance(nxt, bool):
+        raise ImportRefused(f"{env_name}: {where}: next state {_shown(nxt)} is a "
+                            f"{type(nxt).__name__}, not an int")
+    if not 0 <= nxt < n_states:
+        raise ImportRefused(
+            f"{env_name}: {where}: next state {int(nxt)} is not a state 0..{n_states - 1}"
+        )
+    if not _is_bool(done):
+        raise ImportRefused(f"{env_name}: {where}: terminated {_shown(done)} is a "
+                            f"{type(done).__name__}, not a bool")
+    return int(nxt), bool(done)
+
+
+def _shape(P, n_states, n_actions, env_name):
+    """Every action's ``(s, [(probability, next_state, terminated)])``, type-checked as pass 1
+    of :func:`import_table` checks them, for :func:`~truecost_gym.size.least_file_bytes`."""
+    for s in range(n_states):
+        for a in range(n_actions):
+            entries = []
+            for i, (p, nxt, _, done) in enumerate(_entries(P, s, a, env_name)):
+                if type(p) is not float and not _is_number(p):
+                    raise _not_a_number(env_name, f"P[{s}][{a}][{i}]", "probability", p)
+                if type(nxt) is not int or type(done) is not bool or not 0 <= nxt < n_states:
+                    nxt, done = _move(nxt, done, n_states, env_name, f"P[{s}][{a}][{i}]")
+                entries.append((p, nxt, done))
+            yield s, entries
 
 
 def _off_one(total):
@@ -197,7 +230,7 @@ def truecost_cost(reward):
 def import_table(P, n_states, n_actions, initial, *, env_name="environment",
                  max_denominator=DEFAULT_MAX_DENOMINATOR, ulps=DEFAULT_ULPS,
                  exact_binary=False, goals=None, deterministic_moves=False,
-                 rewards="gymnasium", max_file_bytes=None):
+                 rewards="gymnasium", max_file_bytes=None, compact=False, large=None):
     """Builds the problem from a transition table (module docs).
 
     ``P[s][a]``: lists of ``(p, s', r, terminated)``; ``initial``: a sequence of ``n_states``
@@ -209,9 +242,12 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
     ``{"to": y, "cost": c}``: a table without randomness then makes a deterministic problem
     file, which the commands on deterministic problems also read (``verify --claim C4``,
     ``learn``, ``solve --algorithm dijkstra``). ``rewards``: ``"gymnasium"`` writes every
-    action's expected reward, ``"costs"`` none (module docs). ``max_file_bytes``: refuse at
-    once a table whose file cannot be that small (more states than ``MIN_STATE_BYTES`` each
-    allow). ``report["warnings"]`` lists what the caller should print (an unreachable goal).
+    action's expected reward, ``"costs"`` none (module docs). ``max_file_bytes``: refuse,
+    before any value is recovered, a table whose file in the layout of ``to_json(...,
+    compact)`` takes more bytes (a lower bound from the state count, then from one quick pass
+    over the table's shape, :mod:`truecost_gym.size`); ``large``, a function, is passed that
+    refusal's text instead, and the import goes on. ``report["warnings"]`` lists what the
+    caller should print (an unreachable goal).
     Raises :class:`ImportRefused` (one line, naming the state and action) for a malformed or
     ambiguous table, including any exception the table's own code raises.
     """
@@ -220,12 +256,26 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
     with_rewards = rewards == "gymnasium"
     values = _Values(env_name, max_denominator, ulps, exact_binary)
     after = "in exact binary" if exact_binary else "after recovery"
-    if max_file_bytes is not None and n_states * MIN_STATE_BYTES > max_file_bytes:
-        raise ImportRefused(
-            f"{env_name}: {n_states} states take at least {n_states * MIN_STATE_BYTES} bytes, "
-            f"more than the {max_file_bytes} bytes truecost's readers accept",
-            UNSUPPORTED,
-        )
+    named = set()
+    for g in goals or ():
+        if not isinstance(g, numbers.Integral) or isinstance(g, bool) or not 0 <= g < n_states:
+            raise ImportRefused(f"{env_name}: goal {_shown(g)} is not a state 0..{n_states - 1}",
+                                UNSUPPORTED)
+        if g in named:
+            raise ImportRefused(f"{env_name}: goal {g} is named twice", UNSUPPORTED)
+        named.add(int(g))
+    if max_file_bytes is not None:
+        layout = Layout(to_json, compact, deterministic_moves, with_rewards)
+        least = layout.empty + (n_states - 1) * layout.goal
+        if least > max_file_bytes:
+            raise ImportRefused(
+                f"{env_name}: {n_states} states take at least {least} bytes, more than the "
+                f"{max_file_bytes} bytes truecost's readers accept",
+                UNSUPPORTED,
+            )
+        least = least_file_bytes(_shape(P, n_states, n_actions, env_name), n_states, layout,
+                                 named)
+        refuse_or_warn(least, max_file_bytes, env_name, large)
     # Pass 1: read and recover every entry with positive probability.
     table = []
     for s in range(n_states):
@@ -237,22 +287,13 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
                 prob = values.get("probability", p, where)
                 if prob < 0 or prob > 1:
                     raise ImportRefused(f"{env_name}: {where}: probability {float_text(p)} is not in [0, 1]")
-                if not isinstance(nxt, numbers.Integral) or isinstance(nxt, bool):
-                    raise ImportRefused(f"{env_name}: {where}: next state {_shown(nxt)} is a "
-                                        f"{type(nxt).__name__}, not an int")
-                if not 0 <= nxt < n_states:
-                    raise ImportRefused(
-                        f"{env_name}: {where}: next state {int(nxt)} is not a state 0..{n_states - 1}"
-                    )
-                if not _is_bool(done):
-                    raise ImportRefused(f"{env_name}: {where}: terminated {_shown(done)} is a "
-                                        f"{type(done).__name__}, not a bool")
+                nxt, done = _move(nxt, done, n_states, env_name, where)
                 if prob == 0:
                     if not _is_number(r):
                         values.get("reward", r, where)  # refuses it
                     continue
                 reward = values.get("reward", r, where)
-                outcomes.append((prob, int(nxt), reward, bool(done), (s, a, i)))
+                outcomes.append((prob, nxt, reward, done, (s, a, i)))
             row.append(outcomes)
         table.append(row)
 
@@ -286,14 +327,6 @@ def import_table(P, n_states, n_actions, initial, *, env_name="environment",
         )
 
     # Terminal states and goals (module truecost_gym.goals).
-    named = set()
-    for g in goals or ():
-        if not isinstance(g, numbers.Integral) or isinstance(g, bool) or not 0 <= g < n_states:
-            raise ImportRefused(f"{env_name}: goal {_shown(g)} is not a state 0..{n_states - 1}",
-                                UNSUPPORTED)
-        if g in named:
-            raise ImportRefused(f"{env_name}: goal {g} is named twice", UNSUPPORTED)
-        named.add(int(g))
     entered_running, entered_terminated = terminal_states(table, start, named, env_name)
     terminal = set(entered_terminated) | named
     warnings = []

@@ -8,7 +8,7 @@
 //! of its own chain.
 
 use num_traits::{One, Zero};
-use truecost::objectives::{max_reach, min_reach, Model, Objective, PolicyCost};
+use truecost::objectives::{max_reach, min_reach, Model, Objective, PolicyCost, Solution};
 use truecost::problems::StepCost;
 use truecost::stochastic::grid::exact_grid;
 use truecost::stochastic::{
@@ -275,12 +275,7 @@ fn the_reach_objective_reports_a_reach_optimal_policy_and_its_own_cost_and_steps
         let model = Model::from_problem(p.clone(), format!("random {case}"));
         let (_, max) = brute_force(&p, &|_| true);
         let r = model.solve(&Objective::Reach).unwrap();
-        let values: Vec<Rational> = r
-            .values
-            .iter()
-            .map(|v| v.finite().unwrap().clone())
-            .collect();
-        assert_eq!(values, max, "case {case}");
+        assert_eq!(probabilities(&r), max, "case {case}");
         let (prob, cost) = chain(&p, &r.policy, |a| p.cost(a).clone());
         assert_eq!(
             prob, max,
@@ -353,12 +348,7 @@ fn the_reach_objective_without_its_cost_attains_the_greatest_probability_by_grap
         let r = model
             .solve_with(&Objective::Reach, PolicyCost::IfInfinite)
             .unwrap();
-        let values: Vec<Rational> = r
-            .values
-            .iter()
-            .map(|v| v.finite().unwrap().clone())
-            .collect();
-        assert_eq!(values, max, "case {case}");
+        assert_eq!(probabilities(&r), max, "case {case}");
         let (prob, cost) = chain(&p, &r.policy, |a| p.cost(a).clone());
         assert_eq!(prob, max, "case {case}: the policy attains the maximum");
         assert_eq!(r.policy_success, max[0], "case {case}");
@@ -382,4 +372,12 @@ fn the_reach_objective_without_its_cost_attains_the_greatest_probability_by_grap
         skipped > 20 && infinite > 20,
         "{skipped} not computed, {infinite} infinite"
     );
+}
+
+/// The reach objective's values, each a finite probability.
+fn probabilities(r: &Solution) -> Vec<Rational> {
+    r.values
+        .iter()
+        .map(|v| v.finite().unwrap().clone())
+        .collect()
 }

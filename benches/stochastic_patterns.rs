@@ -9,7 +9,11 @@
 //! commanded moves, the same number of exact evaluations is expected) and `reach` (the reach
 //! objective on the file's problem: the probability by graph analysis, then the reported
 //! policy's expected truecost and steps; its target is twice the optimum's). `pmax` times the
-//! greatest reach probability alone (no target beyond the optimum's).
+//! greatest reach probability alone (no target beyond the optimum's). `truecost` times the
+//! truecost objective on the file's problem (`solve --objective truecost`: the optimum, the
+//! success probabilities over its optimal actions and the reported policy's steps; target twice
+//! the optimum's), and `texts` the optimum with every state's exact value printed (what `solve
+//! --format json` writes; target twice the optimum's).
 //!
 //! `cargo bench --bench stochastic_patterns` runs every row (about an hour);
 //! `cargo bench --bench stochastic_patterns -- 50` only the 50×50 rows, `-- ties` only one
@@ -37,7 +41,7 @@ fn main() {
         for pattern in GridPattern::ALL {
             for gamma in ["0.99", "0.999"] {
                 for noise in [NoiseModel::Paper, NoiseModel::Reference] {
-                    for source in ["grid", "file", "reach", "pmax"] {
+                    for source in ["grid", "file", "reach", "pmax", "truecost", "texts"] {
                         let label = format!(
                             "{side}x{side}/{}/{gamma}/{}/{source}",
                             pattern.name(),
@@ -81,6 +85,14 @@ fn row(
     } else if label.ends_with("/pmax") {
         max_reach(&problem, &|_| true).expect("solvable");
         (None, target)
+    } else if label.ends_with("/truecost") {
+        let model = Model::from_problem(problem, label.to_string());
+        model.solve(&Objective::Truecost).expect("solvable");
+        (None, 2.0 * target)
+    } else if label.ends_with("/texts") {
+        let opt = optimum(&problem).expect("solvable");
+        std::hint::black_box(opt.cost_to_go_texts());
+        (Some(opt.stats), 2.0 * target)
     } else {
         (Some(optimum(&problem).expect("solvable").stats), target)
     };

@@ -168,13 +168,44 @@ impl ExactValue for f64 {
 }
 
 impl fmt::Display for Extended {
-    /// `"63"`, `"50400/19"` or `"inf"`.
+    /// `"63"`, `"50400/19"` or `"inf"` (integers printed by [`integer_text`]).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Extended::Infinite => write!(f, "inf"),
-            Extended::Finite(r) if r.is_integer() => write!(f, "{}", r.numer()),
-            Extended::Finite(r) => write!(f, "{}/{}", r.numer(), r.denom()),
+            Extended::Finite(r) if r.is_integer() => f.write_str(&integer_text(r.numer())),
+            Extended::Finite(r) => {
+                write!(f, "{}/{}", integer_text(r.numer()), integer_text(r.denom()))
+            }
         }
+    }
+}
+
+/// Limbs (64 bits each) from which [`integer_text`] converts through `malachite`.
+const FAST_TEXT_LIMBS: usize = 32;
+
+/// The decimal text of an integer, the same string as `n.to_string()`. Past a few hundred
+/// digits it is converted by `malachite`, whose radix conversion is quasi-linear in the number
+/// of digits where `num-bigint`'s divides quadratically (a value of `G*` on a 100×100 grid has
+/// tens of thousands of digits, and printing 10⁴ of them dominated a JSON report).
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use truecost::value::integer_text;
+/// let n: BigInt = "-123456789012345678901234567890".parse().unwrap();
+/// assert_eq!(integer_text(&n), "-123456789012345678901234567890");
+/// let big = num_traits::pow(BigInt::from(7), 5000) - 1;
+/// assert_eq!(integer_text(&big), big.to_string());
+/// assert_eq!(integer_text(&-big.clone()), (-big).to_string());
+/// ```
+pub fn integer_text(n: &BigInt) -> String {
+    let (sign, limbs) = n.to_u64_digits();
+    if limbs.len() < FAST_TEXT_LIMBS {
+        return n.to_string();
+    }
+    let magnitude = malachite_nz::natural::Natural::from_owned_limbs_asc(limbs);
+    match sign {
+        num_bigint::Sign::Minus => format!("-{magnitude}"),
+        _ => magnitude.to_string(),
     }
 }
 

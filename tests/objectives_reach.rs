@@ -8,7 +8,7 @@
 //! of its own chain.
 
 use num_traits::{One, Zero};
-use truecost::objectives::{max_reach, min_reach, Model, Objective};
+use truecost::objectives::{max_reach, min_reach, Model, Objective, PolicyCost, Solution};
 use truecost::problems::StepCost;
 use truecost::stochastic::grid::exact_grid;
 use truecost::stochastic::{
@@ -275,12 +275,7 @@ fn the_reach_objective_reports_a_reach_optimal_policy_and_its_own_cost_and_steps
         let model = Model::from_problem(p.clone(), format!("random {case}"));
         let (_, max) = brute_force(&p, &|_| true);
         let r = model.solve(&Objective::Reach).unwrap();
-        let values: Vec<Rational> = r
-            .values
-            .iter()
-            .map(|v| v.finite().unwrap().clone())
-            .collect();
-        assert_eq!(values, max, "case {case}");
+        assert_eq!(probabilities(&r), max, "case {case}");
         let (prob, cost) = chain(&p, &r.policy, |a| p.cost(a).clone());
         assert_eq!(
             prob, max,
@@ -340,4 +335,49 @@ fn paper_problems_reach_a_goal_surely_exactly_where_g_star_is_finite() {
         assert_eq!(r.truecost, t.value_initial, "problem {id}");
         assert_eq!(r.steps, t.steps, "problem {id}: the same policy's steps");
     }
+}
+
+#[test]
+fn the_reach_objective_without_its_cost_attains_the_greatest_probability_by_graph_analysis() {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let (mut skipped, mut infinite) = (0, 0);
+    for case in 0..200 {
+        let p = random_mdp(&mut rng);
+        let model = Model::from_problem(p.clone(), format!("random {case}"));
+        let (_, max) = brute_force(&p, &|_| true);
+        let r = model
+            .solve_with(&Objective::Reach, PolicyCost::IfInfinite)
+            .unwrap();
+        assert_eq!(probabilities(&r), max, "case {case}");
+        let (prob, cost) = chain(&p, &r.policy, |a| p.cost(a).clone());
+        assert_eq!(prob, max, "case {case}: the policy attains the maximum");
+        assert_eq!(r.policy_success, max[0], "case {case}");
+        if max[0].is_one() {
+            // The attractor policy reaches a goal surely: its cost is finite, not computed.
+            skipped += 1;
+            assert!(cost[0].is_some(), "case {case}");
+            assert!(!r.costs_computed, "case {case}");
+        } else {
+            infinite += 1;
+            assert!(cost[0].is_none(), "case {case}");
+            assert!(r.costs_computed, "case {case}");
+            assert_eq!(
+                (&r.truecost, &r.steps),
+                (&Extended::Infinite, &Extended::Infinite),
+                "case {case}"
+            );
+        }
+    }
+    assert!(
+        skipped > 20 && infinite > 20,
+        "{skipped} not computed, {infinite} infinite"
+    );
+}
+
+/// The reach objective's values, each a finite probability.
+fn probabilities(r: &Solution) -> Vec<Rational> {
+    r.values
+        .iter()
+        .map(|v| v.finite().unwrap().clone())
+        .collect()
 }

@@ -173,6 +173,11 @@ struct SolveArgs {
     /// problem's SHA-256) to FILE, for `truecost check` (docs/guide/certificates.md).
     #[arg(long, value_name = "FILE")]
     certificate: Option<PathBuf>,
+    /// With --objective reach: also compute the reported policy's expected truecost and steps
+    /// when they are finite (one exact optimum and one exact evaluation; without it they are
+    /// reported only where the graph analysis shows them infinite).
+    #[arg(long)]
+    with_cost: bool,
 }
 
 /// Runs the command line and maps every failure to a one-line message.
@@ -323,6 +328,9 @@ fn solve(args: &SolveArgs) -> Result<String, String> {
             || args.model_free)
     {
         return Err("--certificate certifies the exact optimum: use --algorithm exact (without --mode reference or --model-free)".into());
+    }
+    if args.with_cost && args.objective.objective != Some(env::ObjectiveName::Reach) {
+        return Err("--with-cost applies to --objective reach (the other objectives always compute the reported policy's expected truecost and steps)".into());
     }
     if env::wants(args) {
         return env::solve(args);

@@ -26,7 +26,7 @@ use truecost::stochastic::value_iteration::{
     value_iteration_exact, value_iteration_f64, FloatModel, Schedule, ViOptions, ViRun,
 };
 use truecost::stochastic::{decimal, NoiseModel, Predictability, StochasticProblem};
-use truecost::value::{parse_rational, CostValue, Extended, Rational};
+use truecost::value::{integer_text, parse_rational, CostValue, Extended, Rational};
 
 /// The planners `solve` accepts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -439,8 +439,8 @@ fn noise_fields(problem: &StochasticProblem) -> (&'static str, &'static str, Opt
 fn digits(r: &Extended) -> (usize, usize) {
     match r {
         Extended::Finite(r) => (
-            r.numer().magnitude().to_string().len(),
-            r.denom().to_string().len(),
+            integer_text(r.numer()).trim_start_matches('-').len(),
+            integer_text(r.denom()).len(),
         ),
         Extended::Infinite => (0, 0),
     }

@@ -35,6 +35,10 @@
 //! probability 1 and costs least there), so its expected truecost is `G*` (finite exactly when
 //! the initial states are in `S1`) and costs one run of the exact optimum rather than an
 //! exact evaluation of an arbitrary reach-optimal policy (whose cost can exceed `10³⁰⁰`).
+//! Without its cost ([`PolicyCost::IfInfinite`]) the reach objective is graph analysis and
+//! exact solves of the maybe-states only, and reports the attractor policy on `S1`.
+//! The truecost objective's policy costs `G*`, read off the optimum; the other objectives'
+//! policies are evaluated by one exact solve each, reduced at the initial states only.
 //! With an initial distribution (Taxi), values at "the initial state" are expectations over it.
 
 pub mod actions;
@@ -48,7 +52,7 @@ use num_traits::{One, Signed, Zero};
 use crate::envs::Environment;
 use crate::model::file::FileObjective;
 use crate::model::StateId;
-use crate::stochastic::policy_iteration::{evaluate, evaluate_at, optimum};
+use crate::stochastic::policy_iteration::{evaluate_at, optimum};
 use crate::stochastic::properness::{almost_sure, avoids, reaches};
 use crate::stochastic::{
     Outcome, OutcomeKind, StochasticAction, StochasticError, StochasticProblem,
@@ -154,6 +158,27 @@ pub struct Solution {
     /// The expected number of steps of the reported policy at the initial distribution
     /// (`+∞` if improper).
     pub steps: Extended,
+    /// Whether [`Self::truecost`] and [`Self::steps`] were computed: always, except for the
+    /// reach objective solved without its cost ([`Model::solve_with`] with
+    /// [`PolicyCost::IfInfinite`]) when every initial state reaches a goal surely (both are
+    /// finite then, and both fields hold `+∞` as a placeholder that means nothing).
+    pub costs_computed: bool,
+}
+
+/// Whether [`Model::solve_with`] computes the reported policy's expected truecost and steps
+/// for the reach objective (the other objectives always compute them).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PolicyCost {
+    /// Computed: the reported policy is truecost-optimal where a goal is reached surely, its
+    /// expected truecost is `G*` (one run of the exact optimum) and its steps one more exact
+    /// evaluation ([`Model::solve`]).
+    Computed,
+    /// Only where it is `+∞` without work (some initial state reaches a goal with
+    /// probability below 1: the reported policy is improper there): the reach probability is
+    /// then graph analysis and exact solves of the maybe-states only, and the reported policy
+    /// on the states that reach a goal surely is the attractor policy of
+    /// [`crate::stochastic::properness::almost_sure`] (which does so too).
+    IfInfinite,
 }
 
 impl Model {
@@ -310,14 +335,23 @@ impl Model {
 
     /// [`Self::at_initial`] of the values `value(x)`, asked at the initial states only.
     fn at_initial_of(&self, value: impl Fn(StateId) -> Extended) -> Extended {
-        let mut sum = Rational::zero();
-        for (x, p) in &self.initial {
-            match &value(*x) {
-                Extended::Finite(v) => sum += v * p,
-                Extended::Infinite => return Extended::Infinite,
-            }
-        }
-        Extended::Finite(sum)
+        expectation(self.initial.iter().map(|(x, p)| (value(*x), p)))
+    }
+
+    /// [`Self::at_initial`] of a policy's exact expected total cost in `problem` (the model's
+    /// states with other costs: [`Self::problem`] itself, or [`Self::unit_costs`] for the
+    /// expected number of steps), solved once and reduced at the initial states only
+    /// ([`evaluate_at`]).
+    fn evaluated_at_initial(
+        &self,
+        problem: &StochasticProblem,
+        policy: &[Option<usize>],
+    ) -> Result<Extended, StochasticError> {
+        let initial: Vec<StateId> = self.initial.iter().map(|(x, _)| *x).collect();
+        let values = evaluate_at(problem, policy, &initial)?;
+        Ok(expectation(
+            values.into_iter().zip(self.initial.iter().map(|(_, p)| p)),
+        ))
     }
 
     pub(crate) fn at_initial_rational(&self, values: &[Rational]) -> Rational {
@@ -327,21 +361,28 @@ impl Model {
             .fold(Rational::zero(), |a, b| a + b)
     }
 
-    /// The same problem with every action costing 1 (trap loops 0): expected steps.
+    /// The same problem with every action costing 1 (0 where the episode is over): expected
+    /// steps. Every action is kept, a goal's too (an evaluation ends at goals whatever their
+    /// actions), so that the action ids are those of [`Self::problem`] and a policy of it
+    /// applies as it is.
     fn unit_costs(&self) -> Result<StochasticProblem, StochasticError> {
-        derive(&self.problem, self.problem.goals().to_vec(), |a| {
-            let x = self.problem.state_of(a);
-            let cost = if self.terminal[x] {
-                Rational::zero()
-            } else {
-                Rational::one()
-            };
-            Some(StochasticAction {
-                cost,
-                outcomes: self.problem.outcomes(a).to_vec(),
+        let p = &self.problem;
+        let actions = (0..p.states())
+            .map(|x| {
+                let cost = if self.terminal[x] {
+                    Rational::zero()
+                } else {
+                    Rational::one()
+                };
+                p.actions(x)
+                    .map(|a| StochasticAction {
+                        cost: cost.clone(),
+                        outcomes: p.outcomes(a).to_vec(),
+                    })
+                    .collect()
             })
-        })
-        .map(|(p, _)| p)
+            .collect();
+        StochasticProblem::new(actions, p.initial(), p.goals().to_vec())
     }
 
     /// Solves one objective exactly (module docs).
@@ -358,22 +399,47 @@ impl Model {
     /// assert_eq!(d.success.min.to_string(), "1");
     /// ```
     pub fn solve(&self, objective: &Objective) -> Result<Solution, ObjectiveError> {
+        self.solve_with(objective, PolicyCost::Computed)
+    }
+
+    /// [`Self::solve`], with the reach objective's policy cost computed or not
+    /// ([`PolicyCost`]); the other objectives ignore `cost`.
+    ///
+    /// ```
+    /// use truecost::envs::EnvSpec;
+    /// use truecost::objectives::{Model, Objective, PolicyCost};
+    /// let sure = Model::from_environment(&EnvSpec::parse("frozenlake:slippery=false").unwrap().build().unwrap()).unwrap();
+    /// let r = sure.solve_with(&Objective::Reach, PolicyCost::IfInfinite).unwrap();
+    /// assert_eq!((r.value_initial.to_string(), r.costs_computed), ("1".into(), false));
+    /// let r = sure.solve_with(&Objective::Reach, PolicyCost::Computed).unwrap();
+    /// assert_eq!((r.truecost.to_string(), r.costs_computed), ("6".into(), true));
+    /// // Slippery: the start reaches the goal with probability 14/17 at best, so the reach
+    /// // policy's cost is +∞, known without computing it.
+    /// let slippery = Model::from_environment(&EnvSpec::parse("frozenlake").unwrap().build().unwrap()).unwrap();
+    /// let r = slippery.solve_with(&Objective::Reach, PolicyCost::IfInfinite).unwrap();
+    /// assert_eq!((r.truecost.to_string(), r.steps.to_string(), r.costs_computed), ("inf".into(), "inf".into(), true));
+    /// ```
+    pub fn solve_with(
+        &self,
+        objective: &Objective,
+        cost: PolicyCost,
+    ) -> Result<Solution, ObjectiveError> {
         let p = &self.problem;
         let n = p.states();
         let (values, policy, allowed): (Vec<Extended>, Vec<Option<usize>>, Vec<bool>) =
             match objective {
                 Objective::Truecost => {
                     let opt = optimum(p)?;
-                    let values = opt.cost_to_go_all().to_vec();
                     let allowed = (0..p.action_total())
                         .map(|a| {
                             let x = p.state_of(a);
-                            values[x].finite().is_none() || opt.is_optimal_action(p, a)
+                            opt.unreduced(x).is_none() || opt.is_optimal_action(p, a)
                         })
                         .collect();
-                    (values, opt.policy_actions().to_vec(), allowed)
+                    let policy = opt.policy_actions().to_vec();
+                    (opt.into_cost_to_go(), policy, allowed)
                 }
-                Objective::Reach => return self.reach(),
+                Objective::Reach => return self.reach(cost),
                 Objective::Discounted(alpha) => self.discounted(alpha)?,
             };
         let allow = |a: usize| allowed[a];
@@ -385,9 +451,15 @@ impl Model {
         };
         let chosen = |a: usize| policy[p.state_of(a)] == Some(a);
         let policy_success = self.at_initial_rational(&min_reach(p, &chosen)?);
-        let truecost = self.at_initial(&evaluate(p, &policy)?);
-        let steps = self.at_initial(&evaluate(&self.unit_costs()?, &policy)?);
         let value_initial = self.at_initial(&values);
+        // The truecost objective's policy is optimal and proper wherever `G*` is finite, and
+        // prescribes nothing where it is `+∞`: its expected truecost is `G*` itself. The other
+        // objectives' policies are evaluated, reduced at the initial states only.
+        let truecost = match objective {
+            Objective::Truecost => value_initial.clone(),
+            _ => self.evaluated_at_initial(p, &policy)?,
+        };
+        let steps = self.evaluated_at_initial(&self.unit_costs()?, &policy)?;
         debug_assert_eq!(values.len(), n);
         Ok(Solution {
             objective: objective.clone(),
@@ -398,6 +470,7 @@ impl Model {
             policy_success,
             truecost,
             steps,
+            costs_computed: true,
         })
     }
 
@@ -408,13 +481,23 @@ impl Model {
     /// (which does, and costs least there). Its expected truecost is therefore `G*` at the
     /// initial distribution (`+∞` unless every initial state reaches a goal surely) and costs
     /// one run of the exact optimum; its expected number of steps one more exact evaluation,
-    /// only when that is finite.
-    fn reach(&self) -> Result<Solution, ObjectiveError> {
+    /// only when that is finite. With [`PolicyCost::IfInfinite`] none of this runs: the
+    /// policy on the surely-reaching states is [`max_reach`]'s attractor policy, and the cost
+    /// and steps are `+∞` when some initial state reaches a goal with probability below 1,
+    /// not computed otherwise.
+    fn reach(&self, cost: PolicyCost) -> Result<Solution, ObjectiveError> {
         let p = &self.problem;
         let (max, mut policy) = max_reach(p, &|_| true)?;
+        let surely = self.initial.iter().all(|(x, _)| max[*x].is_one());
         let values: Vec<Extended> = max.into_iter().map(Extended::Finite).collect();
-        let opt = optimum(p)?;
-        for (x, a) in opt.policy_actions().iter().enumerate() {
+        let opt = match cost {
+            PolicyCost::Computed => Some(optimum(p)?),
+            PolicyCost::IfInfinite => None,
+        };
+        for (x, a) in opt
+            .iter()
+            .flat_map(|o| o.policy_actions().iter().enumerate())
+        {
             if a.is_some() {
                 policy[x] = *a;
             }
@@ -426,19 +509,17 @@ impl Model {
             .unwrap_or_else(Rational::zero);
         let chosen = |a: usize| policy[p.state_of(a)] == Some(a);
         let policy_success = self.at_initial_rational(&min_reach(p, &chosen)?);
-        let truecost = self.at_initial_of(|x| opt.cost_to_go(x));
-        let steps = match truecost {
-            Extended::Infinite => Extended::Infinite,
-            Extended::Finite(_) => {
-                let initial: Vec<StateId> = self.initial.iter().map(|(x, _)| *x).collect();
-                let steps = evaluate_at(&self.unit_costs()?, &policy, &initial)?;
-                self.at_initial_of(|x| {
-                    let k = initial
-                        .iter()
-                        .position(|&y| y == x)
-                        .expect("an initial state");
-                    steps[k].clone()
-                })
+        let (truecost, steps) = match &opt {
+            None => (Extended::Infinite, Extended::Infinite),
+            Some(opt) => {
+                let truecost = self.at_initial_of(|x| opt.cost_to_go(x));
+                let steps = match truecost {
+                    Extended::Infinite => Extended::Infinite,
+                    Extended::Finite(_) => {
+                        self.evaluated_at_initial(&self.unit_costs()?, &policy)?
+                    }
+                };
+                (truecost, steps)
             }
         };
         Ok(Solution {
@@ -453,6 +534,7 @@ impl Model {
             policy_success,
             truecost,
             steps,
+            costs_computed: opt.is_some() || !surely,
         })
     }
 
@@ -511,11 +593,9 @@ impl Model {
             e => e.into(),
         })?;
         let scale = &top / &end;
-        let values: Vec<Extended> = (0..n)
-            .map(|x| {
-                let c = opt.cost_to_go(x);
-                Extended::Finite(&scale - c.finite().expect("every state is proper: α < 1"))
-            })
+        let values: Vec<Extended> = opt.cost_to_go_all()[..n]
+            .iter()
+            .map(|c| Extended::Finite(&scale - c.finite().expect("every state is proper: α < 1")))
             .collect();
         let mut allowed = vec![true; p.action_total()];
         let mut policy = vec![None; n];
@@ -595,6 +675,18 @@ fn discounted_cost_text(model: &Model, state: StateId, top: &Rational, alpha: &R
         "state {state}: {charged}; times the probabilities' denominators (alpha's denominator {} included) that exceeds 2^100, the exact solver's limit",
         alpha.denom()
     )
+}
+
+/// `Σ p·v` over the (value, probability) pairs; `+∞` if a value is.
+fn expectation<'a>(terms: impl Iterator<Item = (Extended, &'a Rational)>) -> Extended {
+    let mut sum = Rational::zero();
+    for (v, p) in terms {
+        match v {
+            Extended::Finite(v) => sum += v * p,
+            Extended::Infinite => return Extended::Infinite,
+        }
+    }
+    Extended::Finite(sum)
 }
 
 fn listed(successor: StateId, probability: Rational) -> Outcome {

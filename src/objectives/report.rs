@@ -74,12 +74,16 @@ pub fn solution_json(model: &Model, s: &Solution) -> Value {
         "initial_states": model.initial.len(),
         "success_probability": success_json(&s.success),
         "policy_success_probability": exact(&rational(&s.policy_success)),
-        "expected_truecost": exact(&s.truecost),
-        "expected_steps": exact(&s.steps),
         "terminal_bonus": model.terminal_bonus.as_ref().map(|m| exact(&rational(m))),
         "policy": policy_indices(model, s),
         "values": s.values.iter().map(exact).collect::<Vec<_>>(),
     });
+    // Present when computed (always, except the reach objective without its cost where that
+    // is finite: `solve --objective reach` without `--with-cost`).
+    if s.costs_computed {
+        v["expected_truecost"] = json!(exact(&s.truecost));
+        v["expected_steps"] = json!(exact(&s.steps));
+    }
     v[value_key(&s.objective)] = json!(exact(&s.value_initial));
     v[format!("{}_decimal", value_key(&s.objective))] = json!(decimal(&s.value_initial, DIGITS));
     v
@@ -117,8 +121,8 @@ pub fn solution_text(model: &Model, s: &Solution) -> String {
             "policy success",
             decimal(&rational(&s.policy_success), DIGITS),
         ),
-        ("expected truecost", decimal(&s.truecost, DIGITS)),
-        ("expected steps", decimal(&s.steps, DIGITS)),
+        ("expected truecost", policy_cost(s, &s.truecost)),
+        ("expected steps", policy_cost(s, &s.steps)),
     ];
     for (k, v) in rows {
         out.push_str(&format!("{k:<26}{v}\n"));
@@ -139,6 +143,16 @@ pub fn solution_text(model: &Model, s: &Solution) -> String {
         policy.join(" ")
     ));
     out
+}
+
+/// The decimal of the reported policy's expected truecost or steps, or that it was not
+/// computed ([`Solution::costs_computed`]).
+fn policy_cost(s: &Solution, v: &Extended) -> String {
+    if s.costs_computed {
+        decimal(v, DIGITS)
+    } else {
+        "not computed (finite; --with-cost computes it)".into()
+    }
 }
 
 /// One row of `compare`.

@@ -10,6 +10,7 @@ use super::policy_iteration::Optimum;
 use super::StochasticProblem;
 use crate::certificate::{self, CertifiedObjective, Mdp, MdpAction, ProblemRecord};
 use crate::model::Decision;
+use crate::value::integer_text;
 
 /// The certificate's text for `opt`, the exact optimum of `problem`.
 pub fn optimum_certificate(
@@ -39,11 +40,11 @@ pub fn optimum_certificate(
 /// printing every value of a large stochastic model).
 fn unreduced_texts(opt: &Optimum, n: usize) -> Vec<String> {
     let d = (0..n)
-        .find_map(|x| opt.unreduced(x).map(|(_, d)| d.to_string()))
+        .find_map(|x| opt.unreduced(x).map(|(_, d)| integer_text(d)))
         .unwrap_or_default();
     let text = |x: usize| match opt.unreduced(x) {
-        Some((num, _)) if d == "1" || num.is_zero() => num.to_string(),
-        Some((num, _)) => format!("{num}/{d}"),
+        Some((num, _)) if d == "1" || num.is_zero() => integer_text(num),
+        Some((num, _)) => format!("{}/{d}", integer_text(num)),
         None => "inf".into(),
     };
     // In parallel only when the numbers are long (a thread pool costs more than short texts).

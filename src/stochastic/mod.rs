@@ -165,7 +165,8 @@ pub fn decimal(value: &crate::value::Extended, significant: usize) -> String {
     let (n, d) = (r.numer().abs(), r.denom().clone());
     let ten = BigInt::from(10);
     // k = floor(log10(n/d)).
-    let mut k = n.to_string().len() as i64 - d.to_string().len() as i64;
+    let text_len = |m: &BigInt| crate::value::integer_text(m).len() as i64;
+    let mut k = text_len(&n) - text_len(&d);
     let at_least = |k: i64| -> bool {
         // n/d ≥ 10^k ?
         if k >= 0 {

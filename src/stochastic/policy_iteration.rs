@@ -104,6 +104,15 @@ impl Optimum {
         self.reduced.get_or_init(|| self.reduce())
     }
 
+    /// [`cost_to_go_all`](Self::cost_to_go_all), taken out of the optimum (no copy of the
+    /// values, which on a 100×100 grid hold hundreds of megabytes).
+    pub fn into_cost_to_go(mut self) -> Vec<Extended> {
+        match self.reduced.take() {
+            Some(values) => values,
+            None => self.reduce(),
+        }
+    }
+
     /// Every state's `G*`, reduced together by [`super::linear::reduced_all`] (not cached).
     fn reduce(&self) -> Vec<Extended> {
         let finite: Vec<&BigInt> = self.numerators.iter().flatten().collect();
@@ -232,13 +241,23 @@ fn denominator_texts(values: &[Extended]) -> (Vec<String>, Vec<usize>) {
             _ => usize::MAX,
         })
         .collect();
-    (distinct.par_iter().map(|d| d.to_string()).collect(), slots)
+    (
+        distinct
+            .par_iter()
+            .map(|d| crate::value::integer_text(d))
+            .collect(),
+        slots,
+    )
 }
 
 /// `value.to_string()`, with the denominator's text taken from `denominators[slot]`.
 fn value_text(value: &Extended, slot: usize, denominators: &[String]) -> String {
     match value {
-        Extended::Finite(r) if !r.is_integer() => format!("{}/{}", r.numer(), denominators[slot]),
+        Extended::Finite(r) if !r.is_integer() => format!(
+            "{}/{}",
+            crate::value::integer_text(r.numer()),
+            denominators[slot]
+        ),
         _ => value.to_string(),
     }
 }

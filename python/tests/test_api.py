@@ -37,6 +37,11 @@ def setUpModule():
         raise unittest.SkipTest(API_MISSING)
 
 
+
+def with_cost(objective):
+    """The CLI computes the reach policy's expected cost on request only; the API always does."""
+    return ["--with-cost"] if objective == "reach" else []
+
 class Agreement:
     """Assertions that an API answer is the CLI's JSON answer."""
 
@@ -112,7 +117,7 @@ class EnvSpec(Agreement, unittest.TestCase):
                 api = truecost.solve("frozenlake", objective, alpha)
                 args = ["solve", "--env", "frozenlake", "--algorithm", "exact",
                         "--objective", objective]
-                cli = cli_json(*args, *(["--alpha", alpha] if alpha else []))
+                cli = cli_json(*args, *(["--alpha", alpha] if alpha else []), *with_cost(objective))
                 self.assert_solution(api, cli)
         # Slippery FrozenLake: no policy reaches the goal with probability 1.
         self.assertEqual(truecost.solve("frozenlake").value, math.inf)
@@ -163,7 +168,8 @@ class ProblemFile(Agreement, unittest.TestCase):
                 api = truecost.solve(self.path, objective, alpha)
                 args = ["solve", "--file", self.path, "--algorithm", "exact",
                         "--objective", objective]
-                self.assert_solution(api, cli_json(*args, *(["--alpha", alpha] if alpha else [])))
+                self.assert_solution(api, cli_json(*args, *(["--alpha", alpha] if alpha else []),
+                                                   *with_cost(objective)))
         api = truecost.compare(self.path, alphas=["1/2", "0.95"])
         cli = cli_json("compare", "--file", self.path, "--alphas", "1/2,0.95")
         for a, c in zip(api.rows, cli["rows"]):
@@ -218,7 +224,7 @@ class Gymnasium(Agreement, unittest.TestCase):
         for objective, alpha in (("truecost", None), ("reach", None), ("discounted", "0.95")):
             with self.subTest(objective=objective):
                 args = ["solve", "--file", path, "--algorithm", "exact", "--objective", objective]
-                cli = cli_json(*args, *(["--alpha", alpha] if alpha else []))
+                cli = cli_json(*args, *(["--alpha", alpha] if alpha else []), *with_cost(objective))
                 self.assert_solution(truecost.solve(env, objective, alpha), cli)
                 by_id = truecost.solve("FrozenLake-v1", objective, alpha, desc=desc)
                 self.assert_solution(by_id, cli)

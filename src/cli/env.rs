@@ -168,7 +168,14 @@ pub fn solve(args: &super::SolveArgs) -> Result<String, String> {
         noise: args.noise,
     }
     .load()?;
-    let solution = model.solve(&objective).map_err(|e| e.to_string())?;
+    let cost = if args.with_cost {
+        truecost::objectives::PolicyCost::Computed
+    } else {
+        truecost::objectives::PolicyCost::IfInfinite
+    };
+    let solution = model
+        .solve_with(&objective, cost)
+        .map_err(|e| e.to_string())?;
     if let Some(path) = &args.certificate {
         let record = CertifiedSource {
             file: args.file.as_deref(),

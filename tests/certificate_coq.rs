@@ -334,19 +334,21 @@ fn agree(cases: &[Case]) -> usize {
     rejected
 }
 
-#[test]
-fn the_rust_and_coq_checkers_agree_on_1200_truecost_certificates() {
-    let mut rng = Rng(0x5EED_CE27_1F1C_A7E5);
-    let mut cases = Vec::new();
+/// `2 · half` cases: `half` certificates as `make` writes them and `half` tampered by
+/// `tamper` (which says whether it applied), in a random order, with the Rust checker's verdicts.
+fn cases(
+    rng: &mut Rng,
+    half: usize,
+    mut make: impl FnMut(&mut Rng) -> (Mdp, Certificate),
+    mut tamper: impl FnMut(&mut Certificate, &Mdp, &mut Rng) -> bool,
+) -> Vec<Case> {
+    let mut out = Vec::new();
     let (mut valid, mut tampered) = (0, 0);
-    while valid < 600 || tampered < 600 {
-        let p = random_problem(&mut rng);
-        let mdp = problem_mdp(&p);
-        let mut c = solved(&p, &mdp);
-        let is_tampered = valid >= 600 || (tampered < 600 && rng.below(2) == 0);
+    while valid < half || tampered < half {
+        let (mdp, mut c) = make(rng);
+        let is_tampered = valid >= half || (tampered < half && rng.below(2) == 0);
         if is_tampered {
-            let kind = 1 + rng.below(7);
-            if !tamper(&mut c, &mdp, kind, &mut rng) {
+            if !tamper(&mut c, &mdp, rng) {
                 continue;
             }
             tampered += 1;
@@ -354,8 +356,28 @@ fn the_rust_and_coq_checkers_agree_on_1200_truecost_certificates() {
             valid += 1;
         }
         let rust = certificate::check(&mdp, Identity::Canonical, &c).is_ok();
-        cases.push((is_tampered, rust, mdp, c));
+        out.push((is_tampered, rust, mdp, c));
     }
+    out
+}
+
+#[test]
+fn the_rust_and_coq_checkers_agree_on_1200_truecost_certificates() {
+    let mut rng = Rng(0x5EED_CE27_1F1C_A7E5);
+    let cases = cases(
+        &mut rng,
+        600,
+        |rng| {
+            let p = random_problem(rng);
+            let mdp = problem_mdp(&p);
+            let c = solved(&p, &mdp);
+            (mdp, c)
+        },
+        |c, mdp, rng| {
+            let kind = 1 + rng.below(7);
+            tamper(c, mdp, kind, rng)
+        },
+    );
     assert_eq!(cases.len(), 1200);
     let rejected = agree(&cases);
     // Another action may tie, and a value moved in an unreachable corner may still be a
@@ -367,34 +389,31 @@ fn the_rust_and_coq_checkers_agree_on_1200_truecost_certificates() {
 fn the_rust_and_coq_checkers_agree_on_400_discounted_certificates() {
     let mut rng = Rng(0xD15C_0947_ED00_0001);
     let alphas = [r(1, 2), r(2, 3), r(9, 10), r(99, 100)];
-    let mut cases = Vec::new();
-    let (mut valid, mut tampered) = (0, 0);
-    while valid < 200 || tampered < 200 {
-        let mdp = problem_mdp(&random_problem(&mut rng));
-        let alpha = &alphas[rng.below(alphas.len())];
-        let mut c = discounted_solved(&mdp, alpha);
-        // The optimum is the fixed point V = max_a Q(., a), derived here independently.
-        for x in (0..mdp.states()).filter(|&x| !mdp.terminal[x]) {
+    let cases = cases(
+        &mut rng,
+        200,
+        |rng| {
+            let mdp = problem_mdp(&random_problem(rng));
+            let alpha = &alphas[rng.below(alphas.len())];
+            let c = discounted_solved(&mdp, alpha);
+            // The optimum is the fixed point V = max_a Q(., a), derived here independently.
             let v: Vec<Rational> = c.values.iter().map(|v| v.clone().unwrap()).collect();
-            let best = mdp.actions[x]
-                .iter()
-                .map(|a| discounted_q(a, alpha, &v))
-                .max()
-                .unwrap();
-            assert_eq!(v[x], best);
-        }
-        let is_tampered = valid >= 200 || (tampered < 200 && rng.below(2) == 0);
-        if is_tampered {
-            if !tamper_discounted(&mut c, &mdp, 1 + rng.below(4), &mut rng) {
-                continue;
+            for x in (0..mdp.states()).filter(|&x| !mdp.terminal[x]) {
+                let best = mdp.actions[x]
+                    .iter()
+                    .map(|a| discounted_q(a, alpha, &v))
+                    .max()
+                    .unwrap();
+                assert_eq!(v[x], best);
             }
-            tampered += 1;
-        } else {
-            valid += 1;
-        }
-        let rust = certificate::check(&mdp, Identity::Canonical, &c).is_ok();
-        cases.push((is_tampered, rust, mdp, c));
-    }
+            (mdp, c)
+        },
+        |c, mdp, rng| {
+            let kind = 1 + rng.below(4);
+            tamper_discounted(c, mdp, kind, rng)
+        },
+    );
+    assert_eq!(cases.len(), 400);
     let rejected = agree(&cases);
     assert!(rejected >= 150, "only {rejected} of 200 tampered rejected");
 }

@@ -1,13 +1,22 @@
-//! The verified checker, run: a truecost (or deterministic `G*`) certificate and the re-read
-//! model written as Coq terms and decided by `vm_compute` with the checker `check` of
-//! `proofs/coq/CertificateCheck.v`, whose soundness is the Coq theorems
-//! `Truecost.CertificateCheck.check_policy` and `Truecost.CertificateCheck.check_optimal`.
+//! The verified checkers, run: a truecost, deterministic `G*` or discounted certificate and the
+//! re-read model decided by the Coq functions `check` (`proofs/coq/CertificateCheck.v`,
+//! soundness `Truecost.CertificateCheck.check_policy` and `check_optimal`) and
+//! `check_discounted` (`proofs/coq/CertificateDiscounted.v`, soundness
+//! `Truecost.CertificateDiscounted.check_discounted_policy` and `check_discounted_optimal`).
 //!
-//! The Coq checker takes two kinds of hints that the Rust checker finds by search, computed
-//! here and checked there (a wrong hint makes it reject, never accept wrongly): per finite
-//! state, its distance to a goal along the policy's outcomes; per `inf` state, the round of
-//! the `W*` iteration that removes it. What stays trusted outside Coq: reading the problem
-//! and the certificate, and writing them as Coq terms ([`coq_case`]).
+//! [`coq_check`] runs them extracted to OCaml (`proofs/coq/CertificateExtract.v`, integers by
+//! zarith): [`extracted_checker`] builds the program once from the sources embedded here
+//! (`coqc`, then `ocamlfind ocamlopt -package zarith`) into a cache directory named by their
+//! SHA-256, and [`checker_input`] writes the model and the certificate as the text its driver
+//! (`proofs/coq/extract/driver.ml`) reads. [`coq_verdicts`] decides terms of [`coq_case`] with
+//! `vm_compute` instead, inside Coq, far slower on large numbers.
+//!
+//! The truecost checker takes two kinds of hints that the Rust checker finds by search,
+//! computed here and checked there (a wrong hint makes it reject, never accept wrongly): per
+//! finite state, its distance to a goal along the policy's outcomes; per `inf` state, the round
+//! of the `W*` iteration that removes it. What stays trusted outside Coq: reading the problem
+//! and the certificate, writing them for the checker, and the extraction's trusted base
+//! (docs/guide/certificates.md).
 
 use std::collections::VecDeque;
 use std::fmt::Write as _;
@@ -16,10 +25,10 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use super::format::{Certificate, CertifiedObjective};
-use super::mdp::Mdp;
+use super::mdp::{Mdp, MdpAction};
 use crate::value::Rational;
 
-/// The Coq sources the checker needs, in dependency order (embedded: what runs is what this
+/// The Coq sources the checkers need, in dependency order (embedded: what runs is what this
 /// build was made from).
 pub const COQ_SOURCES: &[(&str, &str)] = &[
     (
@@ -30,9 +39,31 @@ pub const COQ_SOURCES: &[(&str, &str)] = &[
         "CertificateCheck.v",
         include_str!("../../proofs/coq/CertificateCheck.v"),
     ),
+    (
+        "CertificateDiscounted.v",
+        include_str!("../../proofs/coq/CertificateDiscounted.v"),
+    ),
 ];
 
-/// How long one `coqc` call may take before it is stopped.
+/// The extraction (writes `extract/checker.ml` and `extract/checker.mli`).
+pub const EXTRACTION_SOURCE: (&str, &str) = (
+    "CertificateExtract.v",
+    include_str!("../../proofs/coq/CertificateExtract.v"),
+);
+
+/// The OCaml files compiled with the extracted checker, in `extract/`.
+pub const OCAML_SOURCES: &[(&str, &str)] = &[
+    ("bigz.ml", include_str!("../../proofs/coq/extract/bigz.ml")),
+    (
+        "driver.ml",
+        include_str!("../../proofs/coq/extract/driver.ml"),
+    ),
+];
+
+/// The extracted checker's file name.
+pub const CHECKER_NAME: &str = "truecost-coq-check";
+
+/// How long one `coqc`, `ocamlfind` or checker run may take before it is stopped.
 pub const COQ_TIMEOUT: Duration = Duration::from_secs(600);
 
 fn q(r: &Rational) -> String {
@@ -101,21 +132,54 @@ pub fn hints(mdp: &Mdp, c: &Certificate) -> Vec<usize> {
     rank
 }
 
-/// The Coq term `check m V pi rk` for `c` against `mdp` (with [`hints`]): the model as a
-/// list of `(goal, [(cost, [(successor, probability)])])`, values `Some (p # q)` or `None`,
-/// the policy `Some i` or `None`.
+/// The discount factor of a discounted certificate, `None` for the objectives of `check`.
+fn discount(c: &Certificate) -> Option<&Rational> {
+    match &c.objective {
+        CertifiedObjective::Discounted(alpha) => Some(alpha),
+        _ => None,
+    }
+}
+
+/// Per state the flag the checker reads (goal; terminal for the discounted objective) and per
+/// action its number (stage cost; expected reward for the discounted objective).
+fn flags_and_numbers<'a>(
+    mdp: &'a Mdp,
+    c: &Certificate,
+) -> (&'a [bool], fn(&MdpAction) -> &Rational) {
+    if discount(c).is_some() {
+        (&mdp.terminal, |a| &a.reward)
+    } else {
+        (&mdp.goal, |a| &a.cost)
+    }
+}
+
+/// The policy's index at `x`, an index past the last action written as the number of actions
+/// (the checkers reject both alike: no action has it).
+fn index(mdp: &Mdp, c: &Certificate, x: usize) -> Option<usize> {
+    c.policy[x]
+        .map(|i| usize::try_from(i).map_or(mdp.actions[x].len(), |i| i.min(mdp.actions[x].len())))
+}
+
+/// The Coq term that decides `c` against `mdp`: `check m V pi rk` (with [`hints`]) or, for
+/// the discounted objective, `check_discounted m alpha V pi`; the model as a list of
+/// `(flag, [(number, [(successor, probability)])])` ([`flags_and_numbers`]), values
+/// `Some (p # q)` or `None`, the policy `Some i` or `None`.
 pub fn coq_case(mdp: &Mdp, c: &Certificate) -> String {
-    let mut s = String::from("CertificateCheck.check [");
+    let (flags, number) = flags_and_numbers(mdp, c);
+    let mut s = match discount(c) {
+        Some(_) => String::from("CertificateDiscounted.check_discounted ["),
+        None => String::from("CertificateCheck.check ["),
+    };
     for (x, list) in mdp.actions.iter().enumerate() {
         if x > 0 {
             s.push(';');
         }
-        let _ = write!(s, "({}, [", mdp.goal[x]);
+        let _ = write!(s, "({}, [", flags[x]);
         for (i, a) in list.iter().enumerate() {
             if i > 0 {
                 s.push(';');
             }
-            let _ = write!(s, "({}, [", q(&a.cost));
+            let _ = write!(s, "({}, [", q(number(a)));
             for (j, (y, p)) in a.outcomes.iter().enumerate() {
                 if j > 0 {
                     s.push(';');
@@ -126,7 +190,11 @@ pub fn coq_case(mdp: &Mdp, c: &Certificate) -> String {
         }
         s.push_str("])");
     }
-    s.push_str("] [");
+    s.push(']');
+    if let Some(alpha) = discount(c) {
+        let _ = write!(s, " {}", q(alpha));
+    }
+    s.push_str(" [");
     for (x, v) in c.values.iter().enumerate() {
         if x > 0 {
             s.push(';');
@@ -139,34 +207,77 @@ pub fn coq_case(mdp: &Mdp, c: &Certificate) -> String {
         }
     }
     s.push_str("] [");
-    for (x, i) in c.policy.iter().enumerate() {
+    for x in 0..c.policy.len() {
         if x > 0 {
             s.push(';');
         }
-        match i {
+        match index(mdp, c, x) {
             Some(i) => {
                 let _ = write!(s, "Some {i}%nat");
             }
             None => s.push_str("None"),
         }
     }
-    s.push_str("] [");
-    let ranks: Vec<String> = hints(mdp, c).iter().map(|r| format!("{r}%nat")).collect();
-    s.push_str(&ranks.join(";"));
     s.push(']');
+    if discount(c).is_none() {
+        let ranks: Vec<String> = hints(mdp, c).iter().map(|r| format!("{r}%nat")).collect();
+        let _ = write!(s, " [{}]", ranks.join(";"));
+    }
     s
 }
 
-/// Whether `c` is one the Coq checker decides: the truecost or deterministic objective, as
-/// many values and policy entries as the model has states.
+/// The input of the extracted checker's driver (`proofs/coq/extract/driver.ml` gives the
+/// format): the same model, certificate and hints as [`coq_case`], as whitespace-separated
+/// decimal tokens.
+pub fn checker_input(mdp: &Mdp, c: &Certificate) -> String {
+    let (flags, number) = flags_and_numbers(mdp, c);
+    let frac = |r: &Rational| format!("{} {}", r.numer(), r.denom());
+    let mut s = String::from("truecost-coq-check 1\n");
+    match discount(c) {
+        Some(alpha) => {
+            let _ = writeln!(s, "objective discounted {}", frac(alpha));
+        }
+        None => s.push_str("objective truecost\n"),
+    }
+    let ranks = match discount(c) {
+        Some(_) => vec![0; mdp.states()],
+        None => hints(mdp, c),
+    };
+    let _ = writeln!(s, "states {}", mdp.states());
+    for (x, list) in mdp.actions.iter().enumerate() {
+        let value = c.values[x].as_ref().map_or("inf".into(), frac);
+        let pi = index(mdp, c, x).map_or("-".into(), |i| i.to_string());
+        let _ = writeln!(
+            s,
+            "state {} {value} {pi} {} {}",
+            u8::from(flags[x]),
+            ranks[x],
+            list.len()
+        );
+        for a in list {
+            let _ = write!(s, "action {} {}", frac(number(a)), a.outcomes.len());
+            for (y, p) in &a.outcomes {
+                let _ = write!(s, " {y} {}", frac(p));
+            }
+            s.push('\n');
+        }
+    }
+    s.push_str("end\n");
+    s
+}
+
+/// Whether `c` is one the Coq checkers decide: the truecost, deterministic or discounted
+/// objective, as many values and policy entries as the model has states.
 pub fn coq_applies(mdp: &Mdp, c: &Certificate) -> Result<(), String> {
     match c.objective {
-        CertifiedObjective::Truecost | CertifiedObjective::Deterministic => {}
+        CertifiedObjective::Truecost
+        | CertifiedObjective::Deterministic
+        | CertifiedObjective::Discounted(_) => {}
         _ => {
             return Err(format!(
-                "the Coq checker covers the truecost and deterministic objectives, not {}",
-                c.objective.name()
-            ))
+            "the Coq checker covers the truecost, deterministic and discounted objectives, not {}",
+            c.objective.name()
+        ))
         }
     }
     if c.values.len() != mdp.states() || c.policy.len() != mdp.states() {
@@ -192,65 +303,209 @@ fn work_dir() -> Result<PathBuf, String> {
     Ok(dir)
 }
 
-/// Runs `coqc -R . Truecost file` in `dir`, stopped after [`COQ_TIMEOUT`]; its output.
-fn coqc(dir: &Path, file: &str) -> Result<String, String> {
-    let mut child = Command::new("coqc")
-        .args(["-R", ".", "Truecost", file])
-        .current_dir(dir)
+/// Writes `files` into `dir`.
+fn write_all(dir: &Path, files: &[(&str, &str)]) -> Result<(), String> {
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).map_err(|e| format!("cannot write {name}: {e}"))?;
+    }
+    Ok(())
+}
+
+/// Runs `command` (described as `what` in messages), stopped after [`COQ_TIMEOUT`]: its exit
+/// status's success and its standard output and error, or why it could not run. `missing`
+/// says what to install when the program is not found.
+fn run(mut command: Command, what: &str, missing: &str) -> Result<(bool, String), String> {
+    let mut child = command
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
-        .map_err(|e| {
-            format!("cannot run coqc (install Coq 8.16 or later, e.g. apt-get install coq): {e}")
-        })?;
+        .map_err(|e| format!("cannot run {what} ({missing}): {e}"))?;
+    // Drain both pipes while waiting, so that a large output cannot block the child.
+    let out = child.stdout.take().expect("piped");
+    let err = child.stderr.take().expect("piped");
+    let drain = |mut pipe: Box<dyn std::io::Read + Send>| {
+        std::thread::spawn(move || {
+            let mut text = String::new();
+            let _ = pipe.read_to_string(&mut text);
+            text
+        })
+    };
+    let (out, err) = (drain(Box::new(out)), drain(Box::new(err)));
     let started = Instant::now();
-    loop {
+    let status = loop {
         match child.try_wait() {
-            Ok(Some(_)) => break,
+            Ok(Some(status)) => break status,
             Ok(None) if started.elapsed() > COQ_TIMEOUT => {
                 let _ = child.kill();
                 let _ = child.wait();
                 return Err(format!(
-                    "coqc {file} did not finish within {} s",
+                    "{what} did not finish within {} s",
                     COQ_TIMEOUT.as_secs()
                 ));
             }
-            Ok(None) => std::thread::sleep(Duration::from_millis(20)),
-            Err(e) => return Err(format!("coqc {file}: {e}")),
+            Ok(None) => std::thread::sleep(Duration::from_millis(5)),
+            Err(e) => return Err(format!("{what}: {e}")),
         }
-    }
-    let out = child
-        .wait_with_output()
-        .map_err(|e| format!("coqc {file}: {e}"))?;
+    };
     let text = format!(
         "{}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
+        out.join().unwrap_or_default(),
+        err.join().unwrap_or_default()
     );
-    if out.status.success() {
+    Ok((status.success(), text))
+}
+
+/// [`run`], an error unless it succeeds (with the first line of its output).
+fn run_ok(command: Command, what: &str, missing: &str) -> Result<String, String> {
+    let (ok, text) = run(command, what, missing)?;
+    if ok {
         Ok(text)
     } else {
         let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("");
         Err(format!(
-            "coqc {file} failed: {}",
+            "{what} failed: {}",
             crate::echo::echo(first.trim())
         ))
     }
 }
 
-/// The Coq checker's verdicts on `cases` (terms of [`coq_case`]), in order, from one `coqc`
+const NEEDS_COQ: &str = "install Coq 8.16 or later, e.g. apt-get install coq";
+const NEEDS_OCAML: &str =
+    "the Coq checker is compiled with OCaml and zarith: apt-get install ocaml-findlib libzarith-ocaml-dev";
+
+/// Runs `coqc -R . Truecost file` in `dir`; its output.
+fn coqc(dir: &Path, file: &str) -> Result<String, String> {
+    let mut command = Command::new("coqc");
+    command.args(["-R", ".", "Truecost", file]).current_dir(dir);
+    run_ok(command, &format!("coqc {file}"), NEEDS_COQ)
+}
+
+/// The SHA-256 of every embedded source, in order: what names a build of the checker.
+fn sources_hash() -> String {
+    let mut all = String::new();
+    for (name, text) in COQ_SOURCES
+        .iter()
+        .chain(std::iter::once(&EXTRACTION_SOURCE))
+        .chain(OCAML_SOURCES)
+    {
+        let _ = write!(all, "{name}\n{}\n{text}\n", text.len());
+    }
+    super::sha256_hex(all.as_bytes())
+}
+
+/// Where built checkers are kept: `$XDG_CACHE_HOME/truecost`, else `$HOME/.cache/truecost`,
+/// else the system's temporary directory.
+fn cache_root() -> PathBuf {
+    let nonempty = |k: &str| std::env::var_os(k).filter(|v| !v.is_empty());
+    if let Some(d) = nonempty("XDG_CACHE_HOME") {
+        PathBuf::from(d).join("truecost")
+    } else if let Some(h) = nonempty("HOME") {
+        PathBuf::from(h).join(".cache").join("truecost")
+    } else {
+        std::env::temp_dir().join("truecost-cache")
+    }
+}
+
+/// Builds the extracted checker in `dir`: the Coq sources compiled, the extraction run, the
+/// OCaml compiled against zarith. The binary's path.
+fn build_checker(dir: &Path) -> Result<PathBuf, String> {
+    let mut query = Command::new("ocamlfind");
+    query.args(["query", "zarith"]);
+    run_ok(query, "ocamlfind query zarith", NEEDS_OCAML).map_err(|e| {
+        if e.contains(NEEDS_OCAML) {
+            e
+        } else {
+            format!("{e} ({NEEDS_OCAML})")
+        }
+    })?;
+    let extract = dir.join("extract");
+    std::fs::create_dir_all(&extract)
+        .map_err(|e| format!("cannot create {}: {e}", extract.display()))?;
+    write_all(dir, COQ_SOURCES)?;
+    write_all(dir, &[EXTRACTION_SOURCE])?;
+    write_all(&extract, OCAML_SOURCES)?;
+    for (name, _) in COQ_SOURCES
+        .iter()
+        .chain(std::iter::once(&EXTRACTION_SOURCE))
+    {
+        coqc(dir, name)?;
+    }
+    let mut compile = Command::new("ocamlfind");
+    compile
+        .args(["ocamlopt", "-package", "zarith", "-linkpkg"])
+        .args([
+            "bigz.ml",
+            "checker.mli",
+            "checker.ml",
+            "driver.ml",
+            "-o",
+            CHECKER_NAME,
+        ])
+        .current_dir(&extract);
+    run_ok(compile, "ocamlfind ocamlopt", NEEDS_OCAML)?;
+    Ok(extract.join(CHECKER_NAME))
+}
+
+/// The extracted checker built from the embedded sources: found in the cache directory named
+/// by their SHA-256, or built there first (about a minute; `coqc`, `ocamlfind` and zarith
+/// needed). The binary's path.
+pub fn extracted_checker() -> Result<PathBuf, String> {
+    let home = cache_root().join(format!("coq-checker-{}", &sources_hash()[..16]));
+    let binary = home.join(CHECKER_NAME);
+    if binary.is_file() {
+        return Ok(binary);
+    }
+    let dir = work_dir()?;
+    let built = build_checker(&dir).and_then(|b| {
+        std::fs::create_dir_all(&home)
+            .map_err(|e| format!("cannot create {}: {e}", home.display()))?;
+        // Renamed into place whole: a concurrent build finds either nothing or the binary.
+        let partial = home.join(format!("{CHECKER_NAME}.{}", std::process::id()));
+        std::fs::copy(&b, &partial)
+            .and_then(|_| std::fs::rename(&partial, &binary))
+            .map_err(|e| format!("cannot install {}: {e}", binary.display()))
+    });
+    let _ = std::fs::remove_dir_all(&dir);
+    built.map(|()| binary)
+}
+
+/// The extracted checker's verdict on `input` (of [`checker_input`]): `Ok(true)` if it prints
+/// `accepted`, `Ok(false)` if `rejected`, an error otherwise.
+pub fn extracted_verdict(checker: &Path, input: &str) -> Result<bool, String> {
+    let dir = work_dir()?;
+    let result = (|| {
+        let file = dir.join("certificate.txt");
+        std::fs::write(&file, input)
+            .map_err(|e| format!("cannot write {}: {e}", file.display()))?;
+        let mut command = Command::new(checker);
+        command.arg(&file);
+        let (_, out) = run(command, CHECKER_NAME, "build it with make -C proofs/coq")?;
+        match out.trim() {
+            "accepted" => Ok(true),
+            "rejected" => Ok(false),
+            other => Err(format!(
+                "{CHECKER_NAME}: {}",
+                crate::echo::echo(other.lines().next().unwrap_or("no output"))
+            )),
+        }
+    })();
+    let _ = std::fs::remove_dir_all(&dir);
+    result
+}
+
+/// The `vm_compute` verdicts on `cases` (terms of [`coq_case`]), in order, from one `coqc`
 /// call after compiling [`COQ_SOURCES`] in a fresh directory (removed afterwards).
 pub fn coq_verdicts(cases: &[String]) -> Result<Vec<bool>, String> {
     let dir = work_dir()?;
     let result = (|| {
-        for (name, text) in COQ_SOURCES {
-            std::fs::write(dir.join(name), text)
-                .map_err(|e| format!("cannot write {name}: {e}"))?;
+        write_all(&dir, COQ_SOURCES)?;
+        for (name, _) in COQ_SOURCES {
             coqc(&dir, name)?;
         }
         let mut run = String::from(
-            "From Coq Require Import QArith List.\nFrom Truecost Require CertificateCheck.\n\
+            "From Coq Require Import QArith List.\n\
+             From Truecost Require CertificateCheck CertificateDiscounted.\n\
              Import ListNotations.\nOpen Scope Q_scope.\n",
         );
         for case in cases {
@@ -279,8 +534,9 @@ pub fn coq_verdicts(cases: &[String]) -> Result<Vec<bool>, String> {
     result
 }
 
-/// The Coq checker's verdict on one certificate: `Ok(true)` if `check` accepts it.
+/// The verified checker's verdict on one certificate, by the extracted checker: `Ok(true)` if
+/// it accepts.
 pub fn coq_check(mdp: &Mdp, c: &Certificate) -> Result<bool, String> {
     coq_applies(mdp, c)?;
-    Ok(coq_verdicts(&[coq_case(mdp, c)])?[0])
+    extracted_verdict(&extracted_checker()?, &checker_input(mdp, c))
 }

@@ -113,7 +113,11 @@
 //!
 //! [`coq`] runs the same truecost conditions as a Coq function (`proofs/coq/CertificateCheck.v`)
 //! whose soundness is proved in Coq for every finite model
-//! (`Truecost.CertificateCheck.check_policy`, `Truecost.CertificateCheck.check_optimal`).
+//! (`Truecost.CertificateCheck.check_policy`, `Truecost.CertificateCheck.check_optimal`), and
+//! the discounted conditions as another (`proofs/coq/CertificateDiscounted.v`;
+//! `Truecost.CertificateDiscounted.check_discounted_policy`,
+//! `Truecost.CertificateDiscounted.check_discounted_optimal`: the maximum principle with `α`),
+//! both extracted to OCaml and run by `truecost check --coq`.
 //!
 //! # The problem
 //!

@@ -389,6 +389,28 @@ equations on S (its expected cost), every state of S has a finite value, at most
         weaker: None,
         scope: Quantifier::EveryFiniteMdp,
     },
+    Theorem {
+        claim: "certificates",
+        kind: Kind::Proves,
+        name: "Truecost.CertificateDiscounted.check_discounted_policy",
+        file: "proofs/coq/CertificateDiscounted.v",
+        statement: "for every finite model (terminal flags, actions with rewards and outcomes), every alpha and \
+every certificate (values, policy) that the discounted checker check_discounted accepts: every state has a finite \
+value, 0 at terminal states, and elsewhere the policy names an action whose r + alpha * sum p V is the value",
+        weaker: None,
+        scope: Quantifier::EveryFiniteMdp,
+    },
+    Theorem {
+        claim: "certificates",
+        kind: Kind::Proves,
+        name: "Truecost.CertificateDiscounted.check_discounted_optimal",
+        file: "proofs/coq/CertificateDiscounted.v",
+        statement: "for every finite model and every certificate that check_discounted accepts (so 0 < alpha < 1): \
+for every stationary policy mu and every J solving mu's discounted equations (J = 0 at terminal states, \
+J = r + alpha * sum p J elsewhere: its expected discounted reward), J <= V at every state",
+        weaker: None,
+        scope: Quantifier::EveryFiniteMdp,
+    },
 ];
 
 /// What the C1 theorems are weaker than the paper's statement in.
@@ -454,6 +476,10 @@ pub const SOURCES: &[(&str, &str)] = &[
     (
         "CertificateCheck.v",
         include_str!("../../proofs/coq/CertificateCheck.v"),
+    ),
+    (
+        "CertificateDiscounted.v",
+        include_str!("../../proofs/coq/CertificateDiscounted.v"),
     ),
 ];
 

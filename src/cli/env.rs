@@ -255,8 +255,9 @@ pub fn solution_certificate(
 
 /// `truecost check`: re-reads the problem (`--file`, `--problem`, `--env`; the certificate's
 /// `gamma`, `noise` and `step_cost` say how it was built) and checks the certificate; with
-/// `coq`, the verified checker (`Truecost.CertificateCheck.check`, run by coqc) must accept it
-/// too.
+/// `coq`, the verified checker (`Truecost.CertificateCheck.check`, or
+/// `Truecost.CertificateDiscounted.check_discounted` for the discounted objective, extracted to
+/// OCaml) must accept it too.
 pub fn check(
     source: &EnvArg,
     problem: Option<usize>,
@@ -366,11 +367,16 @@ pub fn check(
     }
     match certificate::check(&mdp, identity, &cert) {
         Ok(acceptance) => {
+            let coq_checker = match cert.objective {
+                certificate::CertifiedObjective::Discounted(_) => {
+                    "Truecost.CertificateDiscounted.check_discounted"
+                }
+                _ => "Truecost.CertificateCheck.check",
+            };
             if coq && !certificate::coq::coq_check(&mdp, &cert)? {
-                return Err(
-                    "certificate rejected by the Coq checker (Truecost.CertificateCheck.check)"
-                        .into(),
-                );
+                return Err(format!(
+                    "certificate rejected by the Coq checker ({coq_checker})"
+                ));
             }
             Ok(match format {
                 ReportFormat::Json => pretty(&serde_json::json!({
@@ -401,7 +407,9 @@ pub fn check(
                         ));
                     }
                     if coq {
-                        s.push_str("coq          accepted by the verified checker Truecost.CertificateCheck.check (coqc, vm_compute)\n");
+                        s.push_str(&format!(
+                            "coq          accepted by the verified checker {coq_checker} (extracted to OCaml)\n"
+                        ));
                     }
                     s
                 }

@@ -74,9 +74,11 @@ struct CheckArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = ReportFormat::Text)]
     format: ReportFormat,
-    /// Also run the verified checker (proofs/coq/CertificateCheck.v, by coqc and vm_compute;
-    /// truecost and deterministic objectives): its acceptance implies the certificate's values
-    /// are optimal (theorem Truecost.CertificateCheck.check_optimal).
+    /// Also run the verified checker (proofs/coq/CertificateCheck.v and
+    /// CertificateDiscounted.v, extracted to OCaml with zarith and built on first use; truecost,
+    /// deterministic and discounted objectives): its acceptance implies the certificate's values
+    /// are optimal (theorems Truecost.CertificateCheck.check_optimal,
+    /// Truecost.CertificateDiscounted.check_discounted_optimal).
     #[arg(long)]
     coq: bool,
     /// The certificate file (`truecost-certificate/1`).

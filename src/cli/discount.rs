@@ -22,6 +22,7 @@ use truecost::objectives::{failure_set, Model, Source};
 use truecost::problems::{GridLayout, StepCost};
 use truecost::stochastic::file::{FileObjective, ProblemFile};
 
+use super::certify::{write_certificate, CertifiedSource};
 use super::compare::CompareFormat;
 use super::env::{pretty, EnvArg};
 
@@ -40,10 +41,87 @@ pub struct DiscountArgs {
     /// Stage cost of a grid move (paper problems only) [default: unit].
     #[arg(long, value_enum)]
     step_cost: Option<StepCost>,
+    /// Also write a certificate of the breakpoints and of the optimal policies between them to
+    /// FILE, for `truecost check` (docs/guide/certificates.md).
+    #[arg(long, value_name = "FILE")]
+    certificate: Option<PathBuf>,
     /// Output format. Decimals are correctly rounded to the digits shown; "..." marks a value
     /// whose expansion goes on.
     #[arg(long, value_enum, default_value_t = CompareFormat::Text)]
     format: CompareFormat,
+}
+
+/// The model `discount` analyses, rebuilt the same way by `check` for a discount certificate.
+pub struct DiscountModel {
+    /// The model.
+    pub model: Model,
+    /// A deterministic problem (`--problem`, a deterministic file): `discount` prints its
+    /// failure set; otherwise its breakpoint report.
+    pub failure_set: bool,
+    /// The source's name in the failure set's report.
+    pub source: String,
+    /// The problem file's text (`--file`), whose bytes a certificate hashes.
+    pub text: Option<String>,
+}
+
+/// Builds the model of `discount` from one source (`step` for a paper problem).
+pub fn discount_model(
+    env: Option<&str>,
+    problem: Option<usize>,
+    file: Option<&std::path::Path>,
+    step: Option<StepCost>,
+) -> Result<DiscountModel, String> {
+    let (problem, source, extra, text) = match (env, file, problem) {
+        (Some(spec), None, None) => {
+            let model = Source::Env(spec.to_string()).load()?;
+            let source = model.name.clone();
+            return Ok(DiscountModel {
+                model,
+                failure_set: false,
+                source,
+                text: None,
+            });
+        }
+        (None, Some(path), None) => {
+            let text = truecost::model::file::read_text(path).map_err(|e| e.to_string())?;
+            match truecost::formats::from_text_with_objective(&text).map_err(|e| e.to_string())? {
+                (ProblemFile::Deterministic(p), extra) => (
+                    p,
+                    format!("file {}", printable(&path.display().to_string())),
+                    extra,
+                    Some(text),
+                ),
+                (ProblemFile::Stochastic(p), extra) => {
+                    let model = Model::from_problem(*p, format!("file {}", path.display()))
+                        .with_file_objective(&extra);
+                    let source = model.name.clone();
+                    return Ok(DiscountModel {
+                        model,
+                        failure_set: false,
+                        source,
+                        text: Some(text),
+                    });
+                }
+            }
+        }
+        (None, None, Some(id)) => (
+            GridLayout::exact(id)
+                .map_err(|e| e.to_string())?
+                .to_problem(step.unwrap_or_default()),
+            format!("paper problem {id}"),
+            FileObjective::default(),
+            None,
+        ),
+        _ => return Err("give one of --env SPEC, --problem N and --file FILE".into()),
+    };
+    let model = Model::from_deterministic_file(&problem, source.clone(), &extra)
+        .map_err(|e| e.to_string())?;
+    Ok(DiscountModel {
+        model,
+        failure_set: true,
+        source,
+        text,
+    })
 }
 
 /// Runs `discount`.
@@ -54,36 +132,34 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
     if args.step_cost.is_some() && args.problem.is_none() {
         return Err("--step-cost applies to the paper's problems (--problem N)".into());
     }
-    let (problem, source, extra) = match (&args.env.env, &args.file, args.problem) {
-        (Some(spec), _, _) => {
-            let model = Source::Env(spec.clone()).load()?;
-            return analysis(&model).map(|d| breakpoints(&model, &d, args.format));
-        }
-        (None, Some(path), _) => {
-            match truecost::formats::read_with_objective(path).map_err(|e| e.to_string())? {
-                (ProblemFile::Deterministic(p), extra) => (
-                    p,
-                    format!("file {}", printable(&path.display().to_string())),
-                    extra,
-                ),
-                (ProblemFile::Stochastic(p), extra) => {
-                    let model = Model::from_problem(*p, format!("file {}", path.display()))
-                        .with_file_objective(&extra);
-                    return analysis(&model).map(|d| breakpoints(&model, &d, args.format));
-                }
-            }
-        }
-        (None, None, Some(id)) => (
-            GridLayout::exact(id)
-                .map_err(|e| e.to_string())?
-                .to_problem(args.step_cost.unwrap_or_default()),
-            format!("paper problem {id}"),
-            FileObjective::default(),
-        ),
-        (None, None, None) => return Err("give --problem N, --file FILE or --env SPEC".into()),
-    };
-    let model = Model::from_deterministic_file(&problem, source.clone(), &extra)
-        .map_err(|e| e.to_string())?;
+    if args.env.env.is_none() && args.file.is_none() && args.problem.is_none() {
+        return Err("give --problem N, --file FILE or --env SPEC".into());
+    }
+    let loaded = discount_model(
+        args.env.env.as_deref(),
+        args.problem,
+        args.file.as_deref(),
+        args.step_cost,
+    )?;
+    let model = &loaded.model;
+    let d = analysis(model)?;
+    if let Some(path) = &args.certificate {
+        let source = CertifiedSource {
+            file: args.file.as_deref(),
+            problem: args.problem,
+            env: args.env.env.as_deref(),
+            step: args.step_cost,
+            gamma: None,
+            noise: None,
+        };
+        let text =
+            super::certify::discount_certificate(model, &d, &source, loaded.text.as_deref())?;
+        write_certificate(path, &text)?;
+    }
+    if !loaded.failure_set {
+        return Ok(breakpoints(model, &d, args.format));
+    }
+    let source = loaded.source;
     let rewards = model.reward_source;
     // With an initial distribution, a policy fails if it misses the goal from any of its
     // states (its success probability at the distribution is below 1).
@@ -91,7 +167,7 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
         1 => "x1".to_string(),
         k => format!("some of the {k} initial states"),
     };
-    let set = failure_set(&analysis(&model)?);
+    let set = failure_set(&d);
     Ok(match args.format {
         CompareFormat::Json => {
             let pieces: Vec<_> = set

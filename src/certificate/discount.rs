@@ -98,7 +98,7 @@ pub const DISCOUNT_CONDITIONS: &[(&str, &str)] = &[
     ),
     (
         "shape",
-        "one interval more than breakpoints, each interval and breakpoint listing every state",
+        "one interval more than breakpoints, each listing every state; polynomials within the checker's bounds",
     ),
     (
         "polynomial",
@@ -201,7 +201,22 @@ fn texts(p: &[Rational]) -> Vec<String> {
     p.iter().map(ToString::to_string).collect()
 }
 
-/// Writes a discount certificate (JSON, one line and a newline).
+/// Writes a discount certificate (JSON, one line and a newline); [`parse_discount`] reads it
+/// back.
+///
+/// ```
+/// use truecost::certificate::discount::{parse_discount, write_discount, DiscountCertificate};
+/// use truecost::certificate::ProblemRecord;
+/// let c = DiscountCertificate {
+///     problem: ProblemRecord { source: "env".into(), name: "taxi".into(), gamma: None,
+///         noise: None, step_cost: None, sha256: "0".repeat(64),
+///         sha256_of: "truecost-canonical-mdp/1".into() },
+///     states: 0, breakpoints: vec![], intervals: vec![],
+/// };
+/// let text = write_discount(&c);
+/// assert!(text.contains(r#""objective":"discount""#));
+/// assert_eq!(parse_discount(&text).unwrap(), c);
+/// ```
 pub fn write_discount(c: &DiscountCertificate) -> String {
     let breakpoints: Vec<Value> = c
         .breakpoints
@@ -253,12 +268,28 @@ fn list<'a>(v: &'a Value, what: &str) -> Result<&'a Vec<Value>, String> {
 fn exact(v: &Value, what: &str) -> Result<Rational, String> {
     v.as_str()
         .and_then(parse_exact)
+        .map(|r| Rational::new(r.numer().clone(), r.denom().clone()))
         .ok_or_else(|| format!("{what} is not an exact number \"p/q\""))
 }
 
+/// The most coefficients of a polynomial in a discount certificate: the analysis' values have
+/// degree at most 256 (stochastic) or 200 (deterministic chains), so this leaves room, and a
+/// Sturm chain of this degree stays affordable.
+pub const MAX_COEFFICIENTS: usize = 513;
+
+/// The most coefficients, in all, of the denominators one advantage numerator `A_{x,a}`
+/// multiplies (module docs); above it the certificate is refused.
+pub const MAX_ADVANTAGE_DEGREE: usize = 1024;
+
 fn polynomial(v: &Value, what: &str) -> Result<Vec<Rational>, String> {
-    list(v, what)?
-        .iter()
+    let l = list(v, what)?;
+    if l.len() > MAX_COEFFICIENTS {
+        return Err(format!(
+            "{what} has {} coefficients, more than the checker's bound {MAX_COEFFICIENTS}",
+            l.len()
+        ));
+    }
+    l.iter()
         .enumerate()
         .map(|(i, c)| exact(c, &format!("{what}, coefficient {i},")))
         .collect()
@@ -289,6 +320,12 @@ fn action_sets(v: &Value, what: &str) -> Result<Vec<Vec<u64>>, String> {
 }
 
 /// Reads a discount certificate (one line on error, naming the field).
+///
+/// ```
+/// use truecost::certificate::discount::parse_discount;
+/// let e = parse_discount(r#"{"format": "truecost-certificate/1", "objective": "discount", "x": 1}"#);
+/// assert!(e.unwrap_err().contains("unknown field"));
+/// ```
 pub fn parse_discount(text: &str) -> Result<DiscountCertificate, String> {
     let v: Value =
         serde_json::from_str(text).map_err(|e| format!("the certificate is not JSON: {e}"))?;
@@ -619,6 +656,33 @@ impl Tally {
 /// Checks a discount certificate against the re-read model `mdp`, whose SHA-256 is taken as
 /// `identity` says (module docs: the conditions and why they suffice). `Ok` lists every
 /// condition with its instances; `Err` is the first violation.
+///
+/// ```
+/// use truecost::certificate::discount::*;
+/// use truecost::certificate::{sha256_hex, Identity, Mdp, MdpAction, ProblemRecord};
+/// let q = |t: &str| -> truecost::value::Rational { t.parse().unwrap() };
+/// // State 0 stays with reward 1 or ends the episode (state 1) with reward 3: by hand,
+/// // 1/(1 − α) = 3 at α = 2/3; ending is optimal below, staying above.
+/// let act = |reward: &str, to: usize| MdpAction { cost: q("1"), reward: q(reward), outcomes: vec![(to, q("1"))] };
+/// let mdp = Mdp { goal: vec![false, true], terminal: vec![false, true],
+///                 actions: vec![vec![act("1", 0), act("3", 1)], vec![]] };
+/// let problem = ProblemRecord { source: "problem".into(), name: "hand".into(), gamma: None,
+///     noise: None, step_cost: None, sha256: sha256_hex(mdp.canonical_text().as_bytes()),
+///     sha256_of: "truecost-canonical-mdp/1".into() };
+/// let interval = |sample: &str, den: Vec<_>, num: Vec<_>, a: u64| IntervalRecord {
+///     sample: q(sample), denominators: vec![den],
+///     values: vec![Some(ValueRecord { denominator: 0, numerator: num }), None],
+///     policy: vec![Some(a), None], optimal: vec![vec![a], vec![]] };
+/// let mut c = DiscountCertificate { problem, states: 2,
+///     breakpoints: vec![BreakpointRecord { polynomial: vec![q("-2"), q("3")], lo: q("1/2"),
+///         hi: q("3/4"), optimal: vec![vec![0, 1], vec![]] }],
+///     intervals: vec![interval("1/4", vec![q("1")], vec![q("3")], 1),
+///                     interval("4/5", vec![q("1"), q("-1")], vec![q("1")], 0)] };
+/// assert!(check_discount(&mdp, Identity::Canonical, &c).is_ok());
+/// c.breakpoints[0].hi = q("13/20"); // (1/2, 13/20] holds no root of 3α − 2
+/// let e = check_discount(&mdp, Identity::Canonical, &c).unwrap_err();
+/// assert_eq!((e.condition, e.breakpoint), ("isolating", Some(0)));
+/// ```
 pub fn check_discount(
     mdp: &Mdp,
     identity: Identity<'_>,
@@ -894,6 +958,15 @@ fn interval(
             }
             involved.sort_unstable();
             involved.dedup();
+            let total: usize = involved.iter().map(|&k| t.denominators[k].len()).sum();
+            if total > MAX_ADVANTAGE_DEGREE {
+                return Err(fail(
+                    "shape",
+                    format!("the advantages of this state multiply denominators of {total} coefficients in all, above the checker's bound {MAX_ADVANTAGE_DEGREE}"),
+                )
+                .at_interval(i)
+                .at_state(x));
+            }
             let except = |k: usize| -> Vec<Rational> {
                 involved
                     .iter()

@@ -26,7 +26,7 @@ use num_traits::{One, Signed, Zero};
 use crate::value::Rational;
 
 /// Removes trailing zero coefficients.
-pub fn trim(mut p: Vec<BigInt>) -> Vec<BigInt> {
+pub(crate) fn trim(mut p: Vec<BigInt>) -> Vec<BigInt> {
     while p.last().is_some_and(Zero::is_zero) {
         p.pop();
     }
@@ -34,7 +34,7 @@ pub fn trim(mut p: Vec<BigInt>) -> Vec<BigInt> {
 }
 
 /// The degree (`None` for the zero polynomial).
-pub fn degree(p: &[BigInt]) -> Option<usize> {
+pub(crate) fn degree(p: &[BigInt]) -> Option<usize> {
     p.len().checked_sub(1)
 }
 
@@ -62,16 +62,37 @@ pub fn sign_at(p: &[BigInt], x: &Rational) -> Ordering {
 }
 
 /// `p` divided by the gcd of its coefficients (a positive number: signs kept).
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use truecost::certificate::sturm::primitive;
+/// let p: Vec<BigInt> = [-6, 0, 4].into_iter().map(BigInt::from).collect();
+/// assert_eq!(primitive(p), [-3, 0, 2].map(BigInt::from));
+/// ```
 pub fn primitive(p: Vec<BigInt>) -> Vec<BigInt> {
-    let g = p.iter().fold(BigInt::zero(), |g, c| g.gcd(c));
-    if g.is_zero() || g.is_one() {
+    // From the shortest coefficient, one division before each binary gcd (which is slow on
+    // numbers of very different lengths), stopping at 1.
+    let Some(start) = p.iter().filter(|c| !c.is_zero()).min_by_key(|c| c.bits()) else {
+        return p;
+    };
+    let mut g = start.abs();
+    for c in &p {
+        if g.is_one() {
+            return p;
+        }
+        let r = c % &g;
+        if !r.is_zero() {
+            g = g.gcd(&r);
+        }
+    }
+    if g.is_one() {
         return p;
     }
     p.into_iter().map(|c| c / &g).collect()
 }
 
 /// The derivative.
-pub fn derivative(p: &[BigInt]) -> Vec<BigInt> {
+pub(crate) fn derivative(p: &[BigInt]) -> Vec<BigInt> {
     trim(
         p.iter()
             .enumerate()
@@ -83,7 +104,7 @@ pub fn derivative(p: &[BigInt]) -> Vec<BigInt> {
 
 /// A positive multiple of the remainder of `a` by `b` (`b` not zero), made primitive: the
 /// pseudo-remainder `lc(b)^k a mod b`, negated when `lc(b)^k < 0`.
-pub fn positive_remainder(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
+pub(crate) fn positive_remainder(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
     let db = degree(b).expect("a non-zero divisor");
     let lead = b[db].clone();
     let mut r = a.to_vec();
@@ -108,7 +129,7 @@ pub fn positive_remainder(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
 
 /// The exact quotient `a / b` when `b` divides `a` over the rationals and `b` is primitive
 /// (Gauss's lemma makes the quotient integral); `None` otherwise.
-pub fn divide_exact(a: &[BigInt], b: &[BigInt]) -> Option<Vec<BigInt>> {
+pub(crate) fn divide_exact(a: &[BigInt], b: &[BigInt]) -> Option<Vec<BigInt>> {
     let db = degree(b)?;
     let mut r = a.to_vec();
     let Some(da) = degree(&r) else {
@@ -134,6 +155,14 @@ pub fn divide_exact(a: &[BigInt], b: &[BigInt]) -> Option<Vec<BigInt>> {
 
 /// The greatest common divisor, primitive with a positive leading coefficient (empty if both
 /// are zero).
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use truecost::certificate::sturm::gcd;
+/// let p = |c: &[i64]| -> Vec<BigInt> { c.iter().map(|&x| BigInt::from(x)).collect() };
+/// // (x − 1)(x + 2) and (x − 1)(2x + 3): x − 1.
+/// assert_eq!(gcd(&p(&[-2, 1, 1]), &p(&[-3, 1, 2])), p(&[-1, 1]));
+/// ```
 pub fn gcd(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
     let (mut x, mut y) = (primitive(trim(a.to_vec())), primitive(trim(b.to_vec())));
     while !y.is_empty() {
@@ -193,16 +222,44 @@ impl Sturm {
     }
 
     /// Whether the polynomial is square-free (its chain ends in a non-zero constant).
+    ///
+    /// ```
+    /// use num_bigint::BigInt;
+    /// use truecost::certificate::sturm::Sturm;
+    /// let p = |c: &[i64]| -> Vec<BigInt> { c.iter().map(|&x| BigInt::from(x)).collect() };
+    /// assert!(Sturm::new(&p(&[-2, 0, 1])).is_square_free()); // x² − 2
+    /// assert!(!Sturm::new(&p(&[1, -2, 1])).is_square_free()); // (x − 1)²
+    /// ```
     pub fn is_square_free(&self) -> bool {
         self.square_free
     }
 
     /// The square-free part the chain counts the roots of.
+    ///
+    /// ```
+    /// use num_bigint::BigInt;
+    /// use truecost::certificate::sturm::Sturm;
+    /// let p = |c: &[i64]| -> Vec<BigInt> { c.iter().map(|&x| BigInt::from(x)).collect() };
+    /// // (x − 1)²(x + 1) = x³ − x² − x + 1: square-free part x² − 1, up to sign.
+    /// let s = Sturm::new(&p(&[1, -1, -1, 1]));
+    /// let part = s.square_free_part();
+    /// assert!(part == p(&[-1, 0, 1]).as_slice() || part == p(&[1, 0, -1]).as_slice());
+    /// ```
     pub fn square_free_part(&self) -> &[BigInt] {
         &self.chain[0]
     }
 
     /// `V(x)`: the sign changes along the chain at `x`, zeros skipped.
+    ///
+    /// ```
+    /// use num_bigint::BigInt;
+    /// use truecost::certificate::sturm::Sturm;
+    /// // x² − 2: chain x² − 2, x, 1 (positive multiples); at 0 the signs −, 0, + (one change),
+    /// // at 2 the signs +, +, + (none).
+    /// let s = Sturm::new(&[-2, 0, 1].map(BigInt::from));
+    /// assert_eq!(s.variations(&"0".parse().unwrap()), 1);
+    /// assert_eq!(s.variations(&"2".parse().unwrap()), 0);
+    /// ```
     pub fn variations(&self, x: &Rational) -> usize {
         let mut last = Ordering::Equal;
         let mut changes = 0;
@@ -220,6 +277,16 @@ impl Sturm {
     }
 
     /// The number of distinct real roots in `(a, b]` (`a < b`): `V(a) − V(b)`.
+    ///
+    /// ```
+    /// use num_bigint::BigInt;
+    /// use truecost::certificate::sturm::Sturm;
+    /// let q = |t: &str| t.parse().unwrap();
+    /// // 6x² − 5x + 1 = (2x − 1)(3x − 1): roots 1/3 and 1/2.
+    /// let s = Sturm::new(&[1, -5, 6].map(BigInt::from));
+    /// assert_eq!(s.count(&q("0"), &q("1")), 2);
+    /// assert_eq!(s.count(&q("1/3"), &q("1/2")), 1); // 1/2 counted, 1/3 not
+    /// ```
     pub fn count(&self, a: &Rational, b: &Rational) -> usize {
         assert!(a < b, "a half-open interval (a, b] with a < b");
         self.variations(a) - self.variations(b)

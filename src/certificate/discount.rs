@@ -80,7 +80,9 @@ use num_traits::{One, Zero};
 use serde_json::{json, Value};
 
 use super::check::{Checked, Identity};
-use super::format::{field, object, parse_exact, problem_record, string, ProblemRecord, FORMAT};
+use super::format::{
+    field, object, parse_exact, problem_json, problem_record, string, ProblemRecord, FORMAT,
+};
 use super::mdp::{Mdp, CANONICAL_FORMAT};
 use super::sha256::sha256_hex;
 use super::sturm::{self, sign_at, Sturm};
@@ -244,14 +246,10 @@ pub fn write_discount(c: &DiscountCertificate) -> String {
                    "policy": i.policy, "optimal": i.optimal})
         })
         .collect();
-    let p = &c.problem;
     let v = json!({
         "format": FORMAT,
         "objective": DISCOUNT,
-        "problem": {
-            "source": p.source, "name": p.name, "gamma": p.gamma, "noise": p.noise,
-            "step_cost": p.step_cost, "sha256": p.sha256, "sha256_of": p.sha256_of,
-        },
+        "problem": problem_json(&c.problem),
         "states": c.states,
         "breakpoints": breakpoints,
         "intervals": intervals,

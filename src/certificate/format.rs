@@ -113,15 +113,7 @@ pub fn write(
         "format": FORMAT,
         "objective": objective.name(),
         "alpha": alpha,
-        "problem": {
-            "source": problem.source,
-            "name": problem.name,
-            "gamma": problem.gamma,
-            "noise": problem.noise,
-            "step_cost": problem.step_cost,
-            "sha256": problem.sha256,
-            "sha256_of": problem.sha256_of,
-        },
+        "problem": problem_json(problem),
         "states": values.len(),
         "values": values,
         "policy": policy,
@@ -129,6 +121,19 @@ pub fn write(
     let mut s = serde_json::to_string(&v).expect("serialisable");
     s.push('\n');
     s
+}
+
+/// A certificate's `problem` record as JSON (every kind has the same).
+pub(super) fn problem_json(p: &ProblemRecord) -> Value {
+    json!({
+        "source": p.source,
+        "name": p.name,
+        "gamma": p.gamma,
+        "noise": p.noise,
+        "step_cost": p.step_cost,
+        "sha256": p.sha256,
+        "sha256_of": p.sha256_of,
+    })
 }
 
 /// An exact number `-?digits(/digits)?` with a positive denominator, kept as written (not

@@ -214,7 +214,7 @@ pub fn main() -> ExitCode {
         Command::Compare(args) => compare::run(&args),
         Command::Export(args) => export::run(&args),
         Command::Learn(args) => learn::learn(&args),
-        Command::Check(args) => certify::check(
+        Command::Check(args) => discount::check_certificate(
             &args.env,
             args.problem,
             args.file.as_deref(),

@@ -16,7 +16,8 @@
 //!
 //! * `objective`: `truecost`, `discounted` (with `alpha`, a fraction in `(0, 1)`),
 //!   `deterministic` (the deterministic planners' `G*`: every action has one outcome) or
-//!   `reach` (the greatest probability of reaching a goal).
+//!   `reach` (the greatest probability of reaching a goal); `discount` is the kind of
+//!   `discount --certificate`, read by [`super::discount::parse_discount`].
 //! * `problem`: how to rebuild the problem — `source` `file` (`name` the path as given),
 //!   `problem` (`name` the paper problem's number, `step_cost` `unit` or `euclidean`) or `env`
 //!   (`name` the `--env` text); `gamma` (a fraction) and `noise` (`paper` or `reference`) when
@@ -112,15 +113,7 @@ pub fn write(
         "format": FORMAT,
         "objective": objective.name(),
         "alpha": alpha,
-        "problem": {
-            "source": problem.source,
-            "name": problem.name,
-            "gamma": problem.gamma,
-            "noise": problem.noise,
-            "step_cost": problem.step_cost,
-            "sha256": problem.sha256,
-            "sha256_of": problem.sha256_of,
-        },
+        "problem": problem_json(problem),
         "states": values.len(),
         "values": values,
         "policy": policy,
@@ -128,6 +121,19 @@ pub fn write(
     let mut s = serde_json::to_string(&v).expect("serialisable");
     s.push('\n');
     s
+}
+
+/// A certificate's `problem` record as JSON (every kind has the same).
+pub(super) fn problem_json(p: &ProblemRecord) -> Value {
+    json!({
+        "source": p.source,
+        "name": p.name,
+        "gamma": p.gamma,
+        "noise": p.noise,
+        "step_cost": p.step_cost,
+        "sha256": p.sha256,
+        "sha256_of": p.sha256_of,
+    })
 }
 
 /// An exact number `-?digits(/digits)?` with a positive denominator, kept as written (not
@@ -155,7 +161,7 @@ pub fn parse_exact(text: &str) -> Option<Rational> {
     Some(Rational::new_raw(n, d))
 }
 
-fn object<'a>(
+pub(super) fn object<'a>(
     v: &'a Value,
     what: &str,
     allowed: &[&str],
@@ -172,12 +178,16 @@ fn object<'a>(
     Ok(map)
 }
 
-fn field<'a>(map: &'a Map<String, Value>, what: &str, name: &str) -> Result<&'a Value, String> {
+pub(super) fn field<'a>(
+    map: &'a Map<String, Value>,
+    what: &str,
+    name: &str,
+) -> Result<&'a Value, String> {
     map.get(name)
         .ok_or_else(|| format!("{what} has no field \"{name}\""))
 }
 
-fn string(map: &Map<String, Value>, what: &str, name: &str) -> Result<String, String> {
+pub(super) fn string(map: &Map<String, Value>, what: &str, name: &str) -> Result<String, String> {
     field(map, what, name)?
         .as_str()
         .map(str::to_string)
@@ -194,6 +204,32 @@ fn optional_string(
         Some(Value::String(s)) => Ok(Some(s.clone())),
         Some(_) => Err(format!("{what}: \"{name}\" is neither a string nor null")),
     }
+}
+
+/// Reads a certificate's `problem` record (every kind has the same).
+pub(super) fn problem_record(v: &Value) -> Result<ProblemRecord, String> {
+    let p = object(
+        v,
+        "\"problem\"",
+        &[
+            "source",
+            "name",
+            "gamma",
+            "noise",
+            "step_cost",
+            "sha256",
+            "sha256_of",
+        ],
+    )?;
+    Ok(ProblemRecord {
+        source: string(p, "\"problem\"", "source")?,
+        name: string(p, "\"problem\"", "name")?,
+        gamma: optional_string(p, "\"problem\"", "gamma")?,
+        noise: optional_string(p, "\"problem\"", "noise")?,
+        step_cost: optional_string(p, "\"problem\"", "step_cost")?,
+        sha256: string(p, "\"problem\"", "sha256")?,
+        sha256_of: string(p, "\"problem\"", "sha256_of")?,
+    })
 }
 
 /// Reads a certificate (one line on error, naming the field).
@@ -240,33 +276,12 @@ pub fn parse(text: &str) -> Result<Certificate, String> {
         }
         other => {
             return Err(format!(
-                "unknown objective {} (truecost, discounted, deterministic, reach)",
+                "unknown objective {} (truecost, discounted, deterministic, reach, discount)",
                 crate::echo::echo(other)
             ))
         }
     };
-    let p = object(
-        field(top, "the certificate", "problem")?,
-        "\"problem\"",
-        &[
-            "source",
-            "name",
-            "gamma",
-            "noise",
-            "step_cost",
-            "sha256",
-            "sha256_of",
-        ],
-    )?;
-    let problem = ProblemRecord {
-        source: string(p, "\"problem\"", "source")?,
-        name: string(p, "\"problem\"", "name")?,
-        gamma: optional_string(p, "\"problem\"", "gamma")?,
-        noise: optional_string(p, "\"problem\"", "noise")?,
-        step_cost: optional_string(p, "\"problem\"", "step_cost")?,
-        sha256: string(p, "\"problem\"", "sha256")?,
-        sha256_of: string(p, "\"problem\"", "sha256_of")?,
-    };
+    let problem = problem_record(field(top, "the certificate", "problem")?)?;
     let states = field(top, "the certificate", "states")?
         .as_u64()
         .ok_or("the certificate: \"states\" is not a non-negative integer")?;

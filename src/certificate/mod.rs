@@ -109,6 +109,13 @@
 //! So `V` is the greatest reach probability from every state and `π` attains it. The upper
 //! bound is argued here, not proved in Coq.
 //!
+//! # Discount breakpoints
+//!
+//! `discount --certificate` writes the breakpoints of the discount analysis and, between
+//! them, the optimal policies with their values as rational functions of `α`; [`discount`]
+//! checks them with exact Sturm sequences ([`sturm`]), its module docs give the conditions
+//! and why they suffice.
+//!
 //! # The verified checker
 //!
 //! [`coq`] runs the same truecost conditions as a Coq function (`proofs/coq/CertificateCheck.v`)
@@ -129,10 +136,12 @@
 mod check;
 mod conditions;
 pub mod coq;
+pub mod discount;
 mod format;
 mod mdp;
 mod reach;
 mod sha256;
+pub mod sturm;
 
 pub use check::{check, Acceptance, Checked, Identity, Rejection, CONDITIONS};
 pub use format::{

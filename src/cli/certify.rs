@@ -1,7 +1,7 @@
 //! What a certificate records of the problem it certifies, and how it is written: the model as
 //! the certificate checker reads it ([`truecost::certificate::Mdp`]) and the options that
-//! rebuild the problem, shared by `solve --certificate` on every source. Parsing and wiring
-//! only; the checker is [`truecost::certificate`].
+//! rebuild the problem, shared by `solve --certificate` on every source and by `discount
+//! --certificate`. Parsing and wiring only; the checker is [`truecost::certificate`].
 
 use clap::ValueEnum;
 

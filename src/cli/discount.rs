@@ -8,22 +8,36 @@
 
 use std::path::PathBuf;
 
-use clap::Args;
+use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use num_bigint::BigInt;
+use num_traits::{One, Zero};
 use serde_json::json;
 
 use truecost::algebra::intervals::{point_text, set_text, DiscountSet};
+use truecost::algebra::poly::roots::{simplest_between, Root};
+use truecost::certificate::discount::{
+    check_discount, parse_discount, write_discount, BreakpointRecord, DiscountCertificate,
+    IntervalRecord, ValueRecord, DISCOUNT,
+};
+use truecost::certificate::sturm::Sturm;
+use truecost::certificate::{sha256_hex, Identity};
 use truecost::echo::printable;
-use truecost::objectives::parametric::{discount_breakpoints_with, DiscountAnalysis};
+use truecost::objectives::parametric::{
+    discount_breakpoints_with, witness_values, DiscountAnalysis,
+};
 use truecost::objectives::report::{
     discount_json, discount_latex, discount_markdown, discount_text,
 };
 use truecost::objectives::{failure_set, Model, Source};
 use truecost::problems::{GridLayout, StepCost};
 use truecost::stochastic::file::{FileObjective, ProblemFile};
+use truecost::value::Rational;
 
+use super::certify::{mdp_of, write_certificate, CertifiedSource};
 use super::compare::CompareFormat;
 use super::env::{pretty, EnvArg};
+use super::ReportFormat;
 
 /// Arguments of `discount`.
 #[derive(Args, Debug)]
@@ -40,10 +54,87 @@ pub struct DiscountArgs {
     /// Stage cost of a grid move (paper problems only) [default: unit].
     #[arg(long, value_enum)]
     step_cost: Option<StepCost>,
+    /// Also write a certificate of the breakpoints and of the optimal policies between them to
+    /// FILE, for `truecost check` (docs/guide/certificates.md).
+    #[arg(long, value_name = "FILE")]
+    certificate: Option<PathBuf>,
     /// Output format. Decimals are correctly rounded to the digits shown; "..." marks a value
     /// whose expansion goes on.
     #[arg(long, value_enum, default_value_t = CompareFormat::Text)]
     format: CompareFormat,
+}
+
+/// The model `discount` analyses, rebuilt the same way by `check` for a discount certificate.
+pub struct DiscountModel {
+    /// The model.
+    pub model: Model,
+    /// A deterministic problem (`--problem`, a deterministic file): `discount` prints its
+    /// failure set; otherwise its breakpoint report.
+    pub failure_set: bool,
+    /// The source's name in the failure set's report.
+    pub source: String,
+    /// The problem file's text (`--file`), whose bytes a certificate hashes.
+    pub text: Option<String>,
+}
+
+/// Builds the model of `discount` from one source (`step` for a paper problem).
+pub fn discount_model(
+    env: Option<&str>,
+    problem: Option<usize>,
+    file: Option<&std::path::Path>,
+    step: Option<StepCost>,
+) -> Result<DiscountModel, String> {
+    let (problem, source, extra, text) = match (env, file, problem) {
+        (Some(spec), None, None) => {
+            let model = Source::Env(spec.to_string()).load()?;
+            let source = model.name.clone();
+            return Ok(DiscountModel {
+                model,
+                failure_set: false,
+                source,
+                text: None,
+            });
+        }
+        (None, Some(path), None) => {
+            let text = truecost::model::file::read_text(path).map_err(|e| e.to_string())?;
+            match truecost::formats::from_text_with_objective(&text).map_err(|e| e.to_string())? {
+                (ProblemFile::Deterministic(p), extra) => (
+                    p,
+                    format!("file {}", printable(&path.display().to_string())),
+                    extra,
+                    Some(text),
+                ),
+                (ProblemFile::Stochastic(p), extra) => {
+                    let model = Model::from_problem(*p, format!("file {}", path.display()))
+                        .with_file_objective(&extra);
+                    let source = model.name.clone();
+                    return Ok(DiscountModel {
+                        model,
+                        failure_set: false,
+                        source,
+                        text: Some(text),
+                    });
+                }
+            }
+        }
+        (None, None, Some(id)) => (
+            GridLayout::exact(id)
+                .map_err(|e| e.to_string())?
+                .to_problem(step.unwrap_or_default()),
+            format!("paper problem {id}"),
+            FileObjective::default(),
+            None,
+        ),
+        _ => return Err("give one of --env SPEC, --problem N and --file FILE".into()),
+    };
+    let model = Model::from_deterministic_file(&problem, source.clone(), &extra)
+        .map_err(|e| e.to_string())?;
+    Ok(DiscountModel {
+        model,
+        failure_set: true,
+        source,
+        text,
+    })
 }
 
 /// Runs `discount`.
@@ -54,36 +145,33 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
     if args.step_cost.is_some() && args.problem.is_none() {
         return Err("--step-cost applies to the paper's problems (--problem N)".into());
     }
-    let (problem, source, extra) = match (&args.env.env, &args.file, args.problem) {
-        (Some(spec), _, _) => {
-            let model = Source::Env(spec.clone()).load()?;
-            return analysis(&model).map(|d| breakpoints(&model, &d, args.format));
-        }
-        (None, Some(path), _) => {
-            match truecost::formats::read_with_objective(path).map_err(|e| e.to_string())? {
-                (ProblemFile::Deterministic(p), extra) => (
-                    p,
-                    format!("file {}", printable(&path.display().to_string())),
-                    extra,
-                ),
-                (ProblemFile::Stochastic(p), extra) => {
-                    let model = Model::from_problem(*p, format!("file {}", path.display()))
-                        .with_file_objective(&extra);
-                    return analysis(&model).map(|d| breakpoints(&model, &d, args.format));
-                }
-            }
-        }
-        (None, None, Some(id)) => (
-            GridLayout::exact(id)
-                .map_err(|e| e.to_string())?
-                .to_problem(args.step_cost.unwrap_or_default()),
-            format!("paper problem {id}"),
-            FileObjective::default(),
-        ),
-        (None, None, None) => return Err("give --problem N, --file FILE or --env SPEC".into()),
-    };
-    let model = Model::from_deterministic_file(&problem, source.clone(), &extra)
-        .map_err(|e| e.to_string())?;
+    if args.env.env.is_none() && args.file.is_none() && args.problem.is_none() {
+        return Err("give --problem N, --file FILE or --env SPEC".into());
+    }
+    let loaded = discount_model(
+        args.env.env.as_deref(),
+        args.problem,
+        args.file.as_deref(),
+        args.step_cost,
+    )?;
+    let model = &loaded.model;
+    let d = analysis(model)?;
+    if let Some(path) = &args.certificate {
+        let source = CertifiedSource {
+            file: args.file.as_deref(),
+            problem: args.problem,
+            env: args.env.env.as_deref(),
+            step: args.step_cost,
+            gamma: None,
+            noise: None,
+        };
+        let text = discount_certificate(model, &d, &source, loaded.text.as_deref())?;
+        write_certificate(path, &text)?;
+    }
+    if !loaded.failure_set {
+        return Ok(breakpoints(model, &d, args.format));
+    }
+    let source = loaded.source;
     let rewards = model.reward_source;
     // With an initial distribution, a policy fails if it misses the goal from any of its
     // states (its success probability at the distribution is below 1).
@@ -91,7 +179,7 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
         1 => "x1".to_string(),
         k => format!("some of the {k} initial states"),
     };
-    let set = failure_set(&analysis(&model)?);
+    let set = failure_set(&d);
     Ok(match args.format {
         CompareFormat::Json => {
             let pieces: Vec<_> = set
@@ -172,3 +260,247 @@ fn breakpoints(model: &Model, d: &DiscountAnalysis, format: CompareFormat) -> St
         CompareFormat::Latex => discount_latex(model, d),
     }
 }
+
+/// How many times the writer narrows a breakpoint's bracket (by 8 halvings) when its own
+/// check finds the bracket holding another root of an advantage or denominator.
+const MAX_NARROWINGS: usize = 64;
+
+/// The discount certificate of an analysis (`discount --certificate`): the breakpoints as
+/// polynomials with brackets, each interval's witness policy (the analysis' reported one) with
+/// its values as rational functions of `α` ([`truecost::objectives::parametric::witness_values`])
+/// and the optimal sets. The writer checks it with the checker before returning it: a bracket
+/// that also holds another root of an advantage is narrowed, and any other rejection is an
+/// error (the analysis and the checker disagree), so no certificate that `check` refuses is
+/// written.
+pub fn discount_certificate(
+    model: &Model,
+    d: &DiscountAnalysis,
+    source: &CertifiedSource<'_>,
+    file_text: Option<&str>,
+) -> Result<String, String> {
+    let mdp = mdp_of(model);
+    let mut problem = source.record(|| mdp.clone())?;
+    if let Some(text) = file_text {
+        problem.sha256 = sha256_hex(text.as_bytes());
+    }
+    let identity = match file_text {
+        Some(text) => Identity::FileBytes(text.as_bytes()),
+        None => Identity::Canonical,
+    };
+    let n = model.problem.states();
+    let q = |c: &BigInt| Rational::from_integer(c.clone());
+    let ints = |p: &[BigInt]| -> Vec<Rational> { p.iter().map(q).collect() };
+    let mut intervals = Vec::with_capacity(d.intervals.len());
+    for t in &d.intervals {
+        let w = witness_values(model, &t.policy).map_err(|e| e.to_string())?;
+        let values = (0..n)
+            .map(|x| {
+                (!model.terminal[x]).then(|| ValueRecord {
+                    denominator: w.denominator_of[x],
+                    numerator: ints(&w.numerators[x]),
+                })
+            })
+            .collect();
+        intervals.push(IntervalRecord {
+            sample: Rational::zero(),
+            denominators: w.denominators.iter().map(|p| ints(p)).collect(),
+            values,
+            policy: t.policy.iter().map(|a| a.map(|a| a as u64)).collect(),
+            optimal: t.optimal.iter().map(|o| wide(o)).collect(),
+        });
+    }
+    let mut roots: Vec<Root> = d.breakpoints.iter().map(|b| b.at.clone()).collect();
+    let breakpoints: Vec<BreakpointRecord> = d
+        .breakpoints
+        .iter()
+        .enumerate()
+        .map(|(k, b)| {
+            let mut optimal: Vec<Vec<u64>> =
+                d.intervals[k].optimal.iter().map(|o| wide(o)).collect();
+            for (x, at) in &b.ties {
+                optimal[*x] = wide(at);
+            }
+            let m: Vec<BigInt> = truecost::algebra::poly::roots::integer_form(&b.at.polynomial());
+            let m = Sturm::new(&m).square_free_part().to_vec();
+            BreakpointRecord {
+                polynomial: ints(&m),
+                lo: Rational::zero(),
+                hi: Rational::zero(),
+                optimal,
+            }
+        })
+        .collect();
+    let mut c = DiscountCertificate {
+        problem,
+        states: n,
+        breakpoints,
+        intervals,
+    };
+    for _ in 0..MAX_NARROWINGS {
+        // Consecutive brackets apart, then the samples between them.
+        for k in 1..roots.len() {
+            while roots[k - 1].hi >= roots[k].lo {
+                roots[k - 1].halve();
+                roots[k].halve();
+            }
+        }
+        for (b, r) in c.breakpoints.iter_mut().zip(&roots) {
+            (b.lo, b.hi) = (r.lo.clone(), r.hi.clone());
+        }
+        for (i, t) in c.intervals.iter_mut().enumerate() {
+            let lo = i
+                .checked_sub(1)
+                .map_or_else(Rational::zero, |k| roots[k].hi.clone());
+            let hi = roots.get(i).map_or_else(Rational::one, |r| r.lo.clone());
+            t.sample = simplest_between(&lo, &hi);
+        }
+        match check_discount(&mdp, identity, &c) {
+            Ok(_) => return Ok(write_discount(&c)),
+            Err(e)
+                if matches!(e.condition, "optimality" | "denominator")
+                    && e.breakpoint.is_some() =>
+            {
+                let k = e.breakpoint.expect("a breakpoint");
+                for _ in 0..8 {
+                    roots[k].halve();
+                }
+            }
+            Err(e) => {
+                return Err(format!(
+                    "internal check failed: the discount certificate fails its own check: {e}"
+                ))
+            }
+        }
+    }
+    Err("internal check failed: the discount certificate's brackets still hold other roots after narrowing".into())
+}
+
+fn wide(o: &[usize]) -> Vec<u64> {
+    o.iter().map(|&a| a as u64).collect()
+}
+
+/// `truecost check`: a discount certificate ([`check_discount_file`]) or any other kind
+/// (`super::env::check`), by the certificate's `objective`.
+pub fn check_certificate(
+    source: &EnvArg,
+    problem: Option<usize>,
+    file: Option<&std::path::Path>,
+    certificate_path: &std::path::Path,
+    format: ReportFormat,
+    coq: bool,
+) -> Result<String, String> {
+    let text = read_certificate(certificate_path)?;
+    let kind = serde_json::from_str::<serde_json::Value>(&text)
+        .ok()
+        .and_then(|v| {
+            v.get("objective")
+                .and_then(|o| o.as_str().map(str::to_string))
+        });
+    if kind.as_deref() != Some(DISCOUNT) {
+        return super::env::check(source, problem, file, certificate_path, format, coq);
+    }
+    if coq {
+        return Err("--coq checks truecost and deterministic certificates; a discount certificate is checked by truecost's own checker (without --coq)".into());
+    }
+    check_discount_file(source.env.as_deref(), problem, file, &text, format)
+}
+
+fn read_certificate(path: &std::path::Path) -> Result<String, String> {
+    const MAX_CERTIFICATE_BYTES: u64 = 1 << 30;
+    truecost::bounded::read_text(path, MAX_CERTIFICATE_BYTES, "certificates")
+        .map_err(|e| format!("cannot read the certificate: {e}"))
+}
+
+/// Checks a discount certificate (`text`) against the problem rebuilt from the source, as
+/// `discount` builds it.
+fn check_discount_file(
+    env: Option<&str>,
+    problem: Option<usize>,
+    file: Option<&std::path::Path>,
+    text: &str,
+    format: ReportFormat,
+) -> Result<String, String> {
+    let cert = parse_discount(text).map_err(|e| format!("malformed certificate: {e}"))?;
+    let record = &cert.problem;
+    if record.gamma.is_some() || record.noise.is_some() {
+        return Err("malformed certificate: a discount certificate has no gamma or noise".into());
+    }
+    let kind = match (env, problem, file) {
+        (Some(_), None, None) => "env",
+        (None, Some(_), None) => "problem",
+        (None, None, Some(_)) => "file",
+        _ => return Err("give one of --env SPEC, --problem N and --file FILE".into()),
+    };
+    if record.source != kind {
+        return Err(format!(
+            "the certificate is for a problem from {} {}, not from {kind}",
+            truecost::echo::echo(&record.source),
+            truecost::echo::echo(&record.name)
+        ));
+    }
+    let step = match (&record.step_cost, problem) {
+        (Some(s), Some(_)) => Some(StepCost::from_str(s, false).map_err(|_| {
+            format!(
+                "the certificate's step_cost {} is not unit or euclidean",
+                truecost::echo::echo(s)
+            )
+        })?),
+        _ => None,
+    };
+    let loaded = discount_model(env, problem, file, step)?;
+    let mdp = mdp_of(&loaded.model);
+    let identity = match &loaded.text {
+        Some(t) => Identity::FileBytes(t.as_bytes()),
+        None => Identity::Canonical,
+    };
+    let name = &loaded.model.name;
+    match check_discount(&mdp, identity, &cert) {
+        Ok(a) => Ok(match format {
+            ReportFormat::Json => pretty(&serde_json::json!({
+                "accepted": true,
+                "objective": DISCOUNT,
+                "problem": name,
+                "sha256": record.sha256,
+                "states": a.states,
+                "actions": a.actions,
+                "breakpoints": a.breakpoints,
+                "intervals": a.intervals,
+                "conditions": a.conditions,
+                "not_certified": NOT_CERTIFIED,
+                "coq_checked": false,
+            })),
+            ReportFormat::Text => {
+                let mut s = format!(
+                    "accepted     discount certificate for {name} ({} states, {} actions, {} breakpoints, {} intervals; SHA-256 {})\n",
+                    a.states, a.actions, a.breakpoints, a.intervals, record.sha256
+                );
+                for c in &a.conditions {
+                    s.push_str(&format!(
+                        "{:<12} {} ({} checked)\n",
+                        c.name, c.statement, c.instances
+                    ));
+                }
+                s.push_str(&format!("not certified {NOT_CERTIFIED}\n"));
+                s
+            }
+        }),
+        Err(rejection) => {
+            if format == ReportFormat::Json {
+                super::emit(&pretty(&serde_json::json!({
+                    "accepted": false,
+                    "objective": DISCOUNT,
+                    "problem": name,
+                    "condition": rejection.condition,
+                    "interval": rejection.interval,
+                    "breakpoint": rejection.breakpoint,
+                    "state": rejection.state,
+                    "detail": rejection.detail,
+                })))?;
+            }
+            Err(format!("certificate rejected: {rejection}"))
+        }
+    }
+}
+
+/// What `discount` prints that a discount certificate does not certify.
+const NOT_CERTIFIED: &str = "the success probabilities and truecosts of the optimal policies (and the failure set read off them), computed from the certified optimal sets";

@@ -54,8 +54,8 @@ enum Command {
     /// Write a problem (--env, --problem, --file, --grid) as a problem file, in Storm's DRN format
     /// or in the PRISM language.
     Export(export::ExportArgs),
-    /// Check a certificate of `solve --certificate` against the problem, re-read, in exact
-    /// arithmetic (exit 0 only if every condition holds).
+    /// Check a certificate of `solve --certificate` or `discount --certificate` against the
+    /// problem, re-read, in exact arithmetic (exit 0 only if every condition holds).
     Check(CheckArgs),
 }
 
@@ -221,7 +221,7 @@ pub fn main() -> ExitCode {
         Command::Compare(args) => compare::run(&args),
         Command::Export(args) => export::run(&args),
         Command::Learn(args) => learn::learn(&args),
-        Command::Check(args) => env::check(
+        Command::Check(args) => discount::check_certificate(
             &args.env,
             args.problem,
             args.file.as_deref(),

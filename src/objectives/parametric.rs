@@ -502,6 +502,46 @@ fn policy_values(
     Err(ParametricError::Annihilator(annihilator::PROJECTIONS))
 }
 
+/// A policy's discounted values as rational functions of `α`, `V_x = N_x / D_x` (module
+/// docs, steps 1 and 1′): read-only, for the certificate of an interval's witness policy.
+#[derive(Clone, Debug)]
+pub struct WitnessValues {
+    /// The distinct denominators, integer coefficients, constant first.
+    pub denominators: Vec<Vec<BigInt>>,
+    /// Per state, the index of its denominator (unused where the episode is over).
+    pub denominator_of: Vec<usize>,
+    /// Per state, the numerator (empty where the episode is over).
+    pub numerators: Vec<Vec<BigInt>>,
+}
+
+/// The values of `policy` (per state its action index in `U(x)`, as [`Interval::policy`];
+/// `None` where the episode is over) as rational functions of `α`, computed as the analysis
+/// computes them.
+pub fn witness_values(
+    model: &Model,
+    policy: &[Option<usize>],
+) -> Result<WitnessValues, ParametricError> {
+    let p = &model.problem;
+    let running: Vec<StateId> = (0..p.states()).filter(|&x| !model.terminal[x]).collect();
+    let mut index = vec![None; p.states()];
+    for (i, &x) in running.iter().enumerate() {
+        index[x] = Some(i);
+    }
+    let global: Vec<Option<usize>> = (0..p.states())
+        .map(|x| policy[x].map(|i| p.actions(x).start + i))
+        .collect();
+    let v = if is_deterministic(model) {
+        chain_values(model, &running, &global)?
+    } else {
+        policy_values(model, &running, &index, &global)?
+    };
+    Ok(WitnessValues {
+        denominators: v.dens,
+        denominator_of: v.den_of,
+        numerators: v.n,
+    })
+}
+
 /// The product of two integer polynomials (constant first).
 fn poly_mul(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
     if a.is_empty() || b.is_empty() {

@@ -1541,21 +1541,25 @@ fn probe_points(l: Option<&Root>, r: Option<&Root>) -> impl Iterator<Item = Rati
     let delta = &mid - &base;
     // Last, the simplest rational of the whole gap and of each side of it: the least
     // denominators the gap holds (a stochastic model's probes need small ones,
-    // [`bounds::AlphaRoom`]).
-    let (lo, hi) = inside(l, r);
-    let simplest = simplest_between(&lo, &hi);
-    let sides = [
-        simplest_between(&lo, &simplest),
-        simplest_between(&simplest, &hi),
-    ];
+    // [`bounds::AlphaRoom`]); found only when asked for.
+    let (l, r) = (l.cloned(), r.cloned());
+    let least = std::iter::once_with(move || {
+        let (lo, hi) = inside(l.as_ref(), r.as_ref());
+        let simplest = simplest_between(&lo, &hi);
+        let sides = [
+            simplest_between(&lo, &simplest),
+            simplest_between(&simplest, &hi),
+        ];
+        std::iter::once(simplest).chain(sides)
+    })
+    .flatten();
     [24u32, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16]
         .into_iter()
         .map(move |k| {
             let at = |k: u32| &base + &delta / Rational::from_integer(BigInt::one() << k);
             simplest_between(&at(k + 1), &at(k))
         })
-        .chain(std::iter::once(simplest))
-        .chain(sides)
+        .chain(least)
 }
 
 /// Rationals `lo < hi` with `(lo, hi)` inside the gap `(l, r)` (`None`: 0, 1), the brackets of
@@ -2133,16 +2137,8 @@ mod tests {
             let range = CostRange { lo: 1, hi: 9 };
             let grid = pattern_grid(6, 6, GridPattern::Random, range, seed).unwrap();
             let m = Model::from_deterministic(&grid, format!("grid {seed}")).unwrap();
-            let run = |words| {
-                analyse(
-                    &m,
-                    Search::Pruned,
-                    MAX_DETERMINISTIC_WORK,
-                    words,
-                    &mut |_| {},
-                )
-                .unwrap()
-            };
+            let run =
+                |words| analyse(&m, Search::Pruned, Limits::default(), words, &mut |_| {}).unwrap();
             let (kept, cleared) = (run(chains::MAX_MEMORY_WORDS), run(0));
             assert!(!kept.breakpoints.is_empty(), "seed {seed}");
             assert_eq!(decimals(&kept), decimals(&cleared), "seed {seed}");

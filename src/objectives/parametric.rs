@@ -123,13 +123,13 @@ pub const MAX_DETERMINISTIC_RUNNING_STATES: usize = 2_500;
 /// The most work the probes of one deterministic analysis may do together, counted in words
 /// of arithmetic (the pruned search, module `chains`: polynomials built, roots isolated, signs
 /// and halvings of root brackets, hash lookups; the full search: `deterministic_probe_work`);
-/// checked before every probe with the last probe's work as the estimate of the next, and
-/// after it. Measured in release (processor time on 2 shared cores, 7 Dec 2026), the probes
+/// with the phase after the probes (module `closing`, reserved region by region); checked
+/// before every probe with the last probe's work as the estimate of the next, inside a probe
+/// with memory, and after it. Measured in release (processor time on 2 shared cores, 7 Dec 2026), the probes
 /// do 3·10⁸ to 1.4·10⁹ units a second: grids of `export --grid NxN --pattern random --costs
 /// 1-9 --seed 0` take 2.6·10⁸ units (20×20, 385 probes), 1.5·10⁹ (30×30, 1003 probes) and
-/// 1.2·10¹⁰ (50×50, 2534 probes, about 53 s of probes); twelve 200-state chains with costs
-/// `k/13` reach the bound after 1048 probes and 12 s. The bound (`2^34` ≈ 1.7·10¹⁰) keeps the
-/// probes of an analysis to about a minute of processor time.
+/// 1.2·10¹⁰ (50×50, 2534 probes, about 53 s of probes), the probes' units alone. The bound
+/// (`2^34` ≈ 1.7·10¹⁰) keeps an analysis to about a minute of processor time.
 pub const MAX_DETERMINISTIC_WORK: u128 = 1 << 34;
 
 /// The estimated work of one probe of a stochastic analysis: `n⁵·b⁴`, with `n` the running

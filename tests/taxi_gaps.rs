@@ -18,6 +18,7 @@ use common::Lcg;
 use truecost::envs::{taxi, EnvSpec, Environment};
 use truecost::figures::envs::{taxi_policy_overlay, taxi_scene, taxi_value_overlay, TaxiSlice};
 use truecost::figures::render::{draw, Overlay};
+use truecost::objectives::parametric::degree::Reason;
 use truecost::objectives::parametric::{discount_breakpoints, DiscountAnalysis, ParametricError};
 use truecost::objectives::{Model, Objective};
 use truecost::stochastic::{Outcome, OutcomeKind, StochasticAction, StochasticProblem};
@@ -436,8 +437,8 @@ fn chain_degree_bound_is_checked_before_any_probe_and_while_running() {
             e,
             ParametricError::CertainDegree {
                 state: 0,
-                moves: 250,
                 degree: 249,
+                reason: Reason::NearOne { moves: 250 },
                 bound: 200
             }
         ),
@@ -445,9 +446,34 @@ fn chain_degree_bound_is_checked_before_any_probe_and_while_running() {
     );
     assert!(e.to_string().contains("before any probe"), "{e}");
     assert!(e.to_string().contains("at most 200"), "{e}");
-    // A first step of cost 0 (reward 0, not negative): the bound before the probes does not
-    // apply, and the chain's degree is caught while the first policy is evaluated.
+    // A first step of reward 0: not every reward is negative, but the line has no cycle, so
+    // the same bound applies before the first probe.
     let e = discount_breakpoints(&line(251, 0)).unwrap_err();
+    assert!(
+        matches!(e, ParametricError::CertainDegree { degree: 249, .. }),
+        "{e}"
+    );
+    // Every state may also stay (reward 0, a cycle of total 0) and every move forward has
+    // reward 0 but the last, 1 (so the actions of greatest reward tie but at the last state):
+    // neither bound before the probes applies, and the degree of the optimal policy (move on,
+    // to collect the 1) is caught while the first probe evaluates it.
+    let n = 251;
+    let actions = (0..n)
+        .map(|x| {
+            if x + 1 < n {
+                vec![det(0, x + 1), det(0, x)]
+            } else {
+                vec![]
+            }
+        })
+        .collect();
+    let mut stay = Model::from_problem(
+        StochasticProblem::new(actions, 0, vec![n - 1]).unwrap(),
+        "line with stays".into(),
+    );
+    let last = stay.problem.actions(n - 2).start;
+    stay.reward[last] = Rational::one();
+    let e = discount_breakpoints(&stay).unwrap_err();
     assert!(
         matches!(e, ParametricError::ChainDegree { degree, bound: 200 } if degree > 200),
         "{e}"

@@ -88,6 +88,8 @@ use crate::value::{Extended, Rational};
 
 pub mod bounds;
 mod chains;
+mod closing;
+pub mod degree;
 mod paths;
 
 /// The most states where the episode runs: a policy's values are rational functions of `α`
@@ -121,13 +123,13 @@ pub const MAX_DETERMINISTIC_RUNNING_STATES: usize = 2_500;
 /// The most work the probes of one deterministic analysis may do together, counted in words
 /// of arithmetic (the pruned search, module `chains`: polynomials built, roots isolated, signs
 /// and halvings of root brackets, hash lookups; the full search: `deterministic_probe_work`);
-/// checked before every probe with the last probe's work as the estimate of the next, and
-/// after it. Measured in release (processor time on 2 shared cores, 7 Dec 2026), the probes
+/// with the phase after the probes (module `closing`, reserved region by region); checked
+/// before every probe with the last probe's work as the estimate of the next, inside a probe
+/// with memory, and after it. Measured in release (processor time on 2 shared cores, 7 Dec 2026), the probes
 /// do 3·10⁸ to 1.4·10⁹ units a second: grids of `export --grid NxN --pattern random --costs
 /// 1-9 --seed 0` take 2.6·10⁸ units (20×20, 385 probes), 1.5·10⁹ (30×30, 1003 probes) and
-/// 1.2·10¹⁰ (50×50, 2534 probes, about 53 s of probes); twelve 200-state chains with costs
-/// `k/13` reach the bound after 1048 probes and 12 s. The bound (`2^34` ≈ 1.7·10¹⁰) keeps the
-/// probes of an analysis to about a minute of processor time.
+/// 1.2·10¹⁰ (50×50, 2534 probes, about 53 s of probes), the probes' units alone. The bound
+/// (`2^34` ≈ 1.7·10¹⁰) keeps an analysis to about a minute of processor time.
 pub const MAX_DETERMINISTIC_WORK: u128 = 1 << 34;
 
 /// The estimated work of one probe of a stochastic analysis: `n⁵·b⁴`, with `n` the running
@@ -223,18 +225,29 @@ pub enum ParametricError {
         /// [`MAX_CHAIN_DEGREE`].
         bound: usize,
     },
-    /// A deterministic model whose policies optimal next to `α = 1` must follow a chain longer
-    /// than [`MAX_CHAIN_DEGREE`] ([`bounds::certain_degree`]): refused before any probe.
-    #[error("state {state} is {moves} moves from any end of the episode and every reward is negative, so for alpha near 1 the optimal policies' values there have degree >= {degree}; the exact parametric analysis of deterministic problems handles degree at most {bound} (refused before any probe)")]
+    /// A deterministic model whose policies optimal next to `α = 1` or `α = 0` must have a
+    /// value of degree over the bound ([`bounds::certain_degree`]): refused before any probe.
+    #[error("state {state} {reason}: degree >= {degree}; the exact analysis of deterministic problems takes at most {bound} (refused before any probe)")]
     CertainDegree {
-        /// The state farthest from an end.
+        /// The state.
         state: usize,
-        /// Its fewest moves to an end.
-        moves: usize,
-        /// `moves − 1`.
+        /// The degree its value must have (at least).
         degree: usize,
+        /// Why ([`degree::Reason`]).
+        reason: degree::Reason,
         /// [`MAX_CHAIN_DEGREE`].
         bound: usize,
+    },
+    /// A stochastic model whose probabilities leave a probe's `α` too little room for its
+    /// denominator ([`bounds::AlphaRoom`]).
+    #[error("state {state}: the probabilities' common denominator {own} times alpha's must be at most 2^62 (the exact solver's limit): {detail}")]
+    AlphaDenominator {
+        /// The state with the largest common denominator of its probabilities.
+        state: usize,
+        /// That common denominator.
+        own: BigInt,
+        /// The denominators, the product and where (before any work, or the gap).
+        detail: String,
     },
     /// A stage cost or reward over `2^100` in magnitude ([`bounds::MAX_MAGNITUDE_BITS`]).
     #[error("state {state}, action {action}: the {quantity} {value} exceeds 2^{bound} in magnitude; the exact parametric analysis takes stage costs and rewards up to 2^{bound} (refused before any work)")]
@@ -279,12 +292,15 @@ pub enum ParametricError {
         bound: u128,
     },
     /// The probes together would exceed [`MAX_PROBE_WORK`].
-    #[error("the exact parametric analysis stopped after {probes} probes ({regions} regions of (0,1) covered, {gaps} gaps left, {work} units of work done): the next probe would pass its work bound of {bound} units (at most a few minutes of processor time); the problem has too many breakpoints for numbers this size")]
+    #[error("the exact parametric analysis stopped after {probes} probes ({regions} regions of (0,1) covered, {gaps} gaps left): its work, {work} units done and {reserved} reserved for the breakpoints' optimal sets, would pass the bound of {bound} units (about a minute of processor time)")]
     Work {
         /// Probes run.
         probes: usize,
         /// The work counted so far.
         work: u128,
+        /// The work reserved for the phase after the probes (module `closing`; 0 on a
+        /// stochastic model).
+        reserved: u128,
         /// Regions found.
         regions: usize,
         /// Gaps left.
@@ -650,11 +666,12 @@ fn chains(
 /// state's successor chain (module docs, step 1′): a state on a cycle `c_0 … c_{k−1}` has
 /// `V = Σ_{j<k} α^j r(c_j) / (1 − α^k)`; any other state `V_x = r_x + α V_{f(x)}` with its
 /// successor's denominator (`1` when the chain ends where the episode is over). Refuses when
-/// a degree exceeds [`MAX_CHAIN_DEGREE`].
+/// a degree exceeds `bound` ([`MAX_CHAIN_DEGREE`] in the analysis).
 fn chain_values(
     model: &Model,
     running: &[StateId],
     policy: &[Option<usize>],
+    bound: usize,
 ) -> Result<PolicyValues, ParametricError> {
     use num_integer::Integer;
     let n = model.problem.states();
@@ -670,12 +687,8 @@ fn chain_values(
     let mut den_of = vec![0; n];
     let mut num: Vec<Vec<BigInt>> = vec![Vec::new(); n];
     let mut degree = 0;
-    let too_long = |degree: usize| {
-        (degree > MAX_CHAIN_DEGREE).then_some(ParametricError::ChainDegree {
-            degree,
-            bound: MAX_CHAIN_DEGREE,
-        })
-    };
+    let too_long =
+        |degree: usize| (degree > bound).then_some(ParametricError::ChainDegree { degree, bound });
     for (x, cycle) in chains(model, running, policy) {
         match cycle {
             Some(cycle) => {
@@ -1378,6 +1391,7 @@ fn probe(
     left: Option<&Root>,
     search: Search,
     memory: Option<&mut chains::ChainMemory>,
+    degree_bound: usize,
 ) -> Result<Option<Region>, ParametricError> {
     if let Some(memory) = memory {
         return memory.probe(model, running, t, degree, work);
@@ -1387,7 +1401,7 @@ fn probe(
         // The full search (the pruned one has memory): exact policy iteration.
         let mut policy = deterministic_optimum(model, running, t);
         loop {
-            let values = chain_values(model, running, &policy)?;
+            let values = chain_values(model, running, &policy, degree_bound)?;
             let found = advantages_at(model, running, &policy, &values, t);
             // Exact policy iteration: switch every state with an improving action to one
             // (the values grow strictly, so no policy repeats).
@@ -1565,12 +1579,56 @@ fn probe_points(l: Option<&Root>, r: Option<&Root>) -> impl Iterator<Item = Rati
     }
     let base = la.hi;
     let delta = &mid - &base;
+    // Last, the simplest rational of the whole gap and of each side of it: the least
+    // denominators the gap holds (a stochastic model's probes need small ones,
+    // [`bounds::AlphaRoom`]); found only when asked for.
+    let (l, r) = (l.cloned(), r.cloned());
+    let least = std::iter::once_with(move || {
+        let (lo, hi) = inside(l.as_ref(), r.as_ref());
+        let simplest = simplest_between(&lo, &hi);
+        let sides = [
+            simplest_between(&lo, &simplest),
+            simplest_between(&simplest, &hi),
+        ];
+        std::iter::once(simplest).chain(sides)
+    })
+    .flatten();
     [24u32, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16]
         .into_iter()
         .map(move |k| {
             let at = |k: u32| &base + &delta / Rational::from_integer(BigInt::one() << k);
             simplest_between(&at(k + 1), &at(k))
         })
+        .chain(least)
+}
+
+/// Rationals `lo < hi` with `(lo, hi)` inside the gap `(l, r)` (`None`: 0, 1), the brackets of
+/// `l` and `r` narrowed to `2^-10` of what is left between them.
+fn inside(l: Option<&Root>, r: Option<&Root>) -> (Rational, Rational) {
+    let mut la = l.cloned().unwrap_or_else(zero_point);
+    let mut ra = r.cloned().unwrap_or_else(one_point);
+    let scale = Rational::from_integer(BigInt::from(1024));
+    loop {
+        let wide = |a: &Root| !a.exact && (&a.hi - &a.lo) * &scale > &ra.lo - &la.hi;
+        if la.hi < ra.lo && !wide(&la) && !wide(&ra) {
+            return (la.hi, ra.lo);
+        }
+        if !la.exact {
+            la.halve();
+        }
+        if !ra.exact {
+            ra.halve();
+        }
+    }
+}
+
+/// The gap `(l, r)` of `(0, 1)` (`None`: 0, 1) in decimals, for a refusal.
+fn gap_text(l: &Option<Root>, r: &Option<Root>) -> String {
+    let end = |a: &Option<Root>, default: &str| {
+        a.as_ref()
+            .map_or_else(|| default.to_string(), |a| format!("≈{}", a.decimal(8)))
+    };
+    format!("({}, {})", end(l, "0"), end(r, "1"))
 }
 
 /// The success probability and truecost `{min, max}` of the policies using only the allowed
@@ -1731,21 +1789,50 @@ pub fn discount_breakpoints_within(
     deterministic_bound: u128,
     progress: &mut dyn FnMut(ProbeProgress),
 ) -> Result<DiscountAnalysis, ParametricError> {
-    analyse(
-        model,
-        search,
-        deterministic_bound,
-        chains::MAX_MEMORY_WORDS,
-        progress,
-    )
+    let limits = Limits {
+        deterministic_work: deterministic_bound,
+        ..Limits::default()
+    };
+    discount_breakpoints_limited(model, search, limits, progress)
 }
 
-/// [`discount_breakpoints_within`] with the deterministic probes' memory cleared past
+/// The bounds of a deterministic analysis that [`discount_breakpoints_limited`] takes as
+/// given: the analysis uses [`Limits::default`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Limits {
+    /// The work bound ([`MAX_DETERMINISTIC_WORK`]).
+    pub deterministic_work: u128,
+    /// The largest degree of a value along a successor chain ([`MAX_CHAIN_DEGREE`]), checked
+    /// before the first probe ([`bounds::check_certain_degree`]) and on every value built.
+    pub chain_degree: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Limits {
+        Limits {
+            deterministic_work: MAX_DETERMINISTIC_WORK,
+            chain_degree: MAX_CHAIN_DEGREE,
+        }
+    }
+}
+
+/// [`discount_breakpoints_search`] within the given [`Limits`] (to see what an analysis
+/// refused by a bound would need: tests lift the bounds with it).
+pub fn discount_breakpoints_limited(
+    model: &Model,
+    search: Search,
+    limits: Limits,
+    progress: &mut dyn FnMut(ProbeProgress),
+) -> Result<DiscountAnalysis, ParametricError> {
+    analyse(model, search, limits, chains::MAX_MEMORY_WORDS, progress)
+}
+
+/// [`discount_breakpoints_limited`] with the deterministic probes' memory cleared past
 /// `memory_words` words.
 fn analyse(
     model: &Model,
     search: Search,
-    deterministic_bound: u128,
+    limits: Limits,
     memory_words: usize,
     progress: &mut dyn FnMut(ProbeProgress),
 ) -> Result<DiscountAnalysis, ParametricError> {
@@ -1759,18 +1846,20 @@ fn analyse(
             bound: MAX_RUNNING_STATES,
         });
     }
-    // Deterministic problems: the chain degree is checked while running, and each probe
-    // counts the work it measured (`deterministic_probe_work`); the next probe is expected
-    // to cost as much as the last one.
-    let per_probe = if deterministic {
+    // Deterministic problems: the chain degree is checked before the first probe where the
+    // chain structure forces it, and while running; each probe counts the work it measured
+    // (`deterministic_probe_work`); the next probe is expected to cost as much as the last
+    // one. Stochastic problems: each probe is estimated before any work, and so is the room
+    // the probabilities leave the probes' alpha.
+    let (per_probe, room) = if deterministic {
         if running.len() > MAX_DETERMINISTIC_RUNNING_STATES {
             return Err(ParametricError::DeterministicStates {
                 states: running.len(),
                 bound: MAX_DETERMINISTIC_RUNNING_STATES,
             });
         }
-        bounds::check_certain_degree(model, &running)?;
-        None
+        bounds::check_certain_degree(model, &running, limits.chain_degree)?;
+        (None, None)
     } else {
         let bits = number_bits(model, &running);
         let work = probe_work(running.len(), bits);
@@ -1782,10 +1871,15 @@ fn analyse(
                 bound: MAX_SINGLE_PROBE_WORK,
             });
         }
-        Some(work)
+        let room = bounds::AlphaRoom::of(model, &running);
+        let half = Rational::new(BigInt::one(), BigInt::from(2));
+        if !room.fits(&half) {
+            return Err(room.refusal(&half, None));
+        }
+        (Some(work), Some(room))
     };
     let bound = if deterministic {
-        deterministic_bound
+        limits.deterministic_work
     } else {
         MAX_PROBE_WORK
     };
@@ -1806,8 +1900,17 @@ fn analyse(
             achievement(model, allowed)
         }
     };
+    // The phase after the probes, on a deterministic model: charged in the probes' units,
+    // each region's share reserved as its probe finds it (module `closing`); the interval
+    // next to 1 is reserved from the start.
+    let per_achievement = if deterministic {
+        closing::achievement(model, graph, closing::exact_solves(model))
+    } else {
+        0
+    };
+    let mut reserved = per_achievement;
     let mut memory = (deterministic && search == Search::Pruned)
-        .then(|| chains::ChainMemory::new(model, &running, memory_words));
+        .then(|| chains::ChainMemory::new(model, &running, memory_words, limits.chain_degree));
     let mut regions: Vec<Region> = Vec::new();
     let mut gaps: Vec<(Option<Root>, Option<Root>)> = vec![(None, None)];
     let mut probes = 0;
@@ -1816,11 +1919,22 @@ fn analyse(
             return Err(ParametricError::Pieces(MAX_REGIONS));
         }
         let mut found = None;
+        // The simplest rational of the gap refused for its denominator, if any.
+        let mut refused: Option<Rational> = None;
         for t in probe_points(l.as_ref(), r.as_ref()) {
-            if work + per_probe.unwrap_or(last) > bound {
+            if let Some(room) = &room {
+                if !room.fits(&t) {
+                    if refused.as_ref().is_none_or(|q| t.denom() < q.denom()) {
+                        refused = Some(t);
+                    }
+                    continue;
+                }
+            }
+            if work + reserved + per_probe.unwrap_or(last) > bound {
                 return Err(ParametricError::Work {
                     probes,
                     work,
+                    reserved,
                     regions: regions.len(),
                     gaps: gaps.len() + 1,
                     bound,
@@ -1830,12 +1944,15 @@ fn analyse(
                 probes,
                 regions: regions.len(),
                 gaps: gaps.len() + 1,
-                work,
+                work: work + reserved,
                 bound,
             });
             let before = work;
             work += per_probe.unwrap_or(0);
             probes += 1;
+            if let Some(memory) = memory.as_mut() {
+                memory.set_budget(bound.saturating_sub(reserved));
+            }
             let region = probe(
                 model,
                 &running,
@@ -1847,12 +1964,33 @@ fn analyse(
                 l.as_ref(),
                 search,
                 memory.as_mut(),
-            )?;
+                limits.chain_degree,
+            );
+            // A probe with memory stops as soon as its counted work passes the bound.
+            let region = match region {
+                Err(ParametricError::Work { .. }) => {
+                    return Err(ParametricError::Work {
+                        probes,
+                        work,
+                        reserved,
+                        regions: regions.len(),
+                        gaps: gaps.len() + 1,
+                        bound,
+                    })
+                }
+                region => region?,
+            };
             last = work - before;
-            if work > bound {
+            if let Some(region) = &region {
+                if deterministic {
+                    reserved += closing::region(region, per_achievement);
+                }
+            }
+            if work + reserved > bound {
                 return Err(ParametricError::Work {
                     probes,
                     work,
+                    reserved,
                     regions: regions.len(),
                     gaps: gaps.len() + 1,
                     bound,
@@ -1863,9 +2001,17 @@ fn analyse(
                 break;
             }
         }
-        let region = found.ok_or_else(|| {
-            ParametricError::Internal("every probe point of a gap was a breakpoint".into())
-        })?;
+        let region = match (found, refused, &room) {
+            (Some(region), _, _) => region,
+            (None, Some(alpha), Some(room)) => {
+                return Err(room.refusal(&alpha, Some((gap_text(&l, &r), probes))));
+            }
+            _ => {
+                return Err(ParametricError::Internal(
+                    "every probe point of a gap was a breakpoint".into(),
+                ))
+            }
+        };
         if let Some(lo) = &region.lo {
             if l.as_ref()
                 .is_none_or(|l| lo.compare(l) == Ordering::Greater)
@@ -1907,6 +2053,13 @@ fn analyse(
     points.sort_by(|a, b| a.compare(b));
     // Equal points met through different polynomials keep their common factor.
     points.dedup_by(|a, b| b.absorb_if_equal(a));
+    if deterministic {
+        // Within the reservation (module `closing`), so within the bound.
+        let charged = points.iter().map(closing::reduction).sum::<u128>()
+            + (2 * points.len() as u128 + 1) * per_achievement;
+        debug_assert!(charged <= reserved, "{charged} > {reserved}");
+        work += charged.min(reserved);
+    }
     use rayon::prelude::*;
     // Each point on its own (in parallel): rational or reduced polynomial.
     points.par_iter_mut().for_each(|b| {
@@ -2024,16 +2177,8 @@ mod tests {
             let range = CostRange { lo: 1, hi: 9 };
             let grid = pattern_grid(6, 6, GridPattern::Random, range, seed).unwrap();
             let m = Model::from_deterministic(&grid, format!("grid {seed}")).unwrap();
-            let run = |words| {
-                analyse(
-                    &m,
-                    Search::Pruned,
-                    MAX_DETERMINISTIC_WORK,
-                    words,
-                    &mut |_| {},
-                )
-                .unwrap()
-            };
+            let run =
+                |words| analyse(&m, Search::Pruned, Limits::default(), words, &mut |_| {}).unwrap();
             let (kept, cleared) = (run(chains::MAX_MEMORY_WORDS), run(0));
             assert!(!kept.breakpoints.is_empty(), "seed {seed}");
             assert_eq!(decimals(&kept), decimals(&cleared), "seed {seed}");
@@ -2043,6 +2188,47 @@ mod tests {
             assert_eq!(kept.probes, cleared.probes, "seed {seed}");
             assert!(cleared.work > kept.work, "seed {seed}");
         }
+    }
+
+    /// A gap of width `2^-30` next to `1/3` holds no probe point whose denominator fits the
+    /// room `2^22` left by probabilities of common denominator `2^40`: the refusal names the
+    /// state, the denominator, the gap, its simplest rational and the product; a gap of
+    /// width `2^-10` holds one.
+    #[test]
+    fn a_gap_too_narrow_for_the_alpha_room_is_refused() {
+        let big = |k: u32| BigInt::one() << k;
+        let room = bounds::AlphaRoom {
+            state: 3,
+            own: big(40),
+            room: big(22),
+        };
+        let third = Rational::new(1.into(), 3.into());
+        let gap = |k: u32| {
+            let l = Root::rational(third.clone());
+            let r = Root::rational(&third + Rational::new(1.into(), big(k)));
+            (Some(l), Some(r))
+        };
+        let (l, r) = gap(30);
+        let points: Vec<Rational> = probe_points(l.as_ref(), r.as_ref()).collect();
+        assert!(points.iter().all(|t| !room.fits(t)), "{points:?}");
+        // The least denominator of the gap: its simplest rational.
+        let least = points.iter().map(|t| t.denom()).min().unwrap();
+        let simplest = points.iter().find(|t| t.denom() == least).unwrap();
+        let text = room
+            .refusal(simplest, Some((gap_text(&l, &r), 7)))
+            .to_string();
+        let product = big(40) * simplest.denom();
+        assert!(simplest.denom() > &big(22), "{simplest}");
+        for w in [
+            format!("state 3: the probabilities' common denominator {}", big(40)),
+            "after 7 probes the gap (≈0.33333333, ≈0.33333333) is left".to_string(),
+            format!("whose simplest rational {simplest} gives {product}"),
+            "refused before that probe".to_string(),
+        ] {
+            assert!(text.contains(&w), "{w:?} missing from {text}");
+        }
+        let (l, r) = gap(10);
+        assert!(probe_points(l.as_ref(), r.as_ref()).any(|t| room.fits(&t)));
     }
 
     /// A lasso and a path: 0 → 1 → 2 → 1 (costs 1, 2, 3) and 3 → goal 4 (cost 5). By hand at
@@ -2065,7 +2251,7 @@ mod tests {
         let policy: Vec<Option<usize>> = (0..5)
             .map(|x| (x < 4).then(|| m.problem.actions(x).start))
             .collect();
-        let v = chain_values(&m, &running, &policy).unwrap();
+        let v = chain_values(&m, &running, &policy, MAX_CHAIN_DEGREE).unwrap();
         let a = Rational::new(1.into(), 3.into());
         let value = |x: usize| eval(&v.n[x], &a) / eval(&v.dens[v.den_of[x]], &a);
         let q = |n: i64, d: i64| Rational::new(n.into(), d.into());

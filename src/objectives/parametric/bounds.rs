@@ -1,14 +1,19 @@
 //! The bounds of the parametric analysis checked before any work (module docs of [`super`],
-//! "Effort"): the size of the numbers that enter the polynomials, and, on a deterministic
-//! model, a degree that the covering of `(0, 1)` is certain to meet.
+//! "Effort"): the size of the numbers that enter the polynomials; on a deterministic model, a
+//! degree that the covering of `(0, 1)` is certain to meet; on a stochastic one, the room its
+//! probabilities leave the denominators of the probes' `α`.
 
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_traits::{One, Signed};
 
-use super::{ParametricError, MAX_CHAIN_DEGREE};
+use super::degree::{self, Certain};
+use super::ParametricError;
+#[cfg(doc)]
+use super::MAX_CHAIN_DEGREE;
 use crate::model::StateId;
 use crate::objectives::Model;
+use crate::stochastic::problem::MAX_DENOMINATOR;
 use crate::value::Rational;
 
 /// The largest magnitude of a stage cost or reward where the episode runs, as a power of two:
@@ -86,60 +91,92 @@ pub fn check_numbers(model: &Model, running: &[StateId]) -> Result<(), Parametri
 }
 
 /// A degree the covering of `(0, 1)` is certain to meet on a deterministic model, found before
-/// any probe: when every reward where the episode runs is negative, a policy that never ends
-/// the episode from a state loses without bound as `α → 1`, so the policies optimal on the
-/// region next to `1` end it from every state that can end it, along a successor path of at
-/// least the state's fewest moves `d` to an end: a value of degree `d − 1`. Returns the state
-/// farthest from an end and `d − 1` (`None` when some reward is not negative, or no state
-/// can end the episode).
-pub fn certain_degree(model: &Model, running: &[StateId]) -> Option<(StateId, usize)> {
-    let p = &model.problem;
-    let n = p.states();
-    if running
-        .iter()
-        .any(|&x| p.actions(x).any(|a| !model.reward[a].is_negative()))
-    {
-        return None;
+/// any probe from the chain structure (module [`super::degree`]): the greater of
+/// [`degree::near_one`] and [`degree::near_zero`].
+pub fn certain_degree(model: &Model, running: &[StateId]) -> Option<Certain> {
+    let one = degree::near_one(model, running);
+    let zero = degree::near_zero(model, running);
+    match (one, zero) {
+        (Some(a), Some(b)) => Some(if b.degree > a.degree { b } else { a }),
+        (a, b) => a.or(b),
     }
-    // Fewest moves to an end: breadth-first search backwards from the ended states.
-    let mut before: Vec<Vec<StateId>> = vec![Vec::new(); n];
-    for &x in running {
-        for a in p.actions(x) {
-            for o in p.outcomes(a) {
-                before[o.successor].push(x);
-            }
-        }
-    }
-    let mut moves: Vec<Option<usize>> = vec![None; n];
-    let mut queue = std::collections::VecDeque::new();
-    for x in (0..n).filter(|&x| model.terminal[x]) {
-        moves[x] = Some(0);
-        queue.push_back(x);
-    }
-    let mut farthest = None;
-    while let Some(y) = queue.pop_front() {
-        let d = moves[y].expect("queued states have a distance") + 1;
-        for &x in &before[y] {
-            if moves[x].is_none() {
-                moves[x] = Some(d);
-                farthest = Some((x, d - 1));
-                queue.push_back(x);
-            }
-        }
-    }
-    farthest
 }
 
-/// Refuses, before any probe, a deterministic model whose [`certain_degree`] exceeds
-/// [`MAX_CHAIN_DEGREE`], naming the state, its moves to an end and the bound.
-pub fn check_certain_degree(model: &Model, running: &[StateId]) -> Result<(), ParametricError> {
+/// Refuses, before any probe, a deterministic model whose [`certain_degree`] exceeds `bound`
+/// ([`MAX_CHAIN_DEGREE`] in the analysis), naming the state, the degree, why and the bound.
+pub fn check_certain_degree(
+    model: &Model,
+    running: &[StateId],
+    bound: usize,
+) -> Result<(), ParametricError> {
     match certain_degree(model, running) {
-        Some((state, degree)) if degree > MAX_CHAIN_DEGREE => Err(ParametricError::CertainDegree {
-            state,
-            moves: degree + 1,
-            degree,
-            bound: MAX_CHAIN_DEGREE,
+        Some(c) if c.degree > bound => Err(ParametricError::CertainDegree {
+            state: c.state,
+            degree: c.degree,
+            reason: c.reason,
+            bound,
         }),
         _ => Ok(()),
+    }
+}
+
+/// The room a stochastic model leaves `α`'s denominator: a probe at `α` solves the discounted
+/// problem with probabilities `α·p` and `1 − α`, whose common denominator at a state divides
+/// the state's own common denominator `D` times `α`'s denominator `q`; the exact solver takes
+/// at most `2^62` ([`MAX_DENOMINATOR`]), so the probes take `α` with `q ≤ ⌊2^62 / D⌋` for the
+/// largest `D` (at `state`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AlphaRoom {
+    /// The state with the largest common denominator of its probabilities.
+    pub state: StateId,
+    /// That common denominator `D`.
+    pub own: BigInt,
+    /// `⌊2^62 / D⌋`: the largest denominator of a probe's `α`.
+    pub room: BigInt,
+}
+
+impl AlphaRoom {
+    /// The room of `model` ([`AlphaRoom`]), over the states where the episode runs.
+    pub fn of(model: &Model, running: &[StateId]) -> AlphaRoom {
+        let p = &model.problem;
+        let (mut state, mut own) = (running.first().copied().unwrap_or(0), BigInt::one());
+        for &x in running {
+            let mut lcm = BigInt::one();
+            for a in p.actions(x) {
+                for o in p.outcomes(a) {
+                    lcm = lcm.lcm(o.probability.denom());
+                }
+            }
+            if lcm > own {
+                (state, own) = (x, lcm);
+            }
+        }
+        let room = BigInt::from(MAX_DENOMINATOR) / &own;
+        AlphaRoom { state, own, room }
+    }
+
+    /// Whether a probe may take `alpha`: its denominator within the room.
+    pub fn fits(&self, alpha: &Rational) -> bool {
+        alpha.denom() <= &self.room
+    }
+
+    /// The refusal of `alpha` (`gap`: the gap of `(0, 1)` it was the simplest rational of, as
+    /// text, with the probes run; `None`: before any work, `alpha = 1/2` the simplest of all).
+    pub fn refusal(&self, alpha: &Rational, gap: Option<(String, usize)>) -> ParametricError {
+        let product = &self.own * alpha.denom();
+        let detail = match gap {
+            None => format!(
+                "every alpha in (0,1) has a denominator >= 2, which gives {product} (refused before any work)"
+            ),
+            Some((gap, probes)) => format!(
+                "after {probes} probes the gap {gap} is left, whose simplest rational {} gives {product} (refused before that probe)",
+                crate::stochastic::short_text(alpha),
+            ),
+        };
+        ParametricError::AlphaDenominator {
+            state: self.state,
+            own: self.own.clone(),
+            detail,
+        }
     }
 }

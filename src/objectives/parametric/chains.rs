@@ -42,7 +42,7 @@ use num_traits::{One, Zero};
 
 use super::{
     advantage_polynomial, between, chains, float_optimum, int_poly, one_point, poly_add_scaled,
-    successor, zero_point, Advantage, ParametricError, Region, MAX_CHAIN_DEGREE,
+    successor, zero_point, Advantage, ParametricError, Region,
 };
 use crate::algebra::poly::roots::{integer_sign, roots_in_unit_interval, Root};
 use crate::model::StateId;
@@ -293,6 +293,10 @@ pub struct ChainMemory {
     max_words: usize,
     /// The optimal policy of the last probe: the next probe starts from it.
     last: Option<Vec<Option<usize>>>,
+    /// The largest degree of a value ([`super::MAX_CHAIN_DEGREE`] in the analysis).
+    degree_bound: usize,
+    /// The work a probe may bring the total to ([`Self::set_budget`]).
+    budget: u128,
 }
 
 /// Words of an integer polynomial's coefficients.
@@ -303,8 +307,14 @@ fn words(p: &[BigInt]) -> usize {
 }
 
 impl ChainMemory {
-    /// An empty memory for `model`'s running states, cleared past `max_words` words.
-    pub fn new(model: &Model, running: &[StateId], max_words: usize) -> ChainMemory {
+    /// An empty memory for `model`'s running states, cleared past `max_words` words, refusing
+    /// values of degree over `degree_bound`.
+    pub fn new(
+        model: &Model,
+        running: &[StateId],
+        max_words: usize,
+        degree_bound: usize,
+    ) -> ChainMemory {
         use num_integer::Integer;
         let mut big_r = BigInt::one();
         for &x in running {
@@ -323,6 +333,8 @@ impl ChainMemory {
             words: 0,
             max_words,
             last: None,
+            degree_bound,
+            budget: u128::MAX,
         };
         memory.clear();
         memory
@@ -336,6 +348,31 @@ impl ChainMemory {
         self.dens = vec![vec![self.big_r.clone()]];
         self.den_index = HashMap::from([(0, 0)]);
         self.words = 0;
+    }
+
+    /// The total work the next probes may reach: a probe stops, with
+    /// [`ParametricError::Work`], as soon as its counted work takes the total past it (checked
+    /// after each policy evaluated and each advantage built or located, so a probe never runs
+    /// on past the bound by more than one advantage's work).
+    pub fn set_budget(&mut self, budget: u128) {
+        self.budget = budget;
+    }
+
+    /// [`ParametricError::Work`] when the total `work` (with the work of [`Points`] not yet
+    /// added) has passed the budget; the caller fills in the counts of the analysis.
+    fn within_budget(&self, work: u128) -> Result<(), ParametricError> {
+        let total = work + self.points.work;
+        if total > self.budget {
+            return Err(ParametricError::Work {
+                probes: 0,
+                work: total,
+                reserved: 0,
+                regions: 0,
+                gaps: 0,
+                bound: self.budget,
+            });
+        }
+        Ok(())
     }
 
     /// The index of the denominator `R (1 − α^k)` (`R` for `k = 0`).
@@ -353,7 +390,7 @@ impl ChainMemory {
 
     /// The names of a policy's values (per state; unused where the episode is over), the
     /// largest degree among them, and the words of the values built. Refuses a chain longer
-    /// than [`MAX_CHAIN_DEGREE`].
+    /// than the memory's degree bound.
     fn evaluate(
         &mut self,
         model: &Model,
@@ -362,11 +399,9 @@ impl ChainMemory {
     ) -> Result<(Vec<u32>, usize, u128), ParametricError> {
         let n = model.problem.states();
         let action = |x: StateId| policy[x].expect("a policy acts where the episode runs");
+        let bound = self.degree_bound;
         let too_long = |degree: usize| {
-            (degree > MAX_CHAIN_DEGREE).then_some(ParametricError::ChainDegree {
-                degree,
-                bound: MAX_CHAIN_DEGREE,
-            })
+            (degree > bound).then_some(ParametricError::ChainDegree { degree, bound })
         };
         let reward = |a: usize, big_r: &BigInt| -> BigInt {
             (&model.reward[a] * Rational::from_integer(big_r.clone())).to_integer()
@@ -552,6 +587,7 @@ impl ChainMemory {
             };
             // The chains walked and the values named: a unit per running state.
             *work += built + READ * running.len() as u128;
+            self.within_budget(*work)?;
             // Per other action: its advantage (`None`: identically zero) with the number of
             // its roots left of t and its sign at t (`None`: t is a root).
             let mut found = Vec::new();
@@ -565,6 +601,7 @@ impl ChainMemory {
                         let (first, sign) = i.locate(&mut self.points, t, tf);
                         (i, first, sign)
                     });
+                    self.within_budget(*work)?;
                     if located
                         .as_ref()
                         .is_some_and(|l| l.2 == Some(Ordering::Greater))

@@ -11,6 +11,7 @@
 use std::time::Duration;
 
 use super::harnesses::Harness;
+use super::shard::{Share, Shared};
 use super::smt::Encoding;
 use super::Scope;
 
@@ -77,18 +78,6 @@ pub enum Work {
     Coq,
 }
 
-/// How a unit's work is shared among the shards of `verify --shard K/N`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Share {
-    /// Every shard does its part: the labelled indices `i ≡ K − 1 (mod N)` of each enumeration
-    /// the unit meets; the merge combines the parts.
-    Split,
-    /// Indivisible (a proptest run stops at its first failure and shrinks it; one SMT
-    /// obligation; one harness; the Coq re-check): the `u`-th owned unit of the plan belongs to
-    /// shard `u mod N + 1`.
-    Owned(u64),
-}
-
 /// One unit of work: a claim × engine × scope part.
 #[derive(Clone, Debug)]
 pub struct Unit {
@@ -135,6 +124,12 @@ pub struct Plan {
     pub coq_timeout: Duration,
     /// The steps, in the order the whole run takes them.
     pub steps: Vec<Step>,
+}
+
+impl Shared for Unit {
+    fn share(&self) -> Share {
+        self.share
+    }
 }
 
 impl Plan {

@@ -6,11 +6,11 @@
 
 use super::coq::{self, Kind};
 use super::harnesses::{self, StandinRun, HARNESSES};
-use super::plan::{Checker, Plan, Share, Step, Unit, Work};
+use super::plan::{Checker, Plan, Step, Unit, Work};
 use super::report::{AlphaStar, HarnessSection, Report};
 use super::runner::{self, Mode, Value, Values};
 use super::sampled::PropertyRun;
-use super::shard::{self, caught, ENGINE_FAILED};
+use super::shard::{self, caught, Share, ENGINE_FAILED};
 use super::smt::{self, Outcome, SmtVerdict};
 use super::{alpha, c1, c2, c3, c4, ClaimResult, Counterexample, EngineRun, Scope, Verdict};
 
@@ -373,7 +373,7 @@ const COQ: &str = "coq";
 /// report.
 pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report, String> {
     let plan = plan(scope, only, options)?;
-    let units = shard::select(&plan, None);
+    let units = shard::select(plan.units(), None);
     let ran = runner::run(&plan, &units, Mode::Whole)?;
     Ok(report(&plan, &ran.values))
 }
@@ -385,7 +385,7 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
 /// the enumerations is owned by one shard, numbered in this order. An unknown claim is refused.
 ///
 /// ```
-/// use truecost::claims::plan::{Share, Work};
+/// use truecost::claims::shard::Share;
 /// use truecost::claims::registry::{plan, Options};
 /// use truecost::claims::Scope;
 /// let options = Options { smt: false, harnesses: None, ..Options::default() };

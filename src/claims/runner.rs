@@ -28,9 +28,9 @@ use serde::Serialize;
 
 use super::coq;
 use super::harnesses::{self, StandinRun};
-use super::plan::{Checker, Plan, Share, Step, Unit, Work};
+use super::plan::{Checker, Plan, Step, Unit, Work};
 use super::sampled::{self, PropertyRun};
-use super::shard::{caught, raise, Entry, Part, StepRecord, ENGINE_FAILED};
+use super::shard::{caught, raise, Entry, Part, Share, StepRecord, ENGINE_FAILED};
 use super::smt::{self, Solved, SolvedRecord};
 use super::tiny::Tiny;
 use super::{alpha, c1, c2, c3, c4, ClaimResult};
@@ -90,14 +90,14 @@ pub struct Ran {
 /// let files: Vec<(String, String)> = (1..=2)
 ///     .map(|k| {
 ///         let part = Part::parse(&format!("{k}/2")).unwrap();
-///         let ran = run(&plan, &shard::select(&plan, Some(part)), Mode::Shard(part)).unwrap();
+///         let ran = run(&plan, &shard::select(plan.units(), Some(part)), Mode::Shard(part)).unwrap();
 ///         let file = shard::file(part, fingerprint(Scope::Smoke, Some("C2"), &options), ran.records, 0.0);
 ///         (format!("shard{k}.json"), file.to_json(shard::VERIFY_FORMAT))
 ///     })
 ///     .collect();
 /// let merged = shard::merge(&files).unwrap();
-/// let replayed = run(&plan, &shard::select(&plan, None), Mode::Merge(&merged.steps)).unwrap();
-/// let whole = run(&plan, &shard::select(&plan, None), Mode::Whole).unwrap();
+/// let replayed = run(&plan, &shard::select(plan.units(), None), Mode::Merge(&merged.steps)).unwrap();
+/// let whole = run(&plan, &shard::select(plan.units(), None), Mode::Whole).unwrap();
 /// assert_eq!(
 ///     render::json(&report(&plan, &replayed.values), false),
 ///     render::json(&report(&plan, &whole.values), false)

@@ -38,8 +38,6 @@ use std::sync::{Mutex, Once};
 use serde::de::DeserializeOwned;
 use serde_json::{json, Value};
 
-use super::plan::{Plan, Share, Unit};
-
 /// The largest number of shards accepted (`N` of `--shard K/N`).
 pub const MAX_SHARDS: u32 = 4096;
 
@@ -377,8 +375,27 @@ pub struct StepRecord {
 /// as its value.
 const END_OF_ENGINE: &str = "end of engine";
 
-/// The units shard `part` runs (`None`: the whole run, every unit): every split unit, for its
-/// part, and the owned units it owns — the `u`-th owned unit of the plan when `u mod N = K − 1`.
+/// How a unit's work is shared among the shards of `verify --shard K/N`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Share {
+    /// Every shard does its part: the labelled indices `i ≡ K − 1 (mod N)` of each enumeration
+    /// the unit meets; the merge combines the parts.
+    Split,
+    /// Indivisible (a proptest run stops at its first failure and shrinks it; one SMT
+    /// obligation; one harness; the Coq re-check): the `u`-th owned unit of the plan belongs to
+    /// shard `u mod N + 1`.
+    Owned(u64),
+}
+
+/// A unit of work as the shards share it.
+pub trait Shared {
+    /// How the shards share it.
+    fn share(&self) -> Share;
+}
+
+/// The units of `units` (a plan's, in plan order) that shard `part` runs (`None`: the whole
+/// run, every unit): every split unit, for its part, and the owned units it owns — the `u`-th
+/// owned unit when `u mod N = K − 1`.
 ///
 /// ```
 /// use truecost::claims::registry::{plan, Options};
@@ -386,19 +403,23 @@ const END_OF_ENGINE: &str = "end of engine";
 /// use truecost::claims::Scope;
 /// let options = Options { smt: false, ..Options::default() };
 /// let plan = plan(Scope::Smoke, Some("C2"), &options).unwrap();
-/// let whole = select(&plan, None).len();
+/// let whole = select(plan.units(), None).len();
 /// let parts: usize = (1..=3)
-///     .map(|k| select(&plan, Some(Part::parse(&format!("{k}/3")).unwrap())).len())
+///     .map(|k| select(plan.units(), Some(Part::parse(&format!("{k}/3")).unwrap())).len())
 ///     .sum();
 /// // Two split units (the C2 enumeration, and the worked example's exact solve that gives
 /// // α*) run in each of the three shards, every other unit in one of them.
 /// assert_eq!(parts, whole + 2 * 2);
 /// ```
-pub fn select(plan: &Plan, part: Option<Part>) -> Vec<&Unit> {
-    plan.units()
-        .filter(|u| match (u.share, part) {
+pub fn select<'u, U: Shared>(
+    units: impl IntoIterator<Item = &'u U>,
+    part: Option<Part>,
+) -> Vec<&'u U> {
+    units
+        .into_iter()
+        .filter(|u| match (u.share(), part) {
             (_, None) | (Share::Split, _) => true,
-            (Share::Owned(u), Some(p)) => p.owns(u),
+            (Share::Owned(i), Some(p)) => p.owns(i),
         })
         .collect()
 }

@@ -145,7 +145,7 @@ fn pipeline(args: &VerifyArgs, part: Option<Part>) -> Result<Made, String> {
     let options = options(args);
     let only = args.claim.as_deref();
     let plan = registry::plan(args.scope, only, &options)?; // plan
-    let units = shard::select(&plan, part); // select
+    let units = shard::select(plan.units(), part); // select
     let mode = part.map_or(Mode::Whole, Mode::Shard);
     let ran = runner::run(&plan, &units, mode)?; // run
     Ok(match part {
@@ -176,7 +176,7 @@ fn merge(args: &MergeArgs) -> Result<String, String> {
     let files = shard::read_files(&args.files)?;
     let merged = shard::merge(&files)?; // merge
     let plan = registry::plan_of(&merged.fingerprint)?; // plan
-    let units = shard::select(&plan, None);
+    let units = shard::select(plan.units(), None);
     let ran = runner::run(&plan, &units, Mode::Merge(&merged.steps))?; // run
     let r = registry::report(&plan, &ran.values); // report
     if let Some(dir) = &args.counterexamples {

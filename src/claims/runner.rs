@@ -588,3 +588,193 @@ fn fail(message: String) {
         }
     });
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sum_of_owned(part: Option<Part>) -> u64 {
+        (0..100u64)
+            .filter(|&i| part.is_none_or(|p| p.owns(i)))
+            .sum()
+    }
+
+    fn sum(site: &str) -> u64 {
+        split(site, sum_of_owned, |a, b| a + b, || 0)
+    }
+
+    /// A checker with two enumerations.
+    fn two_sums() -> (u64, u64) {
+        (sum("first"), sum("second"))
+    }
+
+    fn part(k: u32, n: u32) -> Part {
+        Part::parse(&format!("{k}/{n}")).unwrap()
+    }
+
+    /// Each shard's records of `f`, as a step of the plan records them.
+    fn shards<T>(n: u32, f: impl Fn() -> T) -> Vec<StepRecord> {
+        (1..=n)
+            .map(|k| {
+                let (result, entries) = recording(Some(part(k, n)), || caught(&f));
+                StepRecord {
+                    entries,
+                    failure: result.err(),
+                }
+            })
+            .collect()
+    }
+
+    /// Three shards split the sums 0+…+99 = 4950; the merge answers every enumeration as the
+    /// whole run does, and the whole run records nothing.
+    #[test]
+    fn three_shards_merge_to_the_whole_run() {
+        let (whole, entries) = recording(None, two_sums);
+        assert_eq!((whole, entries.len()), ((4950, 4950), 0));
+        let records = shards(3, two_sums);
+        for (k, r) in records.iter().enumerate() {
+            let names: Vec<&str> = r.entries.iter().map(|e| e.site.as_str()).collect();
+            assert_eq!(names, ["first", "second"]);
+            let own: u64 = (0..100).filter(|i| i % 3 == k as u64).sum();
+            assert_eq!(r.entries[0].value, Some(own.to_string()));
+        }
+        assert_eq!(
+            replaying(&records, || caught(two_sums)),
+            Ok(Ok((4950, 4950)))
+        );
+    }
+
+    /// An enumeration that panics in shard 1's part only: shard 1 records the failure as the
+    /// enumeration's value and stops; the merge raises it again at the same site, with the same
+    /// description, although shard 2 went on to the next enumeration.
+    #[test]
+    fn an_enumeration_failing_in_one_shard_fails_in_the_merge() {
+        fn checker() -> u64 {
+            let first = split(
+                "first",
+                |part| {
+                    assert!(part.is_none_or(|p| p.k() != 1), "planted in shard 1");
+                    sum_of_owned(part)
+                },
+                |a, b| a + b,
+                || 0,
+            );
+            first + sum("second")
+        }
+        assert_eq!(caught(checker), Ok(2 * 4950));
+        let records = shards(2, checker);
+        let failure = records[0].failure.clone().unwrap();
+        assert!(failure.starts_with("planted in shard 1 (at "), "{failure}");
+        assert_eq!(records[0].entries.len(), 1);
+        assert_eq!(
+            records[0].entries[0].value,
+            Some(format!("{ENGINE_FAILED}{failure}"))
+        );
+        assert_eq!((records[1].entries.len(), &records[1].failure), (2, &None));
+        assert_eq!(replaying(&records, || caught(checker)), Ok(Err(failure)));
+    }
+
+    /// A merge that meets an enumeration the shards did not record, or leaves one unread
+    /// although no shard failed, is refused; so are tampered values, naming the site.
+    #[test]
+    fn a_merge_of_other_or_tampered_records_is_refused() {
+        let records = shards(1, two_sums);
+        let swapped = || caught(|| (sum("second"), sum("first")));
+        let e = replaying(&records, swapped).unwrap_err();
+        assert!(e.contains("met site 'second'"), "{e}");
+        let e = replaying(&records, || caught(|| sum("first"))).unwrap_err();
+        assert!(e.contains("the merge did not meet (up to 'second'"), "{e}");
+        let tampered = |edit: &dyn Fn(&mut Entry)| {
+            let mut records = records.clone();
+            edit(&mut records[0].entries[0]);
+            replaying(&records, || caught(two_sums))
+        };
+        assert_eq!(
+            tampered(&|e| e.value = None),
+            Err("site 'first': a shard recorded no value".into())
+        );
+        let e = tampered(&|e| e.value = Some("not json".into())).unwrap_err();
+        assert!(e.starts_with("site 'first': malformed value"), "{e}");
+    }
+
+    /// A plan of one owned unit, C2's proptest run.
+    fn property_plan() -> Plan {
+        let unit = Unit {
+            id: "proptest C2".into(),
+            work: Work::Property("C2"),
+            share: Share::Owned(0),
+        };
+        Plan {
+            scope: super::super::Scope::Smoke,
+            claims: vec!["C2"],
+            harnesses: vec![],
+            harness_table: None,
+            smt_timeout_ms: None,
+            encodings: vec![],
+            coq_timeout: std::time::Duration::from_secs(1),
+            steps: vec![Step {
+                engine: "proptest",
+                claim: Some("C2"),
+                units: vec![unit],
+                failed: None,
+            }],
+        }
+    }
+
+    /// An owned unit is answered by the one shard that ran it; a unit no shard ran or two
+    /// shards ran is refused; a failure recorded by its owner fails the unit with its
+    /// description.
+    #[test]
+    fn an_owned_unit_is_answered_by_its_owner_alone() {
+        let plan = property_plan();
+        let step = &plan.steps[0];
+        let run = PropertyRun {
+            claim: "C2",
+            cases: 5,
+            relevant: 4,
+            counterexample: None,
+            scope: "five problems".into(),
+        };
+        let text = Value::Property(run.clone(), 0.25).record();
+        let record = |value: Option<&str>, failure: Option<&str>| StepRecord {
+            entries: vec![Entry {
+                site: "proptest C2".into(),
+                value: value.map(String::from),
+            }],
+            failure: failure.map(String::from),
+        };
+        let merged = merge_step(
+            &plan,
+            step,
+            &[record(None, None), record(Some(&text), None)],
+        );
+        match merged.unwrap().get("proptest C2") {
+            Some(Ok(Value::Property(p, seconds))) => assert_eq!((p, *seconds), (&run, 0.25)),
+            other => panic!("{other:?}"),
+        }
+        let e = merge_step(&plan, step, &[record(None, None), record(None, None)]);
+        assert_eq!(e.unwrap_err(), "site 'proptest C2': no shard ran it");
+        let two = [record(Some(&text), None), record(Some(&text), None)];
+        let e = merge_step(&plan, step, &two);
+        assert_eq!(e.unwrap_err(), "site 'proptest C2': run by two shards");
+        let failed = format!("{ENGINE_FAILED}planted");
+        let values = merge_step(
+            &plan,
+            step,
+            &[record(None, None), record(Some(&failed), Some("planted"))],
+        )
+        .unwrap();
+        assert_eq!(values["proptest C2"].as_ref().unwrap_err(), "planted");
+        let e = merge_step(&plan, step, &[record(None, None)]);
+        assert!(e.is_err());
+        let other = StepRecord {
+            entries: vec![Entry {
+                site: "proptest C3".into(),
+                value: Some(text.clone()),
+            }],
+            failure: None,
+        };
+        let e = merge_step(&plan, step, &[other]).unwrap_err();
+        assert!(e.contains("met site 'proptest C2'"), "{e}");
+    }
+}

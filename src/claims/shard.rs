@@ -13,7 +13,7 @@
 //!   run by one shard, the `u`-th owned unit of the plan by shard `u mod N + 1`, and recorded
 //!   there; the other shards list it without a value.
 //!
-//! The shard file ([`file`]) lists what the shard recorded, one engine run (a step of the plan)
+//! The shard file ([`file()`]) lists what the shard recorded, one engine run (a step of the plan)
 //! after the other, each closed by an entry that carries the engine's failure if it failed.
 //! `truecost verify merge` reads the N files back ([`merge`]), step by step, for the runner to
 //! answer every unit from them: the merged report is the whole run's, byte for byte (times

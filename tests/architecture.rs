@@ -609,3 +609,79 @@ fn the_reader_finds_paths_in_code_only() {
         .collect();
     assert_eq!(find_cycle(&chain), None);
 }
+
+/// Pairs `(from, to)` of modules below the top level where `from` (and every module under it)
+/// names nothing of `to`: `verify`'s shard module selects and merges the units of the plan
+/// without calling into the registry that plans them, the runner that runs them, or the plan's
+/// own types (it sees a unit only as the way shards share it).
+const APART_INSIDE: &[(&str, &str)] = &[
+    ("claims::shard", "claims::registry"),
+    ("claims::shard", "claims::runner"),
+    ("claims::shard", "claims::plan"),
+];
+
+/// The paths of `files` that [`APART_INSIDE`]-style `pairs` forbid, with their witnesses.
+fn forbidden_inside(files: &[SourceFile], pairs: &[(&str, &str)]) -> Vec<String> {
+    let split = |m: &str| -> Vec<String> { m.split("::").map(String::from).collect() };
+    let mut out = Vec::new();
+    for &(from, to) in pairs {
+        let (from, to) = (split(from), split(to));
+        for f in files.iter().filter(|f| f.module.starts_with(&from)) {
+            if let Some(p) = f.names.iter().find(|p| p.starts_with(&to)) {
+                out.push(format!(
+                    "{} names {}: {} names {}",
+                    from.join("::"),
+                    to.join("::"),
+                    f.rel.display(),
+                    p.join("::")
+                ));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn modules_kept_apart_inside_a_folder_name_nothing_of_each_other() {
+    let files = read_sources();
+    assert!(
+        files.iter().any(|f| f.module == ["claims", "shard"]),
+        "the shard module is where APART_INSIDE expects it"
+    );
+    let forbidden = forbidden_inside(&files, APART_INSIDE);
+    assert!(
+        forbidden.is_empty(),
+        "imports between modules kept apart:\n  {}",
+        forbidden.join("\n  ")
+    );
+}
+
+/// The check of [`APART_INSIDE`] on the shard module's own source with a planted import of the
+/// registry (a `use` and a path in an expression, each on its own): both are found, and the
+/// source as it is passes.
+#[test]
+fn a_planted_import_of_the_registry_in_the_shard_module_is_found() {
+    let rel = PathBuf::from("claims/shard.rs");
+    let text = fs::read_to_string(src_dir().join(&rel)).expect("the shard module's source");
+    let file = |text: &str| SourceFile {
+        module: module_of(&rel),
+        rel: rel.clone(),
+        names: named_paths(&code_only(text), &module_of(&rel)),
+    };
+    assert!(forbidden_inside(&[file(&text)], APART_INSIDE).is_empty());
+    for planted in [
+        "use super::registry::{plan, Options};\n",
+        "fn f() { let _ = crate::claims::registry::IDS; }\n",
+        "use super::runner;\n",
+    ] {
+        let found = forbidden_inside(&[file(&format!("{text}{planted}"))], APART_INSIDE);
+        assert_eq!(found.len(), 1, "{planted}: {found:?}");
+        assert!(
+            found[0].starts_with("claims::shard names claims::r"),
+            "{found:?}"
+        );
+    }
+    // A comment or a string naming the registry is not an import.
+    let quoted = format!("{text}// super::registry::plan\nconst S: &str = \"super::registry\";\n");
+    assert!(forbidden_inside(&[file(&quoted)], APART_INSIDE).is_empty());
+}

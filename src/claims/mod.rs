@@ -33,10 +33,12 @@ pub mod discount;
 pub mod exact;
 pub mod harnesses;
 pub mod oracle;
+pub mod plan;
 pub mod qlearning;
 pub mod registry;
 pub mod replay;
 pub mod report;
+pub mod runner;
 pub mod sampled;
 pub mod shard;
 pub mod smt;
@@ -218,7 +220,7 @@ pub struct ClaimResult {
 ///
 /// Under `verify --shard K/N` it visits only the labelled indices `i ≡ K − 1 (mod N)` and
 /// records its partial accumulator; `verify merge` merges the shards' accumulators with
-/// `merge` instead of visiting anything ([`shard`]) — hence the serde bounds.
+/// `merge` instead of visiting anything ([`runner::split`]) — hence the serde bounds.
 pub fn enumerate<A, I, V, M>(spec: &FamilySpec, init: I, visit: V, merge: M) -> (A, u64)
 where
     A: Send + serde::Serialize + serde::de::DeserializeOwned,
@@ -229,7 +231,7 @@ where
     let family = Family::new(spec);
     let count = family.labelled_count();
     let count = usize::try_from(count).expect("scope fits in memory indices");
-    shard::split(
+    runner::split(
         &format!("enumerate {} ({count} labelled)", spec.describe()),
         |part| {
             (0..count)

@@ -1,20 +1,20 @@
-//! The claims registry: every claim with its statement, the engines that
-//! check it, and the Kani harnesses of `proofs/` that state it for symbolic checking.
-
-use std::time::Instant;
+//! The claims registry: every claim with its statement, the engines that check it, and the
+//! Kani harnesses of `proofs/` that state it for symbolic checking. It turns `verify`'s options
+//! into a plan of work units ([`plan`]) and reads the units' values back into the report
+//! ([`report`]): what each engine's result means for a claim, and how the engines' verdicts
+//! combine. [`run`] is the whole pipeline — plan, select, run, report — in one place.
 
 use super::coq::{self, Kind};
 use super::harnesses::{self, StandinRun, HARNESSES};
+use super::plan::{Checker, Plan, Step, Unit, Work};
 use super::report::{AlphaStar, HarnessSection, Report};
-use super::sampled::{self, PropertyRun};
-use super::shard::{self, Part, ShardFile, ENGINE_FAILED};
-use super::smt::{self, Encoding, Outcome, SmtVerdict};
-use super::tiny::Tiny;
+use super::runner::{self, Mode, Value, Values};
+use super::sampled::PropertyRun;
+use super::shard::{self, caught, Share, ENGINE_FAILED};
+use super::smt::{self, Outcome, SmtVerdict};
 use super::{alpha, c1, c2, c3, c4, ClaimResult, Counterexample, EngineRun, Scope, Verdict};
 
-/// The table of harness bodies `verify` runs through the stand-in
-/// (`truecost_proofs::harnesses`; a test may pass another, see [`harnesses::run_standin`]).
-pub type HarnessTable = fn() -> Vec<truecost_proofs::standin::Harness>;
+pub use super::plan::HarnessTable;
 
 /// What `verify` runs besides the enumeration and proptest engines.
 #[derive(Clone, Debug)]
@@ -43,20 +43,6 @@ impl Default for Options {
             coq_timeout_s: coq::TIMEOUT_SECONDS,
             harnesses: Some(truecost_proofs::harnesses),
         }
-    }
-}
-
-/// The SMT encoding of a claim, if it has one.
-fn encoding(id: &str, scope: Scope) -> Option<Encoding> {
-    match id {
-        "C1" => Some(smt::c1::printed()),
-        "C1-corrected" => Some(smt::c1::corrected(scope)),
-        "C2" => Some(smt::c2::encoding(scope)),
-        "C3" => Some(smt::c3::encoding(scope)),
-        "C3-example" => Some(smt::c3::example_encoding(scope)),
-        "C4" => Some(smt::c4::encoding_printed(scope)),
-        "C4-corrected" => Some(smt::c4::encoding(scope)),
-        _ => None,
     }
 }
 
@@ -306,53 +292,6 @@ fn harness_plan(only: Option<&str>) -> Vec<&'static harnesses::Harness> {
         .collect()
 }
 
-/// Runs the planned harnesses through the stand-in (each an indivisible shard unit); `None`
-/// when the options skip them.
-fn run_harnesses(
-    plan: &[&'static harnesses::Harness],
-    options: &Options,
-) -> Option<Vec<StandinRun>> {
-    let table = options.harnesses?;
-    let sites: Vec<String> = plan
-        .iter()
-        .map(|h| format!("kani harness {}", h.name))
-        .collect();
-    let runs = shard::engine(|| {
-        shard::units(
-            &sites,
-            |wanted| {
-                let names: Vec<&str> = plan
-                    .iter()
-                    .zip(wanted)
-                    .filter(|(_, &w)| w)
-                    .map(|(h, _)| h.name)
-                    .collect();
-                let mut done = harnesses::run_standin(&table(), &names).into_iter();
-                wanted
-                    .iter()
-                    .map(|&w| if w { done.next() } else { None })
-                    .collect()
-            },
-            StandinRun::by_another_shard,
-        )
-    })
-    .unwrap_or_else(|failure| {
-        plan.iter()
-            .map(|h| StandinRun::failed(h.name, h.should_panic, &failure))
-            .collect()
-    });
-    // A shard's placeholder for a harness another shard owns takes the harness's name.
-    Some(
-        plan.iter()
-            .zip(runs)
-            .map(|(h, run)| StandinRun {
-                name: h.name.to_string(),
-                ..run
-            })
-            .collect(),
-    )
-}
-
 /// The engine line of harness `h`, and what its run means for the claim: an assertion failing
 /// in a harness that must hold contradicts a claim that holds (inconclusive, as any
 /// disagreement between engines); any other way a harness fails (a cover never satisfied,
@@ -424,170 +363,234 @@ fn attach(
     }
 }
 
-/// A proptest run as a shard records it.
-#[derive(serde::Serialize, serde::Deserialize)]
-struct PropertyRecord {
-    cases: u64,
-    relevant: u64,
-    counterexample: Option<(Tiny, String)>,
-    scope: String,
-    seconds: f64,
-}
+/// The step names of the engines that [`report`] looks up by claim.
+const PROPTEST: &str = "proptest";
+const SMT: &str = "smt (Z3)";
+const COQ: &str = "coq";
 
-/// Runs one property (engine 2), timed: a unit of the run under sharding (proptest stops at
-/// its first failure and shrinks it, so its cases cannot be split without changing the
-/// counterexample).
-fn property(
-    claim: &'static str,
-    run: impl FnOnce() -> PropertyRun,
-) -> Result<(PropertyRun, f64), String> {
-    shard::engine(|| property_unit(claim, run))
-}
-
-fn property_unit(claim: &'static str, run: impl FnOnce() -> PropertyRun) -> (PropertyRun, f64) {
-    let r = shard::unit(
-        &format!("proptest {claim}"),
-        || {
-            let (p, seconds) = timed(run);
-            PropertyRecord {
-                cases: p.cases,
-                relevant: p.relevant,
-                counterexample: p.counterexample,
-                scope: p.scope,
-                seconds,
-            }
-        },
-        || PropertyRecord {
-            cases: 0,
-            relevant: 0,
-            counterexample: None,
-            scope: "run by another shard".into(),
-            seconds: 0.0,
-        },
-    );
-    (
-        PropertyRun {
-            claim,
-            cases: r.cases,
-            relevant: r.relevant,
-            counterexample: r.counterexample,
-            scope: r.scope,
-        },
-        r.seconds,
-    )
-}
-
-fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
-    let s = Instant::now();
-    let v = f();
-    (v, s.elapsed().as_secs_f64())
-}
-
-/// Runs the selected claims (all when `only` is `None`; `C1` selects `C1` and `C1-corrected`).
+/// `truecost verify` as a pipeline: the plan of the selected claims (all when `only` is `None`;
+/// `C1` selects `C1` and `C1-corrected`), every unit selected, run in full, read back into the
+/// report.
 pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report, String> {
+    let plan = plan(scope, only, options)?;
+    let units = shard::select(plan.units(), None);
+    let ran = runner::run(&plan, &units, Mode::Whole)?;
+    Ok(report(&plan, &ran.values))
+}
+
+/// The plan of `verify` for the claims selected by `only` (all when `None`): in the order the
+/// whole run takes them, the harnesses of the stand-in; for each claim checker, its
+/// enumeration (split among shards) and the proptest property of each selected claim it
+/// decides; the SMT obligations of each selected claim; then the Coq re-check. Every unit but
+/// the enumerations is owned by one shard, numbered in this order. An unknown claim is refused.
+///
+/// ```
+/// use truecost::claims::shard::Share;
+/// use truecost::claims::registry::{plan, Options};
+/// use truecost::claims::Scope;
+/// let options = Options { smt: false, harnesses: None, ..Options::default() };
+/// let p = plan(Scope::Smoke, Some("C4"), &options).unwrap();
+/// let ids: Vec<&str> = p.units().map(|u| u.id.as_str()).collect();
+/// assert_eq!(
+///     ids,
+///     [
+///         "exact solve C3-example",
+///         "exhaustive enumeration C4, C4-corrected",
+///         "proptest C4",
+///         "proptest C4-corrected",
+///     ]
+/// );
+/// assert!(matches!(p.units().nth(3).unwrap().share, Share::Owned(1)));
+/// assert!(plan(Scope::Smoke, Some("C9"), &options).is_err());
+/// ```
+pub fn plan(scope: Scope, only: Option<&str>, options: &Options) -> Result<Plan, String> {
     if let Some(o) = only {
         if !IDS.iter().any(|id| selected(id, Some(o))) {
             return Err(format!("unknown claim '{o}' (known: {})", IDS.join(", ")));
         }
     }
-    let n = sampled::cases(scope);
-    let plan = harness_plan(only);
-    let harness_runs = run_harnesses(&plan, options);
-    let runs = harness_runs.as_deref();
-    let mut claims = Vec::new();
-    if selected("C1", only) || selected("C1-corrected", only) {
-        let [mut a, mut b] = checked(["C1", "C1-corrected"], "exhaustive enumeration", || {
-            let (a, b) = c1::check(scope);
-            [a, b]
-        });
-        if selected("C1", only) {
-            attach(
-                &mut a,
-                Some(property("C1", || sampled::c1_printed(n, None))),
-                runs,
-            );
-            claims.push(a);
+    let claims: Vec<&'static str> = IDS.into_iter().filter(|id| selected(id, only)).collect();
+    let harnesses = harness_plan(only);
+    let mut owned = 0u64;
+    let mut owned_unit = |id: String, work: Work| {
+        owned += 1;
+        Unit {
+            id,
+            work,
+            share: Share::Owned(owned - 1),
         }
-        if selected("C1-corrected", only) {
-            attach(
-                &mut b,
-                Some(property("C1-corrected", || sampled::c1_corrected(n, None))),
-                runs,
-            );
-            claims.push(b);
+    };
+    let step = |engine: &'static str, claim: Option<&'static str>, units: Vec<Unit>| Step {
+        engine,
+        claim,
+        units,
+        failed: None,
+    };
+    let mut steps = Vec::new();
+    if options.harnesses.is_some() {
+        let units = harnesses
+            .iter()
+            .map(|&h| owned_unit(format!("kani harness {}", h.name), Work::Harness(h)))
+            .collect();
+        steps.push(step("kani harnesses (stand-in)", None, units));
+    }
+    // The worked example's exact solve runs whatever the selection: it gives α*.
+    for checker in [
+        Checker::C1,
+        Checker::C2,
+        Checker::C3,
+        Checker::Example,
+        Checker::C4,
+    ] {
+        let decides = checker.claims().iter().any(|id| claims.contains(id));
+        if !decides && checker != Checker::Example {
+            continue;
         }
-    }
-    if selected("C2", only) {
-        let [mut a] = checked(["C2"], "exhaustive enumeration", || [c2::check(scope)]);
-        attach(&mut a, Some(property("C2", || sampled::c2(n, None))), runs);
-        claims.push(a);
-    }
-    if selected("C3", only) {
-        let [mut a] = checked(["C3"], "exhaustive enumeration", || [c3::check(scope)]);
-        attach(&mut a, Some(property("C3", || sampled::c3(n, None))), runs);
-        claims.push(a);
-    }
-    let (mut example, star) = shard::engine(alpha::check)
-        .unwrap_or_else(|failure| (failed_claim("C3-example", "exact solve", &failure), None));
-    if selected("C3-example", only) {
-        attach(&mut example, None, runs);
-        claims.push(example);
-    }
-    if selected("C4", only) || selected("C4-corrected", only) {
-        let [mut a, mut b] = checked(["C4", "C4-corrected"], "exhaustive enumeration", || {
-            let (a, b) = c4::check(scope);
-            [a, b]
-        });
-        if selected("C4", only) {
-            attach(
-                &mut a,
-                Some(property("C4", || sampled::c4(true, n, None))),
-                runs,
-            );
-            claims.push(a);
+        let unit = Unit {
+            id: format!("{} {}", checker.engine(), checker.claims().join(", ")),
+            work: Work::Checker(checker),
+            share: Share::Split,
+        };
+        steps.push(step(checker.engine(), None, vec![unit]));
+        if checker == Checker::Example {
+            continue;
         }
-        if selected("C4-corrected", only) {
-            attach(
-                &mut b,
-                Some(property("C4-corrected", || sampled::c4(false, n, None))),
-                runs,
-            );
-            claims.push(b);
+        for &id in checker.claims().iter().filter(|id| claims.contains(id)) {
+            let unit = owned_unit(format!("proptest {id}"), Work::Property(id));
+            steps.push(step(PROPTEST, Some(id), vec![unit]));
         }
     }
-    let alpha_star = star.map(|a| AlphaStar::new(&a));
-    let wants_coq = options.coq && claims.iter().any(|c| !coq::theorems_of(&c.id).is_empty());
-    let mut smt_outcomes = Vec::new();
+    let mut encodings = Vec::new();
     if options.smt {
-        for c in claims.iter_mut() {
-            let solved = shard::engine(|| {
-                encoding(&c.id, scope).map(|enc| smt::run(enc, options.smt_timeout_ms))
-            });
-            match solved {
-                Ok(Some(outcome)) => {
-                    attach_smt(c, &outcome);
-                    smt_outcomes.push(outcome);
+        for &id in &claims {
+            match caught(|| smt::encoding(id, scope)) {
+                Ok(Some(enc)) => {
+                    let units = (0..enc.obligations.len())
+                        .map(|j| {
+                            owned_unit(format!("smt {id} obligation {j}"), Work::Obligation(id, j))
+                        })
+                        .collect();
+                    steps.push(step(SMT, Some(id), units));
+                    encodings.push(enc);
                 }
-                Ok(None) => {}
-                Err(failure) => c.engines.push(failed_engine("smt (Z3)", &failure)),
+                Ok(None) => steps.push(step(SMT, Some(id), vec![])),
+                Err(failure) => steps.push(Step {
+                    failed: Some(failure),
+                    ..step(SMT, Some(id), vec![])
+                }),
             }
         }
     }
-    let coq_check = wants_coq.then(|| {
-        let timeout = std::time::Duration::from_secs(options.coq_timeout_s);
-        shard::engine(|| {
-            shard::unit(
-                "coq re-check",
-                || coq::recheck(timeout),
-                || coq::Check {
-                    version: None,
-                    outcome: coq::Outcome::NotAvailable("re-checked by another shard".into()),
-                    theorems: vec![],
-                    files: 0,
-                    seconds: 0.0,
+    if options.coq && claims.iter().any(|c| !coq::theorems_of(c).is_empty()) {
+        let unit = owned_unit("coq re-check".into(), Work::Coq);
+        steps.push(step(COQ, None, vec![unit]));
+    }
+    Ok(Plan {
+        scope,
+        claims,
+        harnesses,
+        harness_table: options.harnesses,
+        smt_timeout_ms: options.smt.then_some(options.smt_timeout_ms),
+        encodings,
+        coq_timeout: std::time::Duration::from_secs(options.coq_timeout_s),
+        steps,
+    })
+}
+
+/// The value of unit `id`, or the failure of its engine (a value the runner did not give is a
+/// failure too: the report then says so rather than claim anything).
+fn value<'v>(values: &'v Values, id: &str) -> Result<&'v Value, String> {
+    match values.get(id) {
+        Some(Ok(v)) => Ok(v),
+        Some(Err(failure)) => Err(failure.clone()),
+        None => Err(format!(
+            "the run gave no value for '{}'",
+            crate::echo::one_line(id)
+        )),
+    }
+}
+
+/// The report of a plan's run from its units' `values` ([`runner::run`]): each selected
+/// claim's checker result with its harnesses and proptest run attached, then the SMT engine's
+/// verdict, then the Coq level; a claim with a failed engine is inconclusive.
+pub fn report(plan: &Plan, values: &Values) -> Report {
+    let runs: Option<Vec<StandinRun>> = plan.harness_table.map(|_| {
+        plan.harnesses
+            .iter()
+            .map(
+                |h| match value(values, &format!("kani harness {}", h.name)) {
+                    Ok(Value::Harness(run)) => run.clone(),
+                    Ok(_) => StandinRun::failed(h.name, h.should_panic, "not a harness run"),
+                    Err(failure) => StandinRun::failed(h.name, h.should_panic, &failure),
                 },
             )
-        })
+            .collect()
+    });
+    let runs = runs.as_deref();
+    let mut claims = Vec::new();
+    let mut star = None;
+    for step in &plan.steps {
+        let [unit] = step.units.as_slice() else {
+            continue;
+        };
+        let Work::Checker(checker) = unit.work else {
+            continue;
+        };
+        let results = match value(values, &unit.id) {
+            Ok(Value::Checked(results, found)) if results.len() == checker.claims().len() => {
+                star = star.or(found.clone());
+                results.clone()
+            }
+            Ok(_) => failed_claims(checker, "not the checker's claims"),
+            Err(failure) => failed_claims(checker, &failure),
+        };
+        for mut result in results {
+            if !plan.claims.contains(&result.id.as_str()) {
+                continue;
+            }
+            let prop = plan.step(PROPTEST, &result.id).map(|s| {
+                let id = &s.units[0].id;
+                match value(values, id) {
+                    Ok(Value::Property(p, seconds)) => Ok((p.clone(), *seconds)),
+                    Ok(_) => Err("not a proptest run".to_string()),
+                    Err(failure) => Err(failure),
+                }
+            });
+            attach(&mut result, prop, runs);
+            claims.push(result);
+        }
+    }
+    let mut smt_outcomes = Vec::new();
+    for c in claims.iter_mut() {
+        let Some(step) = plan.step(SMT, &c.id) else {
+            continue;
+        };
+        let judged = match (&step.failed, plan.encoding(&c.id)) {
+            (Some(failure), _) => Err(failure.clone()),
+            (None, None) => continue,
+            (None, Some(enc)) => step
+                .units
+                .iter()
+                .map(|u| match value(values, &u.id)? {
+                    Value::Obligation(solved) => Ok(solved.clone()),
+                    _ => Err("not an SMT obligation".to_string()),
+                })
+                .collect::<Result<Vec<_>, String>>()
+                .and_then(|solved| caught(|| smt::judge(enc, solved))),
+        };
+        match judged {
+            Ok(outcome) => {
+                attach_smt(c, &outcome);
+                smt_outcomes.push(outcome);
+            }
+            Err(failure) => c.engines.push(failed_engine(SMT, &failure)),
+        }
+    }
+    let coq_step = plan.steps.iter().find(|s| s.engine == COQ);
+    let coq_check = coq_step.map(|s| match value(values, &s.units[0].id) {
+        Ok(Value::Coq(check)) => Ok(check.clone()),
+        Ok(_) => Err("not a Coq re-check".to_string()),
+        Err(failure) => Err(failure),
     });
     let coq_check = match coq_check {
         Some(Ok(check)) => {
@@ -599,7 +602,7 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
         Some(Err(failure)) => {
             for c in claims.iter_mut() {
                 if !coq::theorems_of(&c.id).is_empty() {
-                    c.engines.push(failed_engine("coq", &failure));
+                    c.engines.push(failed_engine(COQ, &failure));
                 }
             }
             Some(coq::Check {
@@ -615,34 +618,31 @@ pub fn run(scope: Scope, only: Option<&str>, options: &Options) -> Result<Report
     for c in claims.iter_mut() {
         settle_engine_failures(c);
     }
-    let harnesses = harness_section(&plan, runs);
-    Ok(Report {
-        harnesses: Some(harnesses),
-        solver: options.smt.then(smt::solver_version),
+    Report {
+        harnesses: Some(harness_section(&plan.harnesses, runs)),
+        solver: plan.smt_timeout_ms.map(|_| smt::solver_version()),
         coq: coq_check,
         smt: smt_outcomes,
         tool: format!("truecost {}", env!("CARGO_PKG_VERSION")),
         commit: option_env!("TRUECOST_GIT_COMMIT")
             .unwrap_or("unknown")
             .to_string(),
-        scope,
+        scope: plan.scope,
         claims,
-        alpha_star,
-    })
+        alpha_star: star.map(|a| AlphaStar::new(&a)),
+    }
 }
 
-/// Runs the checker of claims `ids` (their first engine: the exhaustive enumeration, or C3's
-/// example's exact solve) with its panics caught: if it panics, each of the claims gets a
-/// result whose one engine line, `engine`'s, says `engine failed: <message>`.
-fn checked<const N: usize>(
-    ids: [&str; N],
-    engine: &str,
-    check: impl FnOnce() -> [ClaimResult; N],
-) -> [ClaimResult; N] {
-    shard::engine(check).unwrap_or_else(|failure| ids.map(|id| failed_claim(id, engine, &failure)))
+/// The claims of `checker` when it panicked with `failure`.
+fn failed_claims(checker: Checker, failure: &str) -> Vec<ClaimResult> {
+    checker
+        .claims()
+        .iter()
+        .map(|id| failed_claim(id, checker.engine(), failure))
+        .collect()
 }
 
-/// The engine line of `engine` when it panicked with `failure` ([`shard::engine`]).
+/// The engine line of `engine` when it panicked with `failure` ([`shard::caught`]).
 fn failed_engine(engine: &str, failure: &str) -> EngineRun {
     EngineRun {
         engine: engine.into(),
@@ -783,7 +783,7 @@ fn harness_section(
 
 /// What a shard file of `verify` must share with the other shards of its run: the tool and
 /// commit (the sites must be the same), the scope, the claim filter and the options.
-fn fingerprint(scope: Scope, only: Option<&str>, options: &Options) -> serde_json::Value {
+pub fn fingerprint(scope: Scope, only: Option<&str>, options: &Options) -> serde_json::Value {
     serde_json::json!({
         "tool": format!("truecost {}", env!("CARGO_PKG_VERSION")),
         "commit": option_env!("TRUECOST_GIT_COMMIT").unwrap_or("unknown"),
@@ -797,51 +797,11 @@ fn fingerprint(scope: Scope, only: Option<&str>, options: &Options) -> serde_jso
     })
 }
 
-/// `truecost verify --shard K/N`: runs shard `part` of [`run`] — the
-/// labelled indices `i ≡ K − 1 (mod N)` of every enumeration, and the proptest runs and SMT
-/// obligations it owns (see [`shard`]) — and returns its partial report as the text of a
-/// shard file for [`merge`].
-///
-/// ```
-/// use truecost::claims::registry::{merge, run, run_shard, Options};
-/// use truecost::claims::shard::Part;
-/// use truecost::claims::{report, Scope};
-/// let options = Options { smt: false, ..Options::default() };
-/// let files: Vec<(String, String)> = (1..=2)
-///     .map(|k| {
-///         let part = Part::parse(&format!("{k}/2")).unwrap();
-///         (format!("shard{k}.json"), run_shard(Scope::Smoke, Some("C2"), &options, part).unwrap())
-///     })
-///     .collect();
-/// let merged = merge(&files).unwrap();
-/// let whole = run(Scope::Smoke, Some("C2"), &options).unwrap();
-/// assert_eq!(report::json(&merged, false), report::json(&whole, false));
-/// ```
-pub fn run_shard(
-    scope: Scope,
-    only: Option<&str>,
-    options: &Options,
-    part: Part,
-) -> Result<String, String> {
-    let started = Instant::now();
-    let (result, entries) = shard::record_shard(part, || run(scope, only, options));
-    result?;
-    Ok(ShardFile {
-        part,
-        fingerprint: fingerprint(scope, only, options),
-        entries,
-        seconds: started.elapsed().as_secs_f64(),
-    }
-    .to_json(shard::VERIFY_FORMAT))
-}
-
-/// `truecost verify merge FILES…`: the report of the whole run from the
-/// texts of its N shard files `(name, text)`: every shard present once, all of one run (the
-/// same scope, claims, options and build). Verdicts, case counts and counterexamples are the
-/// whole run's; the engines' times are the merge's own (render without times).
-pub fn merge(files: &[(String, String)]) -> Result<Report, String> {
-    let shards = shard::read_complete_set(files, shard::VERIFY_FORMAT)?;
-    let fp = shard::Fingerprint(&shards[0].fingerprint);
+/// The plan of the run a set of shards was made by (`verify merge`), from the settings their
+/// `fingerprint` states: refused unless this build makes the same fingerprint from them (the
+/// same build, nothing edited).
+pub fn plan_of(fingerprint: &serde_json::Value) -> Result<Plan, String> {
+    let fp = shard::Fingerprint(fingerprint);
     let scope = Scope::from_name(fp.text("scope")).ok_or_else(|| fp.bad("scope"))?;
     let only: Option<String> = fp.field("claim")?;
     let options = Options {
@@ -853,8 +813,8 @@ pub fn merge(files: &[(String, String)]) -> Result<Report, String> {
             .field::<bool>("harnesses")?
             .then_some(truecost_proofs::harnesses as HarnessTable),
     };
-    fp.confirm(&fingerprint(scope, only.as_deref(), &options))?;
-    shard::replay(shards, || run(scope, only.as_deref(), &options))?
+    fp.confirm(&self::fingerprint(scope, only.as_deref(), &options))?;
+    plan(scope, only.as_deref(), &options)
 }
 
 #[cfg(test)]
@@ -1141,9 +1101,8 @@ mod tests {
     /// and the text report prints each.
     #[test]
     fn a_panicking_engine_becomes_its_line_and_the_claim_is_inconclusive() {
-        let [mut a] = checked(["C2"], "exhaustive enumeration", || -> [ClaimResult; 1] {
-            panic!("planted\nin the enumeration")
-        });
+        let failure = caught(|| -> ClaimResult { panic!("planted\nin the enumeration") });
+        let mut a = failed_claims(Checker::C2, &failure.unwrap_err()).remove(0);
         assert_eq!(a.statement, c2::STATEMENT);
         assert_eq!((a.verdict, a.cases), (Verdict::Inconclusive, 0));
         assert_eq!(a.engines.len(), 1);
@@ -1158,7 +1117,7 @@ mod tests {
         );
         attach(
             &mut a,
-            Some(property("C2", || -> PropertyRun {
+            Some(caught(|| -> (PropertyRun, f64) {
                 panic!("planted in proptest")
             })),
             None,
@@ -1175,15 +1134,6 @@ mod tests {
         assert!(a.engines[2]
             .mode
             .starts_with("engine failed: planted in proptest (at "));
-        // A checker that does not panic is left as it is.
-        let [b, c] = checked(["C1", "C1-corrected"], "exhaustive enumeration", || {
-            [
-                claim("C1", Verdict::Refuted),
-                claim("C1-corrected", Verdict::Proved),
-            ]
-        });
-        assert_eq!((b.verdict, c.verdict), (Verdict::Refuted, Verdict::Proved));
-        assert_eq!(b.engine, "exhaustive enumeration");
         // A claim that holds by its other engines, with one failed engine: inconclusive.
         let mut d = claim("C4-corrected", Verdict::Proved);
         d.engines

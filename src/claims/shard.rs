@@ -1,34 +1,34 @@
-//! Sharding the claims engines over many machines.
+//! Sharding `truecost verify` over many machines: which units of the plan a shard runs, the
+//! shard file, and the merge of a complete set of shard files.
 //!
-//! `truecost verify --shard K/N` runs the same control flow as the whole run, but every
-//! expensive *site* does only the K-th part of its work and records what it computed in a
-//! `Ledger`:
+//! `truecost verify --shard K/N` runs the plan's units that [`select`] gives it ([`super::plan`],
+//! [`super::runner`]):
 //!
-//! * an exhaustive enumeration ([`super::enumerate`]) visits the labelled indices `i` with
-//!   `i mod N = K − 1` and records its partial accumulator — counts, maxima and the
-//!   candidate minimal counterexamples *with their minimality keys*;
-//! * a unit of work that cannot be split without changing its result (one proptest run:
-//!   proptest stops at its first failure and shrinks it; one SMT obligation) is owned by one
-//!   shard, the `u`-th unit of the run by shard `u mod N + 1`, and recorded there.
+//! * a split unit (a claim checker) does the K-th part of every enumeration it meets — the
+//!   labelled indices `i` with `i mod N = K − 1` ([`super::enumerate`]) — and records its
+//!   partial accumulator: counts, maxima and the candidate minimal counterexamples *with their
+//!   minimality keys*;
+//! * an owned unit, one that cannot be split without changing its result (a proptest run stops
+//!   at its first failure and shrinks it; one SMT obligation; one harness; the Coq re-check), is
+//!   run by one shard, the `u`-th owned unit of the plan by shard `u mod N + 1`, and recorded
+//!   there; the other shards list it without a value.
 //!
-//! `truecost verify merge` replays the same control flow with every site answered from the
-//! shards' ledgers: an enumeration gets the merge (the accumulator's own associative and
-//! commutative `merge`) of its N partial accumulators, a unit gets the value its owner
-//! recorded. The claims are then derived from exactly the values the whole run derives them
-//! from, so the merged report is the whole run's, byte for byte (times aside).
+//! The shard file ([`file()`]) lists what the shard recorded, one engine run (a step of the plan)
+//! after the other, each closed by an entry that carries the engine's failure if it failed.
+//! `truecost verify merge` reads the N files back ([`merge`]), step by step, for the runner to
+//! answer every unit from them: the merged report is the whole run's, byte for byte (times
+//! aside).
 //!
 //! Shards of different runs are refused (a fingerprint of the scope, the claim filter, the
 //! options and the tool), so are a missing, duplicated or foreign shard, a file whose
 //! checksum does not match its content, and shards that disagree on the sites they ran.
 //!
 //! **Engine failures.** An engine that panics (a bug in the code it checks, or in itself) is
-//! caught by [`caught`], which `verify` wraps around every engine: the panic becomes that
-//! engine's line, `engine failed: <message>`, and the rest of the report is still made. A site
-//! whose work panics under `verify --shard` records the failure as its value, and the merge
-//! raises it again at the same site, so the merged report has the same engine line.
+//! caught by [`caught`], which the runner wraps around every engine, and by the harness and
+//! proptest engines around each case: the panic becomes that engine's line, `engine failed:
+//! <message>`, and the rest of the report is still made.
 
 use std::any::Any;
-use std::cell::RefCell;
 use std::collections::VecDeque;
 use std::fmt;
 use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
@@ -36,7 +36,6 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, Once};
 
 use serde::de::DeserializeOwned;
-use serde::Serialize;
 use serde_json::{json, Value};
 
 /// The largest number of shards accepted (`N` of `--shard K/N`).
@@ -251,7 +250,7 @@ pub fn complete_set(mut files: Vec<(String, ShardFile)>) -> Result<Vec<ShardFile
         ));
     }
     // A shard whose engine failed met fewer of that engine's sites than the others: the merge
-    // checks those shards' sites as it reads them ([`engine`]).
+    // checks those shards' sites as it reads them ([`super::runner`]).
     let failed = files.iter().any(|(_, f)| {
         f.entries
             .iter()
@@ -361,296 +360,139 @@ impl Fingerprint<'_> {
     }
 }
 
-enum Mode {
-    Shard {
-        part: Part,
-        entries: Vec<Entry>,
-    },
-    /// `next[s]`: the next entry of shard `s` to read.
-    Merge {
-        shards: Vec<ShardFile>,
-        next: Vec<usize>,
-    },
+/// What a shard recorded for one step of the plan: the entries of its units (an owned unit's
+/// value, or no value where another shard owns it; a split unit's partial accumulators, one per
+/// enumeration it met) and the failure of the step's engine in this shard, if it failed.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct StepRecord {
+    /// The entries, in the order the step met them.
+    pub entries: Vec<Entry>,
+    /// The engine's failure (the text after `engine failed: `).
+    pub failure: Option<String>,
 }
 
-struct Ledger {
-    mode: Mode,
-    /// Units met so far (the `u` of "unit `u` is owned by shard `u mod N + 1`").
-    units: u64,
-    /// The first problem met while merging (reported after the run).
-    error: Option<String>,
+/// The site of the entry that closes a step's entries in a shard file, with the step's failure
+/// as its value.
+const END_OF_ENGINE: &str = "end of engine";
+
+/// How a unit's work is shared among the shards of `verify --shard K/N`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Share {
+    /// Every shard does its part: the labelled indices `i ≡ K − 1 (mod N)` of each enumeration
+    /// the unit meets; the merge combines the parts.
+    Split,
+    /// Indivisible (a proptest run stops at its first failure and shrinks it; one SMT
+    /// obligation; one harness; the Coq re-check): the `u`-th owned unit of the plan belongs to
+    /// shard `u mod N + 1`.
+    Owned(u64),
 }
 
-thread_local! {
-    static LEDGER: RefCell<Option<Ledger>> = const { RefCell::new(None) };
+/// A unit of work as the shards share it.
+pub trait Shared {
+    /// How the shards share it.
+    fn share(&self) -> Share;
 }
 
-/// Runs `f` as shard `part`: returns its value and the recorded entries. The ledger is bound
-/// to the calling thread: the engines consult it from the thread that runs the claims.
-pub fn record_shard<T>(part: Part, f: impl FnOnce() -> T) -> (T, Vec<Entry>) {
-    let previous = LEDGER.with(|l| {
-        l.borrow_mut().replace(Ledger {
-            mode: Mode::Shard {
-                part,
-                entries: Vec::new(),
-            },
-            units: 0,
-            error: None,
+/// The units of `units` (a plan's, in plan order) that shard `part` runs (`None`: the whole
+/// run, every unit): every split unit, for its part, and the owned units it owns — the `u`-th
+/// owned unit when `u mod N = K − 1`.
+///
+/// ```
+/// use truecost::claims::registry::{plan, Options};
+/// use truecost::claims::shard::{select, Part};
+/// use truecost::claims::Scope;
+/// let options = Options { smt: false, ..Options::default() };
+/// let plan = plan(Scope::Smoke, Some("C2"), &options).unwrap();
+/// let whole = select(plan.units(), None).len();
+/// let parts: usize = (1..=3)
+///     .map(|k| select(plan.units(), Some(Part::parse(&format!("{k}/3")).unwrap())).len())
+///     .sum();
+/// // Two split units (the C2 enumeration, and the worked example's exact solve that gives
+/// // α*) run in each of the three shards, every other unit in one of them.
+/// assert_eq!(parts, whole + 2 * 2);
+/// ```
+pub fn select<'u, U: Shared>(
+    units: impl IntoIterator<Item = &'u U>,
+    part: Option<Part>,
+) -> Vec<&'u U> {
+    units
+        .into_iter()
+        .filter(|u| match (u.share(), part) {
+            (_, None) | (Share::Split, _) => true,
+            (Share::Owned(i), Some(p)) => p.owns(i),
         })
-    });
-    let value = f();
-    let ledger = LEDGER.with(|l| std::mem::replace(&mut *l.borrow_mut(), previous));
-    match ledger.map(|l| l.mode) {
-        Some(Mode::Shard { entries, .. }) => (value, entries),
-        _ => unreachable!("the shard ledger was replaced while running"),
-    }
+        .collect()
 }
 
-/// Runs `f` with every site answered from `shards` (a [`complete_set`]). Fails if the run met
-/// a site the shards did not record, or left some unread.
-pub fn replay<T>(shards: Vec<ShardFile>, f: impl FnOnce() -> T) -> Result<T, String> {
-    let expected = shards.first().map_or(0, |s| s.entries.len());
-    let previous = LEDGER.with(|l| {
-        l.borrow_mut().replace(Ledger {
-            mode: Mode::Merge {
-                next: vec![0; shards.len()],
-                shards,
-            },
-            units: 0,
-            error: None,
-        })
-    });
-    let value = f();
-    let ledger = LEDGER
-        .with(|l| std::mem::replace(&mut *l.borrow_mut(), previous))
-        .expect("the merge ledger");
-    if let Some(e) = ledger.error {
-        return Err(e);
-    }
-    match ledger.mode {
-        Mode::Merge { shards, next }
-            if next.iter().zip(&shards).all(|(&j, s)| j == s.entries.len()) =>
-        {
-            Ok(value)
-        }
-        Mode::Merge { next, .. } => Err(format!(
-            "the merge read {} of the shards' {expected} sites (shards of a different build?)",
-            next[0]
-        )),
-        Mode::Shard { .. } => unreachable!("the merge ledger was replaced while running"),
-    }
-}
-
-fn decode<T: DeserializeOwned>(site: &str, text: &str) -> Result<T, String> {
-    serde_json::from_str(text).map_err(|e| format!("site '{site}': malformed value ({e})"))
-}
-
-fn encode<T: Serialize>(value: &T) -> String {
-    serde_json::to_string(value).expect("a site's value is serialisable")
-}
-
-/// Takes the next merge entry (all shards' values), checking its site. A shard that stopped
-/// at the end of the current engine, which failed in it ([`engine`]), answers with its failure.
-fn next_merged(l: &mut Ledger, site: &str) -> Option<Vec<Option<String>>> {
-    let Mode::Merge { shards, next } = &mut l.mode else {
-        return None;
-    };
-    let values: Option<Vec<Option<String>>> = shards
-        .iter()
-        .zip(next.iter_mut())
-        .map(|(s, j)| {
-            let entry = s.entries.get(*j)?;
-            if entry.site == END_OF_ENGINE {
-                let failure = entry.value.as_ref()?;
-                return Some(Some(format!("{ENGINE_FAILED}{failure}")));
-            }
-            *j += 1;
-            (entry.site == site).then(|| entry.value.clone())
+/// The shard file of shard `part`: its `records`, one per step of the plan, each closed by the
+/// entry that ends an engine's entries.
+pub fn file(part: Part, fingerprint: Value, records: Vec<StepRecord>, seconds: f64) -> ShardFile {
+    let entries = records
+        .into_iter()
+        .flat_map(|r| {
+            let end = Entry {
+                site: END_OF_ENGINE.into(),
+                value: r.failure,
+            };
+            r.entries.into_iter().chain([end])
         })
         .collect();
-    if values.is_none() && l.error.is_none() {
-        l.error = Some(format!(
-            "the merge met site '{site}' where the shards recorded another (shards of a different build?)"
-        ));
-    }
-    values
-}
-
-/// A splittable site (an enumeration): `compute(part)` does the part of the work `part` owns
-/// (`None`: all of it), and `combine` is associative and commutative.
-///
-/// Whole run: `compute(None)`. Shard: `compute(Some(part))`, recorded. Merge: the `combine` of
-/// every shard's recorded value (`compute` is not called); `empty()` if a value is unreadable
-/// (the merge then fails with the reason).
-pub fn split<T: Serialize + DeserializeOwned>(
-    site: &str,
-    compute: impl FnOnce(Option<Part>) -> T,
-    combine: impl Fn(T, T) -> T,
-    empty: impl Fn() -> T,
-) -> T {
-    enum Plan {
-        Whole,
-        Shard(Part),
-        Merged(Vec<Option<String>>),
-        Broken,
-    }
-    let plan = LEDGER.with(|l| match l.borrow_mut().as_mut() {
-        None => Plan::Whole,
-        Some(Ledger {
-            mode: Mode::Shard { part, .. },
-            ..
-        }) => Plan::Shard(*part),
-        Some(ledger) => next_merged(ledger, site).map_or(Plan::Broken, Plan::Merged),
-    });
-    match plan {
-        Plan::Whole => compute(None),
-        Plan::Shard(part) => {
-            let v = recorded_failure(site, || compute(Some(part)));
-            push(site, Some(encode(&v)));
-            v
-        }
-        Plan::Merged(values) => {
-            let mut acc: Option<T> = None;
-            if let Some(failure) = values.iter().flatten().find_map(|t| failed_value(t)) {
-                raise(failure.to_string());
-            }
-            for text in values {
-                let Some(text) = text else {
-                    fail(format!("site '{site}': a shard recorded no value"));
-                    return empty();
-                };
-                match decode::<T>(site, &text) {
-                    Ok(v) => {
-                        acc = Some(match acc {
-                            Some(a) => combine(a, v),
-                            None => v,
-                        })
-                    }
-                    Err(e) => {
-                        fail(e);
-                        return empty();
-                    }
-                }
-            }
-            acc.unwrap_or_else(empty)
-        }
-        Plan::Broken => empty(),
+    ShardFile {
+        part,
+        fingerprint,
+        entries,
+        seconds,
     }
 }
 
-/// An indivisible unit of work (one proptest run): owned by one shard.
-///
-/// Whole run: `compute()`. Shard: `compute()` if this shard owns the unit (recorded), else
-/// `placeholder()` (recorded as absent). Merge: the owner's recorded value.
-pub fn unit<T: Serialize + DeserializeOwned>(
-    site: &str,
-    compute: impl FnOnce() -> T,
-    placeholder: impl Fn() -> T,
-) -> T {
-    let mut compute = Some(compute);
-    units(
-        &[site.to_string()],
-        |wanted| {
-            wanted
-                .iter()
-                .map(|&w| if w { compute.take().map(|c| c()) } else { None })
-                .collect()
-        },
-        placeholder,
-    )
-    .pop()
-    .expect("one unit")
+/// A complete set of shard files read back.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Merged {
+    /// The fingerprint of the run they are shards of.
+    pub fingerprint: Value,
+    /// For each step of the plan, every shard's record of it, in shard order.
+    pub steps: Vec<Vec<StepRecord>>,
 }
 
-/// A batch of indivisible units (the SMT obligations of a claim), unit `u` of the run owned by
-/// shard `u mod N + 1`. `compute(wanted)` computes the units marked `true` (in parallel if it
-/// likes) and returns `Some` for each of them; the batch's value is every unit's value, in
-/// order — recorded by the owners under `verify --shard`, read from them under `verify merge`.
-pub fn units<T: Serialize + DeserializeOwned>(
-    sites: &[String],
-    compute: impl FnOnce(&[bool]) -> Vec<Option<T>>,
-    placeholder: impl Fn() -> T,
-) -> Vec<T> {
-    enum Plan {
-        Whole,
-        Shard(Vec<bool>),
-        Merged(Vec<Option<Vec<Option<String>>>>),
-    }
-    let plan = LEDGER.with(|l| match l.borrow_mut().as_mut() {
-        None => Plan::Whole,
-        Some(ledger) => {
-            let first = ledger.units;
-            ledger.units += sites.len() as u64;
-            match &ledger.mode {
-                Mode::Shard { part, .. } => {
-                    let part = *part;
-                    Plan::Shard((first..ledger.units).map(|u| part.owns(u)).collect())
-                }
-                Mode::Merge { .. } => {
-                    Plan::Merged(sites.iter().map(|site| next_merged(ledger, site)).collect())
-                }
+/// `truecost verify merge`: reads the shard files `(name, text)` of one run — every shard
+/// present once ([`read_complete_set`]) — and splits every shard's entries into its steps.
+pub fn merge(files: &[(String, String)]) -> Result<Merged, String> {
+    let shards = read_complete_set(files, VERIFY_FORMAT)?;
+    let fingerprint = shards[0].fingerprint.clone();
+    let mut per_shard = Vec::with_capacity(shards.len());
+    for s in shards {
+        let mut steps = Vec::new();
+        let mut current = StepRecord::default();
+        for e in s.entries {
+            if e.site == END_OF_ENGINE {
+                current.failure = e.value;
+                steps.push(std::mem::take(&mut current));
+            } else {
+                current.entries.push(e);
             }
         }
-    });
-    match plan {
-        Plan::Whole => compute(&vec![true; sites.len()])
-            .into_iter()
-            .map(|v| v.expect("a wanted unit is computed"))
-            .collect(),
-        Plan::Shard(wanted) => {
-            let values = match caught(|| compute(&wanted)) {
-                Ok(values) => values,
-                Err(failure) => {
-                    // Every unit of the batch this shard owns failed with it.
-                    for (site, &w) in sites.iter().zip(&wanted) {
-                        push(site, w.then(|| format!("{ENGINE_FAILED}{failure}")));
-                    }
-                    raise(failure);
-                }
-            };
-            sites
-                .iter()
-                .zip(values)
-                .map(|(site, v)| match v {
-                    Some(v) => {
-                        push(site, Some(encode(&v)));
-                        v
-                    }
-                    None => {
-                        push(site, None);
-                        placeholder()
-                    }
-                })
-                .collect()
+        if !current.entries.is_empty() {
+            return Err(format!(
+                "shard {} recorded sites after its last engine (a truncated file?)",
+                s.part
+            ));
         }
-        Plan::Merged(values) => sites
-            .iter()
-            .zip(values)
-            .map(|(site, values)| {
-                let Some(values) = values else {
-                    return placeholder();
-                };
-                if let Some(failure) = values.iter().flatten().find_map(|t| failed_value(t)) {
-                    raise(failure.to_string());
-                }
-                let mut present = values.into_iter().flatten();
-                match (present.next(), present.next()) {
-                    (Some(text), None) => decode::<T>(site, &text).unwrap_or_else(|e| {
-                        fail(e);
-                        placeholder()
-                    }),
-                    (None, _) => {
-                        fail(format!("site '{site}': no shard ran it"));
-                        placeholder()
-                    }
-                    (Some(_), Some(_)) => {
-                        fail(format!("site '{site}': run by two shards"));
-                        placeholder()
-                    }
-                }
-            })
-            .collect(),
+        per_shard.push(steps);
     }
+    let count = per_shard[0].len();
+    if per_shard.iter().any(|steps| steps.len() != count) {
+        return Err(
+            "the shards recorded different numbers of engine runs (shards of different builds?)"
+                .into(),
+        );
+    }
+    let mut steps: Vec<Vec<StepRecord>> = (0..count).map(|_| Vec::new()).collect();
+    for shard_steps in per_shard {
+        for (i, r) in shard_steps.into_iter().enumerate() {
+            steps[i].push(r);
+        }
+    }
+    Ok(Merged { fingerprint, steps })
 }
 
 /// The prefix of an engine line's mode when the engine panicked (the panic's message follows),
@@ -758,97 +600,10 @@ pub fn caught<T>(f: impl FnOnce() -> T) -> Result<T, String> {
     result
 }
 
-/// The site of the entry that ends an engine's entries ([`engine`]).
-const END_OF_ENGINE: &str = "end of engine";
-
-/// Runs `f`, one engine of `verify`, with its panics [`caught`]. Under `verify --shard` an
-/// entry ends the engine's entries, with its failure if it failed: a shard whose engine failed
-/// stops meeting that engine's sites while the other shards go on. The merge raises the
-/// failure where the failed shard would have answered (at the failing site, or at any later
-/// site of the engine), and leaves what the other shards recorded for the rest of the engine
-/// unread: the merged report has the engine's failure line, as the whole run has.
-pub fn engine<T>(f: impl FnOnce() -> T) -> Result<T, String> {
-    let result = caught(f);
-    let failed = LEDGER.with(|l| {
-        let mut l = l.borrow_mut();
-        let ledger = l.as_mut()?;
-        match &mut ledger.mode {
-            Mode::Shard { entries, .. } => {
-                entries.push(Entry {
-                    site: END_OF_ENGINE.into(),
-                    value: result.as_ref().err().cloned(),
-                });
-                None
-            }
-            Mode::Merge { shards, next } => {
-                let mut failed = None;
-                for (s, j) in shards.iter().zip(next.iter_mut()) {
-                    let Some(k) = s.entries[*j..].iter().position(|e| e.site == END_OF_ENGINE)
-                    else {
-                        ledger.error.get_or_insert_with(|| {
-                            "the merge met the end of an engine the shards did not record (shards of a different build?)".into()
-                        });
-                        continue;
-                    };
-                    let end = &s.entries[*j + k];
-                    if k > 0 && result.is_ok() && end.value.is_none() {
-                        ledger.error.get_or_insert_with(|| {
-                            format!("shard {} recorded sites of an engine the merge did not meet (shards of a different build?)", s.part)
-                        });
-                    }
-                    failed = failed.or_else(|| end.value.clone());
-                    *j += k + 1;
-                }
-                failed
-            }
-        }
-    });
-    match (result, failed) {
-        (Ok(_), Some(failure)) => Err(failure),
-        (result, _) => result,
-    }
-}
-
 /// Raises a failure that [`caught`] described again, to the [`caught`] around the engine (its
 /// description kept; no panic message printed).
 pub fn raise(failure: String) -> ! {
     resume_unwind(Box::new(Described(failure)))
-}
-
-/// A shard's work at `site`: a panic in it is recorded as the site's value, then raised again.
-fn recorded_failure<T>(site: &str, compute: impl FnOnce() -> T) -> T {
-    caught(compute).unwrap_or_else(|failure| {
-        push(site, Some(format!("{ENGINE_FAILED}{failure}")));
-        raise(failure)
-    })
-}
-
-/// The failure a shard recorded as a site's value, if it is one.
-fn failed_value(text: &str) -> Option<&str> {
-    text.strip_prefix(ENGINE_FAILED)
-}
-
-fn push(site: &str, value: Option<String>) {
-    LEDGER.with(|l| {
-        if let Some(Ledger {
-            mode: Mode::Shard { entries, .. },
-            ..
-        }) = l.borrow_mut().as_mut()
-        {
-            entries.push(Entry {
-                site: site.to_string(),
-                value,
-            });
-        }
-    });
-}
-
-fn fail(message: String) {
-    LEDGER.with(|l| {
-        if let Some(ledger) = l.borrow_mut().as_mut() {
-            ledger.error.get_or_insert(message);
-        }
-    });
 }
 
 #[cfg(test)]
@@ -872,19 +627,6 @@ mod tests {
         ] {
             assert!(parse(k, n).is_err(), "{k}/{n}");
         }
-    }
-
-    fn sum_of_owned(part: Option<Part>) -> u64 {
-        (0..100u64)
-            .filter(|&i| part.is_none_or(|p| p.owns(i)))
-            .sum()
-    }
-
-    fn run_sites() -> (u64, String, String) {
-        let total = split("sum", sum_of_owned, |a, b| a + b, || 0);
-        let first = unit("first", || "one".to_string(), String::new);
-        let second = unit("second", || "two".to_string(), String::new);
-        (total, first, second)
     }
 
     /// An engine that panics, on the calling thread or on a rayon worker (the panic raised
@@ -922,131 +664,6 @@ mod tests {
         );
         let again = caught(|| caught(|| -> u8 { panic!("inner") }).unwrap_or_else(|f| raise(f)));
         assert!(again.unwrap_err().starts_with("inner (at "));
-    }
-
-    /// A site whose work panics under a shard records the failure as its value and raises it;
-    /// the merge raises it again at the same site, with the same description, whichever shard
-    /// recorded it.
-    #[test]
-    fn a_shard_records_a_failing_site_and_the_merge_raises_it_again() {
-        fn sites() -> Result<u64, String> {
-            caught(|| {
-                let total = split("sum", sum_of_owned, |a, b| a + b, || 0);
-                let failing = unit("failing", || -> u64 { panic!("planted unit") }, || 0);
-                total + failing
-            })
-        }
-        let whole = sites().unwrap_err();
-        assert!(whole.starts_with("planted unit (at "), "{whole}");
-        let files: Vec<(String, ShardFile)> = (1..=2)
-            .map(|k| {
-                let part = Part::parse(&format!("{k}/2")).unwrap();
-                let (r, entries) = record_shard(part, sites);
-                // Unit 0 ("failing") is shard 1's: shard 2 records it as another's.
-                assert_eq!(r.is_err(), k == 1, "shard {k}: {r:?}");
-                assert_eq!(entries.len(), 2);
-                let value = entries[1].value.clone();
-                assert_eq!(
-                    value.is_some_and(|v| v == format!("{ENGINE_FAILED}{whole}")),
-                    k == 1
-                );
-                let file = ShardFile {
-                    part,
-                    fingerprint: json!({"run": 2}),
-                    entries,
-                    seconds: 0.0,
-                };
-                (format!("shard{k}"), file)
-            })
-            .collect();
-        let merged = replay(complete_set(files).unwrap(), sites).unwrap();
-        assert_eq!(merged, Err(whole));
-    }
-
-    /// Shards that disagree on an engine's sites because it failed in one of them (here on
-    /// shard 1's part only): the merge raises shard 1's failure for the engine, leaves shard
-    /// 2's further site of it unread, and reads the sites after the engine.
-    #[test]
-    fn an_engine_failing_in_one_shard_fails_in_the_merge() {
-        fn sites() -> (Result<u64, String>, String) {
-            let total = engine(|| {
-                let first = split(
-                    "first",
-                    |part| {
-                        assert!(part.is_none_or(|p| p.k() != 1), "planted in shard 1");
-                        sum_of_owned(part)
-                    },
-                    |a, b| a + b,
-                    || 0,
-                );
-                first + split("second", sum_of_owned, |a, b| a + b, || 0)
-            });
-            let after = unit("after", || "after".to_string(), String::new);
-            (total, after)
-        }
-        assert_eq!(sites(), (Ok(2 * 4950), "after".into()));
-        let mut files = Vec::new();
-        for k in 1..=2 {
-            let part = Part::parse(&format!("{k}/2")).unwrap();
-            let (r, entries) = record_shard(part, sites);
-            assert_eq!(r.0.is_err(), k == 1, "{r:?}");
-            let names: Vec<&str> = entries.iter().map(|e| e.site.as_str()).collect();
-            if k == 1 {
-                assert_eq!(names, ["first", END_OF_ENGINE, "after"]);
-            } else {
-                assert_eq!(names, ["first", "second", END_OF_ENGINE, "after"]);
-            }
-            let text = ShardFile {
-                part,
-                fingerprint: json!({"run": 3}),
-                entries,
-                seconds: 0.0,
-            }
-            .to_json("t/1");
-            files.push((format!("shard{k}"), text));
-        }
-        let merged = replay(read_complete_set(&files, "t/1").unwrap(), sites).unwrap();
-        let failure = merged.0.unwrap_err();
-        assert!(failure.starts_with("planted in shard 1 (at "), "{failure}");
-        assert_eq!(merged.1, "after");
-    }
-
-    /// Three shards split the sum 0+…+99 = 4950 and own one unit each at most; the merge
-    /// answers every site as the whole run does.
-    #[test]
-    fn three_shards_merge_to_the_whole_run() {
-        let whole = run_sites();
-        assert_eq!(whole, (4950, "one".into(), "two".into()));
-        let mut files = Vec::new();
-        for k in 1..=3 {
-            let part = Part::parse(&format!("{k}/3")).unwrap();
-            let (partial, entries) = record_shard(part, run_sites);
-            assert!(partial.0 < 4950);
-            files.push((
-                format!("shard{k}"),
-                ShardFile {
-                    part,
-                    fingerprint: json!({"run": 1}),
-                    entries,
-                    seconds: 0.0,
-                },
-            ));
-        }
-        // Unit 0 is shard 1's, unit 1 shard 2's: shard 3 ran neither.
-        assert_eq!(files[2].1.entries[1].value, None);
-        let text: Vec<String> = files.iter().map(|(_, f)| f.to_json("t/1")).collect();
-        let read: Vec<(String, ShardFile)> = text
-            .iter()
-            .enumerate()
-            .map(|(i, t)| {
-                (
-                    format!("f{i}"),
-                    ShardFile::from_json(t, "t/1", "f").unwrap(),
-                )
-            })
-            .collect();
-        let merged = replay(complete_set(read).unwrap(), run_sites).unwrap();
-        assert_eq!(merged, whole);
     }
 
     #[test]
@@ -1110,72 +727,82 @@ mod tests {
         assert!(e.contains("checksum"), "{e}");
     }
 
-    /// A merge that reads fewer sites than the shards recorded (a run of a different build
-    /// that stops early) is refused, naming how many it read; one that meets a site in another
-    /// place is refused too.
-    #[test]
-    fn a_merge_that_leaves_sites_unread_or_reads_another_is_refused() {
-        let part = Part::parse("1/1").unwrap();
-        let (_, entries) = record_shard(part, run_sites);
-        assert_eq!(entries.len(), 3);
-        let shards = || {
-            vec![ShardFile {
-                part,
-                fingerprint: json!({}),
-                entries: entries.clone(),
-                seconds: 0.0,
-            }]
-        };
-        let first_two = || {
-            let total = split("sum", sum_of_owned, |a, b| a + b, || 0);
-            let first = unit("first", || "one".to_string(), String::new);
-            (total, first)
-        };
-        let e = replay(shards(), first_two).unwrap_err();
-        assert_eq!(
-            e,
-            "the merge read 2 of the shards' 3 sites (shards of a different build?)"
-        );
-        let swapped = || {
-            let total = split("sum", sum_of_owned, |a, b| a + b, || 0);
-            let second = unit("second", || "two".to_string(), String::new);
-            (total, second)
-        };
-        let e = replay(shards(), swapped).unwrap_err();
-        assert!(e.contains("met site 'second'"), "{e}");
-        assert_eq!(replay(shards(), run_sites).unwrap(), run_sites());
+    fn record(sites: &[(&str, Option<&str>)], failure: Option<&str>) -> StepRecord {
+        StepRecord {
+            entries: sites
+                .iter()
+                .map(|(site, value)| Entry {
+                    site: site.to_string(),
+                    value: value.map(String::from),
+                })
+                .collect(),
+            failure: failure.map(String::from),
+        }
     }
 
-    /// A shard file whose recorded values were tampered with is refused on merge, naming the
-    /// site: a split site without a value, a malformed value, a unit no shard ran.
+    /// Two shards' records written as files and merged: the merge gives back every shard's
+    /// record of every step, in shard order, whatever the order of the files; a step that
+    /// failed keeps its failure.
     #[test]
-    fn a_merge_of_tampered_values_is_refused_naming_the_site() {
-        let part = Part::parse("1/1").unwrap();
-        let (_, entries) = record_shard(part, run_sites);
-        let merge = |edit: &dyn Fn(&mut Vec<Entry>)| {
-            let mut entries = entries.clone();
-            edit(&mut entries);
-            let file = ShardFile {
-                part,
-                fingerprint: json!({}),
-                entries,
-                seconds: 0.0,
-            };
-            replay(vec![file], run_sites)
+    fn the_merge_gives_back_every_shard_s_records_step_by_step() {
+        let records = |k: u32| {
+            vec![
+                record(&[("enumerate a", Some(&format!("{k}")))], None),
+                record(
+                    &[("proptest C2", (k == 1).then_some("{}"))],
+                    (k == 2).then_some("planted"),
+                ),
+                record(&[], None),
+            ]
         };
-        assert_eq!(merge(&|_| {}), Ok(run_sites()));
-        assert_eq!(
-            merge(&|e| e[0].value = None),
-            Err("site 'sum': a shard recorded no value".into())
+        let files: Vec<(String, String)> = [2, 1]
+            .into_iter()
+            .map(|k| {
+                let part = Part::parse(&format!("{k}/2")).unwrap();
+                let f = file(part, json!({"run": 7}), records(k), 0.5);
+                assert_eq!(f.entries.len(), 4 + 1, "one entry per unit and per step");
+                (format!("s{k}"), f.to_json(VERIFY_FORMAT))
+            })
+            .collect();
+        let merged = merge(&files).unwrap();
+        assert_eq!(merged.fingerprint, json!({"run": 7}));
+        assert_eq!(merged.steps.len(), 3);
+        for (i, step) in merged.steps.iter().enumerate() {
+            assert_eq!(step, &[records(1)[i].clone(), records(2)[i].clone()]);
+        }
+    }
+
+    /// A file whose entries do not close their last step, or shards that recorded different
+    /// numbers of steps, are refused.
+    #[test]
+    fn a_merge_of_unclosed_or_unequal_steps_is_refused() {
+        let part = |k: u32| Part::parse(&format!("{k}/2")).unwrap();
+        let text = |f: ShardFile| f.to_json(VERIFY_FORMAT);
+        // A failed step: the shards' sites are then compared step by step by the runner.
+        let one = file(
+            part(1),
+            json!({}),
+            vec![record(&[("a", None)], Some("x"))],
+            0.0,
         );
-        let malformed = merge(&|e| e[0].value = Some("not json".into())).unwrap_err();
-        assert!(
-            malformed.starts_with("site 'sum': malformed value"),
-            "{malformed}"
+        let mut unclosed = file(part(2), json!({}), vec![record(&[("a", None)], None)], 0.0);
+        unclosed.entries.push(Entry {
+            site: "b".into(),
+            value: None,
+        });
+        let e = merge(&[
+            ("1".into(), text(one.clone())),
+            ("2".into(), text(unclosed)),
+        ])
+        .unwrap_err();
+        assert!(e.contains("after its last engine"), "{e}");
+        let two_steps = file(
+            part(2),
+            json!({}),
+            vec![record(&[("a", None)], None), record(&[], Some("x"))],
+            0.0,
         );
-        assert_eq!(
-            merge(&|e| e[1].value = None),
-            Err("site 'first': no shard ran it".into())
-        );
+        let e = merge(&[("1".into(), text(one)), ("2".into(), text(two_steps))]).unwrap_err();
+        assert!(e.contains("different numbers of engine runs"), "{e}");
     }
 }

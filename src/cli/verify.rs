@@ -12,7 +12,9 @@ use truecost::claims::c4::{
     bonus_analysis, bonus_policy_limit, contains_unscaled, End, Instance, Interval,
 };
 use truecost::claims::exact::Q;
-use truecost::claims::{report, Scope};
+use truecost::claims::runner::{self, Mode};
+use truecost::claims::shard::{self, Part};
+use truecost::claims::{registry, report, Scope};
 use truecost::model::{file, Problem};
 use truecost::problems::{GridLayout, StepCost};
 
@@ -123,27 +125,60 @@ pub struct MergeArgs {
     counterexamples: Option<PathBuf>,
 }
 
-/// `verify --shard K/N`: the shard's partial report.
-fn shard(args: &VerifyArgs, part: &str) -> Result<String, String> {
-    let part = truecost::claims::shard::Part::parse(part)?;
-    let options = truecost::claims::registry::Options {
+/// The options of the claims engines, from the command line.
+fn options(args: &VerifyArgs) -> registry::Options {
+    registry::Options {
         smt: !args.no_smt,
         smt_timeout_ms: args.smt_timeout * 1000,
         coq: !args.no_coq,
         coq_timeout_s: args.coq_timeout,
         harnesses: (!args.no_harnesses).then_some(truecost_proofs::harnesses as _),
-    };
-    truecost::claims::registry::run_shard(args.scope, args.claim.as_deref(), &options, part)
+    }
 }
 
-/// `verify merge FILES…`: the whole run's report from its shards.
+/// `verify` as a pipeline, the whole run or shard `part`: the registry plans the work units of
+/// the options, the shard module selects the units this run does, the runner runs them, and
+/// the registry's report reads their values back (a shard writes its records instead, for
+/// `verify merge`).
+fn pipeline(args: &VerifyArgs, part: Option<Part>) -> Result<Made, String> {
+    let started = std::time::Instant::now();
+    let options = options(args);
+    let only = args.claim.as_deref();
+    let plan = registry::plan(args.scope, only, &options)?; // plan
+    let units = shard::select(plan.units(), part); // select
+    let mode = part.map_or(Mode::Whole, Mode::Shard);
+    let ran = runner::run(&plan, &units, mode)?; // run
+    Ok(match part {
+        None => Made::Report(Box::new(registry::report(&plan, &ran.values))), // report
+        Some(part) => {
+            let fingerprint = registry::fingerprint(args.scope, only, &options);
+            let seconds = started.elapsed().as_secs_f64();
+            let file = shard::file(part, fingerprint, ran.records, seconds);
+            Made::Shard(file.to_json(shard::VERIFY_FORMAT))
+        }
+    })
+}
+
+/// What [`pipeline`] gave: the whole run's report, or a shard's file.
+enum Made {
+    Report(Box<report::Report>),
+    Shard(String),
+}
+
+/// `verify merge FILES…`: the whole run's report from its shards — the same pipeline, with the
+/// shards' records read back in place of the run: merge, plan (from the shards' fingerprint),
+/// run (every unit answered from the records), report.
 fn merge(args: &MergeArgs) -> Result<String, String> {
     if let Some(dir) = &args.counterexamples {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     }
-    let files = truecost::claims::shard::read_files(&args.files)?;
-    let r = truecost::claims::registry::merge(&files)?;
+    let files = shard::read_files(&args.files)?;
+    let merged = shard::merge(&files)?; // merge
+    let plan = registry::plan_of(&merged.fingerprint)?; // plan
+    let units = shard::select(plan.units(), None);
+    let ran = runner::run(&plan, &units, Mode::Merge(&merged.steps))?; // run
+    let r = registry::report(&plan, &ran.values); // report
     if let Some(dir) = &args.counterexamples {
         write_counterexamples(dir, &r)?;
     }
@@ -180,7 +215,11 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
         return merge(m);
     }
     if let Some(part) = &args.shard {
-        return shard(args, part);
+        let part = Part::parse(part)?;
+        return match pipeline(args, Some(part))? {
+            Made::Shard(file) => Ok(file),
+            Made::Report(_) => unreachable!("a shard's pipeline writes its file"),
+        };
     }
     if let Some(spec) = &args.env {
         return bonus_env(spec, args);
@@ -209,14 +248,9 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
     if let Some(dir) = &args.smt_out {
         truecost::claims::smt::prepare_out_dir(dir)?;
     }
-    let options = truecost::claims::registry::Options {
-        smt: !args.no_smt,
-        smt_timeout_ms: args.smt_timeout * 1000,
-        coq: !args.no_coq,
-        coq_timeout_s: args.coq_timeout,
-        harnesses: (!args.no_harnesses).then_some(truecost_proofs::harnesses as _),
+    let Made::Report(r) = pipeline(args, None)? else {
+        unreachable!("the whole run's pipeline gives its report")
     };
-    let r = truecost::claims::registry::run(args.scope, args.claim.as_deref(), &options)?;
     if let Some(dir) = &args.smt_out {
         for o in &r.smt {
             truecost::claims::smt::write_files(dir, &o.solved)?;
@@ -225,17 +259,7 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
     if let Some(dir) = &args.counterexamples {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-        for c in &r.claims {
-            if let Some(ce) = &c.counterexample {
-                let name = std::path::Path::new(&ce.file)
-                    .file_name()
-                    .expect("a file name")
-                    .to_owned();
-                let path = dir.join(name);
-                std::fs::write(&path, &ce.problem_file)
-                    .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-            }
-        }
+        write_counterexamples(dir, &r)?;
     }
     engine_failures(&r, render(&r, args.format, with_times))
 }
@@ -243,7 +267,7 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
 /// The report's text, or, when an engine failed, the report written out and the failure
 /// (`verify` then exits with status 1 after a whole report).
 fn engine_failures(r: &report::Report, text: String) -> Result<String, String> {
-    let failed = truecost::claims::registry::engine_failures(r);
+    let failed = registry::engine_failures(r);
     if failed.is_empty() {
         return Ok(text);
     }

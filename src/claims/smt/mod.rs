@@ -726,21 +726,25 @@ pub const TIMEOUT_MS: u32 = 60_000;
 
 /// An answer as a shard records it: rationals as `n/d` text.
 #[derive(serde::Serialize, serde::Deserialize)]
-enum AnswerRecord {
+pub enum AnswerRecord {
+    /// `unsat`.
     Unsat,
+    /// `sat`, with the model's values as text (`None`: a model that is not rational).
     Sat(Option<Vec<(String, String)>>),
+    /// `unknown`, and why.
     Unknown(String),
 }
 
 /// One obligation's result as a shard records it.
 #[derive(serde::Serialize, serde::Deserialize)]
-struct SolvedRecord {
+pub struct SolvedRecord {
     answer: AnswerRecord,
     seconds: f64,
 }
 
 impl SolvedRecord {
-    fn of(s: &Solved) -> SolvedRecord {
+    /// The record of `s`.
+    pub fn of(s: &Solved) -> SolvedRecord {
         SolvedRecord {
             answer: match &s.answer {
                 Answer::Unsat => AnswerRecord::Unsat,
@@ -756,7 +760,8 @@ impl SolvedRecord {
         }
     }
 
-    fn solved(self, obligation: Obligation) -> Solved {
+    /// The solved obligation this record is of (`obligation`: the obligation it answers).
+    pub fn solved(self, obligation: Obligation) -> Solved {
         let answer = match self.answer {
             AnswerRecord::Unsat => Answer::Unsat,
             AnswerRecord::Unknown(why) => Answer::Unknown(why),
@@ -777,42 +782,38 @@ impl SolvedRecord {
     }
 }
 
-/// [`discharge`] under sharding: each obligation is a unit of the run,
-/// solved by the shard that owns it and read from its record on merge.
-fn discharge_sharded(claim: &str, obligations: Vec<Obligation>, timeout_ms: u32) -> Vec<Solved> {
-    let sites: Vec<String> = (0..obligations.len())
-        .map(|j| format!("smt {claim} obligation {j}"))
-        .collect();
-    let records = super::shard::units(
-        &sites,
-        |wanted| {
-            let mine: Vec<Obligation> = obligations
-                .iter()
-                .zip(wanted)
-                .filter(|(_, &w)| w)
-                .map(|(o, _)| o.clone())
-                .collect();
-            let mut solved = discharge(mine, timeout_ms).into_iter();
-            wanted
-                .iter()
-                .map(|&w| w.then(|| SolvedRecord::of(&solved.next().expect("one answer each"))))
-                .collect()
-        },
-        || SolvedRecord {
-            answer: AnswerRecord::Unknown("solved by another shard".into()),
-            seconds: 0.0,
-        },
-    );
-    records
-        .into_iter()
-        .zip(obligations)
-        .map(|(r, o)| r.solved(o))
-        .collect()
+/// The SMT encoding of claim `id` (one of the claims of `verify`'s report), if it has one: its
+/// obligations listed, none of them solved (Z3 is not run).
+///
+/// ```
+/// use truecost::claims::{smt, Scope};
+/// let enc = smt::encoding("C2", Scope::Smoke).unwrap();
+/// assert_eq!(enc.claim, "C2");
+/// assert!(!enc.obligations.is_empty());
+/// assert!(smt::encoding("C9", Scope::Smoke).is_none());
+/// ```
+pub fn encoding(id: &str, scope: super::Scope) -> Option<Encoding> {
+    match id {
+        "C1" => Some(c1::printed()),
+        "C1-corrected" => Some(c1::corrected(scope)),
+        "C2" => Some(c2::encoding(scope)),
+        "C3" => Some(c3::encoding(scope)),
+        "C3-example" => Some(c3::example_encoding(scope)),
+        "C4" => Some(c4::encoding_printed(scope)),
+        "C4-corrected" => Some(c4::encoding(scope)),
+        _ => None,
+    }
 }
 
 /// Solves a claim's obligations, replays its models, and decides the SMT verdict.
-pub fn run(enc: Encoding, timeout_ms: u32) -> Outcome {
-    let solved = discharge_sharded(enc.claim, enc.obligations, timeout_ms);
+pub fn run(mut enc: Encoding, timeout_ms: u32) -> Outcome {
+    let solved = discharge(std::mem::take(&mut enc.obligations), timeout_ms);
+    judge(&enc, solved)
+}
+
+/// The SMT verdict of a claim from its obligations `solved` (every obligation of `enc`, in
+/// order, with Z3's answer): replays its models through the claim's exact oracle and decides.
+pub fn judge(enc: &Encoding, solved: Vec<Solved>) -> Outcome {
     let summary = Summary::of(&solved);
     let mut notes = Vec::new();
     let mut counterexample = None;
@@ -892,7 +893,7 @@ pub fn run(enc: Encoding, timeout_ms: u32) -> Outcome {
     };
     Outcome {
         claim: enc.claim,
-        scope: enc.scope,
+        scope: enc.scope.clone(),
         verdict,
         summary,
         counterexample,

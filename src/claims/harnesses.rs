@@ -470,15 +470,6 @@ impl StandinRun {
         self.mode == ENGINE_FAILED_MODE
     }
 
-    /// What a shard that does not own a harness records for it (never rendered: the merge
-    /// reads the owner's run).
-    pub fn by_another_shard() -> StandinRun {
-        StandinRun {
-            problem: None,
-            ..StandinRun::missing("run by another shard")
-        }
-    }
-
     /// The harness failed as a harness by an assertion in a harness that must hold: a
     /// counterexample to what it states, found by the stand-in.
     pub fn refutes(&self) -> bool {

@@ -547,7 +547,7 @@ pub fn witness_values(
         .map(|x| policy[x].map(|i| p.actions(x).start + i))
         .collect();
     let v = if is_deterministic(model) {
-        chain_values(model, &running, &global)?
+        chain_values(model, &running, &global, MAX_CHAIN_DEGREE)?
     } else {
         policy_values(model, &running, &index, &global)?
     };

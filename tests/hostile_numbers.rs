@@ -259,3 +259,39 @@ fn compare_alphas_are_distinct_and_few() {
     let rows = String::from_utf8(o.stdout).unwrap();
     assert_eq!(rows.matches("discounted a=").count(), 64, "{rows}");
 }
+
+// `check` checks a certificate as it reads it: random bytes and zeros are refused at their
+// first byte that cannot be JSON text, in a fraction of a second, naming the byte.
+#[test]
+fn a_streamed_certificate_is_checked_as_it_is_read() {
+    let line = concat!(env!("CARGO_MANIFEST_DIR"), "/problems/line.json");
+    for (stream, expected) in [
+        (
+            "/dev/zero",
+            "is not a JSON certificate: byte 0 is 0x00, a control character",
+        ),
+        ("/dev/urandom", "/dev/urandom is not"),
+    ] {
+        let start = Instant::now();
+        let err = fails_one_line(&["check", "--file", line, stream]);
+        assert!(start.elapsed() < Duration::from_secs(3), "{stream}");
+        assert_contract(&err);
+        assert!(err.contains("cannot read the certificate"), "{err}");
+        assert!(err.contains(expected), "{err}");
+    }
+    // Invalid UTF-8 split across the reader's chunks is named at its byte.
+    let dir = tempfile::tempdir().unwrap();
+    let mut bytes = vec![b' '; (1 << 16) - 1];
+    bytes.extend_from_slice(&[0xe2, 0x28, 0xa1]);
+    let bad = dir.path().join("bad.json");
+    std::fs::write(&bad, &bytes).unwrap();
+    let err = fails_one_line(&["check", "--file", line, bad.to_str().unwrap()]);
+    assert!(err.contains("is not UTF-8 text (byte 65535)"), "{err}");
+    // A multi-byte character split across chunks is text: the parser then reads it.
+    let mut bytes = vec![b' '; (1 << 16) - 1];
+    bytes.extend_from_slice("é".as_bytes());
+    let split = dir.path().join("split.json");
+    std::fs::write(&split, &bytes).unwrap();
+    let err = fails_one_line(&["check", "--file", line, split.to_str().unwrap()]);
+    assert!(err.contains("malformed certificate"), "{err}");
+}

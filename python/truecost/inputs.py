@@ -188,8 +188,8 @@ def alpha_texts(alphas):
     seen = {}
     for i, text in enumerate(texts):
         value = _exact_value(text)
-        if value is None:
-            continue
+        if value is None or not 0 < value < 1:
+            continue  # the engine's own refusal names it
         if value in seen:
             raise Error(
                 f"alpha {_short(text)} is listed twice "

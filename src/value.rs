@@ -286,21 +286,111 @@ pub fn parse_rational(text: &str) -> Result<Rational, ParseRationalError> {
     if t.len() > MAX_NUMBER_TEXT {
         return Err(err(ParseRationalReason::TooLong(t.len())));
     }
-    if let Some((n, d)) = t.split_once('/') {
-        let n = parse_decimal(n.trim()).map_err(err)?;
-        let d = parse_decimal(d.trim()).map_err(err)?;
-        if d.is_zero() {
-            return Err(err(ParseRationalReason::ZeroDenominator));
+    let decimal = |s: &str| parse_decimal(s.trim()).map_err(err);
+    let value = match t.split_once('/') {
+        Some((n, d)) => {
+            let (n, d) = (decimal(n)?, decimal(d)?);
+            if d.mantissa.is_zero() {
+                return Err(err(ParseRationalReason::ZeroDenominator));
+            }
+            n.over(d)
         }
-        return Ok(n / d);
-    }
-    parse_decimal(t).map_err(err)
+        None => decimal(t)?.over(Decimal::one()),
+    };
+    Ok(value)
 }
 
-/// Parses `[+-]digits[.digits][e[+-]digits]` exactly.
-fn parse_decimal(t: &str) -> Result<Rational, ParseRationalReason> {
+/// A parsed decimal `±m · 2^twos · 5^fives` with `m ≥ 0` prime to 10 (`0` for zero): the
+/// factors 2 and 5 kept as exponents, so that the reduced fraction of a quotient is found
+/// without a greatest common divisor of the powers of ten (only of the two mantissas, which
+/// the text's length bounds).
+struct Decimal {
+    negative: bool,
+    mantissa: num_bigint::BigUint,
+    twos: i64,
+    fives: i64,
+}
+
+impl Decimal {
+    fn one() -> Self {
+        Decimal {
+            negative: false,
+            mantissa: num_bigint::BigUint::one(),
+            twos: 0,
+            fives: 0,
+        }
+    }
+
+    /// `self / d` in lowest terms (`d` non-zero).
+    fn over(self, d: Decimal) -> Rational {
+        use num_bigint::Sign;
+        use num_integer::Integer;
+        if self.mantissa.is_zero() {
+            return Rational::zero();
+        }
+        let g = self.mantissa.gcd(&d.mantissa);
+        let (twos, fives) = (self.twos - d.twos, self.fives - d.fives);
+        let power = |twos: i64, fives: i64| power_of_five(fives.max(0) as usize) << twos.max(0);
+        let numer = (self.mantissa / &g) * power(twos, fives);
+        let denom = (d.mantissa / &g) * power(-twos, -fives);
+        let sign = if self.negative != d.negative {
+            Sign::Minus
+        } else {
+            Sign::Plus
+        };
+        // Coprime: the mantissas' common divisor is removed and both are prime to 10, and only
+        // one side carries 2s, only one side 5s.
+        Rational::new_raw(
+            BigInt::from_biguint(sign, numer),
+            BigInt::from_biguint(Sign::Plus, denom),
+        )
+    }
+}
+
+/// `5^k`, as a product of a cached `5^(256·j)` and a small power: linear in its size, so that
+/// a file of many large exponents is read in time proportional to its numbers' bits.
+fn power_of_five(k: usize) -> num_bigint::BigUint {
+    use num_bigint::BigUint;
+    const STEP: usize = 256;
+    static POWERS: std::sync::Mutex<Vec<BigUint>> = std::sync::Mutex::new(Vec::new());
+    let small = num_traits::pow(BigUint::from(5u8), k % STEP);
+    let mut powers = POWERS
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    if powers.is_empty() {
+        powers.push(BigUint::one());
+    }
+    while powers.len() <= k / STEP {
+        let next =
+            powers.last().expect("starts with 1") * num_traits::pow(BigUint::from(5u8), STEP);
+        powers.push(next);
+    }
+    &powers[k / STEP] * small
+}
+
+/// The exponent of the largest power of 5 dividing `m` (`m > 0`), which it divides out.
+fn take_fives(m: &mut num_bigint::BigUint) -> i64 {
+    use num_integer::Integer;
+    let mut count = 0;
+    // 5^27 < 2^64: strip whole chunks first, then single fives.
+    for (step, size) in [(7_450_580_596_923_828_125u64, 27), (5, 1)] {
+        loop {
+            let (q, r) = m.div_rem(&num_bigint::BigUint::from(step));
+            if !r.is_zero() {
+                break;
+            }
+            *m = q;
+            count += size;
+        }
+    }
+    count
+}
+
+/// Parses `[+-]digits[.digits][e[+-]digits]` exactly, without forming `10^e`: the work is
+/// linear in the result's size apart from the digits' conversion.
+fn parse_decimal(t: &str) -> Result<Decimal, ParseRationalReason> {
     use ParseRationalReason::{Exponent, Syntax};
-    let (neg, rest) = match t.as_bytes().first().ok_or(Syntax)? {
+    let (negative, rest) = match t.as_bytes().first().ok_or(Syntax)? {
         b'-' => (true, &t[1..]),
         b'+' => (false, &t[1..]),
         _ => (false, t),
@@ -321,8 +411,6 @@ fn parse_decimal(t: &str) -> Result<Rational, ParseRationalReason> {
     {
         return Err(Syntax);
     }
-    let digits = format!("{int_part}{frac_part}");
-    let mut value = Rational::from_integer(digits.parse::<BigInt>().map_err(|_| Syntax)?);
     let mut scale: i64 = -(frac_part.len() as i64);
     if let Some(e) = exponent {
         let (e_neg, e_digits) = match e.as_bytes().first() {
@@ -348,14 +436,25 @@ fn parse_decimal(t: &str) -> Result<Rational, ParseRationalReason> {
         }
         scale += if e_neg { -magnitude } else { magnitude };
     }
-    let ten = BigInt::from(10);
-    let p = Rational::from_integer(num_traits::pow(ten, scale.unsigned_abs() as usize));
-    if scale >= 0 {
-        value *= p;
-    } else {
-        value /= p;
+    let digits = format!("{int_part}{frac_part}");
+    let mut m: num_bigint::BigUint = digits.parse().map_err(|_| Syntax)?;
+    if m.is_zero() {
+        return Ok(Decimal {
+            negative,
+            mantissa: m,
+            twos: 0,
+            fives: 0,
+        });
     }
-    Ok(if neg { -value } else { value })
+    let twos = m.trailing_zeros().unwrap_or(0);
+    m >>= twos;
+    let fives = take_fives(&mut m);
+    Ok(Decimal {
+        negative,
+        mantissa: m,
+        twos: scale + twos as i64,
+        fives: scale + fives,
+    })
 }
 
 /// Whether `r` lies in the half-open interval `(0, 1]` (used to validate γ, ρ).

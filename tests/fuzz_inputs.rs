@@ -620,3 +620,116 @@ fn export_onto_hostile_targets() {
     std::fs::remove_dir_all(&dir).ok();
     report("export onto hostile targets", &classes);
 }
+
+/// A file of the fuzz corpus (`tests/fuzz_corpus`).
+fn corpus(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fuzz_corpus")
+        .join(name)
+}
+
+/// The exact `values` of a certificate's JSON text, `None` when it has none that parse.
+fn certificate_values(text: &str) -> Option<Vec<Option<truecost::value::Rational>>> {
+    let doc: serde_json::Value = serde_json::from_str(text).ok()?;
+    let values = doc.get("values")?.as_array()?;
+    Some(
+        values
+            .iter()
+            .map(|v| {
+                v.as_str()
+                    .and_then(|s| truecost::value::parse_rational(s).ok())
+            })
+            .collect(),
+    )
+}
+
+/// Certificates of `solve --certificate`, mutated, through `check`: a clean refusal, or an
+/// acceptance whose values are the optimum's (the certificate of the unmutated run).
+#[test]
+fn certificates() {
+    let mut r = rng(7);
+    let dir = scratch("certificates");
+    let mut classes = Vec::new();
+    for (name, objective) in [
+        ("slippery.json", "truecost"),
+        ("line.json", "truecost"),
+        ("fractions-and-stay.json", "discounted"),
+    ] {
+        let problem = corpus(name);
+        let cert = dir.join(format!("{name}.cert"));
+        let mut args = vec![
+            "solve".to_string(),
+            "--file".into(),
+            path(&problem),
+            "--algorithm".into(),
+            "exact".into(),
+            "--objective".into(),
+            objective.into(),
+            "--certificate".into(),
+            path(&cert),
+        ];
+        if objective == "discounted" {
+            args.extend(["--alpha".into(), "9/10".into()]);
+        }
+        assert_eq!(run(&args), Class::Ok);
+        let original = std::fs::read_to_string(&cert).unwrap();
+        let optimum = certificate_values(&original).expect("the certificate's values");
+        assert!(optimum.iter().any(Option::is_some), "{original}");
+        let check =
+            |file: &Path| run(&["check".into(), "--file".into(), path(&problem), path(file)]);
+        assert_eq!(check(&cert), Class::Ok);
+        for case in 0..cases() {
+            let text = mutate(&mut r, &original);
+            let file = dir.join(format!("{name}{case}.cert"));
+            std::fs::write(&file, &text).unwrap();
+            let class = check(&file);
+            if class == Class::Ok {
+                assert_eq!(
+                    certificate_values(&text).as_ref(),
+                    Some(&optimum),
+                    "check accepted other values: {text}"
+                );
+            }
+            classes.push(class);
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    report("certificates", &classes);
+}
+
+/// Storm DRN files written by `export --format drn`, mutated, through `solve`, `compare` and
+/// `discount`.
+#[test]
+fn drn_files() {
+    let mut r = rng(8);
+    let dir = scratch("drn");
+    let mut classes = Vec::new();
+    for name in ["slippery.json", "line.json", "fractions-and-stay.json"] {
+        let drn = dir.join(format!("{name}.drn"));
+        let export = [
+            "export".to_string(),
+            "--file".into(),
+            path(&corpus(name)),
+            "--format".into(),
+            "drn".into(),
+            "--out".into(),
+            path(&drn),
+        ];
+        assert_eq!(run(&export), Class::Ok);
+        let original = std::fs::read_to_string(&drn).unwrap();
+        for case in 0..cases() {
+            let file = dir.join(format!("{name}{case}.drn"));
+            std::fs::write(&file, mutate(&mut r, &original)).unwrap();
+            let command: &[&str] = match case % 3 {
+                0 => &["solve", "--algorithm", "exact"],
+                1 => &["compare"],
+                _ => &["discount"],
+            };
+            let mut args: Vec<String> = command.iter().map(|s| s.to_string()).collect();
+            args.extend(["--file".into(), path(&file)]);
+            classes.push(run(&args));
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    report("drn files", &classes);
+}

@@ -93,6 +93,60 @@ class Inputs(unittest.TestCase):
         with self.assertRaisesRegex(truecost.Error, "CartPole-v1"):
             truecost.solve("CartPole-v1")
 
+    def test_non_finite_numbers_name_the_parameter(self):
+        from decimal import Decimal
+
+        for bad in (float("nan"), float("inf"), float("-inf"), Decimal("NaN"),
+                    Decimal("Infinity"), Decimal("sNaN")):
+            with self.assertRaises(truecost.Error) as raised:
+                truecost.solve("frozenlake", "discounted", alpha=bad)
+            self.assertRegex(str(raised.exception), r"^alpha = .* is not a finite number$")
+            with self.assertRaisesRegex(truecost.Error, "^alpha = .* is not a finite number$"):
+                truecost.compare("frozenlake", alphas=["0.9", bad])
+
+    def test_a_tiny_float_is_shown_short(self):
+        with self.assertRaises(truecost.Error) as raised:
+            truecost.solve("frozenlake", "discounted", alpha=1e-320)
+        message = str(raised.exception)
+        self.assertTrue(message.startswith("alpha = 1e-320 is a float"), message)
+        self.assertLess(len(message), 200, message)
+        # The exact value shortened, its length said: 1e-320 is n / 2^1074 with 327 characters.
+        self.assertIn(f"({len(str(Fraction(1e-320)))} characters)", message)
+
+    def test_a_huge_decimal_exponent_reaches_the_engine_unexpanded(self):
+        from decimal import Decimal
+
+        start = time.monotonic()
+        with self.assertRaisesRegex(truecost.Error, "exponent outside the supported range"):
+            truecost.solve("frozenlake", "discounted", alpha=Decimal("1e-999999999"))
+        self.assertLess(time.monotonic() - start, 5)
+
+    def test_importer_options_are_a_dict(self):
+        for bad in ([1], "goals", 3):
+            with self.assertRaisesRegex(truecost.Error, "^importer must be a dict of "):
+                truecost.solve("frozenlake", importer=bad)
+
+    def test_compare_alphas_are_distinct_and_few(self):
+        for alphas, first, second in ((["0.9", "9/10"], 1, 2),
+                                      (["0.5", Fraction(99, 100), "990e-3"], 2, 3)):
+            with self.assertRaisesRegex(
+                truecost.Error,
+                rf"^alpha .* is listed twice \(as discount factor {first} and {second}\)$",
+            ):
+                truecost.compare("frozenlake", alphas=alphas)
+        # The same refusal as the command line for the same list.
+        with self.assertRaises(truecost.Error) as raised:
+            truecost.compare("frozenlake", alphas=["0.9", "0.95", "9/10"])
+        self.assertEqual(str(raised.exception),
+                         cli_error("compare", "--env", "frozenlake", "--alphas", "0.9,0.95,9/10"))
+        many = [Fraction(i, 100) for i in range(1, 66)]
+        with self.assertRaisesRegex(truecost.Error, "^alphas lists 65 discount factors, more "
+                                    "than the 64 compare takes$"):
+            truecost.compare("frozenlake", alphas=many)
+        # Out of range twice: the engine's range refusal, as on the command line.
+        with self.assertRaisesRegex(truecost.Error, "alpha"):
+            truecost.compare("frozenlake", alphas=["2", "2"])
+
 
 class Threads(unittest.TestCase):
     def test_gil_released_during_an_analysis(self):

@@ -20,7 +20,7 @@ an ``--env`` spec (``"frozenlake:map=8x8"``) or a problem file path. See
 
 from . import _native
 from ._native import Error
-from .inputs import exact_text, resolve
+from .inputs import alpha_texts, exact_text, resolve
 from .results import (
     Breakpoint,
     Comparison,
@@ -60,9 +60,7 @@ def solve(env, /, objective="truecost", alpha=None, *, importer=None, **kwargs):
 def compare(env, /, alphas=DEFAULT_ALPHAS, *, importer=None, **kwargs):
     """Every objective side by side (``truecost compare --alphas``): truecost, reach and the
     discounted objective at each ``α`` of ``alphas``. Returns a :class:`Comparison`."""
-    if isinstance(alphas, (str, bytes)):
-        raise Error("alphas must be a list of exact numbers, e.g. ['0.9', Fraction(99, 100)]")
-    alphas = [exact_text(a) for a in alphas]
+    alphas = alpha_texts(alphas)
     kind, text, name = resolve(env, kwargs, importer)
     d = _native.compare(kind, text, name, alphas)
     return Comparison(d["source"], d["rewards"], tuple(Solution._of(r) for r in d["rows"]))

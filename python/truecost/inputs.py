@@ -9,6 +9,7 @@
   ``"cliffwalking:slippery=true"``, ``"taxi"``), built by truecost itself.
 """
 
+import math
 import os
 import re
 from decimal import Decimal
@@ -72,6 +73,11 @@ def resolve(env, kwargs, importer):
     """``(kind, text, name)`` of the native module for ``env`` and the ``gymnasium.make``
     keyword arguments ``kwargs``; ``importer`` are options of :func:`truecost_gym.from_env`
     (``goals``, ``initial``, ``max_denominator``, ...)."""
+    if importer is not None and not isinstance(importer, dict):
+        raise Error(
+            "importer must be a dict of truecost_gym.from_env options "
+            f"(goals, initial, ...), got {type(importer).__name__}"
+        )
     importer = dict(importer or {})
     if isinstance(env, str) and GYMNASIUM_ID.match(env):
         gymnasium = _gymnasium()
@@ -104,18 +110,90 @@ def resolve(env, kwargs, importer):
     )
 
 
+def _short(text, limit=60):
+    """``text`` shortened to about ``limit`` characters, its length said when shortened."""
+    text = str(text)
+    if len(text) <= limit:
+        return text
+    half = (limit - 20) // 2
+    return f"{text[:half]}…{text[-half:]} ({len(text)} characters)"
+
+
 def exact_text(number, what="alpha"):
-    """An exact number's text for the engine: a ``Fraction``, ``int``, ``Decimal`` or a string
-    (``"0.99"``, ``"99/100"``). A float is refused: ``0.9`` is not ``9/10``."""
+    """An exact number's text for the engine: a ``Fraction``, ``int``, finite ``Decimal`` or a
+    string (``"0.99"``, ``"99/100"``). A float is refused: ``0.9`` is not ``9/10``."""
     if isinstance(number, str):
         return number
     if isinstance(number, bool):
         raise Error(f"{what} must be a number, got {number!r}")
-    if isinstance(number, (int, Fraction, Decimal)):
+    if isinstance(number, Decimal):
+        if not number.is_finite():
+            raise Error(f"{what} = {_short(repr(number))} is not a finite number")
+        # The engine reads the exponent notation exactly (and bounds the exponent).
+        return str(number)
+    if isinstance(number, (int, Fraction)):
         return str(Fraction(number))
     if isinstance(number, float):
+        if not math.isfinite(number):
+            raise Error(f"{what} = {number!r} is not a finite number")
         raise Error(
-            f"{what} = {number!r} is a float, whose exact value is {Fraction(number)}: give a "
-            f"Fraction, an int or a string such as '{number!r}'"
+            f"{what} = {number!r} is a float, whose exact value is {_short(Fraction(number))}: "
+            f"give a Fraction, an int or a string such as '{number!r}'"
         )
     raise Error(f"{what} must be a Fraction, an int or a string, got {type(number).__name__}")
+
+#: The most discount factors :func:`truecost.compare` takes (as ``truecost compare --alphas``).
+MAX_ALPHAS = 64
+
+#: An exact number's text as the engine reads it: ``[+-]digits[.digits][e[+-]digits]``.
+_DECIMAL = re.compile(r"^\s*[+-]?(\d+\.?\d*|\.\d+)(?:[eE]([+-]?\d+))?\s*$")
+
+
+def _exact_value(text):
+    """The exact value of an engine number text, or ``None`` where the engine itself refuses
+    it (bad syntax, an exponent beyond its +-10000, a zero denominator): then its message is
+    the one raised."""
+    sides = text.split("/")
+    if len(sides) > 2 or len(text) > 4096:
+        return None
+    value = Fraction(1)
+    for i, side in enumerate(sides):
+        m = _DECIMAL.match(side)
+        if m is None or (m.group(2) is not None and abs(int(m.group(2))) > 10000):
+            return None
+        v = Fraction(Decimal(side.strip()))
+        if i == 0:
+            value = v
+        elif v == 0:
+            return None
+        else:
+            value /= v
+    return value
+
+
+def alpha_texts(alphas):
+    """The texts of ``compare``'s discount factors: a list of at most :data:`MAX_ALPHAS`
+    exact numbers (:func:`exact_text`), none listed twice however written."""
+    if isinstance(alphas, (str, bytes)):
+        raise Error("alphas must be a list of exact numbers, e.g. ['0.9', Fraction(99, 100)]")
+    try:
+        alphas = list(alphas)
+    except TypeError:
+        raise Error(f"alphas must be a list of exact numbers, got {type(alphas).__name__}") from None
+    if len(alphas) > MAX_ALPHAS:
+        raise Error(
+            f"alphas lists {len(alphas)} discount factors, more than the {MAX_ALPHAS} compare takes"
+        )
+    texts = [exact_text(a) for a in alphas]
+    seen = {}
+    for i, text in enumerate(texts):
+        value = _exact_value(text)
+        if value is None or not 0 < value < 1:
+            continue  # the engine's own refusal names it
+        if value in seen:
+            raise Error(
+                f"alpha {_short(text)} is listed twice "
+                f"(as discount factor {seen[value] + 1} and {i + 1})"
+            )
+        seen[value] = i
+    return texts

@@ -27,7 +27,8 @@ pub enum CompareFormat {
 pub struct CompareArgs {
     #[command(flatten)]
     model: ModelArgs,
-    /// The discount factors of the discounted rows, comma-separated exact numbers.
+    /// The discount factors of the discounted rows, comma-separated exact numbers in (0, 1),
+    /// each listed once, at most 64 of them.
     #[arg(
         long,
         value_name = "A,A,...",
@@ -40,13 +41,37 @@ pub struct CompareArgs {
     format: CompareFormat,
 }
 
+/// The most discount factors `compare --alphas` takes (each is one exact solve of the model).
+pub const MAX_ALPHAS: usize = 64;
+
+/// The discount factors of `--alphas` (each as [`parse_alpha`] reads it): at most
+/// [`MAX_ALPHAS`], counted before any is read, and no value listed twice, however written.
+pub fn parse_alphas(list: &str) -> Result<Vec<truecost::value::Rational>, String> {
+    let count = list.split(',').count();
+    if count > MAX_ALPHAS {
+        return Err(format!(
+            "--alphas lists {count} discount factors, more than the {MAX_ALPHAS} compare takes"
+        ));
+    }
+    let mut alphas: Vec<truecost::value::Rational> = Vec::with_capacity(count);
+    for text in list.split(',') {
+        let a = parse_alpha(text.trim())?;
+        if let Some(first) = alphas.iter().position(|b| *b == a) {
+            return Err(format!(
+                "alpha {} is listed twice (as discount factor {} and {})",
+                truecost::echo::echo(text.trim()),
+                first + 1,
+                alphas.len() + 1
+            ));
+        }
+        alphas.push(a);
+    }
+    Ok(alphas)
+}
+
 /// Runs `compare`.
 pub fn run(args: &CompareArgs) -> Result<String, String> {
-    let alphas = args
-        .alphas
-        .split(',')
-        .map(|a| parse_alpha(a.trim()))
-        .collect::<Result<Vec<_>, _>>()?;
+    let alphas = parse_alphas(&args.alphas)?;
     let model = args.model.load()?;
     let rows = compare(&model, &alphas).map_err(|e| e.to_string())?;
     Ok(match args.format {

@@ -253,6 +253,71 @@ pub fn solution_certificate(
     Ok(certificate::write(&objective, record, values, &policy))
 }
 
+/// The largest certificate `check` reads, in bytes (1 GiB): the certificate of a 100×100 grid
+/// at `γ = 0.999`, the largest model the exact solver takes in the guide's examples, has
+/// about 715 MB of exact values (its size grows as the fourth power of the side: 5.8 MB at
+/// 30×30, 44.7 MB at 50×50, 172 MB at 70×70).
+const MAX_CERTIFICATE_BYTES: u64 = 1 << 30;
+
+/// The text of the certificate at `path`, read in chunks and checked as it is read: at most
+/// [`MAX_CERTIFICATE_BYTES`] bytes (reading stops one byte past it), UTF-8, and no byte JSON
+/// never holds raw (a control character other than tab, line feed and carriage return), so
+/// that a stream of random bytes or zeros is refused at its first such byte.
+fn read_certificate(path: &std::path::Path) -> Result<String, String> {
+    use std::io::Read;
+    let shown = || truecost::echo::echo(&path.display().to_string());
+    let io = |e: std::io::Error| format!("{}: {e}", shown());
+    let mut file = std::fs::File::open(path).map_err(io)?;
+    let mut bytes: Vec<u8> = Vec::new();
+    let mut chunk = vec![0u8; 1 << 16];
+    // The start of a UTF-8 sequence left incomplete at the end of the bytes read so far.
+    let mut checked = 0;
+    loop {
+        let read = match file.read(&mut chunk) {
+            Ok(0) => break,
+            Ok(n) => n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(io(e)),
+        };
+        if (bytes.len() + read) as u64 > MAX_CERTIFICATE_BYTES {
+            return Err(format!(
+                "{} is larger than {MAX_CERTIFICATE_BYTES} bytes (1 GiB), the limit for certificates",
+                shown()
+            ));
+        }
+        if let Some(i) = chunk[..read]
+            .iter()
+            .position(|&b| b < 0x20 && !matches!(b, b'\t' | b'\n' | b'\r'))
+        {
+            return Err(format!(
+                "{} is not a JSON certificate: byte {} is 0x{:02x}, a control character",
+                shown(),
+                bytes.len() + i,
+                chunk[i]
+            ));
+        }
+        bytes.extend_from_slice(&chunk[..read]);
+        match std::str::from_utf8(&bytes[checked..]) {
+            Ok(_) => checked = bytes.len(),
+            Err(e) if e.error_len().is_none() => checked += e.valid_up_to(),
+            Err(e) => {
+                return Err(format!(
+                    "{} is not UTF-8 text (byte {})",
+                    shown(),
+                    checked + e.valid_up_to()
+                ))
+            }
+        }
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        format!(
+            "{} is not UTF-8 text (byte {})",
+            shown(),
+            e.utf8_error().valid_up_to()
+        )
+    })
+}
+
 /// `truecost check`: re-reads the problem (`--file`, `--problem`, `--env`; the certificate's
 /// `gamma`, `noise` and `step_cost` say how it was built) and checks the certificate; with
 /// `coq`, the verified checker (`Truecost.CertificateCheck.check`, or
@@ -266,10 +331,8 @@ pub fn check(
     format: ReportFormat,
     coq: bool,
 ) -> Result<String, String> {
-    const MAX_CERTIFICATE_BYTES: u64 = 1 << 30;
-    let text =
-        truecost::bounded::read_text(certificate_path, MAX_CERTIFICATE_BYTES, "certificates")
-            .map_err(|e| format!("cannot read the certificate: {e}"))?;
+    let text = read_certificate(certificate_path)
+        .map_err(|e| format!("cannot read the certificate: {e}"))?;
     let cert = certificate::parse(&text).map_err(|e| format!("malformed certificate: {e}"))?;
     let record = &cert.problem;
     let gamma = record

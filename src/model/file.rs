@@ -96,12 +96,14 @@ pub enum FileError {
         path: String,
     },
     /// The exact numbers of the file exceed [`MAX_NUMBER_BITS`].
-    #[error("state {state}, action {action}: the exact numbers of this file take more than 2^28 bits in all, the limit of this reader")]
+    #[error("state {state}, action {action}: the exact numbers of this file take {bits} bits up to here, more than 2^28 = {MAX_NUMBER_BITS} bits in all, the limit of this reader")]
     NumbersTooLarge {
         /// The state where the budget ran out.
         state: usize,
         /// The action index.
         action: usize,
+        /// The bits counted up to and including this number.
+        bits: u64,
     },
     /// A deterministic action without its successor.
     #[error("state {state}, action {action}: missing field `to` (the successor of a deterministic move)")]
@@ -197,10 +199,12 @@ pub enum FileError {
         reward: String,
     },
     /// The exact numbers of the file exceed [`MAX_NUMBER_BITS`] in the initial distribution.
-    #[error("initial entry {entry}: the exact numbers of this file take more than 2^28 bits in all, the limit of this reader")]
+    #[error("initial entry {entry}: the exact numbers of this file take {bits} bits up to here, more than 2^28 = {MAX_NUMBER_BITS} bits in all, the limit of this reader")]
     InitialNumbersTooLarge {
         /// The entry of the `initial` list where the budget ran out.
         entry: usize,
+        /// The bits counted up to and including this number.
+        bits: u64,
     },
     /// An empty `initial` list.
     #[error("\"initial\" is an empty list: give a state number or at least one {{\"state\": x, \"p\": \"q\"}} entry")]
@@ -427,7 +431,10 @@ pub(crate) fn read_initial(
             source,
         })?;
         if budget.over(&p) {
-            return Err(FileError::InitialNumbersTooLarge { entry });
+            return Err(FileError::InitialNumbersTooLarge {
+                entry,
+                bits: budget.0,
+            });
         }
         if !crate::value::in_unit_interval_open_closed(&p) {
             return Err(FileError::InitialRange {
@@ -499,7 +506,11 @@ impl NumberBudget {
         action: usize,
     ) -> Result<(), FileError> {
         if self.over(r) {
-            return Err(FileError::NumbersTooLarge { state, action });
+            return Err(FileError::NumbersTooLarge {
+                state,
+                action,
+                bits: self.0,
+            });
         }
         Ok(())
     }

@@ -126,6 +126,19 @@ impl StochasticProblem {
         model: NoiseModel,
         gamma: &Predictability,
     ) -> Result<Self, StochasticError> {
+        // Refused before any probability is formed: every state with moves has the outcome
+        // `γ` (commanded), so its common denominator is a multiple of `γ`'s, and the check of
+        // `Self::build` certainly fails at the first such state when `γ`'s alone is too large
+        // (its numerator is no larger: `γ ≤ 1`).
+        if gamma.value().denom() > &BigInt::from(MAX_DENOMINATOR) {
+            if let Some(state) = (0..problem.states()).find(|&x| !problem.moves(x).is_empty()) {
+                return Err(StochasticError::GammaDenominator {
+                    gamma: super::short_text(gamma.value()),
+                    state,
+                    moves: problem.moves(state).len(),
+                });
+            }
+        }
         let mut actions = Vec::with_capacity(problem.states());
         let moves_total = (0..problem.states()).map(|x| problem.moves(x).len()).sum();
         let mut commanded = Vec::with_capacity(moves_total);

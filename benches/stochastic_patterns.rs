@@ -13,7 +13,10 @@
 //! truecost objective on the file's problem (`solve --objective truecost`: the optimum, the
 //! success probabilities over its optimal actions and the reported policy's steps; target twice
 //! the optimum's), and `texts` the optimum with every state's exact value printed (what `solve
-//! --format json` writes; target twice the optimum's).
+//! --format json` writes; target twice the optimum's). `reduce` times only the reduction of
+//! every state's value to lowest terms (`Optimum::cost_to_go_all`, after an untimed solve;
+//! target a tenth of the optimum's), and prints beside it, in the `bits` column's place, the
+//! seconds of reducing each value alone by one gcd with the common denominator.
 //!
 //! `cargo bench --bench stochastic_patterns` runs every row (about an hour);
 //! `cargo bench --bench stochastic_patterns -- 50` only the 50×50 rows, `-- ties` only one
@@ -41,7 +44,9 @@ fn main() {
         for pattern in GridPattern::ALL {
             for gamma in ["0.99", "0.999"] {
                 for noise in [NoiseModel::Paper, NoiseModel::Reference] {
-                    for source in ["grid", "file", "reach", "pmax", "truecost", "texts"] {
+                    for source in [
+                        "grid", "file", "reach", "pmax", "truecost", "texts", "reduce",
+                    ] {
                         let label = format!(
                             "{side}x{side}/{}/{gamma}/{}/{source}",
                             pattern.name(),
@@ -77,6 +82,9 @@ fn row(
             ProblemFile::Deterministic(_) => unreachable!("the file lists outcomes"),
         }
     };
+    if label.ends_with("/reduce") {
+        return reduce_row(label, &problem, target / 10.0);
+    }
     let start = Instant::now();
     let (stats, target) = if label.ends_with("/reach") {
         let model = Model::from_problem(problem, label.to_string());
@@ -108,4 +116,25 @@ fn row(
             "-", "-", "-", "-"
         ),
     }
+}
+
+/// The `reduce` row: the batched reduction of every state's value against reducing each value
+/// alone (module docs); both must give the same values.
+fn reduce_row(label: &str, problem: &StochasticProblem, target: f64) {
+    let opt = optimum(problem).expect("solvable");
+    let start = Instant::now();
+    let batched = opt.cost_to_go_all();
+    let seconds = start.elapsed().as_secs_f64();
+    let start = Instant::now();
+    let alone: Vec<_> = (0..batched.len()).map(|x| opt.cost_to_go(x)).collect();
+    let alone_seconds = start.elapsed().as_secs_f64();
+    assert!(
+        batched == alone.as_slice(),
+        "{label}: the reductions differ"
+    );
+    let verdict = if seconds <= target { "ok" } else { "OVER" };
+    println!(
+        "{label:<46} {seconds:>9.2} {:>6} {:>8} {:>7} {alone_seconds:>7.2}  {verdict}",
+        opt.stats.exact_iterations, opt.stats.lifting_steps, opt.stats.refinement_rounds,
+    );
 }

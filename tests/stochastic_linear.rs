@@ -378,10 +378,10 @@ fn an_f64_singular_estimate_falls_back_to_the_hadamard_bound() {
     );
 }
 
-/// `reduced_all` (one batched gcd through the product of the numerators modulo `d`) gives, for
-/// every numerator, the same lowest terms as `num-rational`'s own reduction, on denominators
-/// sharing small and large factors with some numerators, zero and negative numerators, and
-/// numerators beyond `d²` (the plain division path).
+/// `reduced_all` (shared factors tried first, the rest batched through a product modulo each
+/// reduced denominator) gives, for every numerator, the same lowest terms as `num-rational`'s
+/// own reduction, on denominators sharing small and large factors with some numerators, zero
+/// and negative numerators, and numerators beyond `d²` (the plain division path).
 #[test]
 fn batched_reduction_agrees_with_reducing_each_fraction() {
     use num_rational::BigRational;
@@ -460,6 +460,60 @@ fn a_factor_missing_from_the_probes_denominators_is_found() {
             let got =
                 num_rational::BigRational::new(z.numerators[j].clone(), z.denominator.clone());
             assert_eq!(&got, e, "{n}: unknown {j}");
+        }
+    }
+}
+
+/// A number from 32-bit limbs, most significant first (`1` when there are none).
+fn from_limbs(limbs: &[u32]) -> BigInt {
+    limbs
+        .iter()
+        .fold(BigInt::from(1u8), |x, &l| (x << 32) + BigInt::from(l))
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+
+    /// Values sharing a few reduced denominators, as a policy evaluation's do: `d = K·L` with
+    /// `L = 2³·3²·5·7·11·13`, each numerator `K·s·m` for a divisor `s` of `L` (so the value is
+    /// `m/(L/s)`, reduced further when `m` shares a factor with `L/s`), with zero, negative,
+    /// `d`-coprime and `d`-multiple numerators among them. `reduced_all` must give exactly
+    /// `num-rational`'s lowest terms for each, whatever order the shared factors are met in.
+    #[test]
+    fn batched_reduction_of_shared_denominators_is_num_s_reduction(
+        k_limbs in proptest::collection::vec(proptest::prelude::any::<u32>(), 0..6),
+        picks in proptest::collection::vec(
+            (0usize..12, proptest::collection::vec(proptest::prelude::any::<u32>(), 0..4), 0u8..6),
+            1..40,
+        ),
+    ) {
+        use num_rational::BigRational;
+        use truecost::algebra::linear::reduced_all;
+        let big_l = BigInt::from(8u32 * 9 * 5 * 7 * 11 * 13);
+        let divisors = [1u32, 2, 3, 4, 6, 8, 12, 72, 35, 143, 5 * 7 * 11 * 13, 8 * 9 * 5 * 7 * 11 * 13];
+        let k = from_limbs(&k_limbs);
+        let d = &k * &big_l;
+        let numerators: Vec<BigInt> = picks
+            .iter()
+            .map(|(s, m_limbs, kind)| {
+                let m = from_limbs(m_limbs);
+                let shared = &k * BigInt::from(divisors[*s]) * &m;
+                match kind {
+                    0 => BigInt::from(0u8),
+                    1 => -shared,
+                    2 => &m * BigInt::from(17u8) + BigInt::from(1u8),
+                    3 => &d * &m,
+                    _ => shared,
+                }
+            })
+            .collect();
+        let refs: Vec<&BigInt> = numerators.iter().collect();
+        let batched = reduced_all(&refs, &d);
+        proptest::prop_assert_eq!(batched.len(), numerators.len());
+        for (n, r) in numerators.iter().zip(&batched) {
+            let expected = BigRational::new(n.clone(), d.clone());
+            proptest::prop_assert_eq!(r.numer(), expected.numer(), "{}/{}", n, d);
+            proptest::prop_assert_eq!(r.denom(), expected.denom(), "{}/{}", n, d);
         }
     }
 }

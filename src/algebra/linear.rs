@@ -636,20 +636,23 @@ fn divided(n: &BigInt, un: &UBig, d: &BigInt, ud: &UBig, g: &UBig) -> crate::val
 /// `nᵢ/d` in lowest terms for many numerators over one denominator `d > 0`, equal to
 /// [`reduced`] of each.
 ///
-/// Every `gᵢ = gcd(nᵢ, d)` divides `G = gcd(d, Πᵢ nᵢ)` (over the non-zero `nᵢ`), and `G | d`, so
-/// `gᵢ = gcd(nᵢ mod G, G)`. `Π nᵢ mod d` costs one multiplication and one Barrett reduction a
-/// numerator (in parallel over chunks), then a single gcd of numbers of `d`'s size; the
-/// per-numerator gcds are then with `G`, which on the value functions of policy evaluation
-/// is a few bits (the reduced denominators differ from `d` by small factors). A gcd of two
-/// numbers of 10⁵ bits per numerator, as [`reduced`] does, dominated printing a 100×100 grid.
+/// The values of a policy evaluation share few reduced denominators `qⱼ = d/gⱼ`. Each
+/// numerator is first tried against the common factors `gⱼ ≠ 1` already found (most used
+/// first): when `gⱼ | nᵢ` (one exact division with a short quotient), `gcd(nᵢ, d) =
+/// gⱼ·gcd(nᵢ/gⱼ, qⱼ)`. Only a numerator no `gⱼ` divides costs a gcd with `d`, which adds its
+/// factor to the list. The remaining gcds `gcd(mᵢ, qⱼ)` (`mᵢ = nᵢ/gⱼ`, and `mᵢ = nᵢ`, `q = d`
+/// for the numerators no factor divides) are batched per `qⱼ`: each divides `hⱼ = gcd(qⱼ,
+/// Πᵢ mᵢ mod qⱼ)`, one gcd of numbers of `d`'s size, so `gcd(mᵢ, qⱼ) = gcd(mᵢ mod hⱼ, hⱼ)`,
+/// and `hⱼ = 1` (every `mᵢ/qⱼ` already in lowest terms) is the usual case. A gcd of two
+/// numbers of 10⁵ bits per numerator dominated printing a 100×100 grid.
 ///
 /// ```
 /// use num_bigint::BigInt;
 /// use truecost::algebra::linear::reduced_all;
-/// let n: Vec<BigInt> = [-6, 0, 5, 12].into_iter().map(BigInt::from).collect();
-/// let r = reduced_all(&n.iter().collect::<Vec<_>>(), &BigInt::from(4));
+/// let n: Vec<BigInt> = [-6, 0, 5, 12, 18, -9, 7].into_iter().map(BigInt::from).collect();
+/// let r = reduced_all(&n.iter().collect::<Vec<_>>(), &BigInt::from(36));
 /// let text: Vec<String> = r.iter().map(|v| v.to_string()).collect();
-/// assert_eq!(text, ["-3/2", "0", "5/4", "3"]);
+/// assert_eq!(text, ["-1/6", "0", "5/36", "1/3", "1/2", "-1/4", "7/36"]);
 /// ```
 pub fn reduced_all(numerators: &[&BigInt], d: &BigInt) -> Vec<crate::value::Rational> {
     use rayon::prelude::*;
@@ -658,45 +661,99 @@ pub fn reduced_all(numerators: &[&BigInt], d: &BigInt) -> Vec<crate::value::Rati
         "reduced_all: the denominator must be positive"
     );
     let ud = magnitude(d);
-    let common = if ud == UBig::ONE {
-        UBig::ONE
-    } else {
-        let barrett = Barrett::new(&ud);
-        let chunk = numerators
-            .len()
-            .div_ceil(2 * rayon::current_num_threads())
-            .max(1);
-        let product = numerators
-            .par_chunks(chunk)
-            .map(|part| {
-                let mut acc = UBig::ONE;
-                for n in part.iter().filter(|n| !n.is_zero()) {
-                    let un = magnitude(n);
-                    // Barrett needs `un < d²`; numerators are far below (|z| ≪ d).
-                    let un = if un.bit_len() + 2 <= 2 * ud.bit_len() {
-                        barrett.reduce(un)
-                    } else {
-                        un % &ud
-                    };
-                    acc = barrett.reduce(acc * un);
-                }
-                acc
-            })
-            .reduce(|| UBig::ONE, |a, b| barrett.reduce(a * b));
-        (&ud).gcd(&product)
-    };
+    let chunk = numerators
+        .len()
+        .div_ceil(2 * rayon::current_num_threads())
+        .max(1);
     numerators
-        .par_iter()
-        .map(|&n| {
+        .par_chunks(chunk)
+        .flat_map_iter(|part| reduced_chunk(part, d, &ud))
+        .collect()
+}
+
+/// [`reduced_all`] of one run of numerators, with its own list of shared factors `gⱼ | d`
+/// (`gⱼ ≠ 1`; index 0 stands for `g = 1`, `q = d`).
+fn reduced_chunk(part: &[&BigInt], d: &BigInt, ud: &UBig) -> Vec<crate::value::Rational> {
+    let mut g = vec![UBig::ONE];
+    let mut uses = vec![0usize];
+    // Indices into `g` (never 0) in the order they are tried.
+    let mut order: Vec<usize> = Vec::new();
+    // Per numerator: `None` for 0, else its factor index `j` and `mᵢ = |nᵢ|/gⱼ`.
+    let pending: Vec<Option<(usize, UBig)>> = part
+        .iter()
+        .map(|n| {
             if n.is_zero() {
-                return crate::value::Rational::new_raw(BigInt::zero(), BigInt::one());
-            }
-            if common == UBig::ONE {
-                return crate::value::Rational::new_raw(n.clone(), d.clone());
+                return None;
             }
             let un = magnitude(n);
-            let g = (&un % &common).gcd(&common);
-            divided(n, &un, d, &ud, &g)
+            for k in 0..order.len() {
+                let j = order[k];
+                let (m, r) = (&un).div_rem(&g[j]);
+                if r.is_zero() {
+                    uses[j] += 1;
+                    if k > 0 && uses[j] > uses[order[k - 1]] {
+                        order.swap(k, k - 1);
+                    }
+                    return Some((j, m));
+                }
+            }
+            let common = (&un).gcd(ud);
+            if common == UBig::ONE {
+                return Some((0, un));
+            }
+            let m = &un / &common;
+            g.push(common);
+            uses.push(1);
+            order.push(g.len() - 1);
+            Some((g.len() - 1, m))
+        })
+        .collect();
+    // `h[j] = gcd(qⱼ, Π mᵢ mod qⱼ)` over the numerators with factor `j`.
+    let q: Vec<UBig> = g.iter().map(|gj| ud / gj).collect();
+    let h: Vec<UBig> = (0..g.len())
+        .map(|j| {
+            let mut members = pending.iter().flatten().filter(|(k, _)| *k == j).peekable();
+            if members.peek().is_none() || q[j] == UBig::ONE {
+                return UBig::ONE;
+            }
+            let barrett = Barrett::new(&q[j]);
+            let mut acc = UBig::ONE;
+            for (_, m) in members {
+                // Barrett needs its argument below `q²`.
+                let m = if m.bit_len() + 2 <= 2 * q[j].bit_len() {
+                    barrett.reduce(m.clone())
+                } else {
+                    m % &q[j]
+                };
+                acc = barrett.reduce(acc * m);
+            }
+            (&q[j]).gcd(&acc)
+        })
+        .collect();
+    part.iter()
+        .zip(pending)
+        .map(|(n, p)| match p {
+            None => crate::value::Rational::new_raw(BigInt::zero(), BigInt::one()),
+            Some((j, m)) => {
+                let extra = if h[j] == UBig::ONE {
+                    UBig::ONE
+                } else {
+                    (&m % &h[j]).gcd(&h[j])
+                };
+                let (m, qj) = if extra == UBig::ONE {
+                    (m, q[j].clone())
+                } else {
+                    (m / &extra, &q[j] / &extra)
+                };
+                let rn = from_ubig(&m);
+                let rn = if n < &&BigInt::zero() { -rn } else { rn };
+                let rd = if j == 0 && extra == UBig::ONE {
+                    d.clone()
+                } else {
+                    from_ubig(&qj)
+                };
+                crate::value::Rational::new_raw(rn, rd)
+            }
         })
         .collect()
 }

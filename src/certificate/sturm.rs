@@ -644,7 +644,7 @@ mod tests {
             }
             roots.sort();
             roots.dedup();
-            let mut ends = vec![
+            let mut ends = [
                 Rational::new(draw.int(-30, 30).into(), draw.int(1, 12).into()),
                 Rational::new(draw.int(-30, 30).into(), draw.int(1, 12).into()),
             ];

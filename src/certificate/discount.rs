@@ -71,6 +71,16 @@
 //! right end that is a root of `S` is taken off); in each bracket, `S` must have no root or
 //! exactly one that is the breakpoint itself (a root of `gcd(S, m)` in the bracket), so none
 //! on the interval's side of it. A bracket too wide for that is refused: the writer narrows it.
+//! Before any of this, Descartes' rule of signs on `(lo_i, hi_{i+1})`, which holds the open
+//! interval, settles the common case: a bound of 0 means no root there at all. The counts
+//! themselves are [`Roots::count`] (Descartes' rule where conclusive, Sturm's theorem where
+//! not), and `p(β) = 0` is decided without a gcd when Descartes' rule finds no root of `p` in
+//! the bracket.
+//!
+//! The advantage numerators are computed in integers: each listed polynomial is written
+//! `P / L` with `P` integral and `L > 0`, and `A_{x,a}` is multiplied by the (positive)
+//! product of the `L` of its denominators and common denominator of its scalars, which
+//! changes neither its roots nor its signs.
 
 use std::cmp::Ordering;
 
@@ -85,7 +95,7 @@ use super::format::{
 };
 use super::mdp::{Mdp, CANONICAL_FORMAT};
 use super::sha256::sha256_hex;
-use super::sturm::{self, sign_at, Sturm};
+use super::sturm::{self, sign_at, Roots, Sturm};
 use crate::value::Rational;
 
 /// The `objective` of a discount certificate.
@@ -501,8 +511,14 @@ impl Bracket {
         if self.exact() {
             return sign_at(p, &self.lo) == Ordering::Equal;
         }
+        // No root of `p` in the bracket at all (Descartes' rule of signs): it does not vanish.
+        if sign_at(p, &self.hi) != Ordering::Equal
+            && sturm::descartes_bound(p, &self.lo, &self.hi) == 0
+        {
+            return false;
+        }
         let g = sturm::gcd(p, &self.m);
-        sturm::degree(&g).is_some_and(|d| d > 0) && Sturm::new(&g).count(&self.lo, &self.hi) > 0
+        sturm::degree(&g).is_some_and(|d| d > 0) && Roots::new(&g).count(&self.lo, &self.hi) > 0
     }
 }
 
@@ -532,14 +548,19 @@ impl End<'_> {
 /// Whether the polynomial `p` (not zero) has no root in the open interval between `left` and
 /// `right` (module docs); `Err` names the breakpoint whose bracket is too wide, or none.
 fn no_root_between(p: &[BigInt], left: End<'_>, right: End<'_>) -> Result<(), Option<usize>> {
-    let s = Sturm::new(p);
-    let part = s.square_free_part();
+    // No root from the left end's bracket to the right end's (Descartes' rule of signs): none
+    // in the interval, which lies inside.
+    if sturm::descartes_bound(p, left.lo(), right.hi()) == 0 {
+        return Ok(());
+    }
+    // `p`'s distinct roots are those of its square-free part, and the two vanish together.
+    let s = Roots::new(p);
     // In a bracket: no root, or the breakpoint only.
     let bracket_side = |end: End<'_>| -> Result<(), Option<usize>> {
         match end {
             End::Breakpoint(k, b) if !b.exact() => match s.count(&b.lo, &b.hi) {
                 0 => Ok(()),
-                1 if b.vanishes(part) => Ok(()),
+                1 if b.vanishes(p) => Ok(()),
                 _ => Err(Some(k)),
             },
             _ => Ok(()),
@@ -552,7 +573,7 @@ fn no_root_between(p: &[BigInt], left: End<'_>, right: End<'_>) -> Result<(), Op
         End::Point(_) => true,
         End::Breakpoint(_, br) => br.exact(),
     };
-    if right_exact && sign_at(part, b) == Ordering::Equal {
+    if right_exact && sign_at(p, b) == Ordering::Equal {
         middle -= 1;
     }
     if middle > 0 {
@@ -561,17 +582,25 @@ fn no_root_between(p: &[BigInt], left: End<'_>, right: End<'_>) -> Result<(), Op
     bracket_side(right)
 }
 
-/// `p` times a positive integer, with integer coefficients and no trailing zero.
-fn integer_form(p: &[Rational]) -> Vec<BigInt> {
+/// `p = P / L` with `P` integral and `L > 0` the least common denominator: `(P, L)`.
+fn scaled_form(p: &[Rational]) -> (Vec<BigInt>, BigInt) {
     let l = p.iter().fold(BigInt::one(), |l, c| l.lcm(c.denom()));
-    sturm::trim(p.iter().map(|c| c.numer() * (&l / c.denom())).collect())
+    let q = sturm::trim(p.iter().map(|c| c.numer() * (&l / c.denom())).collect());
+    (q, l)
 }
 
-fn mul(a: &[Rational], b: &[Rational]) -> Vec<Rational> {
+/// The product of integer polynomials.
+fn mul_int(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
     if a.is_empty() || b.is_empty() {
         return Vec::new();
     }
-    let mut c = vec![Rational::zero(); a.len() + b.len() - 1];
+    if a.len() == 1 && a[0].is_one() {
+        return b.to_vec();
+    }
+    if b.len() == 1 && b[0].is_one() {
+        return a.to_vec();
+    }
+    let mut c = vec![BigInt::zero(); a.len() + b.len() - 1];
     for (i, x) in a.iter().enumerate() {
         if x.is_zero() {
             continue;
@@ -583,14 +612,26 @@ fn mul(a: &[Rational], b: &[Rational]) -> Vec<Rational> {
     c
 }
 
-/// `acc += w · α^shift · f`.
-fn add_scaled(acc: &mut Vec<Rational>, f: &[Rational], w: &Rational, shift: usize) {
-    if acc.len() < f.len() + shift {
-        acc.resize(f.len() + shift, Rational::zero());
+/// `Σ w · α^shift · f` over the terms, times the least common denominator of the `w` (a
+/// positive integer): an integer polynomial with no trailing zero.
+fn combine(terms: &[(Rational, usize, Vec<BigInt>)]) -> Vec<BigInt> {
+    let l = terms
+        .iter()
+        .fold(BigInt::one(), |l, (w, _, _)| l.lcm(w.denom()));
+    let mut acc: Vec<BigInt> = Vec::new();
+    for (w, shift, f) in terms {
+        if w.is_zero() || f.is_empty() {
+            continue;
+        }
+        let w = w.numer() * (&l / w.denom());
+        if acc.len() < f.len() + shift {
+            acc.resize(f.len() + shift, BigInt::zero());
+        }
+        for (k, c) in f.iter().enumerate() {
+            acc[k + shift] += &w * c;
+        }
     }
-    for (k, c) in f.iter().enumerate() {
-        acc[k + shift] += w * c;
-    }
+    sturm::trim(acc)
 }
 
 struct Failure {
@@ -774,7 +815,7 @@ fn brackets(c: &DiscountCertificate, tally: &mut Tally) -> Result<Vec<Bracket>, 
     let (zero, one) = (Rational::zero(), Rational::one());
     let mut out: Vec<Bracket> = Vec::new();
     for (k, b) in c.breakpoints.iter().enumerate() {
-        let m = sturm::primitive(integer_form(&b.polynomial));
+        let m = sturm::primitive(scaled_form(&b.polynomial).0);
         let bad = |detail: String| fail("polynomial", detail).at_breakpoint(k);
         if sturm::degree(&m).unwrap_or(0) == 0 {
             return Err(bad("the polynomial is constant".into()));
@@ -869,7 +910,7 @@ fn interval(
         )));
     }
     tally.add("sample", 1);
-    let dens: Vec<Vec<BigInt>> = t.denominators.iter().map(|d| integer_form(d)).collect();
+    let dens: Vec<Vec<BigInt>> = t.denominators.iter().map(|d| scaled_form(d).0).collect();
     for (k, d) in dens.iter().enumerate() {
         if d.is_empty() {
             return Err(here(fail(
@@ -945,8 +986,17 @@ fn interval(
         }
     }
     tally.add("policy", n);
-    // The advantage numerators.
+    // The advantage numerators, in integers: each listed polynomial is `P / L` with `P`
+    // integral and `L > 0` ([`scaled_form`]), and `A_{x,a}` is multiplied by the product of
+    // the `L` of its denominators and by the common denominator of the scalars, both positive.
     let value = |y: usize| t.values[y].as_ref().expect("checked: a value");
+    let den_forms: Vec<(Vec<BigInt>, BigInt)> =
+        t.denominators.iter().map(|d| scaled_form(d)).collect();
+    let num_forms: Vec<Option<(Vec<BigInt>, BigInt)>> = t
+        .values
+        .iter()
+        .map(|v| v.as_ref().map(|v| scaled_form(&v.numerator)))
+        .collect();
     let mut advantages: Advantages = vec![Vec::new(); n];
     for x in (0..n).filter(|&x| !mdp.terminal[x]) {
         for a in &mdp.actions[x] {
@@ -965,34 +1015,33 @@ fn interval(
                 .at_interval(i)
                 .at_state(x));
             }
-            let except = |k: usize| -> Vec<Rational> {
+            // Π_{j ≠ k} P_j over the involved denominators, and L_k.
+            let except = |k: usize| -> Vec<BigInt> {
                 involved
                     .iter()
                     .filter(|&&j| j != k)
-                    .fold(vec![Rational::one()], |acc, &j| {
-                        mul(&acc, &t.denominators[j])
+                    .fold(vec![BigInt::one()], |acc, &j| {
+                        mul_int(&acc, &den_forms[j].0)
                     })
             };
-            let all = mul(&except(usize::MAX), &[Rational::one()]);
-            let mut numerator: Vec<Rational> = Vec::new();
-            add_scaled(&mut numerator, &all, &a.reward, 0);
+            let term = |y: usize| -> (Rational, Vec<BigInt>) {
+                let (pn, ln) = num_forms[y].as_ref().expect("checked: a value");
+                let k = value(y).denominator;
+                (
+                    Rational::new(den_forms[k].1.clone(), ln.clone()),
+                    mul_int(pn, &except(k)),
+                )
+            };
+            // r E + α Σ_y p_y V_y E − V_x E, times Π L_j: terms (scalar, α power, polynomial).
+            let mut terms: Vec<(Rational, usize, Vec<BigInt>)> =
+                vec![(a.reward.clone(), 0, except(usize::MAX))];
             for (y, p) in a.outcomes.iter().filter(|(y, _)| !mdp.terminal[*y]) {
-                let v = value(*y);
-                add_scaled(
-                    &mut numerator,
-                    &mul(&v.numerator, &except(v.denominator)),
-                    p,
-                    1,
-                );
+                let (w, f) = term(*y);
+                terms.push((p * w, 1, f));
             }
-            let v = value(x);
-            add_scaled(
-                &mut numerator,
-                &mul(&v.numerator, &except(v.denominator)),
-                &-Rational::one(),
-                0,
-            );
-            advantages[x].push(integer_form(&numerator));
+            let (w, f) = term(x);
+            terms.push((-w, 0, f));
+            advantages[x].push(combine(&terms));
         }
     }
     for x in (0..n).filter(|&x| !mdp.terminal[x]) {
@@ -1059,7 +1108,7 @@ fn breakpoint(
     let n = mdp.states();
     let t = &c.intervals[k];
     for (j, d) in t.denominators.iter().enumerate() {
-        if b.vanishes(&integer_form(d)) {
+        if b.vanishes(&scaled_form(d).0) {
             return Err(fail(
                 "continuity",
                 format!("denominator {j} of interval {k} vanishes at the breakpoint"),

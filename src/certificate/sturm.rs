@@ -13,6 +13,14 @@
 //! `V`: the remainders here are pseudo-remainders made positive multiples of the remainder,
 //! divided by their content, so the arithmetic stays in integers.
 //!
+//! **Descartes' rule of signs** ([`descartes_bound`]) answers most questions without a chain:
+//! the number of roots of `p` in `(a, b)`, with multiplicity, is the number of sign changes
+//! of the coefficients of `(1 + x)^d p((a + b x) / (1 + x))` minus an even number, so a count
+//! of 0 or 1 is exact; [`Roots`] uses it and builds the Sturm chain only when the count is 2
+//! or more. The rule's transform costs two Taylor shifts (`O(d²)` additions and
+//! multiplications by the ends' numerators); a chain costs `d` pseudo-divisions with
+//! coefficients that grow with each, and gcds to keep them primitive.
+//!
 //! A polynomial that is not square-free has the chain ending in `g = gcd(p, p')` (up to a
 //! constant); dividing every element by `g` gives the Sturm chain of the square-free part
 //! `p / g`, which has the same roots.
@@ -176,6 +184,137 @@ pub fn gcd(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
     x
 }
 
+/// Descartes' rule of signs on the open interval `(a, b)` (`a < b`): the number of sign
+/// changes of the coefficients of `q(x) = (1 + x)^d p((a + b x) / (1 + x))` (zeros skipped),
+/// `d` the degree of `p`. `x ↦ (a + b x) / (1 + x)` maps `(0, ∞)` one to one onto `(a, b)`,
+/// so `q`'s positive roots are `p`'s roots in `(a, b)` with their multiplicities, and by the
+/// rule of signs their number is the returned count minus an even number: 0 means no root
+/// in `(a, b)`, 1 exactly one (a simple one). Computed in integers: with `a = A/D`,
+/// `b = B/D`, `q` is `D^d p((A + (B − A) y) / D)` (a Taylor shift by `A`, then `y^i` scaled by
+/// `(B − A)^i`), reversed (`y = 1/z`), then shifted by one (`z = 1 + x`).
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use truecost::certificate::sturm::descartes_bound;
+/// let q = |t: &str| t.parse().unwrap();
+/// // 6x² − 5x + 1 = (2x − 1)(3x − 1): both roots in (0, 1), none in (0, 3/10), one in
+/// // (2/5, 1).
+/// let p: Vec<BigInt> = [1, -5, 6].into_iter().map(BigInt::from).collect();
+/// assert_eq!(descartes_bound(&p, &q("0"), &q("1")), 2);
+/// assert_eq!(descartes_bound(&p, &q("0"), &q("3/10")), 0);
+/// assert_eq!(descartes_bound(&p, &q("2/5"), &q("1")), 1);
+/// ```
+pub fn descartes_bound(p: &[BigInt], a: &Rational, b: &Rational) -> usize {
+    assert!(a < b, "an open interval (a, b) with a < b");
+    let p = trim(p.to_vec());
+    let Some(d) = degree(&p) else {
+        return 0;
+    };
+    let den = a.denom().lcm(b.denom());
+    let lo = a.numer() * (&den / a.denom());
+    let width = b.numer() * (&den / b.denom()) - &lo;
+    // D^d p(z / D) = Σ c_i D^(d−i) z^i.
+    let mut q = p;
+    let mut power = BigInt::one();
+    for c in q.iter_mut().rev() {
+        *c *= &power;
+        power *= &den;
+    }
+    taylor_shift(&mut q, &lo);
+    let mut power = BigInt::one();
+    for c in q.iter_mut() {
+        *c *= &power;
+        power *= &width;
+    }
+    q.reverse();
+    taylor_shift(&mut q, &BigInt::one());
+    debug_assert_eq!(q.len(), d + 1);
+    let mut last = num_bigint::Sign::NoSign;
+    let mut changes = 0;
+    for c in &q {
+        let s = c.sign();
+        if s == num_bigint::Sign::NoSign {
+            continue;
+        }
+        if last != num_bigint::Sign::NoSign && s != last {
+            changes += 1;
+        }
+        last = s;
+    }
+    changes
+}
+
+/// `p(x)` replaced by `p(x + t)` in place: `p_j += t·p_(j+1)` for `j` from the top down,
+/// once per degree (Horner's rule, the classical Taylor shift).
+fn taylor_shift(p: &mut [BigInt], t: &BigInt) {
+    if t.is_zero() {
+        return;
+    }
+    let n = p.len();
+    for i in 0..n.saturating_sub(1) {
+        for j in (i..n - 1).rev() {
+            let next = if t.is_one() {
+                p[j + 1].clone()
+            } else {
+                &p[j + 1] * t
+            };
+            p[j] += next;
+        }
+    }
+}
+
+/// Exact counts of the distinct real roots of one non-zero polynomial on half-open
+/// intervals: Descartes' rule of signs ([`descartes_bound`]) where it is conclusive (a bound
+/// of 0 or 1 is the exact number of roots in the open interval), the Sturm chain (built on
+/// first use) where it is not.
+#[derive(Debug)]
+pub struct Roots<'a> {
+    p: &'a [BigInt],
+    chain: std::cell::OnceCell<Sturm>,
+}
+
+impl<'a> Roots<'a> {
+    /// The counter of `p` (not zero).
+    pub fn new(p: &'a [BigInt]) -> Roots<'a> {
+        assert!(
+            p.iter().any(|c| !c.is_zero()),
+            "the roots of a non-zero polynomial"
+        );
+        Roots {
+            p,
+            chain: std::cell::OnceCell::new(),
+        }
+    }
+
+    /// The number of distinct real roots in `(a, b]` (`a < b`), as [`Sturm::count`]: those in
+    /// `(a, b)` (Descartes' bound when 0 or 1, else Sturm's count minus a root at `b`), plus
+    /// one if `p(b) = 0`.
+    ///
+    /// ```
+    /// use num_bigint::BigInt;
+    /// use truecost::certificate::sturm::Roots;
+    /// let q = |t: &str| t.parse().unwrap();
+    /// // 6x² − 5x + 1 = (2x − 1)(3x − 1): roots 1/3 and 1/2.
+    /// let p: Vec<BigInt> = [1, -5, 6].into_iter().map(BigInt::from).collect();
+    /// let r = Roots::new(&p);
+    /// assert_eq!(r.count(&q("0"), &q("1")), 2); // Descartes' bound 2: Sturm's count
+    /// assert_eq!(r.count(&q("0"), &q("1/3")), 1); // the root at the right end
+    /// assert_eq!(r.count(&q("2/5"), &q("1")), 1); // Descartes' bound 1
+    /// ```
+    pub fn count(&self, a: &Rational, b: &Rational) -> usize {
+        let at_b = usize::from(sign_at(self.p, b) == Ordering::Equal);
+        match descartes_bound(self.p, a, b) {
+            n @ (0 | 1) => n + at_b,
+            _ => self.chain().count(a, b),
+        }
+    }
+
+    /// The Sturm chain, built on first use.
+    pub fn chain(&self) -> &Sturm {
+        self.chain.get_or_init(|| Sturm::new(self.p))
+    }
+}
+
 /// The Sturm chain of the square-free part of a non-zero polynomial (module docs).
 #[derive(Clone, Debug)]
 pub struct Sturm {
@@ -313,6 +452,7 @@ mod tests {
             (poly(&[-2, 0, 1]), q("-2"), q("2"), 2),
             (poly(&[-2, 0, 1]), q("7/5"), q("3/2"), 1),
             (poly(&[-2, 0, 1]), q("3/2"), q("2"), 0),
+            (poly(&[-2, 0, 1]), q("0"), q("1"), 0),
             // x² + 1: no real root.
             (poly(&[1, 0, 1]), q("-10"), q("10"), 0),
             // (2x − 1)(3x − 1) = 6x² − 5x + 1: roots 1/3, 1/2; the right end counts, the left
@@ -402,6 +542,158 @@ mod tests {
             }
         };
         assert!(run(open).is_err());
+    }
+
+    #[test]
+    fn descartes_and_sturm_counts_match_the_hand_derived_roots() {
+        run(|p, a, b| Roots::new(p).count(a, b)).unwrap();
+    }
+
+    /// Descartes' bounds derived by hand: `q(x) = (1 + x)^d p((a + b x)/(1 + x))`.
+    #[test]
+    fn descartes_bounds_by_hand() {
+        // 6x² − 5x + 1 on (0, 1): q = 6x² − 5x(1 + x) + (1 + x)² = 2x² − 3x + 1, two changes.
+        assert_eq!(descartes_bound(&poly(&[1, -5, 6]), &q("0"), &q("1")), 2);
+        // On (0, 3/10): q = 6(3x/10)² − 5(3x/10)(1 + x) + (1 + x)² = (4x² + 50x + 100)/100.
+        assert_eq!(descartes_bound(&poly(&[1, -5, 6]), &q("0"), &q("3/10")), 0);
+        // On (2/5, 1): q = 6(2/5 + x)² − 5(2/5 + x)(1 + x) + (1 + x)² = 2x² − x/5 − 1/25.
+        assert_eq!(descartes_bound(&poly(&[1, -5, 6]), &q("2/5"), &q("1")), 1);
+        // x² + 1 on (−10, 10): q = 100(x − 1)² + (1 + x)² = 101x² − 198x + 101, two changes
+        // for no real root: inconclusive, so the count falls back to Sturm.
+        assert_eq!(descartes_bound(&poly(&[1, 0, 1]), &q("-10"), &q("10")), 2);
+        assert_eq!(Roots::new(&poly(&[1, 0, 1])).count(&q("-10"), &q("10")), 0);
+        // x − 1/2 on (1/2, 1): q = (1/2 + x) − (1 + x)/2 = x/2, no change (the root is an end).
+        assert_eq!(descartes_bound(&poly(&[-1, 2]), &q("1/2"), &q("1")), 0);
+        // A constant: none.
+        assert_eq!(descartes_bound(&poly(&[-7]), &q("-1"), &q("1")), 0);
+    }
+
+    /// Planted bugs in the fast count are caught by the hand-derived cases: Descartes' bound
+    /// taken as the count whatever it is, the root at the right end forgotten, and the rule
+    /// applied to `p` itself (its positive roots) instead of the transformed polynomial.
+    #[test]
+    fn planted_bugs_in_the_descartes_count_are_caught() {
+        let bound_as_count = |p: &[BigInt], a: &Rational, b: &Rational| {
+            descartes_bound(p, a, b) + usize::from(sign_at(p, b) == Ordering::Equal)
+        };
+        assert!(run(bound_as_count).is_err());
+        let end_forgotten =
+            |p: &[BigInt], a: &Rational, b: &Rational| match descartes_bound(p, a, b) {
+                n @ (0 | 1) => n,
+                _ => Sturm::new(p).count(a, b),
+            };
+        assert!(run(end_forgotten).is_err());
+        let untransformed = |p: &[BigInt], a: &Rational, b: &Rational| {
+            let at_b = usize::from(sign_at(p, b) == Ordering::Equal);
+            let signs: Vec<_> = p
+                .iter()
+                .filter(|c| !c.is_zero())
+                .map(|c| c.sign())
+                .collect();
+            match signs.windows(2).filter(|w| w[0] != w[1]).count() {
+                n @ (0 | 1) => n + at_b,
+                _ => Sturm::new(p).count(a, b),
+            }
+        };
+        assert!(run(untransformed).is_err());
+    }
+
+    /// A seeded generator of small integers.
+    struct Draw(rand_chacha::ChaCha8Rng);
+
+    impl Draw {
+        fn new(seed: u64) -> Draw {
+            use rand::SeedableRng;
+            Draw(rand_chacha::ChaCha8Rng::seed_from_u64(seed))
+        }
+        /// Uniform in `lo..=hi`.
+        fn int(&mut self, lo: i64, hi: i64) -> i64 {
+            use rand::Rng;
+            lo + (self.0.next_u64() % (hi - lo + 1) as u64) as i64
+        }
+    }
+
+    fn product(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
+        let mut c = vec![BigInt::zero(); a.len() + b.len() - 1];
+        for (i, x) in a.iter().enumerate() {
+            for (j, y) in b.iter().enumerate() {
+                c[i + j] += x * y;
+            }
+        }
+        c
+    }
+
+    /// Products of linear factors `k x − j` (rational roots `j/k` in `[−2, 2]`, repeats
+    /// allowed) and quadratics `x² + c`, `c > 0` (no real root), with random half-open
+    /// intervals, some ending at a root: the fast count equals the number of distinct `j/k`
+    /// in the interval, computed from the factors, and Sturm's.
+    #[test]
+    fn fast_counts_match_known_roots_and_sturm() {
+        let mut draw = Draw::new(48);
+        for _ in 0..300 {
+            let mut p = poly(&[1]);
+            let mut roots: Vec<Rational> = Vec::new();
+            for _ in 0..draw.int(0, 7) {
+                let k = draw.int(1, 9);
+                let j = draw.int(-2 * k, 2 * k);
+                p = product(&p, &poly(&[-j, k]));
+                roots.push(Rational::new(j.into(), k.into()));
+            }
+            for _ in 0..draw.int(0, 3) {
+                p = product(&p, &poly(&[draw.int(1, 50), 0, 1]));
+            }
+            roots.sort();
+            roots.dedup();
+            let mut ends = [
+                Rational::new(draw.int(-30, 30).into(), draw.int(1, 12).into()),
+                Rational::new(draw.int(-30, 30).into(), draw.int(1, 12).into()),
+            ];
+            if !roots.is_empty() && draw.int(0, 1) == 1 {
+                ends[1] = roots[draw.int(0, roots.len() as i64 - 1) as usize].clone();
+            }
+            ends.sort();
+            if ends[0] == ends[1] {
+                continue;
+            }
+            let (a, b) = (&ends[0], &ends[1]);
+            let want = roots.iter().filter(|r| a < *r && *r <= b).count();
+            assert_eq!(Roots::new(&p).count(a, b), want, "{p:?} on ({a}, {b}]");
+            assert_eq!(Sturm::new(&p).count(a, b), want, "{p:?} on ({a}, {b}]");
+        }
+    }
+
+    /// Random integer polynomials of degree up to 12 (complex roots near the interval make
+    /// Descartes' bound inconclusive at times): the fast count equals Sturm's.
+    #[test]
+    fn fast_counts_match_sturm_on_random_polynomials() {
+        let mut draw = Draw::new(5);
+        let mut inconclusive = 0;
+        for _ in 0..400 {
+            let d = draw.int(1, 12);
+            let p = trim((0..=d).map(|_| BigInt::from(draw.int(-20, 20))).collect());
+            if p.is_empty() {
+                continue;
+            }
+            let mut ends = [
+                Rational::new(draw.int(-40, 40).into(), draw.int(1, 20).into()),
+                Rational::new(draw.int(-40, 40).into(), draw.int(1, 20).into()),
+            ];
+            ends.sort();
+            if ends[0] == ends[1] {
+                continue;
+            }
+            let (a, b) = (&ends[0], &ends[1]);
+            if descartes_bound(&p, a, b) > 1 {
+                inconclusive += 1;
+            }
+            assert_eq!(
+                Roots::new(&p).count(a, b),
+                Sturm::new(&p).count(a, b),
+                "{p:?} on ({a}, {b}]"
+            );
+        }
+        // Both paths of the fast count were taken.
+        assert!(inconclusive > 20, "{inconclusive}");
     }
 
     #[test]

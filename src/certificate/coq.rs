@@ -162,7 +162,7 @@ fn index(mdp: &Mdp, c: &Certificate, x: usize) -> Option<usize> {
 
 /// The Coq term that decides `c` against `mdp`: `check m V pi rk` (with [`hints`]) or, for
 /// the discounted objective, `check_discounted m alpha V pi`; the model as a list of
-/// `(flag, [(number, [(successor, probability)])])` ([`flags_and_numbers`]), values
+/// `(flag, [(number, [(successor, probability)])])` (`flags_and_numbers`), values
 /// `Some (p # q)` or `None`, the policy `Some i` or `None`.
 pub fn coq_case(mdp: &Mdp, c: &Certificate) -> String {
     let (flags, number) = flags_and_numbers(mdp, c);

@@ -389,7 +389,8 @@ pub fn check_certificate(
     format: ReportFormat,
     coq: bool,
 ) -> Result<String, String> {
-    let text = read_certificate(certificate_path)?;
+    let text = super::env::read_certificate(certificate_path)
+        .map_err(|e| format!("cannot read the certificate: {e}"))?;
     let kind = serde_json::from_str::<serde_json::Value>(&text)
         .ok()
         .and_then(|v| {
@@ -397,18 +398,12 @@ pub fn check_certificate(
                 .and_then(|o| o.as_str().map(str::to_string))
         });
     if kind.as_deref() != Some(DISCOUNT) {
-        return super::env::check(source, problem, file, certificate_path, format, coq);
+        return super::env::check(source, problem, file, &text, format, coq);
     }
     if coq {
         return Err("--coq checks truecost and deterministic certificates; a discount certificate is checked by truecost's own checker (without --coq)".into());
     }
     check_discount_file(source.env.as_deref(), problem, file, &text, format)
-}
-
-fn read_certificate(path: &std::path::Path) -> Result<String, String> {
-    const MAX_CERTIFICATE_BYTES: u64 = 1 << 30;
-    truecost::bounded::read_text(path, MAX_CERTIFICATE_BYTES, "certificates")
-        .map_err(|e| format!("cannot read the certificate: {e}"))
 }
 
 /// Checks a discount certificate (`text`) against the problem rebuilt from the source, as

@@ -263,7 +263,7 @@ const MAX_CERTIFICATE_BYTES: u64 = 1 << 30;
 /// [`MAX_CERTIFICATE_BYTES`] bytes (reading stops one byte past it), UTF-8, and no byte JSON
 /// never holds raw (a control character other than tab, line feed and carriage return), so
 /// that a stream of random bytes or zeros is refused at its first such byte.
-fn read_certificate(path: &std::path::Path) -> Result<String, String> {
+pub(super) fn read_certificate(path: &std::path::Path) -> Result<String, String> {
     use std::io::Read;
     let shown = || truecost::echo::echo(&path.display().to_string());
     let io = |e: std::io::Error| format!("{}: {e}", shown());
@@ -319,7 +319,8 @@ fn read_certificate(path: &std::path::Path) -> Result<String, String> {
 }
 
 /// `truecost check`: re-reads the problem (`--file`, `--problem`, `--env`; the certificate's
-/// `gamma`, `noise` and `step_cost` say how it was built) and checks the certificate; with
+/// `gamma`, `noise` and `step_cost` say how it was built) and checks the certificate (`text`,
+/// read by [`read_certificate`]); with
 /// `coq`, the verified checker (`Truecost.CertificateCheck.check`, or
 /// `Truecost.CertificateDiscounted.check_discounted` for the discounted objective, extracted to
 /// OCaml) must accept it too.
@@ -327,13 +328,11 @@ pub fn check(
     source: &EnvArg,
     problem: Option<usize>,
     file: Option<&std::path::Path>,
-    certificate_path: &std::path::Path,
+    text: &str,
     format: ReportFormat,
     coq: bool,
 ) -> Result<String, String> {
-    let text = read_certificate(certificate_path)
-        .map_err(|e| format!("cannot read the certificate: {e}"))?;
-    let cert = certificate::parse(&text).map_err(|e| format!("malformed certificate: {e}"))?;
+    let cert = certificate::parse(text).map_err(|e| format!("malformed certificate: {e}"))?;
     let record = &cert.problem;
     let gamma = record
         .gamma

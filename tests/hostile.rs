@@ -4,33 +4,8 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
-
-use common::cli::{fails, fails_one_line, json, stdout, truecost};
+use common::cli::{assert_contract, fails, fails_one_line, json, stdout, truecost, write};
 use serde_json::Value;
-
-/// The line-length contract: `error: ` and at most 300 characters, no raw control character.
-fn assert_contract(err: &str) {
-    let line = err.trim_end_matches('\n');
-    assert_eq!(line.lines().count(), 1, "{err:?}");
-    let body = line.strip_prefix("error: ").expect("starts with 'error: '");
-    assert!(
-        body.chars().count() <= 300,
-        "{} characters: {body}",
-        body.len()
-    );
-    assert!(
-        !body.chars().any(char::is_control),
-        "raw control character: {body:?}"
-    );
-}
-
-/// Writes `text` as `name` in `dir`.
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p
-}
 
 /// A 4-neighbour `n × n` grid file (goal in the far corner), costs 1-4 or 1.
 fn grid_file(n: usize, varied: bool, format: Option<&str>) -> String {

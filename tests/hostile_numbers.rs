@@ -3,30 +3,13 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use common::cli::fails_one_line;
+use common::cli::{assert_contract, fails_one_line, write};
 use common::Lcg;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use truecost::value::parse_rational;
-
-/// The line contract: `error: ` and at most 300 characters, no raw control character.
-fn assert_contract(err: &str) {
-    let line = err.trim_end_matches('\n');
-    assert_eq!(line.lines().count(), 1, "{err:?}");
-    let body = line.strip_prefix("error: ").expect("starts with 'error: '");
-    assert!(body.chars().count() <= 300, "{body}");
-    assert!(!body.chars().any(char::is_control), "{body:?}");
-}
-
-/// Writes `text` as `name` in `dir`.
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p
-}
 
 /// `10^k` as an integer, by repeated multiplication (independent of the reader).
 fn ten_to(k: u64) -> BigInt {

@@ -64,3 +64,27 @@ pub fn fails<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S], code: i32)
 pub fn fails_one_line<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(args: &[S]) -> String {
     fails(args, 1)
 }
+
+/// The line contract of a refusal: `error: ` and at most 300 characters, no raw control
+/// character.
+pub fn assert_contract(err: &str) {
+    let line = err.trim_end_matches('\n');
+    assert_eq!(line.lines().count(), 1, "{err:?}");
+    let body = line.strip_prefix("error: ").expect("starts with 'error: '");
+    assert!(
+        body.chars().count() <= 300,
+        "{} characters: {body}",
+        body.len()
+    );
+    assert!(
+        !body.chars().any(char::is_control),
+        "raw control character: {body:?}"
+    );
+}
+
+/// Writes `text` as `name` in `dir`.
+pub fn write(dir: &std::path::Path, name: &str, text: &str) -> std::path::PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}

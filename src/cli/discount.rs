@@ -10,29 +10,19 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use num_bigint::BigInt;
-use num_traits::{One, Zero};
 use serde_json::json;
 
 use truecost::algebra::intervals::{point_text, set_text, DiscountSet};
-use truecost::algebra::poly::roots::{simplest_between, Root};
-use truecost::certificate::discount::{
-    check_discount, parse_discount, write_discount, BreakpointRecord, DiscountCertificate,
-    IntervalRecord, ValueRecord, DISCOUNT,
-};
-use truecost::certificate::sturm::Sturm;
+use truecost::certificate::discount::{check_discount, parse_discount, write_discount, DISCOUNT};
 use truecost::certificate::{sha256_hex, Identity};
 use truecost::echo::printable;
-use truecost::objectives::parametric::{
-    discount_breakpoints_with, witness_values, DiscountAnalysis,
-};
+use truecost::objectives::parametric::{certificate, discount_breakpoints_with, DiscountAnalysis};
 use truecost::objectives::report::{
     discount_json, discount_latex, discount_markdown, discount_text,
 };
 use truecost::objectives::{failure_set, Model, Source};
 use truecost::problems::{GridLayout, StepCost};
 use truecost::stochastic::file::{FileObjective, ProblemFile};
-use truecost::value::Rational;
 
 use super::certify::{mdp_of, write_certificate, CertifiedSource};
 use super::compare::CompareFormat;
@@ -261,17 +251,9 @@ fn breakpoints(model: &Model, d: &DiscountAnalysis, format: CompareFormat) -> St
     }
 }
 
-/// How many times the writer narrows a breakpoint's bracket (by 8 halvings) when its own
-/// check finds the bracket holding another root of an advantage or denominator.
-const MAX_NARROWINGS: usize = 64;
-
-/// The discount certificate of an analysis (`discount --certificate`): the breakpoints as
-/// polynomials with brackets, each interval's witness policy (the analysis' reported one) with
-/// its values as rational functions of `α` ([`truecost::objectives::parametric::witness_values`])
-/// and the optimal sets. The writer checks it with the checker before returning it: a bracket
-/// that also holds another root of an advantage is narrowed, and any other rejection is an
-/// error (the analysis and the checker disagree), so no certificate that `check` refuses is
-/// written.
+/// The discount certificate of an analysis (`discount --certificate`), as text: the problem's
+/// record from `source` (hashing `file_text`, the file's bytes, when there is one), then
+/// [`truecost::objectives::parametric::certificate::discount_certificate`].
 pub fn discount_certificate(
     model: &Model,
     d: &DiscountAnalysis,
@@ -287,96 +269,7 @@ pub fn discount_certificate(
         Some(text) => Identity::FileBytes(text.as_bytes()),
         None => Identity::Canonical,
     };
-    let n = model.problem.states();
-    let q = |c: &BigInt| Rational::from_integer(c.clone());
-    let ints = |p: &[BigInt]| -> Vec<Rational> { p.iter().map(q).collect() };
-    let mut intervals = Vec::with_capacity(d.intervals.len());
-    for t in &d.intervals {
-        let w = witness_values(model, &t.policy).map_err(|e| e.to_string())?;
-        let values = (0..n)
-            .map(|x| {
-                (!model.terminal[x]).then(|| ValueRecord {
-                    denominator: w.denominator_of[x],
-                    numerator: ints(&w.numerators[x]),
-                })
-            })
-            .collect();
-        intervals.push(IntervalRecord {
-            sample: Rational::zero(),
-            denominators: w.denominators.iter().map(|p| ints(p)).collect(),
-            values,
-            policy: t.policy.iter().map(|a| a.map(|a| a as u64)).collect(),
-            optimal: t.optimal.iter().map(|o| wide(o)).collect(),
-        });
-    }
-    let mut roots: Vec<Root> = d.breakpoints.iter().map(|b| b.at.clone()).collect();
-    let breakpoints: Vec<BreakpointRecord> = d
-        .breakpoints
-        .iter()
-        .enumerate()
-        .map(|(k, b)| {
-            let mut optimal: Vec<Vec<u64>> =
-                d.intervals[k].optimal.iter().map(|o| wide(o)).collect();
-            for (x, at) in &b.ties {
-                optimal[*x] = wide(at);
-            }
-            let m: Vec<BigInt> = truecost::algebra::poly::roots::integer_form(&b.at.polynomial());
-            let m = Sturm::new(&m).square_free_part().to_vec();
-            BreakpointRecord {
-                polynomial: ints(&m),
-                lo: Rational::zero(),
-                hi: Rational::zero(),
-                optimal,
-            }
-        })
-        .collect();
-    let mut c = DiscountCertificate {
-        problem,
-        states: n,
-        breakpoints,
-        intervals,
-    };
-    for _ in 0..MAX_NARROWINGS {
-        // Consecutive brackets apart, then the samples between them.
-        for k in 1..roots.len() {
-            while roots[k - 1].hi >= roots[k].lo {
-                roots[k - 1].halve();
-                roots[k].halve();
-            }
-        }
-        for (b, r) in c.breakpoints.iter_mut().zip(&roots) {
-            (b.lo, b.hi) = (r.lo.clone(), r.hi.clone());
-        }
-        for (i, t) in c.intervals.iter_mut().enumerate() {
-            let lo = i
-                .checked_sub(1)
-                .map_or_else(Rational::zero, |k| roots[k].hi.clone());
-            let hi = roots.get(i).map_or_else(Rational::one, |r| r.lo.clone());
-            t.sample = simplest_between(&lo, &hi);
-        }
-        match check_discount(&mdp, identity, &c) {
-            Ok(_) => return Ok(write_discount(&c)),
-            Err(e)
-                if matches!(e.condition, "optimality" | "denominator")
-                    && e.breakpoint.is_some() =>
-            {
-                let k = e.breakpoint.expect("a breakpoint");
-                for _ in 0..8 {
-                    roots[k].halve();
-                }
-            }
-            Err(e) => {
-                return Err(format!(
-                    "internal check failed: the discount certificate fails its own check: {e}"
-                ))
-            }
-        }
-    }
-    Err("internal check failed: the discount certificate's brackets still hold other roots after narrowing".into())
-}
-
-fn wide(o: &[usize]) -> Vec<u64> {
-    o.iter().map(|&a| a as u64).collect()
+    certificate::discount_certificate(model, d, &mdp, problem, identity).map(|c| write_discount(&c))
 }
 
 /// `truecost check`: a discount certificate ([`check_discount_file`]) or any other kind

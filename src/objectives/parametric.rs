@@ -87,6 +87,7 @@ use crate::stochastic::StochasticAction;
 use crate::value::{Extended, Rational};
 
 pub mod bounds;
+pub mod certificate;
 mod chains;
 mod closing;
 pub mod degree;

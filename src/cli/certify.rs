@@ -1,40 +1,13 @@
-//! What a certificate records of the problem it certifies, and how it is written: the model as
-//! the certificate checker reads it ([`truecost::certificate::Mdp`]) and the options that
-//! rebuild the problem, shared by `solve --certificate` on every source and by `discount
+//! What a certificate records of the problem it certifies, and how it is written: the options
+//! that rebuild the problem (the model as the checker reads it is
+//! [`truecost::objectives::Model::mdp`]), shared by `solve --certificate` on every source and by `discount
 //! --certificate`. Parsing and wiring only; the checker is [`truecost::certificate`].
 
 use clap::ValueEnum;
 
-use truecost::certificate::{sha256_hex, Mdp, MdpAction, ProblemRecord, CANONICAL_FORMAT};
-use truecost::objectives::Model;
+use truecost::certificate::{sha256_hex, Mdp, ProblemRecord, CANONICAL_FORMAT};
 use truecost::problems::StepCost;
 use truecost::stochastic::NoiseModel;
-
-/// The model as the certificate checker reads it ([`truecost::certificate::Mdp`]): per state
-/// its goal and terminal flags, per action its stage cost, reward and outcomes.
-pub fn mdp_of(model: &Model) -> Mdp {
-    let p = &model.problem;
-    let actions = (0..p.states())
-        .map(|x| {
-            p.actions(x)
-                .map(|a| MdpAction {
-                    cost: p.cost(a).clone(),
-                    reward: model.reward[a].clone(),
-                    outcomes: p
-                        .outcomes(a)
-                        .iter()
-                        .map(|o| (o.successor, o.probability.clone()))
-                        .collect(),
-                })
-                .collect()
-        })
-        .collect();
-    Mdp {
-        goal: (0..p.states()).map(|x| p.is_goal(x)).collect(),
-        terminal: model.terminal.clone(),
-        actions,
-    }
-}
 
 /// Where a certified problem comes from: the options that rebuild it.
 pub struct CertifiedSource<'a> {

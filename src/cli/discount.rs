@@ -24,7 +24,7 @@ use truecost::objectives::{failure_set, Model, Source};
 use truecost::problems::{GridLayout, StepCost};
 use truecost::stochastic::file::{FileObjective, ProblemFile};
 
-use super::certify::{mdp_of, write_certificate, CertifiedSource};
+use super::certify::{write_certificate, CertifiedSource};
 use super::compare::CompareFormat;
 use super::env::{pretty, EnvArg};
 use super::ReportFormat;
@@ -260,7 +260,7 @@ pub fn discount_certificate(
     source: &CertifiedSource<'_>,
     file_text: Option<&str>,
 ) -> Result<String, String> {
-    let mdp = mdp_of(model);
+    let mdp = model.mdp();
     let mut problem = source.record(|| mdp.clone())?;
     if let Some(text) = file_text {
         problem.sha256 = sha256_hex(text.as_bytes());
@@ -336,7 +336,7 @@ fn check_discount_file(
         _ => None,
     };
     let loaded = discount_model(env, problem, file, step)?;
-    let mdp = mdp_of(&loaded.model);
+    let mdp = loaded.model.mdp();
     let identity = match &loaded.text {
         Some(t) => Identity::FileBytes(t.as_bytes()),
         None => Identity::Canonical,

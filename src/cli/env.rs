@@ -12,7 +12,7 @@ use truecost::problems::StepCost;
 use truecost::stochastic::file::ProblemFile;
 use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
 
-use super::certify::{mdp_of, write_certificate, CertifiedSource};
+use super::certify::{write_certificate, CertifiedSource};
 use super::ReportFormat;
 
 /// `--env SPEC`: one of Gymnasium's toy-text benchmarks, exactly.
@@ -185,7 +185,7 @@ pub fn solve(args: &super::SolveArgs) -> Result<String, String> {
             gamma: args.gamma.as_deref(),
             noise: args.noise,
         }
-        .record(|| mdp_of(&model))?;
+        .record(|| model.mdp())?;
         write_certificate(path, &solution_certificate(&model, &solution, &record)?)?;
     }
     Ok(match args.format {
@@ -419,7 +419,7 @@ pub fn check(
         }
         _ => return Err("give one of --env SPEC, --problem N and --file FILE".into()),
     };
-    let mdp = mdp_of(&model);
+    let mdp = model.mdp();
     let identity = match &bytes {
         Some(b) => Identity::FileBytes(b),
         None => Identity::Canonical,

@@ -514,7 +514,7 @@ fn write_certificates(
                 gamma: Some(g),
                 noise: Some(noise),
             }
-            .record(|| super::certify::mdp_of(&model))?;
+            .record(|| model.mdp())?;
             let text = truecost::stochastic::certified::optimum_certificate(
                 &model.problem,
                 &opt,

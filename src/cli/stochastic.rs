@@ -186,12 +186,7 @@ fn certify(
         gamma: args.gamma.as_deref(),
         noise: args.noise,
     }
-    .record(|| {
-        super::certify::mdp_of(&truecost::objectives::Model::from_problem(
-            problem.clone(),
-            String::new(),
-        ))
-    })?;
+    .record(|| truecost::objectives::Model::from_problem(problem.clone(), String::new()).mdp())?;
     let text =
         truecost::stochastic::certified::optimum_certificate(problem, opt, &objective, &record);
     super::certify::write_certificate(path, &text)

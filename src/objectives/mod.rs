@@ -1018,6 +1018,45 @@ impl Model {
 }
 
 impl Model {
+    /// The model as the certificate checker reads it ([`crate::certificate::Mdp`]): per state
+    /// its goal and terminal flags, per action its stage cost, reward and outcomes.
+    ///
+    /// ```
+    /// use truecost::envs::EnvSpec;
+    /// use truecost::objectives::Model;
+    /// let m = Model::from_environment(&EnvSpec::parse("frozenlake").unwrap().build().unwrap()).unwrap();
+    /// let mdp = m.mdp();
+    /// assert_eq!(mdp.actions.len(), 16);
+    /// assert_eq!(mdp.goal.iter().filter(|&&g| g).count(), 1);
+    /// // State 6 (row 1, column 2) has four neighbours: each slippery action has three outcomes.
+    /// assert!(mdp.actions[6].iter().all(|a| a.outcomes.len() == 3));
+    /// ```
+    pub fn mdp(&self) -> crate::certificate::Mdp {
+        let p = &self.problem;
+        let actions = (0..p.states())
+            .map(|x| {
+                p.actions(x)
+                    .map(|a| crate::certificate::MdpAction {
+                        cost: p.cost(a).clone(),
+                        reward: self.reward[a].clone(),
+                        outcomes: p
+                            .outcomes(a)
+                            .iter()
+                            .map(|o| (o.successor, o.probability.clone()))
+                            .collect(),
+                    })
+                    .collect()
+            })
+            .collect();
+        crate::certificate::Mdp {
+            goal: (0..p.states()).map(|x| p.is_goal(x)).collect(),
+            terminal: self.terminal.clone(),
+            actions,
+        }
+    }
+}
+
+impl Model {
     /// The model as a deterministic planning problem (docs/spec.md §1) for the claims stated on one
     /// (C4, `verify --claim C4 --env SPEC`): every action must have a single
     /// outcome and the initial state must be a single state; goals keep no action (their

@@ -27,6 +27,30 @@ const MAX_NARROWINGS: usize = 64;
 /// `problem`, `identity`: the problem's record and how its hash is taken). A bracket that also
 /// holds another root of an advantage is narrowed; any other rejection by the checker is an
 /// error (the analysis and the checker disagree).
+///
+/// ```
+/// use truecost::certificate::discount::check_discount;
+/// use truecost::certificate::{sha256_hex, Identity, ProblemRecord, CANONICAL_FORMAT};
+/// use truecost::envs::EnvSpec;
+/// use truecost::objectives::parametric::{certificate::discount_certificate, discount_breakpoints};
+/// use truecost::objectives::Model;
+/// let m = Model::from_environment(&EnvSpec::parse("frozenlake").unwrap().build().unwrap()).unwrap();
+/// let d = discount_breakpoints(&m).unwrap();
+/// let mdp = m.mdp();
+/// let record = ProblemRecord {
+///     source: "env".into(),
+///     name: "frozenlake".into(),
+///     gamma: None,
+///     noise: None,
+///     step_cost: None,
+///     sha256: sha256_hex(mdp.canonical_text().as_bytes()),
+///     sha256_of: CANONICAL_FORMAT.into(),
+/// };
+/// let c = discount_certificate(&m, &d, &mdp, record, Identity::Canonical).unwrap();
+/// assert_eq!(c.breakpoints.len(), d.breakpoints.len());
+/// assert_eq!(c.intervals.len(), d.breakpoints.len() + 1);
+/// assert!(check_discount(&mdp, Identity::Canonical, &c).is_ok());
+/// ```
 pub fn discount_certificate(
     model: &Model,
     d: &DiscountAnalysis,

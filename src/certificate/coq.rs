@@ -291,16 +291,19 @@ pub fn coq_applies(mdp: &Mdp, c: &Certificate) -> Result<(), String> {
     Ok(())
 }
 
-/// A fresh working directory under the system's temporary directory.
-fn work_dir() -> Result<PathBuf, String> {
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map(|d| d.as_nanos())
-        .unwrap_or(0);
-    let dir =
-        std::env::temp_dir().join(format!("truecost-coq-check-{}-{nanos}", std::process::id()));
-    std::fs::create_dir_all(&dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    Ok(dir)
+/// A fresh private working directory under the system's temporary directory (an unpredictable
+/// name, created with mode 0700; removed when dropped).
+fn work_dir() -> Result<tempfile::TempDir, String> {
+    let mut builder = tempfile::Builder::new();
+    builder.prefix("truecost-coq-check-");
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o700));
+    builder.tempdir().map_err(|e| {
+        format!(
+            "cannot create a working directory in {}: {e}",
+            std::env::temp_dir().display()
+        )
+    })
 }
 
 /// Writes `files` into `dir`.
@@ -451,23 +454,71 @@ fn build_checker(dir: &Path) -> Result<PathBuf, String> {
 /// by their SHA-256, or built there first (about a minute; `coqc`, `ocamlfind` and zarith
 /// needed). The binary's path.
 pub fn extracted_checker() -> Result<PathBuf, String> {
-    let home = cache_root().join(format!("coq-checker-{}", &sources_hash()[..16]));
+    let root = cache_root();
+    let home = root.join(format!("coq-checker-{}", &sources_hash()[..16]));
     let binary = home.join(CHECKER_NAME);
+    let dir = work_dir()?;
     if binary.is_file() {
+        private(&[&root, &home, &binary], dir.path())?;
         return Ok(binary);
     }
-    let dir = work_dir()?;
-    let built = build_checker(&dir).and_then(|b| {
-        std::fs::create_dir_all(&home)
-            .map_err(|e| format!("cannot create {}: {e}", home.display()))?;
-        // Renamed into place whole: a concurrent build finds either nothing or the binary.
-        let partial = home.join(format!("{CHECKER_NAME}.{}", std::process::id()));
-        std::fs::copy(&b, &partial)
-            .and_then(|_| std::fs::rename(&partial, &binary))
-            .map_err(|e| format!("cannot install {}: {e}", binary.display()))
-    });
-    let _ = std::fs::remove_dir_all(&dir);
-    built.map(|()| binary)
+    let b = build_checker(dir.path())?;
+    for d in [&root, &home] {
+        create_private_dir(d)?;
+    }
+    private(&[&root, &home], dir.path())?;
+    // Renamed into place whole: a concurrent build finds either nothing or the binary.
+    let partial = home.join(format!("{CHECKER_NAME}.{}", std::process::id()));
+    std::fs::copy(&b, &partial)
+        .and_then(|_| std::fs::rename(&partial, &binary))
+        .map_err(|e| format!("cannot install {}: {e}", binary.display()))?;
+    Ok(binary)
+}
+
+/// Creates `dir` if missing, readable and writable by its owner only.
+fn create_private_dir(dir: &Path) -> Result<(), String> {
+    let mut builder = std::fs::DirBuilder::new();
+    builder.recursive(true);
+    #[cfg(unix)]
+    std::os::unix::fs::DirBuilderExt::mode(&mut builder, 0o700);
+    builder
+        .create(dir)
+        .map_err(|e| format!("cannot create {}: {e}", dir.display()))
+}
+
+/// Refuses a cached checker that someone else could have replaced: each of `paths` must be
+/// owned by the user running truecost (the owner of `ours`, a directory it just created) and
+/// writable by no one else. The cache is trusted as far as the `truecost` binary itself is.
+fn private(paths: &[&Path], ours: &Path) -> Result<(), String> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        let uid = std::fs::metadata(ours)
+            .map_err(|e| format!("cannot read {}: {e}", ours.display()))?
+            .uid();
+        for path in paths {
+            let meta = std::fs::symlink_metadata(path)
+                .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+            if meta.uid() != uid || meta.mode() & 0o022 != 0 || meta.file_type().is_symlink() {
+                return Err(format!(
+                    "the cached Coq checker is not private: {} is {}owned by uid {} with mode \
+                     {:o} (it must be yours, not a symbolic link, and writable by you only; \
+                     remove it to rebuild)",
+                    crate::echo::echo(&path.display().to_string()),
+                    if meta.file_type().is_symlink() {
+                        "a symbolic link "
+                    } else {
+                        ""
+                    },
+                    meta.uid(),
+                    meta.mode() & 0o7777
+                ));
+            }
+        }
+    }
+    #[cfg(not(unix))]
+    let _ = (paths, ours);
+    Ok(())
 }
 
 /// The extracted checker's verdict on `input` (of [`checker_input`]): `Ok(true)` if it prints
@@ -475,7 +526,7 @@ pub fn extracted_checker() -> Result<PathBuf, String> {
 pub fn extracted_verdict(checker: &Path, input: &str) -> Result<bool, String> {
     let dir = work_dir()?;
     let result = (|| {
-        let file = dir.join("certificate.txt");
+        let file = dir.path().join("certificate.txt");
         std::fs::write(&file, input)
             .map_err(|e| format!("cannot write {}: {e}", file.display()))?;
         let mut command = Command::new(checker);
@@ -490,18 +541,19 @@ pub fn extracted_verdict(checker: &Path, input: &str) -> Result<bool, String> {
             )),
         }
     })();
-    let _ = std::fs::remove_dir_all(&dir);
+    drop(dir);
     result
 }
 
 /// The `vm_compute` verdicts on `cases` (terms of [`coq_case`]), in order, from one `coqc`
 /// call after compiling [`COQ_SOURCES`] in a fresh directory (removed afterwards).
 pub fn coq_verdicts(cases: &[String]) -> Result<Vec<bool>, String> {
-    let dir = work_dir()?;
+    let tmp = work_dir()?;
+    let dir = tmp.path();
     let result = (|| {
-        write_all(&dir, COQ_SOURCES)?;
+        write_all(dir, COQ_SOURCES)?;
         for (name, _) in COQ_SOURCES {
-            coqc(&dir, name)?;
+            coqc(dir, name)?;
         }
         let mut run = String::from(
             "From Coq Require Import QArith List.\n\
@@ -512,7 +564,7 @@ pub fn coq_verdicts(cases: &[String]) -> Result<Vec<bool>, String> {
             let _ = writeln!(run, "Eval vm_compute in {case}.");
         }
         std::fs::write(dir.join("Run.v"), run).map_err(|e| format!("cannot write Run.v: {e}"))?;
-        let out = coqc(&dir, "Run.v")?;
+        let out = coqc(dir, "Run.v")?;
         let verdicts: Vec<bool> = out
             .lines()
             .filter_map(|l| match l.trim() {
@@ -530,7 +582,7 @@ pub fn coq_verdicts(cases: &[String]) -> Result<Vec<bool>, String> {
         }
         Ok(verdicts)
     })();
-    let _ = std::fs::remove_dir_all(&dir);
+    drop(tmp);
     result
 }
 
@@ -539,4 +591,47 @@ pub fn coq_verdicts(cases: &[String]) -> Result<Vec<bool>, String> {
 pub fn coq_check(mdp: &Mdp, c: &Certificate) -> Result<bool, String> {
     coq_applies(mdp, c)?;
     extracted_verdict(&extracted_checker()?, &checker_input(mdp, c))
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::*;
+    use std::os::unix::fs::{symlink, PermissionsExt};
+
+    fn set_mode(path: &Path, mode: u32) {
+        std::fs::set_permissions(path, std::fs::Permissions::from_mode(mode)).unwrap();
+    }
+
+    #[test]
+    fn a_cache_writable_by_others_or_a_link_is_refused_and_a_private_one_accepted() {
+        let ours = work_dir().unwrap();
+        let cache = tempfile::tempdir().unwrap();
+        let binary = cache.path().join(CHECKER_NAME);
+        std::fs::write(&binary, "#!/bin/sh\necho accepted\n").unwrap();
+        set_mode(cache.path(), 0o700);
+        set_mode(&binary, 0o755);
+        assert_eq!(private(&[cache.path(), &binary], ours.path()), Ok(()));
+        for (path, mode) in [(cache.path(), 0o777), (binary.as_path(), 0o775)] {
+            set_mode(path, mode);
+            let refusal = private(&[cache.path(), &binary], ours.path()).unwrap_err();
+            assert!(refusal.contains("not private"), "{refusal}");
+            assert!(refusal.contains(&format!("mode {mode:o}")), "{refusal}");
+            set_mode(path, if path == cache.path() { 0o700 } else { 0o755 });
+        }
+        let link = cache.path().join("link");
+        symlink(&binary, &link).unwrap();
+        let refusal = private(&[&link], ours.path()).unwrap_err();
+        assert!(refusal.contains("a symbolic link"), "{refusal}");
+    }
+
+    #[test]
+    fn working_directories_are_private_and_unpredictable() {
+        use std::os::unix::fs::MetadataExt;
+        let (a, b) = (work_dir().unwrap(), work_dir().unwrap());
+        assert_ne!(a.path(), b.path());
+        assert_eq!(std::fs::metadata(a.path()).unwrap().mode() & 0o777, 0o700);
+        let kept = a.path().to_path_buf();
+        drop(a);
+        assert!(!kept.exists());
+    }
 }

@@ -513,3 +513,94 @@ pub fn of_problem(
             .into(),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dir() -> tempfile::TempDir {
+        tempfile::tempdir().unwrap()
+    }
+
+    /// C1's counterexample problem (`0: ->0 (0), ->1 (1); 1 (goal)`): `G* = (1, 0)`.
+    const PROBLEM: &str = r#"{"format": "truecost-problem/1", "states": 2, "initial": 0, "goals": [1],
+        "actions": [[{"to": 0, "cost": "0"}, {"to": 1, "cost": "1"}], []]}"#;
+
+    #[test]
+    fn a_counterexample_is_certified_with_its_printed_l_star() {
+        let d = dir();
+        let w = counterexample(d.path(), "C1", "c1", PROBLEM, Some("1")).unwrap();
+        assert_eq!(w.certificate, "c1.cert.json");
+        assert!(w.certifies.contains("G*(x1) = 1"), "{}", w.certifies);
+        let cert =
+            certificate::parse(&std::fs::read_to_string(d.path().join("c1.cert.json")).unwrap())
+                .unwrap();
+        let one = Rational::one();
+        assert_eq!(cert.values, vec![Some(one), Some(Rational::zero())]);
+        assert_eq!(cert.policy, vec![Some(1), None]);
+    }
+
+    /// A printed `L*` that is not the certified `G*(x1)` (a planted wrong number) is an error,
+    /// and no certificate is written.
+    #[test]
+    fn a_printed_l_star_that_is_not_g_star_is_an_error() {
+        let d = dir();
+        let e = counterexample(d.path(), "C1", "c1", PROBLEM, Some("2")).unwrap_err();
+        assert!(e.contains("G*(x1) = 1") && e.contains("L* = 2"), "{e}");
+        assert!(!d.path().join("c1.cert.json").exists());
+    }
+
+    /// The re-check before writing refuses a wrong value (a planted solver bug: `G*(0) = 2`).
+    #[test]
+    fn the_recheck_rejects_a_wrong_optimum() {
+        let (_, mdp) = read_problem_file(PROBLEM).unwrap();
+        let record = ProblemRecord {
+            source: "file".into(),
+            name: "p.json".into(),
+            gamma: None,
+            noise: None,
+            step_cost: None,
+            sha256: certificate::sha256_hex(PROBLEM.as_bytes()),
+            sha256_of: "file bytes".into(),
+        };
+        let objective = CertifiedObjective::Deterministic;
+        let identity = Identity::FileBytes(PROBLEM.as_bytes());
+        let good = certificate::write(
+            &objective,
+            &record,
+            vec!["1".into(), "0".into()],
+            &[Some(1), None],
+        );
+        assert!(accepted(good, &mdp, identity, "p").is_ok());
+        let bad = certificate::write(
+            &objective,
+            &record,
+            vec!["2".into(), "0".into()],
+            &[Some(1), None],
+        );
+        let e = accepted(bad, &mdp, identity, "p").err().unwrap();
+        assert!(e.contains("rejected by truecost's checker"), "{e}");
+    }
+
+    /// Below `α*` the worked example's optimum stays at 0 (`−1/(1−α)`), above it goes up.
+    #[test]
+    fn the_worked_examples_optimum_changes_side_at_alpha_star() {
+        let half = Rational::new(1.into(), 2.into());
+        let (values, policy) = worked_example_optimum(&half).unwrap();
+        assert_eq!(values[0], "-2");
+        assert_eq!(policy[0], Some(0));
+        let near_one = Rational::new(99.into(), 100.into());
+        let (_, policy) = worked_example_optimum(&near_one).unwrap();
+        assert_eq!(&policy[..5], &[Some(1); 5]);
+        let up: Vec<Option<u64>> = policy.iter().map(|a| a.map(|a| a as u64)).collect();
+        assert!(reaches_goal(&up));
+        assert!(!reaches_goal(&[
+            Some(0),
+            Some(1),
+            Some(1),
+            Some(1),
+            Some(1),
+            None
+        ]));
+    }
+}

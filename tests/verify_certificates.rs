@@ -278,6 +278,47 @@ fn single_problem_certificate_is_its_g_star() {
     assert_eq!(v["bonus_sets"][0]["optimal_cost"], g);
 }
 
+/// `--claim C4 --file F` in text: the report's last line gives the count, the directory, the
+/// checker and `G*(x1)`, which is the `L*` the counterexample prints (C4's `L* = 0`).
+#[test]
+fn single_file_certificate_line_in_text() {
+    let (dir, report) = smoke_run();
+    let c4 = report["claims"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["id"] == "C4")
+        .unwrap();
+    let l_star = c4["counterexample"]["details"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|d| d["name"] == "L*")
+        .unwrap()["value"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let work = tempfile::tempdir().unwrap();
+    let d = work.path().join("c").display().to_string();
+    let f = dir.join("c4-as-printed.json").display().to_string();
+    let out = common::cli::stdout(&[
+        "verify",
+        "--claim",
+        "C4",
+        "--file",
+        &f,
+        "--certificates",
+        &d,
+    ]);
+    let last = out.lines().last().unwrap();
+    let head = format!(
+        "certificates: 1 written to {d}, 1 accepted by truecost's checker (truecost::certificate::check): deterministic G* of file {f} (G*(x1) = {l_star}, x1 = state 0)"
+    );
+    assert!(last.starts_with(&head), "{last}");
+    let cert = work.path().join("c").join("c4-as-printed.cert.json");
+    accepted(&dir.join("c4-as-printed.json"), &cert, &[]);
+}
+
 /// A `DIR` that is a file, or below a file, is refused in one line before any work (no report,
 /// nothing written); `--shard` with `--certificates` is a usage error.
 #[test]

@@ -377,6 +377,15 @@ impl Certificates {
         )
     }
 
+    /// The count, the directory and the checker, in one sentence (the LaTeX caption's).
+    pub fn summary(&self) -> String {
+        let n = self.written.len();
+        format!(
+            "{n} certificates written to {}, {n} accepted by {CHECKER}",
+            crate::echo::echo(&self.dir)
+        )
+    }
+
     /// The report's JSON entry.
     pub fn json(&self) -> Value {
         json!({

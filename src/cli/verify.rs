@@ -292,7 +292,8 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
 }
 
 /// The report `text` in `format` with the run's certificates said: a line at the end of text
-/// and Markdown, an entry `certificates` in JSON, a sentence at the end of the LaTeX caption.
+/// and Markdown, an entry `certificates` in JSON, their number, directory and checker at the
+/// end of the LaTeX caption.
 fn with_certificates(
     text: String,
     format: VerifyFormat,
@@ -313,7 +314,7 @@ fn with_certificates(
             s
         }
         VerifyFormat::Latex => {
-            let sentence = format!(" {}.", tex_text(&c.line()));
+            let sentence = format!(" {}.", tex_text(&c.summary()));
             match text.rfind("}\n\\end{table}") {
                 Some(at) => format!("{}{sentence}{}", &text[..at], &text[at..]),
                 None => format!("{text}% {}\n", c.line()),

@@ -301,8 +301,7 @@ fn with_certificates(
 ) -> String {
     let Some(c) = certified else { return text };
     match format {
-        VerifyFormat::Text => format!("{text}\n{}\n", c.line()),
-        VerifyFormat::Markdown => format!("{text}\n{}\n", c.line()),
+        VerifyFormat::Text | VerifyFormat::Markdown => format!("{text}\n{}\n", c.line()),
         VerifyFormat::Json => {
             let mut v: serde_json::Value =
                 serde_json::from_str(&text).expect("the report is one JSON object");
@@ -323,22 +322,11 @@ fn with_certificates(
     }
 }
 
-/// `s` with LaTeX's special characters escaped.
+/// `s` with LaTeX's special characters escaped ([`truecost::echo::tex_special`]).
 fn tex_text(s: &str) -> String {
-    let mut out = String::with_capacity(s.len());
-    for ch in s.chars() {
-        match ch {
-            '\\' => out.push_str("\\textbackslash{}"),
-            '&' | '%' | '$' | '#' | '_' | '{' | '}' => {
-                out.push('\\');
-                out.push(ch);
-            }
-            '~' => out.push_str("\\textasciitilde{}"),
-            '^' => out.push_str("\\textasciicircum{}"),
-            _ => out.push(ch),
-        }
-    }
-    out
+    s.chars()
+        .map(|c| truecost::echo::tex_special(c).map_or_else(|| c.to_string(), str::to_string))
+        .collect()
 }
 
 /// Refuses a bad `--certificates` directory in one line, before any work.

@@ -506,15 +506,11 @@ fn write_certificates(
             .load()?;
             let opt = truecost::stochastic::policy_iteration::optimum(&model.problem)
                 .map_err(|e| e.to_string())?;
-            let record = super::certify::CertifiedSource {
-                file: None,
-                problem: Some(id),
-                env: None,
-                step: Some(step),
-                gamma: Some(g),
-                noise: Some(noise),
-            }
-            .record(|| model.mdp())?;
+            let origin = truecost::stochastic::record::Origin::Paper { id, step };
+            let record =
+                truecost::stochastic::record::problem_record(origin, Some(g), Some(noise), || {
+                    model.mdp()
+                })?;
             let text = truecost::stochastic::certified::optimum_certificate(
                 &model.problem,
                 &opt,

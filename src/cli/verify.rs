@@ -11,6 +11,7 @@ use serde_json::json;
 use truecost::claims::c4::{
     bonus_analysis, bonus_policy_limit, contains_unscaled, End, Instance, Interval,
 };
+use truecost::claims::certificates::{self, Single};
 use truecost::claims::exact::Q;
 use truecost::claims::runner::{self, Mode};
 use truecost::claims::shard::{self, Part};
@@ -40,7 +41,7 @@ pub struct VerifyArgs {
     command: Option<VerifyCommand>,
     /// Run shard K of N (1 <= K <= N <= 4096) and write its partial report (a JSON shard
     /// file) to stdout; `verify merge` combines the N files into the whole run's report.
-    #[arg(long, value_name = "K/N", conflicts_with_all = ["counterexamples", "smt_out", "file", "problem", "env", "initial", "format", "no_times"])]
+    #[arg(long, value_name = "K/N", conflicts_with_all = ["counterexamples", "smt_out", "file", "problem", "env", "initial", "format", "no_times", "certificates"])]
     shard: Option<String>,
     /// Check one claim only (C1, C1-corrected, C2, C3, C3-example, C4, C4-corrected; C1 also
     /// selects C1-corrected, and so on).
@@ -80,6 +81,15 @@ pub struct VerifyArgs {
     /// re-check. The directory must be empty or not exist.
     #[arg(long, value_name = "DIR", conflicts_with = "no_smt")]
     smt_out: Option<PathBuf>,
+    /// Write a certificate (`truecost-certificate/1`, with the problem file it is checked
+    /// against) of every exact optimum the report prints into this directory, re-checked by
+    /// truecost's checker before the report is printed: the deterministic G* of each
+    /// counterexample's problem and the discounted optimum of C3's worked example at both ends
+    /// of alpha*'s bracket; with --claim C4 --file/--problem/--env, the G* of that problem.
+    /// Each is checked again by `truecost check` (docs/guide/certificates.md). Not with
+    /// --shard.
+    #[arg(long, value_name = "DIR")]
+    certificates: Option<PathBuf>,
     /// Skip the SMT engine (no `proved` verdicts).
     #[arg(long)]
     no_smt: bool,
@@ -235,6 +245,7 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
                 "--file/--problem go with --claim C4 (the exact bonus set of one problem)".into(),
             );
         }
+        prepare(args)?;
         let problem = match (&args.file, args.problem) {
             (Some(path), _) => file::read(path).map_err(|e| e.to_string())?,
             (None, Some(id)) => GridLayout::exact(id)
@@ -242,14 +253,29 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
                 .to_problem(StepCost::Unit),
             _ => unreachable!(),
         };
-        return bonus(&problem, args.format, None);
+        let (out, l_star) = bonus(&problem, args.format, None)?;
+        let single = match (&args.file, args.problem) {
+            (Some(path), _) => Single::File(path),
+            (None, Some(id)) => Single::Paper(id),
+            _ => unreachable!(),
+        };
+        let certified = match &args.certificates {
+            None => None,
+            Some(dir) => Some(certificates::of_problem(dir, single, l_star.as_deref())?),
+        };
+        return Ok(with_certificates(out, args.format, certified.as_ref()));
     }
+    prepare(args)?;
     let with_times = !args.no_times;
     if let Some(dir) = &args.smt_out {
         truecost::claims::smt::prepare_out_dir(dir)?;
     }
     let Made::Report(r) = pipeline(args, None)? else {
         unreachable!("the whole run's pipeline gives its report")
+    };
+    let certified = match &args.certificates {
+        Some(dir) => Some(certificates::of_report(&r, dir)?),
+        None => None,
     };
     if let Some(dir) = &args.smt_out {
         for o in &r.smt {
@@ -261,7 +287,54 @@ pub fn verify(args: &VerifyArgs) -> Result<String, String> {
             .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
         write_counterexamples(dir, &r)?;
     }
-    engine_failures(&r, render(&r, args.format, with_times))
+    let text = render(&r, args.format, with_times);
+    engine_failures(&r, with_certificates(text, args.format, certified.as_ref()))
+}
+
+/// The report `text` in `format` with the run's certificates said: a line at the end of text
+/// and Markdown, an entry `certificates` in JSON, their number, directory and checker at the
+/// end of the LaTeX caption.
+fn with_certificates(
+    text: String,
+    format: VerifyFormat,
+    certified: Option<&certificates::Certificates>,
+) -> String {
+    let Some(c) = certified else { return text };
+    match format {
+        VerifyFormat::Text | VerifyFormat::Markdown => format!("{text}\n{}\n", c.line()),
+        VerifyFormat::Json => {
+            let mut v: serde_json::Value =
+                serde_json::from_str(&text).expect("the report is one JSON object");
+            v.as_object_mut()
+                .expect("the report is one JSON object")
+                .insert("certificates".into(), c.json());
+            let mut s = serde_json::to_string_pretty(&v).expect("serialisable");
+            s.push('\n');
+            s
+        }
+        VerifyFormat::Latex => {
+            let sentence = format!(" {}.", tex_text(&c.summary()));
+            match text.rfind("}\n\\end{table}") {
+                Some(at) => format!("{}{sentence}{}", &text[..at], &text[at..]),
+                None => format!("{text}% {}\n", c.line()),
+            }
+        }
+    }
+}
+
+/// `s` with LaTeX's special characters escaped ([`truecost::echo::tex_special`]).
+fn tex_text(s: &str) -> String {
+    s.chars()
+        .map(|c| truecost::echo::tex_special(c).map_or_else(|| c.to_string(), str::to_string))
+        .collect()
+}
+
+/// Refuses a bad `--certificates` directory in one line, before any work.
+fn prepare(args: &VerifyArgs) -> Result<(), String> {
+    match &args.certificates {
+        Some(dir) => certificates::prepare_dir(dir),
+        None => Ok(()),
+    }
 }
 
 /// The report's text, or, when an engine failed, the report written out and the failure
@@ -285,6 +358,7 @@ fn bonus_env(spec: &str, args: &VerifyArgs) -> Result<String, String> {
     if args.claim.as_deref() != Some("C4") {
         return Err("--env goes with --claim C4 (the exact bonus set of one problem)".into());
     }
+    prepare(args)?;
     let model = truecost::objectives::Source::Env(spec.to_string()).load()?;
     if model.initial.len() > 1 && args.initial.is_none() {
         return Err(format!(
@@ -297,11 +371,24 @@ fn bonus_env(spec: &str, args: &VerifyArgs) -> Result<String, String> {
     let problem = model
         .deterministic_problem_from(args.initial)
         .map_err(|e| format!("C4 is stated for deterministic problems: {e}"))?;
-    let mut out = bonus(&problem, args.format, Some(model.terminal_bonus.as_ref()))?;
+    let (mut out, l_star) = bonus(&problem, args.format, Some(model.terminal_bonus.as_ref()))?;
     if args.initial.is_some() && args.format != VerifyFormat::Json {
         out = format!("x1 = state {}\n{out}", problem.initial());
     }
-    Ok(out)
+    let certified = match &args.certificates {
+        None => None,
+        Some(dir) => Some(certificates::of_problem(
+            dir,
+            Single::Env {
+                spec,
+                problem: &model.problem,
+                mdp: model.mdp(),
+                initial: problem.initial(),
+            },
+            l_star.as_deref(),
+        )?),
+    };
+    Ok(with_certificates(out, args.format, certified.as_ref()))
 }
 
 fn unscale(q: Q, d: &BigInt) -> String {
@@ -328,14 +415,14 @@ fn interval_text(i: &Interval, d: &BigInt) -> String {
 
 /// The bonus sets by the violated-cycle search (`claims::c4_cycles`), when the enumeration
 /// oracle refuses the problem's size: the exact set only (the printed and corrected formulas
-/// need every simple goal path).
+/// need every simple goal path). With the text, the `L*` it prints.
 fn bonus_by_cycles(
     inst: &Instance,
     d: &BigInt,
     format: VerifyFormat,
     refusal: &str,
     terminal_bonus: Option<&truecost::value::Rational>,
-) -> Result<String, String> {
+) -> Result<(String, Option<String>), String> {
     let sets = truecost::claims::c4_cycles::bonus_sets_by_cycles(inst)?
         .ok_or("no goal is reachable from x1: there is no single-shot path and no bonus set")?;
     let method = format!("exact violated-cycle search (Bellman-Ford, claims::c4_cycles); the enumeration oracle refuses: {refusal}; the printed and corrected formulas need every simple goal path and are not evaluated");
@@ -354,7 +441,11 @@ fn bonus_by_cycles(
             })
         })
         .collect();
-    Ok(match format {
+    let l_star = rows
+        .first()
+        .and_then(|r| r["optimal_cost"].as_str())
+        .map(str::to_string);
+    let text = match format {
         VerifyFormat::Json => {
             let mut s = serde_json::to_string_pretty(&json!({
                 "bonus_sets": rows,
@@ -393,17 +484,18 @@ fn bonus_by_cycles(
             }
             s
         }
-    })
+    };
+    Ok((text, l_star))
 }
 
 /// The bonus sets of one problem; a problem beyond the enumeration oracle's bounds is answered
 /// by the violated-cycle search. `environment`: `--env`, with the environment's own bonus if it
-/// has one (then said to be in the set or not).
+/// has one (then said to be in the set or not). With the text, the `L*` it prints.
 fn bonus(
     problem: &Problem,
     format: VerifyFormat,
     environment: Option<Option<&truecost::value::Rational>>,
-) -> Result<String, String> {
+) -> Result<(String, Option<String>), String> {
     use truecost::claims::c4::BonusError;
     let (inst, d) = Instance::from_problem(problem)?;
     let sets = match bonus_analysis(&inst, bonus_policy_limit(inst.moves.len())) {
@@ -430,7 +522,11 @@ fn bonus(
             })
         })
         .collect();
-    Ok(match format {
+    let l_star = rows
+        .first()
+        .and_then(|r| r["optimal_cost"].as_str())
+        .map(str::to_string);
+    let text = match format {
         VerifyFormat::Json => {
             let mut s =
                 serde_json::to_string_pretty(&json!({"bonus_sets": rows})).expect("serialisable");
@@ -461,5 +557,6 @@ fn bonus(
             }
             s
         }
-    })
+    };
+    Ok((text, l_star))
 }

@@ -38,6 +38,7 @@ pub mod noise;
 pub mod policy_iteration;
 pub mod problem;
 pub mod properness;
+pub mod record;
 pub mod refine;
 pub mod scale;
 pub mod value_iteration;

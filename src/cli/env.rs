@@ -134,6 +134,7 @@ pub fn source(
                 path: path.to_path_buf(),
                 noise,
                 gamma,
+                names: Default::default(),
             })
         }
         _ => Err("give one of --env SPEC, --problem N and --file FILE".into()),
@@ -159,15 +160,18 @@ pub fn solve(args: &super::SolveArgs) -> Result<String, String> {
         return Err("--objective and --env take --algorithm exact without --model-free, --mode reference, --tolerance, --max-sweeps or --arithmetic".into());
     }
     let (_, objective) = args.objective.parse()?;
-    let model = ModelArgs {
-        env: args.env.clone(),
-        problem: args.problem,
-        file: args.file.clone(),
-        step_cost: args.step_cost,
-        gamma: args.gamma.clone(),
-        noise: args.noise,
+    let mut from = source(
+        &args.env,
+        args.problem,
+        args.file.as_deref(),
+        args.step_cost,
+        args.gamma.as_deref(),
+        args.noise,
+    )?;
+    if let Source::File { names, .. } = &mut from {
+        *names = args.drn.names(args.file.as_deref())?;
     }
-    .load()?;
+    let model = from.load()?;
     let cost = if args.with_cost {
         truecost::objectives::PolicyCost::Computed
     } else {
@@ -328,6 +332,7 @@ pub fn check(
     source: &EnvArg,
     problem: Option<usize>,
     file: Option<&std::path::Path>,
+    names: &truecost::formats::drn::DrnNames,
     text: &str,
     format: ReportFormat,
     coq: bool,
@@ -397,8 +402,8 @@ pub fn check(
                     truecost::echo::echo(&path.display().to_string())
                 )
             })?;
-            let (read, extra) = truecost::stochastic::file::from_json_with_objective(&text)
-                .map_err(|e| e.to_string())?;
+            let (read, extra) =
+                truecost::formats::from_text_with_names(&text, names).map_err(|e| e.to_string())?;
             let p = match read {
                 ProblemFile::Deterministic(d) => StochasticProblem::from_deterministic(
                     &d,

@@ -83,8 +83,8 @@ impl ObjectiveArgs {
 }
 
 impl ModelArgs {
-    /// Builds the model the options name (one line on error).
-    pub fn load(&self) -> Result<Model, String> {
+    /// The source the options name (one line on error).
+    pub fn source(&self) -> Result<Source, String> {
         source(
             &self.env,
             self.problem,
@@ -92,8 +92,12 @@ impl ModelArgs {
             self.step_cost,
             self.gamma.as_deref(),
             self.noise,
-        )?
-        .load()
+        )
+    }
+
+    /// Builds the model the options name (one line on error).
+    pub fn load(&self) -> Result<Model, String> {
+        self.source()?.load()
     }
 }
 
@@ -160,14 +164,15 @@ pub fn solve(args: &super::SolveArgs) -> Result<String, String> {
         return Err("--objective and --env take --algorithm exact without --model-free, --mode reference, --tolerance, --max-sweeps or --arithmetic".into());
     }
     let (_, objective) = args.objective.parse()?;
-    let mut from = source(
-        &args.env,
-        args.problem,
-        args.file.as_deref(),
-        args.step_cost,
-        args.gamma.as_deref(),
-        args.noise,
-    )?;
+    let mut from = ModelArgs {
+        env: args.env.clone(),
+        problem: args.problem,
+        file: args.file.clone(),
+        step_cost: args.step_cost,
+        gamma: args.gamma.clone(),
+        noise: args.noise,
+    }
+    .source()?;
     if let Source::File { names, .. } = &mut from {
         *names = args.drn.names(args.file.as_deref())?;
     }

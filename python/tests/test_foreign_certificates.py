@@ -84,6 +84,7 @@ class StormModel:
         self.storm = m
         name = spec.reward if spec.reward is not None else next(iter(m.reward_models))
         rewards = m.reward_models[name]
+        assert not rewards.has_transition_rewards, "transition rewards are not read here"
         goals = m.labeling.get_states(spec.goal)
         tm = m.transition_matrix
         self.n = m.nr_states

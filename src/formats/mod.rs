@@ -130,7 +130,7 @@ pub fn from_text_with_objective(text: &str) -> Result<(ProblemFile, FileObjectiv
 
 /// [`from_text_with_objective`], a DRN file's goals and costs read from the label and reward
 /// model `names` gives ([`drn::from_drn_with`]); names other than the defaults are refused for
-/// other formats ([`ReadError::NamesNotDrn`]).
+/// JSON problem files ([`ReadError::NamesNotDrn`]).
 ///
 /// ```
 /// use truecost::formats::{drn::DrnNames, from_text_with_names};
@@ -151,9 +151,9 @@ pub fn from_text_with_names(
             let (problem, extra) = drn::from_drn_with(text, names)?;
             Ok((ProblemFile::Stochastic(Box::new(problem)), extra))
         }
-        _ if !names.is_default() => Err(ReadError::NamesNotDrn),
-        Kind::Json => Ok(json_file::from_json_with_objective(text)?),
         Kind::Prism => Err(ReadError::Prism),
+        Kind::Json if !names.is_default() => Err(ReadError::NamesNotDrn),
+        Kind::Json => Ok(json_file::from_json_with_objective(text)?),
     }
 }
 

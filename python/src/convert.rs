@@ -35,7 +35,10 @@ fn bounds(d: &Bound<'_, PyDict>, key: &str, b: &Bounds) -> PyResult<()> {
     d.set_item(key, (&b.min, &b.max))
 }
 
-/// One objective's solution (`solve --objective`, a row of `compare`).
+/// One objective's solution (`solve --objective`, a row of `compare`); `expected_truecost` and
+/// `expected_steps` are `None` where they were not computed (the reach objective without its
+/// cost, [`truecost::objectives::Solution::costs_computed`]), as the command line leaves them
+/// out.
 pub fn solution<'py>(py: Python<'py>, model: &Model, s: &Solution) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("source", &model.name)?;
@@ -53,8 +56,9 @@ pub fn solution<'py>(py: Python<'py>, model: &Model, s: &Solution) -> PyResult<B
     d.set_item("policy", policy_indices(model, s))?;
     bounds(&d, "success", &s.success)?;
     d.set_item("policy_success", &s.policy_success)?;
-    d.set_item("expected_truecost", extended(py, &s.truecost)?)?;
-    d.set_item("expected_steps", extended(py, &s.steps)?)?;
+    let computed = |v| s.costs_computed.then(|| extended(py, v)).transpose();
+    d.set_item("expected_truecost", computed(&s.truecost)?)?;
+    d.set_item("expected_steps", computed(&s.steps)?)?;
     d.set_item("terminal_bonus", model.terminal_bonus.as_ref())?;
     Ok(d)
 }

@@ -14,7 +14,7 @@ use pyo3::types::PyDict;
 
 use truecost::objectives::parametric::discount_breakpoints_with;
 use truecost::objectives::report::compare as compare_objectives;
-use truecost::objectives::{failure_set, parse_alpha, parse_objective};
+use truecost::objectives::{failure_set, parse_alpha, parse_objective, PolicyCost};
 
 use load::Input;
 use run::interruptible;
@@ -30,11 +30,13 @@ fn input(kind: &str, text: String, name: Option<String>) -> PyResult<Input> {
     Input::new(kind, text, name).map_err(Error::new_err)
 }
 
-/// One objective, exactly: `truecost solve --algorithm exact --objective O [--alpha A]`
-/// ([`truecost::objectives::Model::solve`]; truecost is the paper's objective, docs/spec.md
-/// §3).
+/// One objective, exactly: `truecost solve --algorithm exact --objective O [--alpha A]
+/// [--with-cost]` ([`truecost::objectives::Model::solve_with`]; truecost is the paper's
+/// objective, docs/spec.md §3). The reach objective's policy cost is computed only with
+/// `with_cost` (or where it is infinite), as on the command line; `with_cost` with another
+/// objective is refused with the command line's message.
 #[pyfunction]
-#[pyo3(signature = (kind, text, name, objective, alpha))]
+#[pyo3(signature = (kind, text, name, objective, alpha, with_cost))]
 fn solve<'py>(
     py: Python<'py>,
     kind: &str,
@@ -42,12 +44,23 @@ fn solve<'py>(
     name: Option<String>,
     objective: String,
     alpha: Option<String>,
+    with_cost: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
+    if with_cost && objective != "reach" {
+        return Err(Error::new_err("--with-cost applies to --objective reach (the other objectives always compute the reported policy's expected truecost and steps)"));
+    }
     let input = input(kind, text, name)?;
+    let cost = if with_cost {
+        PolicyCost::Computed
+    } else {
+        PolicyCost::IfInfinite
+    };
     let (model, solution) = interruptible(py, move |_| {
         let objective = parse_objective(&objective, alpha.as_deref())?;
         let model = input.model()?;
-        let solution = model.solve(&objective).map_err(|e| e.to_string())?;
+        let solution = model
+            .solve_with(&objective, cost)
+            .map_err(|e| e.to_string())?;
         Ok((model, solution))
     })?;
     convert::solution(py, &model, &solution)

@@ -70,6 +70,7 @@ impl Input {
                 path: path.clone(),
                 noise: NoiseModel::default(),
                 gamma: None,
+                names: Default::default(),
             }
             .load(),
             Input::Text { json, name } => {

@@ -37,13 +37,17 @@ def setUpModule():
         raise unittest.SkipTest(API_MISSING)
 
 
-
-def with_cost(objective):
-    """The CLI computes the reach policy's expected cost on request only; the API always does."""
-    return ["--with-cost"] if objective == "reach" else []
-
 class Agreement:
     """Assertions that an API answer is the CLI's JSON answer."""
+
+    def assert_solve(self, call, cli_args, objective):
+        """``call(with_cost)`` (a ``truecost.solve``) against ``truecost solve`` with
+        ``cli_args``: without ``with_cost`` and, for the reach objective, with it and
+        ``--with-cost``."""
+        for asked in (False, True) if objective == "reach" else (False,):
+            with self.subTest(with_cost=asked):
+                cli = cli_json(*cli_args, *(["--with-cost"] if asked else []))
+                self.assert_solution(call(asked), cli)
 
     def assert_solution(self, api, cli):
         self.assertEqual(api.objective, cli["objective"])
@@ -51,8 +55,9 @@ class Agreement:
         self.assertEqual(list(api.policy), cli["policy"])
         self.assertEqual(tuple(api.success_range), success(cli["success_probability"]))
         self.assertEqual(api.policy_success_probability, exact(cli["policy_success_probability"]))
-        self.assertEqual(api.expected_truecost, exact(cli["expected_truecost"]))
-        self.assertEqual(api.expected_steps, exact(cli["expected_steps"]))
+        # Absent from the CLI's answer where not computed (reach without --with-cost).
+        for key in ("expected_truecost", "expected_steps"):
+            self.assertEqual(getattr(api, key), exact(cli[key]) if key in cli else None, key)
         self.assertEqual(api.initial_states, cli["initial_states"])
         key = {"truecost": "cost_to_go_initial", "reach": "reach_probability_initial",
                "discounted": "discounted_value_initial"}[api.objective]
@@ -114,11 +119,11 @@ class EnvSpec(Agreement, unittest.TestCase):
     def test_solve_every_objective(self):
         for objective, alpha in (("truecost", None), ("reach", None), ("discounted", "0.9")):
             with self.subTest(objective=objective):
-                api = truecost.solve("frozenlake", objective, alpha)
                 args = ["solve", "--env", "frozenlake", "--algorithm", "exact",
-                        "--objective", objective]
-                cli = cli_json(*args, *(["--alpha", alpha] if alpha else []), *with_cost(objective))
-                self.assert_solution(api, cli)
+                        "--objective", objective, *(["--alpha", alpha] if alpha else [])]
+                self.assert_solve(
+                    lambda asked: truecost.solve("frozenlake", objective, alpha, with_cost=asked),
+                    args, objective)
         # Slippery FrozenLake: no policy reaches the goal with probability 1.
         self.assertEqual(truecost.solve("frozenlake").value, math.inf)
 
@@ -165,11 +170,11 @@ class ProblemFile(Agreement, unittest.TestCase):
     def test_solve_and_compare_as_the_cli(self):
         for objective, alpha in (("truecost", None), ("reach", None), ("discounted", "1/2")):
             with self.subTest(objective=objective):
-                api = truecost.solve(self.path, objective, alpha)
                 args = ["solve", "--file", self.path, "--algorithm", "exact",
-                        "--objective", objective]
-                self.assert_solution(api, cli_json(*args, *(["--alpha", alpha] if alpha else []),
-                                                   *with_cost(objective)))
+                        "--objective", objective, *(["--alpha", alpha] if alpha else [])]
+                self.assert_solve(
+                    lambda asked: truecost.solve(self.path, objective, alpha, with_cost=asked),
+                    args, objective)
         api = truecost.compare(self.path, alphas=["1/2", "0.95"])
         cli = cli_json("compare", "--file", self.path, "--alphas", "1/2,0.95")
         for a, c in zip(api.rows, cli["rows"]):
@@ -192,6 +197,27 @@ class ProblemFile(Agreement, unittest.TestCase):
         self.assertEqual(
             [(p.lo.text, p.lo_closed, p.hi.text, p.hi_closed) for p in api.failure_set],
             [(p["lo"], p["lo_closed"], p["hi"], p["hi_closed"]) for p in cli["pieces"]])
+
+    def test_reach_cost_only_when_asked(self):
+        # By hand: going reaches the goal surely; its cost is 10 in 1 step, the reach policy's.
+        plain = truecost.solve(self.path, "reach")
+        asked = truecost.solve(self.path, "reach", with_cost=True)
+        self.assertEqual((plain.value, plain.policy), (1, (1, None)))
+        self.assertEqual((plain.expected_truecost, plain.expected_steps), (None, None))
+        self.assertEqual((asked.value, asked.policy), (1, (1, None)))
+        self.assertEqual((asked.expected_truecost, asked.expected_steps), (10, 1))
+        args = ["solve", "--file", self.path, "--algorithm", "exact", "--objective", "reach"]
+        self.assertNotIn("expected_truecost", cli_json(*args))
+        self.assertEqual(cli_json(*args, "--with-cost")["expected_truecost"], "10")
+        # Where the reach policy misses the goal (slippery FrozenLake: 14/17 at best), its
+        # cost is infinite without being asked for, as on the command line.
+        lake = truecost.solve("frozenlake", "reach")
+        self.assertEqual((lake.expected_truecost, lake.expected_steps), (math.inf, math.inf))
+        cli = cli_json("solve", "--env", "frozenlake", "--algorithm", "exact",
+                       "--objective", "reach")
+        self.assertEqual((cli["expected_truecost"], cli["expected_steps"]), ("inf", "inf"))
+        # The other objectives always compute the reported policy's cost.
+        self.assertEqual(truecost.solve(self.path).expected_truecost, 10)
 
     def test_pathlike(self):
         import pathlib
@@ -223,11 +249,15 @@ class Gymnasium(Agreement, unittest.TestCase):
         env = gymnasium.make("FrozenLake-v1", desc=desc)
         for objective, alpha in (("truecost", None), ("reach", None), ("discounted", "0.95")):
             with self.subTest(objective=objective):
-                args = ["solve", "--file", path, "--algorithm", "exact", "--objective", objective]
-                cli = cli_json(*args, *(["--alpha", alpha] if alpha else []), *with_cost(objective))
-                self.assert_solution(truecost.solve(env, objective, alpha), cli)
-                by_id = truecost.solve("FrozenLake-v1", objective, alpha, desc=desc)
-                self.assert_solution(by_id, cli)
+                args = ["solve", "--file", path, "--algorithm", "exact", "--objective", objective,
+                        *(["--alpha", alpha] if alpha else [])]
+                self.assert_solve(
+                    lambda asked: truecost.solve(env, objective, alpha, with_cost=asked),
+                    args, objective)
+                self.assert_solve(
+                    lambda asked: truecost.solve("FrozenLake-v1", objective, alpha, desc=desc,
+                                                 with_cost=asked),
+                    args, objective)
         api = truecost.compare(env, alphas=["0.9", "0.99"])
         cli = cli_json("compare", "--file", path, "--alphas", "0.9,0.99")
         for a, c in zip(api.rows, cli["rows"]):

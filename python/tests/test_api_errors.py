@@ -53,6 +53,10 @@ class CommandLineMessages(unittest.TestCase):
                          *solve, "--objective", "discounted", "--alpha", "1")
         self.assert_same(lambda: truecost.solve("frozenlake", "reach", alpha="0.9"),
                          *solve, "--objective", "reach", "--alpha", "0.9")
+        self.assert_same(lambda: truecost.solve("frozenlake", with_cost=True),
+                         *solve, "--objective", "truecost", "--with-cost")
+        self.assert_same(lambda: truecost.solve("frozenlake", "discounted", "0.9", with_cost=True),
+                         *solve, "--objective", "discounted", "--alpha", "0.9", "--with-cost")
         self.assert_same(lambda: truecost.compare("frozenlake", alphas=["0.9", "1/0"]),
                          "compare", "--env", "frozenlake", "--alphas", "0.9,1/0")
 

@@ -39,22 +39,28 @@ __version__ = _native.__version__
 DEFAULT_ALPHAS = ("0.9", "0.95", "0.99", "0.999")
 
 
-def solve(env, /, objective="truecost", alpha=None, *, importer=None, **kwargs):
+def solve(env, /, objective="truecost", alpha=None, *, with_cost=False, importer=None, **kwargs):
     """The exact optimum of one objective (``truecost solve --algorithm exact --objective``).
 
     ``objective`` is ``"truecost"`` (the paper's: least expected cost among the policies
     reaching a goal with probability 1), ``"reach"`` (the greatest probability of reaching a
     goal) or ``"discounted"`` (the rewards discounted by ``alpha``, maximised; ``alpha`` in
     ``(0, 1)``, exact: a ``Fraction``, an ``int`` or a string such as ``"0.99"``).
+    ``with_cost`` (the reach objective only, as ``--with-cost``): also compute the reported
+    policy's expected truecost and steps when they are finite; without it they are ``None``
+    then (and ``math.inf`` where the policy misses the goal with positive probability, which
+    costs nothing to find).
     ``kwargs`` go to ``gymnasium.make`` when ``env`` is a Gymnasium id; ``importer`` are
     options of :func:`truecost_gym.from_env` (``goals``, ``initial``, ...).
     Returns a :class:`Solution`.
     """
     if not isinstance(objective, str):
         raise Error(f"objective must be a string (truecost, reach, discounted), got {objective!r}")
+    if not isinstance(with_cost, bool):
+        raise Error(f"with_cost must be True or False, got {with_cost!r}")
     alpha = None if alpha is None else exact_text(alpha)
     kind, text, name = resolve(env, kwargs, importer)
-    return Solution._of(_native.solve(kind, text, name, objective, alpha))
+    return Solution._of(_native.solve(kind, text, name, objective, alpha, with_cost))
 
 
 def compare(env, /, alphas=DEFAULT_ALPHAS, *, importer=None, **kwargs):

@@ -33,7 +33,10 @@ class Solution:
     distribution when there is one, as for Taxi); ``values`` one per state; ``policy`` the
     reported optimal policy, an action number per state (Gymnasium's action for an
     environment), ``None`` where the episode is over or where every action is optimal
-    (truecost where the value is infinite).
+    (truecost where the value is infinite). ``expected_truecost`` and ``expected_steps`` are
+    the reported policy's; ``None`` for the reach objective solved without ``with_cost`` where
+    they are finite (not computed, as ``solve --objective reach`` without ``--with-cost``
+    leaves them out).
     """
 
     source: str
@@ -47,8 +50,8 @@ class Solution:
     policy: Tuple[Optional[int], ...]
     success_range: Range
     policy_success_probability: Fraction
-    expected_truecost: Value
-    expected_steps: Value
+    expected_truecost: Optional[Value]
+    expected_steps: Optional[Value]
     terminal_bonus: Optional[Fraction]
 
     @property

@@ -278,6 +278,7 @@ pub fn check_certificate(
     source: &EnvArg,
     problem: Option<usize>,
     file: Option<&std::path::Path>,
+    names: &truecost::formats::drn::DrnNames,
     certificate_path: &std::path::Path,
     format: ReportFormat,
     coq: bool,
@@ -291,7 +292,10 @@ pub fn check_certificate(
                 .and_then(|o| o.as_str().map(str::to_string))
         });
     if kind.as_deref() != Some(DISCOUNT) {
-        return super::env::check(source, problem, file, &text, format, coq);
+        return super::env::check(source, problem, file, names, &text, format, coq);
+    }
+    if !names.is_default() {
+        return Err("--goal-label and --cost-reward apply to the certificates of solve; a discount certificate's file is read as discount reads it".into());
     }
     if coq {
         return Err("--coq checks truecost and deterministic certificates; a discount certificate is checked by truecost's own checker (without --coq)".into());

@@ -83,8 +83,8 @@ impl ObjectiveArgs {
 }
 
 impl ModelArgs {
-    /// Builds the model the options name (one line on error).
-    pub fn load(&self) -> Result<Model, String> {
+    /// The source the options name (one line on error).
+    pub fn source(&self) -> Result<Source, String> {
         source(
             &self.env,
             self.problem,
@@ -92,8 +92,12 @@ impl ModelArgs {
             self.step_cost,
             self.gamma.as_deref(),
             self.noise,
-        )?
-        .load()
+        )
+    }
+
+    /// Builds the model the options name (one line on error).
+    pub fn load(&self) -> Result<Model, String> {
+        self.source()?.load()
     }
 }
 
@@ -134,6 +138,7 @@ pub fn source(
                 path: path.to_path_buf(),
                 noise,
                 gamma,
+                names: Default::default(),
             })
         }
         _ => Err("give one of --env SPEC, --problem N and --file FILE".into()),
@@ -159,7 +164,7 @@ pub fn solve(args: &super::SolveArgs) -> Result<String, String> {
         return Err("--objective and --env take --algorithm exact without --model-free, --mode reference, --tolerance, --max-sweeps or --arithmetic".into());
     }
     let (_, objective) = args.objective.parse()?;
-    let model = ModelArgs {
+    let mut from = ModelArgs {
         env: args.env.clone(),
         problem: args.problem,
         file: args.file.clone(),
@@ -167,7 +172,11 @@ pub fn solve(args: &super::SolveArgs) -> Result<String, String> {
         gamma: args.gamma.clone(),
         noise: args.noise,
     }
-    .load()?;
+    .source()?;
+    if let Source::File { names, .. } = &mut from {
+        *names = args.drn.names(args.file.as_deref())?;
+    }
+    let model = from.load()?;
     let cost = if args.with_cost {
         truecost::objectives::PolicyCost::Computed
     } else {
@@ -328,6 +337,7 @@ pub fn check(
     source: &EnvArg,
     problem: Option<usize>,
     file: Option<&std::path::Path>,
+    names: &truecost::formats::drn::DrnNames,
     text: &str,
     format: ReportFormat,
     coq: bool,
@@ -397,8 +407,8 @@ pub fn check(
                     truecost::echo::echo(&path.display().to_string())
                 )
             })?;
-            let (read, extra) = truecost::stochastic::file::from_json_with_objective(&text)
-                .map_err(|e| e.to_string())?;
+            let (read, extra) =
+                truecost::formats::from_text_with_names(&text, names).map_err(|e| e.to_string())?;
             let p = match read {
                 ProblemFile::Deterministic(d) => StochasticProblem::from_deterministic(
                     &d,

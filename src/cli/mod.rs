@@ -71,6 +71,8 @@ struct CheckArgs {
     /// A problem file (perturbed by the certificate's gamma and noise model, if it gives them).
     #[arg(long, value_name = "FILE")]
     file: Option<PathBuf>,
+    #[command(flatten)]
+    drn: stochastic::DrnNameArgs,
     /// Output format.
     #[arg(long, value_enum, default_value_t = ReportFormat::Text)]
     format: ReportFormat,
@@ -133,6 +135,8 @@ struct SolveArgs {
     /// A problem file in truecost's JSON format (see docs/guide/problem-files.md).
     #[arg(long, value_name = "FILE")]
     file: Option<PathBuf>,
+    #[command(flatten)]
+    drn: stochastic::DrnNameArgs,
     /// The planner (`exact`: the exact optimum of the stochastic model, by policy iteration
     /// with exact rational linear solves).
     #[arg(long, value_enum)]
@@ -221,14 +225,17 @@ pub fn main() -> ExitCode {
         Command::Compare(args) => compare::run(&args),
         Command::Export(args) => export::run(&args),
         Command::Learn(args) => learn::learn(&args),
-        Command::Check(args) => discount::check_certificate(
-            &args.env,
-            args.problem,
-            args.file.as_deref(),
-            &args.certificate,
-            args.format,
-            args.coq,
-        ),
+        Command::Check(args) => args.drn.names(args.file.as_deref()).and_then(|names| {
+            discount::check_certificate(
+                &args.env,
+                args.problem,
+                args.file.as_deref(),
+                &names,
+                &args.certificate,
+                args.format,
+                args.coq,
+            )
+        }),
     };
     match result.and_then(|text| emit(&text)) {
         Ok(()) => ExitCode::SUCCESS,
@@ -318,12 +325,23 @@ fn problems(args: &ProblemsArgs) -> Result<String, String> {
 /// state: a file that draws its initial state from two or more states is refused in one line
 /// naming the command, before any work.
 fn read_single_initial(path: &std::path::Path, command: &str) -> Result<ProblemFile, String> {
-    let (file, extra) = truecost::formats::read_with_objective(path).map_err(|e| e.to_string())?;
+    read_single_initial_named(path, &Default::default(), command)
+}
+
+/// [`read_single_initial`] with a DRN file's goal label and cost reward model.
+fn read_single_initial_named(
+    path: &std::path::Path,
+    names: &truecost::formats::drn::DrnNames,
+    command: &str,
+) -> Result<ProblemFile, String> {
+    let (file, extra) =
+        truecost::formats::read_with_names(path, names).map_err(|e| e.to_string())?;
     extra.single_initial(command).map_err(|e| e.to_string())?;
     Ok(file)
 }
 
 fn solve(args: &SolveArgs) -> Result<String, String> {
+    let names = args.drn.names(args.file.as_deref())?;
     if args.certificate.is_some()
         && (args.algorithm != stochastic::SolveAlgorithm::Exact
             || args.mode != Mode::Exact
@@ -347,7 +365,11 @@ fn solve(args: &SolveArgs) -> Result<String, String> {
     // planners and the stochastic solvers answer from one initial state x1; the objectives
     // (env::solve above) take an initial distribution.
     let loaded = match &args.file {
-        Some(path) => Some(read_single_initial(path, "solve without --objective")?),
+        Some(path) => Some(read_single_initial_named(
+            path,
+            &names,
+            "solve without --objective",
+        )?),
         None => None,
     };
     let Some(algorithm) = stochastic::deterministic_algorithm(args, loaded.as_ref()) else {

@@ -68,6 +68,36 @@ pub struct ScaleArgs {
     pub exact_error: bool,
 }
 
+/// How a DRN file's goals and costs are read when its model names them otherwise than
+/// truecost writes them (docs/guide/formats.md).
+#[derive(Args, Debug, Default, Clone)]
+pub struct DrnNameArgs {
+    /// With --file of a DRN file: the label of the goal states [default: goal].
+    #[arg(long, value_name = "LABEL")]
+    pub goal_label: Option<String>,
+    /// With --file of a DRN file: the reward model of the stage costs [default: cost, or the
+    /// file's only reward model].
+    #[arg(long, value_name = "MODEL")]
+    pub cost_reward: Option<String>,
+}
+
+impl DrnNameArgs {
+    /// The names as the DRN reader takes them; refused without `--file`.
+    pub fn names(
+        &self,
+        file: Option<&std::path::Path>,
+    ) -> Result<truecost::formats::drn::DrnNames, String> {
+        let names = truecost::formats::drn::DrnNames {
+            goal_label: self.goal_label.clone(),
+            cost_reward: self.cost_reward.clone(),
+        };
+        if file.is_none() && !names.is_default() {
+            return Err("--goal-label and --cost-reward apply to --file (a DRN file)".into());
+        }
+        Ok(names)
+    }
+}
+
 /// Refuses the stochastic-only options in a deterministic run.
 pub fn refuse_scale_options(scale: &ScaleArgs) -> Result<(), String> {
     if scale.max_memory.is_some() || scale.exact_error {

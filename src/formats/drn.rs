@@ -47,6 +47,12 @@
 //!   initial distribution) and `terminal`; other labels are ignored. A goal whose only action is
 //!   a zero-cost self-loop reads back without actions.
 //!
+//! A file written elsewhere names its target and its costs as its model does (Storm's export of
+//! a PRISM model keeps the model's labels and reward structures: `"done"`, `"coinflips"`):
+//! [`from_drn_with`] reads the goals from another label and the costs from another reward model
+//! ([`DrnNames`]; the command line's `--goal-label` and `--cost-reward`), without editing the
+//! file.
+//!
 //! Limits: those of truecost's problem files (the file's size, each number's text, all exact
 //! numbers together), and a declared state or choice count larger than the file could hold is
 //! refused before anything else is read.
@@ -68,6 +74,31 @@ use crate::value::{parse_rational, Rational};
 pub const COST_MODEL: &str = "cost";
 /// The reward model holding the discounted objective's rewards.
 pub const REWARD_MODEL: &str = "reward";
+
+/// The label of the goal states when [`DrnNames`] names none.
+pub const GOAL_LABEL: &str = "goal";
+
+/// Which label marks the goal states and which reward model holds the stage costs, for a file
+/// that names them otherwise than truecost writes them (module docs). `None`: the defaults,
+/// label `goal` and reward model `cost` (or the only reward model).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct DrnNames {
+    /// The label of the goal states (`--goal-label`).
+    pub goal_label: Option<String>,
+    /// The reward model of the stage costs (`--cost-reward`).
+    pub cost_reward: Option<String>,
+}
+
+impl DrnNames {
+    /// Whether both names are the defaults.
+    pub fn is_default(&self) -> bool {
+        self.goal_label.is_none() && self.cost_reward.is_none()
+    }
+
+    fn goal(&self) -> &str {
+        self.goal_label.as_deref().unwrap_or(GOAL_LABEL)
+    }
+}
 
 /// The fewest bytes a state takes in a DRN file (`state 0` and a line break), which bounds a
 /// declared count by the file's size.
@@ -234,6 +265,32 @@ struct ReadState {
 /// assert!(from_drn(&huge).unwrap_err().to_string().contains("more than a file of"));
 /// ```
 pub fn from_drn(text: &str) -> Result<(StochasticProblem, FileObjective), DrnError> {
+    from_drn_with(text, &DrnNames::default())
+}
+
+/// [`from_drn`] with the goals read from the label `names.goal_label` and the stage costs from
+/// the reward model `names.cost_reward` (module docs); a name the file does not have is refused
+/// in one line.
+///
+/// ```
+/// use truecost::formats::drn::{from_drn_with, DrnNames};
+/// let text = "@type: MDP\n@reward_models\nsteps coins\n@nr_states\n2\n@nr_choices\n2\n@model\n\
+///             state 0 init\n\taction 0 [1, 5]\n\t\t1 : 1\n\
+///             state 1 done\n\taction 0 [0, 0]\n\t\t1 : 1\n";
+/// let names = DrnNames { goal_label: Some("done".into()), cost_reward: Some("coins".into()) };
+/// let (p, _) = from_drn_with(text, &names).unwrap();
+/// assert_eq!((p.goals(), p.cost(0).to_string()), (&[1][..], "5".to_string()));
+/// let steps = DrnNames { cost_reward: Some("steps".into()), ..names.clone() };
+/// assert_eq!(from_drn_with(text, &steps).unwrap().0.cost(0).to_string(), "1");
+/// let wrong = DrnNames { goal_label: Some("finished".into()), ..names.clone() };
+/// assert!(from_drn_with(text, &wrong).unwrap_err().to_string().contains("no state is labelled 'finished'"));
+/// let missing = DrnNames { cost_reward: Some("time".into()), ..names };
+/// assert!(from_drn_with(text, &missing).unwrap_err().to_string().contains("no reward model named 'time'"));
+/// ```
+pub fn from_drn_with(
+    text: &str,
+    names: &DrnNames,
+) -> Result<(StochasticProblem, FileObjective), DrnError> {
     let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
     let header = read_header(&mut lines, text.len())?;
     let mut budget = NumberBudget::default();
@@ -352,7 +409,7 @@ pub fn from_drn(text: &str) -> Result<(StochasticProblem, FileObjective), DrnErr
             state.actions[a].outcomes.push((target, p, number));
         }
     }
-    build(header, states, choices)
+    build(header, states, choices, names)
 }
 
 /// Reads the header lines up to `@model`; `bytes` is the file's size, which bounds the counts.
@@ -528,6 +585,7 @@ fn build(
     header: Header,
     states: Vec<ReadState>,
     choices: usize,
+    chosen: &DrnNames,
 ) -> Result<(StochasticProblem, FileObjective), DrnError> {
     let declared = header.states.expect("checked before @model");
     if states.len() != declared {
@@ -558,10 +616,21 @@ fn build(
             _ => format!("rew{i}"),
         })
         .collect();
-    let cost_model = match names.iter().position(|n| n == COST_MODEL) {
-        Some(i) => i,
-        None if width == 1 => 0,
-        None => {
+    let cost_model = match (
+        names.iter().position(|n| n == COST_MODEL),
+        &chosen.cost_reward,
+    ) {
+        (_, Some(wanted)) => names.iter().position(|n| n == wanted).ok_or_else(|| {
+            DrnError::File(format!(
+                "no reward model named '{}' (--cost-reward) among {} reward models ({})",
+                echo(wanted),
+                width,
+                echo(&names.join(", "))
+            ))
+        })?,
+        (Some(i), None) => i,
+        (None, None) if width == 1 => 0,
+        (None, None) => {
             return Err(DrnError::File(format!(
             "no reward model named '{COST_MODEL}' (the stage costs) among {} reward models ({})",
             width,
@@ -577,7 +646,7 @@ fn build(
     let mut actions = Vec::with_capacity(states.len());
     let mut rewards = Vec::new();
     for (x, s) in states.into_iter().enumerate() {
-        let goal = s.labels.iter().any(|l| l == "goal");
+        let goal = s.labels.iter().any(|l| l == chosen.goal());
         if goal {
             goals.push(x);
         }
@@ -636,7 +705,10 @@ fn build(
         rewards.extend(row_rewards);
     }
     if goals.is_empty() {
-        return Err(DrnError::File("no state is labelled 'goal'".into()));
+        return Err(DrnError::File(format!(
+            "no state is labelled '{}'",
+            echo(chosen.goal())
+        )));
     }
     let Some(&first) = init.first() else {
         return Err(DrnError::File("no state is labelled 'init'".into()));

@@ -97,6 +97,9 @@ pub enum ReadError {
     /// PRISM-language input.
     #[error("{}", prism::INPUT_REFUSED)]
     Prism,
+    /// A goal label or cost reward model named for a file that is not DRN.
+    #[error("--goal-label and --cost-reward name a DRN file's label and reward model; this problem file is truecost's JSON, which gives its goals and costs itself")]
+    NamesNotDrn,
 }
 
 impl From<FileError> for ReadError {
@@ -122,20 +125,51 @@ impl From<FileError> for ReadError {
 /// assert!(prism.to_string().starts_with("PRISM-language input is not read"));
 /// ```
 pub fn from_text_with_objective(text: &str) -> Result<(ProblemFile, FileObjective), ReadError> {
+    from_text_with_names(text, &drn::DrnNames::default())
+}
+
+/// [`from_text_with_objective`], a DRN file's goals and costs read from the label and reward
+/// model `names` gives ([`drn::from_drn_with`]); names other than the defaults are refused for
+/// JSON problem files ([`ReadError::NamesNotDrn`]).
+///
+/// ```
+/// use truecost::formats::{drn::DrnNames, from_text_with_names};
+/// let drn = "@type: MDP\n@reward_models\ntime\n@nr_states\n2\n@nr_choices\n2\n@model\n\
+///            state 0 init\n\taction 0 [2]\n\t\t1 : 1\nstate 1 elected\n\taction 0 [0]\n\t\t1 : 1\n";
+/// let names = DrnNames { goal_label: Some("elected".into()), cost_reward: None };
+/// assert!(from_text_with_names(drn, &names).is_ok());
+/// let json = r#"{"initial": 0, "goals": [1], "actions": [[{"to": 1, "cost": "1"}], []]}"#;
+/// assert!(from_text_with_names(json, &Default::default()).is_ok());
+/// assert!(from_text_with_names(json, &names).unwrap_err().to_string().starts_with("--goal-label"));
+/// ```
+pub fn from_text_with_names(
+    text: &str,
+    names: &drn::DrnNames,
+) -> Result<(ProblemFile, FileObjective), ReadError> {
     match detect(text) {
-        Kind::Json => Ok(json_file::from_json_with_objective(text)?),
         Kind::Drn => {
-            let (problem, extra) = drn::from_drn(text)?;
+            let (problem, extra) = drn::from_drn_with(text, names)?;
             Ok((ProblemFile::Stochastic(Box::new(problem)), extra))
         }
         Kind::Prism => Err(ReadError::Prism),
+        Kind::Json if !names.is_default() => Err(ReadError::NamesNotDrn),
+        Kind::Json => Ok(json_file::from_json_with_objective(text)?),
     }
 }
 
 /// Reads a problem file once ([`det_file::read_text`]: at most 32 MiB, standard input and pipes
 /// work) and parses it in whichever format it is ([`from_text_with_objective`]).
 pub fn read_with_objective(path: &Path) -> Result<(ProblemFile, FileObjective), ReadError> {
-    from_text_with_objective(&det_file::read_text(path)?)
+    read_with_names(path, &drn::DrnNames::default())
+}
+
+/// [`read_with_objective`] with a DRN file's goal label and cost reward model
+/// ([`from_text_with_names`]).
+pub fn read_with_names(
+    path: &Path,
+    names: &drn::DrnNames,
+) -> Result<(ProblemFile, FileObjective), ReadError> {
+    from_text_with_names(&det_file::read_text(path)?, names)
 }
 
 /// The initial states a DRN or PRISM file can state: the problem's initial state, or every

@@ -930,13 +930,14 @@ pub enum Source {
         noise: crate::stochastic::NoiseModel,
         /// `γ`, if given (refused for files that list outcomes).
         gamma: Option<crate::stochastic::Predictability>,
+        /// A DRN file's goal label and cost reward model (`--goal-label`, `--cost-reward`).
+        names: crate::formats::drn::DrnNames,
     },
 }
 
 impl Source {
     /// Builds the model (reads files, builds environments). Errors are one line.
     pub fn load(&self) -> Result<Model, String> {
-        use crate::formats::read_with_objective;
         use crate::stochastic::file::ProblemFile;
         match self {
             Source::Env(spec) => {
@@ -955,11 +956,17 @@ impl Source {
                     .map_err(|e| e.to_string())?;
                 Ok(Model::from_problem(p, format!("paper problem {id}")))
             }
-            Source::File { path, noise, gamma } => {
+            Source::File {
+                path,
+                noise,
+                gamma,
+                names,
+            } => {
                 // Noise keeps the states and one action per move, in order: the file's rewards
                 // (paid whatever the outcome, like the costs), its terminal self-loops and its
                 // initial distribution carry over.
-                let (file, extra) = read_with_objective(path).map_err(|e| e.to_string())?;
+                let (file, extra) =
+                    crate::formats::read_with_names(path, names).map_err(|e| e.to_string())?;
                 let p = match file {
                     ProblemFile::Deterministic(d) => StochasticProblem::from_deterministic(
                         &d,

@@ -132,7 +132,8 @@ struct SolveArgs {
     /// One of the paper's problems, 0 to 18 (`truecost problems` lists them).
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     problem: Option<usize>,
-    /// A problem file in truecost's JSON format (see docs/guide/problem-files.md).
+    /// A problem file: truecost's JSON format (docs/guide/problem-files.md) or Storm's DRN
+    /// (docs/guide/formats.md), told apart by content.
     #[arg(long, value_name = "FILE")]
     file: Option<PathBuf>,
     #[command(flatten)]

@@ -45,7 +45,7 @@ use crate::stochastic::StochasticProblem;
 use crate::value::Rational;
 
 /// The one-line refusal of PRISM-language input.
-pub const INPUT_REFUSED: &str = "PRISM-language input is not read: convert it to Storm's explicit DRN format, which truecost reads (storm --prism MODEL.prism --buildfull --exportbuild MODEL.drn, with the labels 'init' and 'goal' and a reward structure 'cost')";
+pub const INPUT_REFUSED: &str = "PRISM-language input is not read: convert it to Storm's explicit DRN format, which truecost reads (storm --prism MODEL.prism --buildfull --exportbuild MODEL.drn, with the labels 'init' and 'goal' and a reward structure 'cost', or name yours with --goal-label and --cost-reward)";
 
 /// Why a problem could not be written in the PRISM language. One line.
 #[derive(Debug, thiserror::Error)]

@@ -18,7 +18,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use truecost_proofs::standin;
 
-use super::shard::ENGINE_FAILED;
+use super::caught::ENGINE_FAILED;
 use super::EngineRun;
 
 /// How the stand-in runs a harness under `cargo test`.
@@ -455,7 +455,7 @@ impl StandinRun {
     }
 
     /// A run that did not finish: the stand-in (or the code around it) panicked with
-    /// `failure` (described by [`super::shard::caught`]).
+    /// `failure` (described by [`super::caught::caught`]).
     pub fn failed(name: &str, should_panic: bool, failure: &str) -> StandinRun {
         StandinRun {
             mode: ENGINE_FAILED_MODE.into(),
@@ -496,7 +496,7 @@ pub fn run_standin(table: &[standin::Harness], names: &[&str]) -> Vec<StandinRun
             None => StandinRun::missing(name),
             Some(h) => {
                 let started = std::time::Instant::now();
-                match super::shard::caught(|| h.explore()) {
+                match super::caught::caught(|| h.explore()) {
                     Ok(s) => StandinRun::from_summary(h, &s, started.elapsed().as_secs_f64()),
                     Err(failure) => StandinRun::failed(h.name, h.should_panic, &failure),
                 }

@@ -28,6 +28,7 @@ pub mod c2;
 pub mod c3;
 pub mod c4;
 pub mod c4_cycles;
+pub mod caught;
 pub mod certificates;
 pub mod coq;
 pub mod discount;

@@ -4,13 +4,14 @@
 //! ([`report`]): what each engine's result means for a claim, and how the engines' verdicts
 //! combine. [`run`] is the whole pipeline — plan, select, run, report — in one place.
 
+use super::caught::{caught, ENGINE_FAILED};
 use super::coq::{self, Kind};
 use super::harnesses::{self, StandinRun, HARNESSES};
 use super::plan::{Checker, Plan, Step, Unit, Work};
 use super::report::{AlphaStar, HarnessSection, Report};
 use super::runner::{self, Mode, Value, Values};
 use super::sampled::PropertyRun;
-use super::shard::{self, caught, Share, ENGINE_FAILED};
+use super::shard::{self, Share};
 use super::smt::{self, Outcome, SmtVerdict};
 use super::{alpha, c1, c2, c3, c4, ClaimResult, Counterexample, EngineRun, Scope, Verdict};
 
@@ -642,7 +643,7 @@ fn failed_claims(checker: Checker, failure: &str) -> Vec<ClaimResult> {
         .collect()
 }
 
-/// The engine line of `engine` when it panicked with `failure` ([`shard::caught`]).
+/// The engine line of `engine` when it panicked with `failure` ([`caught`]).
 fn failed_engine(engine: &str, failure: &str) -> EngineRun {
     EngineRun {
         engine: engine.into(),
@@ -775,7 +776,7 @@ fn harness_section(
             ),
             (
                 "truecost-kernel (the code they call)",
-                shard::caught(truecost_kernel::overflow_checks) == Ok(true),
+                caught(truecost_kernel::overflow_checks) == Ok(true),
             ),
         ]),
     }

@@ -106,7 +106,7 @@ impl HarnessSection {
 /// The text of an engine line: what the engine checked (Markdown's claim lines with a colon
 /// after the mode), or that it failed.
 fn engine_text(e: &super::EngineRun, with_times: bool, colon: bool) -> String {
-    if e.mode.starts_with(super::shard::ENGINE_FAILED) {
+    if e.mode.starts_with(super::caught::ENGINE_FAILED) {
         return format!("{}: {}", e.engine, e.mode);
     }
     let t = if with_times && e.seconds > 0.0 {

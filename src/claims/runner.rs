@@ -26,11 +26,12 @@ use std::time::Instant;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
+use super::caught::{caught, raise, ENGINE_FAILED};
 use super::coq;
 use super::harnesses::{self, StandinRun};
 use super::plan::{Checker, Plan, Step, Unit, Work};
 use super::sampled::{self, PropertyRun};
-use super::shard::{caught, raise, Entry, Part, Share, StepRecord, ENGINE_FAILED};
+use super::shard::{Entry, Part, Share, StepRecord};
 use super::smt::{self, Solved, SolvedRecord};
 use super::tiny::Tiny;
 use super::{alpha, c1, c2, c3, c4, ClaimResult};

@@ -12,10 +12,10 @@ use proptest::test_runner::{
 
 use super::c3::{certificate, optimal_policy_avoids_goal};
 use super::c4::{bonus_sets, witness, Instance};
+use super::caught::{self, ENGINE_FAILED};
 use super::exact::Q;
 use super::oracle::Functional;
 use super::qlearning::{run, Order, QProblem, Run, Terminal, Values, MAX_PAIRS};
-use super::shard::{self, ENGINE_FAILED};
 use super::tiny::Tiny;
 use super::{EngineRun, Scope};
 
@@ -85,14 +85,14 @@ fn run_guarded<S: Strategy>(
     strategy: &S,
     test: impl Fn(S::Value) -> Result<(), TestCaseError>,
 ) -> Result<(), TestError<S::Value>> {
-    runner.run(strategy, |v| match shard::caught(|| test(v)) {
+    runner.run(strategy, |v| match caught::caught(|| test(v)) {
         Ok(r) => r,
         Err(failure) => Err(TestCaseError::fail(format!("{ENGINE_FAILED}{failure}"))),
     })
 }
 
 /// The property's outcome; a case that panicked (see [`run_guarded`]) is raised again as the
-/// failure of the engine ([`shard::raise`]), with the input proptest shrank it to.
+/// failure of the engine ([`caught::raise`]), with the input proptest shrank it to.
 fn finish(
     claim: &'static str,
     scope: String,
@@ -109,7 +109,7 @@ fn finish(
                 } else {
                     format!(", Q0 = {v:?}")
                 };
-                shard::raise(format!(
+                caught::raise(format!(
                     "{failure}; on the input proptest shrank it to: {}{values}",
                     t.describe()
                 ));
@@ -327,7 +327,7 @@ pub fn cases(scope: Scope) -> u32 {
 mod tests {
     use super::*;
 
-    /// A property whose code panics fails the engine (raised to the [`shard::caught`] around
+    /// A property whose code panics fails the engine (raised to the [`caught::caught`] around
     /// it, with the input proptest shrank it to), not the claim: a failing assertion of the
     /// same property is a counterexample.
     #[test]
@@ -343,7 +343,7 @@ mod tests {
                     false => Ok(()),
                 }
             });
-            shard::caught(|| finish("C0", String::new(), result, &n, &r))
+            caught::caught(|| finish("C0", String::new(), result, &n, &r))
         };
         let failure = property(true).unwrap_err();
         assert!(

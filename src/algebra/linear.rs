@@ -450,19 +450,24 @@ impl ModularLu {
     }
 }
 
-/// `Σ a_k·b_k` for entries below 2³¹ (`b_k` stored in `u64`): each product (below 2⁶²) is
-/// split into its low 32 bits and the rest, summed in two `u64` lanes (each term below 2³², so
-/// no overflow for fewer than 2³² terms), and joined in `u128` once; the loop has no carry
-/// chain, so the compiler vectorises it.
+/// `Σ a_k·b_k` for entries below 2³¹: products below 2⁶², summed four at a time in `u64`
+/// (below 2⁶⁴) and only then in `u128`, so the compiler can use 32×32→64 multiplies.
 #[inline]
 fn dot(a: &[u32], b: &[u64]) -> u128 {
-    let (mut low, mut high) = (0u64, 0u64);
-    for (&x, &y) in a.iter().zip(b) {
-        let product = x as u64 * (y as u32) as u64;
-        low += product & 0xffff_ffff;
-        high += product >> 32;
+    let mut total = 0u128;
+    let (ac, bc) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ar, br) = (ac.remainder(), bc.remainder());
+    for (x, y) in ac.zip(bc) {
+        let s = x[0] as u64 * (y[0] as u32) as u64
+            + x[1] as u64 * (y[1] as u32) as u64
+            + x[2] as u64 * (y[2] as u32) as u64
+            + x[3] as u64 * (y[3] as u32) as u64;
+        total += s as u128;
     }
-    ((high as u128) << 32) + low as u128
+    for (&x, &y) in ar.iter().zip(br) {
+        total += (x as u64 * y) as u128;
+    }
+    total
 }
 
 /// `r mod p` in `[0, p)`, on 64 bits when `r` fits (the usual case after a few lifting steps).

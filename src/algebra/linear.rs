@@ -1498,6 +1498,21 @@ mod tests {
         }
     }
 
+    /// The smooth part at the bound, by hand: 65,521 is the largest prime below 2¹⁶ and goes to
+    /// `S` with 2⁵ and 3²; 65,537 (the next prime above 2¹⁶) and the Mersenne prime 2⁶¹ − 1 stay
+    /// in `R`; 1 is all rest-free.
+    #[test]
+    fn the_smooth_part_takes_the_primes_below_the_bound() {
+        let big = |v: u64| UBig::from(v);
+        let mersenne = big((1 << 61) - 1);
+        let smooth = big(32 * 9 * 65_521);
+        let rough = big(65_537) * &mersenne * &mersenne;
+        assert_eq!(smooth_part(&(&smooth * &rough)), (smooth.clone(), rough));
+        assert_eq!(smooth_part(&smooth), (smooth, UBig::ONE));
+        assert_eq!(smooth_part(&mersenne), (UBig::ONE, mersenne));
+        assert_eq!(smooth_part(&UBig::ONE), (UBig::ONE, UBig::ONE));
+    }
+
     #[test]
     fn barrett_reduction_agrees_with_division() {
         let mut rng = ChaCha8Rng::seed_from_u64(9);

@@ -59,7 +59,7 @@ def answer_digits(text):
     m = re.search(r"a (\d+)-digit numerator over a (\d+)-digit denominator", text)
     if m:
         return int(m.group(1)) + int(m.group(2))
-    m = re.search(r"^(?:G\*\(x1\)|J\*\S*|\S+)\s+(-?\d+)(?:/(\d+))?(?: =|$)", text, re.M)
+    m = re.search(r"^(?:G\*\(x1\)|cost_to_go_initial)\s+(-?\d+)(?:/(\d+))?(?: =| ~|$)", text, re.M)
     return len(m.group(1).lstrip("-")) + len(m.group(2) or "") if m else None
 
 

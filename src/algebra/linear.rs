@@ -636,15 +636,15 @@ fn divided(n: &BigInt, un: &UBig, d: &BigInt, ud: &UBig, g: &UBig) -> crate::val
 /// `nᵢ/d` in lowest terms for many numerators over one denominator `d > 0`, equal to
 /// [`reduced`] of each.
 ///
-/// The values of a policy evaluation share few reduced denominators `qⱼ = d/gⱼ`. Each
-/// numerator is first tried against the common factors `gⱼ ≠ 1` already found (most used
-/// first): when `gⱼ | nᵢ` (one exact division with a short quotient), `gcd(nᵢ, d) =
-/// gⱼ·gcd(nᵢ/gⱼ, qⱼ)`. Only a numerator no `gⱼ` divides costs a gcd with `d`, which adds its
-/// factor to the list. The remaining gcds `gcd(mᵢ, qⱼ)` (`mᵢ = nᵢ/gⱼ`, and `mᵢ = nᵢ`, `q = d`
-/// for the numerators no factor divides) are batched per `qⱼ`: each divides `hⱼ = gcd(qⱼ,
-/// Πᵢ mᵢ mod qⱼ)`, one gcd of numbers of `d`'s size, so `gcd(mᵢ, qⱼ) = gcd(mᵢ mod hⱼ, hⱼ)`,
-/// and `hⱼ = 1` (every `mᵢ/qⱼ` already in lowest terms) is the usual case. A gcd of two
-/// numbers of 10⁵ bits per numerator dominated printing a 100×100 grid.
+/// `d = S·R` is split into its smooth part `S` (the prime powers of `d` with primes below
+/// [`SMOOTH_PRIMES_BELOW`], found by trial division) and the rest `R`, coprime to `S`; then
+/// `gcd(nᵢ, d) = gcd(nᵢ mod S, S)·gcd(nᵢ, R)`. The first factor is a gcd of short numbers when
+/// `S` is short (a policy evaluation's values share their common factors with `d` in small
+/// primes). The second is batched over all numerators: every `gcd(nᵢ, R)` divides
+/// `h = gcd(R, Πᵢ nᵢ mod R)` (one product and one Barrett reduction per numerator, and one gcd
+/// of numbers of `d`'s size), so `gcd(nᵢ, R) = gcd(nᵢ mod h, h)`, and `h = 1` (no prime of `R`
+/// divides any numerator) is the usual case. A gcd of two numbers of 10⁵ bits per numerator
+/// dominated printing a 100×100 grid.
 ///
 /// ```
 /// use num_bigint::BigInt;
@@ -656,106 +656,136 @@ fn divided(n: &BigInt, un: &UBig, d: &BigInt, ud: &UBig, g: &UBig) -> crate::val
 /// ```
 pub fn reduced_all(numerators: &[&BigInt], d: &BigInt) -> Vec<crate::value::Rational> {
     use rayon::prelude::*;
+    use std::collections::HashMap;
     assert!(
         d > &BigInt::zero(),
         "reduced_all: the denominator must be positive"
     );
     let ud = magnitude(d);
-    let chunk = numerators
-        .len()
-        .div_ceil(2 * rayon::current_num_threads())
-        .max(1);
+    let (smooth, rough) = smooth_part(&ud);
+    let magnitudes: Vec<UBig> = numerators.par_iter().map(|n| magnitude(n)).collect();
+    // gcd(nᵢ, S) for every numerator (0 for nᵢ = 0, whose value is 0/1 anyway).
+    let common: Vec<UBig> = magnitudes
+        .par_iter()
+        .map(|un| {
+            if un.is_zero() || smooth == UBig::ONE {
+                UBig::ONE
+            } else {
+                let r = un % &smooth;
+                if r.is_zero() {
+                    smooth.clone()
+                } else {
+                    (&smooth).gcd(&r)
+                }
+            }
+        })
+        .collect();
+    // h = gcd(R, Π nᵢ mod R) over the non-zero numerators, the product taken in parallel runs.
+    let h = if rough == UBig::ONE {
+        UBig::ONE
+    } else {
+        let k = rough.bit_len();
+        let widest = magnitudes.iter().map(|m| m.bit_len()).max().unwrap_or(0);
+        // `acc < R < 2^k` times `nᵢ < 2^widest` (or times another run's `acc`) is below
+        // `2^(2k+slack)`: one product and one reduction per numerator.
+        let barrett = Barrett::with_slack(&rough, widest.saturating_sub(k));
+        let chunk = magnitudes
+            .len()
+            .div_ceil(2 * rayon::current_num_threads())
+            .max(1);
+        let product = magnitudes
+            .par_chunks(chunk)
+            .map(|part| {
+                part.iter()
+                    .filter(|m| !m.is_zero())
+                    .fold(UBig::ONE, |acc, m| barrett.reduce(acc * m))
+            })
+            .reduce(|| UBig::ONE, |a, b| barrett.reduce(a * b));
+        (&rough).gcd(&product)
+    };
+    // The reduced denominators d/gᵢ, each distinct one computed (and converted) once.
+    let mut denominators: HashMap<UBig, BigInt> = HashMap::new();
+    let factors: Vec<UBig> = magnitudes
+        .par_iter()
+        .zip(common)
+        .map(|(un, g)| {
+            if h == UBig::ONE || un.is_zero() {
+                g
+            } else {
+                let r = un % &h;
+                let extra = if r.is_zero() { h.clone() } else { (&h).gcd(&r) };
+                g * extra
+            }
+        })
+        .collect();
+    for g in &factors {
+        denominators.entry(g.clone()).or_insert_with(|| {
+            if *g == UBig::ONE {
+                d.clone()
+            } else {
+                from_ubig(&(&ud / g))
+            }
+        });
+    }
     numerators
-        .par_chunks(chunk)
-        .flat_map_iter(|part| reduced_chunk(part, d, &ud))
+        .par_iter()
+        .zip(magnitudes)
+        .zip(factors)
+        .map(|((n, un), g)| {
+            if un.is_zero() {
+                return crate::value::Rational::new_raw(BigInt::zero(), BigInt::one());
+            }
+            let m = if g == UBig::ONE {
+                (*n).clone()
+            } else {
+                from_ubig(&(un / &g))
+            };
+            let m = if n.is_negative() && !m.is_negative() {
+                -m
+            } else {
+                m
+            };
+            crate::value::Rational::new_raw(m, denominators[&g].clone())
+        })
         .collect()
 }
 
-/// [`reduced_all`] of one run of numerators, with its own list of shared factors `gⱼ | d`
-/// (`gⱼ ≠ 1`; index 0 stands for `g = 1`, `q = d`).
-fn reduced_chunk(part: &[&BigInt], d: &BigInt, ud: &UBig) -> Vec<crate::value::Rational> {
-    let mut g = vec![UBig::ONE];
-    let mut uses = vec![0usize];
-    // Indices into `g` (never 0) in the order they are tried.
-    let mut order: Vec<usize> = Vec::new();
-    // Per numerator: `None` for 0, else its factor index `j` and `mᵢ = |nᵢ|/gⱼ`.
-    let pending: Vec<Option<(usize, UBig)>> = part
-        .iter()
-        .map(|n| {
-            if n.is_zero() {
-                return None;
+/// Primes below this bound make up the smooth part of [`reduced_all`]'s denominator.
+pub const SMOOTH_PRIMES_BELOW: u32 = 1 << 16;
+
+/// `(S, R)` with `x = S·R`: `S` the product of the prime powers of `x` (`x > 0`) with primes
+/// below [`SMOOTH_PRIMES_BELOW`], `R` the rest (no prime factor below the bound).
+fn smooth_part(x: &UBig) -> (UBig, UBig) {
+    let mut rest = x.clone();
+    let mut smooth = UBig::ONE;
+    let twos = rest.trailing_zeros().unwrap_or(0);
+    if twos > 0 {
+        rest >>= twos;
+        smooth <<= twos;
+    }
+    let bound = SMOOTH_PRIMES_BELOW as usize;
+    let mut composite = vec![false; bound];
+    for p in 3..bound {
+        if composite[p] {
+            continue;
+        }
+        for multiple in (p * p..bound).step_by(p) {
+            composite[multiple] = true;
+        }
+        if p % 2 == 0 {
+            continue;
+        }
+        let word = UBig::from(p as u64);
+        loop {
+            let (q, r) = (&rest).div_rem(&word);
+            if !r.is_zero() {
+                break;
             }
-            let un = magnitude(n);
-            for k in 0..order.len() {
-                let j = order[k];
-                let (m, r) = (&un).div_rem(&g[j]);
-                if r.is_zero() {
-                    uses[j] += 1;
-                    if k > 0 && uses[j] > uses[order[k - 1]] {
-                        order.swap(k, k - 1);
-                    }
-                    return Some((j, m));
-                }
-            }
-            let common = (&un).gcd(ud);
-            if common == UBig::ONE {
-                return Some((0, un));
-            }
-            let m = &un / &common;
-            g.push(common);
-            uses.push(1);
-            order.push(g.len() - 1);
-            Some((g.len() - 1, m))
-        })
-        .collect();
-    // `h[j] = gcd(qⱼ, Π mᵢ mod qⱼ)` over the numerators with factor `j`.
-    let q: Vec<UBig> = g.iter().map(|gj| ud / gj).collect();
-    let h: Vec<UBig> = (0..g.len())
-        .map(|j| {
-            let mut members = pending.iter().flatten().filter(|(k, _)| *k == j).peekable();
-            if members.peek().is_none() || q[j] == UBig::ONE {
-                return UBig::ONE;
-            }
-            let barrett = Barrett::new(&q[j]);
-            let mut acc = UBig::ONE;
-            for (_, m) in members {
-                // Barrett needs its argument below `q²`.
-                let m = if m.bit_len() + 2 <= 2 * q[j].bit_len() {
-                    barrett.reduce(m.clone())
-                } else {
-                    m % &q[j]
-                };
-                acc = barrett.reduce(acc * m);
-            }
-            (&q[j]).gcd(&acc)
-        })
-        .collect();
-    part.iter()
-        .zip(pending)
-        .map(|(n, p)| match p {
-            None => crate::value::Rational::new_raw(BigInt::zero(), BigInt::one()),
-            Some((j, m)) => {
-                let extra = if h[j] == UBig::ONE {
-                    UBig::ONE
-                } else {
-                    (&m % &h[j]).gcd(&h[j])
-                };
-                let (m, qj) = if extra == UBig::ONE {
-                    (m, q[j].clone())
-                } else {
-                    (m / &extra, &q[j] / &extra)
-                };
-                let rn = from_ubig(&m);
-                let rn = if n < &&BigInt::zero() { -rn } else { rn };
-                let rd = if j == 0 && extra == UBig::ONE {
-                    d.clone()
-                } else {
-                    from_ubig(&qj)
-                };
-                crate::value::Rational::new_raw(rn, rd)
-            }
-        })
-        .collect()
+            rest = q;
+            smooth *= &word;
+        }
+    }
+    (smooth, rest)
 }
 
 /// Barrett reduction modulo a fixed `m`: two multiplications instead of a long division
@@ -763,22 +793,32 @@ fn reduced_chunk(part: &[&BigInt], d: &BigInt, ud: &UBig) -> Vec<crate::value::R
 struct Barrett {
     m: UBig,
     k: usize,
+    /// Extra bits allowed above `2^(2k)` in the argument of [`reduce`](Self::reduce).
+    slack: usize,
     mu: UBig,
 }
 
 impl Barrett {
     fn new(m: &UBig) -> Self {
+        Self::with_slack(m, 0)
+    }
+
+    /// Reduction of arguments below `2^(2k+slack)` (`μ = ⌊2^(2k+slack)/m⌋`, `k` the bits of `m`).
+    fn with_slack(m: &UBig, slack: usize) -> Self {
         let k = m.bit_len();
         Barrett {
             m: m.clone(),
             k,
-            mu: (UBig::ONE << (2 * k)) / m,
+            slack,
+            mu: (UBig::ONE << (2 * k + slack)) / m,
         }
     }
 
-    /// `t mod m` for `0 ≤ t < m²` (Barrett: the estimated quotient is short by at most 2).
+    /// `t mod m` for `0 ≤ t < 2^(2k+slack)` (so any `t < 2^slack·m²`). With `t' = ⌊t/2^(k−1)⌋`
+    /// and the estimate `q̂ = ⌊t'·μ/2^(k+1+slack)⌋`, each of the three floors loses less than
+    /// 1 against `t/m` (`t' < 2^(k+1+slack)` and `2^(k−1) ≤ m`), so `q̂` is short by at most 2.
     fn reduce(&self, t: UBig) -> UBig {
-        let q = ((&t >> (self.k - 1)) * &self.mu) >> (self.k + 1);
+        let q = ((&t >> (self.k - 1)) * &self.mu) >> (self.k + 1 + self.slack);
         let mut r = t - q * &self.m;
         while r >= self.m {
             r -= &self.m;
@@ -1458,6 +1498,21 @@ mod tests {
         }
     }
 
+    /// The smooth part at the bound, by hand: 65,521 is the largest prime below 2¹⁶ and goes to
+    /// `S` with 2⁵ and 3²; 65,537 (the next prime above 2¹⁶) and the Mersenne prime 2⁶¹ − 1 stay
+    /// in `R`; 1 is all rest-free.
+    #[test]
+    fn the_smooth_part_takes_the_primes_below_the_bound() {
+        let big = |v: u64| UBig::from(v);
+        let mersenne = big((1 << 61) - 1);
+        let smooth = big(32 * 9 * 65_521);
+        let rough = big(65_537) * &mersenne * &mersenne;
+        assert_eq!(smooth_part(&(&smooth * &rough)), (smooth.clone(), rough));
+        assert_eq!(smooth_part(&smooth), (smooth, UBig::ONE));
+        assert_eq!(smooth_part(&mersenne), (UBig::ONE, mersenne));
+        assert_eq!(smooth_part(&UBig::ONE), (UBig::ONE, UBig::ONE));
+    }
+
     #[test]
     fn barrett_reduction_agrees_with_division() {
         let mut rng = ChaCha8Rng::seed_from_u64(9);
@@ -1473,6 +1528,18 @@ mod tests {
                 assert_eq!(b.reduce(t.clone()), t % &m);
             }
             assert_eq!(b.reduce(&m * &m - UBig::ONE), (&m * &m - UBig::ONE) % &m);
+            // With slack: arguments up to 2^(2k+slack) − 1, against the remainder of a division.
+            for slack in [1usize, 7, 64, 130] {
+                let b = Barrett::with_slack(&m, slack);
+                let top = (UBig::ONE << (2 * m.bit_len() + slack)) - UBig::ONE;
+                for t in [top.clone(), &top >> 1usize, (&m << slack) * &m - UBig::ONE] {
+                    assert_eq!(b.reduce(t.clone()), t % &m, "slack {slack}");
+                }
+                for _ in 0..20 {
+                    let t = words_of(&mut rng, 2 * words + slack.div_ceil(64) + 1) % &top;
+                    assert_eq!(b.reduce(t.clone()), t % &m, "slack {slack}");
+                }
+            }
         }
     }
 

@@ -306,11 +306,22 @@ pub fn solve(args: &SolveArgs, file: Option<ProblemFile>) -> Result<String, Stri
         )?;
     }
     let report = match schedule {
-        None => exact_report(
-            &prepared,
-            opt.as_ref().expect("exact mode has itself as twin"),
-            args.format == ReportFormat::Json,
-        ),
+        None => {
+            let opt = opt.as_ref().expect("exact mode has itself as twin");
+            let report = exact_report(&prepared, opt);
+            if all_values {
+                // Every state's exact value: streamed into standard output (hundreds of
+                // megabytes at 10⁴ states), nothing left for the caller to print.
+                let mut out = std::io::BufWriter::with_capacity(1 << 20, std::io::stdout().lock());
+                return match write_json_with_values(&report, opt, &mut out)
+                    .and_then(|()| std::io::Write::flush(&mut out))
+                {
+                    Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.to_string()),
+                    _ => Ok(String::new()),
+                };
+            }
+            report
+        }
         Some(schedule) => vi_report(args, &prepared, opt.as_ref(), schedule, tolerance)?,
     };
     Ok(match args.format {
@@ -511,9 +522,10 @@ fn policy_columns(
         .unzip()
 }
 
-/// The report of `--algorithm exact`; every state's exact value only when printed (`all`: JSON),
-/// as reducing and printing 10⁴ fractions of 10⁴ digits each is the bulk of a large run.
-fn exact_report(prepared: &Prepared, opt: &Optimum, all: bool) -> Report {
+/// The report of `--algorithm exact`, without every state's exact value (reducing and printing
+/// 10⁴ fractions of 10⁴ digits each is the bulk of a large run: [`write_json_with_values`]
+/// streams them into the JSON output).
+fn exact_report(prepared: &Prepared, opt: &Optimum) -> Report {
     let problem = &prepared.problem;
     let (noise, noise_description, gamma) = noise_fields(problem);
     let g = opt.cost_to_go(problem.initial());
@@ -533,14 +545,46 @@ fn exact_report(prepared: &Prepared, opt: &Optimum, all: bool) -> Report {
         optimum: Some(optimum_summary(problem, opt, "this problem")),
         value_iteration: None,
         iterations: opt.stats.exact_iterations as u64,
-        cost_to_go: if all {
-            opt.cost_to_go_texts()
-        } else {
-            Vec::new()
-        },
+        cost_to_go: Vec::new(),
         policy,
         policy_action,
     }
+}
+
+/// `report` as JSON (`serde_json`'s pretty form, then a newline) with its `cost_to_go` array
+/// holding every state's exact `G*` ([`Optimum::for_each_cost_to_go_text`]), written into `out`
+/// as the values are printed: the same bytes as the report with those texts in `cost_to_go`,
+/// without holding them all (717 MB on a random 100×100 grid at γ = 0.999).
+fn write_json_with_values(
+    report: &Report,
+    opt: &Optimum,
+    out: &mut impl std::io::Write,
+) -> std::io::Result<()> {
+    debug_assert!(report.cost_to_go.is_empty());
+    let text = serde_json::to_string_pretty(report).expect("serialisable");
+    // The array is a top-level field, indented by two spaces; its elements by four.
+    let key = "\n  \"cost_to_go\": ";
+    let at = text.find(key).expect("the report has a cost_to_go field") + key.len();
+    let rest = text[at..]
+        .strip_prefix("[]")
+        .expect("cost_to_go is empty in the report");
+    out.write_all(&text.as_bytes()[..at])?;
+    let mut first = true;
+    opt.for_each_cost_to_go_text(&mut |pieces| {
+        out.write_all(if first { b"[\n    \"" } else { b",\n    \"" })?;
+        first = false;
+        for piece in pieces {
+            // Digits, `-`, `/` and `inf`: nothing to escape in a JSON string.
+            debug_assert!(piece
+                .bytes()
+                .all(|b| b.is_ascii_alphanumeric() || b == b'-' || b == b'/'));
+            out.write_all(piece.as_bytes())?;
+        }
+        out.write_all(b"\"")
+    })?;
+    out.write_all(if first { b"[]" } else { b"\n  ]" })?;
+    out.write_all(rest.as_bytes())?;
+    out.write_all(b"\n")
 }
 
 fn vi_report(

@@ -127,12 +127,8 @@ impl Optimum {
     }
 
     /// Every state's `G*` as [`Extended`]'s text (`"n/d"`, `"n"` or `"inf"`), the same strings
-    /// as `cost_to_go_all()[x].to_string()`, formatted in parallel and each distinct reduced
-    /// denominator only once (the reduced values share a few denominators, `d·C` divided by
-    /// small factors, and printing numbers of 10⁴ digits is the bulk of writing them all).
-    /// Unless [`cost_to_go_all`](Self::cost_to_go_all) has cached them already, the reduced
-    /// values are dropped as they are printed rather than cached (on a 100×100 grid they are
-    /// 300 MB next to the texts).
+    /// as `cost_to_go_all()[x].to_string()` ([`for_each_cost_to_go_text`](Self::for_each_cost_to_go_text)
+    /// collected).
     ///
     /// ```
     /// use truecost::model::{Move, Problem};
@@ -144,23 +140,70 @@ impl Optimum {
     /// assert_eq!(optimum(&s).unwrap().cost_to_go_texts(), ["10/9", "0"]);
     /// ```
     pub fn cost_to_go_texts(&self) -> Vec<String> {
+        let mut texts = Vec::with_capacity(self.numerators.len());
+        self.for_each_cost_to_go_text(&mut |pieces| {
+            texts.push(pieces.concat());
+            Ok(())
+        })
+        .expect("collecting never fails");
+        texts
+    }
+
+    /// Every state's `G*` text, in state order, handed to `each` as pieces whose concatenation
+    /// is `cost_to_go_all()[x].to_string()` (`[n, "/", d]`, `[n]` or `["inf"]`; digits, `-`,
+    /// `/` and `inf` only), for a writer that streams them. The numerators are printed in
+    /// parallel, a batch at a time, and each distinct reduced denominator only once (the
+    /// reduced values share a few denominators, `d·C` divided by small factors; printing
+    /// numbers of 10⁴ digits is the bulk of writing them all). Unless
+    /// [`cost_to_go_all`](Self::cost_to_go_all) has cached them already, the reduced values
+    /// are not cached (on a 100×100 grid they are 300 MB). Stops at the first error of `each`.
+    ///
+    /// ```
+    /// use truecost::model::{Move, Problem};
+    /// use truecost::stochastic::{policy_iteration::optimum, NoiseModel, Predictability, StochasticProblem};
+    /// use truecost::value::parse_rational;
+    /// let one = parse_rational("1").unwrap();
+    /// let p = Problem::new(vec![vec![Move { successor: 1, cost: one }], vec![]], 0, vec![1]).unwrap();
+    /// let s = StochasticProblem::from_deterministic(&p, NoiseModel::Paper, &Predictability::parse("0.9").unwrap()).unwrap();
+    /// let mut pieces: Vec<Vec<String>> = Vec::new();
+    /// optimum(&s).unwrap().for_each_cost_to_go_text(&mut |p| {
+    ///     pieces.push(p.iter().map(|s| s.to_string()).collect());
+    ///     Ok(())
+    /// }).unwrap();
+    /// assert_eq!(pieces, [vec!["10", "/", "9"], vec!["0"]]);
+    /// ```
+    pub fn for_each_cost_to_go_text(
+        &self,
+        each: &mut dyn FnMut(&[&str]) -> std::io::Result<()>,
+    ) -> std::io::Result<()> {
         use rayon::prelude::*;
-        if let Some(values) = self.reduced.get() {
-            let (denominators, slots) = denominator_texts(values);
-            return values
+        let owned;
+        let values: &[Extended] = match self.reduced.get() {
+            Some(values) => values,
+            None => {
+                owned = self.reduce();
+                &owned
+            }
+        };
+        let (denominators, slots) = denominator_texts(values);
+        let batch = 64 * rayon::current_num_threads();
+        for (chunk, chunk_slots) in values.chunks(batch).zip(slots.chunks(batch)) {
+            let numerators: Vec<String> = chunk
                 .par_iter()
-                .zip(slots)
-                .map(|(v, slot)| value_text(v, slot, &denominators))
+                .map(|v| match v {
+                    Extended::Finite(r) => crate::value::integer_text(r.numer()),
+                    Extended::Infinite => "inf".to_string(),
+                })
                 .collect();
+            for (numerator, &slot) in numerators.iter().zip(chunk_slots) {
+                if slot == usize::MAX {
+                    each(&[numerator])?;
+                } else {
+                    each(&[numerator, "/", &denominators[slot]])?;
+                }
+            }
         }
-        let values = self.reduce();
-        let (denominators, slots) = denominator_texts(&values);
-        // Consumed while printed: each value is freed once its text exists.
-        values
-            .into_par_iter()
-            .zip(slots)
-            .map(|(v, slot)| value_text(&v, slot, &denominators))
-            .collect()
+        Ok(())
     }
 
     /// `G*(x)` as the pair (numerator, common denominator) without reduction, `None` if `+∞`.
@@ -248,18 +291,6 @@ fn denominator_texts(values: &[Extended]) -> (Vec<String>, Vec<usize>) {
             .collect(),
         slots,
     )
-}
-
-/// `value.to_string()`, with the denominator's text taken from `denominators[slot]`.
-fn value_text(value: &Extended, slot: usize, denominators: &[String]) -> String {
-    match value {
-        Extended::Finite(r) if !r.is_integer() => format!(
-            "{}/{}",
-            crate::value::integer_text(r.numer()),
-            denominators[slot]
-        ),
-        _ => value.to_string(),
-    }
 }
 
 /// How far a value function is from `G*`, exactly (over the states with finite `G*`).

@@ -288,11 +288,24 @@ pub fn parse_exact(text: &str) -> Option<Rational> {
 fn natural(text: &str) -> Option<BigUint> {
     match text.strip_prefix("0x") {
         Some(hex) => {
-            let lower = |b: u8| b.is_ascii_digit() || (b'a'..=b'f').contains(&b);
-            if hex.is_empty() || hex.starts_with('0') || !hex.bytes().all(lower) {
+            if hex.is_empty() || hex.starts_with('0') {
                 return None;
             }
-            BigUint::parse_bytes(hex.as_bytes(), 16)
+            // Eight digits to a 32-bit digit of the number, from the last (linear time).
+            let mut digits = Vec::with_capacity(hex.len().div_ceil(8));
+            for chunk in hex.as_bytes().rchunks(8) {
+                let mut digit = 0u32;
+                for &b in chunk {
+                    let nibble = match b {
+                        b'0'..=b'9' => b - b'0',
+                        b'a'..=b'f' => b - b'a' + 10,
+                        _ => return None,
+                    };
+                    digit = digit << 4 | u32::from(nibble);
+                }
+                digits.push(digit);
+            }
+            Some(BigUint::new(digits))
         }
         None => {
             if text.is_empty() || !text.bytes().all(|b| b.is_ascii_digit()) {

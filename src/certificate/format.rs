@@ -28,9 +28,9 @@
 //! * `values`: one exact number per state, in state order: `"p/q"` or `"p"` (an optional `-`,
 //!   the integer, a positive denominator), or `"inf"` (truecost, deterministic: no policy
 //!   reaches a goal with probability 1). Each integer is decimal digits, or `0x` and lowercase
-//!   hexadecimal digits without a leading `0`: the writers print integers of more than
+//!   hexadecimal digits without a leading `0`: [`write_over`] prints integers of more than
 //!   [`DECIMAL_BITS`] bits in hexadecimal ([`push_integer`]), which is linear in their length
-//!   where decimal printing is not.
+//!   where decimal printing is not; [`write`] writes the texts it is given.
 //! * `policy`: per state, the index of the chosen action in the state's action list, or `null`
 //!   (goals, terminal states, `inf` states; for reach, the states of probability 0).
 

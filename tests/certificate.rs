@@ -746,3 +746,100 @@ fn check_coq_runs_the_verified_checker() {
     let v = json(&["check", source[0], source[1], &p, "--format", "json"]);
     assert_eq!(v["coq_checked"], false, "{v}");
 }
+
+/// An exact value of a certificate as `num`'s `BigRational` (reduced): `"inf"` is `None`, each
+/// integer decimal or `0x` hexadecimal (read here by `num-bigint`, not by the checker's reader).
+fn certificate_value(text: &str) -> Option<num_rational::BigRational> {
+    use num_bigint::BigInt;
+    let integer = |t: &str| -> BigInt {
+        let (negative, magnitude) = match t.strip_prefix('-') {
+            Some(m) => (true, m),
+            None => (false, t),
+        };
+        let n = match magnitude.strip_prefix("0x") {
+            Some(hex) => BigInt::parse_bytes(hex.as_bytes(), 16).unwrap(),
+            None => magnitude.parse().unwrap(),
+        };
+        if negative {
+            -n
+        } else {
+            n
+        }
+    };
+    (text != "inf").then(|| match text.split_once('/') {
+        Some((n, d)) => num_rational::BigRational::new(integer(n), integer(d)),
+        None => num_rational::BigRational::from_integer(integer(text)),
+    })
+}
+
+/// A 12×12 benchmark grid under the paper's noise with `γ = 0.99`, exported with its outcome
+/// probabilities: the exact values have more than 1024 bits, so the certificate writes them
+/// in hexadecimal (`0x…`). `check` accepts it, and its values, read here independently, are the
+/// optimum: with every stage cost at least 1 (costs 1–4), the solution of the Bellman equation
+/// `V(x) = min_a [l(x, a) + Σ_y p(y | x, a) V(y)]` (`V = 0` at the goal) is unique and is the
+/// optimal truecost, and the policy attains the minimum. Checked in `BigRational` arithmetic.
+#[test]
+fn long_values_are_written_in_hexadecimal_and_are_the_optimum() {
+    use num_rational::BigRational;
+    let dir = tempfile::tempdir().unwrap();
+    let problem = dir.path().join("grid.json");
+    stdout(&[
+        "export",
+        "--grid",
+        "12x12",
+        "--gamma",
+        "0.99",
+        "--out",
+        &s(&problem),
+    ]);
+    let model: Value = serde_json::from_str(&std::fs::read_to_string(&problem).unwrap()).unwrap();
+    let cert = certify(dir.path(), &["--file", &s(&problem)], &[]);
+    accepted(dir.path(), &["--file", &s(&problem)], &cert);
+    let texts: Vec<&str> = cert["values"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    assert_eq!(texts.len(), 144);
+    assert!(texts.iter().any(|t| t.contains("/0x")), "{}", texts[0]);
+    let v: Vec<BigRational> = texts
+        .iter()
+        .map(|t| certificate_value(t).expect("every state of the grid reaches the goal"))
+        .collect();
+    let ratio = |t: &Value| -> BigRational { t.as_str().unwrap().parse().unwrap() };
+    let goals: Vec<u64> = model["goals"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|g| g.as_u64().unwrap())
+        .collect();
+    for (x, actions) in model["actions"].as_array().unwrap().iter().enumerate() {
+        if goals.contains(&(x as u64)) {
+            assert_eq!(v[x], BigRational::from_integer(0.into()), "goal {x}");
+            assert!(cert["policy"][x].is_null());
+            continue;
+        }
+        let q: Vec<BigRational> = actions
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|a| {
+                let mut q = ratio(&a["cost"]);
+                assert!(q >= BigRational::from_integer(1.into()));
+                match a.get("outcomes") {
+                    Some(outcomes) => {
+                        for o in outcomes.as_array().unwrap() {
+                            q += ratio(&o["p"]) * &v[o["to"].as_u64().unwrap() as usize];
+                        }
+                    }
+                    None => q += &v[a["to"].as_u64().unwrap() as usize],
+                }
+                q
+            })
+            .collect();
+        let chosen = cert["policy"][x].as_u64().unwrap() as usize;
+        assert_eq!(q[chosen], v[x], "evaluation at {x}");
+        assert_eq!(q.iter().min().unwrap(), &v[x], "optimality at {x}");
+    }
+}

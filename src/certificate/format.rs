@@ -26,16 +26,19 @@
 //!   model's canonical export ([`super::Mdp::canonical_text`]; `sha256_of`:
 //!   `truecost-canonical-mdp/1`).
 //! * `values`: one exact number per state, in state order: `"p/q"` or `"p"` (an optional `-`,
-//!   decimal digits, a positive denominator), or `"inf"` (truecost, deterministic: no policy
-//!   reaches a goal with probability 1).
+//!   the integer, a positive denominator), or `"inf"` (truecost, deterministic: no policy
+//!   reaches a goal with probability 1). Each integer is decimal digits, or `0x` and lowercase
+//!   hexadecimal digits without a leading `0`: [`write_over`] prints integers of more than
+//!   [`DECIMAL_BITS`] bits in hexadecimal ([`push_integer`]), which is linear in their length
+//!   where decimal printing is not; [`write`] writes the texts it is given.
 //! * `policy`: per state, the index of the chosen action in the state's action list, or `null`
 //!   (goals, terminal states, `inf` states; for reach, the states of probability 0).
 
-use num_bigint::BigInt;
-use num_traits::{Signed, Zero};
+use num_bigint::{BigInt, BigUint};
+use num_traits::{One, Signed, Zero};
 use serde_json::{json, Map, Value};
 
-use crate::value::Rational;
+use crate::value::{integer_text, Rational};
 
 /// The format tag.
 pub const FORMAT: &str = "truecost-certificate/1";
@@ -105,22 +108,143 @@ pub fn write(
     values: Vec<String>,
     policy: &[Option<usize>],
 ) -> String {
+    let mut out = String::with_capacity(
+        values.iter().map(|v| v.len() + 3).sum::<usize>() + 6 * policy.len() + 512,
+    );
+    head(&mut out, objective, problem, policy, values.len());
+    for (i, v) in values.iter().enumerate() {
+        if i > 0 {
+            out.push(',');
+        }
+        push_json_string(&mut out, v);
+    }
+    out.push_str("]}\n");
+    out
+}
+
+/// Writes a certificate whose finite values are `numerators[x] / denominator` (`denominator >
+/// 0`), not reduced: `"k/d"`, `"k"` when `d = 1` or `k = 0`, `"inf"` for `None`; every integer
+/// as [`push_integer`] writes it, the denominator's text printed once. The same file as
+/// [`write`] with those texts, made without a `String` per value.
+pub fn write_over(
+    objective: &CertifiedObjective,
+    problem: &ProblemRecord,
+    numerators: &[Option<&BigInt>],
+    denominator: &BigInt,
+    policy: &[Option<usize>],
+) -> String {
+    let mut d = String::new();
+    push_integer(&mut d, denominator);
+    // At most bits/3 decimal digits (bits/4 hexadecimal ones), and the fixed characters: one
+    // buffer, filled in place.
+    let room = |k: &Option<&BigInt>| k.map_or(6, |k| k.bits() as usize / 3 + 8 + d.len());
+    let mut out =
+        String::with_capacity(numerators.iter().map(room).sum::<usize>() + 6 * policy.len() + 512);
+    head(&mut out, objective, problem, policy, numerators.len());
+    for (x, k) in numerators.iter().enumerate() {
+        if x > 0 {
+            out.push(',');
+        }
+        out.push('"');
+        match k {
+            None => out.push_str("inf"),
+            Some(k) if denominator.is_one() || k.is_zero() => push_integer(&mut out, k),
+            Some(k) => {
+                push_integer(&mut out, k);
+                out.push('/');
+                out.push_str(&d);
+            }
+        }
+        out.push('"');
+    }
+    out.push_str("]}\n");
+    out
+}
+
+/// Integers of more than this many bits (309 decimal digits or more) are written in
+/// hexadecimal: printing in decimal takes time that grows faster than the length (at the
+/// thousands of digits of a large grid's exact values, longer than solving), hexadecimal is
+/// a copy of the binary digits.
+pub const DECIMAL_BITS: u64 = 1024;
+
+/// Appends the text of `n` as certificates write integers: decimal (an optional `-`, digits)
+/// up to [`DECIMAL_BITS`] bits, beyond that an optional `-`, `0x` and lowercase hexadecimal
+/// digits, the first not `0`. [`parse_exact`] reads both.
+pub fn push_integer(out: &mut String, n: &BigInt) {
+    if n.bits() <= DECIMAL_BITS {
+        out.push_str(&integer_text(n));
+        return;
+    }
+    const HEX: &[u8; 16] = b"0123456789abcdef";
+    if n.is_negative() {
+        out.push('-');
+    }
+    out.push_str("0x");
+    let limbs: Vec<u64> = n.magnitude().iter_u64_digits().collect();
+    for (i, limb) in limbs.iter().rev().enumerate() {
+        // The leading limb is not 0 (`n` has more than DECIMAL_BITS bits): no leading zero.
+        let nibbles = if i == 0 {
+            (64 - limb.leading_zeros() as usize).div_ceil(4)
+        } else {
+            16
+        };
+        let mut text = [0u8; 16];
+        for (j, byte) in limb.to_be_bytes().iter().enumerate() {
+            text[2 * j] = HEX[usize::from(byte >> 4)];
+            text[2 * j + 1] = HEX[usize::from(byte & 15)];
+        }
+        out.push_str(std::str::from_utf8(&text[16 - nibbles..]).expect("ASCII digits"));
+    }
+}
+
+/// The fields before the values, in the order `serde_json` writes an object's keys (sorted),
+/// and the opening of the `values` list.
+fn head(
+    out: &mut String,
+    objective: &CertifiedObjective,
+    problem: &ProblemRecord,
+    policy: &[Option<usize>],
+    states: usize,
+) {
+    use std::fmt::Write;
     let alpha = match objective {
         CertifiedObjective::Discounted(a) => json!(a.to_string()),
         _ => Value::Null,
     };
-    let v = json!({
-        "format": FORMAT,
-        "objective": objective.name(),
-        "alpha": alpha,
-        "problem": problem_json(problem),
-        "states": values.len(),
-        "values": values,
-        "policy": policy,
-    });
-    let mut s = serde_json::to_string(&v).expect("serialisable");
-    s.push('\n');
-    s
+    let _ = write!(
+        out,
+        "{{\"alpha\":{alpha},\"format\":\"{FORMAT}\",\"objective\":\"{}\",\"policy\":[",
+        objective.name()
+    );
+    for (x, a) in policy.iter().enumerate() {
+        if x > 0 {
+            out.push(',');
+        }
+        match a {
+            Some(i) => {
+                let _ = write!(out, "{i}");
+            }
+            None => out.push_str("null"),
+        }
+    }
+    let _ = write!(
+        out,
+        "],\"problem\":{},\"states\":{states},\"values\":[",
+        problem_json(problem)
+    );
+}
+
+/// `v` as a JSON string, escaped as `serde_json` escapes it.
+fn push_json_string(out: &mut String, v: &str) {
+    if v.bytes()
+        .all(|b| (0x20..0x7f).contains(&b) && b != b'"' && b != b'\\')
+    {
+        out.push('"');
+        out.push_str(v);
+        out.push('"');
+    } else {
+        out.push_str(&Value::from(v).to_string());
+    }
 }
 
 /// A certificate's `problem` record as JSON (every kind has the same).
@@ -136,29 +260,60 @@ pub(super) fn problem_json(p: &ProblemRecord) -> Value {
     })
 }
 
-/// An exact number `-?digits(/digits)?` with a positive denominator, kept as written (not
-/// reduced).
+/// An exact number `p/q` or `p` with a positive denominator `q`, kept as written (not
+/// reduced). Each integer is decimal (`-?[0-9]+`) or, as [`push_integer`] writes long ones,
+/// hexadecimal (`-?0x[1-9a-f][0-9a-f]*`); `q` has no sign.
 pub fn parse_exact(text: &str) -> Option<Rational> {
     let (num, den) = match text.split_once('/') {
         Some((n, d)) => (n, Some(d)),
         None => (text, None),
     };
-    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
-    let unsigned = num.strip_prefix('-').unwrap_or(num);
-    if !digits(unsigned) || den.is_some_and(|d| !digits(d)) {
-        return None;
-    }
-    let n: BigInt = num.parse().ok()?;
-    let d: BigInt = match den {
-        Some(d) => d.parse().ok()?,
+    let n = match num.strip_prefix('-') {
+        Some(magnitude) => -BigInt::from(natural(magnitude)?),
+        None => BigInt::from(natural(num)?),
+    };
+    let d = match den {
+        Some(d) => BigInt::from(natural(d)?),
         None => BigInt::from(1),
     };
-    if d.is_zero() || d.is_negative() {
+    if d.is_zero() {
         return None;
     }
     // Not reduced: every comparison the checker makes is by cross-multiplication, and a gcd
     // per value of ten thousand digits would dominate the check.
     Some(Rational::new_raw(n, d))
+}
+
+/// A natural number in decimal (`[0-9]+`) or hexadecimal (`0x[1-9a-f][0-9a-f]*`).
+fn natural(text: &str) -> Option<BigUint> {
+    match text.strip_prefix("0x") {
+        Some(hex) => {
+            if hex.is_empty() || hex.starts_with('0') {
+                return None;
+            }
+            // Eight digits to a 32-bit digit of the number, from the last (linear time).
+            let mut digits = Vec::with_capacity(hex.len().div_ceil(8));
+            for chunk in hex.as_bytes().rchunks(8) {
+                let mut digit = 0u32;
+                for &b in chunk {
+                    let nibble = match b {
+                        b'0'..=b'9' => b - b'0',
+                        b'a'..=b'f' => b - b'a' + 10,
+                        _ => return None,
+                    };
+                    digit = digit << 4 | u32::from(nibble);
+                }
+                digits.push(digit);
+            }
+            Some(BigUint::new(digits))
+        }
+        None => {
+            if text.is_empty() || !text.bytes().all(|b| b.is_ascii_digit()) {
+                return None;
+            }
+            text.parse().ok()
+        }
+    }
 }
 
 pub(super) fn object<'a>(
@@ -332,7 +487,13 @@ pub fn parse(text: &str) -> Result<Certificate, String> {
 
 #[cfg(test)]
 mod tests {
-    use super::parse_exact;
+    use num_bigint::BigInt;
+    use serde_json::json;
+
+    use super::{
+        parse_exact, problem_json, push_integer, write, write_over, CertifiedObjective,
+        ProblemRecord, DECIMAL_BITS, FORMAT,
+    };
 
     #[test]
     fn exact_numbers_are_integers_or_fractions_with_positive_denominators() {
@@ -341,10 +502,157 @@ mod tests {
         assert_eq!(r("6/4"), Some(("6".into(), "4".into())));
         assert_eq!(r("-7"), Some(("-7".into(), "1".into())));
         assert_eq!(parse_exact("6/4"), parse_exact("3/2"));
+        // Hexadecimal: 0x1f = 31, 0xa0 = 160.
+        assert_eq!(r("0x1f/0xa0"), Some(("31".into(), "160".into())));
+        assert_eq!(r("-0x1f/3"), Some(("-31".into(), "3".into())));
+        assert_eq!(r("7/0x10"), Some(("7".into(), "16".into())));
         for bad in [
-            "", "-", "1/", "/2", "1/0", "1/-2", "+1", "1.5", "1e3", " 1", "inf", "1/2/3",
+            "", "-", "1/", "/2", "1/0", "1/-2", "+1", "1.5", "1e3", " 1", "inf", "1/2/3", "0x",
+            "0x0", "0x01", "0X1", "0xA", "0x-1", "-0x", "x1", "0x1g", "1/0x0", "1/-0x1", "--1",
+            "0x 1", "0b1",
         ] {
             assert_eq!(parse_exact(bad), None, "{bad:?}");
         }
+    }
+
+    /// `n` as the writer should print it, by `num-bigint`'s own formatting: decimal up to
+    /// 1024 bits, `0x` and `{:x}` beyond.
+    fn expected_integer(n: &BigInt) -> String {
+        if n.bits() <= 1024 {
+            n.to_string()
+        } else if n < &BigInt::from(0) {
+            format!("-0x{:x}", -n)
+        } else {
+            format!("0x{n:x}")
+        }
+    }
+
+    #[test]
+    fn long_integers_are_hexadecimal_and_read_back() {
+        assert_eq!(DECIMAL_BITS, 1024);
+        let two = BigInt::from(2);
+        let mut cases = vec![BigInt::from(0), BigInt::from(-5), BigInt::from(12345)];
+        // Around the threshold, and numbers whose limbs hold zero nibbles.
+        for bits in [1023u32, 1024, 1025, 1088, 4096, 40_000] {
+            let p: BigInt = num_traits::pow(two.clone(), bits as usize);
+            let third = &p * BigInt::from(3) / BigInt::from(7);
+            let one = BigInt::from(1);
+            cases.extend([
+                &p - &one,
+                p.clone(),
+                &p + &one,
+                -(&p + BigInt::from(7)),
+                third,
+            ]);
+        }
+        let seven = num_traits::pow(BigInt::from(7), 5000);
+        cases.extend([seven.clone(), -seven]);
+        for n in &cases {
+            let mut text = String::new();
+            push_integer(&mut text, n);
+            assert_eq!(text, expected_integer(n));
+            let back = parse_exact(&text).expect("read back");
+            assert_eq!((back.numer(), back.denom()), (n, &BigInt::from(1)));
+        }
+    }
+
+    fn record() -> ProblemRecord {
+        ProblemRecord {
+            source: "file".into(),
+            name: "a \"quoted\" name\\ with \u{1b} and é".into(),
+            gamma: Some("99/100".into()),
+            noise: Some("paper".into()),
+            step_cost: None,
+            sha256: "ab".repeat(32),
+            sha256_of: "file bytes".into(),
+        }
+    }
+
+    /// The certificate as `serde_json` builds it from a `Value` tree.
+    fn by_serde(
+        objective: &CertifiedObjective,
+        problem: &ProblemRecord,
+        values: &[String],
+        policy: &[Option<usize>],
+    ) -> String {
+        let alpha = match objective {
+            CertifiedObjective::Discounted(a) => json!(a.to_string()),
+            _ => serde_json::Value::Null,
+        };
+        let v = json!({
+            "format": FORMAT,
+            "objective": objective.name(),
+            "alpha": alpha,
+            "problem": problem_json(problem),
+            "states": values.len(),
+            "values": values,
+            "policy": policy,
+        });
+        serde_json::to_string(&v).unwrap() + "\n"
+    }
+
+    #[test]
+    fn the_writer_prints_what_serde_json_prints() {
+        let texts = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        let cases = [
+            (CertifiedObjective::Truecost, texts(&["3/2", "inf", "0"])),
+            (
+                CertifiedObjective::Discounted("9/10".parse().unwrap()),
+                texts(&["-1", "a \"b\"\\\n\u{7f}é"]),
+            ),
+            (CertifiedObjective::Reach, texts(&[])),
+            (CertifiedObjective::Deterministic, texts(&["0x1f/3"])),
+        ];
+        for (objective, values) in cases {
+            let policy: Vec<Option<usize>> = (0..values.len())
+                .map(|x| (x % 2 == 0).then_some(x * 7))
+                .collect();
+            assert_eq!(
+                write(&objective, &record(), values.clone(), &policy),
+                by_serde(&objective, &record(), &values, &policy)
+            );
+        }
+    }
+
+    #[test]
+    fn values_over_a_denominator_are_written_as_their_texts() {
+        let two = BigInt::from(2);
+        let long: BigInt = num_traits::pow(two.clone(), 2000) + BigInt::from(12345);
+        for d in [BigInt::from(1), BigInt::from(6), long.clone() * 3] {
+            let numerators: Vec<Option<BigInt>> = (0..200i64)
+                .map(|x| match x % 5 {
+                    0 => None,
+                    1 => Some(BigInt::from(0)),
+                    2 => Some(-&long * BigInt::from(x)),
+                    _ => Some(BigInt::from(x) + &d * BigInt::from(x)),
+                })
+                .collect();
+            let refs: Vec<Option<&BigInt>> = numerators.iter().map(Option::as_ref).collect();
+            let texts: Vec<String> = numerators
+                .iter()
+                .map(|k| match k {
+                    None => "inf".into(),
+                    Some(k) if d == BigInt::from(1) || k == &BigInt::from(0) => expected_integer(k),
+                    Some(k) => format!("{}/{}", expected_integer(k), expected_integer(&d)),
+                })
+                .collect();
+            let policy = vec![Some(1); 200];
+            let objective = CertifiedObjective::Truecost;
+            assert_eq!(
+                write_over(&objective, &record(), &refs, &d, &policy),
+                by_serde(&objective, &record(), &texts, &policy)
+            );
+        }
+        let empty = write_over(
+            &CertifiedObjective::Truecost,
+            &record(),
+            &[],
+            &BigInt::from(1),
+            &[],
+        );
+        assert_eq!(
+            empty,
+            by_serde(&CertifiedObjective::Truecost, &record(), &[], &[])
+        );
     }
 }

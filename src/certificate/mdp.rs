@@ -3,7 +3,7 @@
 //! probabilities; goal and terminal flags. Plain data: whoever reads a problem (a problem file,
 //! a paper problem, an environment) fills it in, and nothing here depends on a solver.
 
-use num_traits::{One, Signed, Zero};
+use num_traits::{One, Signed, ToPrimitive, Zero};
 
 use crate::value::Rational;
 
@@ -114,13 +114,60 @@ impl Mdp {
                 list.len()
             );
             for a in list {
-                let _ = write!(s, "action {} {} {}", a.cost, a.reward, a.outcomes.len());
+                s.push_str("action ");
+                push_ratio(&mut s, &a.cost);
+                s.push(' ');
+                push_ratio(&mut s, &a.reward);
+                let _ = write!(s, " {}", a.outcomes.len());
                 for (y, p) in &a.outcomes {
-                    let _ = write!(s, " {y}:{p}");
+                    let _ = write!(s, " {y}:");
+                    push_ratio(&mut s, p);
                 }
                 s.push('\n');
             }
         }
         s
+    }
+}
+
+/// Appends `r` as its `Display` writes it (`p/q`, or `p` when `q = 1`), through machine
+/// integers when they hold it (no big-integer text, no allocation).
+fn push_ratio(s: &mut String, r: &Rational) {
+    use std::fmt::Write;
+    let _ = match (r.numer().to_i64(), r.denom().to_u64()) {
+        (Some(n), Some(1)) => write!(s, "{n}"),
+        (Some(n), Some(d)) => write!(s, "{n}/{d}"),
+        _ => write!(s, "{r}"),
+    };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::push_ratio;
+    use crate::value::Rational;
+    use num_bigint::BigInt;
+
+    #[test]
+    fn ratios_are_written_as_display_writes_them() {
+        let big: BigInt = num_traits::pow(BigInt::from(2), 70);
+        let cases = [
+            Rational::from_integer(0.into()),
+            Rational::from_integer((-5).into()),
+            Rational::new(3.into(), 2.into()),
+            Rational::new((-3).into(), 2.into()),
+            Rational::new(i64::MIN.into(), 1.into()),
+            Rational::new(1.into(), u64::MAX.into()),
+            Rational::new(big.clone(), 3.into()),
+            Rational::new(1.into(), big.clone()),
+            Rational::new(-big, 7.into()),
+            // Not reduced: written as stored, as Display writes it.
+            Rational::new_raw(6.into(), 4.into()),
+            Rational::new_raw(5.into(), 1.into()),
+        ];
+        for r in &cases {
+            let mut s = String::new();
+            push_ratio(&mut s, r);
+            assert_eq!(s, r.to_string());
+        }
     }
 }

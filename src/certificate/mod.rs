@@ -145,7 +145,8 @@ pub mod sturm;
 
 pub use check::{check, Acceptance, Checked, Identity, Rejection, CONDITIONS};
 pub use format::{
-    parse, parse_exact, write, Certificate, CertifiedObjective, ProblemRecord, FORMAT,
+    parse, parse_exact, push_integer, write, write_over, Certificate, CertifiedObjective,
+    ProblemRecord, DECIMAL_BITS, FORMAT,
 };
 pub use mdp::{Mdp, MdpAction, CANONICAL_FORMAT};
 pub use sha256::sha256_hex;

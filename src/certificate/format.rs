@@ -161,6 +161,29 @@ pub fn write_over(
     out
 }
 
+/// The text of a value as certificates write it: `"inf"` for `None`, else `"p/q"` (`"p"` when
+/// `q = 1`) with both integers as [`push_integer`] writes them.
+///
+/// ```
+/// use truecost::certificate::value_text;
+/// use truecost::value::Rational;
+/// assert_eq!(value_text(Some(&Rational::new(6.into(), 4.into()))), "3/2");
+/// assert_eq!(value_text(Some(&Rational::from_integer((-5).into()))), "-5");
+/// assert_eq!(value_text(None), "inf");
+/// ```
+pub fn value_text(value: Option<&Rational>) -> String {
+    let Some(r) = value else {
+        return "inf".into();
+    };
+    let mut out = String::new();
+    push_integer(&mut out, r.numer());
+    if !r.denom().is_one() {
+        out.push('/');
+        push_integer(&mut out, r.denom());
+    }
+    out
+}
+
 /// Integers of more than this many bits (309 decimal digits or more) are written in
 /// hexadecimal: printing in decimal takes time that grows faster than the length (at the
 /// thousands of digits of a large grid's exact values, longer than solving), hexadecimal is

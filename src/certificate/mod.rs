@@ -144,6 +144,7 @@ mod sha256;
 pub mod sturm;
 
 pub use check::{check, Acceptance, Checked, Identity, Rejection, CONDITIONS};
+pub use format::value_text;
 pub use format::{
     parse, parse_exact, push_integer, write, write_over, Certificate, CertifiedObjective,
     ProblemRecord, DECIMAL_BITS, FORMAT,

@@ -285,12 +285,15 @@ pub fn check_certificate(
 ) -> Result<String, String> {
     let text = super::env::read_certificate(certificate_path)
         .map_err(|e| format!("cannot read the certificate: {e}"))?;
-    let kind = serde_json::from_str::<serde_json::Value>(&text)
+    // Only the kind is read here (the other fields skipped, not built): the checker of that
+    // kind reads the whole certificate.
+    #[derive(serde::Deserialize)]
+    struct Kind {
+        objective: Option<String>,
+    }
+    let kind = serde_json::from_str::<Kind>(&text)
         .ok()
-        .and_then(|v| {
-            v.get("objective")
-                .and_then(|o| o.as_str().map(str::to_string))
-        });
+        .and_then(|k| k.objective);
     if kind.as_deref() != Some(DISCOUNT) {
         return super::env::check(source, problem, file, names, &text, format, coq);
     }

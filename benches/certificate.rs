@@ -33,6 +33,8 @@ fn write(p: &StochasticProblem, opt: &Optimum, objective: &CertifiedObjective) -
         step_cost: None,
         sha256: certificate::sha256_hex(problem_mdp(p).canonical_text().as_bytes()),
         sha256_of: certificate::CANONICAL_FORMAT.into(),
+        goal_label: None,
+        cost_reward: None,
     };
     optimum_certificate(p, opt, objective, &record)
 }

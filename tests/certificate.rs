@@ -843,3 +843,52 @@ fn long_values_are_written_in_hexadecimal_and_are_the_optimum() {
         assert_eq!(q.iter().min().unwrap(), &v[x], "optimality at {x}");
     }
 }
+
+/// A DRN file read with `--goal-label done --cost-reward coins` (two reward models, a goal label
+/// of its own): the certificate records both names, `check` reads the file with them without
+/// being told (and accepts them repeated), refuses options that contradict them, and a record
+/// whose names are edited is checked against the other reading (and rejected there). Values by
+/// hand: from state 0, `coins` costs 5 to reach `done` directly, or 1 to state 2 and 1 from
+/// there (2 in all); `steps` costs 1 either way.
+#[test]
+fn a_drn_file_s_goal_label_and_cost_reward_are_recorded_and_reused() {
+    let dir = tempfile::tempdir().unwrap();
+    let drn = file(
+        dir.path(),
+        "m.drn",
+        "@type: MDP\n@reward_models\nsteps coins\n@nr_states\n3\n@nr_choices\n4\n@model\n\
+         state 0 init\n\taction 0 [1, 5]\n\t\t1 : 1\n\taction 1 [1, 1]\n\t\t2 : 1\n\
+         state 1 done\n\taction 0 [0, 0]\n\t\t1 : 1\n\
+         state 2\n\taction 0 [1, 1]\n\t\t1 : 1\n",
+    );
+    let path = s(&drn);
+    let source = ["--file", path.as_str()];
+    let names = ["--goal-label", "done", "--cost-reward", "coins"];
+    let cert = certify(dir.path(), &source, &names);
+    assert_eq!(cert["problem"]["goal_label"], "done", "{cert}");
+    assert_eq!(cert["problem"]["cost_reward"], "coins", "{cert}");
+    assert_values(&cert, &["2", "0", "1"]);
+    accepted(dir.path(), &source, &cert);
+    let mut repeated = source.to_vec();
+    repeated.extend_from_slice(&names);
+    accepted(dir.path(), &repeated, &cert);
+    for (option, value, says) in [
+        ("--goal-label", "goal", "--goal-label 'goal' contradicts the certificate, written for the goal label 'done'"),
+        ("--cost-reward", "steps", "--cost-reward 'steps' contradicts the certificate, written for the cost reward model 'coins'"),
+    ] {
+        let line = rejected(dir.path(), &[&source[..], &[option, value]].concat(), &cert);
+        assert!(line.contains(says), "{line}");
+    }
+    // The record names the reading: with `steps` as the costs, the values are not optimal.
+    let steps = tampered(&cert, |c| c["problem"]["cost_reward"] = json!("steps"));
+    let line = rejected(dir.path(), &source, &steps);
+    assert!(line.contains("state 0"), "{line}");
+    // Without the names, the defaults: no reward model `cost`, so the file is not read.
+    let plain = tampered(&cert, |c| {
+        let problem = c["problem"].as_object_mut().unwrap();
+        problem.remove("goal_label");
+        problem.remove("cost_reward");
+    });
+    let line = rejected(dir.path(), &source, &plain);
+    assert!(line.contains("no reward model named 'cost'"), "{line}");
+}

@@ -87,6 +87,8 @@ fn record(mdp: &Mdp) -> certificate::ProblemRecord {
         step_cost: None,
         sha256: certificate::sha256_hex(mdp.canonical_text().as_bytes()),
         sha256_of: certificate::CANONICAL_FORMAT.into(),
+        goal_label: None,
+        cost_reward: None,
     }
 }
 

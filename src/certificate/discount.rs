@@ -222,7 +222,7 @@ fn texts(p: &[Rational]) -> Vec<String> {
 /// let c = DiscountCertificate {
 ///     problem: ProblemRecord { source: "env".into(), name: "taxi".into(), gamma: None,
 ///         noise: None, step_cost: None, sha256: "0".repeat(64),
-///         sha256_of: "truecost-canonical-mdp/1".into() },
+///         sha256_of: "truecost-canonical-mdp/1".into(), goal_label: None, cost_reward: None },
 ///     states: 0, breakpoints: vec![], intervals: vec![],
 /// };
 /// let text = write_discount(&c);
@@ -707,7 +707,7 @@ impl Tally {
 ///                 actions: vec![vec![act("1", 0), act("3", 1)], vec![]] };
 /// let problem = ProblemRecord { source: "problem".into(), name: "hand".into(), gamma: None,
 ///     noise: None, step_cost: None, sha256: sha256_hex(mdp.canonical_text().as_bytes()),
-///     sha256_of: "truecost-canonical-mdp/1".into() };
+///     sha256_of: "truecost-canonical-mdp/1".into(), goal_label: None, cost_reward: None };
 /// let interval = |sample: &str, den: Vec<_>, num: Vec<_>, a: u64| IntervalRecord {
 ///     sample: q(sample), denominators: vec![den],
 ///     values: vec![Some(ValueRecord { denominator: 0, numerator: num }), None],
@@ -1223,6 +1223,8 @@ mod tests {
             step_cost: None,
             sha256: sha256_hex(mdp.canonical_text().as_bytes()),
             sha256_of: CANONICAL_FORMAT.into(),
+            goal_label: None,
+            cost_reward: None,
         };
         let interval =
             |sample: &str, den: Vec<Rational>, num: Vec<Rational>, a: u64| IntervalRecord {

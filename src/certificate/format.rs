@@ -24,7 +24,9 @@
 //!   the problem is a deterministic one perturbed by a noise model. `sha256` is the SHA-256 of
 //!   the problem file's bytes (`sha256_of`: `file bytes`) or, for `problem` and `env`, of the
 //!   model's canonical export ([`super::Mdp::canonical_text`]; `sha256_of`:
-//!   `truecost-canonical-mdp/1`).
+//!   `truecost-canonical-mdp/1`). For a DRN file read with a goal label or a cost reward
+//!   model other than the defaults, `goal_label` and `cost_reward` name them (absent
+//!   otherwise).
 //! * `values`: one exact number per state, in state order: `"p/q"` or `"p"` (an optional `-`,
 //!   the integer, a positive denominator), or `"inf"` (truecost, deterministic: no policy
 //!   reaches a goal with probability 1). Each integer is decimal digits, or `0x` and lowercase
@@ -85,6 +87,10 @@ pub struct ProblemRecord {
     pub sha256: String,
     /// What was hashed: `file bytes` or [`super::mdp::CANONICAL_FORMAT`].
     pub sha256_of: String,
+    /// The label of a DRN file's goal states, when not the default (`--goal-label`).
+    pub goal_label: Option<String>,
+    /// The reward model of a DRN file's stage costs, when not the default (`--cost-reward`).
+    pub cost_reward: Option<String>,
 }
 
 /// A certificate as read.
@@ -272,7 +278,7 @@ fn push_json_string(out: &mut String, v: &str) {
 
 /// A certificate's `problem` record as JSON (every kind has the same).
 pub(super) fn problem_json(p: &ProblemRecord) -> Value {
-    json!({
+    let mut v = json!({
         "source": p.source,
         "name": p.name,
         "gamma": p.gamma,
@@ -280,7 +286,16 @@ pub(super) fn problem_json(p: &ProblemRecord) -> Value {
         "step_cost": p.step_cost,
         "sha256": p.sha256,
         "sha256_of": p.sha256_of,
-    })
+    });
+    for (key, name) in [
+        ("goal_label", &p.goal_label),
+        ("cost_reward", &p.cost_reward),
+    ] {
+        if let Some(name) = name {
+            v[key] = Value::from(name.as_str());
+        }
+    }
+    v
 }
 
 /// An exact number `p/q` or `p` with a positive denominator `q`, kept as written (not
@@ -397,6 +412,8 @@ pub(super) fn problem_record(v: &Value) -> Result<ProblemRecord, String> {
             "step_cost",
             "sha256",
             "sha256_of",
+            "goal_label",
+            "cost_reward",
         ],
     )?;
     Ok(ProblemRecord {
@@ -407,6 +424,8 @@ pub(super) fn problem_record(v: &Value) -> Result<ProblemRecord, String> {
         step_cost: optional_string(p, "\"problem\"", "step_cost")?,
         sha256: string(p, "\"problem\"", "sha256")?,
         sha256_of: string(p, "\"problem\"", "sha256_of")?,
+        goal_label: optional_string(p, "\"problem\"", "goal_label")?,
+        cost_reward: optional_string(p, "\"problem\"", "cost_reward")?,
     })
 }
 
@@ -588,6 +607,8 @@ mod tests {
             step_cost: None,
             sha256: "ab".repeat(32),
             sha256_of: "file bytes".into(),
+            goal_label: None,
+            cost_reward: None,
         }
     }
 

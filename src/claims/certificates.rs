@@ -571,6 +571,8 @@ mod tests {
             step_cost: None,
             sha256: certificate::sha256_hex(PROBLEM.as_bytes()),
             sha256_of: "file bytes".into(),
+            goal_label: None,
+            cost_reward: None,
         };
         let objective = CertifiedObjective::Deterministic;
         let identity = Identity::FileBytes(PROBLEM.as_bytes());

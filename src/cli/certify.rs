@@ -4,6 +4,7 @@
 //! [`truecost::certificate`].
 
 use truecost::certificate::{Mdp, ProblemRecord};
+use truecost::formats::drn::DrnNames;
 use truecost::problems::StepCost;
 use truecost::stochastic::record::{problem_record, Origin};
 use truecost::stochastic::NoiseModel;
@@ -22,6 +23,8 @@ pub struct CertifiedSource<'a> {
     pub gamma: Option<&'a str>,
     /// `--noise`.
     pub noise: Option<NoiseModel>,
+    /// `--goal-label` and `--cost-reward`, for a DRN file.
+    pub names: DrnNames,
 }
 
 impl CertifiedSource<'_> {
@@ -37,7 +40,10 @@ impl CertifiedSource<'_> {
             (None, None, Some(spec)) => Origin::Env(spec),
             (None, None, None) => return Err("give --problem N, --file FILE or --env SPEC".into()),
         };
-        problem_record(origin, self.gamma, self.noise, model)
+        let mut record = problem_record(origin, self.gamma, self.noise, model)?;
+        record.goal_label.clone_from(&self.names.goal_label);
+        record.cost_reward.clone_from(&self.names.cost_reward);
+        Ok(record)
     }
 }
 

@@ -154,6 +154,7 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
             step: args.step_cost,
             gamma: None,
             noise: None,
+            names: Default::default(),
         };
         let text = discount_certificate(model, &d, &source, loaded.text.as_deref())?;
         write_certificate(path, &text)?;

@@ -193,6 +193,7 @@ pub fn solve(args: &super::SolveArgs) -> Result<String, String> {
             step: args.step_cost,
             gamma: args.gamma.as_deref(),
             noise: args.noise,
+            names: args.drn.names(args.file.as_deref())?,
         }
         .record(|| model.mdp())?;
         write_certificate(path, &solution_certificate(&model, &solution, &record)?)?;
@@ -336,6 +337,47 @@ pub(super) fn read_certificate(path: &std::path::Path) -> Result<String, String>
     })
 }
 
+/// The goal label and cost reward model to read a DRN file with: those the certificate records
+/// (how `solve` read the file), which `--goal-label` and `--cost-reward` may repeat but not
+/// contradict.
+fn recorded_names(
+    given: &truecost::formats::drn::DrnNames,
+    record: &truecost::certificate::ProblemRecord,
+) -> Result<truecost::formats::drn::DrnNames, String> {
+    let options = [
+        (
+            "--goal-label",
+            "goal label",
+            &given.goal_label,
+            &record.goal_label,
+        ),
+        (
+            "--cost-reward",
+            "cost reward model",
+            &given.cost_reward,
+            &record.cost_reward,
+        ),
+    ];
+    for (option, what, given, recorded) in options {
+        if given.is_some() && given != recorded {
+            let shown = |name: &Option<String>| {
+                name.as_deref().map_or("the default".to_string(), |n| {
+                    format!("'{}'", truecost::echo::echo(n))
+                })
+            };
+            return Err(format!(
+                "{option} {} contradicts the certificate, written for the {what} {}",
+                shown(given),
+                shown(recorded)
+            ));
+        }
+    }
+    Ok(truecost::formats::drn::DrnNames {
+        goal_label: record.goal_label.clone(),
+        cost_reward: record.cost_reward.clone(),
+    })
+}
+
 /// `truecost check`: re-reads the problem (`--file`, `--problem`, `--env`; the certificate's
 /// `gamma`, `noise` and `step_cost` say how it was built) and checks the certificate (`text`,
 /// read by [`read_certificate`]); with
@@ -353,6 +395,7 @@ pub fn check(
 ) -> Result<String, String> {
     let cert = certificate::parse(text).map_err(|e| format!("malformed certificate: {e}"))?;
     let record = &cert.problem;
+    let names = &recorded_names(names, record)?;
     let gamma = record
         .gamma
         .as_deref()

@@ -215,6 +215,7 @@ fn certify(
         step: args.step_cost,
         gamma: args.gamma.as_deref(),
         noise: args.noise,
+        names: args.drn.names(args.file.as_deref())?,
     }
     .record(|| truecost::objectives::Model::from_problem(problem.clone(), String::new()).mdp())?;
     let text =

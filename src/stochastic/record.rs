@@ -86,6 +86,8 @@ pub fn problem_record(
         step_cost,
         sha256: sha256_hex(model().canonical_text().as_bytes()),
         sha256_of: CANONICAL_FORMAT.into(),
+        goal_label: None,
+        cost_reward: None,
     };
     Ok(match origin {
         Origin::File(path) => {
@@ -103,6 +105,8 @@ pub fn problem_record(
                 step_cost: None,
                 sha256: sha256_hex(&bytes),
                 sha256_of: "file bytes".into(),
+                goal_label: None,
+                cost_reward: None,
             }
         }
         Origin::Paper { id, step } => canonical("problem", id.to_string(), Some(value_name(&step))),

@@ -45,6 +45,8 @@ const MAX_NARROWINGS: usize = 64;
 ///     step_cost: None,
 ///     sha256: sha256_hex(mdp.canonical_text().as_bytes()),
 ///     sha256_of: CANONICAL_FORMAT.into(),
+///     goal_label: None,
+///     cost_reward: None,
 /// };
 /// let c = discount_certificate(&m, &d, &mdp, record, Identity::Canonical).unwrap();
 /// assert_eq!(c.breakpoints.len(), d.breakpoints.len());

@@ -158,21 +158,38 @@ fn huge_exponents_and_digits_are_refused_at_once() {
     let dir = tempfile::tempdir().unwrap();
     let big = write(dir.path(), "big.json", &two_states("1e10000", "1"));
     let f = big.to_str().unwrap();
+    // 10^10000 takes ⌊10000 · log2 10⌋ + 1 = 33220 bits: over the stochastic model's bound
+    // on stage costs scaled to integers, checked as the model is built.
     refused(
         &["discount", "--file", f],
-        &["state 0, action 0", "stage cost ≈1e10000", "2^100"],
+        &[
+            "state 0, action 0",
+            "stage cost ≈1e10000 scaled to an integer",
+            "33220 bits",
+            "at most 1024",
+        ],
     );
-    for (name, text) in [
-        ("tiny-goal.json", two_states("1e-10000", "1")),
-        ("tiny-loop.json", two_states("1", "1e-10000")),
+    for (name, text, action) in [
+        ("tiny-goal.json", two_states("1e-10000", "1"), "action 0"),
+        ("tiny-loop.json", two_states("1", "1e-10000"), "action 1"),
     ] {
         let path = write(dir.path(), name, &text);
-        // 10^10000 takes ⌊10000 · log2 10⌋ + 1 = 33220 bits.
         refused(
             &["discount", "--file", path.to_str().unwrap()],
-            &["reward ≈-1e-10000", "33220 bits", "at most 160"],
+            &[
+                &format!("state 0, {action}"),
+                "the lcm of the stage costs' denominators up to here takes 33220 bits",
+                "at most 1024",
+            ],
         );
     }
+    // Rewards are the discounted objective's own numbers: 10^-10000 is refused by its bound.
+    let text = r#"{"states": 2, "initial": 0, "goals": [1], "actions": [[{"to": 1, "cost": "1", "reward": "1e-10000"}, {"to": 0, "cost": "1", "reward": "1"}], []]}"#;
+    let path = write(dir.path(), "tiny-reward.json", text);
+    refused(
+        &["discount", "--file", path.to_str().unwrap()],
+        &["reward ≈1e-10000", "33220 bits", "at most 160"],
+    );
     let digits = "9".repeat(4096);
     let text = format!(
         r#"{{"states": 2, "initial": 0, "goals": [1], "actions": [[{{"to": 1, "cost": "1", "reward": "{digits}"}}, {{"to": 0, "cost": "1", "reward": "1"}}], []]}}"#

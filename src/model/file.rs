@@ -53,7 +53,9 @@
 //! bytes, read **once** (so `/dev/stdin`, pipes and FIFOs work); each number as in
 //! [`crate::value::parse_rational`] (at most 4096 bytes, exponents within ±10000); the exact
 //! numbers of one file (costs, rewards, probabilities, the initial distribution's included) at
-//! most [`MAX_NUMBER_BITS`] bits in all.
+//! most [`MAX_NUMBER_BITS`] bits in all, counted in lowest terms as they are read and, before
+//! any is read, from their digit counts and exponents (a lower bound, so that a file of huge
+//! exponents is refused without reducing a number).
 
 use std::path::Path;
 
@@ -103,6 +105,15 @@ pub enum FileError {
         /// The action index.
         action: usize,
         /// The bits counted up to and including this number.
+        bits: u64,
+    },
+    /// The exact numbers of the file must exceed [`MAX_NUMBER_BITS`], counted from their digits
+    /// and exponents before any is read ([`FileProblem::check_number_bits`]).
+    #[error("{at}: the exact numbers of this file take at least {bits} bits up to here (counted from their digits and exponents before reading them), more than 2^28 = {MAX_NUMBER_BITS} bits in all, the limit of this reader")]
+    NumbersAtLeast {
+        /// Where the count passed the bound: `state s, action a` or `initial entry e`.
+        at: String,
+        /// The lower bound counted up to and including this number.
         bits: u64,
     },
     /// A deterministic action without its successor.
@@ -314,16 +325,63 @@ impl<A> FileProblem<A> {
             _ => Ok(()),
         }
     }
+}
 
-    /// Checks the optional `states` against the number of action lists.
+impl FileProblem<FileAction> {
+    /// Checks the optional `states` against the number of action lists, then the exact
+    /// numbers' size before any is read ([`FileProblem::check_number_bits`]).
     pub(crate) fn check_states(&self) -> Result<(), FileError> {
         match self.states {
             Some(states) if states != self.actions.len() => Err(FileError::StatesMismatch {
                 states,
                 lists: self.actions.len(),
             }),
-            _ => Ok(()),
+            _ => self.check_number_bits(),
         }
+    }
+
+    /// Refuses, before any number is read, a file whose exact numbers must take more than
+    /// [`MAX_NUMBER_BITS`] bits: the lower bounds of [`crate::value::bits_lower_bound`] (from
+    /// the digit counts and exponents) added up in the order the readers read the numbers
+    /// (per action its cost, reward and probabilities; then the initial distribution). The
+    /// readers' own count, of the numbers in lowest terms, is at least this sum, so no file
+    /// they accept is refused here; a file of huge exponents is refused without reducing any
+    /// of its numbers.
+    pub(crate) fn check_number_bits(&self) -> Result<(), FileError> {
+        use crate::value::bits_lower_bound;
+        let mut bits = 0u64;
+        let mut over = |text: &str| {
+            bits = bits.saturating_add(bits_lower_bound(text));
+            bits > MAX_NUMBER_BITS
+        };
+        for (state, list) in self.actions.iter().enumerate() {
+            for (action, a) in list.iter().enumerate() {
+                let texts = std::iter::once(&a.cost)
+                    .chain(a.reward.iter())
+                    .chain(a.outcomes.iter().flatten().map(|o| &o.p));
+                for text in texts {
+                    if over(text) {
+                        return Err(FileError::NumbersAtLeast {
+                            at: format!("state {state}, action {action}"),
+                            bits,
+                        });
+                    }
+                }
+            }
+        }
+        if let FileInitial::Distribution(list) = &self.initial {
+            for (entry, e) in list.iter().enumerate() {
+                if let serde_json::Value::String(text) = &e.p {
+                    if over(text) {
+                        return Err(FileError::NumbersAtLeast {
+                            at: format!("initial entry {entry}"),
+                            bits,
+                        });
+                    }
+                }
+            }
+        }
+        Ok(())
     }
 }
 

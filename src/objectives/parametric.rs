@@ -250,6 +250,18 @@ pub enum ParametricError {
         /// The denominators, the product and where (before any work, or the gap).
         detail: String,
     },
+    /// A stochastic model whose stage costs, scaled and times the probabilities' common
+    /// denominator, leave a probe's `α` too little room for its denominator
+    /// ([`bounds::CostRoom`]).
+    #[error("state {state}: the discounted objective's stage cost there (the largest reward minus the action's, killed-process construction) scaled to an integer by the lcm of their denominators, times the state's common denominator of probabilities, is {scaled}; times alpha's denominator it must stay below 2^100 (the exact solver's limit): {detail}")]
+    AlphaCost {
+        /// The state with the largest product.
+        state: usize,
+        /// The product `K` ([`bounds::CostRoom::scaled`]).
+        scaled: BigInt,
+        /// The product with `α`'s denominator and where (before any work, or the gap).
+        detail: String,
+    },
     /// A stage cost or reward over `2^100` in magnitude ([`bounds::MAX_MAGNITUDE_BITS`]).
     #[error("state {state}, action {action}: the {quantity} {value} exceeds 2^{bound} in magnitude; the exact parametric analysis takes stage costs and rewards up to 2^{bound} (refused before any work)")]
     Magnitude {
@@ -299,14 +311,13 @@ pub enum ParametricError {
         probes: usize,
         /// The work counted so far.
         work: u128,
-        /// The work reserved for the phase after the probes (module `closing`; 0 on a
-        /// stochastic model).
+        /// The work reserved for the phase after the probes (module `closing`).
         reserved: u128,
         /// Regions found.
         regions: usize,
         /// Gaps left.
         gaps: usize,
-        /// [`MAX_PROBE_WORK`].
+        /// [`MAX_PROBE_WORK`] or [`MAX_DETERMINISTIC_WORK`].
         bound: u128,
     },
     /// A deterministic model with more than [`MAX_DETERMINISTIC_RUNNING_STATES`].
@@ -1797,12 +1808,15 @@ pub fn discount_breakpoints_within(
     discount_breakpoints_limited(model, search, limits, progress)
 }
 
-/// The bounds of a deterministic analysis that [`discount_breakpoints_limited`] takes as
-/// given: the analysis uses [`Limits::default`].
+/// The bounds of an analysis that [`discount_breakpoints_limited`] takes as given: the
+/// analysis uses [`Limits::default`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Limits {
-    /// The work bound ([`MAX_DETERMINISTIC_WORK`]).
+    /// The work bound of a deterministic model ([`MAX_DETERMINISTIC_WORK`]).
     pub deterministic_work: u128,
+    /// The work bound of a stochastic model ([`MAX_PROBE_WORK`]): its probes and its
+    /// achievements ([`closing::stochastic_achievement`]).
+    pub stochastic_work: u128,
     /// The largest degree of a value along a successor chain ([`MAX_CHAIN_DEGREE`]), checked
     /// before the first probe ([`bounds::check_certain_degree`]) and on every value built.
     pub chain_degree: usize,
@@ -1812,6 +1826,7 @@ impl Default for Limits {
     fn default() -> Limits {
         Limits {
             deterministic_work: MAX_DETERMINISTIC_WORK,
+            stochastic_work: MAX_PROBE_WORK,
             chain_degree: MAX_CHAIN_DEGREE,
         }
     }
@@ -1882,7 +1897,7 @@ fn analyse(
     let bound = if deterministic {
         limits.deterministic_work
     } else {
-        MAX_PROBE_WORK
+        limits.stochastic_work
     };
     let timer = Timer::new();
     let mut work = 0u128;
@@ -1901,13 +1916,12 @@ fn analyse(
             achievement(model, allowed)
         }
     };
-    // The phase after the probes, on a deterministic model: charged in the probes' units,
-    // each region's share reserved as its probe finds it (module `closing`); the interval
-    // next to 1 is reserved from the start.
-    let per_achievement = if deterministic {
-        closing::achievement(model, graph, closing::exact_solves(model))
-    } else {
-        0
+    // The phase after the probes: charged in the probes' units, each region's share
+    // reserved as its probe finds it (module `closing`); the interval next to 1 is reserved
+    // from the start.
+    let per_achievement = match per_probe {
+        None => closing::achievement(model, graph, closing::exact_solves(model)),
+        Some(per_probe) => closing::stochastic_achievement(per_probe),
     };
     let mut reserved = per_achievement;
     let mut memory = (deterministic && search == Search::Pruned)
@@ -1983,9 +1997,11 @@ fn analyse(
             };
             last = work - before;
             if let Some(region) = &region {
-                if deterministic {
-                    reserved += closing::region(region, per_achievement);
-                }
+                reserved += if deterministic {
+                    closing::region(region, per_achievement)
+                } else {
+                    closing::stochastic_region(region, per_achievement)
+                };
             }
             if work + reserved > bound {
                 return Err(ParametricError::Work {
@@ -2054,13 +2070,15 @@ fn analyse(
     points.sort_by(|a, b| a.compare(b));
     // Equal points met through different polynomials keep their common factor.
     points.dedup_by(|a, b| b.absorb_if_equal(a));
-    if deterministic {
-        // Within the reservation (module `closing`), so within the bound.
-        let charged = points.iter().map(closing::reduction).sum::<u128>()
-            + (2 * points.len() as u128 + 1) * per_achievement;
-        debug_assert!(charged <= reserved, "{charged} > {reserved}");
-        work += charged.min(reserved);
-    }
+    // Within the reservation (module `closing`), so within the bound.
+    let reductions = if deterministic {
+        points.iter().map(closing::reduction).sum::<u128>()
+    } else {
+        0
+    };
+    let charged = reductions + (2 * points.len() as u128 + 1) * per_achievement;
+    debug_assert!(charged <= reserved, "{charged} > {reserved}");
+    work += charged.min(reserved);
     use rayon::prelude::*;
     // Each point on its own (in parallel): rational or reduced polynomial.
     points.par_iter_mut().for_each(|b| {
@@ -2132,7 +2150,9 @@ fn analyse(
         })
         .collect();
     let breakpoints: Vec<Breakpoint> = breakpoints.into_iter().collect::<Result<_, _>>()?;
-    timer.mark("achievements");
+    timer.mark(&format!(
+        "achievements ({work} units charged in all, {reserved} reserved, bound {bound})"
+    ));
     Ok(DiscountAnalysis {
         breakpoints,
         intervals,
@@ -2202,6 +2222,7 @@ mod tests {
             state: 3,
             own: big(40),
             room: big(22),
+            costs: None,
         };
         let third = Rational::new(1.into(), 3.into());
         let gap = |k: u32| {

@@ -216,10 +216,10 @@ fn chains_of_huge_costs_are_refused_at_once() {
 }
 
 /// `compare` refuses a discounted row the exact solver cannot take (the killed-process
-/// construction charges the goal the largest reward, `10^40`, per step: over `2^100` with
-/// `α`'s denominator) before the truecost and reach solves of a 200-state chain whose stage
-/// costs have 200 distinct 60-bit denominators (an lcm near the bound), so within the budget
-/// of a refusal.
+/// construction charges the largest reward, `10^40`, minus a state's, per step: over `2^100`
+/// with `α`'s denominator) before the truecost and reach solves of a 200-state chain whose
+/// stage costs have 16 distinct 60-bit denominators (an lcm of about 960 bits, which the
+/// truecost objective's exact solve refuses in turn).
 #[test]
 fn compare_refuses_a_discounted_row_before_the_other_objectives() {
     let dir = tempfile::tempdir().unwrap();
@@ -259,11 +259,24 @@ fn compare_refuses_a_discounted_row_before_the_other_objectives() {
     );
     assert_contract(&err);
     for w in [
-        "the episode is over there",
-        "largest reward, ≈1e40",
+        "the discounted objective (killed-process construction) charges the model's largest reward, ≈1e40",
         "alpha's denominator 10",
         "2^100",
     ] {
         assert!(err.contains(w), "{w:?} missing from {err}");
     }
+    // The truecost objective's own refusal (its stage costs scaled by their 960-bit lcm pass
+    // the exact solver's 2^100) would have come first in the order of the rows.
+    assert!(!err.contains("stage costs times"), "{err}");
+    let err = fails_one_line(&[
+        "solve",
+        "--algorithm",
+        "exact",
+        "--file",
+        file.to_str().unwrap(),
+    ]);
+    assert!(
+        err.contains("stage costs times the probabilities' denominators exceed 2^100"),
+        "{err}"
+    );
 }

@@ -61,8 +61,10 @@
 //! Effort is bounded: before any work, the numbers (stage costs and rewards of magnitude at
 //! most `2^100`, rewards of at most [`bounds::MAX_SCALED_BITS`] bits scaled to integers:
 //! [`bounds::check_numbers`]); [`MAX_RUNNING_STATES`] bounds the degree of every rational
-//! function of a stochastic model and [`probe_work`] estimates each of its probes
-//! ([`MAX_PROBE_WORK`] in all); a deterministic model has at most
+//! function of a stochastic model, [`probe_work`] estimates each of its probes
+//! ([`MAX_PROBE_WORK`] in all, with the phase after the probes charged in the same units) and
+//! [`bounds::AlphaRoom`] the room its probabilities and stage costs leave the probes' `α`
+//! within the exact solver's limits; a deterministic model has at most
 //! [`MAX_DETERMINISTIC_RUNNING_STATES`], chains of degree at most [`MAX_CHAIN_DEGREE`] (refused
 //! before the first probe when the chain structure forces more, [`bounds::certain_degree`],
 //! else checked while running) and probes whose counted work stays within
@@ -105,17 +107,19 @@ pub const MAX_CHAIN_DEGREE: usize = 200;
 /// The most probes (regions of optimal policies) the covering of `(0, 1)` may take.
 pub const MAX_REGIONS: usize = 4_000;
 
-/// The most work the probes of one stochastic analysis may do together, in units of
-/// [`probe_work`] (`n⁵·b⁴` per probe); checked before every probe. Measured in release on 2
-/// idle cores (6 Dec 2026): a slippery FrozenLake-style 16×16 map (195 running states, 47
-/// probes, 8.3·10¹⁵ units) takes 77 s of processor time, about 10¹⁴ units a second; a random
-/// 40-state problem with probabilities `k/997` about 3·10¹³ a second. This bound (≈ 9·10¹⁵)
-/// keeps an analysis to between about one and five minutes of processor time.
-pub const MAX_PROBE_WORK: u128 = 1 << 53;
+/// The most work one stochastic analysis may do, in units of [`probe_work`] (`n⁵·b⁴` per
+/// probe): the probes, and the phase after them (each breakpoint's reduction charged as a
+/// probe, each achievement as a quarter of one: module `closing`, reserved region by region);
+/// checked before every probe. Measured in release (processor time, 7 Dec 2026, 2 cores
+/// shared with other work): slippery FrozenLake-style maps of 53 to 195 running states are
+/// charged 10¹³ to 2.7·10¹⁴ units a second, the larger the faster; a 16×16 map (195 running
+/// states, 47 probes) is charged 2.0·10¹⁶ units and takes 75 s. This bound (≈ 3.6·10¹⁶) keeps
+/// such an analysis to about two to three minutes of processor time.
+pub const MAX_PROBE_WORK: u128 = 1 << 55;
 
-/// The most work one probe may take before any work starts: a problem that cannot afford 16
-/// probes within [`MAX_PROBE_WORK`] is refused at once.
-pub const MAX_SINGLE_PROBE_WORK: u128 = MAX_PROBE_WORK / 16;
+/// The most work one probe may take before any work starts: a problem that cannot afford 64
+/// probes within [`MAX_PROBE_WORK`] (`2^49`) is refused at once.
+pub const MAX_SINGLE_PROBE_WORK: u128 = MAX_PROBE_WORK / 64;
 
 /// The most states where the episode runs of a deterministic model: more are refused before
 /// any work.
@@ -305,7 +309,7 @@ pub enum ParametricError {
         bound: u128,
     },
     /// The probes together would exceed [`MAX_PROBE_WORK`].
-    #[error("the exact parametric analysis stopped after {probes} probes ({regions} regions of (0,1) covered, {gaps} gaps left): its work, {work} units done and {reserved} reserved for the breakpoints' optimal sets, would pass the bound of {bound} units (about a minute of processor time)")]
+    #[error("the exact parametric analysis stopped after {probes} probes ({regions} regions of (0,1) covered, {gaps} gaps left): its work, {work} units done and {reserved} reserved for the breakpoints' optimal sets, would pass the bound of {bound} units (one to three minutes of processor time)")]
     Work {
         /// Probes run.
         probes: usize,
@@ -1769,7 +1773,8 @@ pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, Parametri
 /// [`discount_breakpoints`], calling `progress` before every probe. The result does not
 /// depend on `progress`. A stochastic problem is refused before any work when one probe would
 /// exceed [`MAX_SINGLE_PROBE_WORK`] ([`probe_work`]), and stopped while running when the next
-/// probe would take the work past [`MAX_PROBE_WORK`]; a deterministic one is refused over
+/// probe, with the phase after the probes reserved so far, would take the work past
+/// [`MAX_PROBE_WORK`]; a deterministic one is refused over
 /// [`MAX_DETERMINISTIC_RUNNING_STATES`] and stopped when its measured work would pass
 /// [`MAX_DETERMINISTIC_WORK`].
 pub fn discount_breakpoints_with(
@@ -2000,7 +2005,7 @@ fn analyse(
                 reserved += if deterministic {
                     closing::region(region, per_achievement)
                 } else {
-                    closing::stochastic_region(region, per_achievement)
+                    closing::stochastic_region(region, per_probe.unwrap_or(0))
                 };
             }
             if work + reserved > bound {
@@ -2071,10 +2076,9 @@ fn analyse(
     // Equal points met through different polynomials keep their common factor.
     points.dedup_by(|a, b| b.absorb_if_equal(a));
     // Within the reservation (module `closing`), so within the bound.
-    let reductions = if deterministic {
-        points.iter().map(closing::reduction).sum::<u128>()
-    } else {
-        0
+    let reductions = match per_probe {
+        None => points.iter().map(closing::reduction).sum::<u128>(),
+        Some(per_probe) => points.len() as u128 * closing::stochastic_reduction(per_probe),
     };
     let charged = reductions + (2 * points.len() as u128 + 1) * per_achievement;
     debug_assert!(charged <= reserved, "{charged} > {reserved}");

@@ -406,3 +406,41 @@ fn a_sum_off_one_shows_its_exact_distance() {
         &["sum to 99/100, not 1 (below 1 by 1/100)"],
     );
 }
+
+/// A stochastic file whose state 0 pays `cost` once to reach the goal (one outcome) and whose
+/// state 1 pays 1 to reach it with probability 1/2 (else stays): one policy, one region.
+fn stochastic_cost(cost: &str) -> String {
+    format!(
+        r#"{{"format": "truecost-stochastic/1", "states": 3, "initial": 0, "goals": [2], "actions": [[{{"cost": "{cost}", "outcomes": [{{"to": 2, "p": "1"}}]}}], [{{"cost": "1", "outcomes": [{{"to": 2, "p": "1/2"}}, {{"to": 1, "p": "1/2"}}]}}], []]}}"#
+    )
+}
+
+/// The exact solver's `2^100` on the killed-process construction's stage costs, predicted
+/// before the first probe: with `K` the largest stage cost (scaled to an integer) times its
+/// state's common denominator of probabilities, every probe's `α` takes a denominator
+/// `q ≤ ⌊(2^100 − 1)/K⌋`. `K = 2^99 − 1` leaves `α = 1/2` (answered: one region);
+/// `K = 2^99` leaves none, refused before any work naming the state, `K`, the product and the
+/// bound.
+#[test]
+fn the_stage_costs_room_for_alpha_is_known_before_the_first_probe() {
+    let dir = tempfile::tempdir().unwrap();
+    let fits = write(
+        dir.path(),
+        "fits.json",
+        &stochastic_cost(&(pow2(99) - 1u32).to_string()),
+    );
+    let (ok, err, _) = run(&["discount", "--file", fits.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let over = write(dir.path(), "over.json", &stochastic_cost(&num(99)));
+    refused(
+        &["discount", "--file", over.to_str().unwrap()],
+        &[
+            &format!(
+                "state 0: discounted stage cost, scaled, times the probabilities' denominator: {}; times alpha's must stay below 2^100",
+                num(99)
+            ),
+            &format!("denominator >= 2, which gives {}", num(100)),
+            "refused before any work",
+        ],
+    );
+}

@@ -257,7 +257,7 @@ pub enum ParametricError {
     /// A stochastic model whose stage costs, scaled and times the probabilities' common
     /// denominator, leave a probe's `α` too little room for its denominator
     /// ([`bounds::CostRoom`]).
-    #[error("state {state}: the discounted objective's stage cost there (the largest reward minus the action's, killed-process construction) scaled to an integer by the lcm of their denominators, times the state's common denominator of probabilities, is {scaled}; times alpha's denominator it must stay below 2^100 (the exact solver's limit): {detail}")]
+    #[error("state {state}: discounted stage cost, scaled, times the probabilities' denominator: {scaled}; times alpha's must stay below 2^100 (the exact solver's limit): {detail}")]
     AlphaCost {
         /// The state with the largest product.
         state: usize,

@@ -55,7 +55,8 @@
 //! numbers of one file (costs, rewards, probabilities, the initial distribution's included) at
 //! most [`MAX_NUMBER_BITS`] bits in all, counted in lowest terms as they are read and, before
 //! any is read, from their digit counts and exponents (a lower bound, so that a file of huge
-//! exponents is refused without reducing a number).
+//! exponents is refused without reducing a number); the lcm of the stage costs' denominators
+//! at most [`MAX_COST_DENOMINATOR_BITS`] bits.
 
 use std::path::Path;
 
@@ -75,6 +76,13 @@ pub const STOCHASTIC_FORMAT: &str = "truecost-stochastic/1";
 /// The largest problem file read, in bytes (32 MiB: a 100×100 stochastic grid with every
 /// outcome listed takes about 6 MiB).
 pub const MAX_FILE_BYTES: u64 = 32 << 20;
+
+/// The most bits of the lcm of a deterministic file's stage-cost denominators, checked as they
+/// are read: every sum of stage costs (a path's cost, as the planners add them up) has a
+/// denominator dividing it, so the planners' exact sums stay small. The stochastic model takes
+/// the same bound ([`crate::stochastic::problem::MAX_SCALED_COST_BITS`]); 200 costs
+/// `1/(k·10^10000)` made an lcm of millions of bits, and the planners' sums ran for minutes.
+pub const MAX_COST_DENOMINATOR_BITS: u64 = 1024;
 
 /// The most bits all exact numbers (costs, probabilities) of one file may take together
 /// (numerators and denominators), so that a small file of huge exponents cannot fill memory.
@@ -208,6 +216,17 @@ pub enum FileError {
         action: usize,
         /// The reward, shortened.
         reward: String,
+    },
+    /// The lcm of a deterministic file's stage-cost denominators exceeds
+    /// [`MAX_COST_DENOMINATOR_BITS`].
+    #[error("state {state}, action {action}: the lcm of the stage costs' denominators up to here takes {bits} bits; the exact solvers take at most {MAX_COST_DENOMINATOR_BITS} (refused before any work)")]
+    CostDenominators {
+        /// The state where the lcm passed the bound.
+        state: usize,
+        /// The action index.
+        action: usize,
+        /// The lcm's bits.
+        bits: u64,
     },
     /// The exact numbers of the file exceed [`MAX_NUMBER_BITS`] in the initial distribution.
     #[error("initial entry {entry}: the exact numbers of this file take {bits} bits up to here, more than 2^28 = {MAX_NUMBER_BITS} bits in all, the limit of this reader")]
@@ -781,6 +800,7 @@ pub(crate) fn from_file(
     let mut budget = NumberBudget::default();
     let mut rewards = RewardReader::default();
     let mut moves = Vec::with_capacity(file.actions.len());
+    let mut lcm = num_bigint::BigInt::one();
     for (x, list) in file.actions.iter().enumerate() {
         let mut row = Vec::with_capacity(list.len());
         for (a, action) in list.iter().enumerate() {
@@ -796,6 +816,14 @@ pub(crate) fn from_file(
             })?;
             let cost = parse_cost(x, a, &action.cost)?;
             budget.take(&cost, x, a)?;
+            lcm = num_integer::Integer::lcm(&lcm, cost.denom());
+            if lcm.bits() > MAX_COST_DENOMINATOR_BITS {
+                return Err(FileError::CostDenominators {
+                    state: x,
+                    action: a,
+                    bits: lcm.bits(),
+                });
+            }
             rewards.take(action, x, a, &mut budget)?;
             row.push(Move { successor, cost });
         }

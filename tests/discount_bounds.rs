@@ -444,3 +444,49 @@ fn the_stage_costs_room_for_alpha_is_known_before_the_first_probe() {
         ],
     );
 }
+
+/// A stochastic analysis is charged for the phase after its probes (each breakpoint's
+/// reduction as a probe, each achievement as a quarter of one), reserved region by region: on
+/// slippery FrozenLake 4 × 4 the work reported exceeds the probes' estimates alone, and a
+/// bound one unit short of it stops the analysis with work reserved, though the probes run so
+/// far fit it.
+#[test]
+fn a_stochastic_analysis_is_charged_for_the_phase_after_its_probes() {
+    use truecost::envs::EnvSpec;
+    use truecost::objectives::parametric::{
+        discount_breakpoints, discount_breakpoints_limited, Limits, ParametricError, Search,
+    };
+    use truecost::objectives::Model;
+    let env = EnvSpec::parse("frozenlake").unwrap().build().unwrap();
+    let m = Model::from_environment(&env).unwrap();
+    let d = discount_breakpoints(&m).unwrap();
+    assert!(!d.deterministic && !d.breakpoints.is_empty());
+    // Every probe costs the same estimate: the work is probes · p plus the phase after them,
+    // (breakpoints · (1 + 2/4) + 1/4) · p, up to integer division.
+    let (probes, points) = (d.probes as u128, d.breakpoints.len() as u128);
+    let p = d.work * 4 / (4 * probes + 6 * points + 1);
+    assert!(p > 0);
+    assert!(
+        d.work > probes * p,
+        "{} <= {} probes of {p}",
+        d.work,
+        probes
+    );
+    let limits = Limits {
+        stochastic_work: d.work - 1,
+        ..Limits::default()
+    };
+    let start = Instant::now();
+    let e = discount_breakpoints_limited(&m, Search::Pruned, limits, &mut |_| {}).unwrap_err();
+    assert!(
+        start.elapsed() < Duration::from_secs(REFUSAL_SECONDS),
+        "{e}"
+    );
+    let ParametricError::Work { work, reserved, .. } = e else {
+        panic!("{e}")
+    };
+    assert!(
+        reserved > 0 && work <= d.work - 1,
+        "{work} done, {reserved} reserved"
+    );
+}

@@ -134,7 +134,11 @@ pub const MAX_DETERMINISTIC_RUNNING_STATES: usize = 2_500;
 /// do 3·10⁸ to 1.4·10⁹ units a second: grids of `export --grid NxN --pattern random --costs
 /// 1-9 --seed 0` take 2.6·10⁸ units (20×20, 385 probes), 1.5·10⁹ (30×30, 1003 probes) and
 /// 1.2·10¹⁰ (50×50, 2534 probes, about 53 s of probes), the probes' units alone. The bound
-/// (`2^34` ≈ 1.7·10¹⁰) keeps an analysis to about a minute of processor time.
+/// (`2^34` ≈ 1.7·10¹⁰) keeps such analyses to about a minute of processor time. It does not
+/// yet hold for every file: twelve chains of 200 states with costs `k/13` are stopped by it
+/// only after five minutes, in their first probe, comparing roots whose brackets have
+/// narrowed to points of many bits, where a sign costs about the square of the point's bits
+/// and `chains::evaluation` counts them linearly.
 pub const MAX_DETERMINISTIC_WORK: u128 = 1 << 34;
 
 /// The estimated work of one probe of a stochastic analysis: `n⁵·b⁴`, with `n` the running

@@ -356,7 +356,7 @@ fn huge_fractions(n: usize) -> String {
 }
 
 // A stochastic file of 3,400 fractions of 2000-digit mantissas with exponents ±10000
-// (13.7 MB) passes the 2^28-bit budget: it is refused naming the budget, promptly (0.45 s of
+// (13.7 MB) passes the 2^28-bit budget: it is refused naming the budget, promptly (0.5 s of
 // processor time in release; the bound here is for a debug build on a loaded machine), each
 // number reduced through a subquadratic gcd of its mantissas.
 #[test]

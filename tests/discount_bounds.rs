@@ -158,21 +158,38 @@ fn huge_exponents_and_digits_are_refused_at_once() {
     let dir = tempfile::tempdir().unwrap();
     let big = write(dir.path(), "big.json", &two_states("1e10000", "1"));
     let f = big.to_str().unwrap();
+    // 10^10000 takes ⌊10000 · log2 10⌋ + 1 = 33220 bits: over the stochastic model's bound
+    // on stage costs scaled to integers, checked as the model is built.
     refused(
         &["discount", "--file", f],
-        &["state 0, action 0", "stage cost ≈1e10000", "2^100"],
+        &[
+            "state 0, action 0",
+            "stage cost ≈1e10000 scaled to an integer",
+            "33220 bits",
+            "at most 1024",
+        ],
     );
-    for (name, text) in [
-        ("tiny-goal.json", two_states("1e-10000", "1")),
-        ("tiny-loop.json", two_states("1", "1e-10000")),
+    for (name, text, action) in [
+        ("tiny-goal.json", two_states("1e-10000", "1"), "action 0"),
+        ("tiny-loop.json", two_states("1", "1e-10000"), "action 1"),
     ] {
         let path = write(dir.path(), name, &text);
-        // 10^10000 takes ⌊10000 · log2 10⌋ + 1 = 33220 bits.
         refused(
             &["discount", "--file", path.to_str().unwrap()],
-            &["reward ≈-1e-10000", "33220 bits", "at most 160"],
+            &[
+                &format!("state 0, {action}"),
+                "the lcm of the stage costs' denominators up to here takes 33220 bits",
+                "at most 1024",
+            ],
         );
     }
+    // Rewards are the discounted objective's own numbers: 10^-10000 is refused by its bound.
+    let text = r#"{"states": 2, "initial": 0, "goals": [1], "actions": [[{"to": 1, "cost": "1", "reward": "1e-10000"}, {"to": 0, "cost": "1", "reward": "1"}], []]}"#;
+    let path = write(dir.path(), "tiny-reward.json", text);
+    refused(
+        &["discount", "--file", path.to_str().unwrap()],
+        &["reward ≈1e-10000", "33220 bits", "at most 160"],
+    );
     let digits = "9".repeat(4096);
     let text = format!(
         r#"{{"states": 2, "initial": 0, "goals": [1], "actions": [[{{"to": 1, "cost": "1", "reward": "{digits}"}}, {{"to": 0, "cost": "1", "reward": "1"}}], []]}}"#
@@ -387,5 +404,89 @@ fn a_sum_off_one_shows_its_exact_distance() {
     refused(
         &["discount", "--file", under.to_str().unwrap()],
         &["sum to 99/100, not 1 (below 1 by 1/100)"],
+    );
+}
+
+/// A stochastic file whose state 0 pays `cost` once to reach the goal (one outcome) and whose
+/// state 1 pays 1 to reach it with probability 1/2 (else stays): one policy, one region.
+fn stochastic_cost(cost: &str) -> String {
+    format!(
+        r#"{{"format": "truecost-stochastic/1", "states": 3, "initial": 0, "goals": [2], "actions": [[{{"cost": "{cost}", "outcomes": [{{"to": 2, "p": "1"}}]}}], [{{"cost": "1", "outcomes": [{{"to": 2, "p": "1/2"}}, {{"to": 1, "p": "1/2"}}]}}], []]}}"#
+    )
+}
+
+/// The exact solver's `2^100` on the killed-process construction's stage costs, predicted
+/// before the first probe: with `K` the largest stage cost (scaled to an integer) times its
+/// state's common denominator of probabilities, every probe's `α` takes a denominator
+/// `q ≤ ⌊(2^100 − 1)/K⌋`. `K = 2^99 − 1` leaves `α = 1/2` (answered: one region);
+/// `K = 2^99` leaves none, refused before any work naming the state, `K`, the product and the
+/// bound.
+#[test]
+fn the_stage_costs_room_for_alpha_is_known_before_the_first_probe() {
+    let dir = tempfile::tempdir().unwrap();
+    let fits = write(
+        dir.path(),
+        "fits.json",
+        &stochastic_cost(&(pow2(99) - 1u32).to_string()),
+    );
+    let (ok, err, _) = run(&["discount", "--file", fits.to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let over = write(dir.path(), "over.json", &stochastic_cost(&num(99)));
+    refused(
+        &["discount", "--file", over.to_str().unwrap()],
+        &[
+            &format!(
+                "state 0: discounted stage cost, scaled, times the probabilities' denominator: {}; times alpha's must stay below 2^100",
+                num(99)
+            ),
+            &format!("denominator >= 2, which gives {}", num(100)),
+            "refused before any work",
+        ],
+    );
+}
+
+/// A stochastic analysis is charged for the phase after its probes (each breakpoint's
+/// reduction as a probe, each achievement as a quarter of one), reserved region by region: on
+/// slippery FrozenLake 4 × 4 the work reported exceeds the probes' estimates alone, and a
+/// bound one unit short of it stops the analysis with work reserved, though the probes run so
+/// far fit it.
+#[test]
+fn a_stochastic_analysis_is_charged_for_the_phase_after_its_probes() {
+    use truecost::envs::EnvSpec;
+    use truecost::objectives::parametric::{
+        discount_breakpoints, discount_breakpoints_limited, Limits, ParametricError, Search,
+    };
+    use truecost::objectives::Model;
+    let env = EnvSpec::parse("frozenlake").unwrap().build().unwrap();
+    let m = Model::from_environment(&env).unwrap();
+    let d = discount_breakpoints(&m).unwrap();
+    assert!(!d.deterministic && !d.breakpoints.is_empty());
+    // Every probe costs the same estimate: the work is probes · p plus the phase after them,
+    // (breakpoints · (1 + 2/4) + 1/4) · p, up to integer division.
+    let (probes, points) = (d.probes as u128, d.breakpoints.len() as u128);
+    let p = d.work * 4 / (4 * probes + 6 * points + 1);
+    assert!(p > 0);
+    assert!(
+        d.work > probes * p,
+        "{} <= {} probes of {p}",
+        d.work,
+        probes
+    );
+    let limits = Limits {
+        stochastic_work: d.work - 1,
+        ..Limits::default()
+    };
+    let start = Instant::now();
+    let e = discount_breakpoints_limited(&m, Search::Pruned, limits, &mut |_| {}).unwrap_err();
+    assert!(
+        start.elapsed() < Duration::from_secs(REFUSAL_SECONDS),
+        "{e}"
+    );
+    let ParametricError::Work { work, reserved, .. } = e else {
+        panic!("{e}")
+    };
+    assert!(
+        reserved > 0 && work < d.work,
+        "{work} done, {reserved} reserved"
     );
 }

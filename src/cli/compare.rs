@@ -4,10 +4,12 @@
 use clap::{Args, ValueEnum};
 
 use super::env::{pretty, ModelArgs};
-use truecost::objectives::parse_alpha;
+#[cfg(doc)]
+use truecost::objectives::report::compare;
 use truecost::objectives::report::{
-    compare, compare_json, compare_latex, compare_markdown, compare_text,
+    compare_json, compare_latex, compare_markdown, compare_text, CompareRow,
 };
+use truecost::objectives::{parse_alpha, Objective};
 
 /// Output formats of `compare`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -69,11 +71,29 @@ pub fn parse_alphas(list: &str) -> Result<Vec<truecost::value::Rational>, String
     Ok(alphas)
 }
 
-/// Runs `compare`.
+/// Runs `compare`: the discounted rows are solved first, so that a discounted objective the
+/// exact solver refuses (the killed-process construction's stage costs, the largest reward
+/// minus each action's, times the probabilities' denominators with `α`'s, within `2^100`) is
+/// refused before the truecost and reach objectives' exact solves; the rows are printed in
+/// the order of [`compare`] (truecost, reach, then each `α`).
 pub fn run(args: &CompareArgs) -> Result<String, String> {
     let alphas = parse_alphas(&args.alphas)?;
     let model = args.model.load()?;
-    let rows = compare(&model, &alphas).map_err(|e| e.to_string())?;
+    let solve = |o: Objective| {
+        model
+            .solve(&o)
+            .map(|solution| CompareRow {
+                objective: o,
+                solution,
+            })
+            .map_err(|e| e.to_string())
+    };
+    let discounted = alphas
+        .iter()
+        .map(|a| solve(Objective::Discounted(a.clone())))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut rows = vec![solve(Objective::Truecost)?, solve(Objective::Reach)?];
+    rows.extend(discounted);
     Ok(match args.format {
         CompareFormat::Text => compare_text(&model, &rows),
         CompareFormat::Markdown => compare_markdown(&model, &rows),

@@ -53,7 +53,10 @@
 //! bytes, read **once** (so `/dev/stdin`, pipes and FIFOs work); each number as in
 //! [`crate::value::parse_rational`] (at most 4096 bytes, exponents within ±10000); the exact
 //! numbers of one file (costs, rewards, probabilities, the initial distribution's included) at
-//! most [`MAX_NUMBER_BITS`] bits in all.
+//! most [`MAX_NUMBER_BITS`] bits in all, counted in lowest terms as they are read and, before
+//! any is read, from their digit counts and exponents (a lower bound, so that a file of huge
+//! exponents is refused without reducing a number); the lcm of the stage costs' denominators
+//! at most [`MAX_COST_DENOMINATOR_BITS`] bits.
 
 use std::path::Path;
 
@@ -73,6 +76,13 @@ pub const STOCHASTIC_FORMAT: &str = "truecost-stochastic/1";
 /// The largest problem file read, in bytes (32 MiB: a 100×100 stochastic grid with every
 /// outcome listed takes about 6 MiB).
 pub const MAX_FILE_BYTES: u64 = 32 << 20;
+
+/// The most bits of the lcm of a deterministic file's stage-cost denominators, checked as they
+/// are read: every sum of stage costs (a path's cost, as the planners add them up) has a
+/// denominator dividing it, so the planners' exact sums stay small. The stochastic model takes
+/// the same bound ([`crate::stochastic::problem::MAX_SCALED_COST_BITS`]); 200 costs
+/// `1/(k·10^10000)` made an lcm of millions of bits, and the planners' sums ran for minutes.
+pub const MAX_COST_DENOMINATOR_BITS: u64 = 1024;
 
 /// The most bits all exact numbers (costs, probabilities) of one file may take together
 /// (numerators and denominators), so that a small file of huge exponents cannot fill memory.
@@ -103,6 +113,15 @@ pub enum FileError {
         /// The action index.
         action: usize,
         /// The bits counted up to and including this number.
+        bits: u64,
+    },
+    /// The exact numbers of the file must exceed [`MAX_NUMBER_BITS`], counted from their digits
+    /// and exponents before any is read ([`FileProblem::check_number_bits`]).
+    #[error("{at}: the exact numbers of this file take at least {bits} bits up to here (counted from their digits and exponents before reading them), more than 2^28 = {MAX_NUMBER_BITS} bits in all, the limit of this reader")]
+    NumbersAtLeast {
+        /// Where the count passed the bound: `state s, action a` or `initial entry e`.
+        at: String,
+        /// The lower bound counted up to and including this number.
         bits: u64,
     },
     /// A deterministic action without its successor.
@@ -197,6 +216,17 @@ pub enum FileError {
         action: usize,
         /// The reward, shortened.
         reward: String,
+    },
+    /// The lcm of a deterministic file's stage-cost denominators exceeds
+    /// [`MAX_COST_DENOMINATOR_BITS`].
+    #[error("state {state}, action {action}: the lcm of the stage costs' denominators up to here takes {bits} bits; the exact solvers take at most {MAX_COST_DENOMINATOR_BITS} (refused before any work)")]
+    CostDenominators {
+        /// The state where the lcm passed the bound.
+        state: usize,
+        /// The action index.
+        action: usize,
+        /// The lcm's bits.
+        bits: u64,
     },
     /// The exact numbers of the file exceed [`MAX_NUMBER_BITS`] in the initial distribution.
     #[error("initial entry {entry}: the exact numbers of this file take {bits} bits up to here, more than 2^28 = {MAX_NUMBER_BITS} bits in all, the limit of this reader")]
@@ -314,16 +344,63 @@ impl<A> FileProblem<A> {
             _ => Ok(()),
         }
     }
+}
 
-    /// Checks the optional `states` against the number of action lists.
+impl FileProblem<FileAction> {
+    /// Checks the optional `states` against the number of action lists, then the exact
+    /// numbers' size before any is read ([`FileProblem::check_number_bits`]).
     pub(crate) fn check_states(&self) -> Result<(), FileError> {
         match self.states {
             Some(states) if states != self.actions.len() => Err(FileError::StatesMismatch {
                 states,
                 lists: self.actions.len(),
             }),
-            _ => Ok(()),
+            _ => self.check_number_bits(),
         }
+    }
+
+    /// Refuses, before any number is read, a file whose exact numbers must take more than
+    /// [`MAX_NUMBER_BITS`] bits: the lower bounds of [`crate::value::bits_lower_bound`] (from
+    /// the digit counts and exponents) added up in the order the readers read the numbers
+    /// (per action its cost, reward and probabilities; then the initial distribution). The
+    /// readers' own count, of the numbers in lowest terms, is at least this sum, so no file
+    /// they accept is refused here; a file of huge exponents is refused without reducing any
+    /// of its numbers.
+    pub(crate) fn check_number_bits(&self) -> Result<(), FileError> {
+        use crate::value::bits_lower_bound;
+        let mut bits = 0u64;
+        let mut over = |text: &str| {
+            bits = bits.saturating_add(bits_lower_bound(text));
+            bits > MAX_NUMBER_BITS
+        };
+        for (state, list) in self.actions.iter().enumerate() {
+            for (action, a) in list.iter().enumerate() {
+                let texts = std::iter::once(&a.cost)
+                    .chain(a.reward.iter())
+                    .chain(a.outcomes.iter().flatten().map(|o| &o.p));
+                for text in texts {
+                    if over(text) {
+                        return Err(FileError::NumbersAtLeast {
+                            at: format!("state {state}, action {action}"),
+                            bits,
+                        });
+                    }
+                }
+            }
+        }
+        if let FileInitial::Distribution(list) = &self.initial {
+            for (entry, e) in list.iter().enumerate() {
+                if let serde_json::Value::String(text) = &e.p {
+                    if over(text) {
+                        return Err(FileError::NumbersAtLeast {
+                            at: format!("initial entry {entry}"),
+                            bits,
+                        });
+                    }
+                }
+            }
+        }
+        Ok(())
     }
 }
 
@@ -723,6 +800,7 @@ pub(crate) fn from_file(
     let mut budget = NumberBudget::default();
     let mut rewards = RewardReader::default();
     let mut moves = Vec::with_capacity(file.actions.len());
+    let mut lcm = num_bigint::BigInt::one();
     for (x, list) in file.actions.iter().enumerate() {
         let mut row = Vec::with_capacity(list.len());
         for (a, action) in list.iter().enumerate() {
@@ -738,6 +816,14 @@ pub(crate) fn from_file(
             })?;
             let cost = parse_cost(x, a, &action.cost)?;
             budget.take(&cost, x, a)?;
+            lcm = num_integer::Integer::lcm(&lcm, cost.denom());
+            if lcm.bits() > MAX_COST_DENOMINATOR_BITS {
+                return Err(FileError::CostDenominators {
+                    state: x,
+                    action: a,
+                    bits: lcm.bits(),
+                });
+            }
             rewards.take(action, x, a, &mut budget)?;
             row.push(Move { successor, cost });
         }

@@ -61,8 +61,10 @@
 //! Effort is bounded: before any work, the numbers (stage costs and rewards of magnitude at
 //! most `2^100`, rewards of at most [`bounds::MAX_SCALED_BITS`] bits scaled to integers:
 //! [`bounds::check_numbers`]); [`MAX_RUNNING_STATES`] bounds the degree of every rational
-//! function of a stochastic model and [`probe_work`] estimates each of its probes
-//! ([`MAX_PROBE_WORK`] in all); a deterministic model has at most
+//! function of a stochastic model, [`probe_work`] estimates each of its probes
+//! ([`MAX_PROBE_WORK`] in all, with the phase after the probes charged in the same units) and
+//! [`bounds::AlphaRoom`] the room its probabilities and stage costs leave the probes' `α`
+//! within the exact solver's limits; a deterministic model has at most
 //! [`MAX_DETERMINISTIC_RUNNING_STATES`], chains of degree at most [`MAX_CHAIN_DEGREE`] (refused
 //! before the first probe when the chain structure forces more, [`bounds::certain_degree`],
 //! else checked while running) and probes whose counted work stays within
@@ -105,17 +107,19 @@ pub const MAX_CHAIN_DEGREE: usize = 200;
 /// The most probes (regions of optimal policies) the covering of `(0, 1)` may take.
 pub const MAX_REGIONS: usize = 4_000;
 
-/// The most work the probes of one stochastic analysis may do together, in units of
-/// [`probe_work`] (`n⁵·b⁴` per probe); checked before every probe. Measured in release on 2
-/// idle cores (6 Dec 2026): a slippery FrozenLake-style 16×16 map (195 running states, 47
-/// probes, 8.3·10¹⁵ units) takes 77 s of processor time, about 10¹⁴ units a second; a random
-/// 40-state problem with probabilities `k/997` about 3·10¹³ a second. This bound (≈ 9·10¹⁵)
-/// keeps an analysis to between about one and five minutes of processor time.
-pub const MAX_PROBE_WORK: u128 = 1 << 53;
+/// The most work one stochastic analysis may do, in units of [`probe_work`] (`n⁵·b⁴` per
+/// probe): the probes, and the phase after them (each breakpoint's reduction charged as a
+/// probe, each achievement as a quarter of one: module `closing`, reserved region by region);
+/// checked before every probe. Measured in release (processor time, 7 Dec 2026, 2 cores
+/// shared with other work): slippery FrozenLake-style maps of 53 to 195 running states are
+/// charged 10¹³ to 2.7·10¹⁴ units a second, the larger the faster; a 16×16 map (195 running
+/// states, 47 probes) is charged 2.0·10¹⁶ units and takes 75 s. This bound (≈ 3.6·10¹⁶) keeps
+/// such an analysis to about two to three minutes of processor time.
+pub const MAX_PROBE_WORK: u128 = 1 << 55;
 
-/// The most work one probe may take before any work starts: a problem that cannot afford 16
-/// probes within [`MAX_PROBE_WORK`] is refused at once.
-pub const MAX_SINGLE_PROBE_WORK: u128 = MAX_PROBE_WORK / 16;
+/// The most work one probe may take before any work starts: a problem that cannot afford 64
+/// probes within [`MAX_PROBE_WORK`] (`2^49`) is refused at once.
+pub const MAX_SINGLE_PROBE_WORK: u128 = MAX_PROBE_WORK / 64;
 
 /// The most states where the episode runs of a deterministic model: more are refused before
 /// any work.
@@ -130,7 +134,11 @@ pub const MAX_DETERMINISTIC_RUNNING_STATES: usize = 2_500;
 /// do 3·10⁸ to 1.4·10⁹ units a second: grids of `export --grid NxN --pattern random --costs
 /// 1-9 --seed 0` take 2.6·10⁸ units (20×20, 385 probes), 1.5·10⁹ (30×30, 1003 probes) and
 /// 1.2·10¹⁰ (50×50, 2534 probes, about 53 s of probes), the probes' units alone. The bound
-/// (`2^34` ≈ 1.7·10¹⁰) keeps an analysis to about a minute of processor time.
+/// (`2^34` ≈ 1.7·10¹⁰) keeps such analyses to about a minute of processor time. It does not
+/// yet hold for every file: twelve chains of 200 states with costs `k/13` are stopped by it
+/// only after five minutes, in their first probe, comparing roots whose brackets have
+/// narrowed to points of many bits, where a sign costs about the square of the point's bits
+/// and `chains::evaluation` counts them linearly.
 pub const MAX_DETERMINISTIC_WORK: u128 = 1 << 34;
 
 /// The estimated work of one probe of a stochastic analysis: `n⁵·b⁴`, with `n` the running
@@ -250,6 +258,18 @@ pub enum ParametricError {
         /// The denominators, the product and where (before any work, or the gap).
         detail: String,
     },
+    /// A stochastic model whose stage costs, scaled and times the probabilities' common
+    /// denominator, leave a probe's `α` too little room for its denominator
+    /// ([`bounds::CostRoom`]).
+    #[error("state {state}: discounted stage cost, scaled, times the probabilities' denominator: {scaled}; times alpha's must stay below 2^100 (the exact solver's limit): {detail}")]
+    AlphaCost {
+        /// The state with the largest product.
+        state: usize,
+        /// The product `K` ([`bounds::CostRoom::scaled`]).
+        scaled: BigInt,
+        /// The product with `α`'s denominator and where (before any work, or the gap).
+        detail: String,
+    },
     /// A stage cost or reward over `2^100` in magnitude ([`bounds::MAX_MAGNITUDE_BITS`]).
     #[error("state {state}, action {action}: the {quantity} {value} exceeds 2^{bound} in magnitude; the exact parametric analysis takes stage costs and rewards up to 2^{bound} (refused before any work)")]
     Magnitude {
@@ -293,20 +313,19 @@ pub enum ParametricError {
         bound: u128,
     },
     /// The probes together would exceed [`MAX_PROBE_WORK`].
-    #[error("the exact parametric analysis stopped after {probes} probes ({regions} regions of (0,1) covered, {gaps} gaps left): its work, {work} units done and {reserved} reserved for the breakpoints' optimal sets, would pass the bound of {bound} units (about a minute of processor time)")]
+    #[error("the exact parametric analysis stopped after {probes} probes ({regions} regions of (0,1) covered, {gaps} gaps left): its work, {work} units done and {reserved} reserved for the breakpoints' optimal sets, would pass the bound of {bound} units (one to three minutes of processor time)")]
     Work {
         /// Probes run.
         probes: usize,
         /// The work counted so far.
         work: u128,
-        /// The work reserved for the phase after the probes (module `closing`; 0 on a
-        /// stochastic model).
+        /// The work reserved for the phase after the probes (module `closing`).
         reserved: u128,
         /// Regions found.
         regions: usize,
         /// Gaps left.
         gaps: usize,
-        /// [`MAX_PROBE_WORK`].
+        /// [`MAX_PROBE_WORK`] or [`MAX_DETERMINISTIC_WORK`].
         bound: u128,
     },
     /// A deterministic model with more than [`MAX_DETERMINISTIC_RUNNING_STATES`].
@@ -1758,7 +1777,8 @@ pub fn discount_breakpoints(model: &Model) -> Result<DiscountAnalysis, Parametri
 /// [`discount_breakpoints`], calling `progress` before every probe. The result does not
 /// depend on `progress`. A stochastic problem is refused before any work when one probe would
 /// exceed [`MAX_SINGLE_PROBE_WORK`] ([`probe_work`]), and stopped while running when the next
-/// probe would take the work past [`MAX_PROBE_WORK`]; a deterministic one is refused over
+/// probe, with the phase after the probes reserved so far, would take the work past
+/// [`MAX_PROBE_WORK`]; a deterministic one is refused over
 /// [`MAX_DETERMINISTIC_RUNNING_STATES`] and stopped when its measured work would pass
 /// [`MAX_DETERMINISTIC_WORK`].
 pub fn discount_breakpoints_with(
@@ -1797,12 +1817,15 @@ pub fn discount_breakpoints_within(
     discount_breakpoints_limited(model, search, limits, progress)
 }
 
-/// The bounds of a deterministic analysis that [`discount_breakpoints_limited`] takes as
-/// given: the analysis uses [`Limits::default`].
+/// The bounds of an analysis that [`discount_breakpoints_limited`] takes as given: the
+/// analysis uses [`Limits::default`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Limits {
-    /// The work bound ([`MAX_DETERMINISTIC_WORK`]).
+    /// The work bound of a deterministic model ([`MAX_DETERMINISTIC_WORK`]).
     pub deterministic_work: u128,
+    /// The work bound of a stochastic model ([`MAX_PROBE_WORK`]): its probes and its
+    /// achievements ([`closing::stochastic_achievement`]).
+    pub stochastic_work: u128,
     /// The largest degree of a value along a successor chain ([`MAX_CHAIN_DEGREE`]), checked
     /// before the first probe ([`bounds::check_certain_degree`]) and on every value built.
     pub chain_degree: usize,
@@ -1812,6 +1835,7 @@ impl Default for Limits {
     fn default() -> Limits {
         Limits {
             deterministic_work: MAX_DETERMINISTIC_WORK,
+            stochastic_work: MAX_PROBE_WORK,
             chain_degree: MAX_CHAIN_DEGREE,
         }
     }
@@ -1882,7 +1906,7 @@ fn analyse(
     let bound = if deterministic {
         limits.deterministic_work
     } else {
-        MAX_PROBE_WORK
+        limits.stochastic_work
     };
     let timer = Timer::new();
     let mut work = 0u128;
@@ -1901,13 +1925,12 @@ fn analyse(
             achievement(model, allowed)
         }
     };
-    // The phase after the probes, on a deterministic model: charged in the probes' units,
-    // each region's share reserved as its probe finds it (module `closing`); the interval
-    // next to 1 is reserved from the start.
-    let per_achievement = if deterministic {
-        closing::achievement(model, graph, closing::exact_solves(model))
-    } else {
-        0
+    // The phase after the probes: charged in the probes' units, each region's share
+    // reserved as its probe finds it (module `closing`); the interval next to 1 is reserved
+    // from the start.
+    let per_achievement = match per_probe {
+        None => closing::achievement(model, graph, closing::exact_solves(model)),
+        Some(per_probe) => closing::stochastic_achievement(per_probe),
     };
     let mut reserved = per_achievement;
     let mut memory = (deterministic && search == Search::Pruned)
@@ -1983,9 +2006,11 @@ fn analyse(
             };
             last = work - before;
             if let Some(region) = &region {
-                if deterministic {
-                    reserved += closing::region(region, per_achievement);
-                }
+                reserved += if deterministic {
+                    closing::region(region, per_achievement)
+                } else {
+                    closing::stochastic_region(region, per_probe.unwrap_or(0))
+                };
             }
             if work + reserved > bound {
                 return Err(ParametricError::Work {
@@ -2054,13 +2079,14 @@ fn analyse(
     points.sort_by(|a, b| a.compare(b));
     // Equal points met through different polynomials keep their common factor.
     points.dedup_by(|a, b| b.absorb_if_equal(a));
-    if deterministic {
-        // Within the reservation (module `closing`), so within the bound.
-        let charged = points.iter().map(closing::reduction).sum::<u128>()
-            + (2 * points.len() as u128 + 1) * per_achievement;
-        debug_assert!(charged <= reserved, "{charged} > {reserved}");
-        work += charged.min(reserved);
-    }
+    // Within the reservation (module `closing`), so within the bound.
+    let reductions = match per_probe {
+        None => points.iter().map(closing::reduction).sum::<u128>(),
+        Some(per_probe) => points.len() as u128 * closing::stochastic_reduction(per_probe),
+    };
+    let charged = reductions + (2 * points.len() as u128 + 1) * per_achievement;
+    debug_assert!(charged <= reserved, "{charged} > {reserved}");
+    work += charged.min(reserved);
     use rayon::prelude::*;
     // Each point on its own (in parallel): rational or reduced polynomial.
     points.par_iter_mut().for_each(|b| {
@@ -2132,7 +2158,9 @@ fn analyse(
         })
         .collect();
     let breakpoints: Vec<Breakpoint> = breakpoints.into_iter().collect::<Result<_, _>>()?;
-    timer.mark("achievements");
+    timer.mark(&format!(
+        "achievements ({work} units charged in all, {reserved} reserved, bound {bound})"
+    ));
     Ok(DiscountAnalysis {
         breakpoints,
         intervals,
@@ -2202,6 +2230,7 @@ mod tests {
             state: 3,
             own: big(40),
             room: big(22),
+            costs: None,
         };
         let third = Rational::new(1.into(), 3.into());
         let gap = |k: u32| {

@@ -5,7 +5,7 @@
 
 use num_bigint::BigInt;
 use num_integer::Integer;
-use num_traits::{One, Signed};
+use num_traits::{One, Signed, Zero};
 
 use super::degree::{self, Certain};
 use super::ParametricError;
@@ -120,50 +120,137 @@ pub fn check_certain_degree(
     }
 }
 
-/// The room a stochastic model leaves `α`'s denominator: a probe at `α` solves the discounted
-/// problem with probabilities `α·p` and `1 − α`, whose common denominator at a state divides
-/// the state's own common denominator `D` times `α`'s denominator `q`; the exact solver takes
-/// at most `2^62` ([`MAX_DENOMINATOR`]), so the probes take `α` with `q ≤ ⌊2^62 / D⌋` for the
-/// largest `D` (at `state`).
+/// The exact solver's bound on a stage cost scaled to an integer times its state's common
+/// denominator of probabilities: the right-hand sides of its equations stay below `2^100`.
+pub const MAX_SCALED_COST_BITS: u64 = 100;
+
+/// The room a stochastic model leaves `α`'s denominator `q`. A probe at `α` solves the
+/// discounted problem (the killed-process construction of [`Model`]) with probabilities `α·p`
+/// and `1 − α`, whose common denominator at a state divides the state's own common
+/// denominator `D` times `q`. The exact solver takes at most `2^62` there
+/// ([`MAX_DENOMINATOR`]): `q ≤ ⌊2^62 / D⌋` for the largest `D` (at `state`). It also takes
+/// each stage cost of the construction (the largest reward minus the action's, or the largest
+/// reward where the episode is over), scaled to an integer by the lcm `C` of their
+/// denominators, times the state's common denominator, below `2^100`
+/// ([`MAX_SCALED_COST_BITS`]): with `K` the largest `|cost · C| · D` over the states and their
+/// actions ([`CostRoom`]), `q ≤ ⌊(2^100 − 1) / K⌋` keeps every equation of every probe within
+/// it. Both are known before the first probe, so no probe fails on them; the second counts
+/// every action, where the solver meets only those of the policies it evaluates.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct AlphaRoom {
     /// The state with the largest common denominator of its probabilities.
     pub state: StateId,
     /// That common denominator `D`.
     pub own: BigInt,
-    /// `⌊2^62 / D⌋`: the largest denominator of a probe's `α`.
+    /// `⌊2^62 / D⌋`: the largest denominator of a probe's `α` the probabilities leave.
+    pub room: BigInt,
+    /// The room the stage costs leave (`None`: every stage cost of the construction is 0).
+    pub costs: Option<CostRoom>,
+}
+
+/// The room the stage costs of the killed-process construction leave `α`'s denominator
+/// ([`AlphaRoom`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CostRoom {
+    /// The state with the largest `|cost · C| · D`.
+    pub state: StateId,
+    /// That product `K`.
+    pub scaled: BigInt,
+    /// `⌊(2^100 − 1) / K⌋`: the largest denominator of a probe's `α` the stage costs leave.
     pub room: BigInt,
 }
 
 impl AlphaRoom {
-    /// The room of `model` ([`AlphaRoom`]), over the states where the episode runs.
+    /// The room of `model` ([`AlphaRoom`]), over the states where the episode runs for the
+    /// probabilities, over every state for the stage costs.
     pub fn of(model: &Model, running: &[StateId]) -> AlphaRoom {
         let p = &model.problem;
-        let (mut state, mut own) = (running.first().copied().unwrap_or(0), BigInt::one());
-        for &x in running {
+        let own_of = |x: StateId| {
             let mut lcm = BigInt::one();
             for a in p.actions(x) {
                 for o in p.outcomes(a) {
                     lcm = lcm.lcm(o.probability.denom());
                 }
             }
+            lcm
+        };
+        let (mut state, mut own) = (running.first().copied().unwrap_or(0), BigInt::one());
+        for &x in running {
+            let lcm = own_of(x);
             if lcm > own {
                 (state, own) = (x, lcm);
             }
         }
         let room = BigInt::from(MAX_DENOMINATOR) / &own;
-        AlphaRoom { state, own, room }
+        // The construction's stage costs, as `Model::discounted` forms them.
+        let top = model
+            .reward
+            .iter()
+            .fold(Rational::zero(), |a, b| if *b > a { b.clone() } else { a });
+        let costs_at = |x: StateId| -> Vec<Rational> {
+            if model.terminal[x] {
+                vec![top.clone()]
+            } else {
+                p.actions(x).map(|a| &top - &model.reward[a]).collect()
+            }
+        };
+        let mut c = BigInt::one();
+        for x in 0..p.states() {
+            for cost in costs_at(x) {
+                c = c.lcm(cost.denom());
+            }
+        }
+        let c = Rational::from_integer(c);
+        let mut costs: Option<(StateId, BigInt)> = None;
+        for x in 0..p.states() {
+            let largest = costs_at(x)
+                .iter()
+                .map(|cost| (cost * &c).to_integer().abs())
+                .max()
+                .unwrap_or_default();
+            if largest.is_zero() {
+                continue;
+            }
+            let d = if model.terminal[x] {
+                BigInt::one()
+            } else {
+                own_of(x)
+            };
+            let k = largest * d;
+            if costs.as_ref().is_none_or(|(_, best)| k > *best) {
+                costs = Some((x, k));
+            }
+        }
+        let costs = costs.map(|(state, scaled)| CostRoom {
+            state,
+            room: ((BigInt::one() << MAX_SCALED_COST_BITS) - 1u8) / &scaled,
+            scaled,
+        });
+        AlphaRoom {
+            state,
+            own,
+            room,
+            costs,
+        }
     }
 
-    /// Whether a probe may take `alpha`: its denominator within the room.
+    /// Whether a probe may take `alpha`: its denominator within both rooms.
     pub fn fits(&self, alpha: &Rational) -> bool {
-        alpha.denom() <= &self.room
+        alpha.denom() <= &self.room && self.costs.as_ref().is_none_or(|c| alpha.denom() <= &c.room)
     }
 
     /// The refusal of `alpha` (`gap`: the gap of `(0, 1)` it was the simplest rational of, as
-    /// text, with the probes run; `None`: before any work, `alpha = 1/2` the simplest of all).
+    /// text, with the probes run; `None`: before any work, `alpha = 1/2` the simplest of all),
+    /// naming the room it does not fit: the probabilities' first, else the stage costs'.
     pub fn refusal(&self, alpha: &Rational, gap: Option<(String, usize)>) -> ParametricError {
-        let product = &self.own * alpha.denom();
+        let over_costs = match &self.costs {
+            Some(c) if alpha.denom() <= &self.room => Some(c),
+            _ => None,
+        };
+        let product = match over_costs {
+            Some(c) => &c.scaled * alpha.denom(),
+            None => &self.own * alpha.denom(),
+        };
         let detail = match gap {
             None => format!(
                 "every alpha in (0,1) has a denominator >= 2, which gives {product} (refused before any work)"
@@ -173,10 +260,17 @@ impl AlphaRoom {
                 crate::stochastic::short_text(alpha),
             ),
         };
-        ParametricError::AlphaDenominator {
-            state: self.state,
-            own: self.own.clone(),
-            detail,
+        match over_costs {
+            Some(c) => ParametricError::AlphaCost {
+                state: c.state,
+                scaled: c.scaled.clone(),
+                detail,
+            },
+            None => ParametricError::AlphaDenominator {
+                state: self.state,
+                own: self.own.clone(),
+                detail,
+            },
         }
     }
 }

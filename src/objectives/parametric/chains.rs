@@ -256,6 +256,22 @@ impl Points {
     }
 }
 
+/// [`ParametricError::Work`] when `total` has passed `budget` (the caller fills in the counts
+/// of the analysis).
+fn over_budget(total: u128, budget: u128) -> Result<(), ParametricError> {
+    if total > budget {
+        return Err(ParametricError::Work {
+            probes: 0,
+            work: total,
+            reserved: 0,
+            regions: 0,
+            gaps: 0,
+            bound: budget,
+        });
+    }
+    Ok(())
+}
+
 /// An advantage polynomial's roots in `(0, 1)` (ids in [`Points`]), increasing, and its sign
 /// on the `roots + 1` gaps they leave.
 struct Isolated {
@@ -361,18 +377,7 @@ impl ChainMemory {
     /// [`ParametricError::Work`] when the total `work` (with the work of [`Points`] not yet
     /// added) has passed the budget; the caller fills in the counts of the analysis.
     fn within_budget(&self, work: u128) -> Result<(), ParametricError> {
-        let total = work + self.points.work;
-        if total > self.budget {
-            return Err(ParametricError::Work {
-                probes: 0,
-                work: total,
-                reserved: 0,
-                regions: 0,
-                gaps: 0,
-                bound: self.budget,
-            });
-        }
-        Ok(())
+        over_budget(work + self.points.work, self.budget)
     }
 
     /// The index of the denominator `R (1 − α^k)` (`R` for `k = 0`).
@@ -642,10 +647,14 @@ impl ChainMemory {
                 walks.push((a, isolated, first));
             }
         }
+        // The walks compare roots (halving their brackets, counted by `Points`): the budget is
+        // checked after each advantage, as while the policy was found.
+        let budget = self.budget;
         let points = &mut self.points;
         let (mut lo, mut hi): (Option<u32>, Option<u32>) = (None, None);
         let mut touches: Vec<u32> = Vec::new();
         for (_, isolated, first) in &walks {
+            over_budget(*work + points.work, budget)?;
             let (roots, signs) = (&isolated.roots, &isolated.signs);
             for i in *first..roots.len() {
                 if signs[i + 1] == Ordering::Greater {
@@ -669,6 +678,7 @@ impl ChainMemory {
         // Only the roots in the region's closure matter to its optimal sets.
         let mut advantages = Vec::new();
         for (a, isolated, _) in &walks {
+            over_budget(*work + points.work, budget)?;
             let mut roots = Vec::new();
             for &r in &isolated.roots {
                 if points.within(r, lo, hi, true) {

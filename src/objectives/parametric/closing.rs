@@ -1,10 +1,11 @@
 //! The counted work of the phase after the probes (module docs of [`super`], step 4): each
 //! breakpoint made rational or given a reduced polynomial, and the optimal sets with their
 //! achievements on every interval and at every breakpoint. It is charged to the same work
-//! bound as the probes, in the same units (words of arithmetic, [`chains::evaluation`]), so
-//! that the bound governs the whole analysis; a region's share is reserved as soon as its
-//! probe finds it ([`region`]), so the probes stop before the phase after them would pass the
-//! bound.
+//! bound as the probes, in the same units (on a deterministic model words of arithmetic,
+//! [`chains::evaluation`]; on a stochastic one the probes' estimate,
+//! [`stochastic_achievement`]), so that the bound governs the whole analysis; a region's share
+//! is reserved as soon as its probe finds it ([`region`], [`stochastic_region`]), so the
+//! probes stop before the phase after them would pass the bound.
 
 use num_traits::{One, Signed, Zero};
 
@@ -77,4 +78,35 @@ pub fn exact_solves(model: &Model) -> u128 {
     let p = &model.problem;
     let (n, actions) = (p.states() as u128, p.action_total() as u128);
     16 * n * (n + actions)
+}
+
+/// How many achievements of a stochastic model are charged as one probe's estimate
+/// ([`super::probe_work`]): an achievement is a few exact solves of the model at `α`-free
+/// numbers (reachability, the least truecost by policy iteration, the greatest one when every
+/// optimal policy reaches the goal), a probe one exact policy iteration of the discounted model
+/// and then the polynomials of the policy's values and advantages, with their roots. Measured
+/// in release on FrozenLake-style maps (the guide's table): an achievement took 0.05 to 0.17
+/// of a probe's time.
+pub const ACHIEVEMENTS_PER_PROBE: u128 = 4;
+
+/// The charge of one achievement on a stochastic model whose probes are estimated at
+/// `per_probe` units: `per_probe / ACHIEVEMENTS_PER_PROBE`, at least 1.
+pub fn stochastic_achievement(per_probe: u128) -> u128 {
+    (per_probe / ACHIEVEMENTS_PER_PROBE).max(1)
+}
+
+/// The charge of one breakpoint's reduction on a stochastic model: one probe's estimate (its
+/// polynomial has the degree and coefficients of a probe's advantages; measured in release,
+/// a reduction took 0.3 to 0.86 of a probe's time).
+pub fn stochastic_reduction(per_probe: u128) -> u128 {
+    per_probe
+}
+
+/// The share of the phase after the probes a region of a stochastic model reserves: every
+/// point it ends at or touches reduced once ([`stochastic_reduction`]), with the optimal sets
+/// and achievements at it and on one interval next to it ([`stochastic_achievement`]). A
+/// breakpoint shared by two regions is reserved by both.
+pub fn stochastic_region(region: &Region, per_probe: u128) -> u128 {
+    let points = region.lo.iter().count() + region.hi.iter().count() + region.touches.len();
+    (stochastic_reduction(per_probe) + 2 * stochastic_achievement(per_probe)) * points as u128
 }

@@ -131,7 +131,7 @@ pub fn write(
 /// Writes a certificate whose finite values are `numerators[x] / denominator` (`denominator >
 /// 0`), not reduced: `"k/d"`, `"k"` when `d = 1` or `k = 0`, `"inf"` for `None`; every integer
 /// as [`push_integer`] writes it, the denominator's text printed once. The same file as
-/// [`write`] with those texts, made without a `String` per value.
+/// [`write()`] with those texts, made without a `String` per value.
 pub fn write_over(
     objective: &CertifiedObjective,
     problem: &ProblemRecord,

@@ -116,7 +116,7 @@ pub enum FileError {
         bits: u64,
     },
     /// The exact numbers of the file must exceed [`MAX_NUMBER_BITS`], counted from their digits
-    /// and exponents before any is read ([`FileProblem::check_number_bits`]).
+    /// and exponents before any is read (`FileProblem::check_number_bits`).
     #[error("{at}: the exact numbers of this file take at least {bits} bits up to here (counted from their digits and exponents before reading them), more than 2^28 = {MAX_NUMBER_BITS} bits in all, the limit of this reader")]
     NumbersAtLeast {
         /// Where the count passed the bound: `state s, action a` or `initial entry e`.
@@ -348,7 +348,7 @@ impl<A> FileProblem<A> {
 
 impl FileProblem<FileAction> {
     /// Checks the optional `states` against the number of action lists, then the exact
-    /// numbers' size before any is read ([`FileProblem::check_number_bits`]).
+    /// numbers' size before any is read (`FileProblem::check_number_bits`).
     pub(crate) fn check_states(&self) -> Result<(), FileError> {
         match self.states {
             Some(states) if states != self.actions.len() => Err(FileError::StatesMismatch {

@@ -1824,7 +1824,7 @@ pub struct Limits {
     /// The work bound of a deterministic model ([`MAX_DETERMINISTIC_WORK`]).
     pub deterministic_work: u128,
     /// The work bound of a stochastic model ([`MAX_PROBE_WORK`]): its probes and its
-    /// achievements ([`closing::stochastic_achievement`]).
+    /// achievements (`closing::stochastic_achievement`).
     pub stochastic_work: u128,
     /// The largest degree of a value along a successor chain ([`MAX_CHAIN_DEGREE`]), checked
     /// before the first probe ([`bounds::check_certain_degree`]) and on every value built.

@@ -9,9 +9,9 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use common::cli::{fails_one_line, json, stdout};
+use common::cli::{fails_one_line, json, stdout, write};
 use serde_json::{json, Value};
 use sha2::{Digest, Sha256};
 
@@ -50,12 +50,6 @@ const LINE: &str = r#"{"format": "truecost-problem/1", "initial": 0, "goals": [2
 const REWARDS: &str = r#"{"initial": 0, "goals": [1], "actions": [
   [{"to": 0, "cost": "1", "reward": "0"}, {"to": 1, "cost": "5", "reward": "1"}], []]}"#;
 
-fn file(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
-
 fn s(p: &Path) -> String {
     p.display().to_string()
 }
@@ -75,7 +69,7 @@ fn certify(dir: &Path, source: &[&str], extra: &[&str]) -> Value {
 
 /// `check <source> C --format json` on the certificate `cert`, which must be accepted.
 fn accepted(dir: &Path, source: &[&str], cert: &Value) -> Value {
-    let path = file(dir, "accept.cert.json", &cert.to_string());
+    let path = write(dir, "accept.cert.json", &cert.to_string());
     let mut args = vec!["check"];
     args.extend_from_slice(source);
     let p = s(&path);
@@ -87,7 +81,7 @@ fn accepted(dir: &Path, source: &[&str], cert: &Value) -> Value {
 
 /// `check <source> C` on `cert`, which must be rejected: exit 1 and one line on stderr.
 fn rejected(dir: &Path, source: &[&str], cert: &Value) -> String {
-    let path = file(dir, "reject.cert.json", &cert.to_string());
+    let path = write(dir, "reject.cert.json", &cert.to_string());
     let mut args = vec!["check"];
     args.extend_from_slice(source);
     let p = s(&path);
@@ -163,7 +157,7 @@ fn three_halves_off(plus: bool) -> String {
 #[test]
 fn hand_problem_certificate_has_the_hand_values_and_is_accepted() {
     let dir = tempfile::tempdir().unwrap();
-    let f = file(dir.path(), "hand.json", HAND);
+    let f = write(dir.path(), "hand.json", HAND);
     let source = ["--file", &s(&f)];
     let cert = certify(dir.path(), &source, &[]);
     assert_eq!(cert["format"], "truecost-certificate/1");
@@ -193,7 +187,7 @@ fn hand_problem_certificate_has_the_hand_values_and_is_accepted() {
 #[test]
 fn each_tampering_names_its_first_failing_state_and_condition() {
     let dir = tempfile::tempdir().unwrap();
-    let f = file(dir.path(), "hand.json", HAND);
+    let f = write(dir.path(), "hand.json", HAND);
     let source = ["--file", &s(&f)];
     let cert = certify(dir.path(), &source, &[]);
     // No policy leads into state 0, so only its own equation sees its value.
@@ -283,7 +277,7 @@ fn each_tampering_names_its_first_failing_state_and_condition() {
 #[test]
 fn malformed_certificates_are_refused_in_one_line() {
     let dir = tempfile::tempdir().unwrap();
-    let f = file(dir.path(), "hand.json", HAND);
+    let f = write(dir.path(), "hand.json", HAND);
     let source = ["--file", &s(&f)];
     let cert = certify(dir.path(), &source, &[]);
     let cases = [
@@ -333,7 +327,7 @@ fn malformed_certificates_are_refused_in_one_line() {
             Value::String(raw) => raw.clone(),
             v => v.to_string(),
         };
-        let path = file(dir.path(), "bad.cert.json", &text);
+        let path = write(dir.path(), "bad.cert.json", &text);
         let line = fails_one_line(&["check", "--file", &s(&f), &s(&path)]);
         assert!(
             line.starts_with("error: malformed certificate: "),
@@ -342,7 +336,7 @@ fn malformed_certificates_are_refused_in_one_line() {
         assert!(line.contains(says), "{what}: {line}");
     }
     // The wrong source for the certificate.
-    let path = file(dir.path(), "c.cert.json", &cert.to_string());
+    let path = write(dir.path(), "c.cert.json", &cert.to_string());
     let line = fails_one_line(&["check", "--problem", "10", &s(&path)]);
     assert!(line.contains("not from problem"), "{line}");
 }
@@ -352,7 +346,7 @@ fn malformed_certificates_are_refused_in_one_line() {
 #[test]
 fn a_hand_written_deterministic_certificate_is_accepted() {
     let dir = tempfile::tempdir().unwrap();
-    let f = file(dir.path(), "line.json", LINE);
+    let f = write(dir.path(), "line.json", LINE);
     let source = ["--file", &s(&f)];
     let hand = json!({
         "format": "truecost-certificate/1",
@@ -400,7 +394,7 @@ fn a_hand_written_deterministic_certificate_is_accepted() {
 #[test]
 fn discounted_certificate_of_the_rewards_example() {
     let dir = tempfile::tempdir().unwrap();
-    let f = file(dir.path(), "rewards.json", REWARDS);
+    let f = write(dir.path(), "rewards.json", REWARDS);
     let source = ["--file", &s(&f)];
     let cert = certify(
         dir.path(),
@@ -561,7 +555,7 @@ fn reach_certificate(problem: &Path) -> Value {
 #[test]
 fn the_hand_reach_certificate_is_accepted_with_every_condition_listed() {
     let dir = tempfile::tempdir().unwrap();
-    let problem = file(dir.path(), "reach.json", REACH);
+    let problem = write(dir.path(), "reach.json", REACH);
     let source = ["--file", &s(&problem)];
     let v = accepted(dir.path(), &source, &reach_certificate(&problem));
     assert_eq!(v["objective"], "reach");
@@ -601,7 +595,7 @@ fn the_hand_reach_certificate_is_accepted_with_every_condition_listed() {
 #[test]
 fn each_reach_tampering_names_its_first_failing_state_and_condition() {
     let dir = tempfile::tempdir().unwrap();
-    let problem = file(dir.path(), "reach.json", REACH);
+    let problem = write(dir.path(), "reach.json", REACH);
     let source = ["--file", &s(&problem)];
     let cert = reach_certificate(&problem);
     let fails = |edit: &dyn Fn(&mut Value)| {
@@ -664,7 +658,7 @@ fn each_reach_tampering_names_its_first_failing_state_and_condition() {
         at(0, "evaluation")
     );
     // Another problem (a byte changed): the SHA-256 differs.
-    let other = file(
+    let other = write(
         dir.path(),
         "other.json",
         &REACH.replace("1/3", "1/4").replace("2/3", "3/4"),
@@ -675,7 +669,7 @@ fn each_reach_tampering_names_its_first_failing_state_and_condition() {
     );
     // "alpha" is refused on a reach certificate.
     let line = {
-        let path = file(
+        let path = write(
             dir.path(),
             "alpha.cert.json",
             &tampered(&cert, |c| c["alpha"] = json!("1/2")).to_string(),
@@ -731,7 +725,7 @@ fn check_coq_runs_the_verified_checker() {
     let dir = tempfile::tempdir().unwrap();
     let source = ["--env", "frozenlake:slippery=false"];
     let cert = certify(dir.path(), &source, &[]);
-    let path = file(dir.path(), "coq.cert.json", &cert.to_string());
+    let path = write(dir.path(), "coq.cert.json", &cert.to_string());
     let p = s(&path);
     let v = json(&[
         "check", source[0], source[1], &p, "--coq", "--format", "json",
@@ -853,7 +847,7 @@ fn long_values_are_written_in_hexadecimal_and_are_the_optimum() {
 #[test]
 fn a_drn_file_s_goal_label_and_cost_reward_are_recorded_and_reused() {
     let dir = tempfile::tempdir().unwrap();
-    let drn = file(
+    let drn = write(
         dir.path(),
         "m.drn",
         "@type: MDP\n@reward_models\nsteps coins\n@nr_states\n3\n@nr_choices\n4\n@model\n\

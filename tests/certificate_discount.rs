@@ -5,9 +5,9 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use common::cli::{fails_one_line, json, stdout};
+use common::cli::{fails_one_line, json, stdout, write};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use serde_json::{json, Value};
@@ -22,12 +22,6 @@ const TIE: &str = r#"{"format": "truecost-stochastic/1", "initial": 0, "goals": 
    {"to": 1, "cost": "1", "reward": "3"}],
   []
 ]}"#;
-
-fn file(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
 
 fn s(p: &Path) -> String {
     p.display().to_string()
@@ -46,7 +40,7 @@ fn certify(dir: &Path, source: &[&str]) -> Value {
 
 /// `check <source> C --format json` on `cert`, which must be accepted.
 fn accepted(dir: &Path, source: &[&str], cert: &Value) -> Value {
-    let path = file(dir, "accept.cert.json", &cert.to_string());
+    let path = write(dir, "accept.cert.json", &cert.to_string());
     let p = s(&path);
     let mut args = vec!["check"];
     args.extend_from_slice(source);
@@ -59,7 +53,7 @@ fn accepted(dir: &Path, source: &[&str], cert: &Value) -> Value {
 
 /// `check <source> C` on `cert`, which must be rejected (exit 1, one line): the line.
 fn rejected(dir: &Path, source: &[&str], cert: &Value) -> String {
-    let path = file(dir, "reject.cert.json", &cert.to_string());
+    let path = write(dir, "reject.cert.json", &cert.to_string());
     let p = s(&path);
     let mut args = vec!["check"];
     args.extend_from_slice(source);
@@ -112,7 +106,7 @@ fn text(r: &BigRational) -> Value {
 #[test]
 fn the_hand_tie_is_certified_at_two_thirds() {
     let dir = tempfile::tempdir().unwrap();
-    let f = file(dir.path(), "tie.json", TIE);
+    let f = write(dir.path(), "tie.json", TIE);
     let source = ["--file", &s(&f)];
     let cert = certify(dir.path(), &source);
     assert_eq!(cert["format"], "truecost-certificate/1");
@@ -417,7 +411,7 @@ fn random_small_files_are_certified_and_agree_with_discount() {
     let mut breakpoints = 0;
     for case in 0..12 {
         let text = random_problem(&mut rng, 2 + case % 3);
-        let f = file(dir.path(), "random.json", &text);
+        let f = write(dir.path(), "random.json", &text);
         let source = ["--file", &s(&f)];
         let cert = certify(dir.path(), &source);
         let v = accepted(dir.path(), &source, &cert);
@@ -428,7 +422,7 @@ fn random_small_files_are_certified_and_agree_with_discount() {
         breakpoints += printed;
         // The problem edited after the certificate was written: its SHA-256 differs.
         let edited = text.replacen("\"reward\"", "\"reward\" ", 1);
-        let g = file(dir.path(), "edited.json", &edited);
+        let g = write(dir.path(), "edited.json", &edited);
         let line = rejected(dir.path(), &["--file", &s(&g)], &cert);
         assert_eq!(failure(&line).3, "problem", "{line}");
     }
@@ -438,7 +432,7 @@ fn random_small_files_are_certified_and_agree_with_discount() {
 #[test]
 fn malformed_discount_certificates_and_coq_are_refused_in_one_line() {
     let dir = tempfile::tempdir().unwrap();
-    let f = file(dir.path(), "tie.json", TIE);
+    let f = write(dir.path(), "tie.json", TIE);
     let source = ["--file", &s(&f)];
     let cert = certify(dir.path(), &source);
     let extra = tampered(&cert, |c| c["extra"] = json!(1));
@@ -447,7 +441,7 @@ fn malformed_discount_certificates_and_coq_are_refused_in_one_line() {
     let bad = tampered(&cert, |c| c["intervals"][0]["sample"] = json!("0.5"));
     let line = rejected(dir.path(), &source, &bad);
     assert!(line.contains("interval 0: sample"), "{line}");
-    let path = file(dir.path(), "c.json", &cert.to_string());
+    let path = write(dir.path(), "c.json", &cert.to_string());
     let line = fails_one_line(&["check", "--file", &s(&f), "--coq", &s(&path)]);
     assert!(line.contains("--coq"), "{line}");
 }

@@ -6,8 +6,11 @@
 //! [`REFUSAL_SECONDS`] is for a debug build on a loaded machine; in release each takes well
 //! under a second), in one line naming the quantity, the file's value and the bound.
 
-use std::path::{Path, PathBuf};
+mod common;
+
 use std::process::Command;
+
+use common::cli::write;
 use std::time::{Duration, Instant};
 
 /// A refusal's time budget in this (debug) test build; the documented bound is one second in
@@ -48,12 +51,6 @@ fn refused(args: &[&str], words: &[&str]) -> String {
     err
 }
 
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
-
 /// Two states: from 0, an action to the goal 1 with stage cost `to_goal` and a self-loop with
 /// stage cost `stay` (the breakpoint, where staying stops paying, is `α = 1 − stay/to_goal`).
 fn two_states(to_goal: &str, stay: &str) -> String {
@@ -66,22 +63,9 @@ fn two_states(to_goal: &str, stay: &str) -> String {
 /// `i + 1`, the last of each line to the goal `n`, at stage cost 1, or stays at cost 3. The
 /// first state of a full line is `length` moves from the goal.
 fn lines(n: usize, length: usize) -> String {
-    let actions: Vec<String> = (0..n)
-        .map(|i| {
-            let next = if i % length == length - 1 || i == n - 1 {
-                n
-            } else {
-                i + 1
-            };
-            format!(r#"[{{"to": {next}, "cost": "1"}}, {{"to": {i}, "cost": "3"}}]"#)
-        })
-        .chain(["[]".to_string()])
-        .collect();
-    format!(
-        r#"{{"states": {}, "initial": 0, "goals": [{n}], "actions": [{}]}}"#,
-        n + 1,
-        actions.join(",")
-    )
+    common::line_chains(n, length, |i, next| {
+        format!(r#"[{{"to": {next}, "cost": "1"}}, {{"to": {i}, "cost": "3"}}]"#)
+    })
 }
 
 /// `n` running states in lines of `length`, with rewards of both signs: state `i` moves on
@@ -90,33 +74,20 @@ fn lines(n: usize, length: usize) -> String {
 /// first state of a full line, `length` moves from the goal, needs degree `length − 1` next to
 /// `α = 1`.
 fn mixed_lines(n: usize, length: usize) -> String {
-    let actions: Vec<String> = (0..n)
-        .map(|i| {
-            let next = if i % length == length - 1 || i == n - 1 {
-                n
-            } else {
-                i + 1
-            };
-            let on = if i % 2 == 0 { "2" } else { "-1" };
-            let mut list = vec![
-                format!(r#"{{"to": {next}, "cost": "1", "reward": "{on}"}}"#),
-                format!(r#"{{"to": {i}, "cost": "1", "reward": "-3"}}"#),
-            ];
-            if i % length != 0 {
-                list.push(format!(
-                    r#"{{"to": {}, "cost": "1", "reward": "-3"}}"#,
-                    i - 1
-                ));
-            }
-            format!("[{}]", list.join(", "))
-        })
-        .chain(["[]".to_string()])
-        .collect();
-    format!(
-        r#"{{"states": {}, "initial": 0, "goals": [{n}], "actions": [{}]}}"#,
-        n + 1,
-        actions.join(",")
-    )
+    common::line_chains(n, length, |i, next| {
+        let on = if i % 2 == 0 { "2" } else { "-1" };
+        let mut list = vec![
+            format!(r#"{{"to": {next}, "cost": "1", "reward": "{on}"}}"#),
+            format!(r#"{{"to": {i}, "cost": "1", "reward": "-3"}}"#),
+        ];
+        if i % length != 0 {
+            list.push(format!(
+                r#"{{"to": {}, "cost": "1", "reward": "-3"}}"#,
+                i - 1
+            ));
+        }
+        format!("[{}]", list.join(", "))
+    })
 }
 
 /// Twelve chains of 200 states (2,400 running states): state `s` moves on at stage cost

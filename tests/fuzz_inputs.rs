@@ -17,6 +17,8 @@
 //! `--samples` at its maximum with `--shard` (refused before any run, since a shard lists every
 //! site and would exceed what `reproduce merge` reads).
 
+mod common;
+
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -530,27 +532,14 @@ fn discount_on_huge_numbers_and_long_chains() {
             } else {
                 r.random_range(length..=length + 20)
             };
-            let actions: Vec<String> = (0..n)
-                .map(|i| {
-                    let next = if i % length == length - 1 || i == n - 1 {
-                        n
-                    } else {
-                        i + 1
-                    };
-                    format!(
-                        r#"[{{"to": {next}, "cost": "{}/13"}}, {{"to": {}, "cost": "{}/13"}}]"#,
-                        r.random_range(1..13),
-                        i - i % length,
-                        r.random_range(1..40)
-                    )
-                })
-                .chain(["[]".to_string()])
-                .collect();
-            format!(
-                r#"{{"states": {}, "initial": 0, "goals": [{n}], "actions": [{}]}}"#,
-                n + 1,
-                actions.join(",")
-            )
+            common::line_chains(n, length, |i, next| {
+                format!(
+                    r#"[{{"to": {next}, "cost": "{}/13"}}, {{"to": {}, "cost": "{}/13"}}]"#,
+                    r.random_range(1..13),
+                    i - i % length,
+                    r.random_range(1..40)
+                )
+            })
         };
         let file = dir.join(format!("discount{case}.json"));
         std::fs::write(&file, &text).unwrap();

@@ -342,3 +342,29 @@ pub fn to_u64(q: &Q) -> u64 {
     assert!(q.is_integer());
     q.to_integer().to_u64().expect("fits")
 }
+
+/// A `truecost-stochastic/1`-style problem file of `n` running states in lines of `length` (the
+/// last line shorter) and the goal `n`: state `i`'s action list is `actions(i, next)` (JSON),
+/// `next` being `i + 1`, or the goal for the last state of each line.
+pub fn line_chains(
+    n: usize,
+    length: usize,
+    mut actions: impl FnMut(usize, usize) -> String,
+) -> String {
+    let lists: Vec<String> = (0..n)
+        .map(|i| {
+            let next = if i % length == length - 1 || i == n - 1 {
+                n
+            } else {
+                i + 1
+            };
+            actions(i, next)
+        })
+        .chain(["[]".to_string()])
+        .collect();
+    format!(
+        r#"{{"states": {}, "initial": 0, "goals": [{n}], "actions": [{}]}}"#,
+        n + 1,
+        lists.join(",")
+    )
+}

@@ -1938,6 +1938,15 @@ fn analyse(
     let mut regions: Vec<Region> = Vec::new();
     let mut gaps: Vec<(Option<Root>, Option<Root>)> = vec![(None, None)];
     let mut probes = 0;
+    // The refusal when the work bound is met (`gaps` open besides the one being probed).
+    let stopped = |probes, work, reserved, regions, gaps: usize| ParametricError::Work {
+        probes,
+        work,
+        reserved,
+        regions,
+        gaps: gaps + 1,
+        bound,
+    };
     while let Some((l, r)) = gaps.pop() {
         if regions.len() >= MAX_REGIONS {
             return Err(ParametricError::Pieces(MAX_REGIONS));
@@ -1955,14 +1964,7 @@ fn analyse(
                 }
             }
             if work + reserved + per_probe.unwrap_or(last) > bound {
-                return Err(ParametricError::Work {
-                    probes,
-                    work,
-                    reserved,
-                    regions: regions.len(),
-                    gaps: gaps.len() + 1,
-                    bound,
-                });
+                return Err(stopped(probes, work, reserved, regions.len(), gaps.len()));
             }
             progress(ProbeProgress {
                 probes,
@@ -1993,14 +1995,7 @@ fn analyse(
             // A probe with memory stops as soon as its counted work passes the bound.
             let region = match region {
                 Err(ParametricError::Work { .. }) => {
-                    return Err(ParametricError::Work {
-                        probes,
-                        work,
-                        reserved,
-                        regions: regions.len(),
-                        gaps: gaps.len() + 1,
-                        bound,
-                    })
+                    return Err(stopped(probes, work, reserved, regions.len(), gaps.len()))
                 }
                 region => region?,
             };
@@ -2013,14 +2008,7 @@ fn analyse(
                 };
             }
             if work + reserved > bound {
-                return Err(ParametricError::Work {
-                    probes,
-                    work,
-                    reserved,
-                    regions: regions.len(),
-                    gaps: gaps.len() + 1,
-                    bound,
-                });
+                return Err(stopped(probes, work, reserved, regions.len(), gaps.len()));
             }
             if let Some(region) = region {
                 found = Some(region);

@@ -984,12 +984,17 @@ mod tests {
         );
     }
 
+    /// How long a child of [`in_a_child_process`] may run before it is taken for hung.
+    const CHILD_SECONDS: u64 = 15;
+
     /// Runs `check` in a child process (this test binary, running only the test `name`), at
     /// most three times while the child hangs. The tests whose timeouts expire need it: the
     /// timer pool of the Z3 library that Debian ships (4.8.12) can deadlock when a timer expires
-    /// (Z3Prover/z3#5990; seen here once in `a_fresh_solver_keeps_its_timeout`, every thread
-    /// asleep), and a hung Z3 can only be left behind by killing its process. A child that
-    /// exits with a failure fails the test with its output; three hung children fail it too.
+    /// (Z3Prover/z3#5990; every thread asleep in about one run in twenty of
+    /// `a_fresh_solver_keeps_its_timeout` on 2 cores), and a hung Z3 can only be left
+    /// behind by killing its process. A child runs well under a second, so one still running
+    /// after [`CHILD_SECONDS`] is taken for hung. A child that exits with a failure fails the
+    /// test with its output; three hung children fail it too.
     fn in_a_child_process(name: &str, check: impl FnOnce()) {
         const CHILD: &str = "TRUECOST_SMT_TEST_CHILD";
         if std::env::var_os(CHILD).is_some() {
@@ -1006,7 +1011,7 @@ mod tests {
                 .spawn()
                 .expect("the test binary starts");
             let start = std::time::Instant::now();
-            while start.elapsed() < std::time::Duration::from_secs(120) {
+            while start.elapsed() < std::time::Duration::from_secs(CHILD_SECONDS) {
                 if child.try_wait().expect("the child's status").is_some() {
                     let out = child.wait_with_output().expect("the child's output");
                     let text = String::from_utf8_lossy(&out.stdout);

@@ -30,6 +30,9 @@ use dashu_int::{IBig, UBig};
 use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 
+use super::ordering::{factor_entries, nested_dissection, Graph, Symbolic};
+use super::sparse_lu::{LuPattern, Modulus, SparseModularLu};
+
 /// A square sparse integer system `A·z = r`.
 #[derive(Clone, Debug, Default)]
 pub struct SparseSystem {
@@ -1142,8 +1145,21 @@ fn solve_exact_general(
     } else {
         max_bits as f64
     };
+    let t0 = std::time::Instant::now();
+    let sparse = sparse_pattern(system, &ordering);
+    if std::env::var_os("LIFT52").is_some() {
+        eprintln!("LIFT52 ordering {:?}", t0.elapsed());
+    }
     for p in primes().take(8) {
-        let Some(lu) = ModularLu::factor(system, &ordering, p) else {
+        let factor = match &sparse {
+            Some(pattern) => SparseModularLu::factor(pattern, |i| system.row(i), Modulus::new(p))
+                .map(ModularFactor::Sparse),
+            None => ModularLu::factor(system, &ordering, p).map(ModularFactor::Band),
+        };
+        if std::env::var_os("LIFT52").is_some() {
+            eprintln!("LIFT52 factor {:?}", t0.elapsed());
+        }
+        let Some(lu) = factor else {
             continue;
         };
         let expected = (expected_bits / (p as f64).log2()).ceil() as usize + 1;
@@ -1153,11 +1169,80 @@ fn solve_exact_general(
             log2_max,
             fast_path,
         };
-        if let Some(solution) = lift(system, &ordering, &lu, &schedule, progress)? {
+        // TEMP-LIFT52
+        let t0 = std::time::Instant::now();
+        let r = lift(system, &ordering, &lu, &schedule, progress)?;
+        if std::env::var_os("LIFT52").is_some() {
+            eprintln!("LIFT52 lift {:?} steps={:?}", t0.elapsed(), r.as_ref().map(|s| s.lifting_steps));
+        }
+        if let Some(solution) = r {
             return Ok(solution);
         }
     }
     Err(LinearError::Singular)
+}
+
+/// The factor a lifting step solves with modulo `p`.
+enum ModularFactor<'a> {
+    /// The band `LU` in reverse Cuthill–McKee order.
+    Band(ModularLu),
+    /// The sparse `LU` in nested-dissection order.
+    Sparse(SparseModularLu<'a>),
+}
+
+impl ModularFactor<'_> {
+    fn p(&self) -> u64 {
+        match self {
+            ModularFactor::Band(lu) => lu.p,
+            ModularFactor::Sparse(lu) => lu.p(),
+        }
+    }
+
+    /// `(order, position)` of the factor's numbering (`order[new] = old`).
+    fn permutation<'s>(&'s self, band: &'s BandOrdering) -> (&'s [usize], &'s [usize]) {
+        match self {
+            ModularFactor::Band(_) => (&band.order, &band.position),
+            ModularFactor::Sparse(lu) => lu.permutation(),
+        }
+    }
+
+    /// Solves `LU·y = b` in place, in the factor's numbering.
+    fn solve(&self, y: &mut [u64]) {
+        match self {
+            ModularFactor::Band(lu) => lu.solve(y),
+            ModularFactor::Sparse(lu) => lu.solve(y),
+        }
+    }
+}
+
+/// A sparse `LU`'s substitution reads an index per entry where the band's reads consecutive
+/// entries: it is used when its entries, weighted by this ratio (measured on 100×100 grids),
+/// are fewer than the band's.
+const SPARSE_ENTRY_COST: f64 = 1.5;
+
+/// The pattern of the sparse `LU` in nested-dissection order ([`super::ordering`]) when its
+/// substitutions cost less than the band's (the symbolic factorisation is counted first and
+/// built only then; it has fewer entries than the band, which is within the memory limit).
+fn sparse_pattern(system: &SparseSystem, band: &BandOrdering) -> Option<LuPattern> {
+    let n = system.len();
+    let graph = Graph::from_entries(
+        n,
+        (0..n).flat_map(|i| system.row(i).map(move |(j, _)| (i, j))),
+    );
+    let order = nested_dissection(&graph);
+    let sparse = n + 2 * factor_entries(&graph, &order);
+    let band_entries = n * (band.lower + band.upper + 1);
+    // TEMP-LIFT52
+    if std::env::var_os("LIFT52").is_some() {
+        eprintln!("LIFT52 n={n} band_entries={band_entries} sparse_entries={sparse} lower={} upper={}", band.lower, band.upper);
+    }
+    match std::env::var("LIFT52_FORCE").as_deref() {
+        Ok("band") => return None,
+        Ok("sparse") => return Some(LuPattern::new(Symbolic::new(&graph, order))),
+        _ => {}
+    }
+    (SPARSE_ENTRY_COST * (sparse as f64) < band_entries as f64)
+        .then(|| LuPattern::new(Symbolic::new(&graph, order)))
 }
 
 /// When to try reconstruction (all `f64` estimates; answers are verified exactly).
@@ -1178,7 +1263,7 @@ struct Schedule {
 fn lift(
     system: &SparseSystem,
     ordering: &BandOrdering,
-    lu: &ModularLu,
+    lu: &ModularFactor,
     schedule: &Schedule,
     progress: &mut dyn FnMut(LiftProgress),
 ) -> Result<Option<ExactSolution>, LinearError> {
@@ -1189,8 +1274,9 @@ fn lift(
         ..
     } = *schedule;
     let n = system.len();
-    let p = lu.p;
+    let p = lu.p();
     let pi = p as i128;
+    let (order, position) = lu.permutation(ordering);
     let bits_per_step = (p as f64).log2();
     let max_steps = (max_bits as f64 / bits_per_step).ceil() as usize + 2;
     let expected = expected.min(max_steps);
@@ -1208,14 +1294,14 @@ fn lift(
     let mut steps = 0usize;
     while steps < max_steps {
         for new in 0..n {
-            y[new] = rem_p(residual[ordering.order[new]], p);
+            y[new] = rem_p(residual[order[new]], p);
         }
         lu.solve(&mut y);
         // r ← (r − A·z)/p, exact by construction.
         for (i, r) in residual.iter_mut().enumerate() {
             let mut s = *r;
             for (j, v) in system.row(i) {
-                let z = y[ordering.position[j]] as i128;
+                let z = y[position[j]] as i128;
                 s = s.checked_sub(v as i128 * z).ok_or(LinearError::TooLarge)?;
             }
             debug_assert_eq!(s.rem_euclid(pi), 0);
@@ -1227,11 +1313,11 @@ fn lift(
         if steps.is_multiple_of(2) {
             digits
                 .rows
-                .push((0..n).map(|j| y[ordering.position[j]]).collect());
+                .push((0..n).map(|j| y[position[j]]).collect());
         } else {
             let last = digits.rows.last_mut().expect("pushed at the even step");
             for (j, d) in last.iter_mut().enumerate() {
-                *d += y[ordering.position[j]] * p;
+                *d += y[position[j]] * p;
             }
         }
         steps += 1;

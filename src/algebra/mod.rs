@@ -19,4 +19,6 @@
 pub mod annihilator;
 pub mod intervals;
 pub mod linear;
+pub mod ordering;
 pub mod poly;
+mod sparse_lu;

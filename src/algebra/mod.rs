@@ -21,4 +21,5 @@ pub mod intervals;
 pub mod linear;
 pub mod ordering;
 pub mod poly;
+mod residual;
 mod sparse_lu;

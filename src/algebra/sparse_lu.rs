@@ -154,11 +154,6 @@ impl LuPattern {
         }
     }
 
-    /// The entries of `L` and `U` together, the diagonal counted once.
-    pub(crate) fn entries(&self) -> usize {
-        self.symbolic.order.len() + 2 * self.symbolic.lower_columns.len()
-    }
-
     fn lower_range(&self, i: usize) -> std::ops::Range<usize> {
         self.symbolic.lower_first[i]..self.symbolic.lower_first[i + 1]
     }
@@ -257,11 +252,29 @@ impl<'a> SparseModularLu<'a> {
         }
         for i in (0..y.len()).rev() {
             let r = pattern.upper_range(i);
-            let acc = y[i] as u128
-                + gather_dot(&self.upper[r.clone()], &pattern.upper_columns[r], y);
+            let acc =
+                y[i] as u128 + gather_dot(&self.upper[r.clone()], &pattern.upper_columns[r], y);
             y[i] = m.mul(m.reduce_wide(acc), self.inverse_pivot[i]);
         }
     }
+}
+
+/// A uniform draw from `lo..hi` (tests of the algebra modules).
+#[cfg(test)]
+pub(crate) fn uniform<T: TryInto<i128> + TryFrom<i128>>(
+    rng: &mut rand_chacha::ChaCha8Rng,
+    lo: T,
+    hi: T,
+) -> T {
+    use rand::Rng;
+    let (lo, hi): (i128, i128) = (
+        lo.try_into().ok().expect("in i128"),
+        hi.try_into().ok().expect("in i128"),
+    );
+    let word = (rng.next_u64() as u128) << 64 | rng.next_u64() as u128;
+    T::try_from(lo + (word % (hi - lo) as u128) as i128)
+        .ok()
+        .expect("within the range")
 }
 
 #[cfg(test)]
@@ -279,13 +292,16 @@ mod tests {
         for p in [P, 2_147_483_629, (1 << 20) + 7] {
             let m = Modulus::new(p);
             let edges = [0, 1, p - 1, p, p + 1, 2 * p - 1, u64::MAX, 1 << 63, m.fold];
-            for t in edges.into_iter().chain((0..2000).map(|_| rng.gen::<u64>())) {
+            for t in edges.into_iter().chain((0..2000).map(|_| rng.next_u64())) {
                 assert_eq!(m.reduce(t), t % p, "p = {p}, t = {t}");
             }
             let top = (1u128 << 95) - 1;
             for t in [0, top, 1 << 64, (1 << 64) - 1, top - p as u128]
                 .into_iter()
-                .chain((0..2000).map(|_| rng.gen::<u128>() >> 33))
+                .chain(
+                    (0..2000)
+                        .map(|_| ((rng.next_u64() as u128) << 64 | rng.next_u64() as u128) >> 33),
+                )
             {
                 assert_eq!(m.reduce_wide(t) as u128, t % p as u128, "p = {p}, t = {t}");
             }
@@ -315,9 +331,9 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         (0..n)
             .map(|i| {
-                let mut row = vec![(i, rng.gen_range(20..1000))];
-                for _ in 0..rng.gen_range(0..4) {
-                    row.push((rng.gen_range(0..n), -rng.gen_range(1..5)));
+                let mut row = vec![(i, uniform(&mut rng, 20, 1000))];
+                for _ in 0..uniform(&mut rng, 0, 4) {
+                    row.push((uniform(&mut rng, 0, n), -uniform(&mut rng, 1, 5)));
                 }
                 row
             })
@@ -343,18 +359,17 @@ mod tests {
         for (n, seed) in [(1, 0), (5, 1), (60, 2), (400, 3)] {
             let rows = random_rows(n, seed);
             let pattern = pattern_of(&rows);
-            let lu = SparseModularLu::factor(
-                &pattern,
-                |i| rows[i].iter().copied(),
-                Modulus::new(P),
-            )
-            .expect("diagonally dominant: no zero pivot");
+            let lu =
+                SparseModularLu::factor(&pattern, |i| rows[i].iter().copied(), Modulus::new(P))
+                    .expect("diagonally dominant: no zero pivot");
             for _ in 0..3 {
-                let want: Vec<u64> = (0..n).map(|_| rng.gen_range(0..P)).collect();
+                let want: Vec<u64> = (0..n).map(|_| uniform(&mut rng, 0, P)).collect();
                 let b = multiply(&rows, &want, P);
                 let mut y: Vec<u64> = (0..n).map(|new| b[pattern.symbolic.order[new]]).collect();
                 lu.solve(&mut y);
-                let got: Vec<u64> = (0..n).map(|old| y[pattern.symbolic.position[old]]).collect();
+                let got: Vec<u64> = (0..n)
+                    .map(|old| y[pattern.symbolic.position[old]])
+                    .collect();
                 assert_eq!(got, want, "n = {n}");
             }
         }

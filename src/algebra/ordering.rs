@@ -301,8 +301,8 @@ fn inverse(order: &[usize]) -> Vec<usize> {
 ///
 /// ```
 /// use truecost::algebra::ordering::{factor_entries, Graph};
-/// // A star with its centre 0: eliminated first, it joins every leaf to every other (a full
-/// // factor, 4·3/2 = 6 entries below the diagonal); eliminated last, no fill (4 entries).
+/// // A star with its centre 0: eliminated first, it joins every leaf to every other (the
+/// // star's 4 entries and 4·3/2 = 6 of fill below the diagonal); eliminated last, no fill.
 /// let star = Graph::from_entries(5, (1..5).map(|j| (0, j)));
 /// assert_eq!(factor_entries(&star, &[0, 1, 2, 3, 4]), 10);
 /// assert_eq!(factor_entries(&star, &[1, 2, 3, 4, 0]), 4);

@@ -1562,12 +1562,12 @@ mod tests {
         for k in 0..n {
             let r = (k..n).find(|&r| !a[r][k].is_zero()).expect("non-singular");
             a.swap(k, r);
-            for i in 0..n {
-                if i != k && !a[i][k].is_zero() {
-                    let f = &a[i][k] / &a[k][k];
-                    for j in k..=n {
-                        let t = &f * &a[k][j];
-                        a[i][j] -= t;
+            let pivot_row = a[k].clone();
+            for (i, row) in a.iter_mut().enumerate() {
+                if i != k && !row[k].is_zero() {
+                    let f = &row[k] / &pivot_row[k];
+                    for (x, y) in row[k..].iter_mut().zip(&pivot_row[k..]) {
+                        *x -= &f * y;
                     }
                 }
             }

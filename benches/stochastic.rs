@@ -7,6 +7,10 @@
 //! * `exact_optimum_grid/<side>x<side>` — the exact optimum of a seeded benchmark grid
 //!   (`truecost export --grid`, costs 1–4, paper noise, γ = 0.99), mid-size (30×30, 900
 //!   states); the 100×100 case is timed with the CLI (README, "Large models").
+//! * `exact_evaluation/grid_100x100` — one exact solve (`algebra::linear::solve_exact`: Dixon
+//!   lifting, reconstruction, exact check) of a 10⁴-unknown system shaped like policy
+//!   evaluation on a 100×100 grid: `1000·z_i − Σ w_ij·z_j = c_i` over the four neighbours, seeded
+//!   weights `w_ij ∈ 1..=249`, costs `c_i ∈ 1..=4`.
 //! * `stochastic_vi/f64_grid/<schedule>` — `f64` VI on the 100×100 benchmark grid to the
 //!   tolerance 1e-9 (no exact `G*`: that is `--exact-error`'s job).
 //! * `stochastic_vi/reference/<schedule>/<γ>` — the reference code's stochastic VI on Problem 10
@@ -88,6 +92,43 @@ fn exact_optimum_grid(c: &mut Criterion) {
     group.finish();
 }
 
+fn exact_evaluation(c: &mut Criterion) {
+    use truecost::algebra::linear::{solve_exact, SparseSystem};
+    let mut group = c.benchmark_group("exact_evaluation");
+    group.sample_size(10);
+    let side = 100usize;
+    // A fixed linear congruential sequence for the weights (the bench needs no randomness
+    // source, only a system that is the same every run).
+    let mut state = 12_345u64;
+    let mut next = |range: u64| {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        1 + (state >> 33) % range
+    };
+    let mut system = SparseSystem::new();
+    for i in 0..side * side {
+        let (r, c) = (i / side, i % side);
+        let mut row = vec![(i, 1000i64)];
+        let neighbours = [
+            (r > 0).then(|| i - side),
+            (r + 1 < side).then(|| i + side),
+            (c > 0).then(|| i - 1),
+            (c + 1 < side).then(|| i + 1),
+        ];
+        for j in neighbours.into_iter().flatten() {
+            row.push((j, -(next(249) as i64)));
+        }
+        system
+            .push_row(&row, next(4) as i128)
+            .expect("small entries");
+    }
+    group.bench_function(format!("grid_{side}x{side}"), |b| {
+        b.iter(|| solve_exact(black_box(&system)).expect("non-singular"))
+    });
+    group.finish();
+}
+
 fn f64_vi_grid(c: &mut Criterion) {
     let mut group = c.benchmark_group("stochastic_vi");
     group.sample_size(10);
@@ -138,6 +179,7 @@ criterion_group!(
     exact_optimum,
     exact_optimum_table,
     exact_optimum_grid,
+    exact_evaluation,
     f64_vi_grid,
     stochastic_vi
 );

@@ -19,4 +19,7 @@
 pub mod annihilator;
 pub mod intervals;
 pub mod linear;
+pub mod ordering;
 pub mod poly;
+mod residual;
+mod sparse_lu;

@@ -19,4 +19,5 @@
 pub mod annihilator;
 pub mod intervals;
 pub mod linear;
+pub mod lowest_terms;
 pub mod poly;

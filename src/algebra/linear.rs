@@ -575,46 +575,8 @@ fn to_num(x: &IBig) -> BigInt {
     }
 }
 
+use super::lowest_terms::Barrett;
 pub use super::lowest_terms::{gcd, reduced, reduced_all, SMOOTH_PRIMES_BELOW};
-
-/// Barrett reduction modulo a fixed `m`: two multiplications instead of a long division
-/// (which is quadratic in `dashu` at these sizes and dominated the conversion of 10⁴ numerators).
-struct Barrett {
-    m: UBig,
-    k: usize,
-    /// Extra bits allowed above `2^(2k)` in the argument of [`reduce`](Self::reduce).
-    slack: usize,
-    mu: UBig,
-}
-
-impl Barrett {
-    fn new(m: &UBig) -> Self {
-        Self::with_slack(m, 0)
-    }
-
-    /// Reduction of arguments below `2^(2k+slack)` (`μ = ⌊2^(2k+slack)/m⌋`, `k` the bits of `m`).
-    fn with_slack(m: &UBig, slack: usize) -> Self {
-        let k = m.bit_len();
-        Barrett {
-            m: m.clone(),
-            k,
-            slack,
-            mu: (UBig::ONE << (2 * k + slack)) / m,
-        }
-    }
-
-    /// `t mod m` for `0 ≤ t < 2^(2k+slack)` (so any `t < 2^slack·m²`). With `t' = ⌊t/2^(k−1)⌋`
-    /// and the estimate `q̂ = ⌊t'·μ/2^(k+1+slack)⌋`, each of the three floors loses less than
-    /// 1 against `t/m` (`t' < 2^(k+1+slack)` and `2^(k−1) ≤ m`), so `q̂` is short by at most 2.
-    fn reduce(&self, t: UBig) -> UBig {
-        let q = ((&t >> (self.k - 1)) * &self.mu) >> (self.k + 1 + self.slack);
-        let mut r = t - q * &self.m;
-        while r >= self.m {
-            r -= &self.m;
-        }
-        r
-    }
-}
 
 /// How to recover the numerators from a few of them: `seeds` are computed from the digits;
 /// then each step `(i, j)` solves row `i` of `A·N = d·r` for `N_j`, all its other unknowns

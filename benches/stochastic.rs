@@ -17,6 +17,12 @@
 //!   (reference noise, `f64`, full graph, to the 0.1 tolerance).
 //! * `stochastic_vi/exact/<schedule>/<γ>` — exact stochastic VI from below on Problem 10 (paper
 //!   noise, unit costs, tolerance 0.1).
+//! * `exact_values_10k/reduced_all` and `exact_values_10k/decimal` — the two steps after the
+//!   exact optimum of a 10⁴-state grid when every value is printed: 10⁴ numerators of about
+//!   119,000 bits (planted powers of 3 shared with the denominator, as in a policy
+//!   evaluation's values) over one common denominator `2⁴·3³⁸·R` of the same size, reduced to
+//!   lowest terms together ([`truecost::algebra::lowest_terms::reduced_all`]); then the
+//!   reduced numerators printed in decimal in parallel ([`truecost::value::integer_text`]).
 //!
 //! Problems are built outside the timed loop. Run with `cargo bench --bench stochastic`.
 
@@ -174,6 +180,46 @@ fn stochastic_vi(c: &mut Criterion) {
     group.finish();
 }
 
+/// `bits` random bits (the top one set), from a seeded generator.
+fn random_integer(rng: &mut rand_chacha::ChaCha8Rng, bits: usize) -> num_bigint::BigInt {
+    use rand::Rng;
+    let bytes: Vec<u8> = (0..bits.div_ceil(8))
+        .map(|_| rng.next_u32() as u8)
+        .collect();
+    let x = num_bigint::BigInt::from_bytes_le(num_bigint::Sign::Plus, &bytes);
+    (x >> (8 * bytes.len() - bits)) | (num_bigint::BigInt::from(1) << (bits - 1))
+}
+
+fn exact_values_10k(c: &mut Criterion) {
+    use rand::SeedableRng;
+    use rayon::prelude::*;
+    use truecost::algebra::lowest_terms::reduced_all;
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(52);
+    let three = num_bigint::BigInt::from(3);
+    let d = random_integer(&mut rng, 119_000) * three.pow(38) * 16 + 1;
+    let d = d * three.pow(38) * 16;
+    let numerators: Vec<num_bigint::BigInt> = (0..10_000)
+        .map(|i| random_integer(&mut rng, 119_100) * three.pow(i % 5))
+        .collect();
+    let refs: Vec<&num_bigint::BigInt> = numerators.iter().collect();
+    let mut group = c.benchmark_group("exact_values_10k");
+    group.sample_size(10);
+    group.measurement_time(Duration::from_secs(120));
+    group.bench_function("reduced_all", |b| {
+        b.iter(|| reduced_all(black_box(&refs), black_box(&d)))
+    });
+    let values = reduced_all(&refs, &d);
+    group.bench_function("decimal", |b| {
+        b.iter(|| {
+            values
+                .par_iter()
+                .map(|v| truecost::value::integer_text(v.numer()).len())
+                .sum::<usize>()
+        })
+    });
+    group.finish();
+}
+
 criterion_group!(
     benches,
     exact_optimum,
@@ -181,6 +227,7 @@ criterion_group!(
     exact_optimum_grid,
     exact_evaluation,
     f64_vi_grid,
-    stochastic_vi
+    stochastic_vi,
+    exact_values_10k
 );
 criterion_main!(benches);

@@ -8,8 +8,12 @@
 //! * [`intervals`] — subsets of `(0, 1)` as unions of intervals with algebraic ends, and their
 //!   exact text.
 //! * [`linear`] — exact rational linear algebra: the sparse solver of policy evaluation (Dixon
-//!   p-adic lifting, rational reconstruction, exact verification), its `f64` twin, and exact
-//!   reduction of fractions.
+//!   p-adic lifting over a band or sparse LU modulo word-size primes, rational reconstruction,
+//!   exact verification) and its `f64` twin.
+//! * [`ordering`] — fill-reducing orderings (nested dissection) of a symmetric sparsity pattern
+//!   and its symbolic factorisation (elimination tree, row subtrees).
+//! * [`lowest_terms`] — exact reduction of fractions, one at a time or many over a common
+//!   denominator.
 //! * [`annihilator`] — modular methods: the minimal polynomial of a Krylov sequence of an
 //!   integer matrix (Berlekamp–Massey modulo word-size primes, Chinese remaindering).
 //!
@@ -19,6 +23,7 @@
 pub mod annihilator;
 pub mod intervals;
 pub mod linear;
+pub mod lowest_terms;
 pub mod ordering;
 pub mod poly;
 mod residual;

@@ -38,7 +38,6 @@
 
 use std::cmp::Ordering;
 use std::collections::HashMap;
-
 use std::sync::Arc;
 
 use num_bigint::BigInt;

@@ -251,19 +251,24 @@ fn a_chain_over_the_degree_bound_is_refused_before_any_probe() {
     assert!(ok, "{err}");
 }
 
-/// Twelve chains of 200 states with costs `k/13`: the work bound stops the analysis, naming
-/// the work done, the work reserved for the phase after the probes and the bound (here a
-/// bound of `2^24` units, so that the test stays short; the documented `2^34` stops it the
-/// same way, measured in release).
+/// The model of a deterministic problem file's text.
+fn deterministic_model(text: &str, name: &str) -> truecost::objectives::Model {
+    use truecost::stochastic::file::{from_json, ProblemFile};
+    let ProblemFile::Deterministic(p) = from_json(text).unwrap() else {
+        panic!("a deterministic file")
+    };
+    truecost::objectives::Model::from_deterministic(&p, name.into()).unwrap()
+}
+
+/// Twelve chains of 200 states with costs `k/13`: the work bound stops the analysis in its
+/// first probe, naming the probes run, the regions covered (none yet) and the gaps left (all
+/// of `(0, 1)`), the work done, the work reserved for the phase after the probes and the
+/// bound (here a bound of `2^24` units, so that the test stays short; within the documented
+/// bound the analysis is answered, in about a minute in release).
 #[test]
 fn twelve_chains_are_stopped_by_the_work_bound() {
     use truecost::objectives::parametric::{discount_breakpoints_within, ParametricError, Search};
-    use truecost::objectives::Model;
-    use truecost::stochastic::file::{from_json, ProblemFile};
-    let ProblemFile::Deterministic(p) = from_json(&twelve_chains()).unwrap() else {
-        panic!("a deterministic file")
-    };
-    let m = Model::from_deterministic(&p, "twelve chains".into()).unwrap();
+    let m = deterministic_model(&twelve_chains(), "twelve chains");
     let bound = 1u128 << 24;
     let start = Instant::now();
     let e = discount_breakpoints_within(&m, Search::Pruned, bound, &mut |_| {}).unwrap_err();
@@ -272,19 +277,65 @@ fn twelve_chains_are_stopped_by_the_work_bound() {
         "{e}"
     );
     let text = e.to_string();
+    let ParametricError::Work { work, reserved, .. } = e else {
+        panic!("{text}")
+    };
+    assert!(work > 0 && reserved > 0, "{text}");
+    for w in [
+        "stopped after 1 probes (0 regions of (0,1) covered, 1 gaps left)".to_string(),
+        format!("{work} units done and {reserved} reserved"),
+        format!("the bound of {bound} units"),
+    ] {
+        assert!(text.contains(&w), "{w:?} missing from {text}");
+    }
+}
+
+/// The work refusal names the regions covered and the gaps left. Two states whose one
+/// breakpoint is `α = 3/4` (staying at cost 1 costs `1/(1 − α)` in all, against 4 to the
+/// goal): the first probe, next to 0, covers `(0, 3/4]` and leaves the gap `(3/4, 1)`, which
+/// the second probe covers. A bound equal to the work done and reserved as the second probe
+/// starts (the progress report's) leaves it no room: the analysis stops after one probe, one
+/// region covered, one gap left.
+#[test]
+fn the_work_refusal_names_the_regions_covered_and_the_gaps_left() {
+    use truecost::objectives::parametric::{
+        discount_breakpoints_within, ParametricError, Search, MAX_DETERMINISTIC_WORK,
+    };
+    let m = deterministic_model(&two_states("4", "1"), "one breakpoint");
+    let mut seen = Vec::new();
+    let full = discount_breakpoints_within(&m, Search::Pruned, MAX_DETERMINISTIC_WORK, &mut |p| {
+        seen.push(p)
+    })
+    .unwrap();
+    let three_quarters: truecost::value::Rational = "3/4".parse().unwrap();
+    assert_eq!(full.breakpoints.len(), 1);
+    assert_eq!(full.breakpoints[0].at.as_rational(), Some(&three_quarters));
+    assert_eq!(full.probes, 2);
+    let second = seen[1];
+    assert_eq!((second.probes, second.regions, second.gaps), (1, 1, 1));
+    let e = discount_breakpoints_within(&m, Search::Pruned, second.work, &mut |_| {}).unwrap_err();
+    let text = e.to_string();
     let ParametricError::Work {
+        probes,
+        regions,
+        gaps,
         work,
         reserved,
-        probes,
-        ..
+        bound,
     } = e
     else {
         panic!("{text}")
     };
-    assert!(probes > 0 && work > 0 && reserved > 0, "{text}");
+    assert_eq!((probes, regions, gaps), (1, 1, 1), "{text}");
+    assert_eq!(
+        (work + reserved, bound),
+        (second.work, second.work),
+        "{text}"
+    );
     for w in [
+        "stopped after 1 probes (1 regions of (0,1) covered, 1 gaps left)".to_string(),
         format!("{work} units done and {reserved} reserved"),
-        format!("the bound of {bound} units"),
+        format!("the bound of {} units", second.work),
     ] {
         assert!(text.contains(&w), "{w:?} missing from {text}");
     }

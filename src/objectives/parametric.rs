@@ -130,16 +130,14 @@ pub const MAX_DETERMINISTIC_RUNNING_STATES: usize = 2_500;
 /// and halvings of root brackets, hash lookups; the full search: `deterministic_probe_work`);
 /// with the phase after the probes (module `closing`, reserved region by region); checked
 /// before every probe with the last probe's work as the estimate of the next, inside a probe
-/// with memory, and after it. Measured in release (processor time on 2 shared cores, 7 Dec 2026), the probes
-/// do 3·10⁸ to 1.4·10⁹ units a second: grids of `export --grid NxN --pattern random --costs
-/// 1-9 --seed 0` take 2.6·10⁸ units (20×20, 385 probes), 1.5·10⁹ (30×30, 1003 probes) and
-/// 1.2·10¹⁰ (50×50, 2534 probes, about 53 s of probes), the probes' units alone. The bound
-/// (`2^34` ≈ 1.7·10¹⁰) keeps such analyses to about a minute of processor time. It does not
-/// yet hold for every file: twelve chains of 200 states with costs `k/13` are stopped by it
-/// only after five minutes, in their first probe, comparing roots whose brackets have
-/// narrowed to points of many bits, where a sign costs about the square of the point's bits
-/// and `chains::evaluation` counts them linearly.
-pub const MAX_DETERMINISTIC_WORK: u128 = 1 << 34;
+/// with memory, and after it. Measured in release (processor time on 2 shared cores, 7 Dec
+/// 2026), whole analyses are charged 1.5·10⁸ to 7.3·10⁸ units a second: grids of `export
+/// --grid NxN --pattern random --costs 1-9 --seed 0` take 1.06·10⁹ units (20×20, 385 probes,
+/// 3.3 s) and 4.8·10¹⁰ (50×50, 2534 probes, 82 s, its work done and reserved reaching three
+/// quarters of the bound); twelve chains of 200 states with costs `k/13` (939 breakpoints)
+/// take 4.9·10¹⁰ units and 67 s. The bound (`2^36` ≈ 6.9·10¹⁰) keeps such analyses to about
+/// a minute of processor time.
+pub const MAX_DETERMINISTIC_WORK: u128 = 1 << 36;
 
 /// The estimated work of one probe of a stochastic analysis: `n⁵·b⁴`, with `n` the running
 /// states (the degree of the rational functions and the size of the exact solve) and `b` the

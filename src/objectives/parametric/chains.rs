@@ -19,8 +19,10 @@
 //!   search, found without evaluating the advantages again.
 //! * **Roots** are kept once each with a floating-point window around their bracket; a
 //!   comparison that the windows cannot decide narrows the brackets for good (by halving, so
-//!   they stay the brackets of the bisection), and roots found equal join one class, so each
-//!   equality is decided once and equal roots leave the probe as clones of one root.
+//!   they stay the brackets of the bisection) while they are wider than the windows' margin,
+//!   then leaves it to the exact comparison; roots found equal join one class, and the order
+//!   of classes found distinct is kept, so each exact comparison is made once and equal roots
+//!   leave the probe as clones of one root.
 //! * **The optimal policy at `t`** is found by exact policy iteration on these signs, started
 //!   from the policy of the probe before (a neighbouring region's, usually a few switches
 //!   away) or, at the first probe, from the floating-point policy iteration.
@@ -29,8 +31,9 @@
 //! coefficients (counted, so the analysis is the same on every machine). The work of a probe
 //! is counted in words of the arithmetic it does: the polynomials it builds, the isolation of
 //! their roots ([`isolation`]), every sign of a root's polynomial at a probe and every halving
-//! of a bracket ([`evaluation`]: degree-many steps on numbers that grow with the degree times
-//! the point's bits), 100 halvings per exact comparison of two roots, and 16 units per advantage
+//! of a bracket ([`AT_A_POINT`] times [`evaluation`]: degree-many products of numbers that grow
+//! with the degree times the point's bits by numbers of the point's bits, so the square of the
+//! point's words), 100 halvings per exact comparison of two roots, and 16 units per advantage
 //! read from memory and per running state of each policy evaluated (hash lookups).
 
 use std::cmp::Ordering;
@@ -84,6 +87,20 @@ const MAX_SEPARATION: usize = 96;
 /// apart from distinct ones closer than the windows).
 const SEPARATION_BEFORE_EXACT: usize = 24;
 
+/// A bracket narrower than this many times [`MARGIN`] is not halved to part windows: its
+/// window is then within a margin of its narrowest, so halving it cannot part two windows
+/// less than a margin apart, and would only lengthen the bracket's numbers (each halving adds
+/// a bit to them, and a sign there costs the square of their words: [`evaluation`]).
+const FINE: f64 = 1.0;
+
+/// The counted work of a sign of a root's polynomial at a probe or at a bracket's midpoint,
+/// in [`evaluation`]s: besides Horner's products, the midpoint's normalisation, the root's
+/// bracket and the window's conversion to floating point. Measured in release (7 Dec 2026,
+/// timed inside one run each, on the twelve chains of 200 states of the guide's table and on
+/// the 20 × 20 and 30 × 30 benchmark grids): these signs and halvings took 29 to 45 times the
+/// time per [`evaluation`] unit that the isolation of roots takes per unit of [`isolation`].
+const AT_A_POINT: u128 = 32;
+
 /// A root with its bracket in floating point, widened by [`MARGIN`]: windows apart decide a
 /// comparison without rational arithmetic.
 struct Located {
@@ -96,11 +113,18 @@ struct Located {
 }
 
 /// The counted work of the sign of a degree-`degree` integer polynomial with `bits`-bit
-/// coefficients at a rational whose denominator takes `point_bits` bits: homogeneous Horner,
-/// `degree` steps on numbers of up to `bits + degree · point_bits` bits, in words.
+/// coefficients at a rational whose denominator takes `point_bits` bits, in products of words:
+/// homogeneous Horner ([`crate::algebra::poly::roots::homogeneous`]) takes `degree + 1` steps,
+/// each multiplying the sum (up to `bits + degree · point_bits` bits) by the point's numerator
+/// and a coefficient by a power of its denominator (up to `degree · point_bits` bits), so the
+/// work grows with the square of the point's bits. Measured in release on degrees 5 to 200,
+/// coefficients of 64 to 3000 bits and points of 64 to 20000 bits: 1.2·10⁸ to 1.8·10⁹ units a
+/// second throughout.
 pub fn evaluation(degree: usize, bits: u64, point_bits: u64) -> u128 {
     let d = degree as u128 + 1;
-    d * ((u128::from(bits) + d * u128::from(point_bits)) / 64 + 1)
+    let (bits, point) = (u128::from(bits), u128::from(point_bits));
+    let power = d * point / 64 + 1;
+    d * (((bits + d * point) / 64 + 1) * (point / 64 + 1) + (bits / 64 + 1) * power)
 }
 
 /// The counted work of isolating the roots of a degree-`degree` polynomial with `bits`-bit
@@ -126,10 +150,11 @@ impl Located {
         located
     }
 
-    /// The counted work of one halving or sign at the current bracket.
+    /// The counted work of one halving or sign at the current bracket ([`AT_A_POINT`]
+    /// evaluations).
     fn cost(&self) -> u128 {
         let point = self.root.lo.denom().bits().max(self.root.hi.denom().bits()) + 1;
-        evaluation(self.degree, self.bits, point)
+        AT_A_POINT * evaluation(self.degree, self.bits, point)
     }
 
     /// The window of the current bracket.
@@ -139,6 +164,12 @@ impl Located {
         self.hi = self.root.hi.to_f64().unwrap_or(1.0) + MARGIN;
     }
 
+    /// Whether the bracket is exact or narrower than [`FINE`] margins: comparisons leave it
+    /// to the exact test rather than halve it.
+    fn fine(&self) -> bool {
+        self.root.exact || self.hi - self.lo < (2.0 + FINE) * MARGIN
+    }
+
     fn halve(&mut self) {
         self.root.halve();
         self.window();
@@ -146,11 +177,14 @@ impl Located {
 }
 
 /// The roots met (module docs), each with a window that comparisons narrow for good (by
-/// halving, so the brackets stay those of the bisection), and the classes of roots found
-/// equal (union–find), so that each equality is decided once.
+/// halving, so the brackets stay those of the bisection), the classes of roots found
+/// equal (union–find), so that each equality is decided once, and the order of the classes
+/// found distinct by the exact comparison, so that each of those is decided once too.
 struct Points {
     points: Vec<Located>,
     class: Vec<u32>,
+    /// The order of two classes (by their representatives when compared) decided exactly.
+    decided: HashMap<(u32, u32), Ordering>,
     /// The counted work of the halvings, signs and exact comparisons done ([`evaluation`]).
     work: u128,
 }
@@ -160,6 +194,7 @@ impl Points {
         Points {
             points: Vec::new(),
             class: Vec::new(),
+            decided: HashMap::new(),
             work: 0,
         }
     }
@@ -189,13 +224,13 @@ impl Points {
         if tf < p.lo {
             return Ordering::Greater;
         }
-        self.work += evaluation(p.degree, p.bits, t.denom().bits());
+        self.work += AT_A_POINT * evaluation(p.degree, p.bits, t.denom().bits());
         let order = p.root.cmp_rational(t);
         // Narrowed past t, so the next probes near t decide by the window.
         let mut rounds = 0;
         while order != Ordering::Equal && rounds < MAX_SEPARATION && {
             let p = &self.points[id as usize];
-            p.lo <= tf && tf <= p.hi && !p.root.exact
+            p.lo <= tf && tf <= p.hi && !p.fine()
         } {
             self.work += self.points[id as usize].cost();
             self.points[id as usize].halve();
@@ -217,14 +252,29 @@ impl Points {
         if let Some(o) = apart(&self.points[a as usize], &self.points[b as usize]) {
             return o;
         }
-        if self.find(a) == self.find(b) {
+        let (ca, cb) = (self.find(a), self.find(b));
+        if ca == cb {
             return Ordering::Equal;
         }
-        // Distinct roots part after a few halvings; equal ones are decided exactly, once.
+        if let Some(&o) = self.decided.get(&(ca, cb)) {
+            return o;
+        }
+        // Distinct roots part after a few halvings (while the brackets are wider than the
+        // windows' margin); equal ones, and distinct ones closer than the margin, are decided
+        // exactly, once.
         for _ in 0..SEPARATION_BEFORE_EXACT {
-            self.work += self.points[a as usize].cost() + self.points[b as usize].cost();
-            self.points[a as usize].halve();
-            self.points[b as usize].halve();
+            let mut halved = false;
+            for id in [a, b] {
+                let p = &mut self.points[id as usize];
+                if !p.fine() {
+                    self.work += p.cost();
+                    p.halve();
+                    halved = true;
+                }
+            }
+            if !halved {
+                break;
+            }
             if let Some(o) = apart(&self.points[a as usize], &self.points[b as usize]) {
                 return o;
             }
@@ -235,8 +285,10 @@ impl Points {
             .root
             .compare(&self.points[b as usize].root);
         if order == Ordering::Equal {
-            let (ra, rb) = (self.find(a), self.find(b));
-            self.class[ra as usize] = rb;
+            self.class[ca as usize] = cb;
+        } else {
+            self.decided.insert((ca, cb), order);
+            self.decided.insert((cb, ca), order.reverse());
         }
         order
     }

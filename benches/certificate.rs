@@ -2,17 +2,18 @@
 //! grid (`truecost export --grid`, costs 1–4 drawn by ChaCha8, not built for certificates):
 //!
 //! * `certificate/<grid>/solve` — the exact optimum alone (policy iteration, exact solves).
-//! * `certificate/<grid>/solve_and_write` — the optimum, then the certificate's text: every
-//!   value printed over the common denominator, the policy, the SHA-256 of the model's
-//!   canonical export.
+//! * `certificate/<grid>/solve_and_write` — the optimum, then the certificate's text as
+//!   `solve --certificate` streams it (into a sink here, a batch at a time): every value printed
+//!   over the common denominator, the policy, the SHA-256 of the model's canonical export.
 //! * `certificate/<grid>/check` — reading the certificate and checking every condition in exact
 //!   arithmetic against the model.
 //!
-//! Grids, in group `certificate`: 50×50 deterministic (γ = 1) and 20×20 under the paper's
-//! noise with γ = 0.99 (values of many digits); in group `certificate_large`, the 10⁴-state
-//! grid 100×100 deterministic and under the paper's noise with γ = 0.99 (values of about
-//! 86,000 bits, a certificate of 429 MB; about 10 s per solve, so this group takes minutes:
-//! `cargo bench --bench certificate -- certificate/` runs the small group alone).
+//! Grids, the rows of the speed table of `docs/guide/certificates.md`: in group `certificate`,
+//! 50×50 deterministic (γ = 1) and under the paper's noise with γ = 0.99 and 0.999 (values of
+//! thousands of digits), and 20×20 with γ = 0.99; in group `certificate_large`, the 10⁴-state
+//! grid 100×100 deterministic and with γ = 0.99 and 0.999 (values of about 86,000 and 119,000
+//! bits, certificates of 429 and 595 MB; 10 to 15 s per solve, so this group takes many
+//! minutes: `cargo bench --bench certificate -- certificate/` runs the small group alone).
 //! Problems are built outside the timed loop. The grid is in memory, so the certificate hashes
 //! the model's canonical export (as for `--problem` and `--env`; `--file` hashes the file's
 //! bytes instead, which is cheaper). Run with `cargo bench --bench certificate`.
@@ -20,12 +21,14 @@
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use truecost::certificate::{self, CertifiedObjective, Identity, ProblemRecord};
 use truecost::stochastic::benchmark::cost_grid;
-use truecost::stochastic::certified::{optimum_certificate, problem_mdp};
+use truecost::stochastic::certified::{
+    optimum_certificate, problem_mdp, write_optimum_certificate,
+};
 use truecost::stochastic::policy_iteration::{optimum, Optimum};
 use truecost::stochastic::{NoiseModel, Predictability, StochasticProblem};
 
-fn write(p: &StochasticProblem, opt: &Optimum, objective: &CertifiedObjective) -> String {
-    let record = ProblemRecord {
+fn record(p: &StochasticProblem) -> ProblemRecord {
+    ProblemRecord {
         source: "problem".into(),
         name: "benchmark grid".into(),
         gamma: None,
@@ -35,8 +38,13 @@ fn write(p: &StochasticProblem, opt: &Optimum, objective: &CertifiedObjective) -
         sha256_of: certificate::CANONICAL_FORMAT.into(),
         goal_label: None,
         cost_reward: None,
-    };
-    optimum_certificate(p, opt, objective, &record)
+    }
+}
+
+/// The certificate as `solve --certificate` streams it, into a sink.
+fn write(p: &StochasticProblem, opt: &Optimum, objective: &CertifiedObjective) {
+    write_optimum_certificate(&mut std::io::sink(), p, opt, objective, &record(p))
+        .expect("a sink takes everything");
 }
 
 /// The three benchmarks of one grid, in group `group`.
@@ -60,7 +68,7 @@ fn grid(c: &mut Criterion, group: &str, side: usize, gamma_text: &str) {
             write(&p, &opt, &objective)
         })
     });
-    let text = write(&p, &optimum(&p).expect("solvable"), &objective);
+    let text = optimum_certificate(&p, &optimum(&p).expect("solvable"), &objective, &record(&p));
     let mdp = problem_mdp(&p);
     group.bench_function("check", |b| {
         b.iter(|| {
@@ -73,12 +81,15 @@ fn grid(c: &mut Criterion, group: &str, side: usize, gamma_text: &str) {
 
 fn grids(c: &mut Criterion) {
     grid(c, "certificate", 50, "1");
+    grid(c, "certificate", 50, "0.99");
+    grid(c, "certificate", 50, "0.999");
     grid(c, "certificate", 20, "0.99");
 }
 
 fn large(c: &mut Criterion) {
     grid(c, "certificate_large", 100, "1");
     grid(c, "certificate_large", 100, "0.99");
+    grid(c, "certificate_large", 100, "0.999");
 }
 
 criterion_group!(benches, grids, large);

@@ -131,7 +131,8 @@ pub fn write(
 /// Writes a certificate whose finite values are `numerators[x] / denominator` (`denominator >
 /// 0`), not reduced: `"k/d"`, `"k"` when `d = 1` or `k = 0`, `"inf"` for `None`; every integer
 /// as [`push_integer`] writes it, the denominator's text printed once. The same file as
-/// [`write()`] with those texts, made without a `String` per value.
+/// [`write()`] with those texts, made without a `String` per value ([`write_over_to`] into one
+/// buffer).
 pub fn write_over(
     objective: &CertifiedObjective,
     problem: &ProblemRecord,
@@ -139,32 +140,232 @@ pub fn write_over(
     denominator: &BigInt,
     policy: &[Option<usize>],
 ) -> String {
-    let mut d = String::new();
-    push_integer(&mut d, denominator);
-    // At most bits/3 decimal digits (bits/4 hexadecimal ones), and the fixed characters: one
-    // buffer, filled in place.
-    let room = |k: &Option<&BigInt>| k.map_or(6, |k| k.bits() as usize / 3 + 8 + d.len());
-    let mut out =
-        String::with_capacity(numerators.iter().map(room).sum::<usize>() + 6 * policy.len() + 512);
-    head(&mut out, objective, problem, policy, numerators.len());
-    for (x, k) in numerators.iter().enumerate() {
-        if x > 0 {
-            out.push(',');
+    let mut out = Vec::with_capacity(over_capacity(numerators, denominator, policy));
+    write_over_to(
+        &mut out,
+        objective,
+        problem,
+        numerators,
+        denominator,
+        policy,
+    )
+    .expect("writing into memory never fails");
+    String::from_utf8(out).expect("JSON text is UTF-8")
+}
+
+/// A buffer size that holds [`write_over`]'s text: at most bits/3 decimal digits (bits/4
+/// hexadecimal ones) per integer, the fixed characters, and room for the record.
+pub fn over_capacity(
+    numerators: &[Option<&BigInt>],
+    denominator: &BigInt,
+    policy: &[Option<usize>],
+) -> usize {
+    let d = integer_len_bound(denominator);
+    numerators
+        .iter()
+        .map(|k| k.map_or(6, |k| integer_len_bound(k) + 4 + d))
+        .sum::<usize>()
+        + 21 * policy.len()
+        + 4096
+}
+
+/// At least the length of `n`'s text as [`push_integer`] writes it.
+fn integer_len_bound(n: &BigInt) -> usize {
+    n.bits() as usize / 3 + 4
+}
+
+/// Bytes of values text [`write_over_to`] makes before handing them to the writer: the
+/// buffer is reused, and a batch of values is printed in parallel.
+const BATCH_BYTES: usize = 1 << 22;
+
+/// [`write_over`]'s text into `out`, a batch of values (about [`BATCH_BYTES`]) at a time:
+/// each batch's numerators are printed in parallel ([`rayon`]) into their places in one
+/// buffer, sized exactly, and handed to `out` in one `write_all`.
+pub fn write_over_to(
+    out: &mut dyn std::io::Write,
+    objective: &CertifiedObjective,
+    problem: &ProblemRecord,
+    numerators: &[Option<&BigInt>],
+    denominator: &BigInt,
+    policy: &[Option<usize>],
+) -> std::io::Result<()> {
+    let values = Values {
+        numerators,
+        denominator,
+    };
+    values.write(out, objective, problem, policy, BATCH_BYTES)
+}
+
+/// The values [`write_over_to`] writes: `numerators[x] / denominator`.
+struct Values<'a> {
+    numerators: &'a [Option<&'a BigInt>],
+    denominator: &'a BigInt,
+}
+
+impl Values<'_> {
+    /// [`write_over_to`] with batches of about `batch_bytes` bytes of values text.
+    fn write(
+        &self,
+        out: &mut dyn std::io::Write,
+        objective: &CertifiedObjective,
+        problem: &ProblemRecord,
+        policy: &[Option<usize>],
+        batch_bytes: usize,
+    ) -> std::io::Result<()> {
+        use rayon::prelude::*;
+        let (numerators, denominator) = (self.numerators, self.denominator);
+        let mut d = String::new();
+        push_integer(&mut d, denominator);
+        let over = (!denominator.is_one()).then_some(d.as_bytes());
+        let mut head_text = String::with_capacity(21 * policy.len() + 512);
+        head(&mut head_text, objective, problem, policy, numerators.len());
+        out.write_all(head_text.as_bytes())?;
+        drop(head_text);
+        let mut buffer: Vec<u8> = Vec::new();
+        let mut first = 0;
+        while first < numerators.len() {
+            let mut end = first;
+            let mut estimate = 0;
+            while end < numerators.len() && (end == first || estimate < batch_bytes) {
+                estimate += numerators[end].map_or(6, |k| k.bits() as usize / 4 + d.len() + 6);
+                end += 1;
+            }
+            let texts: Vec<ValueText> = numerators[first..end]
+                .par_iter()
+                .map(|k| ValueText::new(*k, over))
+                .collect();
+            // A comma before every value but the very first.
+            let commas = end - first - usize::from(first == 0);
+            buffer.clear();
+            buffer.resize(texts.iter().map(ValueText::len).sum::<usize>() + commas, 0);
+            let mut places: Vec<&mut [u8]> = Vec::with_capacity(texts.len());
+            let mut rest = &mut buffer[..];
+            for (i, t) in texts.iter().enumerate() {
+                let (place, after) = rest.split_at_mut(t.len() + usize::from(first + i > 0));
+                places.push(place);
+                rest = after;
+            }
+            texts
+                .par_iter()
+                .zip(places.par_iter_mut())
+                .for_each(|(t, place)| {
+                    let (comma, text) = place.split_at_mut(place.len() - t.len());
+                    comma.fill(b',');
+                    t.fill(text);
+                });
+            out.write_all(&buffer)?;
+            first = end;
         }
-        out.push('"');
-        match k {
-            None => out.push_str("inf"),
-            Some(k) if denominator.is_one() || k.is_zero() => push_integer(&mut out, k),
-            Some(k) => {
-                push_integer(&mut out, k);
-                out.push('/');
-                out.push_str(&d);
+        out.write_all(b"]}\n")
+    }
+}
+
+/// One value's text in the values list, `"…"` with its quotes, as [`write_over`] writes it.
+enum ValueText<'a> {
+    /// `"inf"`.
+    Infinite,
+    /// An integer of more than [`DECIMAL_BITS`] bits: `-`, `0x` and `digits` hexadecimal
+    /// digits, then `/` and the denominator's text if `over`.
+    Hex {
+        k: &'a BigInt,
+        digits: usize,
+        over: Option<&'a [u8]>,
+    },
+    /// A shorter integer's decimal text, then `/` and the denominator's text if `over`.
+    Decimal {
+        text: String,
+        over: Option<&'a [u8]>,
+    },
+}
+
+impl<'a> ValueText<'a> {
+    /// The text of `k` (`None`: `inf`) over the denominator's text `over` (`None`: 1).
+    fn new(k: Option<&'a BigInt>, over: Option<&'a [u8]>) -> Self {
+        let Some(k) = k else {
+            return ValueText::Infinite;
+        };
+        let over = over.filter(|_| !k.is_zero());
+        if k.bits() <= DECIMAL_BITS {
+            ValueText::Decimal {
+                text: integer_text(k),
+                over,
+            }
+        } else {
+            ValueText::Hex {
+                k,
+                digits: (k.bits() as usize).div_ceil(4),
+                over,
             }
         }
-        out.push('"');
     }
-    out.push_str("]}\n");
-    out
+
+    /// The text's length in bytes, quotes included.
+    fn len(&self) -> usize {
+        let over = |o: &Option<&[u8]>| o.map_or(0, |d| d.len() + 1);
+        2 + match self {
+            ValueText::Infinite => 3,
+            ValueText::Hex { k, digits, over: o } => {
+                usize::from(k.is_negative()) + 2 + digits + over(o)
+            }
+            ValueText::Decimal { text, over: o } => text.len() + over(o),
+        }
+    }
+
+    /// Writes the text into `place`, exactly [`len`](Self::len) bytes.
+    fn fill(&self, place: &mut [u8]) {
+        let last = place.len() - 1;
+        place[0] = b'"';
+        place[last] = b'"';
+        let inner = &mut place[1..last];
+        let (number, over) = match self {
+            ValueText::Infinite => {
+                inner.copy_from_slice(b"inf");
+                return;
+            }
+            ValueText::Hex { k, digits, over } => {
+                let sign = usize::from(k.is_negative());
+                inner[..sign].fill(b'-');
+                inner[sign..sign + 2].copy_from_slice(b"0x");
+                put_hex(&mut inner[sign + 2..sign + 2 + digits], k.magnitude());
+                (sign + 2 + digits, over)
+            }
+            ValueText::Decimal { text, over } => {
+                inner[..text.len()].copy_from_slice(text.as_bytes());
+                (text.len(), over)
+            }
+        };
+        if let Some(d) = over {
+            inner[number] = b'/';
+            inner[number + 1..].copy_from_slice(d);
+        }
+    }
+}
+
+/// Writes the hexadecimal digits of `n` into `place`, which is exactly as long as they are
+/// (no leading zero): eight digits of each 32-bit half of a limb at a time, spread one
+/// nibble to a byte and turned into ASCII together.
+fn put_hex(place: &mut [u8], n: &BigUint) {
+    /// The eight lowercase hexadecimal digits of `v`, most significant first.
+    fn eight(v: u32) -> [u8; 8] {
+        let mut x = u64::from(v);
+        x = (x | x << 16) & 0x0000_ffff_0000_ffff;
+        x = (x | x << 8) & 0x00ff_00ff_00ff_00ff;
+        x = (x | x << 4) & 0x0f0f_0f0f_0f0f_0f0f;
+        // Nibble i of v in byte i; a byte is 10 or more exactly when adding 6 carries into
+        // its bit 4.
+        let letters = ((x + 0x0606_0606_0606_0606) >> 4) & 0x0101_0101_0101_0101;
+        (x + 0x3030_3030_3030_3030 + letters * (b'a' - b'0' - 10) as u64).to_be_bytes()
+    }
+    let mut end = place.len();
+    for limb in n.iter_u64_digits() {
+        for half in [limb as u32, (limb >> 32) as u32] {
+            let digits = eight(half);
+            let take = end.min(8);
+            place[end - take..end].copy_from_slice(&digits[8 - take..]);
+            end -= take;
+        }
+    }
+    debug_assert_eq!(end, 0, "the place is as long as the digits");
 }
 
 /// The text of a value as certificates write it: `"inf"` for `None`, else `"p/q"` (`"p"` when
@@ -204,26 +405,13 @@ pub fn push_integer(out: &mut String, n: &BigInt) {
         out.push_str(&integer_text(n));
         return;
     }
-    const HEX: &[u8; 16] = b"0123456789abcdef";
     if n.is_negative() {
         out.push('-');
     }
     out.push_str("0x");
-    let limbs: Vec<u64> = n.magnitude().iter_u64_digits().collect();
-    for (i, limb) in limbs.iter().rev().enumerate() {
-        // The leading limb is not 0 (`n` has more than DECIMAL_BITS bits): no leading zero.
-        let nibbles = if i == 0 {
-            (64 - limb.leading_zeros() as usize).div_ceil(4)
-        } else {
-            16
-        };
-        let mut text = [0u8; 16];
-        for (j, byte) in limb.to_be_bytes().iter().enumerate() {
-            text[2 * j] = HEX[usize::from(byte >> 4)];
-            text[2 * j + 1] = HEX[usize::from(byte & 15)];
-        }
-        out.push_str(std::str::from_utf8(&text[16 - nibbles..]).expect("ASCII digits"));
-    }
+    let mut digits = vec![0u8; (n.bits() as usize).div_ceil(4)];
+    put_hex(&mut digits, n.magnitude());
+    out.push_str(std::str::from_utf8(&digits).expect("ASCII digits"));
 }
 
 /// The fields before the values, in the order `serde_json` writes an object's keys (sorted),
@@ -534,7 +722,7 @@ mod tests {
 
     use super::{
         parse_exact, problem_json, push_integer, write, write_over, CertifiedObjective,
-        ProblemRecord, DECIMAL_BITS, FORMAT,
+        ProblemRecord, Values, DECIMAL_BITS, FORMAT,
     };
 
     #[test]
@@ -682,10 +870,23 @@ mod tests {
                 .collect();
             let policy = vec![Some(1); 200];
             let objective = CertifiedObjective::Truecost;
+            let expected = by_serde(&objective, &record(), &texts, &policy);
             assert_eq!(
                 write_over(&objective, &record(), &refs, &d, &policy),
-                by_serde(&objective, &record(), &texts, &policy)
+                expected
             );
+            // In batches of one value, of a few, and of all.
+            let values = Values {
+                numerators: &refs,
+                denominator: &d,
+            };
+            for batch in [1, 3000, 40_000, usize::MAX] {
+                let mut out = Vec::new();
+                values
+                    .write(&mut out, &objective, &record(), &policy, batch)
+                    .unwrap();
+                assert_eq!(String::from_utf8(out).unwrap(), expected, "batch {batch}");
+            }
         }
         let empty = write_over(
             &CertifiedObjective::Truecost,

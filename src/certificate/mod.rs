@@ -146,8 +146,8 @@ pub mod sturm;
 pub use check::{check, Acceptance, Checked, Identity, Rejection, CONDITIONS};
 pub use format::value_text;
 pub use format::{
-    parse, parse_exact, push_integer, write, write_over, Certificate, CertifiedObjective,
-    ProblemRecord, DECIMAL_BITS, FORMAT,
+    over_capacity, parse, parse_exact, push_integer, write, write_over, write_over_to, Certificate,
+    CertifiedObjective, ProblemRecord, DECIMAL_BITS, FORMAT,
 };
 pub use mdp::{Mdp, MdpAction, CANONICAL_FORMAT};
-pub use sha256::sha256_hex;
+pub use sha256::{sha256_hex, Sha256};

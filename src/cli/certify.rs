@@ -51,3 +51,49 @@ impl CertifiedSource<'_> {
 pub fn write_certificate(path: &std::path::Path, text: &str) -> Result<(), String> {
     truecost::atomic::write(path, text.as_bytes())
 }
+
+/// Writes a certificate file whole as `write` streams it, without holding its text (hundreds
+/// of megabytes at 10⁴ states) in memory: [`truecost::atomic::replace_with`]'s temporary file,
+/// then a rename; a pipe or a terminal is written directly. The temporary's name is
+/// unpredictable; the file written is created under it anew with `O_CREAT | O_EXCL` (which
+/// follows no symbolic link and opens no file that exists), so nothing planted at that name in
+/// the meantime is written through. One line on error, naming the path; a pipe closed by its
+/// reader is not an error (as for [`truecost::atomic::write`]).
+pub fn write_certificate_with(
+    path: &std::path::Path,
+    write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
+) -> Result<(), String> {
+    use std::os::unix::fs::OpenOptionsExt;
+    let failed = |e: std::io::Error| {
+        format!(
+            "cannot write {}: {e}",
+            truecost::echo::echo(&path.display().to_string())
+        )
+    };
+    truecost::atomic::replace_with(path, |target| {
+        if target == path {
+            // A pipe, a socket or a terminal.
+            return match std::fs::OpenOptions::new()
+                .write(true)
+                .open(target)
+                .and_then(|mut f| write(&mut f))
+            {
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+                other => other.map_err(failed),
+            };
+        }
+        std::fs::remove_file(target).map_err(failed)?;
+        let mut file = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .mode(0o666)
+            .open(target)
+            .map_err(failed)?;
+        let mut out = std::io::BufWriter::with_capacity(1 << 16, &mut file);
+        write(&mut out)
+            .and_then(|()| std::io::Write::flush(&mut out))
+            .map_err(failed)?;
+        drop(out);
+        file.sync_data().map_err(failed)
+    })
+}

@@ -218,9 +218,11 @@ fn certify(
         names: args.drn.names(args.file.as_deref())?,
     }
     .record(|| truecost::objectives::Model::from_problem(problem.clone(), String::new()).mdp())?;
-    let text =
-        truecost::stochastic::certified::optimum_certificate(problem, opt, &objective, &record);
-    super::certify::write_certificate(path, &text)
+    super::certify::write_certificate_with(path, |out| {
+        truecost::stochastic::certified::write_optimum_certificate(
+            out, problem, opt, &objective, &record,
+        )
+    })
 }
 
 /// A problem ready to solve, with what to say about it.

@@ -1150,3 +1150,65 @@ fn drn_files() {
     }
     tally.finish(Some(&dir));
 }
+
+/// A case `certificates` found: a value of 10⁶ hexadecimal digits made `check` reduce a
+/// fraction of millions of bits (quadratic: 22 s of processor time at 4·10⁶ bits, unbounded
+/// below the 1 GiB file limit). An integer of more than 2^20 bits is refused as it is read,
+/// naming the bound; one of exactly 2^20 bits is read, and the certificate rejected by its
+/// conditions (at the goal, whose value must be 0).
+#[test]
+fn an_integer_past_2_20_bits_in_a_certificate_is_refused_as_read() {
+    let dir = scratch("integer-bound");
+    let problem = dir.join("p.json");
+    std::fs::write(
+        &problem,
+        r#"{"format": "truecost-stochastic/1", "states": 2, "initial": 0, "goals": [1],
+ "actions": [[{"cost": "2", "outcomes": [{"to": 0, "p": "3/4"}, {"to": 1, "p": "1/4"}]}], []]}"#,
+    )
+    .unwrap();
+    let cert = dir.join("p.cert");
+    run(&[
+        "solve".into(),
+        "--algorithm".into(),
+        "exact".into(),
+        "--objective".into(),
+        "truecost".into(),
+        "--file".into(),
+        path(&problem),
+        "--certificate".into(),
+        path(&cert),
+    ]);
+    // V(0) = 2 + 3/4 V(0) = 8.
+    let text = std::fs::read_to_string(&cert).unwrap();
+    assert!(text.contains(r#""values":["8","0"]"#), "{text}");
+    let check = |digits: usize| {
+        let value = format!("0xf{}", "e".repeat(digits - 1));
+        let file = dir.join(format!("{digits}.cert"));
+        std::fs::write(
+            &file,
+            text.replace(
+                r#""values":["8","0"]"#,
+                &format!(r#""values":["8","{value}"]"#),
+            ),
+        )
+        .unwrap();
+        let out = Command::new(bin())
+            .args(["check", "--file", &path(&problem), &path(&file)])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(1));
+        String::from_utf8(out.stderr).unwrap()
+    };
+    // 262 145 hexadecimal digits: more than 2^20 bits.
+    let err = check(262_145);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("value of state 1: an integer of 262145 hexadecimal digits")
+            && err.contains("2^20"),
+        "{err}"
+    );
+    // 262 144 digits, the first `f`: exactly 2^20 bits, read; the goal's value is not 0.
+    let err = check(262_144);
+    assert!(err.contains("state 1: condition goal"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

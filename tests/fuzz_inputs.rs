@@ -61,12 +61,32 @@ fn scratch(name: &str) -> PathBuf {
 /// How a case ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 enum Class {
+    /// Exit 0.
     Ok,
+    /// A non-zero exit with one clean line on stderr.
     Refused,
+    /// Still running after [`CASE_SECONDS`] (killed).
+    Timeout,
+    /// A panic (exit 101 or "panicked") or death by a signal.
+    Panic,
+    /// A refusal of several lines, an empty one or one with a raw control character.
+    BadRefusal,
 }
 
-/// Runs the binary with `args`, asserting no panic, no timeout and a one-line refusal.
-fn run(args: &[String]) -> Class {
+/// The processor time (user and system) of a running process, in seconds, read from
+/// `/proc/PID/stat` (clock ticks of 1/100 s); `None` where it cannot be read.
+fn processor_seconds(pid: u32) -> Option<f64> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    // The fields after the command name, which is in parentheses and may hold spaces.
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = rest.split(' ').collect();
+    let ticks: u64 = fields.get(11)?.parse::<u64>().ok()? + fields.get(12)?.parse::<u64>().ok()?;
+    Some(ticks as f64 / 100.0)
+}
+
+/// Runs the binary with `args`: its class, and what went wrong when it is not `Ok` or
+/// `Refused` (with the processor time of a timeout, to tell a slow case from a busy machine).
+fn outcome(args: &[String]) -> (Class, String) {
     // An argument cannot hold a NUL byte (the operating system's limit, not the tool's).
     let args: Vec<String> = args.iter().map(|a| a.replace('\0', "\\0")).collect();
     let mut child = Command::new(bin())
@@ -89,41 +109,103 @@ fn run(args: &[String]) -> Class {
             break status;
         }
         if start.elapsed() > Duration::from_secs(CASE_SECONDS) {
+            let cpu = processor_seconds(child.id());
             child.kill().ok();
             child.wait().ok();
-            panic!("timeout after {CASE_SECONDS} s: truecost {args:?}");
+            return (
+                Class::Timeout,
+                format!("timeout after {CASE_SECONDS} s ({cpu:?} s of processor time): truecost {args:?}"),
+            );
         }
         std::thread::sleep(Duration::from_millis(5));
     };
     let err = reader.join().unwrap();
-    assert_ne!(status.code(), Some(101), "exit 101 on {args:?}: {err}");
-    assert!(!err.contains("panicked"), "panic on {args:?}: {err}");
-    assert!(
-        status.code().is_some(),
-        "killed by a signal on {args:?}: {err}"
-    );
-    if status.success() {
-        Class::Ok
-    } else {
-        let lines: Vec<&str> = err.lines().collect();
-        assert_eq!(
-            lines.len(),
-            1,
-            "a refusal of {} lines on {args:?}: {err:?}",
-            lines.len()
-        );
-        assert!(!lines[0].trim().is_empty(), "an empty refusal on {args:?}");
-        Class::Refused
+    if status.code() == Some(101) || err.contains("panicked") || status.code().is_none() {
+        return (Class::Panic, format!("{status} on {args:?}: {err}"));
     }
+    if status.success() {
+        return (Class::Ok, String::new());
+    }
+    let lines: Vec<&str> = err.lines().collect();
+    if lines.len() != 1 || lines[0].trim().is_empty() || lines[0].chars().any(char::is_control) {
+        return (
+            Class::BadRefusal,
+            format!("a refusal of {} lines on {args:?}: {err:?}", lines.len()),
+        );
+    }
+    (Class::Refused, String::new())
 }
 
-fn report(target: &str, classes: &[Class]) {
-    let ok = classes.iter().filter(|&&c| c == Class::Ok).count();
-    println!(
-        "{target}: {} cases, {ok} ok, {} clean refusals",
-        classes.len(),
-        classes.len() - ok
-    );
+/// Runs the binary with `args`, asserting no panic, no timeout and a one-line refusal.
+fn run(args: &[String]) -> Class {
+    let (class, why) = outcome(args);
+    assert!(matches!(class, Class::Ok | Class::Refused), "{why}");
+    class
+}
+
+/// The outcomes of one target's cases: every case runs, the failures are listed at the end.
+struct Tally {
+    target: &'static str,
+    classes: Vec<Class>,
+    failures: Vec<String>,
+}
+
+impl Tally {
+    fn new(target: &'static str) -> Self {
+        Tally {
+            target,
+            classes: Vec::new(),
+            failures: Vec::new(),
+        }
+    }
+
+    /// Runs one case; a failure is recorded, not raised (so that a campaign sees them all).
+    fn run(&mut self, args: &[String]) -> Class {
+        let (class, why) = outcome(args);
+        self.classes.push(class);
+        if !why.is_empty() {
+            eprintln!("{}: {why}", self.target);
+            self.failures.push(why);
+        }
+        class
+    }
+
+    /// Records a failed expectation about a case that ended `Ok` or `Refused`.
+    fn fail(&mut self, why: String) {
+        eprintln!("{}: {why}", self.target);
+        self.failures.push(why);
+    }
+
+    /// Prints the classes, removes `dir` unless a case failed (its files are then kept for
+    /// re-running), and fails the test if any case failed.
+    fn finish(self, dir: Option<&Path>) {
+        let count = |c: Class| self.classes.iter().filter(|&&k| k == c).count();
+        println!(
+            "{}: {} cases, {} ok, {} clean refusals, {} timeouts, {} panics, {} bad refusals, {} failed checks",
+            self.target,
+            self.classes.len(),
+            count(Class::Ok),
+            count(Class::Refused),
+            count(Class::Timeout),
+            count(Class::Panic),
+            count(Class::BadRefusal),
+            self.failures.len()
+                - count(Class::Timeout)
+                - count(Class::Panic)
+                - count(Class::BadRefusal),
+        );
+        if let Some(dir) = dir.filter(|_| self.failures.is_empty()) {
+            std::fs::remove_dir_all(dir).ok();
+        }
+        assert!(
+            self.failures.is_empty(),
+            "{}: {} failures (files kept in {:?}): {:#?}",
+            self.target,
+            self.failures.len(),
+            dir,
+            self.failures
+        );
+    }
 }
 
 fn pick<'a>(r: &mut ChaCha8Rng, items: &[&'a str]) -> &'a str {
@@ -206,7 +288,7 @@ fn env_specs() {
         "SFFG",
         "/dev/zero",
     ];
-    let mut classes = Vec::new();
+    let mut tally = Tally::new("env specs");
     for case in 0..cases() {
         let mut spec = pick(&mut r, &names).to_string();
         for _ in 0..r.random_range(0..3) {
@@ -218,15 +300,15 @@ fn env_specs() {
         if case % 3 == 2 {
             spec = mutate(&mut r, &spec);
         }
-        classes.push(run(&[
+        tally.run(&[
             "solve".into(),
             "--algorithm".into(),
             "exact".into(),
             "--env".into(),
             spec,
-        ]));
+        ]);
     }
-    report("env specs", &classes);
+    tally.finish(None);
 }
 
 /// Map files: random grids of `SFHG` and hostile bytes, of random shapes, through
@@ -235,7 +317,7 @@ fn env_specs() {
 fn map_files() {
     let mut r = rng(2);
     let dir = scratch("maps");
-    let mut classes = Vec::new();
+    let mut tally = Tally::new("map files");
     for case in 0..cases() {
         let (w, h) = (r.random_range(0..12), r.random_range(0..12));
         let mut text = String::new();
@@ -254,16 +336,15 @@ fn map_files() {
         }
         let path = dir.join(format!("map{case}.txt"));
         std::fs::write(&path, &text).unwrap();
-        classes.push(run(&[
+        tally.run(&[
             "solve".into(),
             "--algorithm".into(),
             "exact".into(),
             "--env".into(),
             format!("frozenlake:map={}", path.display()),
-        ]));
+        ]);
     }
-    std::fs::remove_dir_all(&dir).ok();
-    report("map files", &classes);
+    tally.finish(Some(&dir));
 }
 
 /// Shard files: a real shard of a tiny run, mutated, through `reproduce merge` and
@@ -304,16 +385,15 @@ fn shard_files() {
         run(&["reproduce".into(), "merge".into(), path(&whole)]),
         Class::Ok
     );
-    let mut classes = Vec::new();
+    let mut tally = Tally::new("shard files");
     for case in 0..cases() {
         let text = mutate(&mut r, &shard);
         let file = dir.join(format!("shard{case}.json"));
         std::fs::write(&file, &text).unwrap();
         let command = if case % 2 == 0 { "reproduce" } else { "verify" };
-        classes.push(run(&[command.into(), "merge".into(), path(&file)]));
+        tally.run(&[command.into(), "merge".into(), path(&file)]);
     }
-    std::fs::remove_dir_all(&dir).ok();
-    report("shard files", &classes);
+    tally.finish(Some(&dir));
 }
 
 fn path(p: &Path) -> String {
@@ -340,7 +420,7 @@ fn extreme_number(r: &mut ChaCha8Rng) -> String {
 fn extreme_number_files() {
     let mut r = rng(4);
     let dir = scratch("numbers");
-    let mut classes = Vec::new();
+    let mut tally = Tally::new("extreme-number files");
     for case in 0..cases() {
         let n = r.random_range(2..5);
         let text = if case % 2 == 0 {
@@ -396,10 +476,9 @@ fn extreme_number_files() {
             _ => vec!["compare".into()],
         };
         args.extend(["--file".into(), path(&file)]);
-        classes.push(run(&args));
+        tally.run(&args);
     }
-    std::fs::remove_dir_all(&dir).ok();
-    report("extreme-number files", &classes);
+    tally.finish(Some(&dir));
 }
 
 /// `--alpha` with 300 digits is refused in one line that names the bound and shows the value
@@ -502,7 +581,7 @@ fn huge_number(r: &mut ChaCha8Rng) -> String {
 fn discount_on_huge_numbers_and_long_chains() {
     let mut r = rng(5);
     let dir = scratch("discount");
-    let mut classes = Vec::new();
+    let mut tally = Tally::new("discount on huge numbers and long chains");
     for case in 0..cases() {
         let text = if case % 2 == 0 {
             let (a, b) = (huge_number(&mut r), huge_number(&mut r));
@@ -543,10 +622,9 @@ fn discount_on_huge_numbers_and_long_chains() {
         };
         let file = dir.join(format!("discount{case}.json"));
         std::fs::write(&file, &text).unwrap();
-        classes.push(run(&["discount".into(), "--file".into(), path(&file)]));
+        tally.run(&["discount".into(), "--file".into(), path(&file)]);
     }
-    std::fs::remove_dir_all(&dir).ok();
-    report("discount on huge numbers and long chains", &classes);
+    tally.finish(Some(&dir));
 }
 
 /// `export --out` onto hostile targets: a victim file behind a symlink at the target or at
@@ -557,7 +635,7 @@ fn export_onto_hostile_targets() {
     let mut r = rng(6);
     let dir = scratch("targets");
     let victim = dir.join("victim.txt");
-    let mut classes = Vec::new();
+    let mut tally = Tally::new("export onto hostile targets");
     for case in 0..cases() {
         std::fs::write(&victim, "victim\n").unwrap();
         let out = dir.join(format!("out{case}.json"));
@@ -586,28 +664,29 @@ fn export_onto_hostile_targets() {
                 out.clone()
             }
         };
-        let class = run(&[
+        let class = tally.run(&[
             "export".into(),
             "--grid".into(),
             "3x3".into(),
             "--out".into(),
             path(&target),
         ]);
-        assert_eq!(
-            std::fs::read_to_string(&victim).unwrap(),
-            "victim\n",
-            "written through a link: {}",
-            target.display()
-        );
-        if class == Class::Ok {
-            let meta = std::fs::symlink_metadata(&target).unwrap();
-            assert!(meta.file_type().is_file(), "{}", target.display());
+        if std::fs::read_to_string(&victim).ok().as_deref() != Some("victim\n") {
+            tally.fail(format!("written through a link: {}", target.display()));
         }
-        assert!(!dir.join(format!("missing{case}")).exists());
-        classes.push(class);
+        if class == Class::Ok
+            && !std::fs::symlink_metadata(&target).is_ok_and(|m| m.file_type().is_file())
+        {
+            tally.fail(format!(
+                "not a regular file after export: {}",
+                target.display()
+            ));
+        }
+        if dir.join(format!("missing{case}")).exists() {
+            tally.fail(format!("a directory created: missing{case}"));
+        }
     }
-    std::fs::remove_dir_all(&dir).ok();
-    report("export onto hostile targets", &classes);
+    tally.finish(Some(&dir));
 }
 
 /// A file of the fuzz corpus (`tests/fuzz_corpus`).
@@ -617,73 +696,423 @@ fn corpus(name: &str) -> PathBuf {
         .join(name)
 }
 
-/// The exact `values` of a certificate's JSON text, `None` when it has none that parse.
-fn certificate_values(text: &str) -> Option<Vec<Option<truecost::value::Rational>>> {
-    let doc: serde_json::Value = serde_json::from_str(text).ok()?;
-    let values = doc.get("values")?.as_array()?;
-    Some(
-        values
-            .iter()
-            .map(|v| {
-                v.as_str()
-                    .and_then(|s| truecost::value::parse_rational(s).ok())
-            })
-            .collect(),
-    )
-}
-
-/// Certificates of `solve --certificate`, mutated, through `check`: a clean refusal, or an
-/// acceptance whose values are the optimum's (the certificate of the unmutated run).
-#[test]
-fn certificates() {
-    let mut r = rng(7);
-    let dir = scratch("certificates");
-    let mut classes = Vec::new();
-    for (name, objective) in [
-        ("slippery.json", "truecost"),
-        ("line.json", "truecost"),
-        ("fractions-and-stay.json", "discounted"),
-    ] {
-        let problem = corpus(name);
-        let cert = dir.join(format!("{name}.cert"));
-        let mut args = vec![
-            "solve".to_string(),
-            "--file".into(),
-            path(&problem),
+/// How a certificate is made: `solve --algorithm exact` (the deterministic `G*` of a
+/// deterministic file, truecost otherwise), with `--objective truecost`, `discounted --alpha A`
+/// or `reach`, or `discount`.
+fn certify(r: &mut ChaCha8Rng, problem: &Path, cert: &Path) -> Vec<String> {
+    let mut args: Vec<String> = match r.random_range(0..5) {
+        0 => vec!["solve".into(), "--algorithm".into(), "exact".into()],
+        1 => vec![
+            "solve".into(),
             "--algorithm".into(),
             "exact".into(),
             "--objective".into(),
-            objective.into(),
-            "--certificate".into(),
-            path(&cert),
-        ];
-        if objective == "discounted" {
-            args.extend(["--alpha".into(), "9/10".into()]);
+            "truecost".into(),
+        ],
+        2 => {
+            let alpha = pick(r, &["1/2", "9/10", "99/100", "1/3", "2/7", "0.95"]);
+            vec![
+                "solve".into(),
+                "--algorithm".into(),
+                "exact".into(),
+                "--objective".into(),
+                "discounted".into(),
+                "--alpha".into(),
+                alpha.into(),
+            ]
         }
-        assert_eq!(run(&args), Class::Ok);
-        let original = std::fs::read_to_string(&cert).unwrap();
-        let optimum = certificate_values(&original).expect("the certificate's values");
-        assert!(optimum.iter().any(Option::is_some), "{original}");
-        let check =
-            |file: &Path| run(&["check".into(), "--file".into(), path(&problem), path(file)]);
-        assert_eq!(check(&cert), Class::Ok);
-        for case in 0..cases() {
-            let text = mutate(&mut r, &original);
-            let file = dir.join(format!("{name}{case}.cert"));
-            std::fs::write(&file, &text).unwrap();
-            let class = check(&file);
-            if class == Class::Ok {
-                assert_eq!(
-                    certificate_values(&text).as_ref(),
-                    Some(&optimum),
-                    "check accepted other values: {text}"
+        3 => vec![
+            "solve".into(),
+            "--algorithm".into(),
+            "exact".into(),
+            "--objective".into(),
+            "reach".into(),
+        ],
+        _ => vec!["discount".into()],
+    };
+    args.extend([
+        "--file".into(),
+        path(problem),
+        "--certificate".into(),
+        path(cert),
+    ]);
+    args
+}
+
+/// Hostile leaves: numbers spelled wrongly, infinities, zero denominators, control
+/// characters, the other objectives' names, JSON of the wrong type.
+const HOSTILE_LEAVES: &[&str] = &[
+    r#""inf""#,
+    r#""-inf""#,
+    r#""NaN""#,
+    r#""-1""#,
+    r#""0""#,
+    r#""1/0""#,
+    r#""0/0""#,
+    r#""-0""#,
+    r#""+1""#,
+    r#"" 1""#,
+    r#""1e5""#,
+    r#""0x""#,
+    r#""0x0""#,
+    r#""0x01""#,
+    r#""0X1""#,
+    r#""0xA""#,
+    r#""1/-2""#,
+    r#""1//2""#,
+    r#""""#,
+    r#""１""#,
+    r#""\u0000""#,
+    r#""\u001b[31m""#,
+    r#""\u202e""#,
+    r#""truecost""#,
+    r#""discount""#,
+    r#""reach""#,
+    r#""deterministic""#,
+    r#""discounted""#,
+    r#""0x1f/0xa0""#,
+    "0",
+    "-1",
+    "1.5",
+    "1e400",
+    "18446744073709551615",
+    "18446744073709551616",
+    "null",
+    "true",
+    "[]",
+    "{}",
+    r#"["0"]"#,
+];
+
+/// Every JSON pointer in `v` (containers and leaves).
+fn pointers(v: &serde_json::Value, at: String, out: &mut Vec<String>) {
+    match v {
+        serde_json::Value::Array(items) => {
+            for (i, item) in items.iter().enumerate() {
+                pointers(item, format!("{at}/{i}"), out);
+            }
+        }
+        serde_json::Value::Object(map) => {
+            for (k, item) in map {
+                pointers(
+                    item,
+                    format!("{at}/{}", k.replace('~', "~0").replace('/', "~1")),
+                    out,
                 );
             }
-            classes.push(class);
+        }
+        _ => {}
+    }
+    out.push(at);
+}
+
+/// A huge natural number: `digits` decimal digits or hexadecimal ones (`0x`, first not `0`).
+fn huge_integer(r: &mut ChaCha8Rng, digits: usize) -> String {
+    if r.random_range(0..2) == 0 {
+        format!("9{}", "7".repeat(digits - 1))
+    } else {
+        format!("0xf{}", "e".repeat(digits - 1))
+    }
+}
+
+/// `q` spelled as certificates may spell it: over a multiple of its denominator (`k·p/k·q`),
+/// or in hexadecimal (`-0x1f/0xa0`).
+fn respelled(r: &mut ChaCha8Rng, q: &common::Q) -> String {
+    use num_traits::{Signed, Zero};
+    let k = common::Q::from_integer(r.random_range(2..1000).into());
+    if q.is_zero() || r.random_range(0..2) == 0 {
+        return format!("{}/{}", q.numer() * k.numer(), q.denom() * k.numer());
+    }
+    let sign = if q.is_negative() { "-" } else { "" };
+    format!("{sign}0x{:x}/0x{:x}", q.numer().magnitude(), q.denom())
+}
+
+/// Whether a mutated certificate must be accepted (a valid re-spelling of the original) or
+/// may be accepted only if the independent judge finds it valid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Expect {
+    Accept,
+    Judge,
+}
+
+/// A structural or numerical mutation of a certificate's text: its name, the text, and what
+/// `check` may do with it.
+fn mutate_certificate(r: &mut ChaCha8Rng, original: &str) -> (&'static str, String, Expect) {
+    use serde_json::Value;
+    let mut v: Value = serde_json::from_str(original).expect("a certificate is JSON");
+    let mut all = Vec::new();
+    pointers(&v, String::new(), &mut all);
+    let numbers: Vec<&String> = all
+        .iter()
+        .filter(|p| !p.starts_with("/problem"))
+        .filter(|p| {
+            v.pointer(p)
+                .and_then(Value::as_str)
+                .and_then(common::certificate_oracle::exact)
+                .is_some()
+        })
+        .collect();
+    let lists: Vec<&String> = all
+        .iter()
+        .filter(|p| v.pointer(p).is_some_and(Value::is_array))
+        .collect();
+    let objects: Vec<&String> = all
+        .iter()
+        .filter(|p| v.pointer(p).is_some_and(Value::is_object))
+        .collect();
+    let any = all[r.random_range(0..all.len())].clone();
+    let placeholder = "\"@@leaf@@\"";
+    let with_leaf = |v: &mut Value, at: &str, leaf: String| {
+        *v.pointer_mut(at).expect("a pointer of v") = Value::String("@@leaf@@".into());
+        serde_json::to_string(v)
+            .unwrap()
+            .replacen(placeholder, &leaf, 1)
+    };
+    match r.random_range(0..16) {
+        0 => {
+            let leaf = pick(r, HOSTILE_LEAVES).to_string();
+            ("hostile leaf", with_leaf(&mut v, &any, leaf), Expect::Judge)
+        }
+        1 if !numbers.is_empty() => {
+            let at = numbers[r.random_range(0..numbers.len())].clone();
+            let q = common::certificate_oracle::exact(v.pointer(&at).unwrap().as_str().unwrap())
+                .unwrap();
+            let text = respelled(r, &q);
+            (
+                "number re-spelled",
+                with_leaf(&mut v, &at, format!("\"{text}\"")),
+                Expect::Accept,
+            )
+        }
+        2 if !numbers.is_empty() => {
+            let at = numbers[r.random_range(0..numbers.len())].clone();
+            let q = common::certificate_oracle::exact(v.pointer(&at).unwrap().as_str().unwrap())
+                .unwrap();
+            let off =
+                q + common::Q::new(1.into(), num_traits::pow(num_bigint::BigInt::from(10), 30));
+            (
+                "number off by 1e-30",
+                with_leaf(&mut v, &at, format!("\"{off}\"")),
+                Expect::Judge,
+            )
+        }
+        3 => {
+            let digits = [300, 1000, 100_000, 1_000_000][r.random_range(0..4)];
+            let n = huge_integer(r, digits);
+            let leaf = match r.random_range(0..4) {
+                0 => format!("\"{n}\""),
+                1 => format!("\"-{n}\""),
+                2 => format!("\"1/{n}\""),
+                _ => format!("\"{n}/{}\"", huge_integer(r, digits)),
+            };
+            let at = if numbers.is_empty() {
+                any
+            } else {
+                numbers[r.random_range(0..numbers.len())].clone()
+            };
+            ("huge number", with_leaf(&mut v, &at, leaf), Expect::Judge)
+        }
+        4 => {
+            let at = lists[r.random_range(0..lists.len())].clone();
+            let l = v.pointer_mut(&at).unwrap().as_array_mut().unwrap();
+            match (l.len(), r.random_range(0..3)) {
+                (0, _) | (_, 0) => l.push(Value::String("0".into())),
+                (k, 1) => {
+                    l.remove(r.random_range(0..k));
+                }
+                (k, _) => {
+                    let item = l[r.random_range(0..k)].clone();
+                    l.insert(r.random_range(0..=k), item);
+                }
+            }
+            (
+                "list length",
+                serde_json::to_string(&v).unwrap(),
+                Expect::Judge,
+            )
+        }
+        5 => {
+            let at = lists[r.random_range(0..lists.len())].clone();
+            let l = v.pointer_mut(&at).unwrap().as_array_mut().unwrap();
+            let item = l
+                .first()
+                .filter(|i| i.to_string().len() < 64)
+                .cloned()
+                .unwrap_or(Value::String("0".into()));
+            *l = vec![item; 1_000_000];
+            if r.random_range(0..2) == 0 {
+                v["states"] = 1_000_000.into();
+            }
+            (
+                "a 10^6-element list",
+                serde_json::to_string(&v).unwrap(),
+                Expect::Judge,
+            )
+        }
+        6 => {
+            let depth = [64, 200, 10_000, 1_000_000][r.random_range(0..4)];
+            let leaf = format!("{}\"0\"{}", "[".repeat(depth), "]".repeat(depth));
+            ("deep nesting", with_leaf(&mut v, &any, leaf), Expect::Judge)
+        }
+        7 => {
+            let at = objects[r.random_range(0..objects.len())].clone();
+            let key = pick(
+                r,
+                &["extra", "Values", "values ", "\u{1b}[2J", "states", "alpha"],
+            );
+            let o = v.pointer_mut(&at).unwrap().as_object_mut().unwrap();
+            o.insert(key.into(), Value::String("0".into()));
+            (
+                "a field added",
+                serde_json::to_string(&v).unwrap(),
+                Expect::Judge,
+            )
+        }
+        8 => {
+            let at = objects[r.random_range(0..objects.len())].clone();
+            let o = v.pointer_mut(&at).unwrap().as_object_mut().unwrap();
+            if let Some(k) = o.keys().nth(r.random_range(0..o.len().max(1))).cloned() {
+                o.remove(&k);
+            }
+            (
+                "a field removed",
+                serde_json::to_string(&v).unwrap(),
+                Expect::Judge,
+            )
+        }
+        9 => {
+            // The same key twice, the bogus value first or last.
+            let keys: Vec<String> = v.as_object().unwrap().keys().cloned().collect();
+            let key = &keys[r.random_range(0..keys.len())];
+            let bogus = pick(r, HOSTILE_LEAVES);
+            let text = serde_json::to_string(&v).unwrap();
+            let text = if r.random_range(0..2) == 0 {
+                format!("{{\"{key}\":{bogus},{}", &text[1..])
+            } else {
+                format!("{},\"{key}\":{bogus}}}", &text[..text.len() - 1])
+            };
+            ("a duplicate key", text, Expect::Judge)
+        }
+        10 => {
+            let at = r.random_range(0..original.len());
+            ("truncated", original[..at].to_string(), Expect::Judge)
+        }
+        11 => {
+            let mut bytes = original.as_bytes().to_vec();
+            bytes.insert(r.random_range(0..=bytes.len()), 0);
+            (
+                "a NUL byte",
+                String::from_utf8(bytes).unwrap(),
+                Expect::Judge,
+            )
+        }
+        12 => (
+            "pretty-printed",
+            serde_json::to_string_pretty(&v).unwrap(),
+            Expect::Accept,
+        ),
+        13 => {
+            // A wrong SHA-256: one digit changed, or upper case.
+            let sha = v["problem"]["sha256"].as_str().unwrap().to_string();
+            let changed = if r.random_range(0..2) == 0 {
+                sha.to_uppercase()
+            } else {
+                let i = r.random_range(0..sha.len());
+                let d = if &sha[i..=i] == "0" { "1" } else { "0" };
+                format!("{}{d}{}", &sha[..i], &sha[i + 1..])
+            };
+            v["problem"]["sha256"] = changed.into();
+            (
+                "a wrong SHA-256",
+                serde_json::to_string(&v).unwrap(),
+                Expect::Judge,
+            )
+        }
+        14 => {
+            let objective = pick(
+                r,
+                &[
+                    "truecost",
+                    "deterministic",
+                    "reach",
+                    "discounted",
+                    "discount",
+                ],
+            );
+            v["objective"] = objective.into();
+            (
+                "another objective",
+                serde_json::to_string(&v).unwrap(),
+                Expect::Judge,
+            )
+        }
+        _ => ("bytes", mutate(r, original), Expect::Judge),
+    }
+}
+
+/// Certificates of random tiny problems (deterministic and stochastic files, with and without
+/// rewards; `solve --algorithm exact --certificate` for the deterministic, truecost,
+/// discounted and reach objectives, `discount --certificate`), each through `check` unmutated
+/// (accepted, and valid by the independent judge of `common::certificate_oracle`) and mutated
+/// structurally and numerically ([`mutate_certificate`]): a mutated certificate is refused in
+/// one line within [`CASE_SECONDS`], or accepted only if the judge finds it valid; a valid
+/// re-spelling (hexadecimal or unreduced numbers, pretty-printed) is accepted.
+#[test]
+fn certificates() {
+    use common::certificate_oracle::judge;
+    use common::tiny::Tiny;
+    const MUTATIONS: usize = 5;
+    let mut r = rng(7);
+    let dir = scratch("certificates");
+    let mut tally = Tally::new("certificates");
+    for case in 0..cases() {
+        let deterministic = r.random_range(0..2) == 0;
+        let rewards = r.random_range(0..3) == 0;
+        let model = Tiny::random(&mut |n| r.random_range(0..n), deterministic, rewards);
+        let file = model.file();
+        let problem = dir.join(format!("problem{case}.json"));
+        std::fs::write(&problem, &file).unwrap();
+        let cert = dir.join(format!("problem{case}.cert"));
+        let args = certify(&mut r, &problem, &cert);
+        if tally.run(&args) != Class::Ok {
+            tally.fail(format!("no certificate: truecost {args:?}"));
+            continue;
+        }
+        let original = std::fs::read_to_string(&cert).unwrap();
+        let check = |tally: &mut Tally, c: &Path| {
+            tally.run(&["check".into(), "--file".into(), path(&problem), path(c)])
+        };
+        if check(&mut tally, &cert) != Class::Ok {
+            tally.fail(format!(
+                "check refused the certificate of truecost {args:?}"
+            ));
+        }
+        if let Err(why) = judge(&model, file.as_bytes(), &original) {
+            tally.fail(format!(
+                "the certificate of truecost {args:?} is wrong: {why}"
+            ));
+        }
+        for m in 0..MUTATIONS {
+            let (name, text, expect) = mutate_certificate(&mut r, &original);
+            let mutated = dir.join(format!("problem{case}-{m}.cert"));
+            std::fs::write(&mutated, &text).unwrap();
+            match (check(&mut tally, &mutated), expect) {
+                (Class::Ok, _) => {
+                    if let Err(why) = judge(&model, file.as_bytes(), &text) {
+                        tally.fail(format!(
+                            "{name}: check accepted {}: {why}",
+                            mutated.display()
+                        ));
+                    }
+                }
+                (Class::Refused, Expect::Accept) => {
+                    tally.fail(format!("{name}: check refused {}", mutated.display()));
+                }
+                _ => {}
+            }
         }
     }
-    std::fs::remove_dir_all(&dir).ok();
-    report("certificates", &classes);
+    tally.finish(Some(&dir));
 }
 
 /// Storm DRN files written by `export --format drn`, mutated, through `solve`, `compare` and
@@ -692,7 +1121,7 @@ fn certificates() {
 fn drn_files() {
     let mut r = rng(8);
     let dir = scratch("drn");
-    let mut classes = Vec::new();
+    let mut tally = Tally::new("drn files");
     for name in ["slippery.json", "line.json", "fractions-and-stay.json"] {
         let drn = dir.join(format!("{name}.drn"));
         let export = [
@@ -716,9 +1145,70 @@ fn drn_files() {
             };
             let mut args: Vec<String> = command.iter().map(|s| s.to_string()).collect();
             args.extend(["--file".into(), path(&file)]);
-            classes.push(run(&args));
+            tally.run(&args);
         }
     }
+    tally.finish(Some(&dir));
+}
+
+/// A case `certificates` found: a value of 10⁶ hexadecimal digits made `check` reduce a
+/// fraction of millions of bits (quadratic: 22 s of processor time at 4·10⁶ bits, unbounded
+/// below the 1 GiB file limit). An integer of more than 2^20 bits is refused as it is read,
+/// naming the bound; one of exactly 2^20 bits is read, and the certificate rejected by its
+/// conditions (at the goal, whose value must be 0).
+#[test]
+fn an_integer_past_2_20_bits_in_a_certificate_is_refused_as_read() {
+    let dir = scratch("integer-bound");
+    let problem = dir.join("p.json");
+    std::fs::write(
+        &problem,
+        r#"{"format": "truecost-stochastic/1", "states": 2, "initial": 0, "goals": [1],
+ "actions": [[{"cost": "2", "outcomes": [{"to": 0, "p": "3/4"}, {"to": 1, "p": "1/4"}]}], []]}"#,
+    )
+    .unwrap();
+    let cert = dir.join("p.cert");
+    run(&[
+        "solve".into(),
+        "--algorithm".into(),
+        "exact".into(),
+        "--objective".into(),
+        "truecost".into(),
+        "--file".into(),
+        path(&problem),
+        "--certificate".into(),
+        path(&cert),
+    ]);
+    // V(0) = 2 + 3/4 V(0) = 8.
+    let text = std::fs::read_to_string(&cert).unwrap();
+    assert!(text.contains(r#""values":["8","0"]"#), "{text}");
+    let check = |digits: usize| {
+        let value = format!("0xf{}", "e".repeat(digits - 1));
+        let file = dir.join(format!("{digits}.cert"));
+        std::fs::write(
+            &file,
+            text.replace(
+                r#""values":["8","0"]"#,
+                &format!(r#""values":["8","{value}"]"#),
+            ),
+        )
+        .unwrap();
+        let out = Command::new(bin())
+            .args(["check", "--file", &path(&problem), &path(&file)])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(1));
+        String::from_utf8(out.stderr).unwrap()
+    };
+    // 262 145 hexadecimal digits: more than 2^20 bits.
+    let err = check(262_145);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("value of state 1: an integer of 262145 hexadecimal digits")
+            && err.contains("2^20"),
+        "{err}"
+    );
+    // 262 144 digits, the first `f`: exactly 2^20 bits, read; the goal's value is not 0.
+    let err = check(262_144);
+    assert!(err.contains("state 1: condition goal"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
-    report("drn files", &classes);
 }

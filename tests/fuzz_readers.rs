@@ -30,6 +30,7 @@ use num_traits::{One, Zero};
 use proptest::prelude::*;
 use proptest::test_runner::Config;
 
+use common::tiny::gauss_jordan;
 use common::{exact_all, simple_paths, Ext, Q};
 use truecost::model::{file, ExactGraph};
 use truecost::objectives::{Model, Objective};
@@ -263,27 +264,6 @@ fn check_truecost_at_initial(
         Err(e) => clean(&e.to_string())?,
     }
     Ok(())
-}
-
-/// Solves the `k × (k + 1)` augmented system `a` in place by Gauss–Jordan elimination with
-/// exact rationals: afterwards `a[i][k]` is unknown `i`. `regular` says why a pivot exists.
-fn gauss_jordan(a: &mut [Vec<Q>], regular: &str) {
-    let k = a.len();
-    for col in 0..k {
-        let pivot = (col..k).find(|&r| !a[r][col].is_zero()).expect(regular);
-        a.swap(col, pivot);
-        let inv = Q::one() / &a[col][col];
-        let row: Vec<Q> = a[col].iter().map(|v| v * &inv).collect();
-        for (r, other) in a.iter_mut().enumerate() {
-            if r != col && !other[col].is_zero() {
-                let f = other[col].clone();
-                for (o, p) in other.iter_mut().zip(&row).skip(col) {
-                    *o -= p * &f;
-                }
-            }
-        }
-        a[col] = row;
-    }
 }
 
 /// The discounted values at `α` by brute force: the greatest value, per state, over every
@@ -767,4 +747,29 @@ fn discounted_oracle_by_hand() {
         vec![Q::new(2.into(), 3.into()), Q::zero(), Q::zero()]
     );
     check_discounted(*s, &extra).unwrap();
+}
+
+/// A case `mutated_corpus` found (a splice of `big-numbers.json`): the deterministic reader
+/// refused a cost of `-1e10000` echoing all 10 002 characters of it. The number is shortened to
+/// its first 20 characters and its length; the same file through the stochastic reader says
+/// the same.
+#[test]
+fn a_huge_negative_cost_of_a_deterministic_file_is_shortened() {
+    let text = r#"{"initial":1,"goals":[0,0],"actions":[[],[{"to":0,"cost":"0000"},{"to":1,"cost":"-1e10000"},{"to":1,"cost":"-0"}]]}"#;
+    let e = file::from_json(text).unwrap_err().to_string();
+    let head = format!("-1{}", "0".repeat(18));
+    assert_eq!(
+        e,
+        format!(
+            "state 1, action 1: negative stage cost {head}… (10002 characters) (costs must be >= 0)"
+        )
+    );
+    assert_eq!(sfile::from_json(text).unwrap_err().to_string(), e);
+    read_everything(text).unwrap();
+    // A short negative cost is shown whole.
+    let short = text.replace("-1e10000", "-3/4");
+    assert!(file::from_json(&short)
+        .unwrap_err()
+        .to_string()
+        .contains("negative stage cost -3/4 (costs"));
 }

@@ -790,6 +790,21 @@ pub fn from_json_with_objective(text: &str) -> Result<(Problem, FileObjective), 
     from_file(FileProblem::<FileAction>::parse(text)?)
 }
 
+/// A number's text as a message shows it: whole up to 40 characters, otherwise its first 20
+/// characters, "…" and its length (a cost of `-1e10000` has 10 002 characters).
+///
+/// ```text
+/// short_number("-3/4") == "-3/4"
+/// short_number(&format!("-1{}", "0".repeat(10_000))) == "-1000000000000000000… (10002 characters)"
+/// ```
+fn short_number(text: &str) -> String {
+    if text.chars().count() <= 40 {
+        return text.to_string();
+    }
+    let head: String = text.chars().take(20).collect();
+    format!("{head}… ({} characters)", text.chars().count())
+}
+
 /// Builds the deterministic problem of a parsed file, with its rewards, terminal states and
 /// initial distribution (shared with the stochastic reader).
 pub(crate) fn from_file(
@@ -830,7 +845,18 @@ pub(crate) fn from_file(
         moves.push(row);
     }
     let (x1, initial) = read_initial(&file.initial, file.actions.len(), &mut budget)?;
-    let problem = Problem::new(moves, x1, file.goals)?;
+    let problem = Problem::new(moves, x1, file.goals).map_err(|e| match e {
+        ModelError::NegativeCost {
+            state,
+            action,
+            cost,
+        } => ModelError::NegativeCost {
+            state,
+            action,
+            cost: short_number(&cost),
+        },
+        e => e,
+    })?;
     if let Some(x) =
         (0..problem.states()).find(|&x| problem.moves(x).is_empty() && !problem.is_goal(x))
     {

@@ -5,8 +5,10 @@
 //! (states, ordered moves, goals) with their own `Option<BigRational>` arithmetic (`None` = +∞).
 #![allow(dead_code)]
 
+pub mod certificate_oracle;
 pub mod cli;
 pub mod smt;
+pub mod tiny;
 
 use num_bigint::BigInt;
 use num_rational::BigRational;

@@ -732,6 +732,23 @@ fn check_coq_runs_the_verified_checker() {
     ]);
     assert_eq!(v["accepted"], true, "{v}");
     assert_eq!(v["coq_checked"], true, "{v}");
+    // The program that ran: the cached extracted checker, an executable file.
+    let program = v["coq_checker"].as_str().expect("the checker's path");
+    assert_eq!(
+        program,
+        truecost::certificate::coq::extracted_checker()
+            .unwrap()
+            .display()
+            .to_string()
+    );
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let meta = std::fs::metadata(program).unwrap();
+        assert!(
+            meta.is_file() && meta.permissions().mode() & 0o100 != 0,
+            "{program}"
+        );
+    }
     let text = stdout(&["check", source[0], source[1], &p, "--coq"]);
     assert!(
         text.contains("accepted by the verified checker Truecost.CertificateCheck.check"),
@@ -739,6 +756,7 @@ fn check_coq_runs_the_verified_checker() {
     );
     let v = json(&["check", source[0], source[1], &p, "--format", "json"]);
     assert_eq!(v["coq_checked"], false, "{v}");
+    assert!(v["coq_checker"].is_null(), "{v}");
 }
 
 /// An exact value of a certificate as `num`'s `BigRational` (reduced): `"inf"` is `None`, each

@@ -24,7 +24,6 @@ zarith. Without stormpy the tests are skipped, or fail naming it when ``TRUECOST
 import hashlib
 import json
 import os
-import re
 import subprocess
 import tempfile
 import unittest
@@ -32,7 +31,7 @@ from collections import deque
 from fractions import Fraction
 from typing import NamedTuple, Optional
 
-from cli_binary import REPO, truecost_binary
+from cli_binary import truecost_binary
 
 try:
     import stormpy
@@ -179,23 +178,6 @@ class StormModel:
         return "\n".join(lines) + "\n"
 
 
-def coq_checker():
-    """The extracted checker ``truecost check --coq`` builds on first use, in
-    ``$XDG_CACHE_HOME/truecost`` (else ``~/.cache/truecost``) under the first 16 hex digits of
-    the SHA-256 of its embedded sources (src/certificate/coq.rs: each source's name, length and
-    text, in the order that file lists them)."""
-    with open(os.path.join(REPO, "src", "certificate", "coq.rs")) as f:
-        listed = re.findall(r'\(\s*"([^"]+)",\s*include_str!\("\.\./\.\./([^"]+)"\)', f.read())
-    digest = hashlib.sha256()
-    for name, path in listed:
-        with open(os.path.join(REPO, path), "rb") as f:
-            text = f.read()
-        digest.update(f"{name}\n{len(text)}\n".encode() + text + b"\n")
-    cache = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return os.path.join(cache, "truecost", f"coq-checker-{digest.hexdigest()[:16]}",
-                        "truecost-coq-check")
-
-
 _SHARED = {}
 
 
@@ -267,6 +249,7 @@ class ForeignCase(unittest.TestCase):
             report = json.loads(out.stdout)
             self.assertTrue(report["accepted"])
             self.assertEqual(report["coq_checked"], coq)
+            self.assertEqual(report["coq_checker"] is not None, coq)
             self.assertEqual(report["states"], self.built[spec][1].n)
 
     def rejected(self, spec, cert, state, condition):
@@ -289,8 +272,17 @@ class ForeignCase(unittest.TestCase):
             self.assertEqual(self.coq_verdict(spec, cert), "rejected",
                              (spec.name, state, condition))
 
+    def coq_checker(self, spec):
+        """The extracted checker program ``check --coq`` runs (its ``coq_checker`` in the JSON
+        report), asked once per run on the model's own certificate."""
+        if "checker" not in _SHARED:
+            out = self.check(spec, self.certify(spec), True)
+            self.assertEqual(out.returncode, 0, out.stderr)
+            _SHARED["checker"] = json.loads(out.stdout)["coq_checker"]
+        return _SHARED["checker"]
+
     def coq_verdict(self, spec, cert):
-        checker = coq_checker()
+        checker = self.coq_checker(spec)
         self.assertTrue(os.access(checker, os.X_OK),
                         f"the extracted checker {checker} is not built (check --coq builds it)")
         path = os.path.join(self.tmp.name, "coq-input.txt")

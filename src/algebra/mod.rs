@@ -28,3 +28,21 @@ pub mod ordering;
 pub mod poly;
 mod residual;
 mod sparse_lu;
+
+/// A uniform draw from `lo..hi` (tests of the algebra modules).
+#[cfg(test)]
+pub(crate) fn uniform<T: TryInto<i128> + TryFrom<i128>>(
+    rng: &mut rand_chacha::ChaCha8Rng,
+    lo: T,
+    hi: T,
+) -> T {
+    use rand::Rng;
+    let (lo, hi): (i128, i128) = (
+        lo.try_into().ok().expect("in i128"),
+        hi.try_into().ok().expect("in i128"),
+    );
+    let word = (rng.next_u64() as u128) << 64 | rng.next_u64() as u128;
+    T::try_from(lo + (word % (hi - lo) as u128) as i128)
+        .ok()
+        .expect("within the range")
+}

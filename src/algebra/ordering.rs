@@ -363,7 +363,7 @@ impl Symbolic {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::algebra::sparse_lu::uniform;
+    use crate::algebra::uniform;
 
     /// Fill by brute force: eliminate the vertices in order on an explicit graph (each
     /// eliminated vertex joins its remaining neighbours pairwise) and list the entries `(i, k)`

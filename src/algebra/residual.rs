@@ -128,7 +128,7 @@ impl Residual {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::algebra::sparse_lu::uniform;
+    use crate::algebra::uniform;
     use rand::SeedableRng;
     use rand_chacha::ChaCha8Rng;
 

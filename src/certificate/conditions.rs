@@ -98,6 +98,17 @@ impl Scaled {
     }
 }
 
+/// `k / d` (`d > 0`) for a rejection's message: in lowest terms when both have at most
+/// 2^16 bits in all, as they stand otherwise (the gcd of numbers of millions of bits takes
+/// minutes, and the message is cut to 300 characters anyway).
+fn quotient(k: BigInt, d: BigInt) -> Rational {
+    if k.bits() + d.bits() <= 1 << 16 {
+        Rational::new(k, d)
+    } else {
+        Rational::new_raw(k, d)
+    }
+}
+
 /// `Q(x, a) = constant(a) + weight · Σ_y p(y | x, a) V(y)` (`constant` 0 if `None`) over the
 /// certificate's values,
 /// compared with `V(x)` exactly (the "evaluation" and "optimality" conditions of every
@@ -148,7 +159,7 @@ impl<'a> Bellman<'a> {
             let a = policy[x].expect("a chosen action");
             let (k, d) = self.q(a).expect("the chosen action's outcomes are finite");
             if k != self.scaled.value_times(x, &d) {
-                let q = Rational::new(k, d * &self.scaled.scale);
+                let q = quotient(k, d * &self.scaled.scale);
                 return Err(reject(
                     "evaluation",
                     Some(x),
@@ -174,7 +185,7 @@ impl<'a> Bellman<'a> {
                 pairs += 1;
                 let v = self.scaled.value_times(x, &d);
                 if (upper && k > v) || (!upper && k < v) {
-                    let q = Rational::new(k, d * &self.scaled.scale);
+                    let q = quotient(k, d * &self.scaled.scale);
                     let sign = if upper { ">" } else { "<" };
                     return Err(reject(
                         "optimality",

@@ -586,11 +586,14 @@ pub fn coq_verdicts(cases: &[String]) -> Result<Vec<bool>, String> {
     result
 }
 
-/// The verified checker's verdict on one certificate, by the extracted checker: `Ok(true)` if
-/// it accepts.
-pub fn coq_check(mdp: &Mdp, c: &Certificate) -> Result<bool, String> {
+/// The verified checker's verdict on one certificate, by the extracted checker: `Ok((true,
+/// program))` if it accepts, with the path of the checker program that ran
+/// ([`extracted_checker`]).
+pub fn coq_check(mdp: &Mdp, c: &Certificate) -> Result<(bool, PathBuf), String> {
     coq_applies(mdp, c)?;
-    extracted_verdict(&extracted_checker()?, &checker_input(mdp, c))
+    let program = extracted_checker()?;
+    let verdict = extracted_verdict(&program, &checker_input(mdp, c))?;
+    Ok((verdict, program))
 }
 
 #[cfg(all(test, unix))]

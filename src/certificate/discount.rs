@@ -274,10 +274,20 @@ fn list<'a>(v: &'a Value, what: &str) -> Result<&'a Vec<Value>, String> {
 }
 
 fn exact(v: &Value, what: &str) -> Result<Rational, String> {
-    v.as_str()
-        .and_then(parse_exact)
-        .map(|r| Rational::new(r.numer().clone(), r.denom().clone()))
-        .ok_or_else(|| format!("{what} is not an exact number \"p/q\""))
+    let text = v.as_str();
+    text.and_then(parse_exact)
+        .map(|r| {
+            // In lowest terms; an integer already is (a gcd of millions of bits is slow).
+            if r.denom().is_one() {
+                r
+            } else {
+                Rational::new(r.numer().clone(), r.denom().clone())
+            }
+        })
+        .ok_or_else(|| match text.and_then(super::format::too_long) {
+            Some(why) => format!("{what} is {why}"),
+            None => format!("{what} is not an exact number \"p/q\""),
+        })
 }
 
 /// The most coefficients of a polynomial in a discount certificate: the analysis' values have

@@ -178,7 +178,7 @@ fn integer_len_bound(n: &BigInt) -> usize {
 /// buffer is reused, and a batch of values is printed in parallel.
 const BATCH_BYTES: usize = 1 << 22;
 
-/// [`write_over`]'s text into `out`, a batch of values (about [`BATCH_BYTES`]) at a time:
+/// [`write_over`]'s text into `out`, a batch of values (about 4 MiB, `BATCH_BYTES`) at a time:
 /// each batch's numerators are printed in parallel ([`rayon`]) into their places in one
 /// buffer, sized exactly, and handed to `out` in one `write_all`.
 pub fn write_over_to(

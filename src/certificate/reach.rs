@@ -22,7 +22,7 @@ pub(super) fn reach(
     for (x, v) in c.values.iter().enumerate() {
         match v {
             None => return Err(reject("range", Some(x), "V = inf".into())),
-            Some(r) if r.is_negative() || r > &one => {
+            Some(r) if r.is_negative() || r.numer() > r.denom() => {
                 return Err(reject(
                     "range",
                     Some(x),

@@ -497,11 +497,17 @@ pub fn check(
                 }
                 _ => "Truecost.CertificateCheck.check",
             };
-            if coq && !certificate::coq::coq_check(&mdp, &cert)? {
-                return Err(format!(
-                    "certificate rejected by the Coq checker ({coq_checker})"
-                ));
-            }
+            let program = if coq {
+                let (accepted, program) = certificate::coq::coq_check(&mdp, &cert)?;
+                if !accepted {
+                    return Err(format!(
+                        "certificate rejected by the Coq checker ({coq_checker})"
+                    ));
+                }
+                Some(program.display().to_string())
+            } else {
+                None
+            };
             Ok(match format {
                 ReportFormat::Json => pretty(&serde_json::json!({
                     "accepted": true,
@@ -513,6 +519,7 @@ pub fn check(
                     "actions": acceptance.actions,
                     "conditions": acceptance.conditions,
                     "coq_checked": coq,
+                    "coq_checker": program,
                 })),
                 ReportFormat::Text => {
                     let mut s = format!(

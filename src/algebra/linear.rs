@@ -30,14 +30,16 @@
 //!    above only schedules work); lifting goes on (up to the Hadamard bound, after which
 //!    reconstruction is guaranteed) until it holds.
 
+mod residual;
+
 use dashu_base::{BitTest, DivRem, Gcd, SquareRoot, UnsignedAbs};
 use dashu_int::{IBig, UBig};
 use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 
 use super::ordering::{factor_entries, nested_dissection, Graph, Symbolic};
-use super::residual::Residual;
 use super::sparse_lu::{LuPattern, Modulus, SparseModularLu};
+use residual::Residual;
 
 /// A square sparse integer system `A·z = r`.
 #[derive(Clone, Debug, Default)]

@@ -26,7 +26,6 @@ pub mod linear;
 pub mod lowest_terms;
 pub mod ordering;
 pub mod poly;
-mod residual;
 mod sparse_lu;
 
 /// A uniform draw from `lo..hi` (tests of the algebra modules).

@@ -1,4 +1,4 @@
-//! The residual of Dixon lifting (step 3 of [`super::linear`]'s module docs): `r ← (r − A·z)/p`
+//! The residual of Dixon lifting (step 3 of [`super`]'s module docs): `r ← (r − A·z)/p`
 //! after each solve modulo `p`, kept in the factor's numbering so that the next right-hand side
 //! `r mod p` is read in place.
 //!
@@ -6,8 +6,8 @@
 //! the exact division by `p` is a multiplication by `p⁻¹ mod 2⁶⁴`; otherwise the update is done
 //! in checked `i128`. Both give the same integers.
 
-use super::linear::{LinearError, SparseSystem};
-use super::sparse_lu::Modulus;
+use super::{LinearError, SparseSystem};
+use crate::algebra::sparse_lu::Modulus;
 
 /// `A` with rows and columns in a factor's numbering, and the current residual.
 pub(crate) struct Residual {

@@ -159,7 +159,7 @@ class Threads(unittest.TestCase):
 
         def analyse():
             try:
-                truecost.discount("cliffwalking:slippery=true")
+                truecost.discount("frozenlake:map=8x8")
             finally:
                 done.set()
 

@@ -95,19 +95,10 @@ fn mixed_lines(n: usize, length: usize) -> String {
 /// once at cost 40, so that most states change their optimal action at their own `α`.
 fn twelve_chains() -> String {
     let n = 2400;
-    let actions: Vec<String> = (0..n)
-        .map(|s| {
-            let next = if s % 200 == 199 { n } else { s + 1 };
-            let k = 1 + (5 * s) % 13;
-            format!(r#"[{{"to": {next}, "cost": "{k}/13"}}, {{"to": {n}, "cost": "40"}}]"#)
-        })
-        .chain(["[]".to_string()])
-        .collect();
-    format!(
-        r#"{{"states": {}, "initial": 0, "goals": [{n}], "actions": [{}]}}"#,
-        n + 1,
-        actions.join(",")
-    )
+    common::line_chains(n, 200, |s, next| {
+        let k = 1 + (5 * s) % 13;
+        format!(r#"[{{"to": {next}, "cost": "{k}/13"}}, {{"to": {n}, "cost": "40"}}]"#)
+    })
 }
 
 /// A stochastic file whose state 0 reaches the goal with probability `1/2^k` per try (else

@@ -12,6 +12,9 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+mod direct;
+pub use direct::DirectFile;
+
 /// What an output path names.
 enum Target {
     /// Nothing yet, or a regular file: produced by a rename.

@@ -57,13 +57,14 @@ pub fn write_certificate(path: &std::path::Path, text: &str) -> Result<(), Strin
 /// then a rename; a pipe or a terminal is written directly. The temporary's name is
 /// unpredictable; the file written is created under it anew with `O_CREAT | O_EXCL` (which
 /// follows no symbolic link and opens no file that exists), so nothing planted at that name in
-/// the meantime is written through. One line on error, naming the path; a pipe closed by its
+/// the meantime is written through, and written around the page cache where the file system
+/// allows it ([`truecost::atomic::DirectFile`]: the kernel's copy of every byte cost as much
+/// as making the text). One line on error, naming the path; a pipe closed by its
 /// reader is not an error (as for [`truecost::atomic::write`]).
 pub fn write_certificate_with(
     path: &std::path::Path,
     write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
 ) -> Result<(), String> {
-    use std::os::unix::fs::OpenOptionsExt;
     let failed = |e: std::io::Error| {
         format!(
             "cannot write {}: {e}",
@@ -83,17 +84,8 @@ pub fn write_certificate_with(
             };
         }
         std::fs::remove_file(target).map_err(failed)?;
-        let mut file = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .mode(0o666)
-            .open(target)
-            .map_err(failed)?;
-        let mut out = std::io::BufWriter::with_capacity(1 << 16, &mut file);
-        write(&mut out)
-            .and_then(|()| std::io::Write::flush(&mut out))
-            .map_err(failed)?;
-        drop(out);
-        file.sync_data().map_err(failed)
+        let mut file = truecost::atomic::DirectFile::create(target).map_err(failed)?;
+        write(&mut file).map_err(failed)?;
+        file.finish().map(drop).map_err(failed)
     })
 }

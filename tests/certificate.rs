@@ -904,3 +904,61 @@ fn a_drn_file_s_goal_label_and_cost_reward_are_recorded_and_reused() {
     let line = rejected(dir.path(), &source, &plain);
     assert!(line.contains("no reward model named 'cost'"), "{line}");
 }
+
+/// A certificate that cannot be written is refused before any work: the refusal names the
+/// certificate's path, not the problem file that does not exist either (which the work would
+/// read first), for `solve` (files and environments) and `discount`.
+#[test]
+fn an_unwritable_certificate_is_refused_before_the_problem_is_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing_problem = s(&dir.path().join("no-such-problem.json"));
+    let cert = s(&dir.path().join("no-such-dir").join("c.json"));
+    for args in [
+        vec![
+            "solve",
+            "--file",
+            &missing_problem,
+            "--algorithm",
+            "exact",
+            "--certificate",
+            &cert,
+        ],
+        vec![
+            "solve",
+            "--env",
+            "no-such-env",
+            "--algorithm",
+            "exact",
+            "--certificate",
+            &cert,
+        ],
+        vec![
+            "discount",
+            "--file",
+            &missing_problem,
+            "--certificate",
+            &cert,
+        ],
+    ] {
+        let err = fails_one_line(&args);
+        assert!(
+            err.contains("cannot write") && err.contains("no-such-dir"),
+            "{args:?}: {err}"
+        );
+        assert!(
+            !err.contains("no-such-problem") && !err.contains("no-such-env"),
+            "{err}"
+        );
+    }
+    let into_directory = s(dir.path());
+    let err = fails_one_line(&[
+        "solve",
+        "--file",
+        &missing_problem,
+        "--algorithm",
+        "exact",
+        "--certificate",
+        &into_directory,
+    ]);
+    assert!(err.contains("is a directory"), "{err}");
+}

@@ -138,6 +138,9 @@ pub fn discount(args: &DiscountArgs) -> Result<String, String> {
     if args.env.env.is_none() && args.file.is_none() && args.problem.is_none() {
         return Err("give --problem N, --file FILE or --env SPEC".into());
     }
+    if let Some(path) = &args.certificate {
+        truecost::atomic::check_target(path)?;
+    }
     let loaded = discount_model(
         args.env.env.as_deref(),
         args.problem,

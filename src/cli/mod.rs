@@ -350,6 +350,9 @@ fn solve(args: &SolveArgs) -> Result<String, String> {
     {
         return Err("--certificate certifies the exact optimum: use --algorithm exact (without --mode reference or --model-free)".into());
     }
+    if let Some(path) = &args.certificate {
+        truecost::atomic::check_target(path)?;
+    }
     if args.with_cost && args.objective.objective != Some(env::ObjectiveName::Reach) {
         return Err("--with-cost applies to --objective reach (the other objectives always compute the reported policy's expected truecost and steps)".into());
     }

@@ -31,9 +31,10 @@
 //!    reconstruction is guaranteed) until it holds.
 
 mod lanes;
+mod reconstruction;
 mod residual;
 
-use dashu_base::{BitTest, DivRem, Gcd, SquareRoot, UnsignedAbs};
+use dashu_base::{BitTest, DivRem, SquareRoot, UnsignedAbs};
 use dashu_int::{IBig, UBig};
 use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
@@ -41,6 +42,7 @@ use num_traits::{One, Signed, Zero};
 use super::ordering::{factor_entries, nested_dissection, Graph, Symbolic};
 use super::sparse_lu::{LuPattern, Modulus, SparseModularLu};
 use lanes::Lane;
+use reconstruction::reconstruct;
 
 /// A square sparse integer system `A·z = r`.
 #[derive(Clone, Debug, Default)]
@@ -492,25 +494,6 @@ fn primes() -> impl Iterator<Item = u64> {
                 .take_while(|d| d * d <= c)
                 .all(|d| c % d != 0)
     })
-}
-
-/// Rational reconstruction: `a/b ≡ t (mod m)` with `|a| ≤ bound`, `0 < b ≤ bound`, if any
-/// (`0 ≤ t < m`; half-way extended Euclid).
-fn reconstruct(t: &UBig, m: &UBig, bound: &UBig) -> Option<(IBig, UBig)> {
-    let (mut r0, mut r1) = (m.clone(), t.clone());
-    let (mut s0, mut s1) = (IBig::ZERO, IBig::ONE);
-    while &r1 > bound {
-        let (q, r) = (&r0).div_rem(&r1);
-        r0 = std::mem::replace(&mut r1, r);
-        let s = &s0 - IBig::from(q) * &s1;
-        s0 = std::mem::replace(&mut s1, s);
-    }
-    if s1 == IBig::ZERO {
-        return None;
-    }
-    let (sign, b) = s1.into_parts();
-    let a = IBig::from_parts(sign, r1);
-    (&b <= bound && (&a).unsigned_abs().gcd(&b) == UBig::ONE).then_some((a, b))
 }
 
 /// `t mod m` as the symmetric residue in `(−m/2, m/2]`.

@@ -16,8 +16,12 @@
 //!    moves on to the next prime), and each lifting step is one forward and one back
 //!    substitution in that factor;
 //! 3. lift: `z_k = A⁻¹ r_k mod p`, `r_{k+1} = (r_k − A z_k)/p` (exact, and `|r_k|` stays below
-//!    `Σ|A_ij| + |r_0|/p^k`, so every step is word arithmetic); `Σ z_k p^k ≡ z (mod p^K)`;
-//! 4. rational reconstruction with one common denominator `d`, first tried (on three probe
+//!    `Σ|A_ij| + |r_0|/p^k`, so every step is word arithmetic); `Σ z_k p^k ≡ z (mod p^K)`.
+//!    From 500 unknowns on a machine with two cores or more, two primes are
+//!    lifted at once, one thread each, for half the steps, and the two expansions combined by
+//!    the Chinese remainder theorem into `z mod (p₁p₂)^K` (`linear/lanes.rs`);
+//! 4. rational reconstruction with one common denominator `d` (half-way extended Euclid with
+//!    Lehmer's acceleration, `linear/reconstruction.rs`), first tried (on three probe
 //!    unknowns) geometrically often, then at the step count predicted in `f64` from
 //!    `log2 |det A|` (the band LU's pivots) and `max |z|`, then every 2% more steps;
 //!    the `p`-adic digits become integers by divide and conquer (`dashu`), and the numerators
@@ -194,7 +198,8 @@ pub struct ExactSolution {
     pub numerators: Vec<BigInt>,
     /// The common denominator.
     pub denominator: BigInt,
-    /// Lifting steps performed (each one solve modulo `p`).
+    /// Lifting steps performed (each one solve modulo a prime; with two lanes, both lanes' steps
+    /// together).
     pub lifting_steps: usize,
 }
 

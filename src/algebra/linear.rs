@@ -1348,7 +1348,7 @@ mod tests {
 
     /// A random sparse system shaped like policy evaluation: `s·z_i − Σ w·z_j = r_i` with
     /// `Σ w < s` on random neighbours.
-    pub(super) fn random_system(n: usize, seed: u64) -> SparseSystem {
+    fn random_system(n: usize, seed: u64) -> SparseSystem {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let mut s = SparseSystem::new();
         for i in 0..n {
@@ -1387,7 +1387,7 @@ mod tests {
 
     /// `A⁻¹·r` by Gaussian elimination over the rationals with row pivoting (`num`'s
     /// `BigRational`, independent of the modular solvers).
-    pub(super) fn rational_solve(system: &SparseSystem) -> Vec<num_rational::BigRational> {
+    fn rational_solve(system: &SparseSystem) -> Vec<num_rational::BigRational> {
         use num_rational::BigRational;
         let n = system.len();
         let mut a: Vec<Vec<BigRational>> = (0..n)

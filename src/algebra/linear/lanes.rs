@@ -335,29 +335,4 @@ mod tests {
             }
         }
     }
-
-    /// Two lanes on random systems against Gaussian elimination over the rationals, on systems
-    /// large enough for several attempts.
-    #[test]
-    fn two_lanes_give_the_rational_solution() {
-        use super::super::tests::{random_system, rational_solve};
-        use super::super::{solve_exact_factored, FactorChoice, Lanes, Solver};
-        use num_rational::BigRational;
-        for (n, seed) in [(3, 11), (30, 12), (90, 13)] {
-            let system = random_system(n, seed);
-            let want = rational_solve(&system);
-            let solver = Solver {
-                fast_path: true,
-                factor: FactorChoice::Cheaper,
-                lanes: Lanes::Two,
-            };
-            let z = solve_exact_factored(&system, &mut |_| {}, solver).unwrap();
-            let got: Vec<BigRational> = z
-                .numerators
-                .iter()
-                .map(|v| BigRational::new(v.clone(), z.denominator.clone()))
-                .collect();
-            assert_eq!(got, want, "n = {n}");
-        }
-    }
 }

@@ -19,35 +19,65 @@ const LEHMER_FROM_BITS: usize = 192;
 /// Rational reconstruction: `a/b ≡ t (mod m)` with `|a| ≤ bound`, `0 < b ≤ bound`, if any
 /// (`0 ≤ t < m`; half-way extended Euclid).
 pub(super) fn reconstruct(t: &UBig, m: &UBig, bound: &UBig) -> Option<(IBig, UBig)> {
-    let (mut r0, mut r1) = (m.clone(), t.clone());
-    let (mut s0, mut s1) = (IBig::ZERO, IBig::ONE);
+    let mut e = Euclid::new(t, m);
     let mut lehmer = true;
-    while &r1 > bound {
-        if lehmer && r0.bit_len() >= LEHMER_FROM_BITS {
-            if let Some([a, b, c, d]) = quotient_run(&r0, &r1) {
-                let (u, v) = (IBig::from(r0.clone()), IBig::from(r1.clone()));
+    while &e.r1 > bound {
+        if lehmer && e.r0.bit_len() >= LEHMER_FROM_BITS {
+            if let Some([a, b, c, d]) = quotient_run(&e.r0, &e.r1) {
+                let (u, v) = (IBig::from(e.r0.clone()), IBig::from(e.r1.clone()));
                 let next = UBig::try_from(combine(c, &u, d, &v)).expect("a remainder");
                 if &next > bound {
-                    r0 = UBig::try_from(combine(a, &u, b, &v)).expect("a remainder");
-                    r1 = next;
-                    (s0, s1) = (combine(a, &s0, b, &s1), combine(c, &s0, d, &s1));
+                    e.r0 = UBig::try_from(combine(a, &u, b, &v)).expect("a remainder");
+                    e.r1 = next;
+                    (e.s0, e.s1) = (combine(a, &e.s0, b, &e.s1), combine(c, &e.s0, d, &e.s1));
                     continue;
                 }
                 // The run passes the bound: finish one quotient at a time.
                 lehmer = false;
             }
         }
-        let (q, r) = (&r0).div_rem(&r1);
-        r0 = std::mem::replace(&mut r1, r);
-        let s = &s0 - IBig::from(q) * &s1;
-        s0 = std::mem::replace(&mut s1, s);
+        e.divide();
     }
-    if s1 == IBig::ZERO {
-        return None;
+    e.fraction(bound)
+}
+
+/// The extended Euclid of `(m, t)`: consecutive remainders `r0 > r1` and their cofactors
+/// `s0, s1` of `t` (`r ≡ s·t mod m`).
+struct Euclid {
+    r0: UBig,
+    r1: UBig,
+    s0: IBig,
+    s1: IBig,
+}
+
+impl Euclid {
+    fn new(t: &UBig, m: &UBig) -> Self {
+        Euclid {
+            r0: m.clone(),
+            r1: t.clone(),
+            s0: IBig::ZERO,
+            s1: IBig::ONE,
+        }
     }
-    let (sign, b) = s1.into_parts();
-    let a = IBig::from_parts(sign, r1);
-    (&b <= bound && (&a).unsigned_abs().gcd(&b) == UBig::ONE).then_some((a, b))
+
+    /// One quotient by a long division.
+    fn divide(&mut self) {
+        let (q, r) = (&self.r0).div_rem(&self.r1);
+        self.r0 = std::mem::replace(&mut self.r1, r);
+        let s = &self.s0 - IBig::from(q) * &self.s1;
+        self.s0 = std::mem::replace(&mut self.s1, s);
+    }
+
+    /// The fraction `r1/s1` where the search stopped, if it is one (`s1 ≠ 0`, `|s1| ≤ bound`,
+    /// in lowest terms), with a positive denominator.
+    fn fraction(self, bound: &UBig) -> Option<(IBig, UBig)> {
+        if self.s1 == IBig::ZERO {
+            return None;
+        }
+        let (sign, b) = self.s1.into_parts();
+        let a = IBig::from_parts(sign, self.r1);
+        (&b <= bound && (&a).unsigned_abs().gcd(&b) == UBig::ONE).then_some((a, b))
+    }
 }
 
 /// `a·x + b·y`.
@@ -86,22 +116,13 @@ mod tests {
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
-    /// The half-way extended Euclid one long division per quotient (the definition).
+    /// The half-way extended Euclid with one long division per quotient (the definition).
     fn by_division(t: &UBig, m: &UBig, bound: &UBig) -> Option<(IBig, UBig)> {
-        let (mut r0, mut r1) = (m.clone(), t.clone());
-        let (mut s0, mut s1) = (IBig::ZERO, IBig::ONE);
-        while &r1 > bound {
-            let (q, r) = (&r0).div_rem(&r1);
-            r0 = std::mem::replace(&mut r1, r);
-            let s = &s0 - IBig::from(q) * &s1;
-            s0 = std::mem::replace(&mut s1, s);
+        let mut e = Euclid::new(t, m);
+        while &e.r1 > bound {
+            e.divide();
         }
-        if s1 == IBig::ZERO {
-            return None;
-        }
-        let (sign, b) = s1.into_parts();
-        let a = IBig::from_parts(sign, r1);
-        (&b <= bound && (&a).unsigned_abs().gcd(&b) == UBig::ONE).then_some((a, b))
+        e.fraction(bound)
     }
 
     fn random_bits(rng: &mut ChaCha8Rng, bits: usize) -> UBig {

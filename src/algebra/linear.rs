@@ -17,8 +17,8 @@
 //!    substitution in that factor;
 //! 3. lift: `z_k = A⁻¹ r_k mod p`, `r_{k+1} = (r_k − A z_k)/p` (exact, and `|r_k|` stays below
 //!    `Σ|A_ij| + |r_0|/p^k`, so every step is word arithmetic); `Σ z_k p^k ≡ z (mod p^K)`.
-//!    From 500 unknowns on a machine with two cores or more, two primes are
-//!    lifted at once, one thread each, for half the steps, and the two expansions combined by
+//!    From 500 unknowns two primes are lifted at once, one thread each (on every machine, so
+//!    the steps are the same everywhere; on one core the threads take turns), for half the steps, and the two expansions combined by
 //!    the Chinese remainder theorem into `z mod (p₁p₂)^K` (`linear/lanes.rs`);
 //! 4. rational reconstruction with one common denominator `d` (half-way extended Euclid with
 //!    Lehmer's acceleration, `linear/reconstruction.rs`), first tried (on three probe
@@ -950,11 +950,11 @@ enum Lanes {
 const TWO_LANES_FROM: usize = 500;
 
 impl Lanes {
-    /// Two lanes for systems of at least [`TWO_LANES_FROM`] unknowns on a machine with more than
-    /// one core; one otherwise.
+    /// Two lanes for systems of at least [`TWO_LANES_FROM`] unknowns, one otherwise — on any
+    /// machine, so that the steps reported are the same everywhere (on one core the two
+    /// threads take turns).
     fn for_system(system: &SparseSystem) -> Self {
-        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-        if system.len() >= TWO_LANES_FROM && cores > 1 {
+        if system.len() >= TWO_LANES_FROM {
             Lanes::Two
         } else {
             Lanes::One

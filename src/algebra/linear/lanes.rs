@@ -214,20 +214,34 @@ pub(super) fn lift_two(
         let target = next_try.min(max_rows);
         let steps = 2 * (target - rows);
         let done = 4 * rows;
-        std::thread::scope(|scope| {
-            let other = scope.spawn(|| (0..steps).try_for_each(|_| second.step()));
-            let mine = (0..steps).try_for_each(|k| {
+        let mut first_lane = |k_steps: usize| {
+            (0..k_steps).try_for_each(|k| {
                 first.step()?;
                 for s in [done + 2 * k + 1, done + 2 * k + 2] {
                     progress(LiftProgress { steps: s, expected });
                 }
-                Ok(())
-            });
-            let theirs = other
-                .join()
-                .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
-            mine.and(theirs)
+                Ok::<(), LinearError>(())
+            })
+        };
+        // The second lane on a thread of its own; where none can be started, after the first
+        // on this one (the same digits, one core's time).
+        let spawned = std::thread::scope(|scope| {
+            let other = std::thread::Builder::new()
+                .spawn_scoped(scope, || (0..steps).try_for_each(|_| second.step()));
+            let mine = first_lane(steps);
+            match other {
+                Ok(other) => {
+                    let theirs = other
+                        .join()
+                        .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+                    mine.and(theirs).map(|()| true)
+                }
+                Err(_) => mine.map(|()| false),
+            }
         })?;
+        if !spawned {
+            (0..steps).try_for_each(|_| second.step())?;
+        }
         rows = target;
         next_try = if rows < expected_rows {
             ((rows * 3).div_ceil(2)).max(rows + 1).min(expected_rows)

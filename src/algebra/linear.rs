@@ -16,8 +16,12 @@
 //!    moves on to the next prime), and each lifting step is one forward and one back
 //!    substitution in that factor;
 //! 3. lift: `z_k = A⁻¹ r_k mod p`, `r_{k+1} = (r_k − A z_k)/p` (exact, and `|r_k|` stays below
-//!    `Σ|A_ij| + |r_0|/p^k`, so every step is word arithmetic); `Σ z_k p^k ≡ z (mod p^K)`;
-//! 4. rational reconstruction with one common denominator `d`, first tried (on three probe
+//!    `Σ|A_ij| + |r_0|/p^k`, so every step is word arithmetic); `Σ z_k p^k ≡ z (mod p^K)`.
+//!    From 500 unknowns two primes are lifted at once, one thread each (on every machine, so
+//!    the steps are the same everywhere; on one core the threads take turns), for half the steps, and the two expansions combined by
+//!    the Chinese remainder theorem into `z mod (p₁p₂)^K` (`linear/lanes.rs`);
+//! 4. rational reconstruction with one common denominator `d` (half-way extended Euclid with
+//!    Lehmer's acceleration, `linear/reconstruction.rs`), first tried (on three probe
 //!    unknowns) geometrically often, then at the step count predicted in `f64` from
 //!    `log2 |det A|` (the band LU's pivots) and `max |z|`, then every 2% more steps;
 //!    the `p`-adic digits become integers by divide and conquer (`dashu`), and the numerators
@@ -30,16 +34,19 @@
 //!    above only schedules work); lifting goes on (up to the Hadamard bound, after which
 //!    reconstruction is guaranteed) until it holds.
 
+mod lanes;
+mod reconstruction;
 mod residual;
 
-use dashu_base::{BitTest, DivRem, Gcd, SquareRoot, UnsignedAbs};
+use dashu_base::{BitTest, DivRem, SquareRoot, UnsignedAbs};
 use dashu_int::{IBig, UBig};
 use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 
 use super::ordering::{factor_entries, nested_dissection, Graph, Symbolic};
 use super::sparse_lu::{LuPattern, Modulus, SparseModularLu};
-use residual::Residual;
+use lanes::Lane;
+use reconstruction::reconstruct;
 
 /// A square sparse integer system `A·z = r`.
 #[derive(Clone, Debug, Default)]
@@ -191,7 +198,8 @@ pub struct ExactSolution {
     pub numerators: Vec<BigInt>,
     /// The common denominator.
     pub denominator: BigInt,
-    /// Lifting steps performed (each one solve modulo `p`).
+    /// Lifting steps performed (each one solve modulo a prime; with two lanes, both lanes' steps
+    /// together).
     pub lifting_steps: usize,
 }
 
@@ -493,25 +501,6 @@ fn primes() -> impl Iterator<Item = u64> {
     })
 }
 
-/// Rational reconstruction: `a/b ≡ t (mod m)` with `|a| ≤ bound`, `0 < b ≤ bound`, if any
-/// (`0 ≤ t < m`; half-way extended Euclid).
-fn reconstruct(t: &UBig, m: &UBig, bound: &UBig) -> Option<(IBig, UBig)> {
-    let (mut r0, mut r1) = (m.clone(), t.clone());
-    let (mut s0, mut s1) = (IBig::ZERO, IBig::ONE);
-    while &r1 > bound {
-        let (q, r) = (&r0).div_rem(&r1);
-        r0 = std::mem::replace(&mut r1, r);
-        let s = &s0 - IBig::from(q) * &s1;
-        s0 = std::mem::replace(&mut s1, s);
-    }
-    if s1 == IBig::ZERO {
-        return None;
-    }
-    let (sign, b) = s1.into_parts();
-    let a = IBig::from_parts(sign, r1);
-    (&b <= bound && (&a).unsigned_abs().gcd(&b) == UBig::ONE).then_some((a, b))
-}
-
 /// `t mod m` as the symmetric residue in `(−m/2, m/2]`.
 fn symmetric(t: UBig, m: &UBig, half: &UBig) -> IBig {
     if &t > half {
@@ -521,22 +510,63 @@ fn symmetric(t: UBig, m: &UBig, half: &UBig) -> IBig {
     }
 }
 
-/// The lifted digits: `digits[k][j]` is the `k`-th base-`p²` digit of unknown `j` (two lifting
-/// steps packed per `u64`), and the powers `(p²)^(2^i)` for divide-and-conquer conversion.
+/// The solution lifted so far, `x ≡ A⁻¹·r` modulo a modulus `m` that grows with the lifting:
+/// one prime's `p`-adic digits ([`Digits`]), or two primes' combined by the Chinese remainder
+/// theorem ([`lanes::Combined`]). Reconstruction ([`attempt`]) reads it only through these.
+trait Expansion: Sync {
+    /// Readies the conversions for the digits lifted so far.
+    fn prepare(&mut self);
+    /// The modulus `m` of [`value`](Self::value).
+    fn modulus(&self) -> UBig;
+    /// `x_j mod m`, in `[0, m)`.
+    fn value(&self, j: usize) -> UBig;
+    /// The fewest packed rows of digits whose modulus exceeds `2^bits`, when fewer than all
+    /// (`None`: all the digits are needed).
+    fn prefix_rows(&self, bits: f64) -> Option<usize>;
+    /// The modulus of the first `rows` packed rows.
+    fn prefix_modulus(&self, rows: usize) -> UBig;
+    /// `x_j` modulo [`prefix_modulus`](Self::prefix_modulus)`(rows)`.
+    fn prefix(&self, j: usize, rows: usize) -> UBig;
+}
+
+/// The lifted digits of one prime `p`: `rows[k][j]` is the `k`-th base-`p²` digit of unknown
+/// `j` (two lifting steps packed per `u64`), and the powers `(p²)^(2^i)` for
+/// divide-and-conquer conversion.
 struct Digits {
     rows: Vec<Vec<u64>>,
-    base: u64,
+    p: u64,
+    /// Lifting steps stored (`2·rows.len()` or one less).
+    steps: usize,
     powers: Vec<UBig>,
 }
 
 impl Digits {
-    /// `Σ_k digits[k][j]·(p²)^k` by divide and conquer (quasi-linear, unlike Horner's rule).
-    fn value(&self, j: usize) -> UBig {
-        self.prefix(j, self.rows.len())
+    fn new(p: u64) -> Self {
+        Digits {
+            rows: Vec::new(),
+            p,
+            steps: 0,
+            powers: Vec::new(),
+        }
     }
 
-    /// The value of the first `rows` packed digits of unknown `j` (that is, modulo `p^(2·rows)`).
-    fn prefix(&self, j: usize, rows: usize) -> UBig {
+    /// Stores the digit `y[position[j]]` of every unknown `j` (one lifting step).
+    fn push(&mut self, y: &[u64], position: &[usize]) {
+        if self.steps.is_multiple_of(2) {
+            self.rows.push(position.iter().map(|&new| y[new]).collect());
+        } else {
+            let p = self.p;
+            let last = self.rows.last_mut().expect("pushed at the even step");
+            for (d, &new) in last.iter_mut().zip(position) {
+                *d += y[new] * p;
+            }
+        }
+        self.steps += 1;
+    }
+
+    /// The value of the first `rows` packed digits of unknown `j` (that is, modulo
+    /// `p^(2·rows)`), by divide and conquer (quasi-linear, unlike Horner's rule).
+    fn column(&self, j: usize, rows: usize) -> UBig {
         let column: Vec<u64> = self.rows[..rows].iter().map(|row| row[j]).collect();
         self.convert(&column)
     }
@@ -545,7 +575,7 @@ impl Digits {
         if digits.len() <= 16 {
             let mut acc = UBig::ZERO;
             for &d in digits.iter().rev() {
-                acc = acc * self.base + d;
+                acc = acc * (self.p * self.p) + d;
             }
             return acc;
         }
@@ -553,17 +583,42 @@ impl Digits {
         let h = 1usize << level;
         self.convert(&digits[..h]) + self.convert(&digits[h..]) * &self.powers[level]
     }
+}
 
+impl Expansion for Digits {
     /// Makes `powers` long enough for the current number of digits.
-    fn extend_powers(&mut self) {
+    fn prepare(&mut self) {
         if self.powers.is_empty() {
-            self.powers.push(UBig::from(self.base));
+            self.powers.push(UBig::from(self.p * self.p));
         }
         while (1usize << self.powers.len()) < self.rows.len() {
             let last = self.powers.last().expect("non-empty");
             let square = last * last;
             self.powers.push(square);
         }
+    }
+
+    /// `p^steps`.
+    fn modulus(&self) -> UBig {
+        UBig::from(self.p).pow(self.steps)
+    }
+
+    fn value(&self, j: usize) -> UBig {
+        self.column(j, self.rows.len())
+    }
+
+    /// An even number of steps (whole packed digits), fewer than those lifted.
+    fn prefix_rows(&self, bits: f64) -> Option<usize> {
+        let rows = ((bits / (self.p as f64).log2() / 2.0).ceil() as usize).max(1);
+        (2 * rows < self.steps).then_some(rows)
+    }
+
+    fn prefix_modulus(&self, rows: usize) -> UBig {
+        UBig::from(self.p).pow(2 * rows)
+    }
+
+    fn prefix(&self, j: usize, rows: usize) -> UBig {
+        self.column(j, rows)
     }
 }
 
@@ -696,16 +751,14 @@ const EXTRA_PROBES: usize = 32;
 ///    residue is not small, then the fast path with that `d`, else the same exact check.
 fn attempt(
     system: &SparseSystem,
-    digits: &mut Digits,
-    p: u64,
-    steps: usize,
+    digits: &mut dyn Expansion,
     log2_max: f64,
     plan: &PeelPlan,
 ) -> Option<(Vec<BigInt>, BigInt)> {
     use rayon::prelude::*;
     let n = system.len();
-    digits.extend_powers();
-    let m = UBig::from(p).pow(steps);
+    digits.prepare();
+    let m = digits.modulus();
     let half = &m >> 1usize;
     let bound = half.sqrt();
     let digits = &*digits;
@@ -744,14 +797,14 @@ fn attempt(
             to_num(&IBig::from(d.clone())),
         )
     };
-    // 2. Fast path on a prefix of the digits (an even number of steps: whole packed digits).
+    // 2. Fast path on a prefix of the digits (whole packed digits).
     let fast = |d: &UBig| -> Option<Vec<IBig>> {
         let needed_bits = d.bit_len() as f64 + log2_max.max(0.0) + 16.0;
-        let rows = ((needed_bits / (p as f64).log2() / 2.0).ceil() as usize).max(1);
-        if !(log2_max.is_finite() && 2 * rows < steps) {
+        if !log2_max.is_finite() {
             return None;
         }
-        let m = UBig::from(p).pow(2 * rows);
+        let rows = digits.prefix_rows(needed_bits)?;
+        let m = digits.prefix_modulus(rows);
         let half = &m >> 1usize;
         let barrett = Barrett::new(&m);
         let seeds: Vec<(usize, IBig)> = plan
@@ -875,7 +928,47 @@ fn solve_exact_general(
     progress: &mut dyn FnMut(LiftProgress),
     fast_path: bool,
 ) -> Result<ExactSolution, LinearError> {
-    solve_exact_factored(system, progress, fast_path, FactorChoice::Cheaper)
+    let solver = Solver {
+        fast_path,
+        factor: FactorChoice::Cheaper,
+        lanes: Lanes::for_system(system),
+    };
+    solve_exact_factored(system, progress, solver)
+}
+
+/// How many primes are lifted at once ([`lanes`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Lanes {
+    /// One prime.
+    One,
+    /// Two primes, one per thread, combined by the Chinese remainder theorem.
+    Two,
+}
+
+/// Systems with fewer unknowns are lifted with one prime: a step there costs less than
+/// starting a thread, and the second factorisation and the combination are not repaid.
+const TWO_LANES_FROM: usize = 500;
+
+impl Lanes {
+    /// Two lanes for systems of at least [`TWO_LANES_FROM`] unknowns, one otherwise — on any
+    /// machine, so that the steps reported are the same everywhere (on one core the two
+    /// threads take turns).
+    fn for_system(system: &SparseSystem) -> Self {
+        if system.len() >= TWO_LANES_FROM {
+            Lanes::Two
+        } else {
+            Lanes::One
+        }
+    }
+}
+
+/// The choices of an exact solve (all but the default ones are for tests).
+#[derive(Clone, Copy, Debug)]
+struct Solver {
+    /// Whether numerators may come from a prefix of the digits and the peel plan.
+    fast_path: bool,
+    factor: FactorChoice,
+    lanes: Lanes,
 }
 
 /// Which modular factor the lifting solves with.
@@ -894,8 +987,7 @@ enum FactorChoice {
 fn solve_exact_factored(
     system: &SparseSystem,
     progress: &mut dyn FnMut(LiftProgress),
-    fast_path: bool,
-    choice: FactorChoice,
+    solver: Solver,
 ) -> Result<ExactSolution, LinearError> {
     let n = system.len();
     if n == 0 {
@@ -918,7 +1010,13 @@ fn solve_exact_factored(
     } else {
         max_bits as f64
     };
-    let sparse = sparse_pattern(system, &ordering, choice);
+    let sparse = sparse_pattern(system, &ordering, solver.factor);
+    let lanes = match solver.lanes {
+        Lanes::One => 1,
+        Lanes::Two => 2,
+    };
+    // Primes whose factorisation has no zero pivot, used `lanes` at a time.
+    let mut factors = Vec::with_capacity(lanes);
     for p in primes().take(8) {
         let factor = match &sparse {
             Some(pattern) => SparseModularLu::factor(pattern, |i| system.row(i), Modulus::new(p))
@@ -928,16 +1026,26 @@ fn solve_exact_factored(
         let Some(lu) = factor else {
             continue;
         };
-        let expected = (expected_bits / (p as f64).log2()).ceil() as usize + 1;
+        factors.push(lu);
+        if factors.len() < lanes {
+            continue;
+        }
+        let expected = (expected_bits / (factors[0].p() as f64).log2()).ceil() as usize + 1;
         let schedule = Schedule {
             max_bits,
             expected,
             log2_max,
-            fast_path,
+            fast_path: solver.fast_path,
         };
-        if let Some(solution) = lift(system, &ordering, &lu, &schedule, progress)? {
+        let solution = match &factors[..] {
+            [lu] => lift(system, &ordering, lu, &schedule, progress)?,
+            [a, b] => lanes::lift_two(system, &ordering, [a, b], &schedule, progress)?,
+            _ => unreachable!("one or two lanes"),
+        };
+        if let Some(solution) = solution {
             return Ok(solution);
         }
+        factors.clear();
     }
     Err(LinearError::Singular)
 }
@@ -1034,37 +1142,17 @@ fn lift(
         log2_max,
         ..
     } = *schedule;
-    let n = system.len();
-    let p = lu.p();
-    let (order, position) = lu.permutation(ordering);
-    let bits_per_step = (p as f64).log2();
+    let bits_per_step = (lu.p() as f64).log2();
     let max_steps = (max_bits as f64 / bits_per_step).ceil() as usize + 2;
     let expected = expected.min(max_steps);
-    let mut residual = Residual::new(system, order, position, Modulus::new(p));
-    let mut digits = Digits {
-        rows: Vec::new(),
-        base: p * p,
-        powers: Vec::new(),
-    };
-    let mut y = vec![0u64; n];
+    let mut lane = Lane::new(system, ordering, lu);
     let plan = PeelPlan::new(system, ordering);
     // Tries: geometric below the expected count (a smaller denominator shows up early), at
     // the expected count, then every 2% more.
     let mut next_try = 4usize.min(expected);
     let mut steps = 0usize;
     while steps < max_steps {
-        residual.residues(&mut y);
-        lu.solve(&mut y);
-        // r ← (r − A·z)/p, exact by construction.
-        residual.update(&y)?;
-        if steps.is_multiple_of(2) {
-            digits.rows.push((0..n).map(|j| y[position[j]]).collect());
-        } else {
-            let last = digits.rows.last_mut().expect("pushed at the even step");
-            for (j, d) in last.iter_mut().enumerate() {
-                *d += y[position[j]] * p;
-            }
-        }
+        lane.step()?;
         steps += 1;
         progress(LiftProgress { steps, expected });
         if steps == next_try || steps == max_steps {
@@ -1079,7 +1167,7 @@ fn lift(
                 f64::NAN
             };
             if let Some((numerators, denominator)) =
-                attempt(system, &mut digits, p, steps, estimate, &plan)
+                attempt(system, &mut lane.digits, estimate, &plan)
             {
                 return Ok(Some(ExactSolution {
                     numerators,
@@ -1328,7 +1416,8 @@ mod tests {
         (0..n).map(|i| &a[i][n] / &a[i][i]).collect()
     }
 
-    /// Both modular factors, and the choice between them, give the values of Gaussian
+    /// Both modular factors, and the choice between them, with one prime or two lanes
+    /// ([`lanes`]) and on the fast and the general path, give the values of Gaussian
     /// elimination over the rationals on random systems shaped like policy evaluation.
     #[test]
     fn band_and_sparse_factors_give_the_rational_solution() {
@@ -1336,18 +1425,34 @@ mod tests {
         for (n, seed) in [(1, 0), (2, 5), (9, 7), (40, 2), (120, 3)] {
             let system = random_system(n, seed);
             let want = rational_solve(&system);
-            for choice in [
+            for factor in [
                 FactorChoice::Band,
                 FactorChoice::Sparse,
                 FactorChoice::Cheaper,
             ] {
-                let z = solve_exact_factored(&system, &mut |_| {}, true, choice).unwrap();
-                let got: Vec<BigRational> = z
-                    .numerators
-                    .iter()
-                    .map(|v| BigRational::new(v.clone(), z.denominator.clone()))
-                    .collect();
-                assert_eq!(got, want, "n = {n}, {choice:?}");
+                for (lanes, fast_path) in
+                    [(Lanes::One, true), (Lanes::Two, true), (Lanes::Two, false)]
+                {
+                    let solver = Solver {
+                        fast_path,
+                        factor,
+                        lanes,
+                    };
+                    let mut reports = 0;
+                    let z = solve_exact_factored(&system, &mut |_| reports += 1, solver).unwrap();
+                    let got: Vec<BigRational> = z
+                        .numerators
+                        .iter()
+                        .map(|v| BigRational::new(v.clone(), z.denominator.clone()))
+                        .collect();
+                    assert_eq!(got, want, "n = {n}, {solver:?}");
+                    // One progress report per solve modulo a prime; two lanes solve in whole
+                    // rows of two steps each.
+                    assert_eq!(reports, z.lifting_steps, "{solver:?}");
+                    if lanes == Lanes::Two {
+                        assert!(z.lifting_steps.is_multiple_of(4), "{solver:?}");
+                    }
+                }
             }
         }
     }
@@ -1376,14 +1481,22 @@ mod tests {
             BigRational::new(2.into(), (p - 1).into()),
             BigRational::new((p - 3).into(), (p - 1).into()),
         ];
-        for choice in [FactorChoice::Band, FactorChoice::Sparse] {
-            let z = solve_exact_factored(&system, &mut |_| {}, true, choice).unwrap();
-            for (v, w) in z.numerators.iter().zip(&want) {
-                assert_eq!(
-                    &BigRational::new(v.clone(), z.denominator.clone()),
-                    w,
-                    "{choice:?}"
-                );
+        // With two lanes the sparse factor lifts modulo the second and the third primes.
+        for factor in [FactorChoice::Band, FactorChoice::Sparse] {
+            for lanes in [Lanes::One, Lanes::Two] {
+                let solver = Solver {
+                    fast_path: true,
+                    factor,
+                    lanes,
+                };
+                let z = solve_exact_factored(&system, &mut |_| {}, solver).unwrap();
+                for (v, w) in z.numerators.iter().zip(&want) {
+                    assert_eq!(
+                        &BigRational::new(v.clone(), z.denominator.clone()),
+                        w,
+                        "{solver:?}"
+                    );
+                }
             }
         }
     }

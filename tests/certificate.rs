@@ -913,33 +913,21 @@ fn an_unwritable_certificate_is_refused_before_the_problem_is_read() {
     let dir = tempfile::tempdir().unwrap();
     let missing_problem = s(&dir.path().join("no-such-problem.json"));
     let cert = s(&dir.path().join("no-such-dir").join("c.json"));
-    for args in [
-        vec![
-            "solve",
-            "--file",
-            &missing_problem,
-            "--algorithm",
-            "exact",
-            "--certificate",
-            &cert,
-        ],
-        vec![
-            "solve",
-            "--env",
-            "no-such-env",
-            "--algorithm",
-            "exact",
-            "--certificate",
-            &cert,
-        ],
-        vec![
-            "discount",
-            "--file",
-            &missing_problem,
-            "--certificate",
-            &cert,
-        ],
+    let command = |source: [&str; 3], target: &str| -> Vec<String> {
+        let mut args: Vec<String> = source.iter().map(|a| a.to_string()).collect();
+        args.extend(["--certificate".to_string(), target.to_string()]);
+        if source[0] == "solve" {
+            args.extend(["--algorithm".to_string(), "exact".to_string()]);
+        }
+        args
+    };
+    let solve_file = ["solve", "--file", missing_problem.as_str()];
+    for source in [
+        solve_file,
+        ["solve", "--env", "no-such-env"],
+        ["discount", "--file", missing_problem.as_str()],
     ] {
+        let args = command(source, &cert);
         let err = fails_one_line(&args);
         assert!(
             err.contains("cannot write") && err.contains("no-such-dir"),
@@ -950,15 +938,6 @@ fn an_unwritable_certificate_is_refused_before_the_problem_is_read() {
             "{err}"
         );
     }
-    let into_directory = s(dir.path());
-    let err = fails_one_line(&[
-        "solve",
-        "--file",
-        &missing_problem,
-        "--algorithm",
-        "exact",
-        "--certificate",
-        &into_directory,
-    ]);
+    let err = fails_one_line(&command(solve_file, &s(dir.path())));
     assert!(err.contains("is a directory"), "{err}");
 }

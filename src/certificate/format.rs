@@ -236,10 +236,13 @@ impl Values<'_> {
                 .collect();
             // A comma before every value but the very first.
             let commas = end - first - usize::from(first == 0);
-            buffer.clear();
-            buffer.resize(texts.iter().map(ValueText::len).sum::<usize>() + commas, 0);
+            // Every byte of the batch is written below: the buffer is grown, never cleared.
+            let total = texts.iter().map(ValueText::len).sum::<usize>() + commas;
+            if buffer.len() < total {
+                buffer.resize(total, 0);
+            }
             let mut places: Vec<&mut [u8]> = Vec::with_capacity(texts.len());
-            let mut rest = &mut buffer[..];
+            let mut rest = &mut buffer[..total];
             for (i, t) in texts.iter().enumerate() {
                 let (place, after) = rest.split_at_mut(t.len() + usize::from(first + i > 0));
                 places.push(place);
@@ -253,7 +256,7 @@ impl Values<'_> {
                     comma.fill(b',');
                     t.fill(text);
                 });
-            out.write_all(&buffer)?;
+            out.write_all(&buffer[..total])?;
             first = end;
         }
         out.write_all(b"]}\n")

@@ -58,9 +58,9 @@ pub fn write_certificate(path: &std::path::Path, text: &str) -> Result<(), Strin
 /// unpredictable; the file written is created under it anew with `O_CREAT | O_EXCL` (which
 /// follows no symbolic link and opens no file that exists), so nothing planted at that name in
 /// the meantime is written through, and written around the page cache where the file system
-/// allows it ([`truecost::atomic::DirectFile`]: the kernel's copy of every byte cost as much
-/// as making the text). One line on error, naming the path; a pipe closed by its
-/// reader is not an error (as for [`truecost::atomic::write`]).
+/// allows it ([`truecost::atomic::DirectFile`]: through the page cache, the kernel's copy of
+/// every byte costs as much as making the text). One line on error, naming the path; a pipe
+/// closed by its reader is not an error (as for [`truecost::atomic::write`]).
 pub fn write_certificate_with(
     path: &std::path::Path,
     write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,

@@ -1127,6 +1127,29 @@ struct Schedule {
     fast_path: bool,
 }
 
+impl Schedule {
+    /// What [`attempt`] is given for `log2 max |z_i|`: the estimate on the fast path, `NaN`
+    /// (no estimate: reconstruct every unknown) otherwise.
+    fn estimate(&self) -> f64 {
+        if self.fast_path {
+            self.log2_max
+        } else {
+            f64::NAN
+        }
+    }
+}
+
+/// The next reconstruction attempt after one at `done` (in steps, or rows of steps): 1.5 times
+/// as far below `expected` (a smaller denominator shows up early), at `expected`, then every
+/// 2% more — and at least `gap` later.
+fn next_attempt(done: usize, expected: usize, gap: usize) -> usize {
+    if done < expected {
+        ((done * 3).div_ceil(2)).max(done + gap).min(expected)
+    } else {
+        done + (done / 50).max(gap)
+    }
+}
+
 /// Dixon lifting with one prime; `None` if the bound was reached without a verified solution
 /// (only possible if `A` is singular).
 fn lift(
@@ -1136,19 +1159,11 @@ fn lift(
     schedule: &Schedule,
     progress: &mut dyn FnMut(LiftProgress),
 ) -> Result<Option<ExactSolution>, LinearError> {
-    let Schedule {
-        max_bits,
-        expected,
-        log2_max,
-        ..
-    } = *schedule;
     let bits_per_step = (lu.p() as f64).log2();
-    let max_steps = (max_bits as f64 / bits_per_step).ceil() as usize + 2;
-    let expected = expected.min(max_steps);
+    let max_steps = (schedule.max_bits as f64 / bits_per_step).ceil() as usize + 2;
+    let expected = schedule.expected.min(max_steps);
     let mut lane = Lane::new(system, ordering, lu);
     let plan = PeelPlan::new(system, ordering);
-    // Tries: geometric below the expected count (a smaller denominator shows up early), at
-    // the expected count, then every 2% more.
     let mut next_try = 4usize.min(expected);
     let mut steps = 0usize;
     while steps < max_steps {
@@ -1156,18 +1171,9 @@ fn lift(
         steps += 1;
         progress(LiftProgress { steps, expected });
         if steps == next_try || steps == max_steps {
-            next_try = if steps < expected {
-                ((steps * 3).div_ceil(2)).max(steps + 2).min(expected)
-            } else {
-                steps + (steps / 50).max(2)
-            };
-            let estimate = if schedule.fast_path {
-                log2_max
-            } else {
-                f64::NAN
-            };
+            next_try = next_attempt(steps, expected, 2);
             if let Some((numerators, denominator)) =
-                attempt(system, &mut lane.digits, estimate, &plan)
+                attempt(system, &mut lane.digits, schedule.estimate(), &plan)
             {
                 return Ok(Some(ExactSolution {
                     numerators,

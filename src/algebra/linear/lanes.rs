@@ -17,8 +17,8 @@ use dashu_int::UBig;
 
 use super::residual::Residual;
 use super::{
-    attempt, BandOrdering, Digits, ExactSolution, Expansion, LiftProgress, LinearError,
-    ModularFactor, PeelPlan, Schedule, SparseSystem,
+    attempt, next_attempt, BandOrdering, Digits, ExactSolution, Expansion, LiftProgress,
+    LinearError, ModularFactor, PeelPlan, Schedule, SparseSystem,
 };
 use crate::algebra::lowest_terms::Barrett;
 use crate::algebra::sparse_lu::Modulus;
@@ -202,12 +202,7 @@ pub(super) fn lift_two(
     let mut first = Lane::new(system, ordering, factors[0]);
     let mut second = Lane::new(system, ordering, factors[1]);
     let plan = PeelPlan::new(system, ordering);
-    let estimate = if schedule.fast_path {
-        schedule.log2_max
-    } else {
-        f64::NAN
-    };
-    // Tries, in rows: geometric below the expected count, at it, then every 2% more.
+    // Tries, in rows ([`super::next_attempt`]).
     let mut next_try = 1usize.min(expected_rows);
     let mut rows = 0usize;
     while rows < max_rows {
@@ -243,13 +238,11 @@ pub(super) fn lift_two(
             (0..steps).try_for_each(|_| second.step())?;
         }
         rows = target;
-        next_try = if rows < expected_rows {
-            ((rows * 3).div_ceil(2)).max(rows + 1).min(expected_rows)
-        } else {
-            rows + (rows / 50).max(1)
-        };
+        next_try = next_attempt(rows, expected_rows, 1);
         let mut combined = Combined::new(&mut first.digits, &mut second.digits);
-        if let Some((numerators, denominator)) = attempt(system, &mut combined, estimate, &plan) {
+        if let Some((numerators, denominator)) =
+            attempt(system, &mut combined, schedule.estimate(), &plan)
+        {
             return Ok(Some(ExactSolution {
                 numerators,
                 denominator,

@@ -5,6 +5,7 @@
 //! The gcds run on `dashu`'s Lehmer gcd, subquadratic where `num-bigint`'s binary gcd takes a
 //! step per bit.
 
+use super::ntt::{mul, Transformed};
 use dashu_base::{BitTest, DivRem, Gcd};
 use dashu_int::UBig;
 use num_bigint::BigInt;
@@ -230,23 +231,36 @@ fn smooth_part(x: &UBig) -> (UBig, UBig) {
 }
 
 /// `gcd(n, S)` for `S` the product of `powers` (1 for `n = 0`): `2^min(v₂(n), e)` from the
-/// trailing zeros; an odd `p` that does not divide `n` (one remainder by a word) contributes
-/// nothing, one that does contributes `gcd(n mod pᵉ, pᵉ)`.
+/// trailing zeros; an odd `p` that does not divide `n` contributes nothing, one that does
+/// contributes `gcd(n mod pᵉ, pᵉ)`. Whether `p` divides `n` is read off `n` modulo a product of
+/// up to four of the odd primes (below 2¹⁶ each, so the product fits in a word): one
+/// remainder by a word for every four primes.
 fn smooth_gcd(n: &UBig, powers: &[PrimePower]) -> UBig {
     let mut g = UBig::ONE;
     if n.is_zero() {
         return g;
     }
-    for p in powers {
-        if p.prime == 2 {
-            g <<= n.trailing_zeros().unwrap_or(0).min(p.exponent);
-        } else if n % p.prime == 0 {
-            let r = n % &p.power;
-            g *= if r.is_zero() {
-                p.power.clone()
-            } else {
-                (&p.power).gcd(&r)
-            };
+    let odd: Vec<&PrimePower> = powers
+        .iter()
+        .filter(|p| {
+            if p.prime == 2 {
+                g <<= n.trailing_zeros().unwrap_or(0).min(p.exponent);
+            }
+            p.prime != 2
+        })
+        .collect();
+    for group in odd.chunks(4) {
+        let product: u64 = group.iter().map(|p| p.prime).product();
+        let r = n % product;
+        for p in group {
+            if r.is_multiple_of(p.prime) {
+                let r = n % &p.power;
+                g *= if r.is_zero() {
+                    p.power.clone()
+                } else {
+                    (&p.power).gcd(&r)
+                };
+            }
         }
     }
     g
@@ -272,14 +286,14 @@ fn product_modulo(values: &[&UBig], m: &UBig) -> UBig {
         match values {
             [] => UBig::ONE,
             [v] => leaf(v),
-            _ if values.len() <= 8 => values[1..]
-                .iter()
-                .fold(leaf(values[0]), |acc, v| barrett.reduce(acc * leaf(v))),
+            _ if values.len() <= 8 => values[1..].iter().fold(leaf(values[0]), |acc, v| {
+                barrett.reduce(mul(&acc, &leaf(v)))
+            }),
             _ => {
                 let (left, right) = values.split_at(values.len() / 2);
                 let (a, b) =
                     rayon::join(|| tree(left, leaf, barrett), || tree(right, leaf, barrett));
-                barrett.reduce(a * b)
+                barrett.reduce(mul(&a, &b))
             }
         }
     }
@@ -290,11 +304,13 @@ fn product_modulo(values: &[&UBig], m: &UBig) -> UBig {
 /// two multiplications instead of a long division (which is quadratic in `dashu` at these
 /// sizes). Shared with the numerators' conversion of [`super::linear`]'s lifting.
 pub(crate) struct Barrett {
-    m: UBig,
+    /// `m`, transformed for products with quotients.
+    m: Transformed,
     k: usize,
     /// Extra bits allowed above `2^(2k)` in the argument of [`reduce`](Self::reduce).
     slack: usize,
-    mu: UBig,
+    /// `μ`, transformed for products with the argument's top bits.
+    mu: Transformed,
 }
 
 impl Barrett {
@@ -306,11 +322,14 @@ impl Barrett {
     /// Reduction of arguments below `2^(2k+slack)`.
     pub(crate) fn with_slack(m: &UBig, slack: usize) -> Self {
         let k = m.bit_len();
+        // Both products' other factors, `⌊t/2^(k−1)⌋` and the quotient, are below
+        // 2^(k+1+slack).
+        let words = (k + slack + 1) / 64 + 1;
         Barrett {
-            m: m.clone(),
+            m: Transformed::new(m, words),
             k,
             slack,
-            mu: (UBig::ONE << (2 * k + slack)) / m,
+            mu: Transformed::new(&((UBig::ONE << (2 * k + slack)) / m), words),
         }
     }
 
@@ -318,12 +337,20 @@ impl Barrett {
     /// `q̂ = ⌊t'·μ/2^(k+1+slack)⌋`, each of the three floors loses less than 1 against `t/m`
     /// (`t' < 2^(k+1+slack)` and `2^(k−1) ≤ m`), so `q̂` is short by at most 2.
     pub(crate) fn reduce(&self, t: UBig) -> UBig {
-        let q = ((&t >> (self.k - 1)) * &self.mu) >> (self.k + 1 + self.slack);
-        let mut r = t - q * &self.m;
-        while r >= self.m {
-            r -= &self.m;
+        self.div_rem(t).1
+    }
+
+    /// `(⌊t/m⌋, t mod m)` for `0 ≤ t < 2^(2k+slack)`, the quotient as in
+    /// [`reduce`](Self::reduce).
+    pub(crate) fn div_rem(&self, t: UBig) -> (UBig, UBig) {
+        let mut q = self.mu.mul(&(&t >> (self.k - 1))) >> (self.k + 1 + self.slack);
+        let m = self.m.value();
+        let mut r = t - self.m.mul(&q);
+        while &r >= m {
+            r -= m;
+            q += UBig::ONE;
         }
-        r
+        (q, r)
     }
 }
 
@@ -486,6 +513,33 @@ mod tests {
             );
         }
         assert_eq!(smooth_gcd(&UBig::ZERO, &powers), UBig::ONE);
+    }
+
+    /// Eleven odd primes (three groups of the word-sized products, the last one short), each
+    /// dividing the numerators to a random power below, at or above its exponent in `S`.
+    #[test]
+    fn the_smooth_gcd_reads_every_group_of_odd_primes() {
+        let mut rng = ChaCha8Rng::seed_from_u64(12);
+        let primes = [3u64, 5, 7, 11, 13, 17, 19, 23, 65_497, 65_519, 65_521];
+        let s = primes
+            .iter()
+            .zip(1u32..)
+            .fold(BigInt::from(8), |acc, (&p, e)| acc * BigInt::from(p).pow(e));
+        let d = &s * ((BigInt::one() << 127) - 1);
+        let (powers, _) = smooth_factors(&magnitude(&d));
+        assert_eq!(powers.len(), 12);
+        for _ in 0..60 {
+            let n = primes
+                .iter()
+                .fold(to_big(&random_ubig(&mut rng, 300)), |acc, &p| {
+                    acc * BigInt::from(p).pow(rng.next_u32() % 14)
+                });
+            assert_eq!(
+                to_big(&smooth_gcd(&magnitude(&n), &powers)),
+                n.gcd(&s),
+                "{n}"
+            );
+        }
     }
 
     /// The product tree modulo `m` against the product of all values taken whole, then one

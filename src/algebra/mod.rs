@@ -12,6 +12,9 @@
 //!   exact verification) and its `f64` twin.
 //! * [`ordering`] — fill-reducing orderings (nested dissection) of a symmetric sparsity pattern
 //!   and its symbolic factorisation (elimination tree, row subtrees).
+//! * [`ntt`] — products of big natural numbers by number-theoretic transforms modulo three
+//!   primes and the Chinese remainder theorem.
+//! * [`radix`] — the decimal text of many big integers of about the same size.
 //! * [`lowest_terms`] — exact reduction of fractions, one at a time or many over a common
 //!   denominator.
 //! * [`annihilator`] — modular methods: the minimal polynomial of a Krylov sequence of an
@@ -24,8 +27,10 @@ pub mod annihilator;
 pub mod intervals;
 pub mod linear;
 pub mod lowest_terms;
+pub mod ntt;
 pub mod ordering;
 pub mod poly;
+pub mod radix;
 mod sparse_lu;
 
 /// A uniform draw from `lo..hi` (tests of the algebra modules).

@@ -152,7 +152,9 @@ impl Optimum {
     /// Every state's `G*` text, in state order, handed to `each` as pieces whose concatenation
     /// is `cost_to_go_all()[x].to_string()` (`[n, "/", d]`, `[n]` or `["inf"]`; digits, `-`,
     /// `/` and `inf` only), for a writer that streams them. The numerators are printed in
-    /// parallel, a batch at a time, and each distinct reduced denominator only once (the
+    /// parallel, a batch at a time, with one table of powers of ten for all of them
+    /// ([`DecimalPowers`](crate::algebra::radix::DecimalPowers)), and each distinct reduced
+    /// denominator only once (the
     /// reduced values share a few denominators, `d·C` divided by small factors; printing
     /// numbers of 10⁴ digits is the bulk of writing them all). Unless
     /// [`cost_to_go_all`](Self::cost_to_go_all) has cached them already, the reduced values
@@ -186,12 +188,21 @@ impl Optimum {
             }
         };
         let (denominators, slots) = denominator_texts(values);
+        let bits = values
+            .iter()
+            .map(|v| match v {
+                Extended::Finite(r) => r.numer().bits(),
+                Extended::Infinite => 0,
+            })
+            .max()
+            .unwrap_or(0);
+        let powers = crate::algebra::radix::DecimalPowers::new(bits);
         let batch = 64 * rayon::current_num_threads();
         for (chunk, chunk_slots) in values.chunks(batch).zip(slots.chunks(batch)) {
             let numerators: Vec<String> = chunk
                 .par_iter()
                 .map(|v| match v {
-                    Extended::Finite(r) => crate::value::integer_text(r.numer()),
+                    Extended::Finite(r) => powers.text(r.numer()),
                     Extended::Infinite => "inf".to_string(),
                 })
                 .collect();

@@ -268,16 +268,20 @@ fn smooth_gcd(n: &UBig, powers: &[PrimePower]) -> UBig {
 
 /// `Π values mod m` (`m > 1`; values non-zero), by a balanced product tree whose halves are
 /// taken in parallel, every product reduced modulo `m` by [`Barrett`]: one product and one
-/// reduction per value. A value more than a word wider than `m` is reduced first.
+/// reduction per value. A value more than a word wider than `m` is reduced first (by the same
+/// Barrett reduction up to twice `m`'s width, by a long division beyond).
 fn product_modulo(values: &[&UBig], m: &UBig) -> UBig {
     const SLACK: usize = 128;
     let k = m.bit_len();
     let barrett = Barrett::with_slack(m, SLACK);
     let leaf = |v: &UBig| -> UBig {
-        if v.bit_len() > k + SLACK / 2 {
-            v % m
-        } else {
+        let bits = v.bit_len();
+        if bits <= k + SLACK / 2 {
             v.clone()
+        } else if bits <= 2 * k + SLACK {
+            barrett.reduce(v.clone())
+        } else {
+            v % m
         }
     };
     // Every operand of a product is below 2^(k + SLACK/2), so every product is below
@@ -555,6 +559,11 @@ mod tests {
             (9, 700, 700..701),
             (17, 1000, 900..1100),
             (40, 300, 100..3000),
+            // Around the reductions' bounds, k + 64 and 2k + 128 bits.
+            (12, 300, 362..367),
+            (12, 300, 726..731),
+            // Factors of transformed products (more than a hundred words).
+            (9, 9000, 7000..20000),
         ] {
             let m = random_ubig(&mut rng, m_bits) | UBig::ONE;
             let values: Vec<UBig> = (0..count)

@@ -155,10 +155,10 @@ struct Plans {
     reciprocals: [u64; 3],
     /// `p₁⁻¹ mod p₂`.
     inv01: Shoup,
-    /// `p₁ mod p₃`.
-    p0_mod_p2: Shoup,
     /// `(p₁p₂)⁻¹ mod p₃`.
     inv012: Shoup,
+    /// `p₂⁻¹ mod p₃`.
+    inv12: Shoup,
 }
 
 impl Plans {
@@ -171,8 +171,8 @@ impl Plans {
             plans: [plan(p0), plan(p1), plan(p2)],
             reciprocals: PRIMES.map(|p| u64::MAX / p),
             inv01: Shoup::new(inverse(p0 % p1, p1), p1),
-            p0_mod_p2: Shoup::new(p0 % p2, p2),
             inv012: Shoup::new(inverse(p0p1_mod_p2, p2), p2),
+            inv12: Shoup::new(inverse(p1 % p2, p2), p2),
         }
     }
 
@@ -223,9 +223,10 @@ impl Plans {
             // x₀₁ = a + p₁·t₁ ≡ a (mod p₁), ≡ b (mod p₂).
             let t1 = self.inv01.mul(b + p1 - below(a, p1), p1);
             let x01 = a as u128 + p0 as u128 * t1 as u128;
-            // x₀₁ mod p₃ = (a + (p₁ mod p₃)·t₁) mod p₃; t₂ = (c − x₀₁)·(p₁p₂)⁻¹ mod p₃.
-            let x01_mod = below(below(a, p2) + self.p0_mod_p2.mul(t1, p2), p2);
-            let t2 = self.inv012.mul(c + p2 - x01_mod, p2);
+            // t₂ = (c − x₀₁)·(p₁p₂)⁻¹ = (c − a)·(p₁p₂)⁻¹ − t₁·p₂⁻¹ (mod p₃): the first product
+            // does not wait for t₁.
+            let u = self.inv012.mul(c + p2 - below(a, p2), p2);
+            let t2 = below(u + p2 - self.inv12.mul(t1, p2), p2);
             // X = x₀₁ + p₁p₂·t₂ < p₁p₂p₃ < 2¹⁵⁰, added to the carry.
             let low = x01 + pl * t2 as u128; // < 2¹¹⁵
             let high = (low >> 64) + ph * t2 as u128; // < 2⁸⁸

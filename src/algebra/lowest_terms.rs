@@ -240,15 +240,10 @@ fn smooth_gcd(n: &UBig, powers: &[PrimePower]) -> UBig {
     if n.is_zero() {
         return g;
     }
-    let odd: Vec<&PrimePower> = powers
-        .iter()
-        .filter(|p| {
-            if p.prime == 2 {
-                g <<= n.trailing_zeros().unwrap_or(0).min(p.exponent);
-            }
-            p.prime != 2
-        })
-        .collect();
+    if let Some(two) = powers.iter().find(|p| p.prime == 2) {
+        g <<= n.trailing_zeros().unwrap_or(0).min(two.exponent);
+    }
+    let odd: Vec<&PrimePower> = powers.iter().filter(|p| p.prime != 2).collect();
     for group in odd.chunks(4) {
         let product: u64 = group.iter().map(|p| p.prime).product();
         let r = n % product;

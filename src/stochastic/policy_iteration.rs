@@ -154,9 +154,8 @@ impl Optimum {
     /// `/` and `inf` only), for a writer that streams them. The numerators are printed in
     /// parallel, a batch at a time, with one table of powers of ten for all of them
     /// ([`DecimalPowers`](crate::algebra::radix::DecimalPowers)), and each distinct reduced
-    /// denominator only once (the
-    /// reduced values share a few denominators, `d·C` divided by small factors; printing
-    /// numbers of 10⁴ digits is the bulk of writing them all). Unless
+    /// denominator only once (the reduced values share a few denominators, `d·C` divided by
+    /// small factors; printing numbers of 10⁴ digits is the bulk of writing them all). Unless
     /// [`cost_to_go_all`](Self::cost_to_go_all) has cached them already, the reduced values
     /// are not cached (on a 100×100 grid they are 300 MB). Stops at the first error of `each`.
     ///

@@ -186,10 +186,10 @@ impl Plans {
         for (k, (chunk, plan)) in out.chunks_exact_mut(n).zip(&self.plans).enumerate() {
             let (p, m) = (PRIMES[k], self.reciprocals[k]);
             for (r, &w) in chunk.iter_mut().zip(words) {
-                // q = ⌊w·m/2⁶⁴⌋ is at most 2 below ⌊w/p⌋.
+                // q = ⌊w·m/2⁶⁴⌋: with 2⁶⁴ − 1 = m·p + ρ and R the low word of w·m,
+                // w − q·p = (w·(ρ+1) + R·p)/2⁶⁴ < ρ + 1 + p ≤ 2p.
                 let q = ((w as u128 * m as u128) >> 64) as u64;
-                let t = w - q * p;
-                *r = below(t.min(t.wrapping_sub(2 * p)), p);
+                *r = below(w - q * p, p);
             }
             plan.fwd(chunk);
         }
@@ -379,6 +379,25 @@ mod tests {
         assert!(small.transform.is_none());
         let y = random(&mut rng, 900);
         assert_eq!(small.mul(&y), &y * UBig::from(5u32));
+    }
+
+    /// The words' reduction: `w − ⌊w·m/2⁶⁴⌋·p < 2p`, so one conditional subtraction gives
+    /// `w mod p`, at the largest words and at random ones.
+    #[test]
+    fn a_word_is_reduced_with_one_subtraction() {
+        let mut rng = ChaCha8Rng::seed_from_u64(6);
+        for p in PRIMES {
+            let m = u64::MAX / p;
+            let words = (0..1000u64)
+                .map(|k| u64::MAX - k)
+                .chain((1..1000u64).map(|k| (u64::MAX / p - k) * p + p - 1))
+                .chain((0..5000).map(|_| rng.next_u64()));
+            for w in words {
+                let t = w - ((w as u128 * m as u128) >> 64) as u64 * p;
+                assert!(t < 2 * p, "p = {p}, w = {w}");
+                assert_eq!(below(t, p), w % p, "p = {p}, w = {w}");
+            }
+        }
     }
 
     #[test]

@@ -29,6 +29,7 @@
 //! result does not depend on the primes, the projections or this module's heuristics: a
 //! verified annihilator of degree at most `deg μ` is `μ` itself.
 
+use super::modular::{inv_mod, is_prime, mul_mod};
 use num_bigint::{BigInt, BigUint};
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
@@ -40,58 +41,6 @@ pub const PROJECTIONS: usize = 4;
 /// up in a `u128` without overflow.
 fn primes() -> impl Iterator<Item = u64> {
     ((1u64 << 59)..(1u64 << 60)).rev().filter(|&n| is_prime(n))
-}
-
-fn mul_mod(a: u64, b: u64, p: u64) -> u64 {
-    (u128::from(a) * u128::from(b) % u128::from(p)) as u64
-}
-
-fn pow_mod(mut b: u64, mut e: u64, p: u64) -> u64 {
-    let mut r = 1 % p;
-    b %= p;
-    while e > 0 {
-        if e & 1 == 1 {
-            r = mul_mod(r, b, p);
-        }
-        b = mul_mod(b, b, p);
-        e >>= 1;
-    }
-    r
-}
-
-/// The inverse of `a` modulo the prime `p` (`a` not a multiple of `p`; Fermat).
-fn inv_mod(a: u64, p: u64) -> u64 {
-    pow_mod(a, p - 2, p)
-}
-
-fn is_prime(n: u64) -> bool {
-    const BASES: [u64; 12] = [2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37];
-    if n < 2 {
-        return false;
-    }
-    for &q in &BASES {
-        if n.is_multiple_of(q) {
-            return n == q;
-        }
-    }
-    let (mut d, mut s) = (n - 1, 0);
-    while d.is_multiple_of(2) {
-        d /= 2;
-        s += 1;
-    }
-    BASES.iter().all(|&a| {
-        let mut x = pow_mod(a, d, n);
-        if x == 1 || x == n - 1 {
-            return true;
-        }
-        for _ in 1..s {
-            x = mul_mod(x, x, n);
-            if x == n - 1 {
-                return true;
-            }
-        }
-        false
-    })
 }
 
 /// `x mod p` in `[0, p)`.
@@ -448,13 +397,6 @@ mod tests {
         // The primes just below 2^60 are 2^60 − 93 and 2^60 − 107 (GNU `factor` finds every
         // odd number between them and above composite).
         assert_eq!(p[..2], [(1 << 60) - 93, (1 << 60) - 107]);
-        let small: Vec<u64> = (0..60).filter(|&n| is_prime(n)).collect();
-        assert_eq!(
-            small,
-            [2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59]
-        );
-        // A strong pseudoprime to the bases 2, 3, 5, 7 (3215031751 = 151·751·28351).
-        assert!(!is_prime(3_215_031_751));
     }
 
     #[test]

@@ -27,6 +27,7 @@ pub mod annihilator;
 pub mod intervals;
 pub mod linear;
 pub mod lowest_terms;
+mod modular;
 pub mod ntt;
 pub mod ordering;
 pub mod poly;

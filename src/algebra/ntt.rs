@@ -9,6 +9,7 @@
 //! times (a modulus, a Barrett reciprocal) is transformed once: [`Transformed`]. Below
 //! [`THRESHOLD_WORDS`] words, and above [`MAX_WORDS`], the product is `dashu`'s.
 
+use super::modular::inv_mod;
 use dashu_int::UBig;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
@@ -173,9 +174,9 @@ impl Plans {
             n,
             plans: [plan(p0), plan(p1), plan(p2)],
             reciprocals: PRIMES.map(|p| u64::MAX / p),
-            inv01: Shoup::new(inverse(p0 % p1, p1), p1),
-            inv012: Shoup::new(inverse(p0p1_mod_p2, p2), p2),
-            inv12: Shoup::new(inverse(p1 % p2, p2), p2),
+            inv01: Shoup::new(inv_mod(p0 % p1, p1), p1),
+            inv012: Shoup::new(inv_mod(p0p1_mod_p2, p2), p2),
+            inv12: Shoup::new(inv_mod(p1 % p2, p2), p2),
         }
     }
 
@@ -253,64 +254,16 @@ fn below(x: u64, p: u64) -> u64 {
     x.min(x.wrapping_sub(p))
 }
 
-/// `a⁻¹ mod p` (`p` prime, `a ≢ 0`) by Fermat's little theorem.
-fn inverse(a: u64, p: u64) -> u64 {
-    let (mut base, mut e, mut r) = (a as u128, p - 2, 1u128);
-    let p = p as u128;
-    while e > 0 {
-        if e & 1 == 1 {
-            r = r * base % p;
-        }
-        base = base * base % p;
-        e >>= 1;
-    }
-    r as u64
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::algebra::modular::is_prime;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
     fn random(rng: &mut ChaCha8Rng, words: usize) -> UBig {
         let w: Vec<u64> = (0..words).map(|_| rng.next_u64()).collect();
         UBig::from_words(&w)
-    }
-
-    /// Deterministic Miller–Rabin for 64-bit numbers (bases 2..37).
-    fn is_prime(n: u64) -> bool {
-        let small = [2u64, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37];
-        if small.iter().any(|&p| n.is_multiple_of(p)) {
-            return small.contains(&n);
-        }
-        let (mut d, mut s) = (n - 1, 0);
-        while d.is_multiple_of(2) {
-            d /= 2;
-            s += 1;
-        }
-        let mulm = |a: u64, b: u64| ((a as u128 * b as u128) % n as u128) as u64;
-        let powm = |mut b: u64, mut e: u64| {
-            let mut r = 1;
-            while e > 0 {
-                if e & 1 == 1 {
-                    r = mulm(r, b);
-                }
-                b = mulm(b, b);
-                e >>= 1;
-            }
-            r
-        };
-        small.iter().all(|&a| {
-            let mut x = powm(a, d);
-            if x == 1 || x == n - 1 {
-                return true;
-            }
-            (1..s).any(|_| {
-                x = mulm(x, x);
-                x == n - 1
-            })
-        })
     }
 
     #[test]
@@ -414,7 +367,7 @@ mod tests {
                 Shoup::new(p - 1, p).mul(u64::MAX, p) as u128,
                 (u64::MAX as u128 * (p as u128 - 1)) % p as u128
             );
-            let inv = inverse(12345, p);
+            let inv = inv_mod(12345, p);
             assert_eq!(inv as u128 * 12345 % p as u128, 1);
         }
     }

@@ -633,7 +633,7 @@ fn to_num(x: &IBig) -> BigInt {
     }
 }
 
-use super::lowest_terms::Barrett;
+use super::barrett::Barrett;
 pub use super::lowest_terms::{gcd, reduced, reduced_all, SMOOTH_PRIMES_BELOW};
 
 /// How to recover the numerators from a few of them: `seeds` are computed from the digits;
@@ -1535,36 +1535,6 @@ mod tests {
                     "n = {n}, z[{i}] = {} against {want}",
                     z[i]
                 );
-            }
-        }
-    }
-
-    #[test]
-    fn barrett_reduction_agrees_with_division() {
-        let mut rng = ChaCha8Rng::seed_from_u64(9);
-        for words in [1usize, 3, 40] {
-            let words_of = |rng: &mut ChaCha8Rng, k: usize| -> UBig {
-                let w: Vec<u64> = (0..k).map(|_| rng.next_u64()).collect();
-                UBig::from_le_bytes(&w.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<_>>())
-            };
-            let m = words_of(&mut rng, words) + UBig::from(3u8);
-            let b = Barrett::new(&m);
-            for _ in 0..50 {
-                let t = words_of(&mut rng, 2 * words) % (&m * &m);
-                assert_eq!(b.reduce(t.clone()), t % &m);
-            }
-            assert_eq!(b.reduce(&m * &m - UBig::ONE), (&m * &m - UBig::ONE) % &m);
-            // With slack: arguments up to 2^(2k+slack) − 1, against the remainder of a division.
-            for slack in [1usize, 7, 64, 130] {
-                let b = Barrett::with_slack(&m, slack);
-                let top = (UBig::ONE << (2 * m.bit_len() + slack)) - UBig::ONE;
-                for t in [top.clone(), &top >> 1usize, (&m << slack) * &m - UBig::ONE] {
-                    assert_eq!(b.reduce(t.clone()), t % &m, "slack {slack}");
-                }
-                for _ in 0..20 {
-                    let t = words_of(&mut rng, 2 * words + slack.div_ceil(64) + 1) % &top;
-                    assert_eq!(b.reduce(t.clone()), t % &m, "slack {slack}");
-                }
             }
         }
     }

@@ -5,7 +5,8 @@
 //! The gcds run on `dashu`'s Lehmer gcd, subquadratic where `num-bigint`'s binary gcd takes a
 //! step per bit.
 
-use super::ntt::{mul, Transformed};
+use super::barrett::Barrett;
+use super::ntt::mul;
 use dashu_base::{BitTest, DivRem, Gcd};
 use dashu_int::UBig;
 use num_bigint::BigInt;
@@ -297,60 +298,6 @@ fn product_modulo(values: &[&UBig], m: &UBig) -> UBig {
         }
     }
     tree(values, &leaf, &barrett)
-}
-
-/// Barrett reduction modulo a fixed `m`, the reciprocal `μ = ⌊2^(2k+slack)/m⌋` computed once:
-/// two multiplications instead of a long division (which is quadratic in `dashu` at these
-/// sizes). Shared with the numerators' conversion of [`super::linear`]'s lifting.
-pub(crate) struct Barrett {
-    /// `m`, transformed for products with quotients.
-    m: Transformed,
-    k: usize,
-    /// Extra bits allowed above `2^(2k)` in the argument of [`reduce`](Self::reduce).
-    slack: usize,
-    /// `μ`, transformed for products with the argument's top bits.
-    mu: Transformed,
-}
-
-impl Barrett {
-    /// Reduction of arguments below `2^(2k)` (`k` the bits of `m > 0`).
-    pub(crate) fn new(m: &UBig) -> Self {
-        Self::with_slack(m, 0)
-    }
-
-    /// Reduction of arguments below `2^(2k+slack)`.
-    pub(crate) fn with_slack(m: &UBig, slack: usize) -> Self {
-        let k = m.bit_len();
-        // Both products' other factors, `⌊t/2^(k−1)⌋` and the quotient, are below
-        // 2^(k+1+slack).
-        let words = (k + slack + 1) / 64 + 1;
-        Barrett {
-            m: Transformed::new(m, words),
-            k,
-            slack,
-            mu: Transformed::new(&((UBig::ONE << (2 * k + slack)) / m), words),
-        }
-    }
-
-    /// `t mod m` for `0 ≤ t < 2^(2k+slack)`. With `t' = ⌊t/2^(k−1)⌋` and the estimate
-    /// `q̂ = ⌊t'·μ/2^(k+1+slack)⌋`, each of the three floors loses less than 1 against `t/m`
-    /// (`t' < 2^(k+1+slack)` and `2^(k−1) ≤ m`), so `q̂` is short by at most 2.
-    pub(crate) fn reduce(&self, t: UBig) -> UBig {
-        self.div_rem(t).1
-    }
-
-    /// `(⌊t/m⌋, t mod m)` for `0 ≤ t < 2^(2k+slack)`, the quotient as in
-    /// [`reduce`](Self::reduce).
-    pub(crate) fn div_rem(&self, t: UBig) -> (UBig, UBig) {
-        let mut q = self.mu.mul(&(&t >> (self.k - 1))) >> (self.k + 1 + self.slack);
-        let m = self.m.value();
-        let mut r = t - self.m.mul(&q);
-        while &r >= m {
-            r -= m;
-            q += UBig::ONE;
-        }
-        (q, r)
-    }
 }
 
 #[cfg(test)]

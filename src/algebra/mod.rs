@@ -24,6 +24,7 @@
 //! claims engine ([`crate::claims`]) build on it.
 
 pub mod annihilator;
+mod barrett;
 pub mod intervals;
 pub mod linear;
 pub mod lowest_terms;

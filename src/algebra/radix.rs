@@ -10,7 +10,7 @@
 //! 10⁴ states and γ = 0.999), so the table of powers is built once and each conversion costs a
 //! few products of transformed factors per level.
 
-use super::lowest_terms::Barrett;
+use super::barrett::Barrett;
 use dashu_base::BitTest;
 use dashu_int::UBig;
 use num_bigint::{BigInt, Sign};

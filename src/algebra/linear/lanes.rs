@@ -20,7 +20,7 @@ use super::{
     attempt, next_attempt, BandOrdering, Digits, ExactSolution, Expansion, LiftProgress,
     LinearError, ModularFactor, PeelPlan, Schedule, SparseSystem,
 };
-use crate::algebra::lowest_terms::Barrett;
+use crate::algebra::barrett::Barrett;
 use crate::algebra::sparse_lu::Modulus;
 
 /// One prime's lifting: its factor, the residual `r_k` and the digits `z_k` lifted so far.

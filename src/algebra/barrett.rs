@@ -1,0 +1,100 @@
+//! Barrett reduction modulo a fixed big modulus: the quotient estimated from a reciprocal
+//! computed once, two products of transformed factors ([`super::ntt`]) per reduction. Used by
+//! the lifting's conversions ([`super::linear`]), lowest terms' product modulo the rough part
+//! ([`super::lowest_terms`]) and the decimal text's splits ([`super::radix`]).
+
+use super::ntt::Transformed;
+use dashu_base::BitTest;
+use dashu_int::UBig;
+
+/// Barrett reduction modulo a fixed `m`, the reciprocal `μ = ⌊2^(2k+slack)/m⌋` computed once:
+/// two multiplications instead of a long division (which is quadratic in `dashu` at these
+/// sizes), each by a factor whose transforms are kept ([`super::ntt::Transformed`]).
+pub(crate) struct Barrett {
+    /// `m`, transformed for products with quotients.
+    m: Transformed,
+    k: usize,
+    /// Extra bits allowed above `2^(2k)` in the argument of [`reduce`](Self::reduce).
+    slack: usize,
+    /// `μ`, transformed for products with the argument's top bits.
+    mu: Transformed,
+}
+
+impl Barrett {
+    /// Reduction of arguments below `2^(2k)` (`k` the bits of `m > 0`).
+    pub(crate) fn new(m: &UBig) -> Self {
+        Self::with_slack(m, 0)
+    }
+
+    /// Reduction of arguments below `2^(2k+slack)`.
+    pub(crate) fn with_slack(m: &UBig, slack: usize) -> Self {
+        let k = m.bit_len();
+        // Both products' other factors, `⌊t/2^(k−1)⌋` and the quotient, are below
+        // 2^(k+1+slack).
+        let words = (k + slack + 1) / 64 + 1;
+        Barrett {
+            m: Transformed::new(m, words),
+            k,
+            slack,
+            mu: Transformed::new(&((UBig::ONE << (2 * k + slack)) / m), words),
+        }
+    }
+
+    /// `t mod m` for `0 ≤ t < 2^(2k+slack)`. With `t' = ⌊t/2^(k−1)⌋` and the estimate
+    /// `q̂ = ⌊t'·μ/2^(k+1+slack)⌋`, each of the three floors loses less than 1 against `t/m`
+    /// (`t' < 2^(k+1+slack)` and `2^(k−1) ≤ m`), so `q̂` is short by at most 2.
+    pub(crate) fn reduce(&self, t: UBig) -> UBig {
+        self.div_rem(t).1
+    }
+
+    /// `(⌊t/m⌋, t mod m)` for `0 ≤ t < 2^(2k+slack)`, the quotient as in
+    /// [`reduce`](Self::reduce).
+    pub(crate) fn div_rem(&self, t: UBig) -> (UBig, UBig) {
+        let mut q = self.mu.mul(&(&t >> (self.k - 1))) >> (self.k + 1 + self.slack);
+        let m = self.m.value();
+        let mut r = t - self.m.mul(&q);
+        while &r >= m {
+            r -= m;
+            q += UBig::ONE;
+        }
+        (q, r)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    #[test]
+    fn barrett_reduction_agrees_with_division() {
+        let mut rng = ChaCha8Rng::seed_from_u64(9);
+        for words in [1usize, 3, 40, 200] {
+            let words_of = |rng: &mut ChaCha8Rng, k: usize| -> UBig {
+                let w: Vec<u64> = (0..k).map(|_| rng.next_u64()).collect();
+                UBig::from_le_bytes(&w.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<_>>())
+            };
+            let m = words_of(&mut rng, words) + UBig::from(3u8);
+            let b = Barrett::new(&m);
+            for _ in 0..50 {
+                let t = words_of(&mut rng, 2 * words) % (&m * &m);
+                assert_eq!(b.reduce(t.clone()), &t % &m);
+                assert_eq!(b.div_rem(t.clone()), (&t / &m, &t % &m));
+            }
+            assert_eq!(b.reduce(&m * &m - UBig::ONE), (&m * &m - UBig::ONE) % &m);
+            // With slack: arguments up to 2^(2k+slack) − 1, against the remainder of a division.
+            for slack in [1usize, 7, 64, 130] {
+                let b = Barrett::with_slack(&m, slack);
+                let top = (UBig::ONE << (2 * m.bit_len() + slack)) - UBig::ONE;
+                for t in [top.clone(), &top >> 1usize, (&m << slack) * &m - UBig::ONE] {
+                    assert_eq!(b.reduce(t.clone()), t % &m, "slack {slack}");
+                }
+                for _ in 0..20 {
+                    let t = words_of(&mut rng, 2 * words + slack.div_ceil(64) + 1) % &top;
+                    assert_eq!(b.reduce(t.clone()), t % &m, "slack {slack}");
+                }
+            }
+        }
+    }
+}

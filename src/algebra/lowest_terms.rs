@@ -51,8 +51,8 @@ pub fn gcd(a: &BigInt, b: &BigInt) -> BigInt {
 }
 
 /// `|x|` as a `dashu` integer.
-fn magnitude(x: &BigInt) -> UBig {
-    UBig::from_le_bytes(&x.magnitude().to_bytes_le())
+pub(crate) fn magnitude(x: &BigInt) -> UBig {
+    UBig::from_words(&x.magnitude().to_u64_digits())
 }
 
 /// A `dashu` natural number as a `num-bigint` integer.

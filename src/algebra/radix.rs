@@ -11,9 +11,11 @@
 //! few products of transformed factors per level.
 
 use super::barrett::Barrett;
+use super::lowest_terms::magnitude;
 use dashu_base::BitTest;
 use dashu_int::UBig;
-use num_bigint::{BigInt, Sign};
+use num_bigint::BigInt;
+use num_traits::Signed;
 
 /// `10¹⁹`, the largest power of ten in a word.
 const WORD_POWER: u64 = 10_000_000_000_000_000_000;
@@ -75,10 +77,9 @@ impl DecimalPowers {
 
     /// The decimal text of `x`, the same string as `x.to_string()`.
     pub fn text(&self, x: &BigInt) -> String {
-        let (sign, words) = x.to_u64_digits();
-        let magnitude = UBig::from_words(&words);
-        let mut out = Vec::with_capacity(words.len() * 20 + 1);
-        if sign == Sign::Minus {
+        let magnitude = magnitude(x);
+        let mut out = Vec::with_capacity(magnitude.as_words().len() * 20 + 1);
+        if x.is_negative() {
             out.push(b'-');
         }
         self.write(magnitude, &mut out);

@@ -83,6 +83,22 @@ mod tests {
                 assert_eq!(b.div_rem(t.clone()), (&t / &m, &t % &m));
             }
             assert_eq!(b.reduce(&m * &m - UBig::ONE), (&m * &m - UBig::ONE) % &m);
+            // Multiples of m, and their neighbours: where the estimate falls short by one, the
+            // remainder before the correction is m itself, which must become 0.
+            for c in [1u64, 2, 3, 1 << 20, u64::MAX] {
+                let c = UBig::from(c) % &m;
+                if c == UBig::ZERO {
+                    continue;
+                }
+                for t in [&c * &m, &c * &m - UBig::ONE, &c * &m + UBig::ONE] {
+                    assert_eq!(b.div_rem(t.clone()), (&t / &m, &t % &m));
+                }
+            }
+            for _ in 0..50 {
+                let c = words_of(&mut rng, words) % &m;
+                let t = &c * &m;
+                assert_eq!(b.div_rem(t.clone()), (c, UBig::ZERO));
+            }
             // With slack: arguments up to 2^(2k+slack) − 1, against the remainder of a division.
             for slack in [1usize, 7, 64, 130] {
                 let b = Barrett::with_slack(&m, slack);

@@ -96,11 +96,24 @@ impl Transformed {
         &self.value
     }
 
+    /// Whether the product with a factor of `words` words uses the kept transforms (otherwise
+    /// [`mul`] computes it from scratch).
+    ///
+    /// ```
+    /// use dashu_int::UBig;
+    /// use truecost::algebra::ntt::Transformed;
+    /// let t = Transformed::new(&((UBig::ONE << 8_000) - UBig::ONE), 130);
+    /// assert!(t.transforms(130) && !t.transforms(131));
+    /// ```
+    pub fn transforms(&self, words: usize) -> bool {
+        self.transform.is_some() && (THRESHOLD_WORDS..=self.other).contains(&words)
+    }
+
     /// `x·y`.
     pub fn mul(&self, y: &UBig) -> UBig {
         let ly = y.as_words().len();
         match &self.transform {
-            Some((plans, residues)) if ly <= self.other && ly >= THRESHOLD_WORDS => {
+            Some((plans, residues)) if self.transforms(ly) => {
                 let mut t = plans.transform(y.as_words());
                 plans.multiply(&mut t, residues);
                 plans.product(&mut t, self.value.as_words().len() + ly)

@@ -82,16 +82,17 @@ impl DecimalPowers {
         if x.is_negative() {
             out.push(b'-');
         }
-        self.write(magnitude, &mut out);
+        self.write(magnitude, &mut out, &mut malachite_text);
         String::from_utf8(out).expect("digits and a sign only")
     }
 
-    /// The digits of `x` (no leading zeros; "0" for zero).
-    fn write(&self, x: UBig, out: &mut Vec<u8>) {
+    /// The digits of `x` (no leading zeros; "0" for zero), the pieces the powers do not split
+    /// (the leaves) converted by `leaf`.
+    fn write(&self, x: UBig, out: &mut Vec<u8>, leaf: Leaf) {
         let top = self.levels.last().expect("at least one level");
         // Below 2^(2(b−1)) ≤ P², b the bits of the largest power P.
         if x.bit_len() > 2 * (top.power.bit_len() - 1) {
-            out.extend_from_slice(malachite_text(&x).as_bytes());
+            out.extend_from_slice(leaf(&x).as_bytes());
             return;
         }
         // The smallest j with x < P_j², then leading digits by P_j.
@@ -100,43 +101,46 @@ impl DecimalPowers {
             .iter()
             .position(|l| x.bit_len() <= l.power.bit_len())
             .unwrap_or(self.levels.len() - 1);
-        self.leading(x, j, out);
+        self.leading(x, j, out, leaf);
     }
 
     /// The digits of `x < P_j²` without leading zeros.
-    fn leading(&self, x: UBig, j: usize, out: &mut Vec<u8>) {
+    fn leading(&self, x: UBig, j: usize, out: &mut Vec<u8>, leaf: Leaf) {
         let level = &self.levels[j];
         match &level.barrett {
-            None => out.extend_from_slice(malachite_text(&x).as_bytes()),
+            None => out.extend_from_slice(leaf(&x).as_bytes()),
             // j ≥ 1: P₀ has no reciprocal.
-            Some(_) if x < level.power => self.leading(x, j - 1, out),
+            Some(_) if x < level.power => self.leading(x, j - 1, out, leaf),
             Some(barrett) => {
                 let (q, r) = barrett.div_rem(x);
-                self.leading(q, j, out);
-                self.padded(r, j, out);
+                self.leading(q, j, out, leaf);
+                self.padded(r, j, out, leaf);
             }
         }
     }
 
     /// The digits of `x < P_j`, exactly `19·2^j` of them (leading zeros).
-    fn padded(&self, x: UBig, j: usize, out: &mut Vec<u8>) {
+    fn padded(&self, x: UBig, j: usize, out: &mut Vec<u8>, leaf: Leaf) {
         match j
             .checked_sub(1)
             .and_then(|i| self.levels[i].barrett.as_ref())
         {
             Some(barrett) => {
                 let (q, r) = barrett.div_rem(x);
-                self.padded(q, j - 1, out);
-                self.padded(r, j - 1, out);
+                self.padded(q, j - 1, out, leaf);
+                self.padded(r, j - 1, out, leaf);
             }
             None => {
-                let text = malachite_text(&x);
+                let text = leaf(&x);
                 out.resize(out.len() + self.levels[j].digits - text.len(), b'0');
                 out.extend_from_slice(text.as_bytes());
             }
         }
     }
 }
+
+/// The conversion of the leaves, the numbers the powers do not split.
+type Leaf<'a> = &'a mut dyn FnMut(&UBig) -> String;
 
 /// The decimal text of `x` by `malachite`'s conversion.
 fn malachite_text(x: &UBig) -> String {
@@ -202,6 +206,45 @@ mod tests {
         // A number whose middle is all zeros.
         let x = num_traits::pow(ten.clone(), 5000) * 12345 + 67;
         assert_eq!(powers.text(&x), x.to_string());
+    }
+
+    /// The leaves of `x`'s conversion: the numbers handed to `malachite`, in words.
+    fn leaves(powers: &DecimalPowers, x: &BigInt) -> Vec<usize> {
+        let mut words = Vec::new();
+        let mut out = Vec::new();
+        powers.write(magnitude(x), &mut out, &mut |leaf: &UBig| {
+            words.push(leaf.as_words().len());
+            malachite_text(leaf)
+        });
+        assert_eq!(String::from_utf8(out).unwrap(), x.to_string());
+        words
+    }
+
+    #[test]
+    fn numbers_within_the_table_are_split_into_small_leaves_and_larger_ones_converted_whole() {
+        let mut rng = ChaCha8Rng::seed_from_u64(10);
+        let powers = DecimalPowers::new(64 * 1000);
+        // A leaf is below P_j² for a power P_j without a reciprocal (fewer than LEAF_WORDS
+        // words), so it has fewer than 2·LEAF_WORDS words.
+        for words in [1, 47, 48, 49, 200, 999, 1000] {
+            let x = random(&mut rng, words);
+            let leaves = leaves(&powers, &x);
+            assert!(
+                leaves.iter().all(|&w| w < 2 * LEAF_WORDS),
+                "{words}: {leaves:?}"
+            );
+            let expected = if words < 2 * LEAF_WORDS { 1 } else { 2 };
+            assert!(leaves.len() >= expected, "{words}: {leaves:?}");
+        }
+        // The largest power P has b bits: numbers of up to 2(b−1) bits are split, larger
+        // ones converted whole.
+        let b = powers.levels.last().unwrap().power.bit_len();
+        let at = (BigInt::one() << (2 * (b - 1))) - 1;
+        let leaves_at = leaves(&powers, &at);
+        assert!(leaves_at.len() > 1 && leaves_at.iter().all(|&w| w < 2 * LEAF_WORDS));
+        for x in [at + 1, BigInt::one() << (2 * b), random(&mut rng, 5000)] {
+            assert_eq!(leaves(&powers, &x), vec![magnitude(&x).as_words().len()]);
+        }
     }
 
     #[test]

@@ -200,10 +200,7 @@ impl Plans {
         for (k, (chunk, plan)) in out.chunks_exact_mut(n).zip(&self.plans).enumerate() {
             let (p, m) = (PRIMES[k], self.reciprocals[k]);
             for (r, &w) in chunk.iter_mut().zip(words) {
-                // q = ⌊w·m/2⁶⁴⌋: with 2⁶⁴ − 1 = m·p + ρ and R the low word of w·m,
-                // w − q·p = (w·(ρ+1) + R·p)/2⁶⁴ < ρ + 1 + p ≤ 2p.
-                let q = ((w as u128 * m as u128) >> 64) as u64;
-                *r = below(w - q * p, p);
+                *r = below(word_remainder(w, p, m), p);
             }
             plan.fwd(chunk);
         }
@@ -259,6 +256,13 @@ impl Plans {
         );
         UBig::from_words(&out)
     }
+}
+
+/// `w − ⌊w·m/2⁶⁴⌋·p` for `m = ⌊(2⁶⁴−1)/p⌋`: `w mod p` or `w mod p + p`. With `2⁶⁴ − 1 = m·p + ρ`
+/// and `R` the low word of `w·m`, it is `(w·(ρ+1) + R·p)/2⁶⁴ < ρ + 1 + p ≤ 2p`.
+#[inline]
+fn word_remainder(w: u64, p: u64, m: u64) -> u64 {
+    w - ((w as u128 * m as u128) >> 64) as u64 * p
 }
 
 /// `x mod p` for `x < 2p` without a branch: `x − p` wraps round above `x` when `x < p`.
@@ -359,7 +363,7 @@ mod tests {
                 .chain((1..1000u64).map(|k| (u64::MAX / p - k) * p + p - 1))
                 .chain((0..5000).map(|_| rng.next_u64()));
             for w in words {
-                let t = w - ((w as u128 * m as u128) >> 64) as u64 * p;
+                let t = word_remainder(w, p, m);
                 assert!(t < 2 * p, "p = {p}, w = {w}");
                 assert_eq!(below(t, p), w % p, "p = {p}, w = {w}");
             }

@@ -2,7 +2,8 @@
 //! numbers' 64-bit words is computed modulo three primes below 2⁵⁰ (each `≡ 1 mod 2²²`) by
 //! `tfhe-ntt`'s negacyclic transforms — zero-padded to twice the words, so nothing wraps round
 //! — and each coefficient is recovered exactly by the Chinese remainder theorem, since it is
-//! below `min(words)·(2⁶⁴−1)² < p₁p₂p₃`; then the carries are propagated.
+//! below `min(words)·(2⁶⁴−1)² < p₁p₂p₃` (Garner's formula; eight coefficients at a time with
+//! AVX-512 IFMA where the processor has it, `ntt/ifma.rs`); then the carries are propagated.
 //!
 //! At the sizes of an exact optimum's values (10⁴ states at γ = 0.999: numbers of 120,000
 //! bits) one product takes about a third of `dashu`'s Toom–Cook product. A factor used many
@@ -14,6 +15,9 @@ use dashu_int::UBig;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 use tfhe_ntt::prime64::Plan;
+
+#[cfg(target_arch = "x86_64")]
+mod ifma;
 
 /// The three primes, each `k·2²² + 1` below 2⁵⁰ (so transforms of up to 2²¹ points exist, and
 /// `tfhe-ntt` takes its 52-bit multiply-add path where the processor has one).
@@ -170,26 +174,17 @@ struct Plans {
     plans: [Plan; 3],
     /// `⌊(2⁶⁴−1)/pᵢ⌋`, for reducing words.
     reciprocals: [u64; 3],
-    /// `p₁⁻¹ mod p₂`.
-    inv01: Shoup,
-    /// `(p₁p₂)⁻¹ mod p₃`.
-    inv012: Shoup,
-    /// `p₂⁻¹ mod p₃`.
-    inv12: Shoup,
+    garner: Garner,
 }
 
 impl Plans {
     fn new(n: usize) -> Self {
         let plan = |p: u64| Plan::try_new(n, p).expect("each prime is 1 modulo 2^22");
-        let [p0, p1, p2] = PRIMES;
-        let p0p1_mod_p2 = ((p0 as u128 * p1 as u128) % p2 as u128) as u64;
         Plans {
             n,
-            plans: [plan(p0), plan(p1), plan(p2)],
+            plans: PRIMES.map(plan),
             reciprocals: PRIMES.map(|p| u64::MAX / p),
-            inv01: Shoup::new(inv_mod(p0 % p1, p1), p1),
-            inv012: Shoup::new(inv_mod(p0p1_mod_p2, p2), p2),
-            inv12: Shoup::new(inv_mod(p1 % p2, p2), p2),
+            garner: Garner::new(),
         }
     }
 
@@ -227,35 +222,78 @@ impl Plans {
         }
         let (r0, rest) = t.split_at(n);
         let (r1, r2) = rest.split_at(n);
+        let mut out = vec![0u64; words];
+        // The pending carry: a number below 2¹⁵¹ in three words.
+        let mut carry = [0u64; 3];
+        #[cfg(target_arch = "x86_64")]
+        let done = if ifma::available() {
+            ifma::recombine(&self.garner, r0, r1, r2, &mut out, &mut carry)
+        } else {
+            0
+        };
+        #[cfg(not(target_arch = "x86_64"))]
+        let done = 0;
+        for k in done..words {
+            out[k] = accumulate(&mut carry, self.garner.coefficient(r0[k], r1[k], r2[k]));
+        }
+        debug_assert!(carry == [0, 0, 0], "the product has the words given");
+        UBig::from_words(&out)
+    }
+}
+
+/// Garner's recombination of a convolution's coefficient from its residues modulo the three
+/// [`PRIMES`] `p₁, p₂, p₃`: `X = a + p₁·t₁ + p₁p₂·t₂` with `t₁ = (b − a)·p₁⁻¹ mod p₂` and
+/// `t₂ = (c − a − p₁·t₁)·(p₁p₂)⁻¹ mod p₃`, the one number below `p₁p₂p₃` that is `≡ a, b, c`.
+struct Garner {
+    /// `p₁⁻¹ mod p₂`.
+    inv01: Shoup,
+    /// `(p₁p₂)⁻¹ mod p₃`.
+    inv012: Shoup,
+    /// `p₂⁻¹ mod p₃`.
+    inv12: Shoup,
+}
+
+impl Garner {
+    fn new() -> Self {
+        let [p0, p1, p2] = PRIMES;
+        let p0p1_mod_p2 = ((p0 as u128 * p1 as u128) % p2 as u128) as u64;
+        Garner {
+            inv01: Shoup::new(inv_mod(p0 % p1, p1), p1),
+            inv012: Shoup::new(inv_mod(p0p1_mod_p2, p2), p2),
+            inv12: Shoup::new(inv_mod(p1 % p2, p2), p2),
+        }
+    }
+
+    /// The coefficient `X < p₁p₂p₃ < 2¹⁵⁰` with residues `a < p₁`, `b < p₂`, `c < p₃`, as
+    /// three words (least significant first).
+    #[inline]
+    fn coefficient(&self, a: u64, b: u64, c: u64) -> [u64; 3] {
         let [p0, p1, p2] = PRIMES;
         let p0p1 = p0 as u128 * p1 as u128;
         let (pl, ph) = (p0p1 as u64 as u128, p0p1 >> 64);
-        let mut out = vec![0u64; words];
-        // The pending carry: a number below 2¹⁵¹ in three words.
-        let (mut c0, mut c1, mut c2) = (0u64, 0u64, 0u64);
-        for (((o, &a), &b), &c) in out.iter_mut().zip(r0).zip(r1).zip(r2) {
-            // x₀₁ = a + p₁·t₁ ≡ a (mod p₁), ≡ b (mod p₂).
-            let t1 = self.inv01.mul(b + p1 - below(a, p1), p1);
-            let x01 = a as u128 + p0 as u128 * t1 as u128;
-            // t₂ = (c − x₀₁)·(p₁p₂)⁻¹ = (c − a)·(p₁p₂)⁻¹ − t₁·p₂⁻¹ (mod p₃): the first product
-            // does not wait for t₁.
-            let u = self.inv012.mul(c + p2 - below(a, p2), p2);
-            let t2 = below(u + p2 - self.inv12.mul(t1, p2), p2);
-            // X = x₀₁ + p₁p₂·t₂ < p₁p₂p₃ < 2¹⁵⁰, added to the carry.
-            let low = x01 + pl * t2 as u128; // < 2¹¹⁵
-            let high = (low >> 64) + ph * t2 as u128; // < 2⁸⁸
-            let s0 = c0 as u128 + (low as u64) as u128;
-            let s1 = c1 as u128 + (high as u64) as u128 + (s0 >> 64);
-            let s2 = c2 as u128 + (high >> 64) + (s1 >> 64);
-            *o = s0 as u64;
-            (c0, c1, c2) = (s1 as u64, s2 as u64, (s2 >> 64) as u64);
-        }
-        debug_assert!(
-            c0 == 0 && c1 == 0 && c2 == 0,
-            "the product has the words given"
-        );
-        UBig::from_words(&out)
+        // x₀₁ = a + p₁·t₁ ≡ a (mod p₁), ≡ b (mod p₂).
+        let t1 = self.inv01.mul(b + p1 - below(a, p1), p1);
+        let x01 = a as u128 + p0 as u128 * t1 as u128;
+        // t₂ = (c − x₀₁)·(p₁p₂)⁻¹ = (c − a)·(p₁p₂)⁻¹ − t₁·p₂⁻¹ (mod p₃): the first product
+        // does not wait for t₁.
+        let u = self.inv012.mul(c + p2 - below(a, p2), p2);
+        let t2 = below(u + p2 - self.inv12.mul(t1, p2), p2);
+        // X = x₀₁ + p₁p₂·t₂.
+        let low = x01 + pl * t2 as u128; // < 2¹¹⁵
+        let high = (low >> 64) + ph * t2 as u128; // < 2⁸⁸
+        [low as u64, high as u64, (high >> 64) as u64]
     }
+}
+
+/// Adds the coefficient `x` (three words) to the pending `carry` and returns the word that is
+/// complete: the coefficient of `2^(64k)` adds into the words from `k` on.
+#[inline]
+fn accumulate(carry: &mut [u64; 3], x: [u64; 3]) -> u64 {
+    let s0 = carry[0] as u128 + x[0] as u128;
+    let s1 = carry[1] as u128 + x[1] as u128 + (s0 >> 64);
+    let s2 = carry[2] as u128 + x[2] as u128 + (s1 >> 64);
+    *carry = [s1 as u64, s2 as u64, (s2 >> 64) as u64];
+    s0 as u64
 }
 
 /// `w − ⌊w·m/2⁶⁴⌋·p` for `m = ⌊(2⁶⁴−1)/p⌋`: `w mod p` or `w mod p + p`. With `2⁶⁴ − 1 = m·p + ρ`
@@ -331,6 +369,129 @@ mod tests {
         for b in [UBig::ZERO, UBig::ONE, UBig::from(7u32)] {
             assert_eq!(mul(&a, &b), &a * &b);
             assert_eq!(Transformed::new(&a, 300).mul(&b), &a * &b);
+        }
+    }
+
+    /// Residue triples: random ones, and every combination of 0, 1, `p − 1` and `p − 2`.
+    fn residue_triples(rng: &mut ChaCha8Rng, random: usize) -> Vec<[u64; 3]> {
+        let edges = |p: u64| [0, 1, p - 2, p - 1];
+        let mut triples = Vec::new();
+        for a in edges(PRIMES[0]) {
+            for b in edges(PRIMES[1]) {
+                for c in edges(PRIMES[2]) {
+                    triples.push([a, b, c]);
+                }
+            }
+        }
+        triples.extend((0..random).map(|_| PRIMES.map(|p| rng.next_u64() % p)));
+        triples
+    }
+
+    #[test]
+    fn garner_recombines_each_residue_triple_into_the_one_coefficient_below_the_product() {
+        let garner = Garner::new();
+        let product = PRIMES.iter().map(|&p| UBig::from(p)).product::<UBig>();
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        for [a, b, c] in residue_triples(&mut rng, 5000) {
+            let x = UBig::from_words(&garner.coefficient(a, b, c));
+            assert!(x < product, "{a}, {b}, {c}");
+            for (r, p) in [a, b, c].into_iter().zip(PRIMES) {
+                assert_eq!(&x % UBig::from(p), UBig::from(r), "{a}, {b}, {c} mod {p}");
+            }
+        }
+    }
+
+    /// The words of `Σ X_k·2^(64k)` by the portable loop alone.
+    fn recombined(garner: &Garner, triples: &[[u64; 3]]) -> (Vec<u64>, [u64; 3]) {
+        let mut carry = [0; 3];
+        let words = triples
+            .iter()
+            .map(|&[a, b, c]| accumulate(&mut carry, garner.coefficient(a, b, c)))
+            .collect();
+        (words, carry)
+    }
+
+    #[test]
+    fn carries_add_up_the_coefficients_into_the_number() {
+        let garner = Garner::new();
+        let mut rng = ChaCha8Rng::seed_from_u64(8);
+        let triples = residue_triples(&mut rng, 300);
+        let (words, carry) = recombined(&garner, &triples);
+        let mut all = words.clone();
+        all.extend(carry);
+        let sum = triples.iter().rev().fold(UBig::ZERO, |acc, &[a, b, c]| {
+            (acc << 64) + UBig::from_words(&garner.coefficient(a, b, c))
+        });
+        assert_eq!(UBig::from_words(&all), sum);
+    }
+
+    /// On a processor with AVX-512 IFMA the products recombine eight coefficients at a time
+    /// (`ifma::recombine`); its words and carry must be the portable loop's, on residues at
+    /// their edges and random ones, for lengths around multiples of eight. (Without those
+    /// instructions there is nothing to compare: the portable loop alone is used, and the
+    /// other tests check it.)
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn the_vector_recombination_gives_the_portable_words_and_carry() {
+        if !ifma::available() {
+            eprintln!("this processor has no AVX-512 IFMA: only the portable recombination runs");
+            return;
+        }
+        let garner = Garner::new();
+        let mut rng = ChaCha8Rng::seed_from_u64(9);
+        let all = residue_triples(&mut rng, 2000);
+        for len in [0, 7, 8, 9, 63, 64, 65, all.len()] {
+            let triples = &all[all.len() - len..];
+            let [r0, r1, r2] = [0, 1, 2].map(|i| triples.iter().map(|t| t[i]).collect::<Vec<_>>());
+            let mut out = vec![0; len];
+            let mut carry = [0; 3];
+            let done = ifma::recombine(&garner, &r0, &r1, &r2, &mut out, &mut carry);
+            assert_eq!(done, len / 8 * 8);
+            for k in done..len {
+                out[k] = accumulate(&mut carry, garner.coefficient(r0[k], r1[k], r2[k]));
+            }
+            assert_eq!(
+                (out, carry),
+                recombined(&garner, triples),
+                "{len} coefficients"
+            );
+        }
+    }
+
+    /// The vector recombination is used exactly where the processor reports both features
+    /// (Linux's `/proc/cpuinfo` flags, read independently of the standard library's
+    /// detection).
+    #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
+    #[test]
+    fn the_vector_recombination_is_used_where_the_processor_has_ifma() {
+        let cpuinfo = std::fs::read_to_string("/proc/cpuinfo").expect("/proc/cpuinfo");
+        let flags: Vec<&str> = cpuinfo
+            .lines()
+            .find_map(|l| l.strip_prefix("flags"))
+            .expect("a flags line")
+            .split_whitespace()
+            .collect();
+        let has = |f: &str| flags.contains(&f);
+        assert_eq!(ifma::available(), has("avx512f") && has("avx512ifma"));
+    }
+
+    /// The inverse transforms hand over residues below their primes, which the recombination
+    /// (and its 52-bit lanes) assume.
+    #[test]
+    fn inverse_transforms_give_residues_below_their_primes() {
+        let mut rng = ChaCha8Rng::seed_from_u64(10);
+        let plans = plans(1024);
+        let ones = vec![u64::MAX; 512];
+        let words: Vec<u64> = (0..512).map(|_| rng.next_u64()).collect();
+        for (x, y) in [(&ones, &ones), (&words, &ones), (&words, &words)] {
+            let mut t = plans.transform(x);
+            plans.multiply(&mut t, &plans.transform(y));
+            for (chunk, plan) in t.chunks_exact_mut(1024).zip(&plans.plans) {
+                plan.inv(chunk);
+            }
+            for (chunk, p) in t.chunks_exact(1024).zip(PRIMES) {
+                assert!(chunk.iter().all(|&r| r < p), "{p}");
+            }
         }
     }
 

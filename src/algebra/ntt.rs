@@ -91,11 +91,12 @@ impl Transformed {
     /// ```
     pub fn new(x: &UBig, other: usize) -> Self {
         let lx = x.as_words().len();
-        let transform = (lx.min(other) >= KEPT_THRESHOLD_WORDS && lx + other <= MAX_WORDS).then(|| {
-            let plans = plans(points(lx + other));
-            let residues = plans.transform(x.as_words());
-            (plans, residues)
-        });
+        let transform =
+            (lx.min(other) >= KEPT_THRESHOLD_WORDS && lx + other <= MAX_WORDS).then(|| {
+                let plans = plans(points(lx + other));
+                let residues = plans.transform(x.as_words());
+                (plans, residues)
+            });
         Transformed {
             value: x.clone(),
             transform,

@@ -22,8 +22,11 @@ const WORD_POWER: u64 = 10_000_000_000_000_000_000;
 
 /// Powers of fewer words than this have no Barrett reciprocal: a number below the square of
 /// such a power is converted by `malachite` (whose conversion is fast at these sizes: with
-/// `dashu`'s instead, 10⁴ conversions of 36,000 digits took about 20 % longer).
-const LEAF_WORDS: usize = 24;
+/// `dashu`'s instead, 10⁴ conversions of 36,000 digits took about 20 % longer). With 96 the
+/// leaves are below `P₇ = 10²⁴³²` (127 words); a conversion of 36,000 digits took 1.13 times as
+/// long with leaves below `P₅` (32 words), 1.05 times below `P₆` and 1.11 times below `P₈`
+/// (`cargo bench --bench big_integers -- decimal/radix`, alternated, two rounds).
+const LEAF_WORDS: usize = 96;
 
 /// One power `P_j = 10^(19·2^j)`.
 struct Level {
@@ -226,7 +229,8 @@ mod tests {
         let powers = DecimalPowers::new(64 * 1000);
         // A leaf is below P_j² for a power P_j without a reciprocal (fewer than LEAF_WORDS
         // words), so it has fewer than 2·LEAF_WORDS words.
-        for words in [1, 47, 48, 49, 200, 999, 1000] {
+        let w = 2 * LEAF_WORDS;
+        for words in [1, w - 1, w, w + 1, 400, 999, 1000] {
             let x = random(&mut rng, words);
             let leaves = leaves(&powers, &x);
             assert!(

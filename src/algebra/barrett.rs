@@ -3,13 +3,15 @@
 //! the lifting's conversions ([`super::linear`]), lowest terms' product modulo the rough part
 //! ([`super::lowest_terms`]) and the decimal text's splits ([`super::radix`]).
 
-use super::ntt::Transformed;
+use super::ntt::{Transformed, Wrapped};
 use dashu_base::BitTest;
 use dashu_int::UBig;
 
 /// Barrett reduction modulo a fixed `m`, the reciprocal `μ = ⌊2^(2k+slack)/m⌋` computed once:
 /// two multiplications instead of a long division (which is quadratic in `dashu` at these
-/// sizes), each by a factor whose transforms are kept ([`super::ntt::Transformed`]).
+/// sizes), each by a factor whose transforms are kept ([`super::ntt::Transformed`]). The
+/// product `q̂·m` is needed only modulo a number above the remainder: where `m` is long enough,
+/// modulo `2^(64n) + 1` by transforms of half the length ([`Wrapped`]).
 pub(crate) struct Barrett {
     /// `m`, transformed for products with quotients.
     m: Transformed,
@@ -18,6 +20,9 @@ pub(crate) struct Barrett {
     slack: usize,
     /// `μ`, transformed for products with the argument's top bits.
     mu: Transformed,
+    /// `m`, transformed for products modulo `2^(64n) + 1` with `2^(64n) > 4m`, where that is
+    /// shorter than the whole product.
+    wrapped: Option<Wrapped>,
 }
 
 impl Barrett {
@@ -32,11 +37,17 @@ impl Barrett {
         // Both products' other factors, `⌊t/2^(k−1)⌋` and the quotient, are below
         // 2^(k+1+slack).
         let words = (k + slack + 1).div_ceil(64);
+        // The remainder before the correction is below 3m < 2^(k+2), the quotient below
+        // 2^(k+1+slack): both below 2^(k+2+slack).
+        let whole = (m.as_words().len() + words).next_power_of_two();
+        let wrapped = Wrapped::new(m, k + 2 + slack, whole);
         Barrett {
-            m: Transformed::new(m, words),
+            // No kept transforms where the products are wrapped.
+            m: Transformed::new(m, if wrapped.is_some() { 0 } else { words }),
             k,
             slack,
             mu: Transformed::new(&((UBig::ONE << (2 * k + slack)) / m), words),
+            wrapped,
         }
     }
 
@@ -52,7 +63,11 @@ impl Barrett {
     pub(crate) fn div_rem(&self, t: UBig) -> (UBig, UBig) {
         let mut q = self.mu.mul(&(&t >> (self.k - 1))) >> (self.k + 1 + self.slack);
         let m = self.m.value();
-        let mut r = t - self.m.mul(&q);
+        // t − q̂·m lies in [0, 3m), below 2^(64n) + 1: it is its own residue.
+        let mut r = match &self.wrapped {
+            Some(wrapped) => wrapped.difference(&t, &q),
+            None => t - self.m.mul(&q),
+        };
         while &r >= m {
             r -= m;
             q += UBig::ONE;
@@ -115,7 +130,7 @@ mod tests {
     }
 
     #[test]
-    fn the_largest_arguments_take_the_kept_transforms_of_the_shortest_length() {
+    fn the_largest_arguments_take_kept_and_wrapped_transforms_of_the_shortest_lengths() {
         for (words, slack) in [
             (200usize, 0usize),
             (200, 1),
@@ -133,13 +148,30 @@ mod tests {
             let shifted = (&top >> (k - 1)).as_words().len();
             let quotient = (&top / &m).as_words().len();
             let longest = shifted.max(quotient);
+            assert!(b.mu.transforms(shifted), "{words}, {slack}");
+            assert!(!b.mu.transforms(longest + 1), "{words}, {slack}");
+            // q̂·m is wrapped: modulo 2^(64n) + 1 with 2^(64n) > 4m and the quotient below
+            // 2^(64n), n the shortest such power of two, half the whole product's length.
+            let n = b.wrapped.as_ref().expect("wrapped").words();
+            assert!(n.is_power_of_two(), "{words}, {slack}");
+            let limit = UBig::ONE << (64 * n);
             assert!(
-                b.mu.transforms(shifted) && b.m.transforms(quotient),
+                limit > &m * UBig::from(4u8) && limit > &top / &m,
                 "{words}, {slack}"
             );
-            assert!(!b.mu.transforms(longest + 1), "{words}, {slack}");
-            assert!(!b.m.transforms(longest + 1), "{words}, {slack}");
+            assert!(
+                UBig::ONE << (32 * n) <= &m << (slack + 2),
+                "{words}, {slack}"
+            );
+            assert_eq!(2 * n, (m.as_words().len() + longest).next_power_of_two());
+            assert!(!b.m.transforms(quotient), "{words}, {slack}");
             assert_eq!(b.div_rem(top.clone()), (&top / &m, &top % &m));
         }
+        // Below the kept threshold nothing is wrapped, and m's products are dashu's.
+        let m = (UBig::ONE << (64 * 40)) + UBig::from(7u8);
+        let b = Barrett::new(&m);
+        assert!(b.wrapped.is_none() && !b.m.transforms(41));
+        let t = &m * &m - UBig::from(3u8);
+        assert_eq!(b.div_rem(t.clone()), (&t / &m, &t % &m));
     }
 }

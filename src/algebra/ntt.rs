@@ -19,6 +19,9 @@ use tfhe_ntt::prime64::Plan;
 
 #[cfg(target_arch = "x86_64")]
 mod ifma;
+mod wrapped;
+
+pub(crate) use wrapped::Wrapped;
 
 /// The three primes, each `k·2²² + 1` below 2⁵⁰ (so transforms of up to 2²¹ points exist, and
 /// `tfhe-ntt` takes its 52-bit multiply-add path where the processor has one).
@@ -225,10 +228,25 @@ impl Plans {
 
     /// The number whose words' convolution `t` holds (transformed), `words` words at most.
     fn product(&self, t: &mut [u64], words: usize) -> UBig {
-        let n = self.n;
-        for (chunk, plan) in t.chunks_exact_mut(n).zip(&self.plans) {
+        self.inverse(t);
+        let (out, carry) = self.recombine(t, words);
+        debug_assert!(carry == [0, 0, 0], "the product has the words given");
+        UBig::from_words(&out)
+    }
+
+    /// The inverse transforms: `t` then holds each coefficient's residues, one prime after
+    /// the other.
+    fn inverse(&self, t: &mut [u64]) {
+        for (chunk, plan) in t.chunks_exact_mut(self.n).zip(&self.plans) {
             plan.inv(chunk);
         }
+    }
+
+    /// The words `Σ_{k<words} X_k·2^(64k)` of the coefficients `X_k` whose residues `t` holds
+    /// (one prime after the other, each below its prime), and the carry left above them (three
+    /// words).
+    fn recombine(&self, t: &[u64], words: usize) -> (Vec<u64>, [u64; 3]) {
+        let n = self.n;
         let (r0, rest) = t.split_at(n);
         let (r1, r2) = rest.split_at(n);
         let mut out = vec![0u64; words];
@@ -245,8 +263,7 @@ impl Plans {
         for k in done..words {
             out[k] = accumulate(&mut carry, self.garner.coefficient(r0[k], r1[k], r2[k]));
         }
-        debug_assert!(carry == [0, 0, 0], "the product has the words given");
-        UBig::from_words(&out)
+        (out, carry)
     }
 }
 

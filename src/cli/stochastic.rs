@@ -126,19 +126,10 @@ fn checked_optimum(
             format_bytes(budget),
         ));
     }
-    let bar = if quiet || !std::io::stderr().is_terminal() {
-        ProgressBar::hidden()
-    } else {
-        let bar = ProgressBar::with_draw_target(Some(1), ProgressDrawTarget::stderr());
-        bar.set_style(
-            ProgressStyle::with_template(
-                "{spinner} {msg} [{bar:20}] {pos}/{len} lifting steps {elapsed}",
-            )
-            .expect("a valid template")
-            .progress_chars("=> "),
-        );
-        bar
-    };
+    let bar = progress_bar(
+        quiet,
+        "{spinner} {msg} [{bar:20}] {pos}/{len} lifting steps {elapsed}",
+    );
     let mut exact = 0;
     let result = optimum_with(problem, &mut |event| match event {
         Progress::FloatEvaluation { round } => {
@@ -166,6 +157,21 @@ fn checked_optimum(
     });
     bar.finish_and_clear();
     result.map_err(|e| e.to_string())
+}
+
+/// A progress bar on stderr drawn by `template`, hidden with `--quiet` or when stderr is not a
+/// terminal.
+fn progress_bar(quiet: bool, template: &str) -> ProgressBar {
+    if quiet || !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::with_draw_target(Some(1), ProgressDrawTarget::stderr());
+    bar.set_style(
+        ProgressStyle::with_template(template)
+            .expect("a valid template")
+            .progress_chars("=> "),
+    );
+    bar
 }
 
 /// Digits of the decimal expansions printed next to exact values.
@@ -316,9 +322,19 @@ pub fn solve(args: &SolveArgs, file: Option<ProblemFile>) -> Result<String, Stri
                 // Every state's exact value: streamed into standard output (hundreds of
                 // megabytes at 10⁴ states), nothing left for the caller to print.
                 let mut out = std::io::BufWriter::with_capacity(1 << 20, std::io::stdout().lock());
-                return match write_json_with_values(&report, opt, &mut out)
-                    .and_then(|()| std::io::Write::flush(&mut out))
-                {
+                // Lowest terms and decimal text take seconds at 10⁴ states.
+                let bar = progress_bar(
+                    args.scale.quiet,
+                    "{spinner} every exact value, in lowest terms and in decimal [{bar:20}] {pos}/{len} states {elapsed}",
+                );
+                bar.set_length(prepared.problem.states() as u64);
+                if !bar.is_hidden() {
+                    bar.enable_steady_tick(std::time::Duration::from_millis(200));
+                }
+                let written = write_json_with_values(&report, opt, &mut out, &mut || bar.inc(1))
+                    .and_then(|()| std::io::Write::flush(&mut out));
+                bar.finish_and_clear();
+                return match written {
                     Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(e.to_string()),
                     _ => Ok(String::new()),
                 };
@@ -556,12 +572,13 @@ fn exact_report(prepared: &Prepared, opt: &Optimum) -> Report {
 
 /// `report` as JSON (`serde_json`'s pretty form, then a newline) with its `cost_to_go` array
 /// holding every state's exact `G*` ([`Optimum::for_each_cost_to_go_text`]), written into `out`
-/// as the values are printed: the same bytes as the report with those texts in `cost_to_go`,
+/// as the values are printed (`written` called after each): the same bytes as the report with those texts in `cost_to_go`,
 /// without holding them all (717 MB on a random 100×100 grid at γ = 0.999).
 fn write_json_with_values(
     report: &Report,
     opt: &Optimum,
     out: &mut impl std::io::Write,
+    written: &mut dyn FnMut(),
 ) -> std::io::Result<()> {
     debug_assert!(report.cost_to_go.is_empty());
     let text = serde_json::to_string_pretty(report).expect("serialisable");
@@ -583,6 +600,7 @@ fn write_json_with_values(
                 .all(|b| b.is_ascii_alphanumeric() || b == b'-' || b == b'/'));
             out.write_all(piece.as_bytes())?;
         }
+        written();
         out.write_all(b"\"")
     })?;
     out.write_all(if first { b"[]" } else { b"\n  ]" })?;

@@ -260,7 +260,15 @@ fn discount_reads_a_drn_file_as_its_json_source() {
 fn hostile_drn_input_is_refused_in_one_line() {
     let dir = tempfile::tempdir().unwrap();
     let cases = [
-        (GOOD.replacen("1/2", "1/3", 1), "sum to 5/6, not 1"),
+        (
+            GOOD.replacen("1/2", "1/3", 1),
+            "sum to 5/6, not 1 (below 1 by 1/6)",
+        ),
+        // A sum within 10^-22 of 1: shortened in decimal, its distance from 1 exact.
+        (
+            GOOD.replacen("1/2", "0.5000000000000000000001", 1),
+            "sum to ≈1.0000000000000000, not 1 (above 1 by 1/10000000000000000000000)",
+        ),
         (GOOD.replacen("1/2", "0", 1), "not in (0, 1]"),
         (GOOD.replacen("1/2", "1/2x", 1), "DRN line 14"),
         (

@@ -136,21 +136,16 @@ fn check_sum(outcomes: &[Outcome], state: usize, action: usize) -> Result<(), St
         return Ok(());
     }
     let sum: crate::value::Rational = outcomes.iter().map(|o| &o.probability).sum();
-    let one = crate::value::Rational::one();
-    if sum == one {
+    if sum.is_one() {
         return Ok(());
     }
-    let (off, distance) = if sum > one {
-        ("above", &sum - &one)
-    } else {
-        ("below", &one - &sum)
-    };
+    let (off, distance) = super::off_one(&sum);
     Err(StochasticFileError::Sum {
         state,
         action,
         sum: super::short_text(&sum),
         off,
-        distance: super::short_text(&distance),
+        distance,
     })
 }
 

@@ -67,15 +67,20 @@ pub enum StochasticError {
         /// The probability as text.
         probability: String,
     },
-    /// An action whose outcome probabilities do not sum to exactly 1.
-    #[error("state {state}, action {action}: outcome probabilities sum to {sum}, not 1")]
+    /// An action whose outcome probabilities do not sum to exactly 1: the sum and its exact
+    /// distance from 1, so a sum within `10^-17` of 1 is still shown apart.
+    #[error("state {state}, action {action}: outcome probabilities sum to {sum}, not 1 ({off} 1 by {distance})")]
     ProbabilitySum {
         /// The state.
         state: usize,
         /// The action index.
         action: usize,
-        /// The exact sum as text.
+        /// The sum as text (shortened).
         sum: String,
+        /// `above` or `below`.
+        off: &'static str,
+        /// `|sum − 1|`, exact when short enough.
+        distance: String,
     },
     /// An action without outcomes.
     #[error("state {state}, action {action}: no outcomes")]
@@ -134,6 +139,24 @@ pub fn short_text(r: &crate::value::Rational) -> String {
         text
     } else {
         format!("≈{}", decimal(&exact, 17))
+    }
+}
+
+/// Where a sum of probabilities other than 1 lies: `above` or `below` 1, and by how much
+/// (exact, shortened like [`short_text`]).
+///
+/// ```
+/// use truecost::stochastic::off_one;
+/// assert_eq!(off_one(&"5/6".parse().unwrap()), ("below", "1/6".to_string()));
+/// assert_eq!(off_one(&"11/10".parse().unwrap()), ("above", "1/10".to_string()));
+/// ```
+pub fn off_one(sum: &crate::value::Rational) -> (&'static str, String) {
+    use num_traits::One;
+    let one = crate::value::Rational::one();
+    if *sum > one {
+        ("above", short_text(&(sum - &one)))
+    } else {
+        ("below", short_text(&(&one - sum)))
     }
 }
 

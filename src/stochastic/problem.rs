@@ -338,10 +338,13 @@ impl StochasticProblem {
                     lcm = lcm.lcm(o.probability.denom());
                 }
                 if !sum.is_one() {
+                    let (off, distance) = super::off_one(&sum);
                     return Err(StochasticError::ProbabilitySum {
                         state: x,
                         action: a,
                         sum: super::short_text(&sum),
+                        off,
+                        distance,
                     });
                 }
                 s.cost_denominator = s.cost_denominator.lcm(action.cost.denom());

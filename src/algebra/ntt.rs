@@ -254,7 +254,7 @@ impl Plans {
         let mut carry = [0u64; 3];
         #[cfg(target_arch = "x86_64")]
         let done = if ifma::available() {
-            ifma::recombine(&self.garner, r0, r1, r2, &mut out, &mut carry)
+            ifma::recombine(&self.garner, [r0, r1, r2], &mut out, &mut carry)
         } else {
             0
         };
@@ -471,7 +471,7 @@ mod tests {
             let [r0, r1, r2] = [0, 1, 2].map(|i| triples.iter().map(|t| t[i]).collect::<Vec<_>>());
             let mut out = vec![0; len];
             let mut carry = [0; 3];
-            let done = ifma::recombine(&garner, &r0, &r1, &r2, &mut out, &mut carry);
+            let done = ifma::recombine(&garner, [&r0, &r1, &r2], &mut out, &mut carry);
             assert_eq!(done, len / 8 * 8);
             for k in done..len {
                 out[k] = accumulate(&mut carry, garner.coefficient(r0[k], r1[k], r2[k]));

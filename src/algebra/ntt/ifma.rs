@@ -22,23 +22,21 @@ pub(super) fn available() -> bool {
 }
 
 /// `out[k] ← ` the words of `Σ_k X_k·2^(64k)` for the coefficients `X_k` with residues
-/// `r0[k], r1[k], r2[k]` (each below its prime), the longest multiple of eight of `out`'s
+/// `residues[i][k]` modulo `PRIMES[i]` (each below its prime), the longest multiple of eight of `out`'s
 /// words, `carry` the pending carry in and out (see [`accumulate`]). Returns how many words it
 /// wrote. Only called when [`available`].
 pub(super) fn recombine(
     garner: &Garner,
-    r0: &[u64],
-    r1: &[u64],
-    r2: &[u64],
+    residues: [&[u64]; 3],
     out: &mut [u64],
     carry: &mut [u64; 3],
 ) -> usize {
     assert!(available());
     let words = out.len() / 8 * 8;
-    assert!(r0.len() >= words && r1.len() >= words && r2.len() >= words);
+    assert!(residues.iter().all(|r| r.len() >= words));
     // SAFETY: the processor has the target features `recombine_ifma` is compiled for
     // (checked just above), and every slice holds the `words` words it reads or writes.
-    unsafe { recombine_ifma(garner, r0, r1, r2, &mut out[..words], carry) };
+    unsafe { recombine_ifma(garner, residues, &mut out[..words], carry) };
     words
 }
 
@@ -89,9 +87,7 @@ fn below(x: __m512i, p: __m512i) -> __m512i {
 #[target_feature(enable = "avx512f,avx512ifma")]
 unsafe fn recombine_ifma(
     garner: &Garner,
-    r0: &[u64],
-    r1: &[u64],
-    r2: &[u64],
+    [r0, r1, r2]: [&[u64]; 3],
     out: &mut [u64],
     carry: &mut [u64; 3],
 ) {

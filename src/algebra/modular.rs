@@ -72,4 +72,33 @@ mod tests {
         // A strong pseudoprime to the bases 2, 3, 5, 7 (3215031751 = 151·751·28351).
         assert!(!is_prime(3_215_031_751));
     }
+
+    /// Powers against repeated products (exponents 0 to 40), and Fermat's little theorem for
+    /// large exponents, with bases above the modulus and at the ends of the words; the
+    /// modulus 1, where every power is 0.
+    #[test]
+    fn powers_agree_with_repeated_products_and_inverses_invert() {
+        let moduli = [
+            1u64,
+            2,
+            7,
+            65_537,
+            (1 << 61) - 1,
+            18_446_744_073_709_551_557,
+        ];
+        for p in moduli {
+            for b in [0, 1, 2, 3, p - 1, p, p.wrapping_add(5), u64::MAX] {
+                let mut expected = 1 % p;
+                for e in 0..=40 {
+                    assert_eq!(pow_mod(b, e, p), expected, "{b}^{e} mod {p}");
+                    expected = mul_mod(expected, b % p, p);
+                }
+                if is_prime(p) && b % p != 0 {
+                    assert_eq!(pow_mod(b, p - 1, p), 1, "{b}^(p-1) mod {p}");
+                    assert_eq!(mul_mod(inv_mod(b % p, p), b, p), 1, "{b}⁻¹ mod {p}");
+                }
+            }
+        }
+        assert_eq!(mul_mod(u64::MAX, u64::MAX, 1 << 63), 1);
+    }
 }

@@ -61,7 +61,7 @@ const _: () = assert!(MAX_WORDS <= 1 << 21, "the primes' longest transform");
 /// ```
 pub fn mul(a: &UBig, b: &UBig) -> UBig {
     let (la, lb) = (a.as_words().len(), b.as_words().len());
-    if la.min(lb) < THRESHOLD_WORDS || la + lb > MAX_WORDS {
+    if !transforms(la, lb) {
         return a * b;
     }
     let plans = plans(points(la + lb));
@@ -69,6 +69,11 @@ pub fn mul(a: &UBig, b: &UBig) -> UBig {
     let y = plans.transform(b.as_words());
     plans.multiply(&mut x, &y);
     plans.product(&mut x, la + lb)
+}
+
+/// Whether [`mul`] multiplies factors of `la` and `lb` words by transforms.
+fn transforms(la: usize, lb: usize) -> bool {
+    la.min(lb) >= THRESHOLD_WORDS && la + lb <= MAX_WORDS
 }
 
 /// A factor transformed once for products with factors of up to `other` words.
@@ -519,6 +524,16 @@ mod tests {
                 assert!(chunk.iter().all(|&r| r < p), "{p}");
             }
         }
+    }
+
+    /// Products transform from [`THRESHOLD_WORDS`] words in the shorter factor up to
+    /// [`MAX_WORDS`] in the product (the path only changes the time, so it is checked here).
+    #[test]
+    fn products_transform_between_the_thresholds() {
+        let (t, max) = (THRESHOLD_WORDS, MAX_WORDS);
+        assert!(transforms(t, t) && transforms(t, max - t) && transforms(max - t, t));
+        assert!(!transforms(t - 1, t) && !transforms(t, t - 1) && !transforms(t - 1, 5000));
+        assert!(!transforms(t, max - t + 1) && !transforms(max / 2 + 1, max / 2));
     }
 
     #[test]

@@ -13,7 +13,7 @@ use dashu_int::UBig;
 /// product `q̂·m` is needed only modulo a number above the remainder: where `m` is long enough,
 /// modulo `2^(64n) + 1` by transforms of half the length ([`Wrapped`]).
 pub(crate) struct Barrett {
-    /// `m`, transformed for products with quotients.
+    /// `m`, its transforms kept for products with quotients where those are not wrapped.
     m: Transformed,
     k: usize,
     /// Extra bits allowed above `2^(2k)` in the argument of [`reduce`](Self::reduce).

@@ -572,8 +572,9 @@ fn exact_report(prepared: &Prepared, opt: &Optimum) -> Report {
 
 /// `report` as JSON (`serde_json`'s pretty form, then a newline) with its `cost_to_go` array
 /// holding every state's exact `G*` ([`Optimum::for_each_cost_to_go_text`]), written into `out`
-/// as the values are printed (`written` called after each): the same bytes as the report with those texts in `cost_to_go`,
-/// without holding them all (717 MB on a random 100×100 grid at γ = 0.999).
+/// as the values are printed (`written` called after each): the same bytes as the report with
+/// those texts in `cost_to_go`, without holding them all (717 MB on a random 100×100 grid at
+/// γ = 0.999).
 fn write_json_with_values(
     report: &Report,
     opt: &Optimum,

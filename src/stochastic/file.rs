@@ -103,50 +103,9 @@ pub enum StochasticFileError {
         /// The action index.
         action: usize,
     },
-    /// An action's outcome probabilities (each in `(0, 1]`) that do not sum to exactly 1: the
-    /// sum and its exact distance from 1, so a sum within `10^-17` of 1 is still shown apart.
-    #[error("state {state}, action {action}: outcome probabilities sum to {sum}, not 1 ({off} 1 by {distance})")]
-    Sum {
-        /// The state.
-        state: usize,
-        /// The action index.
-        action: usize,
-        /// The sum (shortened).
-        sum: String,
-        /// `above` or `below`.
-        off: &'static str,
-        /// `|sum − 1|`, exact when short enough.
-        distance: String,
-    },
     /// Probabilities out of range or not summing to 1, and similar.
     #[error("{0}")]
     Stochastic(#[from] StochasticError),
-}
-
-/// Refuses outcome probabilities, each in `(0, 1]`, whose sum is not exactly 1, naming the sum
-/// and its exact distance from 1 (a range error and an empty list are left to
-/// [`StochasticProblem::new`]).
-fn check_sum(outcomes: &[Outcome], state: usize, action: usize) -> Result<(), StochasticFileError> {
-    use num_traits::One;
-    if outcomes.is_empty()
-        || !outcomes
-            .iter()
-            .all(|o| crate::value::in_unit_interval_open_closed(&o.probability))
-    {
-        return Ok(());
-    }
-    let sum: crate::value::Rational = outcomes.iter().map(|o| &o.probability).sum();
-    if sum.is_one() {
-        return Ok(());
-    }
-    let (off, distance) = super::off_one(&sum);
-    Err(StochasticFileError::Sum {
-        state,
-        action,
-        sum: super::short_text(&sum),
-        off,
-        distance,
-    })
 }
 
 /// Checks a stochastic problem's `terminal` list (module docs of [`crate::model::file`]) and
@@ -271,7 +230,6 @@ pub fn from_json_with_objective(
                             kind: OutcomeKind::Listed,
                         });
                     }
-                    check_sum(&outcomes, x, a)?;
                     outcomes
                 }
                 _ => {

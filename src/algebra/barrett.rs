@@ -13,16 +13,22 @@ use dashu_int::UBig;
 /// product `q̂·m` is needed only modulo a number above the remainder: where `m` is long enough,
 /// modulo `2^(64n) + 1` by transforms of half the length ([`Wrapped`]).
 pub(crate) struct Barrett {
-    /// `m`, its transforms kept for products with quotients where those are not wrapped.
-    m: Transformed,
+    m: UBig,
     k: usize,
     /// Extra bits allowed above `2^(2k)` in the argument of [`reduce`](Self::reduce).
     slack: usize,
     /// `μ`, transformed for products with the argument's top bits.
     mu: Transformed,
-    /// `m`, transformed for products modulo `2^(64n) + 1` with `2^(64n) > 4m`, where that is
-    /// shorter than the whole product.
-    wrapped: Option<Wrapped>,
+    /// `m`, transformed for the products `q̂·m`.
+    product: Product,
+}
+
+/// How a Barrett reduction multiplies its quotients by `m`.
+enum Product {
+    /// Whole products, `m`'s transforms kept.
+    Kept(Transformed),
+    /// Modulo `2^(64n) + 1` with `2^(64n) > 4m`, where that is shorter than the whole product.
+    Wrapped(Wrapped),
 }
 
 impl Barrett {
@@ -40,14 +46,16 @@ impl Barrett {
         // The remainder before the correction is below 3m < 2^(k+2), the quotient below
         // 2^(k+1+slack): both below 2^(k+2+slack).
         let whole = (m.as_words().len() + words).next_power_of_two();
-        let wrapped = Wrapped::new(m, k + 2 + slack, whole);
+        let product = match Wrapped::new(m, k + 2 + slack, whole) {
+            Some(wrapped) => Product::Wrapped(wrapped),
+            None => Product::Kept(Transformed::new(m, words)),
+        };
         Barrett {
-            // No kept transforms where the products are wrapped.
-            m: Transformed::new(m, if wrapped.is_some() { 0 } else { words }),
+            m: m.clone(),
             k,
             slack,
             mu: Transformed::new(&((UBig::ONE << (2 * k + slack)) / m), words),
-            wrapped,
+            product,
         }
     }
 
@@ -62,14 +70,13 @@ impl Barrett {
     /// [`reduce`](Self::reduce).
     pub(crate) fn div_rem(&self, t: UBig) -> (UBig, UBig) {
         let mut q = self.mu.mul(&(&t >> (self.k - 1))) >> (self.k + 1 + self.slack);
-        let m = self.m.value();
-        // t − q̂·m lies in [0, 3m), below 2^(64n) + 1: it is its own residue.
-        let mut r = match &self.wrapped {
-            Some(wrapped) => wrapped.difference(&t, &q),
-            None => t - self.m.mul(&q),
+        let mut r = match &self.product {
+            Product::Kept(kept) => t - kept.mul(&q),
+            // t − q̂·m lies in [0, 3m), below 2^(64n) + 1: it is its own residue.
+            Product::Wrapped(wrapped) => wrapped.difference(&t, &q),
         };
-        while &r >= m {
-            r -= m;
+        while r >= self.m {
+            r -= &self.m;
             q += UBig::ONE;
         }
         (q, r)
@@ -152,7 +159,10 @@ mod tests {
             assert!(!b.mu.transforms(longest + 1), "{words}, {slack}");
             // q̂·m is wrapped: modulo 2^(64n) + 1 with 2^(64n) > 4m and the quotient below
             // 2^(64n), n the shortest such power of two, half the whole product's length.
-            let n = b.wrapped.as_ref().expect("wrapped").words();
+            let Product::Wrapped(wrapped) = &b.product else {
+                panic!("{words}, {slack}: not wrapped");
+            };
+            let n = wrapped.words();
             assert!(n.is_power_of_two(), "{words}, {slack}");
             let limit = UBig::ONE << (64 * n);
             assert!(
@@ -164,13 +174,12 @@ mod tests {
                 "{words}, {slack}"
             );
             assert_eq!(2 * n, (m.as_words().len() + longest).next_power_of_two());
-            assert!(!b.m.transforms(quotient), "{words}, {slack}");
             assert_eq!(b.div_rem(top.clone()), (&top / &m, &top % &m));
         }
         // Below the kept threshold nothing is wrapped, and m's products are dashu's.
         let m = (UBig::ONE << (64 * 40)) + UBig::from(7u8);
         let b = Barrett::new(&m);
-        assert!(b.wrapped.is_none() && !b.m.transforms(41));
+        assert!(matches!(&b.product, Product::Kept(kept) if !kept.transforms(41)));
         let t = &m * &m - UBig::from(3u8);
         assert_eq!(b.div_rem(t.clone()), (&t / &m, &t % &m));
     }

@@ -74,8 +74,7 @@ impl Wrapped {
         let (mut words, carry) = self.plans.recombine(&c, n);
         words.extend(carry);
         // x·y ≡ Σ c_k·2^(64k) = U − offset, U the recombined sum of c_k + β.
-        let z = IBig::from(t.clone()) + IBig::from(self.offset.clone())
-            - IBig::from(UBig::from_words(&words));
+        let z = IBig::from(t + &self.offset) - IBig::from(UBig::from_words(&words));
         fermat_residue(z, n)
     }
 }
